@@ -1,0 +1,81 @@
+#pragma once
+/// @file bspline.h
+/// Planar cubic (or any degree) B-spline curves, open (clamped) or closed (periodic):
+/// evaluation, derivatives, closest-point projection, least-squares fitting.
+#include <Eigen/Core>
+#include <vector>
+
+namespace section {
+
+/// A planar B-spline curve.
+/// Open curves use a clamped knot vector of size control.size() + degree + 1.
+/// Closed curves store the n distinct control points once; the knot vector holds the
+/// n + 1 breakpoints t_0 < ... < t_n of one period (t_n - t_0 is the period), and the
+/// curve wraps around: control point i + n is control point i.
+struct BSpline {
+  int degree = 3;                          ///< polynomial degree
+  bool closed = false;                     ///< periodic curve
+  std::vector<double> knots;               ///< see above
+  std::vector<Eigen::Vector2d> control;    ///< control points
+
+  double t_min() const;                    ///< first parameter of the curve
+  double t_max() const;                    ///< last parameter (one period later when closed)
+  /// Point at parameter t (wrapped into one period when closed, clamped when open).
+  Eigen::Vector2d point(double t) const;
+  /// k-th derivative at t (k = 0 gives the point).
+  Eigen::Vector2d derivative(double t, int k) const;
+  /// Signed curvature at t (positive turning counterclockwise).
+  double curvature(double t) const;
+  /// Basis functions non-zero at t: their control indices (already wrapped) and values.
+  /// Used to linearise fits in the control points.
+  void basis(double t, std::vector<int>& index, std::vector<double>& value) const;
+};
+
+/// Closest point of a curve to a query point.
+struct ClosestPoint {
+  double t = 0;                            ///< curve parameter of the foot point
+  Eigen::Vector2d point;                   ///< the foot point
+  double distance = 0;                     ///< distance from the query to the foot point
+};
+
+/// Closest point on `curve` to `q`: a global search over `samples` samples per knot span
+/// followed by Newton iterations, so that the result is the global minimum.
+ClosestPoint closest_point(const BSpline& curve, const Eigen::Vector2d& q, int samples = 8);
+
+/// Closest point searched only around the parameter `t_guess` (Newton from there with
+/// a bracket of one knot span each side); for tracking points that move little.
+ClosestPoint closest_point_near(const BSpline& curve, const Eigen::Vector2d& q, double t_guess);
+
+/// Chord-length parameters of a polyline (closed: the last parameter is the full
+/// length, for the segment back to the first point), starting at 0.
+std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& points,
+                                            bool closed);
+
+struct CurveFitOptions {
+  int degree = 3;             ///< spline degree
+  int control_points = 0;     ///< number of control points; 0 = points/4, at least 8
+  double fairness = 1e-6;     ///< weight of the second-difference fairness term, relative
+  bool closed = true;         ///< fit a closed (periodic) curve
+};
+
+/// Least-squares B-spline through ordered points with chord-length parameters and
+/// uniform knots in that parameter. Throws section::Error when there are fewer points
+/// than control points or the points are degenerate (all equal, all on a line when closed).
+BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOptions& options = {});
+
+/// Least-squares control points for the knots, degree and closedness of `shape` (its
+/// control points are ignored) through `points` at the given curve `parameters`, with
+/// optional per-point `weights` (empty = all 1) and the relative second-difference
+/// `fairness` weight of CurveFitOptions. Throws section::Error when the system is singular.
+BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points,
+                           const std::vector<double>& parameters, const BSpline& shape,
+                           double fairness = 1e-6, const std::vector<double>& weights = {});
+
+/// `count` points spread evenly in parameter over the curve (closed: the end point is not
+/// repeated).
+std::vector<Eigen::Vector2d> sample(const BSpline& curve, int count);
+
+/// Arc length between parameters a < b (Gauss-Legendre per knot span).
+double arc_length(const BSpline& curve, double a, double b);
+
+}  // namespace section

@@ -1,0 +1,133 @@
+#pragma once
+/// @file camber.h
+/// Mean-camber line of a blade section: the locus of the centres of the circles inscribed
+/// in the closed profile (its medial axis), extended along its end tangents to the
+/// leading and trailing edges (Li et al. 2014, section "Mean camber line").
+#include "section/bspline.h"
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace section {
+
+struct Stream;
+
+/// A circle inside the profile touching it on both sides.
+struct InscribedCircle {
+  Eigen::Vector2d center{0, 0};    ///< camber point
+  double radius = 0;               ///< half the local thickness
+  Eigen::Vector2d left{0, 0};      ///< contact on the side left of the camber direction
+  Eigen::Vector2d right{0, 0};     ///< contact on the side right of the camber direction
+  double t_left = 0, t_right = 0;  ///< profile parameters of the contacts
+};
+
+struct MedialAxisOptions {
+  int samples = 1000;          ///< profile samples triangulated for the seed (more for thin edges)
+  int stations = 120;          ///< inscribed circles solved along the axis (denser at the ends)
+  int iterations = 3;          ///< most refinement passes (stations re-placed along the refined axis)
+  double tolerance = 1e-9;     ///< relative to the profile size: Newton and end-search accuracy
+  /// Optional seed (e.g. the stream's morphological skeleton), ordered end to end; empty =
+  /// the Delaunay medial axis of the profile samples.
+  std::vector<Eigen::Vector2d> seed;
+};
+
+/// The refined main branch of the medial axis of a closed profile.
+struct MedialAxis {
+  std::vector<InscribedCircle> circles;  ///< from one end to the other, the ends included
+  BSpline curve;                         ///< open cubic through the centres (light fairness)
+  int seed_points = 0;                   ///< points of the seed branch
+  int iterations = 0;                    ///< refinement passes done
+  double change = 0;                     ///< largest move of an end in the last pass
+};
+
+/// Main branch of the medial axis of the closed curve `profile` (either orientation):
+/// seeded from the Delaunay triangulation of `samples` curve samples (Voronoi vertices of
+/// the inside triangles, longest path) or from `options.seed`, then refined: each
+/// station's circle is solved on the axis normal so that it touches both sides (equal
+/// distance, both contacts foot points, Newton on the exact spline), and the branch ends
+/// where the inscribed circles degenerate (the circle osculates the profile or its two
+/// contacts merge), located by bisection. Throws section::Error when no branch exists.
+MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options = {});
+
+/// Edge model: `round` fits a circle to every edge; `automatic` fits it only to edges
+/// detected as round and reports blunt and sharp edges with radius 0.
+enum class EdgeModel { round, automatic };
+/// Detected edge shape.
+enum class EdgeShape { round = 0, blunt = 1, sharp = 2 };
+
+/// A leading or trailing edge.
+struct Edge {
+  Eigen::Vector2d point{0, 0};     ///< edge point: the camber line's end tangent meets the profile
+  double t = 0;                    ///< its profile parameter
+  Eigen::Vector2d center{0, 0};    ///< centre of the circle fitted to the edge arc
+  double radius = 0;               ///< radius of that circle (0 for a blunt or sharp edge in automatic mode)
+  double fit_rms = 0;              ///< rms distance of the edge arc from the fitted circle
+  double arc = 0;                  ///< degrees of the edge arc fitted (normal turning across it)
+  double arc_t0 = 0, arc_t1 = 0;   ///< profile parameter range of the edge arc
+  double curvature_radius = 0;     ///< 1 / profile curvature at the edge point
+  EdgeShape shape = EdgeShape::round;  ///< detected shape
+};
+
+struct CamberOptions {
+  MedialAxisOptions medial;        ///< medial-axis seeding and refinement
+  EdgeModel edge = EdgeModel::round;  ///< edge model, see EdgeModel
+  double edge_arc = 120;           ///< degrees: the edge arc is the profile around the edge point whose normal turns at most edge_arc/2 either way
+  double blunt_flatness = 2;       ///< an edge is blunt when its curvature radius at the edge point exceeds this many fitted radii (flat tip)
+  double blunt_rms = 0.02;         ///< ... and the fit rms exceeds this fraction of the fitted radius
+  double sharp_ratio = 0.01;       ///< an edge is sharp when its fitted radius is below this fraction of the largest inscribed diameter
+  double min_slenderness = 2;      ///< medial axis length / largest inscribed diameter below which the section is not a blade
+  /// Leading-edge direction: when non-zero, the LE is the end lying farther along it;
+  /// zero = the LE is the end nearer the maximum thickness.
+  Eigen::Vector2d le_direction{0, 0};
+  int samples = 201;               ///< points of the sampled camber line (CamberResult::points)
+  /// Stream stage: thickness stations as fractions of the camber length from the LE.
+  std::vector<double> stations{0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5,
+                               0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95};
+  int side_samples = 201;          ///< stream stage: points per side in the "sides" table
+};
+
+/// The mean-camber line from the LE point to the TE point.
+struct CamberResult {
+  MedialAxis medial;               ///< the medial branch, oriented LE to TE, edge centres as ends when round
+  Edge le, te;                     ///< leading and trailing edges
+  std::vector<Eigen::Vector2d> points;  ///< sampled camber line, LE point to TE point, extensions included
+  std::vector<double> s;           ///< arc length of each point from the LE point
+  std::vector<double> radius;      ///< inscribed radius at each point (the end circle's radius on the extensions)
+  double length = 0;               ///< camber length, LE point to TE point
+  Eigen::Vector2d le_tangent{1, 0}, te_tangent{1, 0};  ///< unit camber directions (toward the TE) at the edge ends
+  double ext_le = 0, ext_te = 0;   ///< lengths of the straight extensions at each end
+  InscribedCircle thickest;        ///< largest inscribed circle
+  double thickest_s = 0;           ///< its arc length from the LE point
+  /// +1 when the pressure (concave) side lies left of the LE-to-TE direction, -1 right.
+  int pressure_side = -1;
+  bool le_by_direction = false;    ///< LE chosen by CamberOptions::le_direction (else by thickness)
+  double orientation = 1;          ///< +1 when the profile runs counterclockwise, -1 clockwise
+};
+
+/// Mean-camber line of the closed blade profile `profile`: the medial axis, with round
+/// edges ending at the centre of the circle fitted to the edge arc, extended along its end
+/// tangents to the profile (LE and TE points), oriented LE to TE. Lengths in the profile's
+/// units. Throws section::Error `camber: ...` when the profile is not blade-like (a circle,
+/// a square: medial axis shorter than min_slenderness largest diameters).
+CamberResult camber_line(const BSpline& profile, const CamberOptions& options = {});
+
+/// The circle inscribed in `profile` whose centre lies on the line through `point` along
+/// `normal`, touching the profile near the parameters `t_left` and `t_right` (Newton on
+/// equal distance and both foot-point conditions). False when it does not converge.
+bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point,
+                      const Eigen::Vector2d& normal, double t_left, double t_right,
+                      InscribedCircle& circle);
+
+/// Stream stage: reads the closed splines (tables "splines", "spline_knots",
+/// "spline_ctrl"), processes loop 0 of every section and writes the tables "camber",
+/// "params", "thickness" and "sides" (docs/FORMAT.md). A section that fails, or has
+/// more than one loop, gets an issue and the others go on.
+void camber_stream(Stream& stream, const CamberOptions& options = {});
+
+/// Parses a plain ordered 2D profile: one point per line, x and y as the first two numbers
+/// (separated by spaces, tabs or commas); a non-numeric first line (title) and `#` lines
+/// are skipped; a repeated closing point is dropped. `source` names the input in errors.
+std::vector<Eigen::Vector2d> parse_profile(const std::string& text, const std::string& source);
+
+}  // namespace section

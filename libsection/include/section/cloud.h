@@ -1,0 +1,59 @@
+#pragma once
+/// @file cloud.h
+/// Point clouds and their readers: XYZ/ASC text, CSV with an x,y,z header, PLY (ascii,
+/// binary little and big endian, float or double).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace section {
+
+/// An unordered 3D point cloud, in the units of its file.
+struct Cloud {
+  std::vector<Eigen::Vector3d> points;  ///< the points
+};
+
+/// Which reader a file goes to.
+enum class CloudFormat {
+  automatic,  ///< from the extension (.xyz .asc .txt .pts .csv .ply) or, on stdin, the content
+  xyz,        ///< text, one point a line, separated by space, tab or comma; extra columns ignored
+  csv,        ///< text with a header row naming x, y and z columns
+  ply         ///< PLY vertices (ascii or binary, float or double)
+};
+
+struct CloudReadOptions {
+  CloudFormat format = CloudFormat::automatic;  ///< reader to use; default: by extension
+  std::size_t chunk_points = 1 << 20;           ///< points handed to the callback at a time
+  std::size_t max_points = std::size_t(1) << 33;  ///< refuse files claiming more points than this
+};
+
+/// Receives the points of a cloud chunk by chunk, in file order.
+using PointChunkFn = std::function<void(const Eigen::Vector3d* points, std::size_t count)>;
+
+/// Streams the points of `path` ("-" = standard input) to `on_chunk` without holding the
+/// whole cloud. Throws section::Error naming the file and, for text, the line on any
+/// malformed, truncated or non-finite input.
+/// @return the number of points read
+std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_chunk,
+                              const CloudReadOptions& options = {});
+
+/// Reads the whole cloud of `path` ("-" = standard input). Throws as read_cloud_chunks.
+Cloud read_cloud(const std::string& path, const CloudReadOptions& options = {});
+
+/// Parses a cloud held in memory; `name` is used in error messages.
+Cloud parse_cloud(std::string_view bytes, const std::string& name,
+                  const CloudReadOptions& options = {});
+
+/// Writes a cloud as XYZ text (shortest round-trip digits) or binary little-endian PLY
+/// (double), chosen by the extension of `path` (.ply = PLY, anything else XYZ).
+void write_cloud(const std::string& path, const Cloud& cloud);
+
+/// Mean spacing of a cloud: the median distance from a point to its nearest neighbour,
+/// estimated on at most `sample` points. 0 for fewer than two distinct points.
+double mean_spacing(const std::vector<Eigen::Vector3d>& points, std::size_t sample = 20000);
+
+}  // namespace section

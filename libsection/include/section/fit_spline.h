@@ -1,0 +1,72 @@
+#pragma once
+/// @file fit_spline.h
+/// The `fitspline` stage (Li et al. 2014, section 2.4): a closed cubic B-spline fitted by
+/// least squares to the smoothed profile, then refined by squared-distance minimisation
+/// (Wang, Pottmann and Liu 2006) against the measured points, with knots inserted where
+/// the curve misses the data (blade edges).
+#include "section/bspline.h"
+
+#include <Eigen/Core>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace section {
+
+struct Stream;
+
+struct FitSplineOptions {
+  int degree = 3;                 ///< spline degree
+  int control_points = 0;         ///< control points per loop; 0 = adaptive to `tolerance`
+  double tolerance = 0.0005;      ///< mm, adaptive mode: largest systematic (non-noise) RMS deviation allowed in a knot span before it is split
+  double initial_span = 2.0;      ///< mm, adaptive mode: knot spacing (along the profile) of the first curve
+  double min_span = 0.04;         ///< mm, adaptive mode: spans are not split below this length
+  double min_span_points = 3;     ///< 1, adaptive mode: fewest measured points per knot span (more knots would fit the noise)
+  int max_control_points = 1500;  ///< adaptive mode: cap on control points per loop
+  int max_rounds = 12;            ///< adaptive mode: knot insertion rounds
+  int max_iterations = 30;        ///< distance-minimisation iterations per round
+  double convergence = 1e-3;      ///< 1: stop iterating when the RMS changes by less than this fraction
+  double fairness = 1e-5;         ///< 1: weight of the control-polygon second differences, relative to the data term (keeps holes well posed)
+  double outlier_distance = 0;    ///< mm: isolated measured points farther than this from the curve are ignored; 0 = automatic (6 noise sigmas, at least 0.02 mm)
+  int samples = 0;                ///< stream stage: points per loop written to the "samples" table (0 = none unless sample_spacing)
+  double sample_spacing = 0;      ///< mm, stream stage: arc-length spacing of the "samples" table (0 = use `samples`)
+};
+
+struct FitSplineResult {
+  BSpline spline;                 ///< the fitted closed curve
+  double rms = 0;                 ///< mm, RMS distance measured points -> curve (outliers excluded)
+  double max = 0;                 ///< mm, largest such distance
+  double p95 = 0;                 ///< mm, 95th percentile of such distances
+  double noise = 0;               ///< mm, noise sigma estimated from the residuals
+  int iterations = 0;             ///< distance-minimisation iterations over all rounds
+  int rounds = 0;                 ///< knot insertion rounds done (adaptive mode)
+  int control_points = 0;         ///< control points of the result
+  int points = 0;                 ///< measured points used
+  int outliers = 0;               ///< measured points ignored as outliers
+};
+
+/// Fits a closed B-spline to one loop. `profile` is the ordered loop the first curve is
+/// fitted to (smoothed points, or the ordered measured points); `measured` are the points
+/// the curve is refined against (any order). Lengths in mm (any unit works if the
+/// length options are scaled alike). Throws section::Error (`fit_spline: ...`) on too few
+/// points, a degenerate loop (all points on a line), or a fitted curve that folds or
+/// crosses itself.
+FitSplineResult fit_spline(const std::vector<Eigen::Vector2d>& profile,
+                           const std::vector<Eigen::Vector2d>& measured,
+                           const FitSplineOptions& options = {});
+
+/// True when the closed curve crosses itself or has a cusp (tested on a dense polyline).
+bool self_intersects(const BSpline& curve);
+
+/// Stream stage: fits every (section, loop) of the "points" table (first curve from the
+/// "smoothed" table when present) and writes the tables "splines", "spline_knots",
+/// "spline_ctrl" and, when samples are requested, "samples" (see docs/FORMAT.md). A loop
+/// that cannot be fitted is recorded in stream.issues (stage "fitspline"), the others go
+/// on. Throws section::Error when the "points" table is missing or lacks a column.
+void fit_spline_stream(Stream& stream, const FitSplineOptions& options = {});
+
+/// The splines of a stream written by fit_spline_stream, by (section, loop). Throws
+/// section::Error when the tables are missing or inconsistent.
+std::map<std::pair<int, int>, BSpline> splines(const Stream& stream);
+
+}  // namespace section

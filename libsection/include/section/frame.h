@@ -1,0 +1,35 @@
+#pragma once
+/// @file frame.h
+/// A section plane's frame: maps in-plane (u, v) coordinates to 3D (x, y, z) and back.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace section {
+
+/// Orthonormal right-handed frame of a section plane: u x v = n.
+struct Frame {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< a point of the plane
+  Eigen::Vector3d u = Eigen::Vector3d::UnitX();      ///< first in-plane axis (unit)
+  Eigen::Vector3d v = Eigen::Vector3d::UnitY();      ///< second in-plane axis (unit)
+  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();      ///< plane normal (unit)
+
+  /// 3D point of in-plane coordinates (u, v).
+  Eigen::Vector3d to_world(const Eigen::Vector2d& p) const { return origin + p.x() * u + p.y() * v; }
+  /// 3D direction of an in-plane direction.
+  Eigen::Vector3d direction_to_world(const Eigen::Vector2d& d) const { return d.x() * u + d.y() * v; }
+  /// In-plane coordinates of the orthogonal projection of a 3D point.
+  Eigen::Vector2d to_plane(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d d = p - origin;
+    return {d.dot(u), d.dot(v)};
+  }
+  /// Signed distance of a 3D point from the plane along n.
+  double height(const Eigen::Vector3d& p) const { return (p - origin).dot(n); }
+};
+
+/// The frame of the plane through `origin` with normal `normal` (need not be unit length).
+/// u is the projection of the world axis least aligned with the normal (x before y before z
+/// on ties), so a normal of +z gives u = +x, v = +y. Throws section::Error on a zero or
+/// non-finite normal.
+Frame make_frame(const Eigen::Vector3d& origin, const Eigen::Vector3d& normal);
+
+}  // namespace section

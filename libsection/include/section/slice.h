@@ -1,0 +1,79 @@
+#pragma once
+/// @file slice.h
+/// Step 1 of the method: section planes cut a point cloud (a slab of width d around each
+/// plane, points projected onto it, then ordered by morphology) or a mesh (exact
+/// intersection polylines).
+#include "section/cloud.h"
+#include "section/frame.h"
+#include "section/mesh.h"
+#include "section/morphology.h"
+#include "section/pipe.h"
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace section {
+
+/// A section plane: a point of it and its normal (any length but zero).
+struct Plane {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< a point of the plane
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< plane normal
+};
+
+/// Planes with one normal at signed offsets along it: origin = offset * normal / |normal|.
+std::vector<Plane> planes_at(const Eigen::Vector3d& normal, const std::vector<double>& offsets);
+
+/// `count` planes with one normal spread evenly over the extent of `points` along it:
+/// offsets min + (max - min) * (k + 1) / (count + 1), k = 0..count-1.
+std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points,
+                                 const Eigen::Vector3d& normal, int count);
+
+/// Planes from a CSV table with columns origin_x, origin_y, origin_z, normal_x, normal_y,
+/// normal_z (extra columns ignored). `source` names it in error messages.
+std::vector<Plane> parse_planes(std::string_view csv, const std::string& source);
+
+struct SliceOptions {
+  double slab = 0;                    ///< slab width d (units of the cloud); 0 = the cloud's mean spacing
+  MorphologyOptions morphology;       ///< ordering of each section's points
+  int threads = 0;                    ///< worker threads for the sections; 0 = all cores
+};
+
+/// What one section plane gave.
+struct SectionSlice {
+  int id = 0;                         ///< index of the plane
+  Frame frame;                        ///< the plane's frame (u, v in-plane)
+  std::size_t slab_points = 0;        ///< points found in the slab
+  MorphologyResult morphology;        ///< ordered loops, normals, skeleton (empty on error)
+  std::string error;                  ///< why the section failed; empty when it did not
+};
+
+struct SliceResult {
+  std::vector<SectionSlice> sections; ///< one per plane, in plane order
+  double slab = 0;                    ///< slab width used
+  std::size_t points = 0;             ///< points in the cloud (or mesh vertices)
+};
+
+/// Points of `points` in the closed slab |(p - origin) . n| <= slab / 2 of each plane,
+/// projected onto it, in cloud order. All planes in one pass: cost O(points log planes)
+/// per distinct normal. Points on a slab boundary are decided by CGAL's exact orientation
+/// predicate against the boundary plane and belong to the slab (closed slab).
+std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::Vector3d>& points,
+                                                      const std::vector<Plane>& planes,
+                                                      double slab);
+
+/// Slices a cloud: slab points of every plane ordered into loops by morphology.
+/// Sections that fail (no points, no closed loop) carry their error; the others go on.
+/// Throws section::Error for bad options (no planes, a zero normal, a negative slab).
+SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options = {});
+
+/// Slices a mesh exactly (CGAL's polygon mesh slicer): each closed intersection polyline is
+/// a loop, oriented counterclockwise in (u, v), loop 0 the largest; its vertices are the points.
+SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options = {});
+
+/// The pipe stream of a slice: tables frames, loops, points, skeleton; failed sections as
+/// issues. `command` goes into the history.
+Stream to_stream(const SliceResult& result, const std::string& command, const std::string& units = "mm");
+
+}  // namespace section

@@ -1,0 +1,88 @@
+#pragma once
+/// @file smooth.h
+/// Energy-minimising smoothing of an ordered section polyline (Li et al. 2014, sec. 2.3).
+///
+/// The smoothed points q_i minimise E = a * E_C + b * E_S over the measured points q0_i:
+///   E_C = 1/2 sum_i kappa_i^2 (l_i + l_{i+1}) / 2,
+///   kappa_i = 2 / (l_i + l_{i+1}) * |(q_{i+1} - q_i) / l_{i+1} - (q_i - q_{i-1}) / l_i|,
+///   E_S = sum_i |q_i - q0_i|^2,            l_i = |q_i - q_{i-1}|.
+/// With the lengths l_i frozen, grad E = 0 is one linear system (cyclic pentadiagonal,
+/// symmetric positive definite, the same for u and v). Each outer iteration freezes the
+/// lengths at the current points, solves that system, and updates the lengths; it stops
+/// when the shape no longer moves or E no longer changes. E_C has units 1/length and E_S
+/// length^2, so `a` depends on the units and on the point spacing: `smoothing_length`
+/// gives a scale-free strength instead (docs/SMOOTH.md derives it).
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace section {
+
+struct Stream;
+
+/// How each outer iteration solves its linear system.
+enum class SmoothSolver {
+  cholmod,      ///< global sparse Cholesky (CHOLMOD), one factorisation per outer iteration
+  gauss_seidel  ///< the paper's point-by-point Gauss-Seidel sweeps on the same system
+};
+
+/// Parses "cholmod" or "gauss-seidel" / "gauss_seidel"; throws section::Error otherwise.
+SmoothSolver parse_smooth_solver(const std::string& name);
+
+struct SmoothOptions {
+  double a = 0.3;                 ///< length^3 (with b = 1): weight of the curvature energy E_C (paper: 0.1-0.5); unit- and spacing-dependent, see smoothing_length
+  double b = 1.0;                 ///< 1: weight of the closeness energy E_S (paper: 1-1.2)
+  double smoothing_length = 0;    ///< curve units: > 0 overrides a so that a sinusoidal wiggle of this wavelength keeps half its amplitude (a = 2 b (L / 2 pi)^4 / h, h = mean spacing); 0 = use a as given
+  SmoothSolver solver = SmoothSolver::cholmod;  ///< linear solver of each outer iteration
+  int max_iterations = 20;        ///< cap on outer iterations (length updates)
+  double tolerance = 1e-9;        ///< stop when |E_k - E_{k-1}| <= tolerance * E_k
+  double move_tolerance = 1e-4;   ///< mean spacings: stop when no point moves farther than this across the curve in one outer iteration
+  double merge_distance = 1e-3;   ///< mean spacings: consecutive points closer than this are merged into their midpoint (counted in SmoothResult::repaired)
+  bool closed = true;             ///< the polyline is a closed loop (last point joins the first)
+  int max_sweeps = 1000000;       ///< gauss_seidel only: cap on sweeps per outer iteration
+  double sweep_tolerance = 1e-12; ///< gauss_seidel only: stop sweeping when the largest update is below this times the curve's size
+};
+
+struct SmoothResult {
+  std::vector<Eigen::Vector2d> points;  ///< smoothed points, same order as the input (after merging)
+  double energy_before = 0;             ///< E of the input (after merging): a * E_C, since E_S = 0
+  double energy_after = 0;              ///< E of the result
+  int iterations = 0;                   ///< outer iterations done
+  int sweeps = 0;                       ///< gauss_seidel only: sweeps done over all outer iterations
+  std::vector<double> energy_history;   ///< E after each outer iteration, energy_before first
+  double rms_move = 0;                  ///< root mean square distance between input and smoothed points
+  double max_move = 0;                  ///< largest distance between an input and its smoothed point
+  int repaired = 0;                     ///< input points merged away (duplicates, zero-length segments)
+  double a = 0;                         ///< the curvature weight actually used
+  double spacing = 0;                   ///< mean distance between consecutive input points
+  bool converged = false;               ///< stopped before max_iterations: a tolerance was met or no step along the next solve lowers E
+};
+
+/// Smooths one ordered polyline (closed or open) by minimising E above; coordinates in any
+/// length unit. Needs at least 5 points after merging duplicates. Throws section::Error
+/// (`smooth: ...`) on fewer points, non-finite coordinates or bad options.
+SmoothResult smooth(const std::vector<Eigen::Vector2d>& points, const SmoothOptions& options = {});
+
+/// The energy E = a E_C + b E_S of `points` against `reference` (same size), as defined
+/// above. Segments of zero length contribute no curvature.
+double smooth_energy(const std::vector<Eigen::Vector2d>& points,
+                     const std::vector<Eigen::Vector2d>& reference, double a, double b,
+                     bool closed = true);
+
+/// The curvature weight a that gives a smoothing (half-amplitude) wavelength `length` at
+/// mean point spacing `spacing`: a = 2 b (length / 2 pi)^4 / spacing.
+double smoothing_weight(double length, double spacing, double b = 1.0);
+
+/// The inverse: the half-amplitude wavelength of weight a at that spacing.
+double smoothing_length(double a, double spacing, double b = 1.0);
+
+/// Stream stage: smooths every (section, loop) of the "points" table (closed loops) and
+/// writes the tables "smoothed" (section, loop, index, u, v) and "smooth_stats" (section,
+/// loop, points, energy_before, energy_after, iterations, rms_move, max_move, repaired).
+/// Sections already failed at an earlier stage are skipped; a loop that cannot be smoothed
+/// is recorded in stream.issues (stage "smooth") and the others go on. Throws
+/// section::Error when the "points" table is missing or lacks a column.
+void smooth_stream(Stream& stream, const SmoothOptions& options = {});
+
+}  // namespace section

@@ -1,0 +1,499 @@
+#include "section/bspline.h"
+
+#include "section/error.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace section {
+
+namespace {
+
+constexpr int max_degree = 7;
+
+int control_count(const BSpline& c) { return static_cast<int>(c.control.size()); }
+
+void check_curve(const BSpline& c) {
+  const int n = control_count(c);
+  if (c.degree < 1 || c.degree > max_degree)
+    throw Error("bspline: degree " + std::to_string(c.degree) + " is not in 1.." +
+                std::to_string(max_degree));
+  if (c.closed) {
+    if (n < c.degree + 1 || static_cast<int>(c.knots.size()) != n + 1)
+      throw Error("bspline: a closed curve of degree " + std::to_string(c.degree) +
+                  " needs at least " + std::to_string(c.degree + 1) +
+                  " control points and control points + 1 knots, it has " + std::to_string(n) +
+                  " and " + std::to_string(c.knots.size()));
+  } else if (n < c.degree + 1 || static_cast<int>(c.knots.size()) != n + c.degree + 1) {
+    throw Error("bspline: an open curve of degree " + std::to_string(c.degree) + " needs at least " +
+                std::to_string(c.degree + 1) +
+                " control points and control points + degree + 1 knots, it has " +
+                std::to_string(n) + " and " + std::to_string(c.knots.size()));
+  }
+}
+
+double period(const BSpline& c) { return c.knots.back() - c.knots.front(); }
+
+long floor_div(long a, long b) {
+  long q = a / b;
+  if ((a % b != 0) && ((a < 0) != (b < 0))) --q;
+  return q;
+}
+
+// Knot i of the (periodically extended, when closed) knot vector.
+double knot(const BSpline& c, long i) {
+  if (!c.closed) return c.knots[static_cast<std::size_t>(i)];
+  const long n = control_count(c);
+  const long k = floor_div(i, n);
+  return c.knots[static_cast<std::size_t>(i - k * n)] + static_cast<double>(k) * period(c);
+}
+
+// Wraps t into [t_0, t_0 + period) for closed curves, clamps into the domain for open ones.
+double normalise(const BSpline& c, double t) {
+  if (c.closed) {
+    const double p = period(c);
+    double r = std::fmod(t - c.knots.front(), p);
+    if (r < 0) r += p;
+    if (r >= p) r = 0;
+    return c.knots.front() + r;
+  }
+  return std::clamp(t, c.t_min(), c.t_max());
+}
+
+// Span index j with knot(j) <= t < knot(j + 1); t must be normalised.
+long find_span(const BSpline& c, double t) {
+  const int n = control_count(c);
+  if (c.closed) {
+    auto it = std::upper_bound(c.knots.begin(), c.knots.end(), t);
+    long j = static_cast<long>(it - c.knots.begin()) - 1;
+    return std::clamp<long>(j, 0, n - 1);
+  }
+  const int p = c.degree;
+  if (t >= c.knots[n]) {
+    long j = n - 1;
+    while (j > p && c.knots[j] >= c.knots[j + 1]) --j;
+    return j;
+  }
+  auto it = std::upper_bound(c.knots.begin() + p, c.knots.begin() + n + 1, t);
+  long j = static_cast<long>(it - c.knots.begin()) - 1;
+  return std::clamp<long>(j, p, n - 1);
+}
+
+// Basis functions and their derivatives up to `nd` at t in span j (Piegl & Tiller A2.3).
+// ders[k][r] is the k-th derivative of N_{j-p+r}.
+void basis_derivatives(const BSpline& c, long j, double t, int nd,
+                       std::array<std::array<double, max_degree + 1>, max_degree + 1>& ders) {
+  const int p = c.degree;
+  std::array<std::array<double, max_degree + 1>, max_degree + 1> ndu{};
+  std::array<double, max_degree + 1> left{}, right{};
+  ndu[0][0] = 1.0;
+  for (int r = 1; r <= p; ++r) {
+    left[r] = t - knot(c, j + 1 - r);
+    right[r] = knot(c, j + r) - t;
+    double saved = 0.0;
+    for (int s = 0; s < r; ++s) {
+      ndu[r][s] = right[s + 1] + left[r - s];
+      const double temp = ndu[r][s] == 0 ? 0 : ndu[s][r - 1] / ndu[r][s];
+      ndu[s][r] = saved + right[s + 1] * temp;
+      saved = left[r - s] * temp;
+    }
+    ndu[r][r] = saved;
+  }
+  for (int r = 0; r <= p; ++r) ders[0][r] = ndu[r][p];
+  std::array<std::array<double, max_degree + 1>, 2> a{};
+  for (int r = 0; r <= p; ++r) {
+    int s1 = 0, s2 = 1;
+    a[0][0] = 1.0;
+    for (int k = 1; k <= nd; ++k) {
+      double d = 0.0;
+      const int rk = r - k, pk = p - k;
+      if (r >= k) {
+        a[s2][0] = ndu[pk + 1][rk] == 0 ? 0 : a[s1][0] / ndu[pk + 1][rk];
+        d = a[s2][0] * ndu[rk][pk];
+      }
+      const int j1 = rk >= -1 ? 1 : -rk;
+      const int j2 = (r - 1 <= pk) ? k - 1 : p - r;
+      for (int jj = j1; jj <= j2; ++jj) {
+        a[s2][jj] = ndu[pk + 1][rk + jj] == 0 ? 0
+                                                : (a[s1][jj] - a[s1][jj - 1]) / ndu[pk + 1][rk + jj];
+        d += a[s2][jj] * ndu[rk + jj][pk];
+      }
+      if (r <= pk) {
+        a[s2][k] = ndu[pk + 1][r] == 0 ? 0 : -a[s1][k - 1] / ndu[pk + 1][r];
+        d += a[s2][k] * ndu[r][pk];
+      }
+      ders[k][r] = d;
+      std::swap(s1, s2);
+    }
+  }
+  double f = p;
+  for (int k = 1; k <= nd; ++k) {
+    for (int r = 0; r <= p; ++r) ders[k][r] *= f;
+    f *= (p - k);
+  }
+}
+
+int control_index(const BSpline& c, long i) {
+  if (!c.closed) return static_cast<int>(i);
+  const long n = control_count(c);
+  return static_cast<int>(((i % n) + n) % n);
+}
+
+// Point and derivatives up to nd at t into out[0..nd].
+void evaluate(const BSpline& c, double t, int nd, Eigen::Vector2d* out) {
+  check_curve(c);
+  const double tn = normalise(c, t);
+  const long j = find_span(c, tn);
+  const int p = c.degree;
+  const int nk = std::min(nd, p);
+  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders{};
+  basis_derivatives(c, j, tn, nk, ders);
+  for (int k = 0; k <= nd; ++k) {
+    out[k].setZero();
+    if (k > p) continue;
+    for (int r = 0; r <= p; ++r) out[k] += ders[k][r] * c.control[control_index(c, j - p + r)];
+  }
+}
+
+// |C(t) - q|^2 and its first two derivatives in t.
+struct DistanceDerivatives {
+  double g, dg, ddg;
+};
+
+DistanceDerivatives distance_derivatives(const BSpline& c, const Eigen::Vector2d& q, double t) {
+  Eigen::Vector2d d[3];
+  evaluate(c, t, 2, d);
+  const Eigen::Vector2d r = d[0] - q;
+  return {r.squaredNorm(), 2 * r.dot(d[1]), 2 * (d[1].squaredNorm() + r.dot(d[2]))};
+}
+
+// Minimum of |C(t) - q|^2 over the bracket [a, b] starting at t0: Newton on the derivative,
+// kept inside a shrinking bracket and falling back to bisection or golden section, so that
+// flat or non-convex stretches (points near a centre of curvature) cannot throw it out.
+double minimise_bracket(const BSpline& c, const Eigen::Vector2d& q, double a, double b, double t0) {
+  DistanceDerivatives fa = distance_derivatives(c, q, a);
+  DistanceDerivatives fb = distance_derivatives(c, q, b);
+  const double tol = 1e-13 * std::max({1.0, std::abs(a), std::abs(b)});
+  if (fa.dg < 0 && fb.dg > 0) {
+    double t = std::clamp(t0, a, b);
+    for (int it = 0; it < 60 && b - a > tol; ++it) {
+      const DistanceDerivatives f = distance_derivatives(c, q, t);
+      if (f.dg == 0) return t;
+      if (f.dg < 0) a = t; else b = t;
+      double next = f.ddg > 0 ? t - f.dg / f.ddg : 0.5 * (a + b);
+      if (!(next > a && next < b)) next = 0.5 * (a + b);
+      if (std::abs(next - t) < tol) return next;
+      t = next;
+    }
+    return 0.5 * (a + b);
+  }
+  // No sign change: golden section on the distance itself.
+  const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = b - gr * (b - a), x2 = a + gr * (b - a);
+  double g1 = distance_derivatives(c, q, x1).g, g2 = distance_derivatives(c, q, x2).g;
+  for (int it = 0; it < 100 && b - a > tol; ++it) {
+    if (g1 < g2) {
+      b = x2; x2 = x1; g2 = g1; x1 = b - gr * (b - a); g1 = distance_derivatives(c, q, x1).g;
+    } else {
+      a = x1; x1 = x2; g1 = g2; x2 = a + gr * (b - a); g2 = distance_derivatives(c, q, x2).g;
+    }
+  }
+  double t = 0.5 * (a + b);
+  double best = distance_derivatives(c, q, t).g;
+  if (fa.g < best) { t = a; best = fa.g; }
+  if (fb.g < best) t = b;
+  return t;
+}
+
+ClosestPoint make_closest(const BSpline& c, const Eigen::Vector2d& q, double t) {
+  ClosestPoint cp;
+  cp.t = normalise(c, t);
+  cp.point = c.point(cp.t);
+  cp.distance = (cp.point - q).norm();
+  return cp;
+}
+
+// Refines the local minima of the sampled squared distance at parameters ts (ascending,
+// covering the domain; for closed curves one period without the repeated end).
+ClosestPoint refine_samples(const BSpline& c, const Eigen::Vector2d& q, const std::vector<double>& ts,
+                            int max_candidates) {
+  const int m = static_cast<int>(ts.size());
+  std::vector<double> g(m);
+  for (int i = 0; i < m; ++i) g[i] = (c.point(ts[i]) - q).squaredNorm();
+  const double per = c.closed ? period(c) : 0;
+  auto param = [&](int i) {
+    if (!c.closed) return ts[std::clamp(i, 0, m - 1)];
+    if (i < 0) return ts[i + m] - per;
+    if (i >= m) return ts[i - m] + per;
+    return ts[i];
+  };
+  auto value = [&](int i) {
+    if (!c.closed) return i < 0 || i >= m ? std::numeric_limits<double>::infinity() : g[i];
+    return g[(i + m) % m];
+  };
+  std::vector<int> minima;
+  for (int i = 0; i < m; ++i)
+    if (g[i] <= value(i - 1) && g[i] <= value(i + 1)) minima.push_back(i);
+  std::sort(minima.begin(), minima.end(), [&](int x, int y) { return g[x] < g[y]; });
+  if (static_cast<int>(minima.size()) > max_candidates) minima.resize(max_candidates);
+  ClosestPoint best;
+  best.distance = std::numeric_limits<double>::infinity();
+  for (int i : minima) {
+    const double a = param(i - 1), b = param(i + 1);
+    const double t = minimise_bracket(c, q, a, b, ts[i]);
+    const ClosestPoint cp = make_closest(c, q, t);
+    if (cp.distance < best.distance) best = cp;
+  }
+  return best;
+}
+
+}  // namespace
+
+double BSpline::t_min() const { return closed ? knots.front() : knots[degree]; }
+
+double BSpline::t_max() const { return closed ? knots.back() : knots[control.size()]; }
+
+Eigen::Vector2d BSpline::point(double t) const { return derivative(t, 0); }
+
+Eigen::Vector2d BSpline::derivative(double t, int k) const {
+  if (k < 0) throw Error("bspline: derivative order " + std::to_string(k) + " is negative");
+  Eigen::Vector2d out[max_degree + 2];
+  if (k > degree) {
+    check_curve(*this);
+    return Eigen::Vector2d::Zero();
+  }
+  evaluate(*this, t, k, out);
+  return out[k];
+}
+
+double BSpline::curvature(double t) const {
+  Eigen::Vector2d d[3];
+  evaluate(*this, t, 2, d);
+  const double speed = d[1].norm();
+  if (speed == 0) return 0;
+  return (d[1].x() * d[2].y() - d[1].y() * d[2].x()) / (speed * speed * speed);
+}
+
+void BSpline::basis(double t, std::vector<int>& index, std::vector<double>& value) const {
+  check_curve(*this);
+  const double tn = normalise(*this, t);
+  const long j = find_span(*this, tn);
+  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders{};
+  basis_derivatives(*this, j, tn, 0, ders);
+  index.resize(degree + 1);
+  value.resize(degree + 1);
+  for (int r = 0; r <= degree; ++r) {
+    index[r] = control_index(*this, j - degree + r);
+    value[r] = ders[0][r];
+  }
+}
+
+ClosestPoint closest_point(const BSpline& curve, const Eigen::Vector2d& q, int samples) {
+  check_curve(curve);
+  samples = std::max(samples, 2);
+  std::vector<double> ts;
+  const int n = control_count(curve);
+  const long first = curve.closed ? 0 : curve.degree;
+  const long last = curve.closed ? n : n;  // spans first .. last-1
+  for (long j = first; j < last; ++j) {
+    const double a = knot(curve, j), b = knot(curve, j + 1);
+    if (b <= a) continue;
+    for (int s = 0; s < samples; ++s) ts.push_back(a + (b - a) * s / samples);
+  }
+  if (!curve.closed) ts.push_back(curve.t_max());
+  return refine_samples(curve, q, ts, 4);
+}
+
+ClosestPoint closest_point_near(const BSpline& curve, const Eigen::Vector2d& q, double t_guess) {
+  check_curve(curve);
+  const double tn = normalise(curve, t_guess);
+  const long j = find_span(curve, tn);
+  double a, b;
+  if (curve.closed) {
+    // Unwrapped parameters are fine here: evaluation wraps them.
+    a = knot(curve, j - 1);
+    b = knot(curve, j + 2);
+  } else {
+    const int n = control_count(curve);
+    a = knot(curve, std::max<long>(j - 1, curve.degree));
+    b = knot(curve, std::min<long>(j + 2, n));
+  }
+  constexpr int samples = 12;
+  std::vector<double> ts(samples + 1);
+  for (int s = 0; s <= samples; ++s) ts[s] = a + (b - a) * s / samples;
+  // Treat the bracket as an open curve piece: end samples may be minima.
+  const int m = samples + 1;
+  std::vector<double> g(m);
+  for (int i = 0; i < m; ++i) g[i] = (curve.point(ts[i]) - q).squaredNorm();
+  const int best = static_cast<int>(std::min_element(g.begin(), g.end()) - g.begin());
+  const double lo = ts[std::max(best - 1, 0)], hi = ts[std::min(best + 1, m - 1)];
+  return make_closest(curve, q, minimise_bracket(curve, q, lo, hi, ts[best]));
+}
+
+std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& points,
+                                            bool closed) {
+  std::vector<double> t;
+  if (points.empty()) return t;
+  t.reserve(points.size() + 1);
+  t.push_back(0);
+  for (std::size_t i = 1; i < points.size(); ++i) t.push_back(t.back() + (points[i] - points[i - 1]).norm());
+  if (closed) t.push_back(t.back() + (points.front() - points.back()).norm());
+  return t;
+}
+
+BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points,
+                             const std::vector<double>& parameters, const BSpline& shape,
+                             double fairness, const std::vector<double>& weights) {
+  check_curve(shape);
+  const int n = control_count(shape);
+  const int m = static_cast<int>(points.size());
+  if (static_cast<int>(parameters.size()) < m)
+    throw Error("fit_curve: " + std::to_string(m) + " points but only " +
+                std::to_string(parameters.size()) + " parameters");
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(m) * (shape.degree + 1));
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+  std::vector<int> idx;
+  std::vector<double> val;
+  double trace = 0;
+  for (int i = 0; i < m; ++i) {
+    const double w = weights.empty() ? 1.0 : weights[i];
+    if (w <= 0) continue;
+    shape.basis(parameters[i], idx, val);
+    for (std::size_t a = 0; a < idx.size(); ++a) {
+      rhs.row(idx[a]) += w * val[a] * points[i].transpose();
+      for (std::size_t b = 0; b < idx.size(); ++b)
+        trip.emplace_back(idx[a], idx[b], w * val[a] * val[b]);
+      trace += w * val[a] * val[a];
+    }
+  }
+  // Second differences of the control polygon keep the system regular where spans hold
+  // no data; the weight is relative to the mean diagonal of the data term.
+  const double lambda = std::max(fairness, 1e-12) * std::max(trace / n, 1e-12);
+  const int first = shape.closed ? 0 : 1, last = shape.closed ? n : n - 1;
+  for (int i = first; i < last; ++i) {
+    const int ids[3] = {control_index(shape, i - 1), i, control_index(shape, i + 1)};
+    const double coef[3] = {1, -2, 1};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) trip.emplace_back(ids[a], ids[b], lambda * coef[a] * coef[b]);
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(trip.begin(), trip.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+  if (solver.info() != Eigen::Success)
+    throw Error("fit_curve: the least-squares system is singular (too few or degenerate points)");
+  const Eigen::MatrixXd x = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !x.allFinite())
+    throw Error("fit_curve: the least-squares system is singular (too few or degenerate points)");
+  BSpline out = shape;
+  for (int i = 0; i < n; ++i) out.control[i] = x.row(i).transpose();
+  return out;
+}
+
+BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOptions& options) {
+  const int m = static_cast<int>(points.size());
+  const int p = options.degree;
+  if (p < 1 || p > max_degree)
+    throw Error("fit_curve: degree " + std::to_string(p) + " is not in 1.." + std::to_string(max_degree));
+  const int n = options.control_points > 0 ? options.control_points : std::max(8, m / 4);
+  if (n < p + 1)
+    throw Error("fit_curve: " + std::to_string(n) + " control points are too few for degree " +
+                std::to_string(p) + ", at least " + std::to_string(p + 1) + " are needed");
+  if (m < n)
+    throw Error("fit_curve: " + std::to_string(m) + " points are fewer than the " + std::to_string(n) +
+                " control points");
+  for (const auto& q : points)
+    if (!q.allFinite()) throw Error("fit_curve: a point is not finite");
+  // Degeneracy from the spread of the points: all equal, or all on a line for closed curves.
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& q : points) mean += q;
+  mean /= m;
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const auto& q : points) cov += (q - mean) * (q - mean).transpose();
+  // Eigenvalues of the symmetric 2x2 scatter matrix.
+  const double half_trace = 0.5 * (cov(0, 0) + cov(1, 1));
+  const double root = std::hypot(0.5 * (cov(0, 0) - cov(1, 1)), cov(0, 1));
+  const double big = half_trace + root, small = std::max(0.0, half_trace - root);
+  if (!(big > 0) || std::sqrt(big / m) <= 1e-12 * std::max(1.0, mean.norm()))
+    throw Error("fit_curve: all " + std::to_string(m) + " points are equal");
+  if (options.closed && small <= 1e-14 * big)
+    throw Error("fit_curve: all points lie on a line, no closed curve fits them");
+
+  const std::vector<double> s = chord_length_parameters(points, options.closed);
+  const double length = s.back();
+  BSpline shape;
+  shape.degree = p;
+  shape.closed = options.closed;
+  shape.control.assign(n, Eigen::Vector2d::Zero());
+  if (options.closed) {
+    shape.knots.resize(n + 1);
+    for (int i = 0; i <= n; ++i) shape.knots[i] = length * i / n;
+  } else {
+    shape.knots.assign(n + p + 1, 0.0);
+    for (int i = 0; i < n + p + 1; ++i) {
+      if (i <= p) shape.knots[i] = 0;
+      else if (i >= n) shape.knots[i] = length;
+      else shape.knots[i] = length * (i - p) / (n - p);
+    }
+  }
+  return fit_control_points(points, s, shape, options.fairness, {});
+}
+
+std::vector<Eigen::Vector2d> sample(const BSpline& curve, int count) {
+  check_curve(curve);
+  std::vector<Eigen::Vector2d> out;
+  if (count <= 0) return out;
+  out.reserve(count);
+  const double a = curve.t_min(), b = curve.t_max();
+  for (int i = 0; i < count; ++i) {
+    const double t = curve.closed ? a + (b - a) * i / count
+                                  : (count == 1 ? a : a + (b - a) * i / (count - 1));
+    out.push_back(curve.point(t));
+  }
+  return out;
+}
+
+double arc_length(const BSpline& curve, double a, double b) {
+  check_curve(curve);
+  if (b < a) std::swap(a, b);
+  if (!curve.closed) {
+    a = std::clamp(a, curve.t_min(), curve.t_max());
+    b = std::clamp(b, curve.t_min(), curve.t_max());
+  }
+  if (b <= a) return 0;
+  static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                              0.9061798459386640};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                              0.4786286704993665, 0.2369268850561891};
+  // Breakpoints between a and b (extended periodically when closed).
+  long j = find_span(curve, normalise(curve, a));
+  if (curve.closed) {
+    const long n = control_count(curve);
+    const long k = static_cast<long>(std::floor((a - curve.knots.front()) / period(curve)));
+    j += k * n;
+    while (knot(curve, j) > a) --j;
+    while (knot(curve, j + 1) <= a) ++j;
+  }
+  double total = 0;
+  double lo = a;
+  const long j_end = curve.closed ? std::numeric_limits<long>::max() : control_count(curve);
+  while (lo < b) {
+    const double hi = (j + 1 <= j_end) ? std::min(b, knot(curve, j + 1)) : b;
+    if (hi > lo) {
+      const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+      for (int g = 0; g < 5; ++g) total += w[g] * half * curve.derivative(mid + half * x[g], 1).norm();
+    }
+    lo = std::max(lo, hi);
+    ++j;
+    if (!curve.closed && j >= j_end) break;
+  }
+  return total;
+}
+
+}  // namespace section

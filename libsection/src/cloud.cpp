@@ -1,0 +1,644 @@
+#include "section/cloud.h"
+
+#include "section/error.h"
+#include "detail/text.h"
+
+#include <flann/flann.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <random>
+#include <string>
+#include <sys/stat.h>
+
+namespace section {
+
+namespace {
+
+using detail::is_space;
+using detail::parse_double;
+using detail::trim;
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string extension(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  const auto slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  return lower(path.substr(dot + 1));
+}
+
+// A source of bytes: a file or standard input, read in large blocks.
+class Source {
+public:
+  explicit Source(const std::string& path) : name_(path == "-" ? "<stdin>" : path) {
+    if (path == "-") {
+      file_ = stdin;
+    } else {
+      file_ = std::fopen(path.c_str(), "rb");
+      if (!file_) throw Error("read_cloud: " + path + ": cannot open: " + std::strerror(errno));
+      owned_ = true;
+      struct stat st {};
+      if (::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) size_ = static_cast<long long>(st.st_size);
+      if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+        std::fclose(file_);
+        file_ = nullptr;
+        throw Error("read_cloud: " + path + ": is a directory");
+      }
+    }
+  }
+  // A source over bytes in memory.
+  Source(std::string_view bytes, const std::string& name) : name_(name), memory_(bytes), in_memory_(true) {
+    size_ = static_cast<long long>(bytes.size());
+  }
+  ~Source() {
+    if (owned_ && file_) std::fclose(file_);
+  }
+  Source(const Source&) = delete;
+  Source& operator=(const Source&) = delete;
+
+  // Appends up to n bytes to `buf`; returns the count (0 at the end).
+  std::size_t read(std::string& buf, std::size_t n) {
+    if (in_memory_) {
+      const std::size_t got = std::min(n, memory_.size());
+      buf.append(memory_.data(), got);
+      memory_.remove_prefix(got);
+      return got;
+    }
+    const std::size_t old = buf.size();
+    buf.resize(old + n);
+    const std::size_t got = std::fread(&buf[old], 1, n, file_);
+    buf.resize(old + got);
+    if (got == 0 && std::ferror(file_)) throw Error("read_cloud: " + name_ + ": read error");
+    return got;
+  }
+  const std::string& name() const { return name_; }
+  long long size() const { return size_; }  // -1 when unknown (a pipe)
+
+private:
+  std::string name_;
+  std::FILE* file_ = nullptr;
+  bool owned_ = false;
+  long long size_ = -1;
+  std::string_view memory_;
+  bool in_memory_ = false;
+};
+
+// Collects points and hands them on in chunks.
+class Chunker {
+public:
+  Chunker(const PointChunkFn& fn, std::size_t chunk) : fn_(fn), chunk_(std::max<std::size_t>(chunk, 1)) {
+    buf_.reserve(chunk_);
+  }
+  void add(double x, double y, double z) {
+    buf_.emplace_back(x, y, z);
+    if (buf_.size() == chunk_) flush();
+  }
+  void flush() {
+    if (!buf_.empty()) fn_(buf_.data(), buf_.size());
+    total_ += buf_.size();
+    buf_.clear();
+  }
+  std::size_t total() const { return total_ + buf_.size(); }
+
+private:
+  const PointChunkFn& fn_;
+  std::size_t chunk_;
+  std::vector<Eigen::Vector3d> buf_;
+  std::size_t total_ = 0;
+};
+
+[[noreturn]] void fail_line(const std::string& name, std::size_t line, const std::string& what) {
+  throw Error("read_cloud: " + name + ":" + std::to_string(line) + ": " + what);
+}
+
+constexpr std::size_t block_size = 1 << 24;
+constexpr std::size_t max_line = 1 << 16;
+
+// ---------------------------------------------------------------- text (XYZ and CSV)
+
+struct TextState {
+  bool csv_header_seen = false;
+  int cx = 0, cy = 1, cz = 2;  // columns of x, y, z
+  int needed = 3;              // columns a row must have at least
+  bool require_header = false;
+};
+
+// Splits a line into fields: commas separate, runs of blanks separate; returns the count.
+int split_fields(std::string_view line, std::string_view* fields, int max_fields) {
+  int n = 0;
+  std::size_t i = 0;
+  const std::size_t len = line.size();
+  while (i < len && n < max_fields) {
+    while (i < len && (line[i] == ' ' || line[i] == '\t')) ++i;
+    const std::size_t start = i;
+    while (i < len && line[i] != ',' && line[i] != ' ' && line[i] != '\t') ++i;
+    std::size_t end = i;
+    while (i < len && (line[i] == ' ' || line[i] == '\t')) ++i;
+    if (i < len && line[i] == ',') {
+      ++i;
+      fields[n++] = line.substr(start, end - start);
+      if (i == len) fields[n++] = std::string_view{};  // trailing comma: empty last field
+      continue;
+    }
+    if (end > start) fields[n++] = line.substr(start, end - start);
+  }
+  return n;
+}
+
+std::string unquote(std::string_view s) {
+  s = trim(s);
+  if (s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front()) s = s.substr(1, s.size() - 2);
+  return lower(std::string(s));
+}
+
+bool try_header(std::string_view line, TextState& st) {
+  std::string_view f[64];
+  const int n = split_fields(line, f, 64);
+  int cx = -1, cy = -1, cz = -1;
+  for (int i = 0; i < n; ++i) {
+    const std::string name = unquote(f[i]);
+    if (name == "x" || name == "//x") cx = i;
+    if (name == "y") cy = i;
+    if (name == "z") cz = i;
+  }
+  if (cx < 0 || cy < 0 || cz < 0) return false;
+  st.cx = cx;
+  st.cy = cy;
+  st.cz = cz;
+  st.needed = std::max({cx, cy, cz}) + 1;
+  st.csv_header_seen = true;
+  return true;
+}
+
+void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, const std::string& name,
+                     Chunker& out, bool& first_data) {
+  line = trim(line);
+  if (line.empty() || line[0] == '#' || (line.size() > 1 && line[0] == '/' && line[1] == '/')) return;
+  if (first_data) {
+    first_data = false;
+    double tmp;
+    std::string_view f[64];
+    const int n = split_fields(line, f, 64);
+    if (n == 0 || !parse_double(trim(f[0]), tmp) || st.require_header) {
+      if (try_header(line, st)) return;
+      if (st.require_header)
+        fail_line(name, line_no, "a CSV cloud needs a header row naming the x, y and z columns");
+      if (n > 0 && !parse_double(trim(f[0]), tmp))
+        fail_line(name, line_no, "expected a number in column 1, found '" + std::string(trim(f[0]).substr(0, 40)) +
+                                     "' (a header row must name x, y and z columns)");
+    }
+  }
+  std::string_view f[64];
+  const int n = split_fields(line, f, std::min(64, st.needed));
+  if (n < st.needed)
+    fail_line(name, line_no, "expected at least " + std::to_string(st.needed) + " columns, found " + std::to_string(n));
+  double v[3];
+  const int cols[3] = {st.cx, st.cy, st.cz};
+  for (int k = 0; k < 3; ++k) {
+    const std::string_view cell = trim(f[cols[k]]);
+    if (!parse_double(cell, v[k]))
+      fail_line(name, line_no, "expected a number in column " + std::to_string(cols[k] + 1) + ", found '" +
+                                   std::string(cell.substr(0, 40)) + "'");
+    if (!std::isfinite(v[k]))
+      fail_line(name, line_no, "non-finite coordinate '" + std::string(cell) + "' in column " + std::to_string(cols[k] + 1));
+  }
+  out.add(v[0], v[1], v[2]);
+}
+
+std::size_t read_text(Source& src, std::string buf, bool csv, const CloudReadOptions& opt, const PointChunkFn& fn) {
+  Chunker out(fn, opt.chunk_points);
+  TextState st;
+  st.require_header = csv;
+  bool first_data = true;
+  std::size_t line_no = 0;
+  std::size_t start = 0;  // start of the unparsed part of buf
+  bool eof = false;
+  while (true) {
+    std::size_t nl;
+    while ((nl = buf.find('\n', start)) != std::string::npos) {
+      ++line_no;
+      if (nl - start > max_line) fail_line(src.name(), line_no, "line longer than " + std::to_string(max_line) + " characters");
+      parse_text_line(std::string_view(buf).substr(start, nl - start), line_no, st, src.name(), out, first_data);
+      if (out.total() > opt.max_points)
+        throw Error("read_cloud: " + src.name() + ": more than " + std::to_string(opt.max_points) + " points");
+      start = nl + 1;
+    }
+    if (buf.size() - start > max_line)
+      fail_line(src.name(), line_no + 1, "line longer than " + std::to_string(max_line) + " characters");
+    if (eof) break;
+    buf.erase(0, start);
+    start = 0;
+    if (src.read(buf, block_size) == 0) {
+      eof = true;
+      if (!buf.empty() && buf.back() != '\n') buf.push_back('\n');
+    }
+  }
+  out.flush();
+  if (out.total() == 0) throw Error("read_cloud: " + src.name() + ": no points");
+  return out.total();
+}
+
+// ---------------------------------------------------------------- PLY
+
+enum class PlyFormat { ascii, binary_le, binary_be };
+
+struct PlyProperty {
+  std::string name;
+  int size = 0;         // bytes of a scalar
+  char kind = 'f';      // 'f' float, 'i' signed, 'u' unsigned
+  bool list = false;
+};
+
+struct PlyElement {
+  std::string name;
+  unsigned long long count = 0;
+  std::vector<PlyProperty> props;
+};
+
+struct PlyHeader {
+  PlyFormat format = PlyFormat::ascii;
+  std::vector<PlyElement> elements;
+  std::size_t header_bytes = 0;
+  std::size_t header_lines = 0;
+};
+
+bool ply_type(const std::string& t, int& size, char& kind) {
+  static const struct { const char* name; int size; char kind; } types[] = {
+      {"char", 1, 'i'},  {"int8", 1, 'i'},   {"uchar", 1, 'u'},   {"uint8", 1, 'u'},
+      {"short", 2, 'i'}, {"int16", 2, 'i'},  {"ushort", 2, 'u'},  {"uint16", 2, 'u'},
+      {"int", 4, 'i'},   {"int32", 4, 'i'},  {"uint", 4, 'u'},    {"uint32", 4, 'u'},
+      {"float", 4, 'f'}, {"float32", 4, 'f'}, {"double", 8, 'f'}, {"float64", 8, 'f'}};
+  for (const auto& e : types)
+    if (t == e.name) {
+      size = e.size;
+      kind = e.kind;
+      return true;
+    }
+  return false;
+}
+
+// Parses the header from the start of `buf`, reading more from `src` as needed.
+PlyHeader parse_ply_header(Source& src, std::string& buf) {
+  PlyHeader h;
+  std::size_t pos = 0;
+  bool format_seen = false;
+  while (true) {
+    std::size_t nl = buf.find('\n', pos);
+    while (nl == std::string::npos) {
+      if (buf.size() > (1 << 20)) throw Error("read_cloud: " + src.name() + ": PLY header longer than 1 MiB");
+      if (src.read(buf, 1 << 16) == 0) throw Error("read_cloud: " + src.name() + ": truncated PLY header (no end_header)");
+      nl = buf.find('\n', pos);
+    }
+    ++h.header_lines;
+    std::string_view line = trim(std::string_view(buf).substr(pos, nl - pos));
+    pos = nl + 1;
+    const std::string where = src.name() + ":" + std::to_string(h.header_lines) + ": ";
+    if (h.header_lines == 1) {
+      if (line != "ply") throw Error("read_cloud: " + where + "not a PLY file (no 'ply' magic)");
+      continue;
+    }
+    std::string_view tok[8];
+    int n = 0;
+    {
+      std::size_t i = 0;
+      while (i < line.size() && n < 8) {
+        while (i < line.size() && is_space(line[i])) ++i;
+        const std::size_t s = i;
+        while (i < line.size() && !is_space(line[i])) ++i;
+        if (i > s) tok[n++] = line.substr(s, i - s);
+      }
+    }
+    if (n == 0) continue;
+    if (tok[0] == "end_header") break;
+    if (tok[0] == "comment" || tok[0] == "obj_info") continue;
+    if (tok[0] == "format") {
+      if (n < 2) throw Error("read_cloud: " + where + "bad format line");
+      if (tok[1] == "ascii") h.format = PlyFormat::ascii;
+      else if (tok[1] == "binary_little_endian") h.format = PlyFormat::binary_le;
+      else if (tok[1] == "binary_big_endian") h.format = PlyFormat::binary_be;
+      else throw Error("read_cloud: " + where + "unknown PLY format '" + std::string(tok[1]) + "'");
+      format_seen = true;
+    } else if (tok[0] == "element") {
+      if (n < 3) throw Error("read_cloud: " + where + "bad element line");
+      PlyElement e;
+      e.name = std::string(tok[1]);
+      const auto r = std::from_chars(tok[2].data(), tok[2].data() + tok[2].size(), e.count);
+      if (r.ec != std::errc() || r.ptr != tok[2].data() + tok[2].size())
+        throw Error("read_cloud: " + where + "bad element count '" + std::string(tok[2]) + "'");
+      h.elements.push_back(e);
+    } else if (tok[0] == "property") {
+      if (h.elements.empty()) throw Error("read_cloud: " + where + "property before any element");
+      PlyProperty p;
+      if (n >= 5 && tok[1] == "list") {
+        p.list = true;
+        p.name = std::string(tok[4]);
+        char k;
+        int s;
+        if (!ply_type(std::string(tok[2]), s, k) || !ply_type(std::string(tok[3]), p.size, p.kind))
+          throw Error("read_cloud: " + where + "unknown property type");
+        p.size = s * 100 + p.size;  // count size and item size packed; lists are only skipped
+      } else if (n >= 3) {
+        p.name = std::string(tok[2]);
+        if (!ply_type(std::string(tok[1]), p.size, p.kind))
+          throw Error("read_cloud: " + where + "unknown property type '" + std::string(tok[1]) + "'");
+      } else {
+        throw Error("read_cloud: " + where + "bad property line");
+      }
+      h.elements.back().props.push_back(p);
+    } else {
+      throw Error("read_cloud: " + where + "unexpected PLY header line '" + std::string(line.substr(0, 40)) + "'");
+    }
+  }
+  if (!format_seen) throw Error("read_cloud: " + src.name() + ": PLY header without a format line");
+  h.header_bytes = pos;
+  return h;
+}
+
+double read_scalar(const unsigned char* p, const PlyProperty& prop, bool swap) {
+  unsigned char b[8];
+  std::memcpy(b, p, prop.size);
+  if (swap) std::reverse(b, b + prop.size);
+  switch (prop.kind) {
+    case 'f':
+      if (prop.size == 4) { float f; std::memcpy(&f, b, 4); return f; }
+      { double d; std::memcpy(&d, b, 8); return d; }
+    case 'i':
+      if (prop.size == 1) { std::int8_t v; std::memcpy(&v, b, 1); return v; }
+      if (prop.size == 2) { std::int16_t v; std::memcpy(&v, b, 2); return v; }
+      { std::int32_t v; std::memcpy(&v, b, 4); return v; }
+    default:
+      if (prop.size == 1) { std::uint8_t v; std::memcpy(&v, b, 1); return v; }
+      if (prop.size == 2) { std::uint16_t v; std::memcpy(&v, b, 2); return v; }
+      { std::uint32_t v; std::memcpy(&v, b, 4); return v; }
+  }
+}
+
+bool host_little_endian() {
+  const std::uint16_t one = 1;
+  unsigned char c;
+  std::memcpy(&c, &one, 1);
+  return c == 1;
+}
+
+std::size_t read_ply(Source& src, std::string buf, const CloudReadOptions& opt, const PointChunkFn& fn) {
+  const PlyHeader h = parse_ply_header(src, buf);
+  const std::string& name = src.name();
+  std::size_t vi = h.elements.size();
+  for (std::size_t i = 0; i < h.elements.size(); ++i)
+    if (h.elements[i].name == "vertex") { vi = i; break; }
+  if (vi == h.elements.size()) throw Error("read_cloud: " + name + ": PLY file without a vertex element");
+  if (vi != 0) throw Error("read_cloud: " + name + ": PLY vertex element must come first");
+  const PlyElement& ve = h.elements[vi];
+  int ix = -1, iy = -1, iz = -1;
+  std::size_t record = 0;
+  std::vector<std::size_t> offset;
+  for (std::size_t i = 0; i < ve.props.size(); ++i) {
+    const auto& p = ve.props[i];
+    if (p.list) throw Error("read_cloud: " + name + ": list property '" + p.name + "' in the PLY vertex element is not supported");
+    offset.push_back(record);
+    record += static_cast<std::size_t>(p.size);
+    if (p.name == "x") ix = static_cast<int>(i);
+    if (p.name == "y") iy = static_cast<int>(i);
+    if (p.name == "z") iz = static_cast<int>(i);
+  }
+  if (ix < 0 || iy < 0 || iz < 0) throw Error("read_cloud: " + name + ": PLY vertex element lacks x, y or z");
+  if (ve.count == 0) throw Error("read_cloud: " + name + ": no points (PLY header declares 0 vertices)");
+  if (ve.count > opt.max_points)
+    throw Error("read_cloud: " + name + ": PLY header declares " + std::to_string(ve.count) + " vertices, more than the limit of " +
+                std::to_string(opt.max_points));
+  if (src.size() >= 0) {
+    const unsigned long long body = static_cast<unsigned long long>(src.size()) - h.header_bytes;
+    const unsigned long long min_bytes = h.format == PlyFormat::ascii ? ve.count * 6ULL : ve.count * record;
+    if (min_bytes > body)
+      throw Error("read_cloud: " + name + ": PLY header declares " + std::to_string(ve.count) + " vertices but the file holds " +
+                  (h.format == PlyFormat::ascii ? "far fewer" : "only " + std::to_string(body / record)) + " (truncated file?)");
+  }
+  Chunker out(fn, opt.chunk_points);
+  buf.erase(0, h.header_bytes);
+  if (h.format == PlyFormat::ascii) {
+    std::size_t line_no = h.header_lines;
+    std::size_t start = 0;
+    unsigned long long done = 0;
+    bool eof = false;
+    std::vector<double> vals(ve.props.size());
+    while (done < ve.count) {
+      std::size_t nl = buf.find('\n', start);
+      if (nl == std::string::npos) {
+        if (eof) {
+          if (start < buf.size()) { buf.push_back('\n'); continue; }
+          throw Error("read_cloud: " + name + ": PLY file ends after " + std::to_string(done) + " of " +
+                      std::to_string(ve.count) + " vertices (truncated file?)");
+        }
+        if (buf.size() - start > max_line) fail_line(name, line_no + 1, "line longer than " + std::to_string(max_line) + " characters");
+        buf.erase(0, start);
+        start = 0;
+        if (src.read(buf, block_size) == 0) eof = true;
+        continue;
+      }
+      ++line_no;
+      std::string_view line = trim(std::string_view(buf).substr(start, nl - start));
+      start = nl + 1;
+      if (line.empty()) continue;
+      std::size_t i = 0;
+      for (std::size_t k = 0; k < vals.size(); ++k) {
+        while (i < line.size() && is_space(line[i])) ++i;
+        const std::size_t s = i;
+        while (i < line.size() && !is_space(line[i])) ++i;
+        if (s == i) fail_line(name, line_no, "expected " + std::to_string(vals.size()) + " vertex values, found " + std::to_string(k));
+        if (!parse_double(line.substr(s, i - s), vals[k]))
+          fail_line(name, line_no, "expected a number, found '" + std::string(line.substr(s, std::min<std::size_t>(i - s, 40))) + "'");
+      }
+      const double x = vals[ix], y = vals[iy], z = vals[iz];
+      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) fail_line(name, line_no, "non-finite coordinate");
+      out.add(x, y, z);
+      ++done;
+    }
+  } else {
+    const bool swap = (h.format == PlyFormat::binary_le) != host_little_endian();
+    unsigned long long done = 0;
+    std::size_t start = 0;
+    const PlyProperty px = ve.props[ix], py = ve.props[iy], pz = ve.props[iz];
+    const bool fast = !swap && px.kind == 'f' && py.kind == 'f' && pz.kind == 'f' && px.size == py.size && py.size == pz.size;
+    while (done < ve.count) {
+      const std::size_t avail = (buf.size() - start) / record;
+      if (avail == 0) {
+        buf.erase(0, start);
+        start = 0;
+        const std::size_t want = std::max<std::size_t>(record, std::min<unsigned long long>((ve.count - done) * record, block_size));
+        if (src.read(buf, want) == 0)
+          throw Error("read_cloud: " + name + ": PLY file ends after " + std::to_string(done) + " of " +
+                      std::to_string(ve.count) + " vertices (truncated file?)");
+        continue;
+      }
+      const std::size_t n = static_cast<std::size_t>(std::min<unsigned long long>(avail, ve.count - done));
+      const unsigned char* base = reinterpret_cast<const unsigned char*>(buf.data()) + start;
+      for (std::size_t k = 0; k < n; ++k) {
+        const unsigned char* r = base + k * record;
+        double x, y, z;
+        if (fast && px.size == 4) {
+          float f[3];
+          std::memcpy(&f[0], r + offset[ix], 4);
+          std::memcpy(&f[1], r + offset[iy], 4);
+          std::memcpy(&f[2], r + offset[iz], 4);
+          x = f[0]; y = f[1]; z = f[2];
+        } else if (fast) {
+          std::memcpy(&x, r + offset[ix], 8);
+          std::memcpy(&y, r + offset[iy], 8);
+          std::memcpy(&z, r + offset[iz], 8);
+        } else {
+          x = read_scalar(r + offset[ix], px, swap);
+          y = read_scalar(r + offset[iy], py, swap);
+          z = read_scalar(r + offset[iz], pz, swap);
+        }
+        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+          throw Error("read_cloud: " + name + ": vertex " + std::to_string(done + k) + " has a non-finite coordinate");
+        out.add(x, y, z);
+      }
+      done += n;
+      start += n * record;
+    }
+  }
+  out.flush();
+  return out.total();
+}
+
+CloudFormat format_of(const std::string& path, const std::string& head) {
+  if (path != "-") {
+    const std::string ext = extension(path);
+    if (ext == "ply") return CloudFormat::ply;
+    if (ext == "csv") return CloudFormat::csv;
+    if (ext == "xyz" || ext == "asc" || ext == "txt" || ext == "pts" || ext == "xyzn") return CloudFormat::xyz;
+    if (ext == "stl" || ext == "obj" || ext == "off")
+      throw Error("read_cloud: " + path + ": is a mesh, not a point cloud");
+  }
+  if (head.compare(0, 3, "ply") == 0) return CloudFormat::ply;
+  if (path != "-" && !extension(path).empty())
+    throw Error("read_cloud: " + path + ": unknown point cloud extension '." + extension(path) +
+                "' (use .xyz .asc .txt .pts .csv .ply)");
+  return CloudFormat::xyz;
+}
+
+}  // namespace
+
+namespace {
+std::size_t read_source(Source& src, const std::string& path, const PointChunkFn& on_chunk,
+                        const CloudReadOptions& options) {
+  std::string buf;
+  src.read(buf, 1 << 16);
+  if (buf.empty()) throw Error("read_cloud: " + src.name() + ": empty file");
+  CloudFormat format = options.format;
+  if (format == CloudFormat::automatic) format = format_of(path, buf);
+  if (buf.find('\0') != std::string::npos && format != CloudFormat::ply)
+    throw Error("read_cloud: " + src.name() + ": binary data in a text point cloud");
+  switch (format) {
+    case CloudFormat::ply: return read_ply(src, std::move(buf), options, on_chunk);
+    case CloudFormat::csv: return read_text(src, std::move(buf), true, options, on_chunk);
+    default: return read_text(src, std::move(buf), false, options, on_chunk);
+  }
+}
+}  // namespace
+
+std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_chunk, const CloudReadOptions& options) {
+  Source src(path);
+  return read_source(src, path, on_chunk, options);
+}
+
+Cloud read_cloud(const std::string& path, const CloudReadOptions& options) {
+  Cloud cloud;
+  read_cloud_chunks(path, [&](const Eigen::Vector3d* p, std::size_t n) { cloud.points.insert(cloud.points.end(), p, p + n); },
+                    options);
+  return cloud;
+}
+
+Cloud parse_cloud(std::string_view bytes, const std::string& name, const CloudReadOptions& options) {
+  Source src(bytes, name);
+  Cloud cloud;
+  read_source(src, name, [&](const Eigen::Vector3d* p, std::size_t n) { cloud.points.insert(cloud.points.end(), p, p + n); },
+              options);
+  return cloud;
+}
+
+void write_cloud(const std::string& path, const Cloud& cloud) {
+  std::FILE* f = path == "-" ? stdout : std::fopen(path.c_str(), "wb");
+  if (!f) throw Error("write_cloud: " + path + ": cannot open for writing: " + std::strerror(errno));
+  bool ok = true;
+  if (extension(path) == "ply") {
+    std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(cloud.points.size()) +
+                         "\nproperty double x\nproperty double y\nproperty double z\nend_header\n";
+    ok = std::fwrite(header.data(), 1, header.size(), f) == header.size();
+    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "packed Vector3d");
+    if (ok && !cloud.points.empty())
+      ok = std::fwrite(cloud.points.data(), sizeof(Eigen::Vector3d), cloud.points.size(), f) == cloud.points.size();
+  } else {
+    std::string out;
+    char b[32];
+    for (const auto& p : cloud.points) {
+      for (int k = 0; k < 3; ++k) {
+        const auto r = std::to_chars(b, b + sizeof b, p[k]);
+        out.append(b, r.ptr);
+        out += k == 2 ? '\n' : ' ';
+      }
+      if (out.size() > (1 << 22)) {
+        ok = ok && std::fwrite(out.data(), 1, out.size(), f) == out.size();
+        out.clear();
+      }
+    }
+    ok = ok && std::fwrite(out.data(), 1, out.size(), f) == out.size();
+  }
+  if (path == "-") ok = ok && std::fflush(f) == 0;
+  else ok = (std::fclose(f) == 0) && ok;
+  if (!ok) throw Error("write_cloud: " + path + ": write error");
+}
+
+double mean_spacing(const std::vector<Eigen::Vector3d>& points, std::size_t sample) {
+  const std::size_t n = points.size();
+  if (n < 2) return 0;
+  sample = std::max<std::size_t>(sample, 100);
+  // A random subset of a surface scan is a sparser surface scan: its nearest-neighbour
+  // distance grows as 1/sqrt(fraction), which scales the estimate back.
+  std::vector<double> data;
+  std::size_t m = std::min(n, sample * 10);
+  data.reserve(m * 3);
+  std::mt19937_64 rng(12345);
+  if (m == n) {
+    for (const auto& p : points) data.insert(data.end(), {p.x(), p.y(), p.z()});
+  } else {
+    for (std::size_t i = 0; i < m; ++i) {
+      const auto& p = points[rng() % n];
+      data.insert(data.end(), {p.x(), p.y(), p.z()});
+    }
+  }
+  flann::Matrix<double> dataset(data.data(), m, 3);
+  flann::Index<flann::L2<double>> index(dataset, flann::KDTreeSingleIndexParams(12));
+  index.buildIndex();
+  const std::size_t q = std::min(m, sample);
+  std::vector<double> dists;
+  dists.reserve(q);
+  std::vector<int> idx(3);
+  std::vector<double> d2(3);
+  for (std::size_t i = 0; i < q; ++i) {
+    const std::size_t k = (i * m) / q;
+    flann::Matrix<double> query(&data[k * 3], 1, 3);
+    flann::Matrix<int> mi(idx.data(), 1, 3);
+    flann::Matrix<double> md(d2.data(), 1, 3);
+    index.knnSearch(query, mi, md, 3, flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
+    for (int j = 1; j < 3; ++j)
+      if (d2[j] > 0) { dists.push_back(std::sqrt(d2[j])); break; }
+  }
+  if (dists.empty()) return 0;
+  std::nth_element(dists.begin(), dists.begin() + dists.size() / 2, dists.end());
+  double d = dists[dists.size() / 2];
+  if (m < n) d *= std::sqrt(double(m) / double(n)) / 0.47;  // Poisson median NN = 0.47/sqrt(density)
+  return d;
+}
+
+}  // namespace section

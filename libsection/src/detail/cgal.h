@@ -1,0 +1,21 @@
+#pragma once
+// The library's only doors to CGAL: its headers stay inside src/detail/cgal_*.cpp.
+#include "section/mesh.h"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace section::detail {
+
+/// Exact sign of the orientation of q against the plane through a, b, c (CGAL's
+/// orientation predicate): +1 on the side of (b - a) x (c - a), -1 opposite, 0 on it.
+int orientation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                const Eigen::Vector3d& q);
+
+/// Intersection polylines of a triangle mesh with planes (CGAL::Polygon_mesh_slicer),
+/// one list per plane; a closed polyline repeats its first point at the end.
+std::vector<std::vector<std::vector<Eigen::Vector3d>>> mesh_slices(
+    const Mesh& mesh, const std::vector<Eigen::Vector3d>& origins,
+    const std::vector<Eigen::Vector3d>& normals);
+
+}  // namespace section::detail

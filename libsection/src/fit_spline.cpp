@@ -1,0 +1,555 @@
+#include "section/fit_spline.h"
+
+#include "detail/flann_nearest.h"
+#include "section/error.h"
+#include "section/pipe.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+namespace section {
+
+namespace {
+
+using Points = std::vector<Eigen::Vector2d>;
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + mid, v.end());
+  return v[mid];
+}
+
+double polygon_area(const Points& p) {
+  double a = 0;
+  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++)
+    a += p[j].x() * p[i].y() - p[i].x() * p[j].y();
+  return 0.5 * a;
+}
+
+// Parameters of `per_span` samples in every knot span of a closed curve.
+std::vector<double> span_samples(const BSpline& c, int per_span) {
+  std::vector<double> ts;
+  ts.reserve(c.control.size() * per_span);
+  for (std::size_t j = 0; j + 1 < c.knots.size(); ++j)
+    for (int s = 0; s < per_span; ++s)
+      ts.push_back(c.knots[j] + (c.knots[j + 1] - c.knots[j]) * s / per_span);
+  return ts;
+}
+
+// Foot points of the measured points: nearest dense curve sample from a kd-tree, then a
+// local Newton projection.
+struct Feet {
+  std::vector<double> t;       // curve parameter of the foot
+  std::vector<double> signed_distance;  // positive on the outer side (tangent turned clockwise)
+};
+
+Feet foot_points(const BSpline& c, const Points& q) {
+  const std::vector<double> ts = span_samples(c, 8);
+  Points pts(ts.size());
+  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = c.point(ts[i]);
+  const detail::NearestPoints tree(pts);
+  const std::vector<int> idx = tree.nearest(q);
+  Feet f;
+  f.t.resize(q.size());
+  f.signed_distance.resize(q.size());
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const ClosestPoint cp = closest_point_near(c, q[k], ts[idx[k]]);
+    const Eigen::Vector2d d1 = c.derivative(cp.t, 1);
+    const Eigen::Vector2d normal = Eigen::Vector2d(d1.y(), -d1.x()).normalized();
+    f.t[k] = cp.t;
+    f.signed_distance[k] = (q[k] - cp.point).dot(normal);
+  }
+  return f;
+}
+
+// Robust noise sigma: from differences of residuals consecutive along the curve, which
+// cancel the smooth (model) part of the residual and keep the noise.
+double noise_sigma(const Feet& f, const std::vector<double>& w) {
+  std::vector<std::size_t> order(f.t.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return f.t[a] < f.t[b]; });
+  std::vector<double> diffs;
+  std::size_t prev = order.size();
+  for (std::size_t i : order) {
+    if (w[i] <= 0) continue;
+    if (prev != order.size())
+      diffs.push_back(std::abs(f.signed_distance[i] - f.signed_distance[prev]));
+    prev = i;
+  }
+  return 1.4826 * median(diffs) / std::sqrt(2.0);
+}
+
+// Ignores isolated points far from the curve; runs of far points on one side are kept,
+// as they mean the curve is not there yet (a cut edge), not outliers.
+std::vector<double> outlier_weights(const Feet& f, double threshold) {
+  const std::size_t m = f.t.size();
+  std::vector<std::size_t> order(m);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return f.t[a] < f.t[b]; });
+  std::vector<double> w(m, 1.0);
+  for (std::size_t i = 0; i < m; ++i) {
+    const double s = f.signed_distance[order[i]];
+    if (std::abs(s) <= threshold) continue;
+    bool supported = false;
+    for (std::size_t d : {std::size_t(1), std::size_t(2), m - 1, m - 2}) {
+      if (m < 5) break;
+      const double o = f.signed_distance[order[(i + d) % m]];
+      if (std::abs(o) > 0.5 * threshold && o * s > 0) supported = true;
+    }
+    if (!supported) w[order[i]] = 0;
+  }
+  return w;
+}
+
+// One Gauss-Newton step of squared-distance minimisation: each measured point q_k with
+// foot C(t_k), unit tangent T and outward normal N contributes
+//   ((C(t_k) - q_k) . N)^2 + alpha ((C(t_k) - q_k) . T)^2,
+// alpha = |d| / (|d| + rho) on the convex side and 0 (tangent distance) on the concave side
+// within the radius of curvature rho (Wang, Pottmann and Liu 2006, eq. 9), kept above a
+// small floor so that sliding along the curve stays bounded.
+BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::vector<double>& w,
+                 double fairness) {
+  const int n = static_cast<int>(c.control.size());
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(q.size() * 64 + n * 40);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * n);
+  std::vector<int> idx;
+  std::vector<double> val;
+  double trace = 0;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    if (w[k] <= 0) continue;
+    const double t = f.t[k];
+    c.basis(t, idx, val);
+    const Eigen::Vector2d d1 = c.derivative(t, 1);
+    const Eigen::Vector2d tangent = d1.normalized();
+    const Eigen::Vector2d normal(tangent.y(), -tangent.x());
+    const double d = f.signed_distance[k];
+    const double kappa = c.curvature(t);
+    double alpha = 1;
+    if (kappa == 0) {
+      alpha = 0;
+    } else {
+      const double rho = 1 / std::abs(kappa);
+      const bool centre_side = d * kappa < 0;
+      alpha = centre_side ? (std::abs(d) < rho ? 0 : 1) : std::abs(d) / (std::abs(d) + rho);
+    }
+    alpha = std::max(alpha, 1e-3);
+    const Eigen::Matrix2d M = normal * normal.transpose() + alpha * tangent * tangent.transpose();
+    const Eigen::Vector2d Mq = M * q[k];
+    for (std::size_t a = 0; a < idx.size(); ++a) {
+      for (int r = 0; r < 2; ++r) rhs(2 * idx[a] + r) += w[k] * val[a] * Mq(r);
+      for (std::size_t b = 0; b < idx.size(); ++b)
+        for (int r = 0; r < 2; ++r)
+          for (int s = 0; s < 2; ++s)
+            trip.emplace_back(2 * idx[a] + r, 2 * idx[b] + s, w[k] * val[a] * val[b] * M(r, s));
+      trace += w[k] * val[a] * val[a];
+    }
+  }
+  // Fairness (second differences of the control polygon) keeps spans without data
+  // determined; a tiny pull toward the current control points keeps the system definite.
+  const double lambda = fairness * std::max(trace / n, 1e-12);
+  const double mu = 1e-9 * std::max(trace / n, 1e-12);
+  for (int i = 0; i < n; ++i) {
+    const int ids[3] = {(i + n - 1) % n, i, (i + 1) % n};
+    const double coef[3] = {1, -2, 1};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        for (int r = 0; r < 2; ++r)
+          trip.emplace_back(2 * ids[a] + r, 2 * ids[b] + r, lambda * coef[a] * coef[b]);
+    for (int r = 0; r < 2; ++r) {
+      trip.emplace_back(2 * i + r, 2 * i + r, mu);
+      rhs(2 * i + r) += mu * c.control[i](r);
+    }
+  }
+  Eigen::SparseMatrix<double> H(2 * n, 2 * n);
+  H.setFromTriplets(trip.begin(), trip.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(H);
+  if (solver.info() != Eigen::Success)
+    throw Error("fit_spline: the distance-minimisation system is singular");
+  const Eigen::VectorXd x = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !x.allFinite())
+    throw Error("fit_spline: the distance-minimisation system is singular");
+  BSpline out = c;
+  for (int i = 0; i < n; ++i) out.control[i] = Eigen::Vector2d(x(2 * i), x(2 * i + 1));
+  return out;
+}
+
+// Weighted RMS of the signed distances.
+double weighted_rms(const Feet& f, const std::vector<double>& w) {
+  double s = 0, sw = 0;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    s += w[k] * f.signed_distance[k] * f.signed_distance[k];
+    sw += w[k];
+  }
+  return sw > 0 ? std::sqrt(s / sw) : 0;
+}
+
+// The curve on new knots: least squares on dense samples of the old curve, so that the
+// shape carries over to the refined knot vector (almost exactly: the old space nests in
+// the new one when knots were only inserted).
+BSpline reknot(const BSpline& c, const std::vector<double>& knots) {
+  BSpline shape = c;
+  shape.knots = knots;
+  shape.control.assign(knots.size() - 1, Eigen::Vector2d::Zero());
+  std::vector<double> ts = span_samples(shape, 12);
+  Points pts(ts.size());
+  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = c.point(ts[i]);
+  return fit_control_points(pts, ts, shape, 1e-12);
+}
+
+struct Refinement {
+  BSpline curve;
+  Feet feet;
+  std::vector<double> weights;
+  double rms = 0;
+  int iterations = 0;
+};
+
+// Squared-distance minimisation iterations on fixed knots until the RMS settles.
+Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o) {
+  Refinement best;
+  Feet f = foot_points(c, q);
+  const double size = [&] {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const auto& p : q) { lo = std::min({lo, p.x(), p.y()}); hi = std::max({hi, p.x(), p.y()}); }
+    return hi - lo;
+  }();
+  auto weights_for = [&](const Feet& ft) {
+    double threshold = o.outlier_distance;
+    if (threshold <= 0) threshold = std::max(6 * noise_sigma(ft, std::vector<double>(q.size(), 1.0)), 0.02);
+    return outlier_weights(ft, threshold);
+  };
+  std::vector<double> w = weights_for(f);
+  double rms = weighted_rms(f, w);
+  best = {c, f, w, rms, 0};
+  int it = 0;
+  for (; it < o.max_iterations; ++it) {
+    const BSpline next = sdm_step(c, q, f, w, o.fairness);
+    const Feet nf = foot_points(next, q);
+    const std::vector<double> nw = weights_for(nf);
+    const double nrms = weighted_rms(nf, nw);
+    c = next;
+    f = nf;
+    w = nw;
+    const double change = std::abs(rms - nrms);
+    rms = nrms;
+    if (nrms <= best.rms) best = {c, f, w, rms, 0};
+    if (change <= o.convergence * nrms + 1e-12 * size) {
+      ++it;
+      break;
+    }
+  }
+  best.iterations = it;
+  return best;
+}
+
+// Knots after splitting every span whose residuals hold more than noise: mean square
+// above sigma^2 (1 + 3 sqrt(2 / m)) + tolerance^2 with m points in the span.
+std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vector<double>& w,
+                                double sigma, const FitSplineOptions& o) {
+  const std::size_t spans = c.knots.size() - 1;
+  std::vector<double> sum(spans, 0), count(spans, 0);
+  for (std::size_t k = 0; k < f.t.size(); ++k) {
+    if (w[k] <= 0) continue;
+    auto it = std::upper_bound(c.knots.begin(), c.knots.end(), f.t[k]);
+    const std::size_t j = std::min<std::size_t>(
+        std::max<std::ptrdiff_t>(it - c.knots.begin() - 1, 0), spans - 1);
+    sum[j] += f.signed_distance[k] * f.signed_distance[k];
+    count[j] += 1;
+  }
+  std::vector<double> knots;
+  for (std::size_t j = 0; j < spans; ++j) {
+    knots.push_back(c.knots[j]);
+    if (count[j] < 2) continue;
+    const double ms = sum[j] / count[j];
+    const double limit = sigma * sigma * (1 + 3 * std::sqrt(2 / count[j])) + o.tolerance * o.tolerance;
+    const double a = c.knots[j], b = c.knots[j + 1];
+    if (ms > limit && arc_length(c, a, b) >= 2 * o.min_span) knots.push_back(0.5 * (a + b));
+  }
+  knots.push_back(c.knots.back());
+  return knots;
+}
+
+}  // namespace
+
+bool self_intersects(const BSpline& curve) {
+  const std::vector<double> ts = span_samples(curve, 16);
+  const std::size_t m = ts.size();
+  Points p(m);
+  double speed_max = 0;
+  std::vector<double> speed(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    p[i] = curve.point(ts[i]);
+    speed[i] = curve.derivative(ts[i], 1).norm();
+    speed_max = std::max(speed_max, speed[i]);
+  }
+  for (double s : speed)
+    if (!(s > 1e-9 * speed_max)) return true;  // cusp: the curve stops and turns back
+  // Segments sorted by their lowest x; sweep to test only overlapping boxes.
+  std::vector<std::size_t> order(m);
+  std::iota(order.begin(), order.end(), 0);
+  auto lo_x = [&](std::size_t i) { return std::min(p[i].x(), p[(i + 1) % m].x()); };
+  auto hi_x = [&](std::size_t i) { return std::max(p[i].x(), p[(i + 1) % m].x()); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo_x(a) < lo_x(b); });
+  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  };
+  for (std::size_t x = 0; x < m; ++x) {
+    const std::size_t i = order[x];
+    const Eigen::Vector2d &a = p[i], &b = p[(i + 1) % m];
+    for (std::size_t y = x + 1; y < m && lo_x(order[y]) <= hi_x(i); ++y) {
+      const std::size_t j = order[y];
+      if (j == i || (i + 1) % m == j || (j + 1) % m == i) continue;  // neighbours share a point
+      const Eigen::Vector2d &c = p[j], &d = p[(j + 1) % m];
+      if (std::max(a.y(), b.y()) < std::min(c.y(), d.y()) ||
+          std::max(c.y(), d.y()) < std::min(a.y(), b.y()))
+        continue;
+      const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
+      if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
+        return true;
+    }
+  }
+  return false;
+}
+
+FitSplineResult fit_spline(const Points& profile, const Points& measured, const FitSplineOptions& o) {
+  if (o.degree < 1 || o.degree > 7)
+    throw Error("fit_spline: degree " + std::to_string(o.degree) + " is not in 1..7");
+  if (o.control_points != 0 && o.control_points < o.degree + 1)
+    throw Error("fit_spline: " + std::to_string(o.control_points) +
+                " control points are too few, at least " + std::to_string(o.degree + 1) +
+                " are needed");
+  if (!(o.tolerance > 0) || !(o.initial_span > 0) || !(o.min_span > 0))
+    throw Error("fit_spline: tolerance, initial span and minimum span must be positive");
+  const std::size_t min_points = 8;
+  if (profile.size() < min_points || measured.size() < min_points)
+    throw Error("fit_spline: the loop has " + std::to_string(std::min(profile.size(), measured.size())) +
+                " points, at least " + std::to_string(min_points) + " are needed");
+  for (const auto& p : measured)
+    if (!p.allFinite()) throw Error("fit_spline: a measured point is not finite");
+
+  // First curve: least squares through the ordered profile on uniform chord-length knots.
+  const std::vector<double> s = chord_length_parameters(profile, true);
+  const double perimeter = s.back();
+  int n = o.control_points;
+  if (n == 0) n = static_cast<int>(std::ceil(perimeter / o.initial_span));
+  n = std::max(n, std::max(8, o.degree + 1));
+  if (o.control_points == 0) n = std::min<int>(n, static_cast<int>(profile.size()) / 2);
+  if (n > static_cast<int>(profile.size()))
+    throw Error("fit_spline: " + std::to_string(n) + " control points are more than the " +
+                std::to_string(profile.size()) + " points of the loop");
+  CurveFitOptions fo;
+  fo.degree = o.degree;
+  fo.control_points = n;
+  fo.fairness = o.fairness;
+  fo.closed = true;
+  BSpline curve;
+  try {
+    curve = fit_curve(profile, fo);
+  } catch (const Error& e) {
+    std::string m = e.what();
+    if (m.rfind("fit_curve: ", 0) == 0) m = m.substr(11);
+    throw Error("fit_spline: " + m);
+  }
+  const double input_area = polygon_area(profile);
+  if (self_intersects(curve))
+    throw Error("fit_spline: the loop crosses itself (its points are not ordered along one profile)");
+
+  FitSplineResult result;
+  Refinement r = refine(curve, measured, o);
+  result.iterations = r.iterations;
+  if (o.control_points == 0) {
+    for (int round = 0; round < o.max_rounds; ++round) {
+      const double sigma = noise_sigma(r.feet, r.weights);
+      const std::vector<double> knots = split_spans(r.curve, r.feet, r.weights, sigma, o);
+      if (knots.size() == r.curve.knots.size() ||
+          static_cast<int>(knots.size()) - 1 > o.max_control_points)
+        break;
+      Refinement next = refine(reknot(r.curve, knots), measured, o);
+      result.iterations += next.iterations;
+      result.rounds = round + 1;
+      r = std::move(next);
+    }
+  }
+
+  result.spline = r.curve;
+  if (self_intersects(result.spline))
+    throw Error("fit_spline: the fitted curve folds or crosses itself");
+  // The curve must enclose the profile's region on the same side (no turned-over loop).
+  const Points dense = sample(result.spline, 16 * static_cast<int>(result.spline.control.size()));
+  const double area = polygon_area(dense);
+  if (area * input_area <= 0 || std::abs(area - input_area) > 0.5 * std::abs(input_area))
+    throw Error("fit_spline: the fitted curve does not enclose the profile's area (fold or wrong ordering)");
+
+  std::vector<double> d;
+  for (std::size_t k = 0; k < measured.size(); ++k)
+    if (r.weights[k] > 0) d.push_back(std::abs(r.feet.signed_distance[k]));
+  result.points = static_cast<int>(d.size());
+  result.outliers = static_cast<int>(measured.size() - d.size());
+  result.noise = noise_sigma(r.feet, r.weights);
+  if (!d.empty()) {
+    double ss = 0;
+    for (double x : d) ss += x * x;
+    result.rms = std::sqrt(ss / d.size());
+    std::sort(d.begin(), d.end());
+    result.max = d.back();
+    result.p95 = d[std::min(d.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * d.size())) - 1)];
+  }
+  result.control_points = static_cast<int>(result.spline.control.size());
+  return result;
+}
+
+void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
+  const Table& points = stream.get("points", "slice");
+  const std::size_t cs = points.column("section"), cl = points.column("loop"),
+                    ci = points.column("index"), cu = points.column("u"), cv = points.column("v");
+  using Rows = std::vector<std::pair<double, Eigen::Vector2d>>;
+  auto group = [](const Table& t, std::size_t cs, std::size_t cl, std::size_t ci, std::size_t cu,
+                  std::size_t cv) {
+    std::map<std::pair<int, int>, Rows> loops;
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      const double s = t.at(r, cs), l = t.at(r, cl);
+      if (!std::isfinite(s) || !std::isfinite(l))
+        throw Error("fit_spline: row " + std::to_string(r + 1) + " of the " + t.name +
+                    " table has a non-finite section or loop id");
+      loops[{static_cast<int>(s), static_cast<int>(l)}].push_back(
+          {t.at(r, ci), Eigen::Vector2d(t.at(r, cu), t.at(r, cv))});
+    }
+    for (auto& [key, rows] : loops)
+      std::stable_sort(rows.begin(), rows.end(),
+                       [](const auto& x, const auto& y) { return x.first < y.first; });
+    return loops;
+  };
+  auto measured = group(points, cs, cl, ci, cu, cv);
+  std::map<std::pair<int, int>, Rows> smoothed;
+  if (const Table* sm = stream.find("smoothed"))
+    smoothed = group(*sm, sm->column("section"), sm->column("loop"), sm->column("index"),
+                     sm->column("u"), sm->column("v"));
+  const std::map<int, Frame> frame_of = stream.find("frames") ? frames(stream) : std::map<int, Frame>{};
+
+  auto& issues = stream.issues;
+  issues.erase(std::remove_if(issues.begin(), issues.end(),
+                              [](const SectionIssue& i) { return i.stage == "fitspline"; }),
+               issues.end());
+
+  Table splines_table{"splines",
+                      {"section", "loop", "degree", "closed", "control_points", "rms", "max", "p95",
+                       "iterations"},
+                      {}};
+  Table knots_table{"spline_knots", {"section", "loop", "index", "knot"}, {}};
+  Table ctrl_table{"spline_ctrl", {"section", "loop", "index", "u", "v"}, {}};
+  Table samples_table{"samples",
+                      {"section", "loop", "index", "t", "u", "v", "x", "y", "z", "nu", "nv", "curvature"},
+                      {}};
+  const bool want_samples = options.samples > 0 || options.sample_spacing > 0;
+  std::vector<SectionIssue> new_issues;
+  for (const auto& [key, rows] : measured) {
+    const auto [section, loop] = key;
+    if (stream.failed(section, loop)) continue;
+    Points q;
+    for (const auto& row : rows) q.push_back(row.second);
+    Points profile = q;
+    if (auto it = smoothed.find(key); it != smoothed.end() && it->second.size() >= 8) {
+      profile.clear();
+      for (const auto& row : it->second) profile.push_back(row.second);
+    }
+    try {
+      const FitSplineResult r = fit_spline(profile, q, options);
+      const BSpline& c = r.spline;
+      const double sec = section, lp = loop;
+      splines_table.add_row({sec, lp, double(c.degree), c.closed ? 1.0 : 0.0,
+                             double(c.control.size()), r.rms, r.max, r.p95, double(r.iterations)});
+      for (std::size_t i = 0; i < c.knots.size(); ++i) knots_table.add_row({sec, lp, double(i), c.knots[i]});
+      for (std::size_t i = 0; i < c.control.size(); ++i)
+        ctrl_table.add_row({sec, lp, double(i), c.control[i].x(), c.control[i].y()});
+      if (want_samples) {
+        // Even arc-length steps from a dense cumulative length table.
+        const std::vector<double> ts = span_samples(c, 32);
+        std::vector<double> cum(ts.size() + 1, 0);
+        for (std::size_t i = 0; i < ts.size(); ++i)
+          cum[i + 1] = cum[i] + arc_length(c, ts[i], i + 1 < ts.size() ? ts[i + 1] : c.t_max());
+        const double length = cum.back();
+        int count = options.samples;
+        if (options.sample_spacing > 0)
+          count = std::max(3, static_cast<int>(std::ceil(length / options.sample_spacing)));
+        const auto fit = frame_of.find(section);
+        const Frame frame = fit == frame_of.end() ? Frame{} : fit->second;
+        std::size_t seg = 0;
+        for (int i = 0; i < count; ++i) {
+          const double target = length * i / count;
+          while (seg + 1 < ts.size() && cum[seg + 1] <= target) ++seg;
+          const double a = ts[seg], b = seg + 1 < ts.size() ? ts[seg + 1] : c.t_max();
+          const double frac = cum[seg + 1] > cum[seg] ? (target - cum[seg]) / (cum[seg + 1] - cum[seg]) : 0;
+          const double t = a + frac * (b - a);
+          const Eigen::Vector2d p = c.point(t);
+          const Eigen::Vector2d d1 = c.derivative(t, 1).normalized();
+          const Eigen::Vector2d nrm(d1.y(), -d1.x());
+          const Eigen::Vector3d x = frame.to_world(p);
+          samples_table.add_row({sec, lp, double(i), t, p.x(), p.y(), x.x(), x.y(), x.z(), nrm.x(),
+                                 nrm.y(), c.curvature(t)});
+        }
+      }
+    } catch (const Error& e) {
+      std::string message = e.what();
+      if (message.rfind("fit_spline: ", 0) == 0) message = message.substr(12);
+      new_issues.push_back({section, loop, "fitspline", message});
+    }
+  }
+  for (auto& i : new_issues) issues.push_back(std::move(i));
+  stream.put(std::move(splines_table));
+  stream.put(std::move(knots_table));
+  stream.put(std::move(ctrl_table));
+  if (want_samples) stream.put(std::move(samples_table));
+  else stream.erase("samples");
+}
+
+std::map<std::pair<int, int>, BSpline> splines(const Stream& stream) {
+  const Table& s = stream.get("splines", "fitspline");
+  const Table& k = stream.get("spline_knots", "fitspline");
+  const Table& c = stream.get("spline_ctrl", "fitspline");
+  std::map<std::pair<int, int>, BSpline> out;
+  const std::size_t ss = s.column("section"), sl = s.column("loop"), sd = s.column("degree"),
+                    sc = s.column("closed");
+  for (std::size_t r = 0; r < s.rows(); ++r) {
+    BSpline b;
+    b.degree = static_cast<int>(s.at(r, sd));
+    b.closed = s.at(r, sc) != 0;
+    out[{static_cast<int>(s.at(r, ss)), static_cast<int>(s.at(r, sl))}] = b;
+  }
+  auto rows_of = [&](const Table& t, auto&& add) {
+    const std::size_t ts = t.column("section"), tl = t.column("loop"), ti = t.column("index");
+    std::map<std::pair<int, int>, std::vector<std::pair<double, std::size_t>>> by;
+    for (std::size_t r = 0; r < t.rows(); ++r)
+      by[{static_cast<int>(t.at(r, ts)), static_cast<int>(t.at(r, tl))}].push_back({t.at(r, ti), r});
+    for (auto& [key, rows] : by) {
+      auto it = out.find(key);
+      if (it == out.end())
+        throw Error("fit_spline: table '" + t.name + "' has rows for section " +
+                    std::to_string(key.first) + " loop " + std::to_string(key.second) +
+                    " that the splines table lacks");
+      std::sort(rows.begin(), rows.end());
+      for (const auto& row : rows) add(it->second, row.second);
+    }
+  };
+  const std::size_t kk = k.column("knot");
+  rows_of(k, [&](BSpline& b, std::size_t r) { b.knots.push_back(k.at(r, kk)); });
+  const std::size_t cu = c.column("u"), cv = c.column("v");
+  rows_of(c, [&](BSpline& b, std::size_t r) { b.control.emplace_back(c.at(r, cu), c.at(r, cv)); });
+  for (const auto& [key, b] : out) {
+    const std::size_t expect = b.closed ? b.control.size() + 1 : b.control.size() + b.degree + 1;
+    if (b.control.size() < static_cast<std::size_t>(b.degree + 1) || b.knots.size() != expect)
+      throw Error("fit_spline: the spline of section " + std::to_string(key.first) + " loop " +
+                  std::to_string(key.second) + " has " + std::to_string(b.control.size()) +
+                  " control points and " + std::to_string(b.knots.size()) + " knots, which do not match");
+  }
+  return out;
+}
+
+}  // namespace section

@@ -1,0 +1,436 @@
+#include "section/pipe.h"
+
+#include "section/error.h"
+#include "detail/text.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+
+namespace section {
+
+std::size_t Table::column(const std::string& column_name) const {
+  const long c = find_column(column_name);
+  if (c < 0) throw Error("pipe: table '" + name + "' has no column '" + column_name + "'");
+  return static_cast<std::size_t>(c);
+}
+
+long Table::find_column(const std::string& column_name) const {
+  const auto it = std::find(columns.begin(), columns.end(), column_name);
+  return it == columns.end() ? -1 : static_cast<long>(it - columns.begin());
+}
+
+void Table::add_row(std::initializer_list<double> row) {
+  if (row.size() != columns.size())
+    throw Error("pipe: a row of table '" + name + "' has " + std::to_string(row.size()) +
+                " values for " + std::to_string(columns.size()) + " columns");
+  values.insert(values.end(), row.begin(), row.end());
+}
+
+void Table::add_row(const std::vector<double>& row) {
+  if (row.size() != columns.size())
+    throw Error("pipe: a row of table '" + name + "' has " + std::to_string(row.size()) +
+                " values for " + std::to_string(columns.size()) + " columns");
+  values.insert(values.end(), row.begin(), row.end());
+}
+
+const Table* Stream::find(const std::string& name) const {
+  for (const auto& t : tables)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+Table* Stream::find(const std::string& name) {
+  for (auto& t : tables)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+const Table& Stream::get(const std::string& name, const std::string& produced_by) const {
+  if (const Table* t = find(name)) return *t;
+  throw Error("pipe: the stream has no '" + name + "' table (it is written by " + produced_by +
+              ")");
+}
+
+void Stream::put(Table table) {
+  if (Table* t = find(table.name))
+    *t = std::move(table);
+  else
+    tables.push_back(std::move(table));
+}
+
+void Stream::erase(const std::string& name) {
+  tables.erase(std::remove_if(tables.begin(), tables.end(),
+                              [&](const Table& t) { return t.name == name; }),
+               tables.end());
+}
+
+bool Stream::failed(int section, int loop) const {
+  return std::any_of(issues.begin(), issues.end(), [&](const SectionIssue& i) {
+    return i.section == section && (i.loop == -1 || loop == -1 || i.loop == loop);
+  });
+}
+
+namespace {
+
+using detail::parse_double;
+using detail::trim;
+
+[[noreturn]] void fail(const std::string& source, std::size_t line, const std::string& what) {
+  throw Error("pipe: " + source + ":" + std::to_string(line) + ": " + what);
+}
+
+std::vector<std::string> split_header(std::string_view line) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    out.emplace_back(trim(line.substr(start, comma == std::string_view::npos ? line.npos
+                                                                              : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+// `# issue section=S loop=L stage=NAME message=TEXT`
+SectionIssue parse_issue(std::string_view rest, const std::string& source, std::size_t line) {
+  SectionIssue issue;
+  const auto take = [&](std::string_view key) -> std::string_view {
+    const std::string needle = std::string(key) + "=";
+    const std::size_t at = rest.find(needle);
+    if (at == std::string_view::npos) fail(source, line, "issue line without '" + needle + "'");
+    std::string_view value = rest.substr(at + needle.size());
+    if (key != "message") value = value.substr(0, value.find(' '));
+    return value;
+  };
+  const auto to_int = [&](std::string_view s) {
+    int v = 0;
+    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (r.ec != std::errc() || r.ptr != s.data() + s.size())
+      fail(source, line, "issue line with a bad id '" + std::string(s) + "'");
+    return v;
+  };
+  issue.section = to_int(take("section"));
+  issue.loop = to_int(take("loop"));
+  issue.stage = std::string(take("stage"));
+  issue.message = std::string(take("message"));
+  return issue;
+}
+
+std::string one_line(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  std::replace(s.begin(), s.end(), '\r', ' ');
+  return s;
+}
+
+}  // namespace
+
+Stream parse_stream(std::string_view text, const std::string& source) {
+  Stream stream;
+  if (text.empty()) throw Error("pipe: " + source + ": the stream is empty");
+  Table* current = nullptr;
+  bool expect_header = false;
+  bool seen_version = false;
+  std::size_t line_no = 0;
+  std::size_t pos = 0;
+  std::vector<double> row;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (trim(line).empty()) continue;
+    if (line[0] == '#') {
+      std::string_view body = trim(line.substr(1));
+      const std::size_t space = body.find(' ');
+      const std::string_view key = body.substr(0, space);
+      const std::string_view rest = space == std::string_view::npos ? std::string_view{}
+                                                                     : trim(body.substr(space));
+      if (expect_header) fail(source, line_no, "table '" + current->name + "' has no header row");
+      if (!seen_version) {
+        if (key != "libsection-stream")
+          fail(source, line_no,
+               "not a libsection stream (the first line must be '# libsection-stream 1')");
+        if (rest != std::to_string(stream_version))
+          fail(source, line_no, "stream version '" + std::string(rest) + "' is not supported (this "
+                                "build reads version " + std::to_string(stream_version) + ")");
+        seen_version = true;
+        continue;
+      }
+      current = nullptr;
+      if (key == "table") {
+        if (rest.empty()) fail(source, line_no, "'# table' without a name");
+        if (stream.find(std::string(rest)))
+          fail(source, line_no, "table '" + std::string(rest) + "' appears twice");
+        stream.tables.push_back(Table{std::string(rest), {}, {}});
+        current = &stream.tables.back();
+        expect_header = true;
+      } else if (key == "units") {
+        if (rest.empty()) fail(source, line_no, "'# units' without a unit");
+        stream.units = std::string(rest);
+      } else if (key == "history") {
+        stream.history.emplace_back(rest);
+      } else if (key == "issue") {
+        stream.issues.push_back(parse_issue(rest, source, line_no));
+      } else {
+        stream.notes.emplace_back(body);
+      }
+      continue;
+    }
+    if (!seen_version)
+      fail(source, line_no, "not a libsection stream (the first line must be '# libsection-stream 1')");
+    if (!current) fail(source, line_no, "a data row outside any table (missing '# table NAME')");
+    if (expect_header) {
+      current->columns = split_header(line);
+      for (const auto& c : current->columns)
+        if (c.empty()) fail(source, line_no, "empty column name in the header of table '" + current->name + "'");
+      expect_header = false;
+      continue;
+    }
+    row.clear();
+    std::size_t start = 0;
+    std::size_t col = 0;
+    while (true) {
+      const std::size_t comma = line.find(',', start);
+      const std::string_view cell =
+          trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
+      ++col;
+      if (col > current->columns.size())
+        fail(source, line_no, "more values than the " + std::to_string(current->columns.size()) +
+                                  " columns of table '" + current->name + "'");
+      double value = 0;
+      if (!parse_double(cell, value))
+        fail(source, line_no, "column '" + current->columns[col - 1] + "' of table '" +
+                                  current->name + "': expected a number, found '" +
+                                  std::string(cell.substr(0, 40)) + "'");
+      if (!std::isfinite(value))
+        fail(source, line_no, "column '" + current->columns[col - 1] + "' of table '" +
+                                  current->name + "': non-finite value '" + std::string(cell) + "'");
+      row.push_back(value);
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+    }
+    if (row.size() != current->columns.size())
+      fail(source, line_no, std::to_string(row.size()) + " values for the " +
+                                std::to_string(current->columns.size()) + " columns of table '" +
+                                current->name + "' (truncated line?)");
+    current->values.insert(current->values.end(), row.begin(), row.end());
+  }
+  if (!seen_version) throw Error("pipe: " + source + ": the stream is empty");
+  if (expect_header)
+    throw Error("pipe: " + source + ": table '" + current->name + "' has no header row (truncated stream?)");
+  return stream;
+}
+
+std::string format_number(double value) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, value);
+  return std::string(buf, r.ptr);
+}
+
+std::string format_stream(const Stream& stream) {
+  std::string out;
+  out.reserve(64);
+  out += "# libsection-stream " + std::to_string(stream_version) + "\n";
+  out += "# units " + one_line(stream.units) + "\n";
+  for (const auto& h : stream.history) out += "# history " + one_line(h) + "\n";
+  for (const auto& n : stream.notes) out += "# " + one_line(n) + "\n";
+  for (const auto& i : stream.issues)
+    out += "# issue section=" + std::to_string(i.section) + " loop=" + std::to_string(i.loop) +
+           " stage=" + one_line(i.stage.empty() ? "unknown" : i.stage) +
+           " message=" + one_line(i.message) + "\n";
+  char buf[32];
+  for (const auto& t : stream.tables) {
+    out += "# table " + t.name + "\n";
+    for (std::size_t c = 0; c < t.columns.size(); ++c) {
+      if (c) out += ',';
+      out += t.columns[c];
+    }
+    out += '\n';
+    const std::size_t cols = t.columns.size();
+    out.reserve(out.size() + t.values.size() * 12);
+    for (std::size_t i = 0; i < t.values.size(); ++i) {
+      const double v = t.values[i];
+      if (!std::isfinite(v))
+        throw Error("pipe: refusing to write a non-finite value in table '" + t.name + "' row " +
+                    std::to_string(i / cols) + " column '" + t.columns[i % cols] + "'");
+      const auto r = std::to_chars(buf, buf + sizeof buf, v);
+      out.append(buf, r.ptr);
+      out += (i % cols == cols - 1) ? '\n' : ',';
+    }
+  }
+  return out;
+}
+
+std::string read_file(const std::string& path) {
+  std::string data;
+  if (path == "-") {
+    data.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+    if (std::cin.bad()) throw Error("cannot read standard input");
+    return data;
+  }
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw Error(path + ": cannot open: " + std::strerror(errno));
+  char buf[1 << 16];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) data.append(buf, n);
+  const bool bad = std::ferror(f);
+  std::fclose(f);
+  if (bad) throw Error(path + ": read error");
+  return data;
+}
+
+void write_file(const std::string& path, const std::string& bytes) {
+  if (path == "-") {
+    std::cout.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    std::cout.flush();
+    if (!std::cout) throw Error("cannot write standard output");
+    return;
+  }
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
+  const std::size_t n = std::fwrite(bytes.data(), 1, bytes.size(), f);
+  const bool bad = n != bytes.size() || std::fclose(f) != 0;
+  if (bad) throw Error(path + ": write error");
+}
+
+Stream read_stream(const std::string& path) {
+  return parse_stream(read_file(path), path == "-" ? "<stdin>" : path);
+}
+
+void write_stream(const std::string& path, const Stream& stream) {
+  write_file(path, format_stream(stream));
+}
+
+namespace {
+
+// Splits on commas or runs of blanks.
+std::vector<std::string_view> split_fields(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  const std::size_t n = line.size();
+  while (i < n) {
+    while (i < n && (line[i] == ' ' || line[i] == '\t')) ++i;
+    if (i == n) break;
+    const std::size_t start = i;
+    while (i < n && line[i] != ',' && line[i] != ' ' && line[i] != '\t') ++i;
+    out.push_back(line.substr(start, i - start));
+    while (i < n && (line[i] == ' ' || line[i] == '\t')) ++i;
+    if (i < n && line[i] == ',') {
+      ++i;
+      if (i == n) out.push_back(std::string_view{});
+    }
+  }
+  return out;
+}
+
+template <class F>
+void for_each_line(std::string_view text, F&& f) {
+  std::size_t pos = 0, line_no = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    ++line_no;
+    std::string_view line = trim(text.substr(pos, end - pos));
+    pos = end + 1;
+    if (line.empty() || line[0] == '#') continue;
+    f(line, line_no);
+  }
+}
+
+}  // namespace
+
+Table parse_csv(std::string_view text, const std::string& source) {
+  Table t;
+  t.name = source;
+  bool header = false;
+  for_each_line(text, [&](std::string_view line, std::size_t line_no) {
+    const auto fields = split_fields(line);
+    if (!header) {
+      for (const auto& f : fields) {
+        if (trim(f).empty()) fail(source, line_no, "empty column name in the header");
+        t.columns.emplace_back(trim(f));
+      }
+      header = true;
+      return;
+    }
+    if (fields.size() != t.columns.size())
+      fail(source, line_no, std::to_string(fields.size()) + " values for " + std::to_string(t.columns.size()) + " columns");
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      double v = 0;
+      if (!parse_double(trim(fields[c]), v))
+        fail(source, line_no, "column '" + t.columns[c] + "': expected a number, found '" + std::string(fields[c].substr(0, 40)) + "'");
+      if (!std::isfinite(v)) fail(source, line_no, "column '" + t.columns[c] + "': non-finite value");
+      t.values.push_back(v);
+    }
+  });
+  if (!header) throw Error("pipe: " + source + ": empty table (no header row)");
+  return t;
+}
+
+std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::string& source) {
+  std::vector<Eigen::Vector2d> points;
+  bool data = false;
+  for_each_line(text, [&](std::string_view line, std::size_t line_no) {
+    const auto fields = split_fields(line);
+    double x = 0, y = 0;
+    const bool numeric = fields.size() >= 2 && parse_double(trim(fields[0]), x) && parse_double(trim(fields[1]), y);
+    if (!numeric) {
+      if (!data) return;  // a title line
+      fail(source, line_no, fields.size() < 2 ? "expected x and y, found one value" : "expected two numbers x, y, found '" + std::string(line.substr(0, 40)) + "'");
+    }
+    data = true;
+    if (!std::isfinite(x) || !std::isfinite(y)) fail(source, line_no, "non-finite coordinate");
+    points.emplace_back(x, y);
+  });
+  if (points.empty()) throw Error("pipe: " + source + ": no profile points (expected lines of x y)");
+  return points;
+}
+
+namespace {
+const std::vector<std::string> frame_columns = {"section", "origin_x", "origin_y", "origin_z",
+                                                "u_x",     "u_y",      "u_z",      "v_x",
+                                                "v_y",     "v_z",      "n_x",      "n_y",
+                                                "n_z"};
+}
+
+std::map<int, Frame> frames(const Stream& stream) {
+  const Table& t = stream.get("frames", "slice");
+  std::vector<std::size_t> c;
+  for (const auto& name : frame_columns) c.push_back(t.column(name));
+  std::map<int, Frame> out;
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    Frame f;
+    const auto v3 = [&](int k) { return Eigen::Vector3d(t.at(r, c[k]), t.at(r, c[k + 1]), t.at(r, c[k + 2])); };
+    f.origin = v3(1);
+    f.u = v3(4);
+    f.v = v3(7);
+    f.n = v3(10);
+    const auto unit = [](const Eigen::Vector3d& a) { return std::abs(a.norm() - 1) < 1e-6; };
+    if (!unit(f.u) || !unit(f.v) || !unit(f.n) || std::abs(f.u.dot(f.v)) > 1e-6 ||
+        (f.u.cross(f.v) - f.n).norm() > 1e-6)
+      throw Error("pipe: the frame of section " + format_number(t.at(r, c[0])) +
+                  " is not a right-handed orthonormal frame");
+    out[static_cast<int>(t.at(r, c[0]))] = f;
+  }
+  return out;
+}
+
+void put_frames(Stream& stream, const std::map<int, Frame>& frames) {
+  Table t{"frames", frame_columns, {}};
+  for (const auto& [id, f] : frames)
+    t.add_row({double(id), f.origin.x(), f.origin.y(), f.origin.z(), f.u.x(), f.u.y(), f.u.z(),
+               f.v.x(), f.v.y(), f.v.z(), f.n.x(), f.n.y(), f.n.z()});
+  stream.put(std::move(t));
+}
+
+}  // namespace section

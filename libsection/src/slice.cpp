@@ -1,0 +1,281 @@
+#include "section/slice.h"
+
+#include "section/error.h"
+#include "detail/cgal.h"
+#include "detail/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace section {
+
+std::vector<Plane> planes_at(const Eigen::Vector3d& normal, const std::vector<double>& offsets) {
+  const double len = normal.norm();
+  if (!(len > 0) || !std::isfinite(len)) throw Error("slice: the plane normal must be finite and non-zero");
+  std::vector<Plane> planes;
+  for (double o : offsets) {
+    if (!std::isfinite(o)) throw Error("slice: plane offsets must be finite");
+    planes.push_back({o * normal / len, normal});
+  }
+  return planes;
+}
+
+std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+                                 int count) {
+  const double len = normal.norm();
+  if (!(len > 0) || !std::isfinite(len)) throw Error("slice: the plane normal must be finite and non-zero");
+  if (count < 1) throw Error("slice: --count must be at least 1");
+  if (points.empty()) throw Error("slice: no points to spread planes over");
+  const Eigen::Vector3d n = normal / len;
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& p : points) {
+    const double s = n.dot(p);
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+  std::vector<double> offsets;
+  for (int k = 0; k < count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (count + 1));
+  return planes_at(normal, offsets);
+}
+
+std::vector<Plane> parse_planes(std::string_view csv, const std::string& source) {
+  const Table t = parse_csv(csv, source);
+  const char* names[6] = {"origin_x", "origin_y", "origin_z", "normal_x", "normal_y", "normal_z"};
+  std::size_t c[6];
+  for (int k = 0; k < 6; ++k) {
+    const long col = t.find_column(names[k]);
+    if (col < 0) throw Error("slice: " + source + ": the planes file needs the column '" + names[k] + "'");
+    c[k] = static_cast<std::size_t>(col);
+  }
+  std::vector<Plane> planes;
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    Plane p{{t.at(r, c[0]), t.at(r, c[1]), t.at(r, c[2])}, {t.at(r, c[3]), t.at(r, c[4]), t.at(r, c[5])}};
+    if (!(p.normal.norm() > 0))
+      throw Error("slice: " + source + ": plane " + std::to_string(r) + " (data row " + std::to_string(r + 1) + ") has a zero normal");
+    planes.push_back(p);
+  }
+  if (planes.empty()) throw Error("slice: " + source + ": no planes");
+  return planes;
+}
+
+namespace {
+
+// One slab boundary plane, defined exactly by three points with double coordinates.
+struct Boundary {
+  Eigen::Vector3d a, b, c;
+};
+
+struct SlabGroup {
+  Eigen::Vector3d n;                 // unit normal shared by the group
+  std::vector<int> plane;            // plane ids, sorted by offset
+  std::vector<double> offset;        // n . origin, sorted
+  std::vector<Boundary> lower, upper;
+};
+
+std::vector<SlabGroup> group_planes(const std::vector<Plane>& planes, double slab) {
+  std::vector<SlabGroup> groups;
+  for (int i = 0; i < static_cast<int>(planes.size()); ++i) {
+    const Frame f = make_frame(planes[i].origin, planes[i].normal);
+    SlabGroup* g = nullptr;
+    for (auto& candidate : groups)
+      if (candidate.n == f.n) g = &candidate;
+    if (!g) {
+      groups.push_back(SlabGroup{f.n, {}, {}, {}, {}});
+      g = &groups.back();
+    }
+    g->plane.push_back(i);
+  }
+  for (auto& g : groups) {
+    std::vector<std::pair<double, int>> order;
+    for (int id : g.plane) order.emplace_back(g.n.dot(planes[id].origin), id);
+    std::sort(order.begin(), order.end());
+    g.plane.clear();
+    for (const auto& [o, id] : order) {
+      g.plane.push_back(id);
+      g.offset.push_back(o);
+      const Frame f = make_frame(planes[id].origin, planes[id].normal);
+      const Eigen::Vector3d lo = f.origin - 0.5 * slab * f.n, hi = f.origin + 0.5 * slab * f.n;
+      g.lower.push_back({lo, lo + f.u, lo + f.v});
+      g.upper.push_back({hi, hi + f.u, hi + f.v});
+    }
+  }
+  return groups;
+}
+
+}  // namespace
+
+std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::Vector3d>& points,
+                                                      const std::vector<Plane>& planes, double slab) {
+  if (!(slab >= 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be finite and not negative");
+  std::vector<Frame> frame;
+  for (const auto& p : planes) frame.push_back(make_frame(p.origin, p.normal));
+  std::vector<std::vector<Eigen::Vector2d>> out(planes.size());
+  const double half = 0.5 * slab;
+  for (const SlabGroup& g : group_planes(planes, slab)) {
+    const std::size_t np = g.offset.size();
+    for (const auto& q : points) {
+      const double s = g.n.dot(q);
+      // The first plane whose slab can contain q, then its neighbours while they can.
+      const double scale = std::max({std::abs(q.x()), std::abs(q.y()), std::abs(q.z()), std::abs(s), slab});
+      const double tol = 1e-12 * (scale + 1);
+      std::size_t k = std::lower_bound(g.offset.begin(), g.offset.end(), s - half - tol) - g.offset.begin();
+      for (; k < np && g.offset[k] <= s + half + tol; ++k) {
+        const double above_lower = s - (g.offset[k] - half);
+        const double below_upper = (g.offset[k] + half) - s;
+        bool inside;
+        if (above_lower > tol && below_upper > tol) {
+          inside = true;
+        } else {
+          // Near a boundary the double test cannot decide: the exact predicate does.
+          const Boundary& lo = g.lower[k];
+          const Boundary& hi = g.upper[k];
+          inside = detail::orientation(lo.a, lo.b, lo.c, q) >= 0 && detail::orientation(hi.a, hi.b, hi.c, q) <= 0;
+        }
+        if (inside) out[g.plane[k]].push_back(frame[g.plane[k]].to_plane(q));
+      }
+    }
+  }
+  return out;
+}
+
+namespace {
+
+void check_planes(const std::vector<Plane>& planes) {
+  if (planes.empty()) throw Error("slice: no section planes given");
+  for (const auto& p : planes)
+    if (!p.origin.allFinite() || !p.normal.allFinite() || !(p.normal.norm() > 0))
+      throw Error("slice: every section plane needs a finite origin and a non-zero normal");
+}
+
+}  // namespace
+
+SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options) {
+  check_planes(planes);
+  if (cloud.points.empty()) throw Error("slice: the cloud has no points");
+  SliceResult result;
+  result.points = cloud.points.size();
+  result.slab = options.slab;
+  if (result.slab == 0) {
+    result.slab = mean_spacing(cloud.points);
+    if (!(result.slab > 0))
+      throw Error("slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
+  }
+  if (!(result.slab > 0) || !std::isfinite(result.slab)) throw Error("slice: the slab width must be positive and finite");
+  auto slabs = slab_points(cloud.points, planes, result.slab);
+  result.sections.resize(planes.size());
+  detail::parallel_for(planes.size(), options.threads, [&](std::size_t i) {
+    SectionSlice& s = result.sections[i];
+    s.id = static_cast<int>(i);
+    s.frame = make_frame(planes[i].origin, planes[i].normal);
+    s.slab_points = slabs[i].size();
+    try {
+      if (slabs[i].empty()) throw Error("no points in the slab (the plane misses the part?)");
+      s.morphology = order_section(slabs[i], options.morphology);
+    } catch (const std::exception& e) {
+      s.error = e.what();
+    }
+    std::vector<Eigen::Vector2d>().swap(slabs[i]);
+  });
+  return result;
+}
+
+SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options) {
+  check_planes(planes);
+  if (mesh.triangles.empty()) throw Error("slice: the mesh has no triangles");
+  std::vector<Eigen::Vector3d> origins, normals;
+  for (const auto& p : planes) {
+    origins.push_back(p.origin);
+    normals.push_back(p.normal.normalized());
+  }
+  const auto cuts = detail::mesh_slices(mesh, origins, normals);
+  SliceResult result;
+  result.points = mesh.vertices.size();
+  result.slab = 0;
+  result.sections.resize(planes.size());
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    SectionSlice& s = result.sections[i];
+    s.id = static_cast<int>(i);
+    s.frame = make_frame(planes[i].origin, planes[i].normal);
+    std::vector<Loop> loops;
+    std::size_t open = 0;
+    for (const auto& line : cuts[i]) {
+      if (line.size() < 4 || (line.front() - line.back()).norm() > 1e-12 * (1 + line.front().norm())) {
+        ++open;
+        continue;
+      }
+      Loop loop;
+      for (std::size_t k = 0; k + 1 < line.size(); ++k) loop.points.push_back(s.frame.to_plane(line[k]));
+      double area = 0, length = 0;
+      const std::size_t n = loop.points.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto& a = loop.points[k];
+        const auto& b = loop.points[(k + 1) % n];
+        area += 0.5 * (a.x() * b.y() - b.x() * a.y());
+        length += (b - a).norm();
+      }
+      if (area < 0) {
+        std::reverse(loop.points.begin(), loop.points.end());
+        area = -area;
+      }
+      loop.area = area;
+      loop.length = length;
+      loop.normals.resize(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const Eigen::Vector2d t = loop.points[(k + 1) % n] - loop.points[(k + n - 1) % n];
+        const Eigen::Vector2d nrm(t.y(), -t.x());
+        loop.normals[k] = nrm.norm() > 0 ? Eigen::Vector2d(nrm.normalized()) : Eigen::Vector2d(0, 0);
+      }
+      loop.boundary = loop.points;
+      loops.push_back(std::move(loop));
+      s.slab_points += n;
+    }
+    std::stable_sort(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) { return a.area > b.area; });
+    s.morphology.loops = std::move(loops);
+    if (open > 0)
+      s.error = std::to_string(open) + " open intersection polyline(s): the mesh is not closed around this plane";
+    else if (s.morphology.loops.empty())
+      s.error = "the plane does not cut the mesh";
+  }
+  return result;
+}
+
+Stream to_stream(const SliceResult& result, const std::string& command, const std::string& units) {
+  Stream stream;
+  stream.units = units;
+  stream.history.push_back(command);
+  std::map<int, Frame> frame_map;
+  Table loops{"loops", {"section", "loop", "points", "dropped", "area", "length", "cell"}, {}};
+  Table points{"points", {"section", "loop", "index", "u", "v", "nu", "nv"}, {}};
+  Table skeleton{"skeleton", {"section", "loop", "index", "u", "v", "radius"}, {}};
+  for (const auto& s : result.sections) {
+    frame_map[s.id] = s.frame;
+    if (!s.error.empty()) {
+      stream.issues.push_back({s.id, -1, "slice", s.error});
+      continue;
+    }
+    const auto& m = s.morphology;
+    if (m.loops.size() > 1)
+      stream.notes.push_back("loops section=" + std::to_string(s.id) + " count=" + std::to_string(m.loops.size()) +
+                             " profile=0");
+    for (std::size_t l = 0; l < m.loops.size(); ++l) {
+      const Loop& loop = m.loops[l];
+      loops.add_row({double(s.id), double(l), double(loop.points.size()), l == 0 ? double(m.dropped) : 0.0, loop.area,
+                     loop.length, m.cell});
+      for (std::size_t k = 0; k < loop.points.size(); ++k) {
+        const Eigen::Vector2d nrm = k < loop.normals.size() ? loop.normals[k] : Eigen::Vector2d(0, 0);
+        points.add_row({double(s.id), double(l), double(k), loop.points[k].x(), loop.points[k].y(), nrm.x(), nrm.y()});
+      }
+    }
+    for (std::size_t k = 0; k < m.skeleton.size(); ++k)
+      skeleton.add_row({double(s.id), 0.0, double(k), m.skeleton[k].x(), m.skeleton[k].y(),
+                        k < m.skeleton_radius.size() ? m.skeleton_radius[k] : 0.0});
+  }
+  put_frames(stream, frame_map);
+  stream.put(std::move(loops));
+  stream.put(std::move(points));
+  stream.put(std::move(skeleton));
+  return stream;
+}
+
+}  // namespace section

@@ -1,0 +1,411 @@
+#include "section/smooth.h"
+
+#include "section/error.h"
+#include "section/pipe.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
+namespace section {
+
+namespace {
+
+using Points = std::vector<Eigen::Vector2d>;
+constexpr double two_pi = 6.283185307179586;
+
+/// Index arithmetic of a closed or open polyline. Segment k joins point k-1 to point k
+/// (segment 0 exists only when closed); curvature term i sits at point i and uses
+/// segments i and i+1 (interior points only when open).
+struct Topology {
+  int n = 0;
+  bool closed = true;
+  int prev(int i) const { return i == 0 ? n - 1 : i - 1; }
+  int next(int i) const { return i + 1 == n ? 0 : i + 1; }
+  int first_segment() const { return closed ? 0 : 1; }
+  int first_term() const { return closed ? 0 : 1; }
+  int end_term() const { return closed ? n : n - 1; }
+};
+
+/// Segment lengths, floored so that a collapsed segment cannot divide by zero.
+std::vector<double> segment_lengths(const Points& q, const Topology& t, double floor) {
+  std::vector<double> l(t.n, 0.0);
+  for (int k = t.first_segment(); k < t.n; ++k)
+    l[k] = std::max((q[k] - q[t.prev(k)]).norm(), floor);
+  return l;
+}
+
+double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t,
+                 double floor) {
+  const auto l = segment_lengths(q, t, floor);
+  double curvature = 0;
+  for (int i = t.first_term(); i < t.end_term(); ++i) {
+    const int h = t.prev(i), j = t.next(i);
+    // kappa_i^2 (l_i + l_j) / 4 with kappa_i = 2 |d_i| / (l_i + l_j).
+    const Eigen::Vector2d d = (q[j] - q[i]) / l[j] - (q[i] - q[h]) / l[i];
+    curvature += d.squaredNorm() / (l[i] + l[j]);
+  }
+  double closeness = 0;
+  for (int i = 0; i < t.n; ++i) closeness += (q[i] - q0[i]).squaredNorm();
+  return a * curvature + b * closeness;
+}
+
+/// The frozen-length system matrix as a band: band[i][2 + o] = A(i, i + o), o in -2..2
+/// (indices wrap when closed). A = a * sum_i w_i r_i r_i^T + b I, r_i the second-difference
+/// row of term i, w_i = 1 / (l_i + l_{i+1}); A q = b q0 is grad E = 0 at frozen lengths.
+using Band = std::vector<std::array<double, 5>>;
+
+void assemble_band(const std::vector<double>& l, double a, double b, const Topology& t,
+                   Band& band) {
+  band.assign(t.n, {0, 0, 0, 0, 0});
+  for (int i = 0; i < t.n; ++i) band[i][2] = b;
+  for (int i = t.first_term(); i < t.end_term(); ++i) {
+    const int j = t.next(i);
+    const double w = a / (l[i] + l[j]);
+    const std::array<int, 3> id{t.prev(i), i, j};
+    const std::array<double, 3> r{1 / l[i], -1 / l[i] - 1 / l[j], 1 / l[j]};
+    for (int x = 0; x < 3; ++x)
+      for (int y = 0; y < 3; ++y) band[id[x]][2 + y - x] += w * r[x] * r[y];
+  }
+}
+
+/// Column index of band entry (i, o), or -1 outside an open curve.
+int band_column(int i, int o, const Topology& t) {
+  const int c = i + o;
+  if (c >= 0 && c < t.n) return c;
+  if (!t.closed) return -1;
+  return c < 0 ? c + t.n : c - t.n;
+}
+
+/// Global solve: the sparsity pattern is analysed once, the values refactored per outer
+/// iteration.
+class CholmodSolver {
+public:
+  explicit CholmodSolver(const Topology& t) : topo_(t) {
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (int i = 0; i < t.n; ++i)
+      for (int o = -2; o <= 2; ++o) {
+        const int c = band_column(i, o, t);
+        if (c >= 0) triplets.emplace_back(i, c, 1.0);
+      }
+    matrix_.resize(t.n, t.n);
+    matrix_.setFromTriplets(triplets.begin(), triplets.end());
+    matrix_.makeCompressed();
+    llt_.analyzePattern(matrix_);
+  }
+
+  void solve(const Band& band, const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d& x) {
+    for (int col = 0; col < matrix_.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(matrix_, col); it; ++it) {
+        int o = col - static_cast<int>(it.row());
+        if (o > 2) o -= topo_.n;
+        if (o < -2) o += topo_.n;
+        it.valueRef() = band[it.row()][2 + o];
+      }
+    llt_.factorize(matrix_);
+    if (llt_.info() != Eigen::Success)
+      throw Error("smooth: CHOLMOD could not factor the system (not positive definite?)");
+    x = llt_.solve(rhs);
+    if (llt_.info() != Eigen::Success) throw Error("smooth: CHOLMOD solve failed");
+  }
+
+private:
+  Topology topo_;
+  Eigen::SparseMatrix<double> matrix_;
+  Eigen::CholmodSimplicialLLT<Eigen::SparseMatrix<double>> llt_;
+};
+
+/// The paper's point-by-point iteration on the same frozen-length system, warm-started
+/// from x; sweeps until the largest update is below `tol`. Returns the sweeps done.
+int gauss_seidel(const Band& band, const Eigen::MatrixX2d& rhs, const Topology& t, double tol,
+                 int max_sweeps, Eigen::MatrixX2d& x) {
+  std::vector<std::array<int, 5>> cols(t.n);
+  for (int i = 0; i < t.n; ++i)
+    for (int o = -2; o <= 2; ++o) cols[i][2 + o] = band_column(i, o, t);
+  for (int sweep = 1; sweep <= max_sweeps; ++sweep) {
+    double largest = 0;
+    for (int i = 0; i < t.n; ++i) {
+      double su = rhs(i, 0), sv = rhs(i, 1);
+      for (int k = 0; k < 5; ++k) {
+        const int c = cols[i][k];
+        if (k == 2 || c < 0) continue;
+        su -= band[i][k] * x(c, 0);
+        sv -= band[i][k] * x(c, 1);
+      }
+      const double nu = su / band[i][2], nv = sv / band[i][2];
+      largest = std::max(largest, std::max(std::abs(nu - x(i, 0)), std::abs(nv - x(i, 1))));
+      x(i, 0) = nu;
+      x(i, 1) = nv;
+    }
+    if (largest <= tol) return sweep;
+  }
+  return max_sweeps;
+}
+
+/// Largest displacement across the curve (along the local normal of the new points).
+double normal_move(const Points& before, const Points& after, const Topology& t) {
+  double largest = 0;
+  for (int i = 0; i < t.n; ++i) {
+    const int h = (t.closed || i > 0) ? t.prev(i) : i;
+    const int j = (t.closed || i + 1 < t.n) ? t.next(i) : i;
+    Eigen::Vector2d tangent = after[j] - after[h];
+    const double norm = tangent.norm();
+    const Eigen::Vector2d d = after[i] - before[i];
+    if (norm == 0) {
+      largest = std::max(largest, d.norm());
+      continue;
+    }
+    tangent /= norm;
+    largest = std::max(largest, std::abs(d.x() * tangent.y() - d.y() * tangent.x()));
+  }
+  return largest;
+}
+
+double mean_spacing(const Points& p, bool closed) {
+  double total = 0;
+  const std::size_t n = p.size();
+  for (std::size_t k = 1; k < n; ++k) total += (p[k] - p[k - 1]).norm();
+  std::size_t segments = n - 1;
+  if (closed) {
+    total += (p[0] - p[n - 1]).norm();
+    ++segments;
+  }
+  return segments ? total / static_cast<double>(segments) : 0.0;
+}
+
+/// Merges runs of consecutive points closer than `threshold` into their mean (the closing
+/// pair too when closed); returns how many points were removed.
+int merge_duplicates(Points& p, bool closed, double threshold) {
+  const std::size_t n_in = p.size();
+  Points out;
+  std::vector<int> weight;
+  for (const auto& x : p) {
+    if (!out.empty() && (x - out.back()).norm() <= threshold) {
+      const int w = weight.back();
+      out.back() = (out.back() * w + x) / (w + 1);
+      ++weight.back();
+    } else {
+      out.push_back(x);
+      weight.push_back(1);
+    }
+  }
+  while (closed && out.size() > 1 && (out.back() - out.front()).norm() <= threshold) {
+    const int wf = weight.front(), wb = weight.back();
+    out.front() = (out.front() * wf + out.back() * wb) / (wf + wb);
+    weight.front() += wb;
+    out.pop_back();
+    weight.pop_back();
+  }
+  p = std::move(out);
+  return static_cast<int>(n_in - p.size());
+}
+
+void check_options(const SmoothOptions& o) {
+  auto bad = [](const std::string& what) { throw Error("smooth: " + what); };
+  if (!(std::isfinite(o.a) && o.a >= 0)) bad("a must be a finite number >= 0");
+  if (!(std::isfinite(o.b) && o.b > 0)) bad("b must be a finite number > 0");
+  if (!(std::isfinite(o.smoothing_length) && o.smoothing_length >= 0))
+    bad("smoothing_length must be a finite number >= 0");
+  if (o.max_iterations < 1) bad("max_iterations must be at least 1");
+  if (!(o.tolerance >= 0) || !(o.move_tolerance >= 0) || !(o.sweep_tolerance >= 0))
+    bad("tolerances must be >= 0");
+  if (!(o.merge_distance >= 0 && o.merge_distance < 1)) bad("merge_distance must be in [0, 1)");
+  if (o.max_sweeps < 1) bad("max_sweeps must be at least 1");
+}
+
+}  // namespace
+
+SmoothSolver parse_smooth_solver(const std::string& name) {
+  if (name == "cholmod") return SmoothSolver::cholmod;
+  if (name == "gauss-seidel" || name == "gauss_seidel") return SmoothSolver::gauss_seidel;
+  throw Error("smooth: unknown solver '" + name + "' (use cholmod or gauss-seidel)");
+}
+
+double smoothing_weight(double length, double spacing, double b) {
+  const double x = length / two_pi;
+  return 2 * b * x * x * x * x / spacing;
+}
+
+double smoothing_length(double a, double spacing, double b) {
+  return two_pi * std::pow(a * spacing / (2 * b), 0.25);
+}
+
+double smooth_energy(const Points& points, const Points& reference, double a, double b,
+                     bool closed) {
+  if (points.size() != reference.size())
+    throw Error("smooth: energy of " + std::to_string(points.size()) + " points against " +
+                std::to_string(reference.size()) + " reference points");
+  const Topology t{static_cast<int>(points.size()), closed};
+  if (t.n < 3) {
+    double closeness = 0;
+    for (int i = 0; i < t.n; ++i) closeness += (points[i] - reference[i]).squaredNorm();
+    return b * closeness;
+  }
+  // Zero-length segments: a tiny floor keeps E finite; their unit tangent is then ~0.
+  return energy_of(points, reference, a, b, t, 1e-300);
+}
+
+SmoothResult smooth(const Points& points, const SmoothOptions& options) {
+  check_options(options);
+  constexpr int min_points = 5;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!points[i].allFinite())
+      throw Error("smooth: point " + std::to_string(i) + " is not finite");
+  if (points.size() < static_cast<std::size_t>(min_points))
+    throw Error("smooth: " + std::to_string(points.size()) + " points, at least " +
+                std::to_string(min_points) + " are needed");
+
+  SmoothResult result;
+  Points q0 = points;
+  const double raw_spacing = mean_spacing(q0, options.closed);
+  if (!(raw_spacing > 0)) throw Error("smooth: all points coincide");
+  result.repaired = merge_duplicates(q0, options.closed, options.merge_distance * raw_spacing);
+  if (q0.size() < static_cast<std::size_t>(min_points))
+    throw Error("smooth: " + std::to_string(q0.size()) + " distinct points (after merging " +
+                std::to_string(result.repaired) + " duplicates), at least " +
+                std::to_string(min_points) + " are needed");
+
+  const Topology topo{static_cast<int>(q0.size()), options.closed};
+  const double h = mean_spacing(q0, options.closed);
+  result.spacing = h;
+  const double a = options.smoothing_length > 0
+                       ? smoothing_weight(options.smoothing_length, h, options.b)
+                       : options.a;
+  const double b = options.b;
+  result.a = a;
+  // Lengths never fall below this: merged input has none shorter than merge_distance * h.
+  const double floor = 1e-6 * h;
+
+  Eigen::Vector2d lo = q0[0], hi = q0[0];
+  for (const auto& p : q0) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double size = (hi - lo).norm();
+
+  Points q = q0;
+  double energy = energy_of(q, q0, a, b, topo, floor);
+  result.energy_before = energy;
+  result.energy_history.push_back(energy);
+
+  Eigen::MatrixX2d rhs(topo.n, 2), x(topo.n, 2);
+  for (int i = 0; i < topo.n; ++i) rhs.row(i) = b * q0[i].transpose();
+  std::unique_ptr<CholmodSolver> cholmod;
+  if (options.solver == SmoothSolver::cholmod && a > 0)
+    cholmod = std::make_unique<CholmodSolver>(topo);
+  Band band;
+  Points next(topo.n);
+
+  for (int it = 1; a > 0 && it <= options.max_iterations; ++it) {
+    assemble_band(segment_lengths(q, topo, floor), a, b, topo, band);
+    if (cholmod) {
+      cholmod->solve(band, rhs, x);
+    } else {
+      for (int i = 0; i < topo.n; ++i) x.row(i) = q[i].transpose();
+      result.sweeps += gauss_seidel(band, rhs, topo, options.sweep_tolerance * size,
+                                    options.max_sweeps, x);
+    }
+    if (!x.allFinite()) throw Error("smooth: the solve produced non-finite points");
+    // The frozen-length step minimises E with the lengths of the current points, not E
+    // itself: near the fixed point it can raise E. Then try shorter steps along it, and
+    // stop when none lowers E, so that E decreases monotonically.
+    double next_energy = energy;
+    bool lowered = false;
+    for (double t = 1; t >= 1.0 / 16 && !lowered; t /= 2) {
+      for (int i = 0; i < topo.n; ++i) next[i] = q[i] + t * (x.row(i).transpose() - q[i]);
+      next_energy = energy_of(next, q0, a, b, topo, floor);
+      lowered = next_energy < energy;
+    }
+    if (!lowered) {
+      result.converged = true;
+      break;
+    }
+    const double moved = normal_move(q, next, topo);
+    std::swap(q, next);
+    const double change = std::abs(energy - next_energy);
+    energy = next_energy;
+    result.energy_history.push_back(energy);
+    result.iterations = it;
+    if (change <= options.tolerance * energy || moved <= options.move_tolerance * h) {
+      result.converged = true;
+      break;
+    }
+  }
+  if (a == 0) result.converged = true;
+
+  result.energy_after = energy;
+  double sum = 0;
+  for (int i = 0; i < topo.n; ++i) {
+    const double d = (q[i] - q0[i]).norm();
+    sum += d * d;
+    result.max_move = std::max(result.max_move, d);
+  }
+  result.rms_move = std::sqrt(sum / topo.n);
+  result.points = std::move(q);
+  return result;
+}
+
+void smooth_stream(Stream& stream, const SmoothOptions& options) {
+  const Table& points = stream.get("points", "slice");
+  const std::size_t cs = points.column("section"), cl = points.column("loop"),
+                    ci = points.column("index"), cu = points.column("u"),
+                    cv = points.column("v");
+
+  // Rows grouped by (section, loop), ordered by index.
+  std::map<std::pair<int, int>, std::vector<std::pair<double, Eigen::Vector2d>>> loops;
+  for (std::size_t r = 0; r < points.rows(); ++r) {
+    const double s = points.at(r, cs), l = points.at(r, cl);
+    if (!std::isfinite(s) || !std::isfinite(l))
+      throw Error("smooth: row " + std::to_string(r + 1) +
+                  " of the points table has a non-finite section or loop id");
+    loops[{static_cast<int>(s), static_cast<int>(l)}].push_back(
+        {points.at(r, ci), Eigen::Vector2d(points.at(r, cu), points.at(r, cv))});
+  }
+
+  // A rerun replaces this stage's issues along with its tables.
+  auto& issues = stream.issues;
+  issues.erase(std::remove_if(issues.begin(), issues.end(),
+                              [](const SectionIssue& i) { return i.stage == "smooth"; }),
+               issues.end());
+
+  Table smoothed{"smoothed", {"section", "loop", "index", "u", "v"}, {}};
+  Table stats{"smooth_stats",
+              {"section", "loop", "points", "energy_before", "energy_after", "iterations",
+               "rms_move", "max_move", "repaired"},
+              {}};
+  std::vector<SectionIssue> new_issues;
+  for (auto& [key, rows] : loops) {
+    const auto [section, loop] = key;
+    if (stream.failed(section, loop)) continue;
+    std::stable_sort(rows.begin(), rows.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    Points q;
+    q.reserve(rows.size());
+    for (const auto& row : rows) q.push_back(row.second);
+    try {
+      const SmoothResult r = smooth(q, options);
+      for (std::size_t i = 0; i < r.points.size(); ++i)
+        smoothed.add_row({double(section), double(loop), double(i), r.points[i].x(),
+                          r.points[i].y()});
+      stats.add_row({double(section), double(loop), double(r.points.size()), r.energy_before,
+                     r.energy_after, double(r.iterations), r.rms_move, r.max_move,
+                     double(r.repaired)});
+    } catch (const Error& e) {
+      std::string message = e.what();
+      if (message.rfind("smooth: ", 0) == 0) message = message.substr(8);
+      new_issues.push_back({section, loop, "smooth", message});
+    }
+  }
+  for (auto& i : new_issues) issues.push_back(std::move(i));
+  stream.put(std::move(smoothed));
+  stream.put(std::move(stats));
+}
+
+}  // namespace section

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Sets up the dependencies, builds, and runs every test (Catch2 and the tool tests) with ctest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+bash scripts/build.sh
+cd "${BUILD_DIR:-build}"
+ctest --output-on-failure -j "$(nproc)"

@@ -1,0 +1,169 @@
+#include "section/cloud.h"
+#include "section/error.h"
+#include "section/mesh.h"
+
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <unistd.h>
+#include <algorithm>
+
+using namespace section;
+
+namespace {
+
+std::string error_of(const std::string& text, const std::string& name, CloudReadOptions opt = {}) {
+  try {
+    parse_cloud(text, name, opt);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::string temp_path(const std::string& ext) {
+  static int counter = 0;
+  return "/tmp/section_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ext;
+}
+
+template <class T>
+void put(std::string& out, T v, bool big) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  if (big) std::reverse(b, b + sizeof(T));
+  out.append(reinterpret_cast<char*>(b), sizeof(T));
+}
+
+}  // namespace
+
+TEST_CASE("read_cloud: XYZ with spaces, tabs, commas, extra columns and comments", "[cloud]") {
+  const Cloud c = parse_cloud("# comment\n1 2 3\n4\t5\t6 7 8\n\n-1.5e-3,2,+3, 9\n// other comment\n", "a.xyz");
+  REQUIRE(c.points.size() == 3);
+  CHECK(c.points[1] == Eigen::Vector3d(4, 5, 6));
+  CHECK(c.points[2] == Eigen::Vector3d(-1.5e-3, 2, 3));
+}
+
+TEST_CASE("read_cloud: CSV with a header in any column order", "[cloud]") {
+  const Cloud c = parse_cloud("id,Z,y,x\n1,3,2,1\n2,6,5,4\n", "a.csv");
+  REQUIRE(c.points.size() == 2);
+  CHECK(c.points[0] == Eigen::Vector3d(1, 2, 3));
+  CHECK(c.points[1] == Eigen::Vector3d(4, 5, 6));
+}
+
+TEST_CASE("read_cloud: bad text names the file and the line", "[cloud]") {
+  CHECK_THAT(error_of("1 2 3\n4 5\n", "b.xyz"), Catch::Contains("b.xyz:2") && Catch::Contains("columns"));
+  CHECK_THAT(error_of("1 2 3\n4 abc 6\n", "b.xyz"), Catch::Contains("b.xyz:2") && Catch::Contains("'abc'"));
+  CHECK_THAT(error_of("1 2 3\n4 nan 6\n", "b.xyz"), Catch::Contains("b.xyz:2") && Catch::Contains("non-finite"));
+  CHECK_THAT(error_of("1 2 3\n4 inf 6\n", "b.xyz"), Catch::Contains("non-finite"));
+  CHECK_THAT(error_of("", "b.xyz"), Catch::Contains("b.xyz") && Catch::Contains("empty"));
+  CHECK_THAT(error_of("# only a comment\n", "b.xyz"), Catch::Contains("no points"));
+  CHECK_THAT(error_of("a,b,c\n1,2,3\n", "b.csv"), Catch::Contains("b.csv:1") && Catch::Contains("header"));
+  CHECK_THAT(error_of("x y z\n1 2 3\n4 5\n", "b.xyz"), Catch::Contains("b.xyz:3"));
+  CHECK_THAT(error_of(std::string("1 2 3\n\0\0\0", 9), "b.xyz"), Catch::Contains("binary"));
+  CHECK_THAT(error_of("1 2 3\n" + std::string(100000, '1') + "\n", "b.xyz"), Catch::Contains("b.xyz:2") && Catch::Contains("longer"));
+}
+
+TEST_CASE("read_cloud: PLY ascii and binary, both endians, float and double", "[cloud]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-100, 100);
+  std::vector<Eigen::Vector3d> pts(1000);
+  for (auto& p : pts) p = {U(rng), U(rng), U(rng)};
+  for (const std::string format : {"binary_little_endian", "binary_big_endian", "ascii"}) {
+    for (const std::string type : {"float", "double"}) {
+      const bool big = format == "binary_big_endian";
+      std::string s = "ply\nformat " + format + " 1.0\ncomment test\nelement vertex " + std::to_string(pts.size()) +
+                      "\nproperty " + type + " x\nproperty uchar red\nproperty " + type + " y\nproperty " + type +
+                      " z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
+      for (const auto& p : pts) {
+        if (format == "ascii") {
+          char line[128];
+          std::snprintf(line, sizeof line, "%.17g 7 %.17g %.17g\n", type == "float" ? double(float(p.x())) : p.x(),
+                        type == "float" ? double(float(p.y())) : p.y(), type == "float" ? double(float(p.z())) : p.z());
+          s += line;
+          continue;
+        }
+        for (int k = 0; k < 3; ++k) {
+          if (type == "float") put<float>(s, float(p[k]), big);
+          else put<double>(s, p[k], big);
+          if (k == 0) put<unsigned char>(s, 7, big);
+        }
+      }
+      const Cloud c = parse_cloud(s, "c.ply");
+      REQUIRE(c.points.size() == pts.size());
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        INFO(format << " " << type << " point " << i);
+        // float files hold the value to float precision; double files exactly
+        const double tol = type == "float" ? 1e-7 * pts[i].norm() : 0.0;
+        REQUIRE((c.points[i] - pts[i]).norm() <= tol);
+      }
+      // Truncation and lying headers are caught, with the file named.
+      if (format == "ascii")
+        CHECK_THAT(error_of(s.substr(0, s.size() - 40), "t.ply"), Catch::Contains("t.ply:1011") && Catch::Contains("vertex values"));
+      else
+        CHECK_THAT(error_of(s.substr(0, s.size() - 40), "t.ply"), Catch::Contains("t.ply") && Catch::Contains("truncated"));
+    }
+  }
+  CHECK_THAT(error_of("ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
+                      "property float z\nend_header\n0000",
+                      "huge.ply"),
+             Catch::Contains("huge.ply") && Catch::Contains("4000000000"));
+  CHECK_THAT(error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n", "h.ply"), Catch::Contains("end_header"));
+  CHECK_THAT(error_of("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                      "end_header\n1 2 3\n1 2 x\n",
+                      "a.ply"),
+             Catch::Contains("a.ply:9"));
+}
+
+TEST_CASE("read_cloud: files stream in chunks and write_cloud round-trips", "[cloud]") {
+  Cloud c;
+  for (int i = 0; i < 5000; ++i) c.points.emplace_back(i * 0.1, -i / 3.0, 1e-7 * i);
+  for (const std::string ext : {".xyz", ".ply"}) {
+    const std::string path = temp_path(ext);
+    write_cloud(path, c);
+    CloudReadOptions opt;
+    opt.chunk_points = 777;
+    std::size_t chunks = 0;
+    std::vector<Eigen::Vector3d> got;
+    read_cloud_chunks(path, [&](const Eigen::Vector3d* p, std::size_t n) {
+      ++chunks;
+      got.insert(got.end(), p, p + n);
+    }, opt);
+    std::remove(path.c_str());
+    CHECK(chunks == (5000 + 776) / 777);
+    REQUIRE(got == c.points);
+  }
+  CHECK_THROWS_WITH(read_cloud("/nonexistent/x.xyz"), Catch::Contains("/nonexistent/x.xyz"));
+}
+
+TEST_CASE("mean_spacing: a regular grid gives its pitch", "[cloud]") {
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 100; ++i)
+    for (int j = 0; j < 100; ++j) pts.emplace_back(0.08 * i, 0.08 * j, 0);
+  CHECK(mean_spacing(pts) == Approx(0.08).epsilon(1e-9));
+}
+
+TEST_CASE("read_mesh: STL, OBJ, OFF round-trip and bad files are named", "[mesh]") {
+  Mesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (const std::string ext : {".stl", ".obj", ".off", ".ply"}) {
+    const std::string path = temp_path(ext);
+    write_mesh(path, m);
+    CHECK(is_mesh_file(path));
+    const Mesh r = read_mesh(path);
+    std::remove(path.c_str());
+    CHECK(r.triangles.size() == 4);
+    double volume = 0;
+    for (const auto& t : r.triangles)
+      volume += r.vertices[t[0]].dot(r.vertices[t[1]].cross(r.vertices[t[2]])) / 6;
+    CHECK(volume == Approx(1.0 / 6));
+  }
+  const std::string bad = temp_path(".off");
+  std::ofstream(bad) << "OFF\n3 1 0\n0 0 0\n1 0\n";
+  CHECK_THROWS_WITH(read_mesh(bad), Catch::Contains(bad));
+  std::remove(bad.c_str());
+  CHECK_THROWS_WITH(read_mesh("/nonexistent/m.stl"), Catch::Contains("/nonexistent/m.stl"));
+}

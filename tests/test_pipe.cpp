@@ -1,0 +1,86 @@
+#include "section/error.h"
+#include "section/pipe.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+
+using namespace section;
+
+TEST_CASE("pipe: a stream round-trips exactly, doubles included", "[pipe]") {
+  Stream s;
+  s.units = "mm";
+  s.history = {"slice --count 3 blade.ply"};
+  s.issues.push_back({2, -1, "slice", "no points in the slab"});
+  Table t{"points", {"section", "loop", "index", "u", "v"}, {}};
+  t.add_row({0, 0, 0, 0.1, -1.0 / 3.0});
+  t.add_row({0, 0, 1, 1e-300, std::nextafter(1.0, 2.0)});
+  s.put(t);
+  put_frames(s, {{0, make_frame({1, 2, 3}, {0, 0, 2})}});
+  const Stream r = parse_stream(format_stream(s), "mem");
+  REQUIRE(r.units == "mm");
+  REQUIRE(r.history == s.history);
+  REQUIRE(r.issues.size() == 1);
+  CHECK(r.issues[0].section == 2);
+  CHECK(r.issues[0].message == "no points in the slab");
+  const Table& p = r.get("points", "slice");
+  REQUIRE(p.values == t.values);  // bit-exact
+  const auto f = frames(r);
+  REQUIRE(f.size() == 1);
+  CHECK((f.at(0).origin - Eigen::Vector3d(1, 2, 3)).norm() == 0);
+  CHECK((f.at(0).n - Eigen::Vector3d(0, 0, 1)).norm() < 1e-15);
+}
+
+TEST_CASE("pipe: malformed streams name the line", "[pipe]") {
+  const std::string head = "# libsection-stream 1\n# table points\nsection,u,v\n";
+  const auto message = [](const std::string& text) {
+    try {
+      parse_stream(text, "s.csv");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(message(""), Catch::Contains("empty"));
+  CHECK_THAT(message("x,y\n1,2\n"), Catch::Contains("s.csv:1") && Catch::Contains("not a libsection stream"));
+  CHECK_THAT(message("# libsection-stream 7\n"), Catch::Contains("version"));
+  CHECK_THAT(message(head + "0,1,abc\n"), Catch::Contains("s.csv:4") && Catch::Contains("'abc'"));
+  CHECK_THAT(message(head + "0,1\n"), Catch::Contains("s.csv:4") && Catch::Contains("truncated"));
+  CHECK_THAT(message(head + "0,1,2,3\n"), Catch::Contains("s.csv:4"));
+  CHECK_THAT(message(head + "0,nan,2\n"), Catch::Contains("non-finite"));
+  CHECK_THAT(message("# libsection-stream 1\n1,2,3\n"), Catch::Contains("outside any table"));
+  CHECK_THAT(message("# libsection-stream 1\n# table t\n"), Catch::Contains("no header"));
+}
+
+TEST_CASE("pipe: writing refuses NaN rather than passing it on", "[pipe]") {
+  Stream s;
+  Table t{"t", {"a"}, {}};
+  t.add_row({std::numeric_limits<double>::quiet_NaN()});
+  s.put(t);
+  REQUIRE_THROWS_AS(format_stream(s), Error);
+}
+
+TEST_CASE("pipe: plain CSV tables and 2D profiles", "[pipe]") {
+  const Table t = parse_csv("# planes\norigin_x,origin_y\n1,2\n3 4\n", "planes.csv");
+  REQUIRE(t.rows() == 2);
+  CHECK(t.at(1, t.column("origin_y")) == 4);
+  REQUIRE_THROWS_WITH(parse_csv("a,b\n1\n", "p.csv"), Catch::Contains("p.csv:2"));
+  const auto prof = parse_profile("NACA 0012\n1.0 0.0\n0.5,0.06 extra\n0 0\n", "naca.dat");
+  REQUIRE(prof.size() == 3);
+  CHECK(prof[1].y() == 0.06);
+  REQUIRE_THROWS_WITH(parse_profile("1 0\n0.5 x\n", "p.dat"), Catch::Contains("p.dat:2"));
+}
+
+TEST_CASE("frame: a +z normal gives u = x, v = y and the frame is orthonormal", "[pipe]") {
+  const Frame f = make_frame({0, 0, 5}, {0, 0, 3});
+  CHECK((f.u - Eigen::Vector3d::UnitX()).norm() < 1e-15);
+  CHECK((f.v - Eigen::Vector3d::UnitY()).norm() < 1e-15);
+  const Frame g = make_frame({1, 2, 3}, {0.3, -0.5, 0.8});
+  CHECK(std::abs(g.u.dot(g.v)) < 1e-15);
+  CHECK((g.u.cross(g.v) - g.n).norm() < 1e-15);
+  const Eigen::Vector3d p(4, -1, 2);
+  const Eigen::Vector3d back = g.to_world(g.to_plane(p)) + g.height(p) * g.n;
+  CHECK((back - p).norm() < 1e-12);
+  REQUIRE_THROWS_AS(make_frame({0, 0, 0}, {0, 0, 0}), Error);
+}

@@ -1,0 +1,65 @@
+#include "common/tool.h"
+
+#include "section/error.h"
+
+#include <cstdio>
+#include <iostream>
+#include <new>
+
+namespace section::tool {
+
+namespace {
+std::string basename_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+}  // namespace
+
+void add_common(CLI::App& app, Common& common) {
+  app.add_option("input,-i,--input", common.input, "Input file, - for standard input")
+      ->capture_default_str();
+  app.add_option("-o,--output", common.output, "Output file, - for standard output")
+      ->capture_default_str();
+}
+
+int run_tool(const std::string& name, const std::string& description, int argc, char** argv,
+             const std::function<void(CLI::App&)>& declare, const std::function<void()>& body) {
+  CLI::App app{description, name};
+  app.set_version_flag("--version", std::string(name) + " (libsection) " + SECTION_VERSION);
+  app.get_formatter()->column_width(34);
+  try {
+    declare(app);
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << name << ": usage error: " << e.what() << "\n"
+              << "Run '" << name << " --help' for the options.\n";
+    return 2;
+  }
+  try {
+    body();
+    return 0;
+  } catch (const std::bad_alloc&) {
+    std::cerr << name << ": error: out of memory\n";
+  } catch (const std::exception& e) {
+    std::cerr << name << ": error: " << e.what() << "\n";
+  }
+  return 1;
+}
+
+std::string command_line(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) {
+    if (i) line += ' ';
+    std::string arg = i == 0 ? basename_of(argv[0]) : std::string(argv[i]);
+    line += arg;
+  }
+  return line;
+}
+
+}  // namespace section::tool

@@ -1,0 +1,29 @@
+#pragma once
+// Shared plumbing of the command-line tools: common flags, the single top-level catch,
+// exit codes (0 success or --help, 1 bad data, 2 bad usage).
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace section::tool {
+
+/// Flags every tool has.
+struct Common {
+  std::string input = "-";   ///< -i/--input, "-" = standard input
+  std::string output = "-";  ///< -o/--output, "-" = standard output
+};
+
+/// Declares -i/--input (also as the first positional argument), -o/--output and --version.
+void add_common(CLI::App& app, Common& common);
+
+/// Parses argv into the options that `declare` bound, then runs `body`. Prints
+/// `NAME: error: message` on stderr and returns 1 on section::Error or any other
+/// exception, 2 on bad usage, 0 on success or --help/--version.
+int run_tool(const std::string& name, const std::string& description, int argc, char** argv,
+             const std::function<void(CLI::App&)>& declare, const std::function<void()>& body);
+
+/// The command line as one line, for the stream's history.
+std::string command_line(int argc, char** argv);
+
+}  // namespace section::tool
