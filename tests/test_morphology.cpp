@@ -76,8 +76,8 @@ Curve ellipse(Vec c, double a, double b, int n = 4000) {
 Curve airfoil(Vec origin, double r0 = 0.2, double r1 = 0.2, double thickness = 3.0,
               double camber = 2.0, int n = 2500) {
   const double L = 40;
-  const auto centre = [&](double x) { return origin + Vec(x, 4 * camber * x * (L - x) / (L * L)); };
-  const auto normal = [&](double x) {
+  const auto centre = [&](double x) -> Vec { return origin + Vec(x, 4 * camber * x * (L - x) / (L * L)); };
+  const auto normal = [&](double x) -> Vec {
     const Vec t(1, 4 * camber * (L - 2 * x) / (L * L));
     return Vec(-t.y(), t.x()).normalized();
   };

@@ -204,6 +204,68 @@ BSpline reknot(const BSpline& c, const std::vector<double>& knots) {
   return fit_control_points(pts, ts, shape, 1e-12);
 }
 
+// Knots spread by the approximation error of a cubic on a circle: a span of length h on
+// curvature k deviates by about (5/384) h^4 k^3, so h = (76.8 tol / k^3)^(1/4), between
+// min_span and initial_span. Edges (small radii) get dense knots, flanks sparse ones.
+// Noise sets the useful tolerance (half a sigma: a shorter span fits the noise more than
+// it removes bias), and each span keeps at least min_span_points measured points.
+std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double sigma,
+                                    const FitSplineOptions& o) {
+  const std::vector<double> ts = span_samples(c, 32);
+  const std::size_t m = ts.size();
+  std::vector<double> density(m), ds(m);
+  const double tol = std::max(o.tolerance, 0.5 * sigma);
+  // Measured points per unit length around each sample, over a window of +-window.
+  std::vector<double> hits(m, 0);
+  for (double t : feet.t) {
+    auto it = std::upper_bound(ts.begin(), ts.end(), t);
+    hits[std::max<std::ptrdiff_t>(it - ts.begin() - 1, 0)] += 1;
+  }
+  for (std::size_t i = 0; i < m; ++i)
+    ds[i] = c.derivative(ts[i], 1).norm() * ((i + 1 < m ? ts[i + 1] : c.t_max()) - ts[i]);
+  std::vector<double> point_density(m);
+  const double window = 0.5 * o.initial_span;
+  for (std::size_t i = 0; i < m; ++i) {
+    double count = hits[i], length = ds[i];
+    for (std::size_t k = 1; k < m / 2 && length < 2 * window; ++k) {
+      count += hits[(i + k) % m] + hits[(i + m - k) % m];
+      length += ds[(i + k) % m] + ds[(i + m - k) % m];
+    }
+    point_density[i] = length > 0 ? count / length : 0;
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    const double k = std::abs(c.curvature(ts[i]));
+    const double h = std::pow(76.8 * tol / std::max(k * k * k, 1e-300), 0.25);
+    const double supported = std::max(1 / o.initial_span, point_density[i] / o.min_span_points);
+    density[i] = std::min(1 / std::clamp(h, o.min_span, o.initial_span), supported);
+  }
+  // Widen the dense stretches a little: the curvature of a curve that still cuts an
+  // edge is lower than the true one and its peak narrower.
+  std::vector<double> widened(m);
+  const int reach = 16;
+  for (std::size_t i = 0; i < m; ++i) {
+    double d = 0;
+    for (int k = -reach; k <= reach; ++k) d = std::max(d, density[(i + m + k) % m]);
+    widened[i] = d;
+  }
+  std::vector<double> cum(m + 1, 0);
+  for (std::size_t i = 0; i < m; ++i) cum[i + 1] = cum[i] + widened[i] * ds[i];
+  const int n = std::clamp(static_cast<int>(std::ceil(cum[m])), std::max(8, o.degree + 1),
+                           std::max(o.max_control_points, 8));
+  std::vector<double> knots(n + 1);
+  knots[0] = c.t_min();
+  knots[n] = c.t_max();
+  std::size_t i = 0;
+  for (int k = 1; k < n; ++k) {
+    const double target = cum[m] * k / n;
+    while (i + 1 < m && cum[i + 1] < target) ++i;
+    const double a = ts[i], b = i + 1 < m ? ts[i + 1] : c.t_max();
+    const double f = cum[i + 1] > cum[i] ? (target - cum[i]) / (cum[i + 1] - cum[i]) : 0;
+    knots[k] = a + f * (b - a);
+  }
+  return knots;
+}
+
 struct Refinement {
   BSpline curve;
   Feet feet;
@@ -267,7 +329,7 @@ std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vect
   std::vector<double> knots;
   for (std::size_t j = 0; j < spans; ++j) {
     knots.push_back(c.knots[j]);
-    if (count[j] < 2) continue;
+    if (count[j] < 2 * o.min_span_points) continue;
     const double ms = sum[j] / count[j];
     const double limit = sigma * sigma * (1 + 3 * std::sqrt(2 / count[j])) + o.tolerance * o.tolerance;
     const double a = c.knots[j], b = c.knots[j + 1];
@@ -366,6 +428,16 @@ FitSplineResult fit_spline(const Points& profile, const Points& measured, const 
   Refinement r = refine(curve, measured, o);
   result.iterations = r.iterations;
   if (o.control_points == 0) {
+    // Knots by curvature first (a few passes: an edge sharpens as it gets knots), then
+    // splits where the residuals still hold more than noise.
+    for (int pass = 0; pass < 3; ++pass) {
+      const std::vector<double> knots = curvature_knots(r.curve, r.feet, noise_sigma(r.feet, r.weights), o);
+      Refinement next = refine(reknot(r.curve, knots), measured, o);
+      result.iterations += next.iterations;
+      const bool same = knots.size() == r.curve.knots.size();
+      r = std::move(next);
+      if (same) break;
+    }
     for (int round = 0; round < o.max_rounds; ++round) {
       const double sigma = noise_sigma(r.feet, r.weights);
       const std::vector<double> knots = split_spans(r.curve, r.feet, r.weights, sigma, o);

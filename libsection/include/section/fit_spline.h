@@ -21,7 +21,7 @@ struct FitSplineOptions {
   double tolerance = 0.0005;      ///< mm, adaptive mode: largest systematic (non-noise) RMS deviation allowed in a knot span before it is split
   double initial_span = 2.0;      ///< mm, adaptive mode: knot spacing (along the profile) of the first curve
   double min_span = 0.04;         ///< mm, adaptive mode: spans are not split below this length
-  double min_span_points = 3;     ///< 1, adaptive mode: fewest measured points per knot span (more knots would fit the noise)
+  double min_span_points = 4;     ///< 1, adaptive mode: fewest measured points per knot span (more knots would fit the noise)
   int max_control_points = 1500;  ///< adaptive mode: cap on control points per loop
   int max_rounds = 12;            ///< adaptive mode: knot insertion rounds
   int max_iterations = 30;        ///< distance-minimisation iterations per round

@@ -1,0 +1,201 @@
+#include "section/error.h"
+#include "section/slice.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace section;
+
+TEST_CASE("slice: points exactly on a slab plane belong to the slab, the next double out does not", "[slice]") {
+  // Plane z = 1 with slab 0.5: boundaries z = 0.75 and z = 1.25, both exact in binary.
+  const auto planes = planes_at({0, 0, 1}, {1.0, 3.0});
+  std::vector<Eigen::Vector3d> pts = {
+      {0.3, 0.1, 0.75},                          // on the lower boundary: in
+      {0.3, 0.1, 1.25},                          // on the upper boundary: in
+      {0.3, 0.1, std::nextafter(0.75, 0.0)},     // just below: out
+      {0.3, 0.1, std::nextafter(1.25, 2.0)},     // just above: out
+      {-7.0, 1e6, 1.0},                          // far in the plane: in
+      {0.0, 0.0, 2.75},                          // second plane's lower boundary: in there only
+      {0.0, 0.0, 2.0},                           // between the slabs: nowhere
+  };
+  const auto slabs = slab_points(pts, planes, 0.5);
+  REQUIRE(slabs.size() == 2);
+  REQUIRE(slabs[0].size() == 3);
+  CHECK(slabs[0][0] == Eigen::Vector2d(0.3, 0.1));
+  CHECK(slabs[0][2] == Eigen::Vector2d(-7.0, 1e6));
+  REQUIRE(slabs[1].size() == 1);
+  // A tilted plane: points built on its boundary planes are decided exactly, and the
+  // projection drops the normal component.
+  const Eigen::Vector3d n = Eigen::Vector3d(1, 2, 2) / 3.0;
+  const Frame f = make_frame(Eigen::Vector3d::Zero(), n);
+  std::vector<Eigen::Vector3d> tilted;
+  for (int i = 0; i < 50; ++i) {
+    const Eigen::Vector3d in = f.origin + 0.01 * i * f.u - 0.02 * i * f.v + (0.1 - 0.004 * i) * f.n;
+    tilted.push_back(in);
+  }
+  const auto ts = slab_points(tilted, {{Eigen::Vector3d::Zero(), n}}, 0.2);
+  REQUIRE(ts[0].size() == 50);  // heights 0.1 .. -0.096: all within the closed slab
+  CHECK(std::abs(ts[0][10].x() - 0.1) < 1e-12);
+  CHECK(std::abs(ts[0][10].y() + 0.2) < 1e-12);
+  REQUIRE_THROWS_AS(slab_points(pts, planes, -1.0), Error);
+}
+
+TEST_CASE("slice: many planes in one pass give what each plane alone gives", "[slice]") {
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 20000; ++i) pts.emplace_back(std::sin(i * 0.37), std::cos(i * 0.11), 0.001 * i);
+  std::vector<double> at;
+  for (int k = 0; k < 15; ++k) at.push_back(1.0 + 1.2 * k + 0.013 * k * k);
+  const auto planes = planes_at({0, 0, 1}, at);
+  const auto all = slab_points(pts, planes, 0.3);
+  for (std::size_t k = 0; k < planes.size(); ++k) {
+    const auto one = slab_points(pts, {planes[k]}, 0.3);
+    REQUIRE(one[0] == all[k]);
+    std::size_t brute = 0;
+    // The boundary planes pass exactly through the doubles at -+ 0.15 (as rounded).
+    const double lo = at[k] - 0.5 * 0.3, hi = at[k] + 0.5 * 0.3;
+    for (const auto& p : pts) brute += (p.z() >= lo && p.z() <= hi) ? 1 : 0;
+    CHECK(all[k].size() == brute);
+  }
+}
+
+namespace {
+
+// The octahedron |x| + |y| + |z| = 1.
+Mesh octahedron() {
+  Mesh m;
+  m.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("slice: a mesh cut gives the analytic intersection within 1e-9", "[slice]") {
+  const Mesh m = octahedron();
+  const std::vector<Plane> planes = {{{0, 0, 0.3}, {0, 0, 1}}, {{0.05, -0.1, 0.2}, {0.2, 0.1, 1}}, {{0, 0, 3}, {0, 0, 1}}};
+  const SliceResult r = slice(m, planes);
+  REQUIRE(r.sections.size() == 3);
+  for (int s = 0; s < 2; ++s) {
+    const SectionSlice& sec = r.sections[s];
+    REQUIRE(sec.error.empty());
+    REQUIRE(sec.morphology.loops.size() == 1);
+    const Loop& loop = sec.morphology.loops[0];
+    REQUIRE(loop.points.size() >= 4);
+    for (std::size_t i = 0; i < loop.points.size(); ++i) {
+      const Eigen::Vector3d p = sec.frame.to_world(loop.points[i]);
+      CHECK(std::abs(p.cwiseAbs().sum() - 1) < 1e-9);                          // on the octahedron
+      CHECK(std::abs((p - planes[s].origin).dot(planes[s].normal.normalized())) < 1e-9);  // on the plane
+      CHECK(loop.normals[i].dot(loop.points[i] - sec.frame.to_plane(Eigen::Vector3d::Zero())) > 0);  // outward
+    }
+  }
+  // z = 0.3 cuts the square |x| + |y| = 0.7: area 2 * 0.7^2, counterclockwise.
+  CHECK(std::abs(r.sections[0].morphology.loops[0].area - 2 * 0.49) < 1e-9);
+  CHECK_FALSE(r.sections[2].error.empty());  // misses the part
+}
+
+TEST_CASE("slice: bad planes are refused", "[slice]") {
+  Cloud c;
+  c.points = {{0, 0, 0}, {1, 0, 0}};
+  CHECK_THROWS_AS(slice(c, {}), Error);
+  CHECK_THROWS_AS(slice(c, {{{0, 0, 0}, {0, 0, 0}}}), Error);
+  CHECK_THROWS_WITH(parse_planes("origin_x,origin_y,origin_z,normal_x,normal_y\n0,0,0,0,1\n", "p.csv"),
+                    Catch::Contains("normal_z"));
+  const auto planes = parse_planes("origin_x,origin_y,origin_z,normal_x,normal_y,normal_z\n0,0,5,0,0,2\n", "p.csv");
+  REQUIRE(planes.size() == 1);
+  CHECK(planes[0].origin.z() == 5);
+}
+
+#include "section/generate.h"
+
+#include <algorithm>
+
+namespace {
+
+struct OrderCheck {
+  double within_30um = 0;     // fraction of kept points within 30 um of the true profile
+  double worst_backstep = 0;  // longest step against the true order, mm
+  std::size_t far_outliers_kept = 0;
+};
+
+// Walks the loop and maps each point to its arc length on the true profile; the sequence
+// must advance (cyclically) except for small back-steps.
+OrderCheck check_loop(const Loop& loop, const SectionTruth& truth) {
+  OrderCheck c;
+  const double P = truth.perimeter;
+  std::size_t within = 0;
+  std::vector<double> s;
+  for (const auto& p : loop.points) {
+    const ProfileLocation at = locate(truth, p);
+    if (at.distance <= 0.030) ++within;
+    if (at.distance > 0.2) ++c.far_outliers_kept;
+    s.push_back(at.s);
+  }
+  c.within_30um = double(within) / double(loop.points.size());
+  // Running maximum of the unwrapped position: a point behind it by more than 0.1 mm is a fold.
+  double unwrapped = s[0], ahead = s[0];
+  for (std::size_t i = 1; i < s.size(); ++i) {
+    double d = s[i] - s[i - 1];
+    d -= P * std::round(d / P);
+    unwrapped += d;
+    ahead = std::max(ahead, unwrapped);
+    c.worst_backstep = std::max(c.worst_backstep, ahead - unwrapped);
+  }
+  // One lap in all, counterclockwise like the truth.
+  CHECK(std::abs((unwrapped - s[0]) - P) < 0.05 * P);
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("slice: a noisy blade scan gives one ordered closed loop per section", "[slice][generated]") {
+  struct Case {
+    const char* name;
+    BladeDesign blade;
+  };
+  const Case cases[] = {{"turbine", turbine_blade()}, {"compressor", compressor_blade()}};
+  for (const auto& c : cases) {
+    for (const double z0 : {0.2 * c.blade.span, 0.5 * c.blade.span, 0.85 * c.blade.span}) {
+      for (const std::uint64_t seed : {11u, 12u}) {
+        ScanOptions so;
+        so.noise = 0.005;
+        so.spacing = 0.08;
+        so.holes = 6;
+        so.density_min = 0.25;
+        so.misregistration = 0.015;
+        so.outlier_fraction = 0.0002;
+        so.z_min = z0 - 1.0;
+        so.z_max = z0 + 1.0;
+        so.seed = seed;
+        const Scan scan = generate_scan(c.blade, so);
+        const SliceResult r = slice(scan.cloud, planes_at({0, 0, 1}, {z0}));
+        INFO(c.name << " z0=" << z0 << " seed=" << seed);
+        REQUIRE(r.sections.size() == 1);
+        INFO("error: " << r.sections[0].error);
+        REQUIRE(r.sections[0].error.empty());
+        const MorphologyResult& m = r.sections[0].morphology;
+        REQUIRE(m.loops.size() == 1);
+        const SectionTruth truth = section_truth(c.blade.at(z0));
+        const OrderCheck oc = check_loop(m.loops[0], truth);
+        INFO("within 30 um " << oc.within_30um << ", worst back-step " << oc.worst_backstep << " mm, slab " << r.slab);
+        CHECK(oc.within_30um >= 0.995);
+        CHECK(oc.worst_backstep <= 0.1);
+        CHECK(oc.far_outliers_kept == 0);
+        CHECK(m.loops[0].points.size() > 500);
+      }
+    }
+  }
+}
+
+TEST_CASE("slice: a generated blade mesh cuts to the true section", "[slice][generated]") {
+  const BladeDesign blade = compressor_blade();
+  const Mesh mesh = generate_mesh(blade, 800, 31);
+  const double z0 = 0.5 * blade.span;  // a mesh layer: the cut is exact there
+  const SliceResult r = slice(mesh, planes_at({0, 0, 1}, {z0}));
+  REQUIRE(r.sections[0].error.empty());
+  REQUIRE(r.sections[0].morphology.loops.size() == 1);
+  const SectionTruth truth = section_truth(blade.at(z0));
+  double worst = 0;
+  for (const auto& p : r.sections[0].morphology.loops[0].points) worst = std::max(worst, locate(truth, p).distance);
+  CHECK(worst < 1e-6);
+}
