@@ -1,10 +1,12 @@
 #include "section/fit_spline.h"
 #include "section/error.h"
+#include "section/generate.h"
 #include "section/pipe.h"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <random>
 
 using Eigen::Vector2d;
@@ -103,4 +105,142 @@ TEST_CASE("fit_spline: noisy circle (sigma 5 um) is within 2 um RMS of the truth
     REQUIRE(res.rms == Approx(0.005).epsilon(0.15));
     REQUIRE(res.noise == Approx(0.005).epsilon(0.2));
   }
+}
+
+namespace {
+
+// Slab of a generated scan around height z, projected on the plane and ordered along the
+// true profile (what slice delivers), plus the truth.
+struct GeneratedSection {
+  std::vector<Vector2d> points;
+  section::SectionTruth truth;
+};
+
+GeneratedSection generated_section(const section::BladeDesign& blade, double z,
+                                   section::ScanOptions scan, double half_slab = 0.04) {
+  scan.z_min = z - 0.5;
+  scan.z_max = z + 0.5;
+  const auto s = section::generate_scan(blade, scan);
+  GeneratedSection g{{}, section::section_truth(blade.at(z))};
+  std::vector<std::pair<double, Vector2d>> rows;
+  for (const auto& p : s.cloud.points)
+    if (std::abs(p.z() - z) < half_slab) {
+      const Vector2d q(p.x(), p.y());
+      rows.push_back({section::locate(g.truth, q).s, q});
+    }
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& r : rows) g.points.push_back(r.second);
+  return g;
+}
+
+// RMS and largest distance of the fitted curve to the true profile.
+std::pair<double, double> truth_error(const section::BSpline& c, const section::SectionTruth& t) {
+  double ss = 0, worst = 0;
+  const auto s = section::sample(c, 8000);
+  for (const auto& p : s) {
+    const double d = section::locate(t, p).distance;
+    ss += d * d;
+    worst = std::max(worst, d);
+  }
+  return {std::sqrt(ss / s.size()), worst};
+}
+
+}  // namespace
+
+TEST_CASE("fit_spline: exact blade sections give a curve within 1 um", "[fit_spline]") {
+  for (int k = 0; k < 2; ++k) {
+    {
+      const auto blade = k == 0 ? section::turbine_blade() : section::compressor_blade();
+      const double z = k == 0 ? 10.0 : 45.0;
+      const auto truth = section::section_truth(blade.at(z));
+      // Every 0.05 mm along the exact profile.
+      std::vector<Vector2d> p;
+      const double step = 0.05;
+      double next = 0;
+      for (std::size_t i = 0; i < truth.profile.size(); ++i)
+        if (truth.profile_s[i] >= next) {
+          p.push_back(truth.profile[i]);
+          next += step;
+        }
+      const auto res = section::fit_spline(p, p);
+      const auto [rms, worst] = truth_error(res.spline, truth);
+      INFO("z " << z << " rms " << rms << " worst " << worst << " ctrl " << res.control_points
+                 << " iterations " << res.iterations);
+      REQUIRE(worst < 1e-3);
+      REQUIRE(rms < 0.3e-3);
+    }
+  }
+}
+
+TEST_CASE("fit_spline: noisy generated scans (sigma 5 um) stay within 3 um RMS of the truth",
+          "[fit_spline]") {
+  int k = 0;
+  for (const auto& blade : {section::turbine_blade(), section::compressor_blade()}) {
+    for (std::uint64_t seed : {1u, 2u}) {
+      section::ScanOptions scan;
+      scan.noise = 0.005;
+      scan.seed = seed;
+      if (++k % 2 == 0) {  // every other case with holes, sparse patches and outliers
+        scan.holes = 3;
+        scan.density_min = 0.25;
+        scan.outlier_fraction = 0.0002;
+      }
+      const auto g = generated_section(blade, 20 + 10 * seed, scan);
+      const auto res = section::fit_spline(g.points, g.points);
+      const auto [rms, worst] = truth_error(res.spline, g.truth);
+      INFO("case " << k << " rms " << rms << " worst " << worst << " ctrl " << res.control_points
+                   << " noise " << res.noise << " fit rms " << res.rms);
+      REQUIRE(rms < 0.003);
+      REQUIRE(worst < (scan.holes ? 0.025 : 0.015));
+      REQUIRE(res.noise == Approx(0.005).epsilon(0.25));
+      REQUIRE_FALSE(section::self_intersects(res.spline));
+    }
+  }
+}
+
+TEST_CASE("fit_spline: degenerate loops throw section::Error", "[fit_spline]") {
+  std::vector<Vector2d> few = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  REQUIRE_THROWS_AS(section::fit_spline(few, few), section::Error);
+  std::vector<Vector2d> line;
+  for (int i = 0; i < 100; ++i) line.push_back({0.1 * i, 0.05 * i});
+  REQUIRE_THROWS_AS(section::fit_spline(line, line), section::Error);
+  // A figure eight: the ordering runs across itself.
+  auto eight = curve_points([](double a) { return Vector2d(10 * std::sin(a), 5 * std::sin(2 * a)); },
+                            600, 0, 1);
+  try {
+    section::fit_spline(eight, eight);
+    FAIL("a self-crossing loop was accepted");
+  } catch (const section::Error& e) {
+    REQUIRE(std::string(e.what()).rfind("fit_spline:", 0) == 0);
+  }
+}
+
+TEST_CASE("fit_spline: stream stage writes splines that read back, failures become issues",
+          "[fit_spline]") {
+  section::Stream s;
+  section::Table pts{"points", {"section", "loop", "index", "u", "v", "nu", "nv"}, {}};
+  for (int i = 0; i < 300; ++i) {
+    const double a = 2 * pi * i / 300;
+    pts.add_row({0, 0, double(i), 3 * std::cos(a), 3 * std::sin(a), std::cos(a), std::sin(a)});
+  }
+  for (int i = 0; i < 3; ++i) pts.add_row({1, 0, double(i), double(i), double(i * i), 0, 1});
+  s.put(pts);
+  FitSplineOptions o;
+  o.sample_spacing = 0.1;
+  section::fit_spline_stream(s, o);
+  REQUIRE(s.find("splines")->rows() == 1);
+  REQUIRE(s.failed(1));
+  REQUIRE_FALSE(s.failed(0));
+  const auto sp = section::splines(s);
+  REQUIRE(sp.size() == 1);
+  const auto& c = sp.at({0, 0});
+  REQUIRE(c.closed);
+  REQUIRE(std::abs(c.point(0.7).norm() - 3) < 1e-3);
+  const section::Table* samples = s.find("samples");
+  REQUIRE(samples);
+  REQUIRE(samples->rows() == static_cast<std::size_t>(std::ceil(2 * pi * 3 / 0.1)));
+  // Through the text format and back.
+  const auto back = section::splines(section::parse_stream(section::format_stream(s), "test"));
+  REQUIRE(back.at({0, 0}).control == c.control);
+  REQUIRE(back.at({0, 0}).knots == c.knots);
 }

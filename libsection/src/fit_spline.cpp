@@ -278,7 +278,7 @@ struct Refinement {
 Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o) {
   Refinement best;
   Feet f = foot_points(c, q);
-  const double size = [&] {
+  [[maybe_unused]] const double size = [&] {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const auto& p : q) { lo = std::min({lo, p.x(), p.y()}); hi = std::max({hi, p.x(), p.y()}); }
     return hi - lo;
@@ -303,7 +303,7 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o) {
     const double change = std::abs(rms - nrms);
     rms = nrms;
     if (nrms <= best.rms) best = {c, f, w, rms, 0};
-    if (change <= o.convergence * nrms + 1e-12 * size) {
+    if (change <= o.convergence * nrms + 1e-3 * o.tolerance) {
       ++it;
       break;
     }
@@ -329,7 +329,7 @@ std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vect
   std::vector<double> knots;
   for (std::size_t j = 0; j < spans; ++j) {
     knots.push_back(c.knots[j]);
-    if (count[j] < 2 * o.min_span_points) continue;
+    if (count[j] < o.min_span_points) continue;
     const double ms = sum[j] / count[j];
     const double limit = sigma * sigma * (1 + 3 * std::sqrt(2 / count[j])) + o.tolerance * o.tolerance;
     const double a = c.knots[j], b = c.knots[j + 1];

@@ -448,14 +448,19 @@ Nearest nearest(const std::vector<Vector2d>& pts, bool closed, const PolylineInd
       for (std::size_t i = i0; i < i1; ++i) test_segment(pts, i, q, best);
     } else {
       const int l = 2 * node, r = 2 * node + 1;
-      const double dl = box_d2(l), dr = box_d2(r);
+      // Box distance, ties (query inside both boxes) broken by distance to the box centre.
+      auto key = [&](int c) {
+        const double d = box_d2(c);
+        return d > 0 ? d : -1.0 / (1.0 + (0.5 * (idx->lo[std::size_t(c)] + idx->hi[std::size_t(c)]) - q).squaredNorm());
+      };
+      const double dl = key(l), dr = key(r);
       // nearer child on top of the stack
       if (dl < dr) {
-        if (dr < best.d2) stack[top++] = r;
-        if (dl < best.d2) stack[top++] = l;
+        stack[top++] = r;
+        stack[top++] = l;
       } else {
-        if (dl < best.d2) stack[top++] = l;
-        if (dr < best.d2) stack[top++] = r;
+        stack[top++] = l;
+        stack[top++] = r;
       }
     }
   }
@@ -739,8 +744,8 @@ ProfileLocation locate(const SectionTruth& truth, const Eigen::Vector2d& p) {
       if (vs[q + 1] == 0) pb = 7, lb = 0;  // closing segment ends at the start of piece 0 = end of piece 6
       if (pb == 7) pb = 6, lb = 1;
       for (int pc = pa; pc <= pb; ++pc) {
-        const double s0 = pc == pa ? la : 0.0, s1 = pc == pb ? lb : 1.0;
-        if (s1 > s0 && nspans < spans.size()) spans[nspans++] = {pc, s0, s1};
+        const double a0 = pc == pa ? la : 0.0, a1 = pc == pb ? lb : 1.0;
+        if (a1 > a0 && nspans < spans.size()) spans[nspans++] = {pc, a0, a1};
       }
     }
   }
@@ -759,25 +764,30 @@ ProfileLocation locate(const SectionTruth& truth, const Eigen::Vector2d& p) {
     const PieceEval e = eval(x);
     return (e.p - p).dot(e.dp);
   };
-  // Golden section down to a small bracket, then Illinois regula falsi on the slope.
+  // Illinois regula falsi on the slope, bracketed by the neighbouring vertices; golden
+  // section first when they do not bracket a minimum.
   double lo = 0, hi = double(nspans);
-  const double g = 0.3819660112501051;
-  double x1 = lo + g * (hi - lo), x2 = hi - g * (hi - lo);
-  double f1 = (curve(x1) - p).squaredNorm(), f2 = (curve(x2) - p).squaredNorm();
-  for (int it = 0; it < 14; ++it) {
-    if (f1 <= f2) {
-      hi = x2, x2 = x1, f2 = f1, x1 = lo + g * (hi - lo), f1 = (curve(x1) - p).squaredNorm();
-    } else {
-      lo = x1, x1 = x2, f1 = f2, x2 = hi - g * (hi - lo), f2 = (curve(x2) - p).squaredNorm();
+  double sl = slope(lo), sh = slope(hi);
+  if (!(sl < 0 && sh > 0)) {
+    const double g = 0.3819660112501051;
+    double x1 = lo + g * (hi - lo), x2 = hi - g * (hi - lo);
+    double f1 = (curve(x1) - p).squaredNorm(), f2 = (curve(x2) - p).squaredNorm();
+    for (int it = 0; it < 60 && hi - lo > 1e-12; ++it) {
+      if (f1 <= f2) {
+        hi = x2, x2 = x1, f2 = f1, x1 = lo + g * (hi - lo), f1 = (curve(x1) - p).squaredNorm();
+      } else {
+        lo = x1, x1 = x2, f1 = f2, x2 = hi - g * (hi - lo), f2 = (curve(x2) - p).squaredNorm();
+      }
     }
+    sl = slope(lo), sh = slope(hi);
   }
   double xm = 0.5 * (lo + hi);
-  double sl = slope(lo), sh = slope(hi);
   if (sl < 0 && sh > 0) {
     int side = 0;
     for (int it = 0; it < 60 && hi - lo > 1e-14; ++it) {
       const double x = (lo * sh - hi * sl) / (sh - sl);
       const double sx = slope(x);
+      if (std::abs(x - xm) < 1e-15) break;
       xm = x;
       if (sx == 0) break;
       if (sx < 0) {
@@ -800,7 +810,7 @@ ProfileLocation locate(const SectionTruth& truth, const Eigen::Vector2d& p) {
     const Span& sp = spans[i];
     const double f = std::min(1.0, xm - double(i));
     const Piece& pc = sec.pieces[std::size_t(sp.piece)];
-    s_foot += gauss(sp.l0, sp.l0 + f * (sp.l1 - sp.l0), [&](double l) { return piece_eval(sec, pc, l).dp.norm(); });
+    s_foot += gauss5(sp.l0, sp.l0 + f * (sp.l1 - sp.l0), [&](double l) { return piece_eval(sec, pc, l).dp.norm(); });
   }
   loc.s = s_foot >= truth.perimeter ? s_foot - truth.perimeter : s_foot;
   return loc;

@@ -157,7 +157,7 @@ struct Raster {
 };
 
 /// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples) into d.
-void distance_1d(const float* f, int n, std::size_t stride, float* d, std::vector<int>& v,
+void distance_1d(const float* f, int n, std::size_t stride, float* d, int* arg, std::vector<int>& v,
                  std::vector<double>& z) {
   const double inf = std::numeric_limits<double>::infinity();
   int k = 0;
@@ -183,29 +183,42 @@ void distance_1d(const float* f, int n, std::size_t stride, float* d, std::vecto
     while (z[k + 1] < q) ++k;
     const double dq = double(q - v[k]);
     d[q] = float(dq * dq + double(f[v[k] * stride]));
+    arg[q] = v[k];
   }
 }
 
 /// Exact squared Euclidean distance (in cells^2) of every cell to the nearest seed cell,
-/// clamped to `cap`. `seed` is 1 at seeds.
-std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap) {
+/// clamped to `cap`, and that seed's cell index in `nearest` (-1 when there is no seed).
+/// `seed` is 1 at seeds.
+std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap,
+                                    std::vector<int>& nearest) {
   const float big = 1e20f;
   std::vector<float> f(r.size());
   for (std::size_t c = 0; c < r.size(); ++c) f[c] = seed[c] ? 0.f : big;
   const int n = std::max(r.w, r.h);
-  std::vector<int> v(n + 1);
+  std::vector<int> v(n + 1), arg(n), row_of(r.size());
   std::vector<double> z(n + 2);
   std::vector<float> out(n);
   for (int i = 0; i < r.w; ++i) {
-    distance_1d(f.data() + i, r.h, std::size_t(r.w), out.data(), v, z);
-    for (int j = 0; j < r.h; ++j) f[std::size_t(j) * r.w + i] = out[j];
+    distance_1d(f.data() + i, r.h, std::size_t(r.w), out.data(), arg.data(), v, z);
+    for (int j = 0; j < r.h; ++j) {
+      f[std::size_t(j) * r.w + i] = out[j];
+      row_of[std::size_t(j) * r.w + i] = arg[j];
+    }
   }
   std::vector<int> d(r.size());
+  nearest.assign(r.size(), -1);
   for (int j = 0; j < r.h; ++j) {
     float* row = f.data() + std::size_t(j) * r.w;
-    distance_1d(row, r.w, 1, out.data(), v, z);
-    for (int i = 0; i < r.w; ++i)
-      d[std::size_t(j) * r.w + i] = out[i] >= float(cap) ? cap : int(std::lround(out[i]));
+    distance_1d(row, r.w, 1, out.data(), arg.data(), v, z);
+    for (int i = 0; i < r.w; ++i) {
+      const std::size_t c = std::size_t(j) * r.w + i;
+      d[c] = out[i] >= float(cap) ? cap : int(std::lround(out[i]));
+      if (out[i] < 1e19f) {
+        const int si = arg[i];
+        nearest[c] = row_of[std::size_t(j) * r.w + si] * r.w + si;
+      }
+    }
   }
   return d;
 }
@@ -414,7 +427,7 @@ struct Pass {
   int closing = 0;                   // r_c: radius at which the band closed
   int radius = 0;                    // r: radius used (closing plus one step of margin)
   std::vector<int> label;            // component of the eroded fill, 0 = none
-  std::vector<int> out2;             // squared distance to the outside, cells^2
+  std::vector<float> g;              // signed distance to the closing's boundary, cells, > 0 inside
   std::vector<Component> components; // index = label - 1
 };
 
@@ -444,15 +457,30 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   r.x0 = lo.x() - margin * h;
   r.y0 = lo.y() - margin * h;
 
+  // Seeds: cells holding points; each keeps the mean of its points so that distances to
+  // the points are known to a small fraction of a cell (the raster alone gives half a cell).
   std::vector<std::uint8_t> seed(r.size(), 0);
+  std::vector<int> slot(r.size(), -1);
+  std::vector<Vec> mean;
+  std::vector<int> count;
   for (std::size_t k : subset) {
     const Vec c = r.to_cell(points[k]);
     const int i = std::clamp(int(std::lround(c.x())), 0, r.w - 1);
     const int j = std::clamp(int(std::lround(c.y())), 0, r.h - 1);
-    seed[std::size_t(j) * r.w + i] = 1;
+    const std::size_t cell = std::size_t(j) * r.w + i;
+    seed[cell] = 1;
+    if (slot[cell] < 0) {
+      slot[cell] = int(mean.size());
+      mean.emplace_back(0, 0);
+      count.push_back(0);
+    }
+    mean[slot[cell]] += c;
+    ++count[slot[cell]];
   }
+  for (std::size_t m = 0; m < mean.size(); ++m) mean[m] /= count[m];
   const int cap = (rmax + 1) * (rmax + 1);
-  const std::vector<int> d2 = distance_transform(r, seed, cap);
+  std::vector<int> nearest_seed;
+  const std::vector<int> d2 = distance_transform(r, seed, cap, nearest_seed);
   const std::vector<int> b2 = bottleneck(r, d2, cap);
 
   // enclosed(r) = #cells with b2 <= r^2 < d2: inside the band of radius r but not on it.
@@ -482,7 +510,10 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     }
   if (rc == 0) return false;
   pass.closing = rc;
-  pass.radius = std::min(rc + 1, rmax);
+  // Margin: twice the closing radius (at least 4 cells). A disc just able to bridge a gap
+  // dips into it by about its radius and may cut a thin trailing edge in two; a disc twice
+  // as large dips by a quarter of that.
+  pass.radius = std::min(std::max(2 * rc, 4), rmax);
   const int rr = pass.radius * pass.radius;
   const int rc2 = rc * rc;
 
@@ -491,12 +522,30 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   for (std::size_t c = 0; c < r.size(); ++c) outside[c] = b2[c] > rr;
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
   const int cap_out = int(std::min(far, double(1 << 30)));
-  pass.out2 = distance_transform(r, outside, cap_out);
+  std::vector<int> nearest_out;
+  const std::vector<int> out2 = distance_transform(r, outside, cap_out, nearest_out);
+
+  // The closing's complement is about the union of the empty discs centred on outside
+  // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside
+  // cell nearest to x, g(x) = |x - y*| - d(y*) is the signed distance of x to that union:
+  // its zero level is the boundary to a small fraction of a cell, and it passes through
+  // the outermost points.
+  const auto exact_d = [&](std::size_t y) {
+    const int s = nearest_seed[y];
+    if (s < 0) return float(rmax + 1);
+    const Vec c(double(y % r.w), double(y / r.w));
+    return float((c - mean[slot[s]]).norm());
+  };
+  pass.g.assign(r.size(), 0.f);
+  for (std::size_t c = 0; c < r.size(); ++c) {
+    const int y = nearest_out[c];
+    pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
+  }
 
   pass.label.assign(r.size(), 0);
   std::vector<std::uint32_t> queue;
   for (std::size_t c0 = 0; c0 < r.size(); ++c0) {
-    if (pass.out2[c0] <= rr || pass.label[c0]) continue;
+    if (out2[c0] <= rr || pass.label[c0]) continue;
     Component comp;
     comp.label = int(pass.components.size()) + 1;
     comp.start = c0;
@@ -510,7 +559,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
       for (int y = std::max(0, j - 1); y <= std::min(r.h - 1, j + 1); ++y)
         for (int x = std::max(0, i - 1); x <= std::min(r.w - 1, i + 1); ++x) {
           const std::size_t e = std::size_t(y) * r.w + x;
-          if (pass.out2[e] > rr && !pass.label[e]) {
+          if (out2[e] > rr && !pass.label[e]) {
             pass.label[e] = comp.label;
             queue.push_back(std::uint32_t(e));
           }
@@ -524,21 +573,17 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
 }
 
 /// The boundary of one component in world coordinates, counterclockwise: the Moore trace
-/// smoothed a little, then each vertex moved along its normal onto the level
-/// |x - outside| = r + 1/2 cell, where the closing's boundary lies (the outside cells'
-/// centres are half a cell beyond the continuous outside).
-Points component_boundary(const Pass& pass, const Component& comp,
-                          const std::vector<float>& out_dist) {
+/// smoothed a little, then each vertex moved along its normal onto the zero level of g.
+Points component_boundary(const Pass& pass, const Component& comp) {
   Points b = trace(pass.raster, pass.label, comp.label, comp.start);
   if (b.size() < 3) return {};
   if (signed_area(b) < 0) std::reverse(b.begin(), b.end());
   smooth_closed(b, 2);
-  const double target = pass.radius + 0.5;
-  for (int it = 0; it < 2; ++it) {
+  for (int it = 0; it < 3; ++it) {
     Points moved = b;
     for (std::size_t i = 0; i < b.size(); ++i) {
       const Vec n = vertex_normal(b, i);
-      const double shift = std::clamp(bilinear(pass.raster, out_dist, b[i]) - target, -1.5, 1.5);
+      const double shift = std::clamp(bilinear(pass.raster, pass.g, b[i]), -1.5, 1.5);
       moved[i] = b[i] + shift * n;
     }
     b.swap(moved);
@@ -631,9 +676,10 @@ private:
   std::unordered_map<std::int64_t, std::pair<std::size_t, std::size_t>> ranges_;
 };
 
-/// Outward normal at p from the gradient of the component's indicator blurred by a
-/// Gaussian of `sigma` cells: -grad (G * I)(p) is proportional to sum (p - c) G(p - c)
-/// over the component's cells c.
+/// Outward normal at p from the gradient of the component's filled image blurred by a
+/// Gaussian of `sigma` cells: -grad (G * I)(p) is proportional to sum I(c) (p - c) G(p - c).
+/// I is the fill anti-aliased with g (coverage clamp(1/2 + g, 0, 1)), so that the
+/// direction is not that of the cell staircase.
 Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
   const Raster& r = pass.raster;
   const Vec c = r.to_cell(p);
@@ -653,8 +699,13 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
     if (j < 0 || j >= r.h) continue;
     for (int a = 0; a < n; ++a) {
       const int i = i0 + a;
-      if (i < 0 || i >= r.w || pass.label[std::size_t(j) * r.w + i] != label_id) continue;
-      const double wgt = gx[a] * gy[b];
+      if (i < 0 || i >= r.w) continue;
+      const std::size_t cell = std::size_t(j) * r.w + i;
+      const int l = pass.label[cell];
+      if (l != label_id && l != 0) continue;
+      const double cover = std::clamp(0.5 + double(pass.g[cell]), 0.0, 1.0);
+      if (cover == 0) continue;
+      const double wgt = cover * gx[a] * gy[b];
       g += wgt * Vec(c.x() - i, c.y() - j);
     }
   }
@@ -726,8 +777,7 @@ void skeleton_of(const Pass& pass, const Component& comp, MorphologyResult& resu
   for (std::int64_t c = b; c >= 0; c = prev[c]) {
     const int i = int(c % w) - 1 + i0, j = int(c / w) - 1 + j0;
     path.push_back(r.to_world(Vec(i, j)));
-    const double od = std::sqrt(double(pass.out2[std::size_t(j) * r.w + i]));
-    radius.push_back(std::max(0.0, od - (pass.radius + 0.5)) * r.cell);
+    radius.push_back(std::max(0.0, double(pass.g[std::size_t(j) * r.w + i])) * r.cell);
   }
   // Light smoothing of the staircase, ends kept.
   for (int pass_k = 0; pass_k < 2 && path.size() > 2; ++pass_k) {
@@ -814,8 +864,6 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
     Pass pass;
     if (!run_pass(points, subset, h, opt, pass)) break;
     if (passes.empty()) result.raster_cells = pass.raster.size();
-    std::vector<float> out_dist(pass.raster.size());
-    for (std::size_t c = 0; c < out_dist.size(); ++c) out_dist[c] = std::sqrt(float(pass.out2[c]));
     const std::size_t before = found.size();
     for (std::size_t ci = 0; ci < pass.components.size(); ++ci) {
       const Component& comp = pass.components[ci];
@@ -823,7 +871,7 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
       Found f;
       f.pass = int(passes.size());
       f.component = int(ci);
-      f.boundary = component_boundary(pass, comp, out_dist);
+      f.boundary = component_boundary(pass, comp);
       if (f.boundary.size() < 3) continue;
       f.area = signed_area(f.boundary);
       found.push_back(std::move(f));

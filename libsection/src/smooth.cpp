@@ -213,6 +213,8 @@ void check_options(const SmoothOptions& o) {
   if (!(std::isfinite(o.b) && o.b > 0)) bad("b must be a finite number > 0");
   if (!(std::isfinite(o.smoothing_length) && o.smoothing_length >= 0))
     bad("smoothing_length must be a finite number >= 0");
+  if (!(std::isfinite(o.relative_length) && o.relative_length >= 0))
+    bad("relative_length must be a finite number >= 0");
   if (o.max_iterations < 1) bad("max_iterations must be at least 1");
   if (!(o.tolerance >= 0) || !(o.move_tolerance >= 0) || !(o.sweep_tolerance >= 0))
     bad("tolerances must be >= 0");
@@ -275,9 +277,9 @@ SmoothResult smooth(const Points& points, const SmoothOptions& options) {
   const Topology topo{static_cast<int>(q0.size()), options.closed};
   const double h = mean_spacing(q0, options.closed);
   result.spacing = h;
-  const double a = options.smoothing_length > 0
-                       ? smoothing_weight(options.smoothing_length, h, options.b)
-                       : options.a;
+  const double a = options.smoothing_length > 0 ? smoothing_weight(options.smoothing_length, h, options.b)
+                   : options.a > 0              ? options.a
+                                                : smoothing_weight(options.relative_length * h, h, options.b);
   const double b = options.b;
   result.a = a;
   // Lengths never fall below this: merged input has none shorter than merge_distance * h.

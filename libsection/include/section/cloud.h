@@ -54,6 +54,6 @@ void write_cloud(const std::string& path, const Cloud& cloud);
 
 /// Mean spacing of a cloud: the median distance from a point to its nearest neighbour,
 /// estimated on at most `sample` points. 0 for fewer than two distinct points.
-double mean_spacing(const std::vector<Eigen::Vector3d>& points, std::size_t sample = 20000);
+double mean_spacing(const std::vector<Eigen::Vector3d>& points, std::size_t sample = 5000);
 
 }  // namespace section

@@ -18,14 +18,14 @@ struct Stream;
 struct FitSplineOptions {
   int degree = 3;                 ///< spline degree
   int control_points = 0;         ///< control points per loop; 0 = adaptive to `tolerance`
-  double tolerance = 0.0005;      ///< mm, adaptive mode: largest systematic (non-noise) RMS deviation allowed in a knot span before it is split
+  double tolerance = 0.00025;     ///< mm, adaptive mode: largest systematic (non-noise) RMS deviation allowed in a knot span before it is split
   double initial_span = 2.0;      ///< mm, adaptive mode: knot spacing (along the profile) of the first curve
   double min_span = 0.04;         ///< mm, adaptive mode: spans are not split below this length
   double min_span_points = 4;     ///< 1, adaptive mode: fewest measured points per knot span (more knots would fit the noise)
   int max_control_points = 1500;  ///< adaptive mode: cap on control points per loop
   int max_rounds = 12;            ///< adaptive mode: knot insertion rounds
   int max_iterations = 30;        ///< distance-minimisation iterations per round
-  double convergence = 1e-3;      ///< 1: stop iterating when the RMS changes by less than this fraction
+  double convergence = 1e-2;      ///< 1: stop iterating when the RMS changes by less than this fraction
   double fairness = 1e-5;         ///< 1: weight of the control-polygon second differences, relative to the data term (keeps holes well posed)
   double outlier_distance = 0;    ///< mm: isolated measured points farther than this from the curve are ignored; 0 = automatic (6 noise sigmas, at least 0.02 mm)
   int samples = 0;                ///< stream stage: points per loop written to the "samples" table (0 = none unless sample_spacing)

@@ -90,8 +90,12 @@ struct ProfileLocation {
   double s = 0;          ///< arc length of the foot point along SectionTruth::profile
 };
 /// Distance and foot position of `p` on the true profile (exact to well below 0.1 um).
+/// The nearest polyline segment is found with a box tree over `profile`, then the foot is
+/// refined on the exact curve (~1e-14 mm); ~ 3 us per query. Without the index built by
+/// section_truth (e.g. an edited profile) it falls back on brute force over the polyline.
 ProfileLocation locate(const SectionTruth& truth, const Eigen::Vector2d& p);
-/// Distance of `p` to the true camber line (extensions included).
+/// Distance of `p` to the true camber line (extensions included), measured on the dense
+/// camber polyline: within its sagitta, ~0.2 um for the default 10000 camber points.
 double camber_distance(const SectionTruth& truth, const Eigen::Vector2d& p);
 
 /// How a synthetic scan is made. Defaults: a clean, dense, uniform scan.
@@ -114,10 +118,31 @@ struct Scan {
 };
 
 /// Samples the blade's side surface as a scanner would (no end caps).
+/// - Rows of points `spacing` apart in z; within a row, points `spacing` apart in profile
+///   arc length, each jittered. Heights take one of 64 levels per row (steps of
+///   spacing/64) and every clean point lies exactly on the section designed at its z.
+/// - Noise: Gaussian along the 3D surface normal, sigma `noise`.
+/// - Density: a smooth keep-probability field between density_min and 1 (a few waves
+///   over the surface); holes: discs of 0.25-1 mm radius in (arc length, z) removed.
+/// - Two views: view 1 covers the right side of the camber (the pressure side of the
+///   presets, concave) from the LE point to the TE point, view 0 the rest, each extended
+///   1.5 mm past the edge points, so both views overlap in 3 mm bands around LE and TE.
+///   View 1 is shifted by `misregistration` in-plane, normal to the mid-camber chord
+///   towards the pressure side.
+/// - Outliers replace kept points: uniform in the blade's bounding box (over the scanned
+///   z range) grown by 2 mm in x, y and z, and at least 0.2 mm (in-plane) from the
+///   section at their height, clamped to [0, span].
+/// Deterministic for a seed (own transforms over std::mt19937_64, independent of the
+/// thread count); the options other than the seed change which points are kept and how
+/// they move, not where candidates fall. ~0.35 us of CPU per point, spread over the cores.
+/// Throws section::Error on bad options or a blade design invalid in the scanned range.
 Scan generate_scan(const BladeDesign& blade, const ScanOptions& options = {});
 
 /// Closed triangle mesh of the blade (side surface plus end caps), `profile_points` per
 /// section and `layers` sections along the span.
+/// Ring k lies at z = span k / (layers - 1); its vertices are exact profile points at equal
+/// arc-length steps from the LE point, so vertex i of every ring is at the same fraction of
+/// the perimeter. Triangles are counterclockwise seen from outside; caps by ear clipping.
 Mesh generate_mesh(const BladeDesign& blade, int profile_points = 400, int layers = 60);
 
 }  // namespace section

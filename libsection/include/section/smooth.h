@@ -31,9 +31,10 @@ enum class SmoothSolver {
 SmoothSolver parse_smooth_solver(const std::string& name);
 
 struct SmoothOptions {
-  double a = 0.3;                 ///< length^3 (with b = 1): weight of the curvature energy E_C (paper: 0.1-0.5); unit- and spacing-dependent, see smoothing_length
+  double smoothing_length = 0;    ///< curve units: sets a so that a sinusoidal wiggle of this wavelength keeps half its amplitude (a = 2 b (L / 2 pi)^4 / h, h = mean spacing); 0 = use a, or relative_length when a is 0 too
+  double a = 0;                   ///< length^3 (with b = 1): explicit weight of the curvature energy E_C, used when smoothing_length is 0 and a > 0 (the paper's 0.1-0.5 suit its units and spacing only: at 0.08 mm spacing in mm, 0.3 means L = 2.1 mm and distorts 0.3 mm edges by ~0.1 mm)
+  double relative_length = 6;     ///< mean spacings: the smoothing length when smoothing_length and a are both 0 (the default: about halves the RMS of white noise, whatever the units)
   double b = 1.0;                 ///< 1: weight of the closeness energy E_S (paper: 1-1.2)
-  double smoothing_length = 0;    ///< curve units: > 0 overrides a so that a sinusoidal wiggle of this wavelength keeps half its amplitude (a = 2 b (L / 2 pi)^4 / h, h = mean spacing); 0 = use a as given
   SmoothSolver solver = SmoothSolver::cholmod;  ///< linear solver of each outer iteration
   int max_iterations = 20;        ///< cap on outer iterations (length updates)
   double tolerance = 1e-9;        ///< stop when |E_k - E_{k-1}| <= tolerance * E_k
@@ -60,7 +61,8 @@ struct SmoothResult {
 };
 
 /// Smooths one ordered polyline (closed or open) by minimising E above; coordinates in any
-/// length unit. Needs at least 5 points after merging duplicates. Throws section::Error
+/// length unit. The curvature weight is, in order: from smoothing_length if > 0, a if > 0,
+/// else from relative_length * mean spacing. Needs at least 5 points after merging duplicates. Throws section::Error
 /// (`smooth: ...`) on fewer points, non-finite coordinates or bad options.
 SmoothResult smooth(const std::vector<Eigen::Vector2d>& points, const SmoothOptions& options = {});
 

@@ -1,0 +1,883 @@
+#include "section/camber.h"
+
+#include "detail/camber_curve.h"
+#include "detail/cgal_medial_axis.h"
+#include "section/error.h"
+#include "section/params.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace section {
+
+using detail::CurveJet;
+using detail::FastCurve;
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+Eigen::Vector2d left_normal(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; }
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// A closed profile with dense samples for initial guesses and global checks.
+struct Profile {
+  const BSpline& curve;
+  FastCurve fast;
+  double t0 = 0, period = 1;
+  double sigma = 1;  // +1 counterclockwise, -1 clockwise
+  double scale = 1;  // bounding-box diagonal
+  std::vector<Eigen::Vector2d> samples;
+  std::vector<double> ts;
+
+  Profile(const BSpline& c, int count) : curve(c), fast(c) {
+    if (!c.closed) throw Error("camber: the profile spline is open, a closed curve is needed");
+    if (c.control.size() < 4) throw Error("camber: the profile spline has too few control points");
+    t0 = c.t_min();
+    period = c.t_max() - t0;
+    count = std::max(count, 64);
+    samples.reserve(count);
+    for (int i = 0; i < count; ++i) {
+      ts.push_back(t0 + period * i / count);
+      samples.push_back(fast.jet(ts.back()).p);
+    }
+    Eigen::Vector2d low = samples[0], high = samples[0];
+    double area = 0;
+    for (int i = 0; i < count; ++i) {
+      low = low.cwiseMin(samples[i]);
+      high = high.cwiseMax(samples[i]);
+      area += cross(samples[i], samples[(i + 1) % count]);
+    }
+    scale = (high - low).norm();
+    if (!(scale > 0) || !std::isfinite(scale)) throw Error("camber: the profile is degenerate");
+    sigma = area >= 0 ? 1 : -1;
+  }
+  double wrap(double t) const { return t0 + std::fmod(std::fmod(t - t0, period) + period, period); }
+  // Parameter distance going forward (in the curve's direction) from a to b.
+  double forward(double a, double b) const { return std::fmod(std::fmod(b - a, period) + period, period); }
+  int nearest(const Eigen::Vector2d& q) const {
+    int best = 0;
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const double e = (samples[i] - q).squaredNorm();
+      if (e < d) d = e, best = static_cast<int>(i);
+    }
+    return best;
+  }
+  // Nearest sample on the side of the line through q that `n` points to.
+  int nearest_on_side(const Eigen::Vector2d& q, const Eigen::Vector2d& n) const {
+    int best = -1;
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const Eigen::Vector2d e = samples[i] - q;
+      if (e.dot(n) <= 0) continue;
+      if (e.squaredNorm() < d) d = e.squaredNorm(), best = static_cast<int>(i);
+    }
+    return best;
+  }
+  double sample_distance(const Eigen::Vector2d& q) const {
+    double d = std::numeric_limits<double>::infinity();
+    for (const auto& s : samples) d = std::min(d, (s - q).squaredNorm());
+    return std::sqrt(d);
+  }
+  // Outward unit normal.
+  Eigen::Vector2d outward(double t) const {
+    const Eigen::Vector2d d = fast.jet(t).d1.normalized();
+    return sigma * Eigen::Vector2d(d.y(), -d.x());
+  }
+  // Curvature, positive where the profile is convex.
+  double convexity(double t) const {
+    const CurveJet j = fast.jet(t);
+    return sigma * cross(j.d1, j.d2) / std::pow(j.d1.norm(), 3);
+  }
+};
+
+// Newton on (t_a, t_b, lambda): centre c = p + lambda n, both contacts foot points of c
+// and equally far from it.
+bool solve_circle(const FastCurve& curve, const Eigen::Vector2d& p, const Eigen::Vector2d& n,
+                  double ta, double tb, double scale, InscribedCircle& out, double* kappa = nullptr) {
+  double lambda = 0;
+  const double tol = 1e-13 * scale;
+  double previous = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < 30; ++it) {
+    const CurveJet ja = curve.jet(ta), jb = curve.jet(tb);
+    const Eigen::Vector2d &a = ja.p, &a1 = ja.d1, &a2 = ja.d2, &b = jb.p, &b1 = jb.d1, &b2 = jb.d2;
+    const Eigen::Vector2d c = p + lambda * n;
+    const Eigen::Vector3d f((c - a).dot(a1), (c - b).dot(b1),
+                            0.5 * ((c - a).squaredNorm() - (c - b).squaredNorm()));
+    Eigen::Matrix3d j;
+    j << -a1.squaredNorm() + (c - a).dot(a2), 0, n.dot(a1),  //
+        0, -b1.squaredNorm() + (c - b).dot(b2), n.dot(b1),    //
+        -f(0), f(1), (b - a).dot(n);
+    Eigen::Vector3d dx = -j.fullPivLu().solve(f);
+    if (!dx.allFinite()) return false;
+    const double sa = a1.norm(), sb = b1.norm();
+    const double r = std::max(0.5 * ((c - a).norm() + (c - b).norm()), 1e-6 * scale);
+    double step = std::max({std::abs(dx(0)) * sa, std::abs(dx(1)) * sb, std::abs(dx(2))});
+    if (step > 0.5 * r) dx *= 0.5 * r / step;  // damped far from the solution
+    ta += dx(0);
+    tb += dx(1);
+    lambda += dx(2);
+    // Converged, or stalled at the round-off floor of a near-singular system (close to
+    // the end of a branch, where the contacts merge or osculate).
+    const bool stalled = step < 1e-8 * scale && step > 0.25 * previous;
+    previous = step;
+    if (step < tol || stalled) {
+      out.center = p + lambda * n;
+      out.t_left = ta;
+      out.t_right = tb;
+      out.left = curve.jet(ta).p;
+      out.right = curve.jet(tb).p;
+      out.radius = 0.5 * ((out.center - out.left).norm() + (out.center - out.right).norm());
+      if (kappa) {  // signed curvatures at the contacts, from the last iterate's derivatives
+        kappa[0] = cross(a1, a2) / std::pow(a1.norm(), 3);
+        kappa[1] = cross(b1, b2) / std::pow(b1.norm(), 3);
+      }
+      return std::isfinite(out.radius);
+    }
+  }
+  return false;
+}
+
+// A solved circle is an inscribed circle of the medial branch when the contacts lie on
+// their sides, are distinct, the circle does not cross the profile and does not exceed
+// the osculating circle at either contact (beyond that the branch has ended).
+bool valid_circle(const Profile& pr, const Eigen::Vector2d& n, const InscribedCircle& c,
+                  const double* kappa, int end = -1) {
+  const double r = c.radius;
+  if (!(r > 1e-9 * pr.scale)) return false;
+  if ((c.left - c.center).dot(n) <= 0 || (c.right - c.center).dot(n) >= 0) return false;
+  if ((c.left - c.right).norm() < 1e-7 * pr.scale) return false;
+  if (std::abs((c.center - c.left).norm() - (c.center - c.right).norm()) > 1e-6 * r) return false;
+  const double ka = kappa ? pr.sigma * kappa[0] : pr.convexity(c.t_left);
+  const double kb = kappa ? pr.sigma * kappa[1] : pr.convexity(c.t_right);
+  // Local osculation test, loose: the spline's curvature ripples by O(h^2).
+  if (r * ka >= 1.01 || r * kb >= 1.01) return false;
+  if (end >= 0) {
+    // Toward an end the circle must stay clear of the profile between its contacts,
+    // through that end: past the branch's end it would cut through the tip. This
+    // macroscopic test is what locates the end, immune to curvature ripples.
+    const bool from_left = (end == 0) == (pr.sigma > 0);
+    const double from = from_left ? c.t_left : c.t_right, to = from_left ? c.t_right : c.t_left;
+    const double length = pr.forward(from, to);
+    for (int i = 1; i < 24; ++i) {
+      const double t = from + length * (0.05 + 0.9 * i / 24.0);
+      if ((pr.fast.jet(t).p - c.center).norm() < r * (1 - 1e-9)) return false;
+    }
+  }
+  return pr.sample_distance(c.center) >= r * (1 - 1e-3);
+}
+
+// The current axis: an open spline, extended straight beyond its ends.
+struct Axis {
+  BSpline spline;
+  double a = 0, b = 1;
+  Eigen::Vector2d point(double u) const {
+    const FastCurve f(spline);
+    if (u < a) return f.jet(a).p + (u - a) * tangent(a);
+    if (u > b) return f.jet(b).p + (u - b) * tangent(b);
+    return f.jet(u).p;
+  }
+  Eigen::Vector2d tangent(double u) const {
+    return FastCurve(spline).jet(std::clamp(u, a, b)).d1.normalized();
+  }
+};
+
+Axis make_axis(const std::vector<Eigen::Vector2d>& pts, double fairness) {
+  // Drop repeated points (Delaunay fans share circumcentres).
+  std::vector<Eigen::Vector2d> p;
+  for (const auto& q : pts)
+    if (p.empty() || (q - p.back()).norm() > 1e-12) p.push_back(q);
+  if (p.size() < 4) throw Error("camber: the medial axis has fewer than 4 distinct points");
+  CurveFitOptions fo;
+  fo.closed = false;
+  fo.control_points = std::clamp(static_cast<int>(p.size()) / 2, 4, 200);
+  fo.fairness = fairness;
+  Axis ax;
+  ax.spline = fit_curve(p, fo);
+  ax.a = ax.spline.t_min();
+  ax.b = ax.spline.t_max();
+  return ax;
+}
+
+// Solves the station at axis parameter u from a guess; falls back to nearest samples.
+bool station(const Profile& pr, const Axis& ax, double u, const InscribedCircle* guess,
+             InscribedCircle& out, bool fresh = true, int end = -1) {
+  const Eigen::Vector2d p = ax.point(u), n = left_normal(ax.tangent(u));
+  double k[2];
+  if (guess && solve_circle(pr.fast, p, n, guess->t_left, guess->t_right, pr.scale, out, k) &&
+      valid_circle(pr, n, out, k, end))
+    return true;
+  if (guess && fresh == false) return false;
+  const int l = pr.nearest_on_side(p, n), r = pr.nearest_on_side(p, -n);
+  if (l < 0 || r < 0) return false;
+  return solve_circle(pr.fast, p, n, pr.ts[l], pr.ts[r], pr.scale, out, k) &&
+         valid_circle(pr, n, out, k, end);
+}
+
+// From the last valid station outward (direction +1 or -1 in u): march until a station
+// fails, then bisect for the end of the branch.
+InscribedCircle find_end(const Profile& pr, const Axis& ax, double u, InscribedCircle last,
+                         int direction, double tolerance, double first_step) {
+  double lo = u, hi = u;
+  InscribedCircle c;
+  // March: the step grows while stations stay valid, bounded by the local radius.
+  double h = std::clamp(first_step, 4 * tolerance * pr.scale, 0.05 * last.radius);
+  for (int k = 0; k < 200; ++k) {
+    hi = lo + direction * h;
+    if (!station(pr, ax, hi, &last, c, false, direction > 0)) break;
+    lo = hi;
+    last = c;
+    h = std::min(2 * h, 0.25 * c.radius);
+    if (k == 199) return last;
+  }
+  while (std::abs(hi - lo) > tolerance * pr.scale) {
+    const double mid = 0.5 * (lo + hi);
+    if (station(pr, ax, mid, &last, c, false, direction > 0)) {
+      lo = mid;
+      last = c;
+    } else {
+      hi = mid;
+    }
+  }
+  return last;
+}
+
+}  // namespace
+
+bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point,
+                      const Eigen::Vector2d& normal, double t_left, double t_right,
+                      InscribedCircle& circle) {
+  double scale = 0;
+  for (const auto& c : profile.control) scale = std::max(scale, (c - profile.control[0]).norm());
+  return solve_circle(FastCurve(profile), point, normal.normalized(), t_left, t_right,
+                      std::max(scale, 1e-300), circle);
+}
+
+MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options) {
+  const Profile pr(profile, options.samples);
+  MedialAxis result;
+  std::vector<Eigen::Vector2d> seed = options.seed;
+  if (seed.empty()) {
+    seed = detail::medial_axis_seed(pr.samples).points;
+    if (seed.size() < 2)
+      throw Error("camber: the profile has no inside triangles (is it self-intersecting?)");
+  }
+  result.seed_points = static_cast<int>(seed.size());
+  // The seed's ends wander into the edges: a stiff fit only gives stations and normals.
+  Axis ax;
+  {
+    std::vector<Eigen::Vector2d> p;
+    for (const auto& q : seed)
+      if (p.empty() || (q - p.back()).norm() > 1e-9 * pr.scale) p.push_back(q);
+    if (p.size() < 4) {
+      // A branch shorter than 4 points: a circle-like shape, reported by the caller.
+      if (p.size() == 1) p.push_back(p[0] + Eigen::Vector2d(1e-6 * pr.scale, 0));
+      const Eigen::Vector2d a = p.front(), b = p.back();
+      p.clear();
+      for (int i = 0; i < 8; ++i) p.push_back(a + (b - a) * i / 7.0);
+    }
+    CurveFitOptions fo;
+    fo.closed = false;
+    fo.control_points = std::clamp(static_cast<int>(p.size()) / 4, 4, 24);
+    fo.fairness = 1e-2;
+    ax.spline = fit_curve(p, fo);
+    ax.a = ax.spline.t_min();
+    ax.b = ax.spline.t_max();
+  }
+
+  const int m = std::max(options.stations, 16);
+  std::vector<InscribedCircle> circles;
+  Eigen::Vector2d end0(0, 0), end1(0, 0);
+  result.change = pr.scale;
+  for (int pass = 0; pass < std::max(options.iterations, 1); ++pass) {
+    // Stations clustered toward the ends (cosine spacing) where the axis turns fastest.
+    std::vector<double> u(m);
+    for (int k = 0; k < m; ++k) u[k] = ax.a + (ax.b - ax.a) * 0.5 * (1 - std::cos(pi * k / (m - 1)));
+    std::vector<InscribedCircle> solved(m);
+    std::vector<char> ok(m, 0);
+    // Start at the widest valid station near the middle and walk outward both ways.
+    int start = -1;
+    for (int d = 0; d < m && start < 0; ++d)
+      for (int k : {m / 2 - d, m / 2 + d})
+        if (k >= 0 && k < m && station(pr, ax, u[k], nullptr, solved[k])) {
+          ok[k] = 1;
+          start = k;
+          break;
+        }
+    if (start < 0) throw Error("camber: no circle inscribed in the profile was found on the seed axis");
+    int first = start, last = start;
+    while (last + 1 < m && station(pr, ax, u[last + 1], &solved[last], solved[last + 1])) ok[++last] = 1;
+    while (first - 1 >= 0 && station(pr, ax, u[first - 1], &solved[first], solved[first - 1])) ok[--first] = 1;
+    const double tol = options.tolerance;
+    // Later passes start at the previous ends: a first step of the last change suffices.
+    const double step = pass == 0 ? pr.scale : 2 * result.change;
+    const InscribedCircle e0 = find_end(pr, ax, u[first], solved[first], -1, tol, step);
+    const InscribedCircle e1 = find_end(pr, ax, u[last], solved[last], +1, tol, step);
+    circles.clear();
+    circles.push_back(e0);
+    for (int k = first; k <= last; ++k)
+      if ((solved[k].center - circles.back().center).norm() > 1e-6 * pr.scale) circles.push_back(solved[k]);
+    if ((e1.center - circles.back().center).norm() <= 1e-6 * pr.scale) circles.pop_back();
+    circles.push_back(e1);
+    result.change = pass == 0 ? pr.scale
+                              : std::max((e0.center - end0).norm(), (e1.center - end1).norm());
+    end0 = e0.center;
+    end1 = e1.center;
+    result.iterations = pass + 1;
+    std::vector<Eigen::Vector2d> centers;
+    for (const auto& c : circles) centers.push_back(c.center);
+    if (centers.size() < 4) break;
+    ax = make_axis(centers, 1e-8);
+    if (result.change < 1e-6 * pr.scale) break;
+  }
+  if (circles.size() < 4)
+    throw Error("camber: the medial axis has only " + std::to_string(circles.size()) +
+                " inscribed circles (the profile is not blade-like)");
+  result.circles = circles;
+  result.curve = ax.spline;
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------
+// Camber line and edges
+
+namespace {
+
+// First crossing of the ray m + lambda d (lambda > 0) with the profile.
+bool ray_hit(const Profile& pr, const Eigen::Vector2d& m, const Eigen::Vector2d& d, double& t_hit) {
+  const int n = static_cast<int>(pr.samples.size());
+  double best = std::numeric_limits<double>::infinity();
+  int seg = -1;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d p = pr.samples[i] - m, q = pr.samples[(i + 1) % n] - m;
+    const double gp = cross(d, p), gq = cross(d, q);
+    if ((gp > 0) == (gq > 0) && gp != 0 && gq != 0) continue;
+    const double w = gp == gq ? 0 : gp / (gp - gq);
+    const double along = (p + w * (q - p)).dot(d);
+    if (along > 0 && along < best) best = along, seg = i;
+  }
+  if (seg < 0) return false;
+  // Safeguarded secant on g(t) = d x (C(t) - m) inside the bracketing span.
+  double a = pr.ts[seg], b = a + pr.period / n;
+  auto g = [&](double t) { return cross(d, pr.fast.jet(t).p - m); };
+  double ga = g(a), gb = g(b);
+  for (int it = 0; it < 100 && std::abs(b - a) > 1e-15 * pr.period; ++it) {
+    double t = ga == gb ? 0.5 * (a + b) : a - ga * (b - a) / (gb - ga);
+    if (!(t > a && t < b)) t = 0.5 * (a + b);
+    const double gt = g(t);
+    if (gt == 0) {
+      a = b = t;
+      break;
+    }
+    if ((gt > 0) == (ga > 0)) {
+      a = t, ga = gt;
+      gb *= 0.5;  // Illinois step keeps both ends moving
+    } else {
+      b = t, gb = gt;
+      ga *= 0.5;
+    }
+  }
+  t_hit = pr.wrap(0.5 * (a + b));
+  return true;
+}
+
+// Parameter where the outward normal has turned by `angle` (radians) from direction d,
+// walking from t_tip in `direction` (+1 forward, -1 backward); stops after half a period.
+double arc_end(const Profile& pr, double t_tip, const Eigen::Vector2d& d, double angle, int direction) {
+  auto turn = [&](double t) {
+    const Eigen::Vector2d nn = pr.outward(t);
+    return std::abs(std::atan2(cross(d, nn), d.dot(nn)));
+  };
+  const double h = pr.period / static_cast<double>(pr.samples.size());
+  double a = t_tip, b = t_tip;
+  bool found = false;
+  for (double walked = 0; walked < 0.5 * pr.period; walked += h) {
+    b = a + direction * h;
+    if (turn(b) >= angle) {
+      found = true;
+      break;
+    }
+    a = b;
+  }
+  if (!found) return a;
+  for (int it = 0; it < 30; ++it) {
+    const double mid = 0.5 * (a + b);
+    (turn(mid) >= angle ? b : a) = mid;
+  }
+  return 0.5 * (a + b);
+}
+
+struct CircleFit {
+  Eigen::Vector2d center{0, 0};
+  double radius = 0, rms = 0;
+};
+
+// Geometric least-squares circle (Gauss-Newton from the algebraic fit).
+CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
+  const int n = static_cast<int>(p.size());
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& q : p) mean += q;
+  mean /= n;
+  Eigen::MatrixXd a(n, 3);
+  Eigen::VectorXd rhs(n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d q = p[i] - mean;
+    a.row(i) << q.x(), q.y(), 1;
+    rhs(i) = -q.squaredNorm();
+  }
+  const Eigen::Vector3d s = a.colPivHouseholderQr().solve(rhs);
+  Eigen::Vector3d x(-0.5 * s(0), -0.5 * s(1), 0);
+  x(2) = std::sqrt(std::max(x.head<2>().squaredNorm() - s(2), 0.0));
+  for (int it = 0; it < 30; ++it) {
+    Eigen::MatrixXd j(n, 3);
+    Eigen::VectorXd e(n);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector2d q = p[i] - mean - x.head<2>();
+      const double dist = q.norm();
+      e(i) = dist - x(2);
+      j.row(i) << -q.x() / dist, -q.y() / dist, -1;
+    }
+    const Eigen::Vector3d dx = -j.colPivHouseholderQr().solve(e);
+    if (!dx.allFinite()) break;
+    x += dx;
+    if (dx.norm() < 1e-13 * std::max(1.0, x(2))) break;
+  }
+  CircleFit fit;
+  fit.center = mean + x.head<2>();
+  fit.radius = std::abs(x(2));
+  double sum = 0;
+  for (const auto& q : p) sum += std::pow((q - fit.center).norm() - fit.radius, 2);
+  fit.rms = std::sqrt(sum / n);
+  return fit;
+}
+
+// Edge point, arc and fitted circle for the axis end `end` pointing outward along `d`.
+Edge measure_edge(const Profile& pr, const Eigen::Vector2d& end, const Eigen::Vector2d& d,
+                  const CamberOptions& options) {
+  Edge e;
+  if (!ray_hit(pr, end, d, e.t))
+    throw Error("camber: the camber line's end tangent does not meet the profile");
+  e.point = pr.fast.jet(e.t).p;
+  const double half = 0.5 * options.edge_arc * pi / 180;
+  e.arc_t0 = arc_end(pr, e.t, d, half, -1);
+  e.arc_t1 = arc_end(pr, e.t, d, half, +1);
+  const Eigen::Vector2d n0 = pr.outward(e.arc_t0), n1 = pr.outward(e.arc_t1);
+  e.arc = std::abs(std::atan2(cross(n0, n1), n0.dot(n1))) * 180 / pi;
+  if (n0.dot(n1) < 0 && e.arc < 90) e.arc = 360 - e.arc;
+  std::vector<Eigen::Vector2d> arc;
+  const int count = 61;
+  for (int i = 0; i < count; ++i) arc.push_back(pr.fast.jet(e.arc_t0 + (e.arc_t1 - e.arc_t0) * i / (count - 1)).p);
+  const CircleFit fit = fit_circle(arc);
+  e.center = fit.center;
+  e.radius = fit.radius;
+  e.fit_rms = fit.rms;
+  const double k = pr.convexity(e.t);
+  e.curvature_radius = k > 0 ? 1 / k : std::numeric_limits<double>::infinity();
+  return e;
+}
+
+void classify_edge(Edge& e, double max_diameter, const CamberOptions& options) {
+  if (e.radius < options.sharp_ratio * max_diameter)
+    e.shape = EdgeShape::sharp;
+  else if (e.curvature_radius > options.blunt_flatness * e.radius && e.fit_rms > options.blunt_rms * e.radius)
+    e.shape = EdgeShape::blunt;
+  else
+    e.shape = EdgeShape::round;
+}
+
+InscribedCircle reversed(InscribedCircle c) {
+  std::swap(c.left, c.right);
+  std::swap(c.t_left, c.t_right);
+  return c;
+}
+
+// Arc length of a spline between a and b (5-point Gauss-Legendre; the pieces are short).
+double piece_length(const FastCurve& f, double a, double b) {
+  static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                              0.9061798459386640};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                              0.4786286704993665, 0.2369268850561891};
+  double sum = 0;
+  for (int i = 0; i < 5; ++i) sum += w[i] * f.jet(0.5 * (a + b) + 0.5 * (b - a) * x[i]).d1.norm();
+  return 0.5 * (b - a) * sum;
+}
+
+// Arc-length table of an open spline for the inverse map s -> t.
+struct ArcTable {
+  FastCurve f;
+  std::vector<double> t, s;
+  ArcTable(const BSpline& c, int pieces) : f(c) {
+    const double a = c.t_min(), b = c.t_max();
+    t.push_back(a);
+    s.push_back(0);
+    for (int i = 1; i <= pieces; ++i) {
+      t.push_back(a + (b - a) * i / pieces);
+      s.push_back(s.back() + piece_length(f, t[i - 1], t[i]));
+    }
+  }
+  double length() const { return s.back(); }
+  double param(double target) const {
+    target = std::clamp(target, 0.0, length());
+    const std::size_t i = std::min<std::size_t>(
+        std::upper_bound(s.begin(), s.end(), target) - s.begin(), s.size() - 1);
+    const std::size_t k = std::max<std::size_t>(i, 1);
+    double x = t[k - 1] + (t[k] - t[k - 1]) * (target - s[k - 1]) / std::max(s[k] - s[k - 1], 1e-300);
+    for (int it = 0; it < 3; ++it) {
+      const double err = s[k - 1] + piece_length(f, t[k - 1], x) - target;
+      x -= err / std::max(f.jet(x).d1.norm(), 1e-300);
+    }
+    return x;
+  }
+  double arc(double param_t) const {
+    const std::size_t i = std::min<std::size_t>(
+        std::upper_bound(t.begin(), t.end(), param_t) - t.begin(), t.size() - 1);
+    const std::size_t k = std::max<std::size_t>(i, 1);
+    return s[k - 1] + piece_length(f, t[k - 1], param_t);
+  }
+};
+
+}  // namespace
+
+CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
+  const Profile pr(profile, options.medial.samples);
+  CamberResult res;
+  res.orientation = pr.sigma;
+  MedialAxis ma = medial_axis(profile, options.medial);
+  std::vector<InscribedCircle> circles = ma.circles;
+
+  // Blade-likeness: a circle or a square has a medial axis about as long as it is wide.
+  double axis_length = 0, widest = 0;
+  int widest_k = 0;
+  for (std::size_t k = 0; k < circles.size(); ++k) {
+    if (k) axis_length += (circles[k].center - circles[k - 1].center).norm();
+    if (circles[k].radius > widest) widest = circles[k].radius, widest_k = static_cast<int>(k);
+  }
+  if (axis_length < options.min_slenderness * 2 * widest)
+    throw Error("camber: the profile is not blade-like: its medial axis (" + std::to_string(axis_length) +
+                ") is shorter than " + std::to_string(options.min_slenderness) +
+                " times its largest inscribed diameter (" + std::to_string(2 * widest) + ")");
+
+  // Orientation: LE = the end nearer the thickest circle, or the end farther along
+  // le_direction when given.
+  double before = 0;
+  for (int k = 1; k <= widest_k; ++k) before += (circles[k].center - circles[k - 1].center).norm();
+  bool flip = before > 0.5 * axis_length;
+  if (options.le_direction.norm() > 0) {
+    res.le_by_direction = true;
+    flip = circles.back().center.dot(options.le_direction) > circles.front().center.dot(options.le_direction);
+  }
+  if (flip) {
+    std::reverse(circles.begin(), circles.end());
+    for (auto& c : circles) c = reversed(c);
+  }
+  const std::vector<InscribedCircle> medial = circles;
+
+  // Round edges end at the centre of the circle fitted to the edge arc: the edge arc
+  // depends on the end tangent, so iterate tangent -> edge point -> arc -> circle.
+  Axis ax = make_axis([&] {
+    std::vector<Eigen::Vector2d> c;
+    for (const auto& x : medial) c.push_back(x.center);
+    return c;
+  }(), 1e-8);
+  Edge le, te;
+  for (int it = 0; it < 3; ++it) {
+    const Eigen::Vector2d d_le = -ax.tangent(ax.a), d_te = ax.tangent(ax.b);
+    le = measure_edge(pr, circles.front().center, d_le, options);
+    te = measure_edge(pr, circles.back().center, d_te, options);
+    classify_edge(le, 2 * widest, options);
+    classify_edge(te, 2 * widest, options);
+    circles = medial;
+    // Replace a medial end by the fitted centre when the edge is round and the centre is
+    // consistent with the axis (inside the end circle's reach).
+    auto replace = [&](const Edge& e, bool front) {
+      const bool round = e.shape == EdgeShape::round || options.edge == EdgeModel::round;
+      const InscribedCircle& end = front ? medial.front() : medial.back();
+      if (!round || (e.center - end.center).norm() > e.radius) return;
+      const Eigen::Vector2d d = front ? d_le : d_te;
+      std::vector<InscribedCircle> kept;
+      for (const auto& c : circles)
+        if ((c.center - e.center).dot(d) < -1e-3 * e.radius) kept.push_back(c);
+      InscribedCircle tip;
+      tip.center = e.center;
+      tip.radius = e.radius;
+      tip.left = tip.right = e.point;
+      tip.t_left = tip.t_right = e.t;
+      if (front) kept.insert(kept.begin(), tip);
+      else kept.push_back(tip);
+      circles = kept;
+    };
+    replace(le, true);
+    replace(te, false);
+    std::vector<Eigen::Vector2d> c;
+    for (const auto& x : circles) c.push_back(x.center);
+    ax = make_axis(c, 1e-8);
+  }
+  // Final tangents: the medial axis is perpendicular to the contact chord of its circles,
+  // exactly; taken just inside each end and extrapolated to it (the spline's end slope
+  // carries its fitting error).
+  auto end_tangent = [&](const InscribedCircle& end, Eigen::Vector2d d) -> Eigen::Vector2d {
+    const Eigen::Vector2d fallback = d;
+    std::size_t g = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < medial.size(); ++k)
+      if (medial[k].t_left != medial[k].t_right && (medial[k].center - end.center).norm() < best)
+        best = (medial[k].center - end.center).norm(), g = k;
+    InscribedCircle guess = medial[g];
+    double angle[2];
+    for (int q = 0; q < 2; ++q) {
+      const double delta = 0.005 * (q + 1) * end.radius;
+      Eigen::Vector2d dir = d;
+      for (int it = 0; it < 3; ++it) {
+        const Eigen::Vector2d n = left_normal(dir);
+        InscribedCircle c;
+        const Eigen::Vector2d p = end.center + delta * d;
+        if (!solve_circle(pr.fast, p, n, guess.t_left, guess.t_right, pr.scale, c) ||
+            !valid_circle(pr, n, c, nullptr) || (c.center - p).norm() > 0.01 * c.radius)
+          return fallback;
+        Eigen::Vector2d t = left_normal((c.left - c.right).normalized());
+        if (t.dot(d) < 0) t = -t;
+        dir = t;
+        guess = c;
+      }
+      angle[q] = std::atan2(cross(d, dir), d.dot(dir));
+    }
+    const double a0 = 2 * angle[0] - angle[1];
+    return Eigen::Vector2d(std::cos(a0) * d.x() - std::sin(a0) * d.y(), std::sin(a0) * d.x() + std::cos(a0) * d.y());
+  };
+  res.le_tangent = end_tangent(circles.front(), ax.tangent(ax.a));
+  res.te_tangent = -end_tangent(circles.back(), -ax.tangent(ax.b));
+  {
+    Edge l = measure_edge(pr, circles.front().center, -res.le_tangent, options);
+    Edge t = measure_edge(pr, circles.back().center, res.te_tangent, options);
+    le.point = l.point, le.t = l.t;
+    te.point = t.point, te.t = t.t;
+  }
+  if (options.edge == EdgeModel::automatic) {
+    if (le.shape != EdgeShape::round) le.radius = 0;
+    if (te.shape != EdgeShape::round) te.radius = 0;
+  }
+  res.le = le;
+  res.te = te;
+  ma.circles = circles;
+  ma.curve = ax.spline;
+  res.medial = ma;
+
+  // Sampled camber line: straight extensions plus the axis; axis points are snapped onto
+  // the exact medial axis by solving their inscribed circle.
+  const ArcTable table(ax.spline, 4 * static_cast<int>(circles.size()));
+  res.ext_le = (le.point - circles.front().center).norm();
+  res.ext_te = (te.point - circles.back().center).norm();
+  res.length = res.ext_le + table.length() + res.ext_te;
+  const int count = std::max(options.samples, 3);
+  std::size_t hint = 0;
+  for (int i = 0; i < count; ++i) {
+    const double s = res.length * i / (count - 1);
+    Eigen::Vector2d p;
+    double r;
+    if (s <= res.ext_le) {
+      p = le.point + s * res.le_tangent;
+      r = circles.front().radius;
+    } else if (s >= res.length - res.ext_te) {
+      p = te.point - (res.length - s) * res.te_tangent;
+      r = circles.back().radius;
+    } else {
+      const double t = table.param(s - res.ext_le);
+      p = ax.spline.point(t);
+      const Eigen::Vector2d n = left_normal(ax.spline.derivative(t, 1).normalized());
+      while (hint + 1 < circles.size() &&
+             (circles[hint + 1].center - p).norm() < (circles[hint].center - p).norm())
+        ++hint;
+      // The fitted edge centres carry no contacts: guess from a medial neighbour.
+      std::size_t g = hint;
+      if (circles[g].t_left == circles[g].t_right) g = g == 0 ? 1 : g - 1;
+      InscribedCircle c;
+      if (solve_circle(pr.fast, p, n, circles[g].t_left, circles[g].t_right, pr.scale, c) &&
+          valid_circle(pr, n, c, nullptr) && (c.center - p).norm() < 0.5 * c.radius) {
+        p = c.center;
+        r = c.radius;
+      } else {
+        // Near a fitted edge centre the medial branch may stop short: interpolate.
+        const std::size_t k = std::min(hint + 1, circles.size() - 1), k0 = k == 0 ? 0 : k - 1;
+        const double span = (circles[k].center - circles[k0].center).norm();
+        const double w = std::clamp((p - circles[k0].center).norm() / std::max(span, 1e-300), 0.0, 1.0);
+        r = (1 - w) * circles[k0].radius + w * circles[k].radius;
+      }
+    }
+    res.points.push_back(p);
+    res.s.push_back(s);
+    res.radius.push_back(r);
+  }
+
+  // Thickest circle: the widest station refined by golden-section search on the axis.
+  {
+    int k = 0;
+    for (std::size_t i = 0; i < circles.size(); ++i)
+      if (circles[i].radius > circles[k].radius) k = static_cast<int>(i);
+    auto param_of = [&](const Eigen::Vector2d& q) {
+      // Axis parameter nearest q among a fine scan of the table.
+      double best = ax.a, dist = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < table.t.size(); ++i) {
+        const double e = (ax.spline.point(table.t[i]) - q).norm();
+        if (e < dist) dist = e, best = table.t[i];
+      }
+      return best;
+    };
+    const InscribedCircle& lo_c = circles[std::max(k - 1, 0)];
+    const InscribedCircle& hi_c = circles[std::min<std::size_t>(k + 1, circles.size() - 1)];
+    double a = param_of(lo_c.center), b = param_of(hi_c.center);
+    if (a > b) std::swap(a, b);
+    a = std::max(a - (b - a), ax.a);
+    b = std::min(b + (b - a), ax.b);
+    InscribedCircle best = circles[k];
+    auto radius_at = [&](double t) {
+      InscribedCircle c;
+      const Eigen::Vector2d n = left_normal(ax.spline.derivative(t, 1).normalized());
+      if (solve_circle(pr.fast, ax.spline.point(t), n, best.t_left, best.t_right, pr.scale, c) &&
+          valid_circle(pr, n, c, nullptr)) {
+        if (c.radius > best.radius) best = c;
+        return c.radius;
+      }
+      return -1.0;
+    };
+    const double g = 0.5 * (std::sqrt(5.0) - 1);
+    double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    double f1 = radius_at(x1), f2 = radius_at(x2);
+    for (int it = 0; it < 80 && b - a > 1e-12 * pr.scale; ++it) {
+      if (f1 > f2) {
+        b = x2, x2 = x1, f2 = f1;
+        x1 = b - g * (b - a);
+        f1 = radius_at(x1);
+      } else {
+        a = x1, x1 = x2, f1 = f2;
+        x2 = a + g * (b - a);
+        f2 = radius_at(x2);
+      }
+    }
+    res.thickest = best;
+    res.thickest_s = res.ext_le + table.arc(param_of(best.center));
+    // Polish: the foot of best.center on the axis.
+    double t = param_of(best.center);
+    for (int it = 0; it < 20; ++it) {
+      const Eigen::Vector2d d1 = ax.spline.derivative(t, 1), d2 = ax.spline.derivative(t, 2);
+      const Eigen::Vector2d e = ax.spline.point(t) - best.center;
+      const double step = e.dot(d1) / (d1.squaredNorm() + e.dot(d2));
+      t = std::clamp(t - step, ax.a, ax.b);
+      if (std::abs(step) < 1e-15 * (ax.b - ax.a)) break;
+    }
+    res.thickest_s = res.ext_le + table.arc(t);
+  }
+
+  // Pressure side = the concave side of the camber line: opposite to its bulge from the chord.
+  const Eigen::Vector2d chord = (te.point - le.point).normalized();
+  double bulge = 0;
+  for (const auto& p : res.points) bulge += cross(chord, p - le.point);
+  res.pressure_side = bulge > 0 ? -1 : 1;
+  return res;
+}
+
+std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const CamberResult& camber,
+                                                 const std::vector<double>& fractions) {
+  const Profile pr(profile, 1000);
+  Axis ax;
+  ax.spline = camber.medial.curve;
+  ax.a = ax.spline.t_min();
+  ax.b = ax.spline.t_max();
+  const ArcTable table(ax.spline, 4 * static_cast<int>(camber.medial.circles.size()));
+  const auto& circles = camber.medial.circles;
+  std::vector<ThicknessStation> out;
+  for (double f : fractions) {
+    if (!(f >= 0 && f <= 1))
+      throw Error("params: thickness station " + std::to_string(f) + " is outside [0, 1]");
+    ThicknessStation st;
+    st.fraction = f;
+    st.s = f * camber.length;
+    InscribedCircle c;
+    bool solved = false;
+    if (st.s > camber.ext_le && st.s < camber.length - camber.ext_te) {
+      const double t = table.param(st.s - camber.ext_le);
+      const Eigen::Vector2d p = ax.spline.point(t);
+      const Eigen::Vector2d n = left_normal(ax.spline.derivative(t, 1).normalized());
+      std::size_t g = 0;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < circles.size(); ++k)
+        if (circles[k].t_left != circles[k].t_right && (circles[k].center - p).norm() < best)
+          best = (circles[k].center - p).norm(), g = k;
+      solved = solve_circle(pr.fast, p, n, circles[g].t_left, circles[g].t_right, pr.scale, c) &&
+               valid_circle(pr, n, c, nullptr) && (c.center - p).norm() < 0.5 * c.radius;
+      if (!solved) c.center = p;
+    } else {
+      c.center = st.s <= camber.ext_le ? Eigen::Vector2d(camber.le.point + st.s * camber.le_tangent)
+                                       : Eigen::Vector2d(camber.te.point - (camber.length - st.s) * camber.te_tangent);
+    }
+    if (solved) {
+      st.thickness = 2 * c.radius;
+    } else {
+      // On an extension (or where no circle fits): the width across the camber normal.
+      const Eigen::Vector2d d = st.s <= camber.ext_le ? camber.le_tangent : camber.te_tangent;
+      double tl = 0, tr = 0;
+      if (!ray_hit(pr, c.center, left_normal(d), tl) || !ray_hit(pr, c.center, -left_normal(d), tr))
+        throw Error("params: the camber normal at station " + std::to_string(f) + " misses the profile");
+      c.left = pr.fast.jet(tl).p;
+      c.right = pr.fast.jet(tr).p;
+      st.thickness = (c.left - c.right).norm();
+    }
+    st.point = c.center;
+    st.pressure = camber.pressure_side > 0 ? c.left : c.right;
+    st.suction = camber.pressure_side > 0 ? c.right : c.left;
+    out.push_back(st);
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector2d> parse_profile(const std::string& text, const std::string& source) {
+  std::vector<Eigen::Vector2d> points;
+  std::size_t pos = 0;
+  int line_no = 0;
+  bool any_numeric = false;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    double v[2];
+    int got = 0;
+    const char* p = line.data();
+    const char* e = p + line.size();
+    bool bad = false;
+    while (p < e && got < 2) {
+      while (p < e && (*p == ' ' || *p == '\t' || *p == ',' || *p == ';' || *p == '\r')) ++p;
+      if (p >= e) break;
+      if (*p == '+') ++p;
+      const auto r = std::from_chars(p, e, v[got]);
+      if (r.ec != std::errc()) {
+        bad = true;
+        break;
+      }
+      p = r.ptr;
+      ++got;
+    }
+    const bool blank = line.find_first_not_of(" \t\r,;") == std::string::npos;
+    if (blank || line[line.find_first_not_of(" \t")] == '#') continue;
+    if (bad || got < 2) {
+      if (!any_numeric && points.empty() && line_no == 1) continue;  // a title line
+      throw Error("camber: " + source + ":" + std::to_string(line_no) +
+                  ": expected two numbers (x y), found '" + line.substr(0, 40) + "'");
+    }
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]))
+      throw Error("camber: " + source + ":" + std::to_string(line_no) + ": the point is not finite");
+    any_numeric = true;
+    points.emplace_back(v[0], v[1]);
+  }
+  while (points.size() > 1 && (points.back() - points.front()).norm() <= 1e-12 * (1 + points.front().norm()))
+    points.pop_back();
+  return points;
+}
+
+}  // namespace section

@@ -1,0 +1,200 @@
+#include "section/params.h"
+
+#include "detail/camber_curve.h"
+#include "section/error.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace section {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double degrees(const Eigen::Vector2d& d) { return std::atan2(d.y(), d.x()) * 180 / pi; }
+double wrap_degrees(double a) {
+  a = std::fmod(a, 360);
+  if (a > 180) a -= 360;
+  if (a <= -180) a += 360;
+  return a;
+}
+
+// Indices of the convex hull of points (counterclockwise, Andrew's monotone chain).
+std::vector<int> convex_hull(const std::vector<Eigen::Vector2d>& p) {
+  std::vector<int> idx(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) idx[i] = static_cast<int>(i);
+  std::sort(idx.begin(), idx.end(), [&](int a, int b) {
+    return p[a].x() < p[b].x() || (p[a].x() == p[b].x() && p[a].y() < p[b].y());
+  });
+  std::vector<int> h(2 * p.size());
+  std::size_t k = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = k;
+    for (std::size_t n = 0; n < idx.size(); ++n) {
+      const int i = pass == 0 ? idx[n] : idx[idx.size() - 1 - n];
+      while (k >= base + 2 && cross(p[h[k - 1]] - p[h[k - 2]], p[i] - p[h[k - 2]]) <= 0) --k;
+      h[k++] = i;
+    }
+    --k;  // the last point starts the other chain
+  }
+  h.resize(k);
+  return h;
+}
+
+// Profile parameter where the projection onto e is extreme, refined from a sample.
+double extreme(const detail::FastCurve& f, double t, const Eigen::Vector2d& e) {
+  for (int it = 0; it < 30; ++it) {
+    const detail::CurveJet j = f.jet(t);
+    const double g = j.d1.dot(e), dg = j.d2.dot(e);
+    if (dg == 0) break;
+    const double step = g / dg;
+    t -= step;
+    if (std::abs(step) < 1e-15 * (1 + std::abs(t))) break;
+  }
+  return t;
+}
+
+}  // namespace
+
+double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
+  if (!curve.closed) throw Error("params: the area needs a closed curve");
+  const detail::FastCurve f(curve);
+  // 5-point Gauss-Legendre is exact for the degree-8 integrands of a cubic per span.
+  static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                              0.9061798459386640};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                              0.4786286704993665, 0.2369268850561891};
+  double area = 0, mx = 0, my = 0;
+  const int sub = std::max(1, curve.degree / 3);  // higher degrees: split each span
+  for (std::size_t k = 0; k + 1 < curve.knots.size(); ++k)
+    for (int q = 0; q < sub; ++q) {
+      const double a = curve.knots[k] + (curve.knots[k + 1] - curve.knots[k]) * q / sub;
+      const double b = curve.knots[k] + (curve.knots[k + 1] - curve.knots[k]) * (q + 1) / sub;
+      for (int i = 0; i < 5; ++i) {
+        const double t = 0.5 * (a + b) + 0.5 * (b - a) * x[i];
+        const detail::CurveJet j = f.jet(t);
+        const double ww = 0.5 * (b - a) * w[i];
+        area += ww * 0.5 * cross(j.p, j.d1);
+        mx += ww * 0.5 * j.p.x() * j.p.x() * j.d1.y();
+        my -= ww * 0.5 * j.p.y() * j.p.y() * j.d1.x();
+      }
+    }
+  if (centroid) *centroid = area != 0 ? Eigen::Vector2d(mx / area, my / area) : Eigen::Vector2d(0, 0);
+  return area;
+}
+
+SectionParams section_params(const BSpline& profile, const CamberResult& camber) {
+  SectionParams out;
+  out.le_point = camber.le.point;
+  out.te_point = camber.te.point;
+  out.chord = (out.te_point - out.le_point).norm();
+  out.camber_length = camber.length;
+  out.max_thickness = 2 * camber.thickest.radius;
+  out.max_thickness_pos = camber.length > 0 ? camber.thickest_s / camber.length : 0;
+  out.le_radius = camber.le.radius;
+  out.te_radius = camber.te.radius;
+  out.le_curvature_radius = camber.le.curvature_radius;
+  out.te_curvature_radius = camber.te.curvature_radius;
+  out.stagger = degrees(out.te_point - out.le_point);
+  out.inlet_angle = degrees(camber.le_tangent);
+  out.outlet_angle = degrees(camber.te_tangent);
+  out.camber_angle = wrap_degrees(out.inlet_angle - out.outlet_angle);
+  out.area = std::abs(enclosed_area(profile, &out.centroid));
+
+  // Caliper: the convex-hull edge bridging the pressure side is the line a caliper laid
+  // against that side touches at both ends; refined to the exact bitangent.
+  const detail::FastCurve f(profile);
+  const int n = 2000;
+  const double t0 = profile.t_min(), period = profile.t_max() - t0;
+  std::vector<Eigen::Vector2d> s(n);
+  for (int i = 0; i < n; ++i) s[i] = f.jet(t0 + period * i / n).p;
+  auto index_of = [&](double t) {
+    double r = std::fmod(t - t0, period);
+    if (r < 0) r += period;
+    return static_cast<int>(std::lround(r / period * n)) % n;
+  };
+  // The pressure side runs forward (in the curve's direction) from LE to TE when it lies
+  // right of the LE-to-TE direction on a counterclockwise profile, and vice versa.
+  const bool forward_le_te = (camber.pressure_side < 0) == (camber.orientation > 0);
+  const int ile = index_of(camber.le.t), ite = index_of(camber.te.t);
+  const int from = forward_le_te ? ile : ite, to = forward_le_te ? ite : ile;
+  const int span = ((to - from) % n + n) % n;
+  const int mid = (from + span / 2) % n;
+  std::vector<int> hull = convex_hull(s);
+  std::sort(hull.begin(), hull.end());
+  int ha = -1, hb = -1;
+  if (!hull.empty() && !std::binary_search(hull.begin(), hull.end(), mid)) {
+    auto it = std::upper_bound(hull.begin(), hull.end(), mid);
+    hb = it == hull.end() ? hull.front() : *it;
+    ha = it == hull.begin() ? hull.back() : *(it - 1);
+  }
+  Eigen::Vector2d e = (out.te_point - out.le_point).normalized();
+  if (ha >= 0 && ha != hb) {
+    double ta = t0 + period * ha / n, tb = t0 + period * hb / n;
+    for (int it = 0; it < 40; ++it) {
+      const detail::CurveJet a = f.jet(ta), b = f.jet(tb);
+      const Eigen::Vector2d d = b.p - a.p;
+      const Eigen::Vector2d g(cross(d, a.d1), cross(d, b.d1));
+      Eigen::Matrix2d j;
+      j << cross(d, a.d2), cross(b.d1, a.d1), cross(-a.d1, b.d1), cross(d, b.d2);
+      const Eigen::Vector2d step = j.fullPivLu().solve(g);
+      if (!step.allFinite()) break;
+      ta -= step(0);
+      tb -= step(1);
+      if (step.norm() < 1e-14 * period) break;
+    }
+    const Eigen::Vector2d a = f.jet(ta).p, b = f.jet(tb).p;
+    if ((b - a).norm() > 0) {
+      e = (b - a).normalized();
+      out.caliper_found = true;
+      out.caliper_le = a;
+      out.caliper_te = b;
+    }
+  }
+  if (e.dot(out.te_point - out.le_point) < 0) {
+    e = -e;
+    std::swap(out.caliper_le, out.caliper_te);
+  }
+  if (!out.caliper_found) {
+    out.caliper_le = out.le_point;
+    out.caliper_te = out.te_point;
+  }
+  int imax = 0, imin = 0;
+  for (int i = 0; i < n; ++i) {
+    if (s[i].dot(e) > s[imax].dot(e)) imax = i;
+    if (s[i].dot(e) < s[imin].dot(e)) imin = i;
+  }
+  const double hi = f.jet(extreme(f, t0 + period * imax / n, e)).p.dot(e);
+  const double lo = f.jet(extreme(f, t0 + period * imin / n, e)).p.dot(e);
+  out.caliper_chord = std::max(hi, s[imax].dot(e)) - std::min(lo, s[imin].dot(e));
+  out.caliper_stagger = degrees(e);
+  return out;
+}
+
+Sides split_sides(const BSpline& profile, const CamberResult& camber, int count) {
+  if (count < 2) throw Error("params: a side needs at least 2 samples");
+  const detail::FastCurve f(profile);
+  const double period = profile.t_max() - profile.t_min();
+  auto forward = [&](double a, double b) { return std::fmod(std::fmod(b - a, period) + period, period); };
+  const double le = camber.le.t, te = camber.te.t;
+  // Forward from LE reaches TE along one side, backward along the other; both sampled
+  // from LE to TE.
+  std::vector<Eigen::Vector2d> fwd, bwd;
+  const double lf = forward(le, te), lb = forward(te, le);
+  for (int i = 0; i < count; ++i) {
+    fwd.push_back(f.jet(le + lf * i / (count - 1)).p);
+    bwd.push_back(f.jet(le - lb * i / (count - 1)).p);
+  }
+  const bool forward_is_pressure = (camber.pressure_side < 0) == (camber.orientation > 0);
+  Sides sides;
+  sides.pressure = forward_is_pressure ? fwd : bwd;
+  sides.suction = forward_is_pressure ? bwd : fwd;
+  return sides;
+}
+
+}  // namespace section

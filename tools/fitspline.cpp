@@ -1,0 +1,71 @@
+// fitspline: fit a closed cubic B-spline to every section loop of a pipe stream.
+#include "common/tool.h"
+
+#include "section/error.h"
+#include "section/fit_spline.h"
+#include "section/pipe.h"
+
+#include <iostream>
+
+namespace {
+
+const char* const description =
+    "fitspline: fit a closed cubic B-spline to every loop of a section stream.\n\n"
+    "Reads the pipe stream (docs/FORMAT.md) written by slice (and optionally smooth): a first\n"
+    "curve is fitted by least squares to the 'smoothed' profile (or the ordered 'points'),\n"
+    "then refined by squared-distance minimisation against the measured 'points', with\n"
+    "knots inserted where the curve misses the data (blade edges). Writes the tables\n"
+    "'splines' (fit statistics), 'spline_knots', 'spline_ctrl' and, with --samples or\n"
+    "--spacing, 'samples' (points, normals and curvature along the curve, also in 3D).\n"
+    "A loop that cannot be fitted is reported as an issue; the other loops go on.\n\n"
+    "Example: slice blade.ply --count 9 | smooth | fitspline --spacing 0.1 | camber";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  section::tool::Common common;
+  section::FitSplineOptions options;
+  return section::tool::run_tool(
+      "fitspline", description, argc, argv,
+      [&](CLI::App& app) {
+        section::tool::add_common(app, common);
+        auto* ctrl = app.add_option("--control-points", options.control_points,
+                                    "Control points per loop (fixed); default: adaptive to --tolerance")
+                         ->check(CLI::Range(4, 100000));
+        auto* tol = app.add_option("--tolerance", options.tolerance,
+                                   "Systematic deviation allowed per knot span before a knot is inserted")
+                        ->check(CLI::PositiveNumber)->capture_default_str();
+        ctrl->excludes(tol);
+        auto* n = app.add_option("--samples", options.samples, "Write N curve samples per loop")
+                      ->check(CLI::Range(3, 10000000));
+        auto* d = app.add_option("--spacing", options.sample_spacing,
+                                 "Write curve samples every D length units along the curve")
+                      ->check(CLI::PositiveNumber);
+        n->excludes(d);
+        app.add_option("--max-iterations", options.max_iterations,
+                       "Distance-minimisation iterations per refinement round")
+            ->check(CLI::Range(1, 10000))->capture_default_str();
+        app.add_option("--max-control-points", options.max_control_points,
+                       "Cap on control points per loop in adaptive mode")
+            ->check(CLI::Range(8, 1000000))->capture_default_str();
+        app.add_option("--fairness", options.fairness, "Relative weight of the fairness term")
+            ->check(CLI::NonNegativeNumber)->capture_default_str();
+        app.add_option("--outlier-distance", options.outlier_distance,
+                       "Ignore isolated points farther than this from the curve; 0 = automatic")
+            ->check(CLI::NonNegativeNumber)->capture_default_str();
+      },
+      [&] {
+        section::Stream stream = section::read_stream(common.input);
+        section::fit_spline_stream(stream, options);
+        stream.history.push_back(section::tool::command_line(argc, argv));
+        for (const auto& issue : stream.issues) {
+          if (issue.stage != "fitspline") continue;
+          std::cerr << "fitspline: warning: section " << issue.section << " loop " << issue.loop
+                    << ": " << issue.message << "\n";
+        }
+        const section::Table* fitted = stream.find("splines");
+        if (fitted && fitted->rows() == 0 && stream.find("points") && stream.get("points", "slice").rows() > 0)
+          throw section::Error("no loop could be fitted (see the warnings above)");
+        section::write_stream(common.output, stream);
+      });
+}
