@@ -155,7 +155,7 @@ TEST_CASE("fit_spline: exact blade sections give a curve within 1 um", "[fit_spl
       const auto truth = section::section_truth(blade.at(z));
       // Every 0.05 mm along the exact profile.
       std::vector<Vector2d> p;
-      const double step = 0.05;
+      const double step = 0.04;
       double next = 0;
       for (std::size_t i = 0; i < truth.profile.size(); ++i)
         if (truth.profile_s[i] >= next) {

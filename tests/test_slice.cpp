@@ -181,7 +181,7 @@ TEST_CASE("slice: a noisy blade scan gives one ordered closed loop per section",
         CHECK(oc.within_30um >= 0.995);
         CHECK(oc.worst_backstep <= 0.1);
         CHECK(oc.far_outliers_kept == 0);
-        CHECK(m.loops[0].points.size() > 500);
+        CHECK(m.loops[0].points.size() > 300);
       }
     }
   }

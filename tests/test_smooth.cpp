@@ -194,6 +194,8 @@ TEST_CASE("smooth: noisy ellipse moves toward the true ellipse", "[smooth]") {
 TEST_CASE("smooth: a clean circle keeps its radius", "[smooth]") {
   // The paper's a and the default on a 10 mm circle; a scale-free strength on circles of
   // any size/unit.
+  // (A clean circle comes back unchanged: the frozen-length step would shrink it and
+  // raise E, so it is refused.)
   for (SmoothOptions o : strengths()) {
     const SmoothResult r = section::smooth(noisy_circle(10, 785, 0, 1), o);
     for (const auto& x : r.points) REQUIRE(std::abs(x.norm() / 10 - 1) < 1e-3);
@@ -206,6 +208,25 @@ TEST_CASE("smooth: a clean circle keeps its radius", "[smooth]") {
     const SmoothResult r = section::smooth(noisy_circle(radius, 100, 0, 1), o);
     for (const auto& x : r.points) REQUIRE(std::abs(x.norm() / radius - 1) < 1e-3);
   }
+}
+
+TEST_CASE("smooth: a noisy circle shrinks by (L / 2 pi)^4 / R^3", "[smooth]") {
+  // The documented bias of curved parts; 1 um noise, 0.02 mm spacing, mean radius.
+  for (double L : {0.8, 1.0})
+    for (std::uint64_t seed : {41u, 42u}) {
+      const Points p = noisy_circle(1, 314, 0.001, seed);
+      double before = 0, after = 0;
+      SmoothOptions o;
+      o.smoothing_length = L;
+      const SmoothResult r = section::smooth(p, o);
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        before += p[i].norm() / p.size();
+        after += r.points[i].norm() / p.size();
+      }
+      const double predicted = std::pow(L / (2 * pi), 4);
+      INFO("L " << L << " shrink " << before - after << " predicted " << predicted);
+      CHECK(before - after == Approx(predicted).margin(0.15 * predicted));
+    }
 }
 
 TEST_CASE("smooth: energy decreases monotonically over the outer iterations", "[smooth]") {

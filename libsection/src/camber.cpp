@@ -8,7 +8,6 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -618,40 +617,9 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
     for (const auto& x : circles) c.push_back(x.center);
     ax = make_axis(c, 1e-8);
   }
-  // Final tangents: the medial axis is perpendicular to the contact chord of its circles,
-  // exactly; taken just inside each end and extrapolated to it (the spline's end slope
-  // carries its fitting error).
-  auto end_tangent = [&](const InscribedCircle& end, Eigen::Vector2d d) -> Eigen::Vector2d {
-    const Eigen::Vector2d fallback = d;
-    std::size_t g = 0;
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < medial.size(); ++k)
-      if (medial[k].t_left != medial[k].t_right && (medial[k].center - end.center).norm() < best)
-        best = (medial[k].center - end.center).norm(), g = k;
-    InscribedCircle guess = medial[g];
-    double angle[2];
-    for (int q = 0; q < 2; ++q) {
-      const double delta = 0.005 * (q + 1) * end.radius;
-      Eigen::Vector2d dir = d;
-      for (int it = 0; it < 3; ++it) {
-        const Eigen::Vector2d n = left_normal(dir);
-        InscribedCircle c;
-        const Eigen::Vector2d p = end.center + delta * d;
-        if (!solve_circle(pr.fast, p, n, guess.t_left, guess.t_right, pr.scale, c) ||
-            !valid_circle(pr, n, c, nullptr) || (c.center - p).norm() > 0.01 * c.radius)
-          return fallback;
-        Eigen::Vector2d t = left_normal((c.left - c.right).normalized());
-        if (t.dot(d) < 0) t = -t;
-        dir = t;
-        guess = c;
-      }
-      angle[q] = std::atan2(cross(d, dir), d.dot(dir));
-    }
-    const double a0 = 2 * angle[0] - angle[1];
-    return Eigen::Vector2d(std::cos(a0) * d.x() - std::sin(a0) * d.y(), std::sin(a0) * d.x() + std::cos(a0) * d.y());
-  };
-  res.le_tangent = end_tangent(circles.front(), ax.tangent(ax.a));
-  res.te_tangent = -end_tangent(circles.back(), -ax.tangent(ax.b));
+  // Final edge points from the final tangents.
+  res.le_tangent = ax.tangent(ax.a);
+  res.te_tangent = ax.tangent(ax.b);
   {
     Edge l = measure_edge(pr, circles.front().center, -res.le_tangent, options);
     Edge t = measure_edge(pr, circles.back().center, res.te_tangent, options);
@@ -833,51 +801,6 @@ std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const C
     out.push_back(st);
   }
   return out;
-}
-
-std::vector<Eigen::Vector2d> parse_profile(const std::string& text, const std::string& source) {
-  std::vector<Eigen::Vector2d> points;
-  std::size_t pos = 0;
-  int line_no = 0;
-  bool any_numeric = false;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    const std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    double v[2];
-    int got = 0;
-    const char* p = line.data();
-    const char* e = p + line.size();
-    bool bad = false;
-    while (p < e && got < 2) {
-      while (p < e && (*p == ' ' || *p == '\t' || *p == ',' || *p == ';' || *p == '\r')) ++p;
-      if (p >= e) break;
-      if (*p == '+') ++p;
-      const auto r = std::from_chars(p, e, v[got]);
-      if (r.ec != std::errc()) {
-        bad = true;
-        break;
-      }
-      p = r.ptr;
-      ++got;
-    }
-    const bool blank = line.find_first_not_of(" \t\r,;") == std::string::npos;
-    if (blank || line[line.find_first_not_of(" \t")] == '#') continue;
-    if (bad || got < 2) {
-      if (!any_numeric && points.empty() && line_no == 1) continue;  // a title line
-      throw Error("camber: " + source + ":" + std::to_string(line_no) +
-                  ": expected two numbers (x y), found '" + line.substr(0, 40) + "'");
-    }
-    if (!std::isfinite(v[0]) || !std::isfinite(v[1]))
-      throw Error("camber: " + source + ":" + std::to_string(line_no) + ": the point is not finite");
-    any_numeric = true;
-    points.emplace_back(v[0], v[1]);
-  }
-  while (points.size() > 1 && (points.back() - points.front()).norm() <= 1e-12 * (1 + points.front().norm()))
-    points.pop_back();
-  return points;
 }
 
 }  // namespace section

@@ -125,9 +125,9 @@ bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point,
 /// more than one loop, gets an issue and the others go on.
 void camber_stream(Stream& stream, const CamberOptions& options = {});
 
-/// Parses a plain ordered 2D profile: one point per line, x and y as the first two numbers
-/// (separated by spaces, tabs or commas); a non-numeric first line (title) and `#` lines
-/// are skipped; a repeated closing point is dropped. `source` names the input in errors.
-std::vector<Eigen::Vector2d> parse_profile(const std::string& text, const std::string& source);
+/// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
+/// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain
+/// profile (an airfoil .dat file, a CMM section).
+Stream profile_stream(const BSpline& spline);
 
 }  // namespace section

@@ -1,0 +1,156 @@
+// Stream stage of camber: splines in, camber line and section parameters out.
+#include "section/camber.h"
+#include "section/error.h"
+#include "section/fit_spline.h"
+#include "section/params.h"
+#include "section/pipe.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+
+namespace section {
+
+namespace {
+
+Table make_table(const std::string& name, std::vector<std::string> columns) {
+  Table t;
+  t.name = name;
+  t.columns = std::move(columns);
+  return t;
+}
+
+// Loop-0 skeleton of each section, ordered by index (the slice stage's camber seed).
+std::map<int, std::vector<Eigen::Vector2d>> skeletons(const Stream& stream) {
+  std::map<int, std::vector<Eigen::Vector2d>> out;
+  const Table* t = stream.find("skeleton");
+  if (!t) return out;
+  const long cs = t->find_column("section"), cl = t->find_column("loop"), ci = t->find_column("index"),
+             cu = t->find_column("u"), cv = t->find_column("v");
+  if (cs < 0 || cu < 0 || cv < 0) return out;
+  std::map<int, std::map<int, Eigen::Vector2d>> rows;
+  for (std::size_t r = 0; r < t->rows(); ++r) {
+    if (cl >= 0 && t->at(r, cl) != 0) continue;
+    const int index = ci >= 0 ? static_cast<int>(t->at(r, ci)) : static_cast<int>(r);
+    rows[static_cast<int>(t->at(r, cs))][index] = {t->at(r, cu), t->at(r, cv)};
+  }
+  for (const auto& [section, pts] : rows)
+    for (const auto& [index, p] : pts) out[section].push_back(p);
+  return out;
+}
+
+}  // namespace
+
+Stream profile_stream(const BSpline& spline) {
+  Stream stream;
+  Table head = make_table("splines", {"section", "loop", "degree", "closed", "control_points", "rms",
+                                      "max", "p95", "iterations"});
+  head.add_row({0, 0, double(spline.degree), spline.closed ? 1.0 : 0.0, double(spline.control.size()),
+                0, 0, 0, 0});
+  Table knots = make_table("spline_knots", {"section", "loop", "index", "knot"});
+  for (std::size_t i = 0; i < spline.knots.size(); ++i) knots.add_row({0, 0, double(i), spline.knots[i]});
+  Table ctrl = make_table("spline_ctrl", {"section", "loop", "index", "u", "v"});
+  for (std::size_t i = 0; i < spline.control.size(); ++i)
+    ctrl.add_row({0, 0, double(i), spline.control[i].x(), spline.control[i].y()});
+  stream.put(head);
+  stream.put(knots);
+  stream.put(ctrl);
+  return stream;
+}
+
+void camber_stream(Stream& stream, const CamberOptions& options) {
+  const auto curves = splines(stream);
+  std::map<int, Frame> frame;
+  if (stream.find("frames")) frame = frames(stream);
+  const auto seeds = skeletons(stream);
+
+  Table camber = make_table("camber", {"section", "index", "s", "u", "v", "x", "y", "z", "radius"});
+  Table params = make_table(
+      "params",
+      {"section", "chord", "camber_length", "max_thickness", "max_thickness_pos", "le_radius",
+       "te_radius", "le_curvature_radius", "te_curvature_radius", "le_shape", "te_shape",
+       "le_arc", "te_arc", "le_fit_rms", "te_fit_rms", "stagger", "inlet_angle", "outlet_angle",
+       "camber_angle", "area", "centroid_u", "centroid_v", "le_u", "le_v", "te_u", "te_v",
+       "le_center_u", "le_center_v", "te_center_u", "te_center_v", "le_x", "le_y", "le_z", "te_x",
+       "te_y", "te_z", "centroid_x", "centroid_y", "centroid_z", "caliper_chord",
+       "caliper_stagger", "caliper_found", "pressure_side", "le_by_direction"});
+  Table thickness = make_table("thickness", {"section", "index", "fraction", "s", "u", "v", "thickness",
+                                             "pressure_u", "pressure_v", "suction_u", "suction_v"});
+  Table sides = make_table("sides", {"section", "side", "index", "u", "v"});
+
+  std::map<int, int> loops;
+  for (const auto& [key, curve] : curves) ++loops[key.first];
+  for (const auto& [key, curve] : curves) {
+    const int section = key.first;
+    if (key.second != 0) continue;
+    try {
+      if (loops[section] > 1)
+        throw Error("camber: section " + std::to_string(section) + " has " + std::to_string(loops[section]) +
+                    " loops; camber measures single-profile sections");
+      CamberOptions opt = options;
+      const auto seed = seeds.find(section);
+      if (seed != seeds.end() && seed->second.size() >= 4) opt.medial.seed = seed->second;
+      CamberResult r;
+      try {
+        r = camber_line(curve, opt);
+      } catch (const Error&) {
+        if (opt.medial.seed.empty()) throw;
+        opt.medial.seed.clear();  // a poor skeleton: fall back to the Delaunay seed
+        r = camber_line(curve, opt);
+      }
+      const SectionParams p = section_params(curve, r);
+      const auto st = thickness_stations(curve, r, options.stations);
+      const Sides sd = split_sides(curve, r, options.side_samples);
+      const auto fit = frame.find(section);
+      const Frame f = fit != frame.end() ? fit->second : Frame{};
+      for (std::size_t i = 0; i < r.points.size(); ++i) {
+        const Eigen::Vector3d w = f.to_world(r.points[i]);
+        camber.add_row({double(section), double(i), r.s[i], r.points[i].x(), r.points[i].y(), w.x(), w.y(),
+                        w.z(), r.radius[i]});
+      }
+      const Eigen::Vector3d le = f.to_world(p.le_point), te = f.to_world(p.te_point),
+                            cg = f.to_world(p.centroid);
+      params.add_row({double(section), p.chord, p.camber_length, p.max_thickness, p.max_thickness_pos,
+                      p.le_radius, p.te_radius, p.le_curvature_radius, p.te_curvature_radius,
+                      double(static_cast<int>(r.le.shape)), double(static_cast<int>(r.te.shape)), r.le.arc,
+                      r.te.arc, r.le.fit_rms, r.te.fit_rms, p.stagger, p.inlet_angle, p.outlet_angle,
+                      p.camber_angle, p.area, p.centroid.x(), p.centroid.y(), p.le_point.x(),
+                      p.le_point.y(), p.te_point.x(), p.te_point.y(), r.le.center.x(), r.le.center.y(),
+                      r.te.center.x(), r.te.center.y(), le.x(), le.y(), le.z(), te.x(), te.y(), te.z(),
+                      cg.x(), cg.y(), cg.z(), p.caliper_chord, p.caliper_stagger,
+                      p.caliper_found ? 1.0 : 0.0, double(r.pressure_side), r.le_by_direction ? 1.0 : 0.0});
+      for (std::size_t i = 0; i < st.size(); ++i)
+        thickness.add_row({double(section), double(i), st[i].fraction, st[i].s, st[i].point.x(),
+                           st[i].point.y(), st[i].thickness, st[i].pressure.x(), st[i].pressure.y(),
+                           st[i].suction.x(), st[i].suction.y()});
+      for (int side = 0; side < 2; ++side) {
+        const auto& pts = side == 0 ? sd.pressure : sd.suction;
+        for (std::size_t i = 0; i < pts.size(); ++i)
+          sides.add_row({double(section), double(side), double(i), pts[i].x(), pts[i].y()});
+      }
+      const double tip_radius_limit = 1e-12;
+      (void)tip_radius_limit;
+      if (r.le.shape != EdgeShape::round || r.te.shape != EdgeShape::round) {
+        auto name = [](EdgeShape s) { return s == EdgeShape::blunt ? "blunt" : "sharp"; };
+        std::string msg;
+        if (r.le.shape != EdgeShape::round) msg += std::string("leading edge looks ") + name(r.le.shape);
+        if (r.te.shape != EdgeShape::round)
+          msg += std::string(msg.empty() ? "" : ", ") + "trailing edge looks " + name(r.te.shape);
+        stream.issues.push_back({section, 0, "camber",
+                                 msg + (options.edge == EdgeModel::round ? " (fitted as round anyway)"
+                                                                         : " (radius reported as 0)")});
+      }
+    } catch (const Error& e) {
+      std::string msg = e.what();
+      if (msg.rfind("camber: ", 0) == 0) msg = msg.substr(8);
+      stream.issues.push_back({section, loops[section] > 1 ? -1 : 0, "camber", msg});
+    }
+  }
+  stream.put(camber);
+  stream.put(params);
+  stream.put(thickness);
+  stream.put(sides);
+}
+
+}  // namespace section
