@@ -372,3 +372,92 @@ TEST_CASE("morphology: speed on 1e5 points", "[morphology][speed]") {
   REQUIRE(m.loops.size() == 1);
   CHECK(seconds < 2.0);  // a loose bound: the figure is reported above
 }
+
+// ---------------------------------------------------------------------------------------
+// Sections of generated blade scans (section/generate.h), both presets, several seeds.
+
+#include "section/generate.h"
+
+namespace {
+
+struct BladeSlab {
+  section::SectionTruth truth;
+  Points points;
+  std::vector<int> outlier;
+};
+
+/// Scan points of a noisy scan within |z - z0| <= slab / 2, projected to (x, y).
+BladeSlab blade_slab(const section::BladeDesign& blade, double z0, std::uint64_t seed, double slab = 0.08) {
+  section::ScanOptions o;
+  o.spacing = 0.08;
+  o.noise = 0.005;
+  o.holes = 6;
+  o.density_min = 0.25;
+  o.misregistration = 0.015;
+  o.outlier_fraction = 0.0002;
+  o.z_min = z0 - 2;
+  o.z_max = z0 + 2;
+  o.seed = seed;
+  const section::Scan scan = section::generate_scan(blade, o);
+  BladeSlab s;
+  s.truth = section::section_truth(blade.at(z0));
+  for (std::size_t k = 0; k < scan.cloud.points.size(); ++k) {
+    const Eigen::Vector3d& p = scan.cloud.points[k];
+    if (std::abs(p.z() - z0) > slab / 2) continue;
+    s.points.emplace_back(p.x(), p.y());
+    s.outlier.push_back(scan.outlier[k]);
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("morphology: generated turbine and compressor sections give one ordered loop", "[morphology]") {
+  struct Preset {
+    const char* name;
+    section::BladeDesign blade;
+  };
+  const std::vector<Preset> presets = {{"turbine", section::turbine_blade()},
+                                       {"compressor", section::compressor_blade()}};
+  for (const auto& preset : presets)
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+      const double z0 = 10 + 12 * double(seed);
+      const BladeSlab s = blade_slab(preset.blade, z0, seed);
+      const MorphologyResult m = order_section(s.points);
+      INFO(preset.name << ", seed " << seed << ", z " << z0 << ", " << s.points.size() << " points, cell "
+                       << m.cell << ", dilation " << m.dilation << ", dropped " << m.dropped);
+      REQUIRE(m.loops.size() == 1);
+      const auto& loop = m.loops[0];
+      const double P = s.truth.perimeter;
+      std::size_t near = 0, normal_ok = 0, far_outliers_kept = 0;
+      std::vector<double> sv;
+      for (std::size_t i = 0; i < loop.points.size(); ++i) {
+        const section::ProfileLocation w = section::locate(s.truth, loop.points[i]);
+        sv.push_back(w.s);
+        near += w.distance <= 0.030;
+        // True outward normal: the profile runs counterclockwise, so the tangent turned clockwise.
+        const std::size_t n = s.truth.profile.size();
+        const double step = P / double(n);
+        const std::size_t a = std::size_t(w.s / step) % n;
+        const Vec t = s.truth.profile[(a + 1) % n] - s.truth.profile[(a + n - 1) % n];
+        normal_ok += loop.normals[i].dot(Vec(t.y(), -t.x()).normalized()) > 0.9;
+        far_outliers_kept += s.outlier[loop.index[i]] && w.distance > 0.2;
+      }
+      double total = 0, worst_back = 0;
+      for (std::size_t i = 0; i < sv.size(); ++i) {
+        double d = sv[(i + 1) % sv.size()] - sv[i];
+        d -= P * std::round(d / P);
+        total += d;
+        worst_back = std::max(worst_back, -d);
+      }
+      CHECK(total / P == Approx(1).margin(1e-9));  // once around, counterclockwise
+      CHECK(worst_back < 0.1);
+      CHECK(double(near) / double(sv.size()) >= 0.995);
+      CHECK(double(normal_ok) / double(sv.size()) >= 0.99);
+      CHECK(far_outliers_kept == 0);
+      // Every true outlier farther than 0.2 mm is dropped (generated outliers are >= 0.21 mm off).
+      std::size_t outliers = 0;
+      for (int o : s.outlier) outliers += o;
+      CHECK(m.dropped >= outliers - (outliers > 0 ? 0 : 0));
+    }
+}

@@ -477,14 +477,15 @@ Edge measure_edge(const Profile& pr, const Eigen::Vector2d& end, const Eigen::Ve
   e.radius = fit.radius;
   e.fit_rms = fit.rms;
   const double k = pr.convexity(e.t);
-  e.curvature_radius = k > 0 ? 1 / k : std::numeric_limits<double>::infinity();
+  e.curvature_radius = k > 0 ? 1 / k : 0;  // 0: the edge point is flat or concave
   return e;
 }
 
 void classify_edge(Edge& e, double max_diameter, const CamberOptions& options) {
   if (e.radius < options.sharp_ratio * max_diameter)
     e.shape = EdgeShape::sharp;
-  else if (e.curvature_radius > options.blunt_flatness * e.radius && e.fit_rms > options.blunt_rms * e.radius)
+  else if ((e.curvature_radius == 0 || e.curvature_radius > options.blunt_flatness * e.radius) &&
+           e.fit_rms > options.blunt_rms * e.radius)
     e.shape = EdgeShape::blunt;
   else
     e.shape = EdgeShape::round;
@@ -597,7 +598,8 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
     auto replace = [&](const Edge& e, bool front) {
       const bool round = e.shape == EdgeShape::round || options.edge == EdgeModel::round;
       const InscribedCircle& end = front ? medial.front() : medial.back();
-      if (!round || (e.center - end.center).norm() > e.radius) return;
+      // A circle much larger than the end's inscribed circle fits a flank, not the edge.
+      if (!round || (e.center - end.center).norm() > e.radius || e.radius > 3 * end.radius) return;
       const Eigen::Vector2d d = front ? d_le : d_te;
       std::vector<InscribedCircle> kept;
       for (const auto& c : circles)

@@ -5,9 +5,7 @@
 #include "section/params.h"
 #include "section/pipe.h"
 
-#include <cmath>
 #include <map>
-#include <set>
 #include <string>
 
 namespace section {
@@ -129,8 +127,6 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         for (std::size_t i = 0; i < pts.size(); ++i)
           sides.add_row({double(section), double(side), double(i), pts[i].x(), pts[i].y()});
       }
-      const double tip_radius_limit = 1e-12;
-      (void)tip_radius_limit;
       if (r.le.shape != EdgeShape::round || r.te.shape != EdgeShape::round) {
         auto name = [](EdgeShape s) { return s == EdgeShape::blunt ? "blunt" : "sharp"; };
         std::string msg;

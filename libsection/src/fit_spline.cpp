@@ -381,7 +381,13 @@ bool self_intersects(const BSpline& curve) {
   return false;
 }
 
-FitSplineResult fit_spline(const Points& profile, const Points& measured, const FitSplineOptions& o) {
+namespace {
+
+struct FoldError : Error {
+  using Error::Error;
+};
+
+FitSplineResult fit_once(const Points& profile, const Points& measured, const FitSplineOptions& o) {
   if (o.degree < 1 || o.degree > 7)
     throw Error("fit_spline: degree " + std::to_string(o.degree) + " is not in 1..7");
   if (o.control_points != 0 && o.control_points < o.degree + 1)
@@ -453,7 +459,7 @@ FitSplineResult fit_spline(const Points& profile, const Points& measured, const 
 
   result.spline = r.curve;
   if (self_intersects(result.spline))
-    throw Error("fit_spline: the fitted curve folds or crosses itself");
+    throw FoldError("fit_spline: the fitted curve folds or crosses itself");
   // The curve must enclose the profile's region on the same side (no turned-over loop).
   const Points dense = sample(result.spline, 16 * static_cast<int>(result.spline.control.size()));
   const double area = polygon_area(dense);
@@ -476,6 +482,24 @@ FitSplineResult fit_spline(const Points& profile, const Points& measured, const 
   }
   result.control_points = static_cast<int>(result.spline.control.size());
   return result;
+}
+
+}  // namespace
+
+FitSplineResult fit_spline(const Points& profile, const Points& measured, const FitSplineOptions& o) {
+  // A fold comes from knots denser than the data supports (thin edges, misregistered
+  // views): retry with fewer, longer spans before giving up on the loop.
+  FitSplineOptions retry = o;
+  for (int attempt = 0;; ++attempt) {
+    try {
+      return fit_once(profile, measured, retry);
+    } catch (const FoldError&) {
+      if (attempt == 2 || o.control_points != 0) throw;
+      retry.min_span_points *= 2;
+      retry.min_span *= 2;
+      retry.tolerance *= 4;
+    }
+  }
 }
 
 void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {

@@ -501,7 +501,9 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   }
   // Closed: the first radius whose enclosed interior is at least half the largest one,
   // which passes over the small pockets a few stray points make.
-  const auto substantial = [](long long cells, int rad) { return double(cells) >= std::max(16.0, 3.0 * rad * rad); };
+  // Substantial: more than a few cells (a thin blade closing over a wide gap keeps only a
+  // sliver of interior, so the bar is low; the half-of-best rule skips stray pockets).
+  const auto substantial = [](long long cells, int rad) { return double(cells) >= std::max(16.0, 0.5 * rad * rad); };
   int rc = 0;
   for (int k = 1; k <= rmax; ++k)
     if (2 * enclosed[k] >= best && substantial(enclosed[k], k)) {

@@ -65,7 +65,7 @@ struct Edge {
   double fit_rms = 0;              ///< rms distance of the edge arc from the fitted circle
   double arc = 0;                  ///< degrees of the edge arc fitted (normal turning across it)
   double arc_t0 = 0, arc_t1 = 0;   ///< profile parameter range of the edge arc
-  double curvature_radius = 0;     ///< 1 / profile curvature at the edge point
+  double curvature_radius = 0;     ///< 1 / profile curvature at the edge point (0 when flat or concave there)
   EdgeShape shape = EdgeShape::round;  ///< detected shape
 };
 

@@ -9,7 +9,7 @@
 /// With the lengths l_i frozen, grad E = 0 is one linear system (cyclic pentadiagonal,
 /// symmetric positive definite, the same for u and v). Each outer iteration freezes the
 /// lengths at the current points, solves that system, and updates the lengths; it stops
-/// when the shape no longer moves or E no longer changes. E_C has units 1/length and E_S
+/// when the shape no longer moves, E no longer changes, or a step would raise E. E_C has units 1/length and E_S
 /// length^2, so `a` depends on the units and on the point spacing: `smoothing_length`
 /// gives a scale-free strength instead (docs/SMOOTH.md derives it).
 #include <Eigen/Core>
@@ -39,7 +39,7 @@ struct SmoothOptions {
   int max_iterations = 20;        ///< cap on outer iterations (length updates)
   double tolerance = 1e-9;        ///< stop when |E_k - E_{k-1}| <= tolerance * E_k
   double move_tolerance = 1e-4;   ///< mean spacings: stop when no point moves farther than this across the curve in one outer iteration
-  double merge_distance = 1e-3;   ///< mean spacings: consecutive points closer than this are merged into their midpoint (counted in SmoothResult::repaired)
+  double merge_distance = 1e-3;   ///< mean spacings: consecutive points closer than this are merged into their mean (counted in SmoothResult::repaired)
   bool closed = true;             ///< the polyline is a closed loop (last point joins the first)
   int max_sweeps = 1000000;       ///< gauss_seidel only: cap on sweeps per outer iteration
   double sweep_tolerance = 1e-12; ///< gauss_seidel only: stop sweeping when the largest update is below this times the curve's size
@@ -52,22 +52,23 @@ struct SmoothResult {
   int iterations = 0;                   ///< outer iterations done
   int sweeps = 0;                       ///< gauss_seidel only: sweeps done over all outer iterations
   std::vector<double> energy_history;   ///< E after each outer iteration, energy_before first
-  double rms_move = 0;                  ///< root mean square distance between input and smoothed points
+  double rms_move = 0;                  ///< root mean square distance between input (after merging) and smoothed points
   double max_move = 0;                  ///< largest distance between an input and its smoothed point
   int repaired = 0;                     ///< input points merged away (duplicates, zero-length segments)
   double a = 0;                         ///< the curvature weight actually used
-  double spacing = 0;                   ///< mean distance between consecutive input points
+  double spacing = 0;                   ///< mean distance between consecutive input points (after merging)
   bool converged = false;               ///< stopped before max_iterations: a tolerance was met or no step along the next solve lowers E
 };
 
 /// Smooths one ordered polyline (closed or open) by minimising E above; coordinates in any
 /// length unit. The curvature weight is, in order: from smoothing_length if > 0, a if > 0,
-/// else from relative_length * mean spacing. Needs at least 5 points after merging duplicates. Throws section::Error
-/// (`smooth: ...`) on fewer points, non-finite coordinates or bad options.
+/// else from relative_length * mean spacing. Needs at least 5 points after merging
+/// duplicates. Throws section::Error (`smooth: ...`) on fewer points, non-finite
+/// coordinates or bad options.
 SmoothResult smooth(const std::vector<Eigen::Vector2d>& points, const SmoothOptions& options = {});
 
 /// The energy E = a E_C + b E_S of `points` against `reference` (same size), as defined
-/// above. Segments of zero length contribute no curvature.
+/// above. A zero-length segment counts with a zero tangent (the result stays finite).
 double smooth_energy(const std::vector<Eigen::Vector2d>& points,
                      const std::vector<Eigen::Vector2d>& reference, double a, double b,
                      bool closed = true);

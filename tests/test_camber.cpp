@@ -1,0 +1,230 @@
+// Tests of the camber stage: the medial axis, the camber line and the section parameters
+// against exact ground truth (sections built as envelopes of circles, an ellipse).
+#include "section/camber.h"
+#include "section/error.h"
+#include "section/generate.h"
+#include "section/params.h"
+#include "section/pipe.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using Eigen::Vector2d;
+using section::BSpline;
+using section::SectionDesign;
+using section::SectionTruth;
+
+namespace {
+
+// A dense closed spline through the exact profile (its distance to the truth is ~0.1 um).
+BSpline dense_spline(const std::vector<Vector2d>& points, int control_points = 2000) {
+  section::CurveFitOptions fo;
+  fo.control_points = control_points;
+  fo.fairness = 1e-9;
+  return section::fit_curve(points, fo);
+}
+
+double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+
+// Thick and thin, high and low turning, large and small edge radii.
+std::vector<SectionDesign> designs() {
+  std::vector<SectionDesign> out;
+  out.push_back(SectionDesign{});                    // moderate: 40 deg turning
+  out.push_back(section::turbine_blade().at(0));     // thick, 110 deg turning
+  out.push_back(section::compressor_blade().at(60)); // thin, small edge radii
+  SectionDesign d;
+  d.chord = 30;
+  d.stagger = -20;
+  d.inlet_angle = 5;
+  d.outlet_angle = -15;
+  d.le_radius = 0.6;
+  d.te_radius = 0.15;
+  d.max_thickness = 2.4;
+  d.max_thickness_pos = 0.45;
+  out.push_back(d);                                  // thin, low turning
+  d = SectionDesign{};
+  d.inlet_angle = 60;
+  d.outlet_angle = -55;
+  d.le_radius = 2.5;
+  d.te_radius = 0.8;
+  d.max_thickness = 9;
+  d.max_thickness_pos = 0.3;
+  out.push_back(d);                                  // thick, high turning, large edges
+  return out;
+}
+
+Vector2d direction(double degrees) {
+  const double a = degrees * 3.14159265358979323846 / 180;
+  return {std::cos(a), std::sin(a)};
+}
+
+}  // namespace
+
+TEST_CASE("camber: envelope-of-circles sections give the true camber line and parameters", "[camber]") {
+  int k = 0;
+  for (const SectionDesign& d : designs()) {
+    CAPTURE(k++);
+    const SectionTruth truth = section::section_truth(d, 20000);
+    const BSpline profile = dense_spline(truth.profile);
+    const section::CamberResult c = section::camber_line(profile);
+    const section::SectionParams p = section::section_params(profile, c);
+
+    double worst = 0;
+    for (const Vector2d& q : c.points) worst = std::max(worst, section::camber_distance(truth, q));
+    CHECK(worst < 1e-3);  // 1 um
+    CHECK((p.le_point - truth.le_point).norm() < 1e-3);
+    CHECK((p.te_point - truth.te_point).norm() < 1e-3);
+    CHECK((c.le.center - truth.le_center).norm() < 1e-3);
+    CHECK((c.te.center - truth.te_center).norm() < 1e-3);
+
+    CHECK(relative(p.chord, truth.chord) < 1e-4);
+    CHECK(relative(p.camber_length, truth.camber_length) < 1e-4);
+    CHECK(relative(p.max_thickness, truth.max_thickness) < 1e-4);
+    CHECK(relative(p.max_thickness_pos, truth.max_thickness_pos) < 1e-4);
+    CHECK(relative(p.le_radius, truth.le_radius) < 1e-4);
+    CHECK(relative(p.te_radius, truth.te_radius) < 1e-4);
+    CHECK(relative(p.area, truth.area) < 1e-4);
+    CHECK((p.centroid - truth.centroid).norm() < 1e-4 * truth.chord);
+    CHECK(relative(p.stagger, truth.stagger) < 1e-4);
+    // Angles: 1e-4 relative of the larger of the angle and 45 degrees (the outlet angle of a
+    // thin trailing edge carries ~0.005 deg from the spline fit of the edge junction).
+    CHECK(std::abs(p.inlet_angle - truth.inlet_angle) < 1e-4 * std::max(std::abs(truth.inlet_angle), 45.0));
+    CHECK(std::abs(p.outlet_angle - truth.outlet_angle) < 1e-4 * std::max(std::abs(truth.outlet_angle), 45.0));
+    CHECK(std::abs(p.camber_angle - (truth.inlet_angle - truth.outlet_angle)) < 1e-2);
+    // The curvature radius at the edge point carries the spline's O(h^2) curvature error.
+    CHECK(relative(p.le_curvature_radius, truth.le_radius) < 3e-3);
+    CHECK(relative(p.te_curvature_radius, truth.te_radius) < 3e-3);
+    CHECK(c.le.shape == section::EdgeShape::round);
+    CHECK(c.te.shape == section::EdgeShape::round);
+    CHECK_FALSE(c.le_by_direction);
+  }
+}
+
+TEST_CASE("camber: thickness stations match the true inscribed diameters", "[camber]") {
+  const SectionTruth truth = section::section_truth(section::turbine_blade().at(30), 20000);
+  const BSpline profile = dense_spline(truth.profile);
+  const section::CamberResult c = section::camber_line(profile);
+  const std::vector<double> fractions{0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.95};
+  const auto stations = section::thickness_stations(profile, c, fractions);
+  REQUIRE(stations.size() == fractions.size());
+  // Truth at the same arc-length fraction of the true camber line.
+  std::vector<double> s{0};
+  for (std::size_t i = 1; i < truth.camber.size(); ++i)
+    s.push_back(s.back() + (truth.camber[i] - truth.camber[i - 1]).norm());
+  for (const auto& st : stations) {
+    CAPTURE(st.fraction);
+    const double target = st.fraction * s.back();
+    const std::size_t i = std::upper_bound(s.begin(), s.end(), target) - s.begin();
+    const double w = (target - s[i - 1]) / (s[i] - s[i - 1]);
+    const Vector2d point = (1 - w) * truth.camber[i - 1] + w * truth.camber[i];
+    const double thickness = 2 * ((1 - w) * truth.camber_radius[i - 1] + w * truth.camber_radius[i]);
+    CHECK((st.point - point).norm() < 1e-3);
+    CHECK(relative(st.thickness, thickness) < 1e-4);
+    CHECK(std::abs((st.pressure - st.point).norm() - st.thickness / 2) < 1e-6);
+    CHECK(std::abs((st.suction - st.point).norm() - st.thickness / 2) < 1e-6);
+  }
+}
+
+TEST_CASE("camber: an ellipse's medial axis is the segment between its vertex curvature centres", "[camber]") {
+  for (const auto& [a, b] : {std::pair{10.0, 4.0}, std::pair{6.0, 1.5}}) {
+    CAPTURE(a, b);
+    std::vector<Vector2d> pts;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      const double t = 2 * 3.14159265358979323846 * i / n;
+      pts.push_back({a * std::cos(t), b * std::sin(t)});
+    }
+    const BSpline profile = dense_spline(pts);
+    const section::MedialAxis m = section::medial_axis(profile);
+    const double end = (a * a - b * b) / a;
+    double lo = 1e300, hi = -1e300, off = 0;
+    for (const auto& c : m.circles) {
+      lo = std::min(lo, c.center.x());
+      hi = std::max(hi, c.center.x());
+      off = std::max(off, std::abs(c.center.y()));
+      // Inscribed radius at (x, 0): distance to the ellipse, b sqrt(1 - x^2 / (a^2 - b^2)).
+      CHECK(std::abs(c.radius - b * std::sqrt(std::max(0.0, 1 - c.center.x() * c.center.x() / (a * a - b * b)))) < 1e-5);
+    }
+    CHECK(off < 1e-9);
+    // The ends are the vertices' centres of curvature, up to the spline's curvature error.
+    CHECK(std::abs(lo + end) < 2e-4 * a);
+    CHECK(std::abs(hi - end) < 2e-4 * a);
+  }
+}
+
+TEST_CASE("camber: orientation follows the thickness or the given direction", "[camber]") {
+  const SectionTruth truth = section::section_truth(SectionDesign{}, 8000);
+  const BSpline profile = dense_spline(truth.profile, 800);
+  const section::CamberResult c = section::camber_line(profile);
+  CHECK((c.le.point - truth.le_point).norm() < 1e-2);
+  // The pressure side is the concave one: the camber bulges away from it.
+  const section::Sides sides = section::split_sides(profile, c, 101);
+  const Vector2d chord = (c.te.point - c.le.point).normalized();
+  const Vector2d mid_camber = c.points[c.points.size() / 2];
+  auto side_of = [&](const Vector2d& q) { return chord.x() * (q - c.le.point).y() - chord.y() * (q - c.le.point).x(); };
+  CHECK(side_of(sides.suction[50]) * side_of(mid_camber) > 0);
+  CHECK(side_of(sides.pressure[50]) * side_of(mid_camber) < 0);
+  CHECK((sides.pressure.front() - c.le.point).norm() < 1e-9);
+  CHECK((sides.pressure.back() - c.te.point).norm() < 1e-9);
+
+  section::CamberOptions o;
+  o.le_direction = -direction(truth.stagger);  // point at the TE instead: the ends swap
+  const section::CamberResult f = section::camber_line(profile, o);
+  CHECK(f.le_by_direction);
+  CHECK((f.le.point - truth.te_point).norm() < 1e-2);
+  CHECK((f.te.point - truth.le_point).norm() < 1e-2);
+}
+
+TEST_CASE("camber: a circle and a square are not blades", "[camber]") {
+  std::vector<Vector2d> circle, square;
+  for (int i = 0; i < 2000; ++i) {
+    const double t = 2 * 3.14159265358979323846 * i / 2000;
+    circle.push_back({5 * std::cos(t), 5 * std::sin(t)});
+  }
+  for (int side = 0; side < 4; ++side)
+    for (int i = 0; i < 500; ++i) {
+      const double s = -5 + 10.0 * i / 500;
+      const Vector2d q[4] = {{s, -5}, {5, s}, {-s, 5}, {-5, -s}};
+      square.push_back(q[side]);
+    }
+  CHECK_THROWS_WITH(section::camber_line(dense_spline(circle, 400)), Catch::Contains("not blade-like"));
+  CHECK_THROWS_AS(section::camber_line(dense_spline(square, 400)), section::Error);
+}
+
+TEST_CASE("camber: stream stage writes the tables and flags a two-loop section", "[camber]") {
+  const SectionTruth truth = section::section_truth(section::compressor_blade().at(30), 8000);
+  const BSpline profile = dense_spline(truth.profile, 800);
+  section::Stream stream = section::profile_stream(profile);
+  section::CamberOptions o;
+  o.stations = {0.25, 0.5, 0.75};
+  section::camber_stream(stream, o);
+  REQUIRE(stream.find("params"));
+  CHECK(stream.find("params")->rows() == 1);
+  CHECK(stream.find("thickness")->rows() == 3);
+  CHECK(stream.find("camber")->rows() == static_cast<std::size_t>(o.samples));
+  CHECK(stream.find("sides")->rows() == static_cast<std::size_t>(2 * o.side_samples));
+  const section::Table& params = *stream.find("params");
+  CHECK(relative(params.at(0, params.column("chord")), truth.chord) < 1e-3);
+  CHECK(stream.issues.empty());
+
+  // A second loop in section 0: an issue, no made-up camber line.
+  section::Stream two = section::profile_stream(profile);
+  for (const char* name : {"splines", "spline_knots", "spline_ctrl"}) {
+    section::Table* t = two.find(name);
+    const std::size_t rows = t->rows(), loop = t->column("loop");
+    for (std::size_t r = 0; r < rows; ++r) {
+      std::vector<double> row(t->values.begin() + r * t->columns.size(),
+                              t->values.begin() + (r + 1) * t->columns.size());
+      row[loop] = 1;
+      t->add_row(row);
+    }
+  }
+  section::camber_stream(two, o);
+  CHECK(two.find("params")->rows() == 0);
+  REQUIRE(two.issues.size() == 1);
+  CHECK(two.issues[0].stage == "camber");
+  CHECK(two.issues[0].message.find("2 loops") != std::string::npos);
+}

@@ -1,0 +1,119 @@
+// camber: mean-camber line and blade section parameters of every section of a pipe stream.
+#include "common/tool.h"
+
+#include "section/camber.h"
+#include "section/error.h"
+#include "section/fit_spline.h"
+#include "section/pipe.h"
+
+#include <iostream>
+#include <sstream>
+
+namespace {
+
+const char* const description =
+    "camber: mean-camber line and section parameters (docs/CAMBER.md).\n\n"
+    "Reads the stream written by fitspline (docs/FORMAT.md) or a plain ordered 2D profile\n"
+    "(x y per line, an airfoil .dat or CMM section; a title line is skipped), and for the\n"
+    "profile (loop 0) of every section computes the mean-camber line (the locus of the\n"
+    "inscribed circles' centres, extended along its end tangents to the LE and TE points)\n"
+    "and the section parameters. Adds the tables 'camber', 'params', 'thickness' and\n"
+    "'sides' to the stream; sections that fail are recorded as issues.\n\n"
+    "Example: slice blade.ply --count 9 | smooth | fitspline | camber --params params.csv";
+
+std::string table_csv(const section::Table& table) {
+  std::string out;
+  for (std::size_t c = 0; c < table.columns.size(); ++c) out += (c ? "," : "") + table.columns[c];
+  out += "\n";
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    for (std::size_t c = 0; c < table.columns.size(); ++c)
+      out += (c ? "," : "") + section::format_number(table.at(r, c));
+    out += "\n";
+  }
+  return out;
+}
+
+// "a,b,c" -> numbers; throws section::Error naming the flag.
+std::vector<double> numbers(const std::string& text, const std::string& flag) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      std::size_t used = 0;
+      out.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw CLI::ValidationError(flag, "expected numbers separated by commas, found '" + item + "'");
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  section::tool::Common common;
+  section::CamberOptions options;
+  std::string params_file, thickness_file, stations, le_direction, edge = "round";
+  return section::tool::run_tool(
+      "camber", description, argc, argv,
+      [&](CLI::App& app) {
+        section::tool::add_common(app, common);
+        app.add_option("--params", params_file, "Also write the 'params' table to FILE (CSV)");
+        app.add_option("--thickness", thickness_file, "Also write the 'thickness' table to FILE (CSV)");
+        app.add_option("--stations", stations,
+                       "Thickness stations, fractions of the camber length (default 0.05,0.1,...,0.95)")
+            ->check([](const std::string& s) {
+              try {
+                for (double f : numbers(s, "--stations"))
+                  if (!(f >= 0 && f <= 1)) return std::string("stations must lie in [0, 1]");
+              } catch (const CLI::ValidationError& e) {
+                return std::string(e.what());
+              }
+              return std::string();
+            });
+        app.add_option("--le-direction", le_direction,
+                       "u,v: the leading edge is the end lying farther along this direction "
+                       "(default: the end nearer the maximum thickness)")
+            ->check([](const std::string& s) {
+              try {
+                const auto v = numbers(s, "--le-direction");
+                if (v.size() != 2 || (v[0] == 0 && v[1] == 0)) return std::string("expected two numbers u,v, not both 0");
+              } catch (const CLI::ValidationError& e) {
+                return std::string(e.what());
+              }
+              return std::string();
+            });
+        app.add_option("--edge", edge, "Edge model: round (circle fitted to every edge) or auto "
+                                       "(blunt and sharp edges get radius 0)")
+            ->check(CLI::IsMember({"round", "auto"}))->capture_default_str();
+        app.add_option("--edge-arc", options.edge_arc, "Degrees of the edge arc the edge circle is fitted to")
+            ->check(CLI::Range(10.0, 270.0))->capture_default_str();
+      },
+      [&] {
+        if (!stations.empty()) options.stations = numbers(stations, "--stations");
+        if (!le_direction.empty()) {
+          const auto v = numbers(le_direction, "--le-direction");
+          options.le_direction = {v[0], v[1]};
+        }
+        options.edge = edge == "auto" ? section::EdgeModel::automatic : section::EdgeModel::round;
+        const std::string text = section::read_file(common.input);
+        const std::string source = common.input == "-" ? "<stdin>" : common.input;
+        section::Stream stream;
+        if (text.rfind("# libsection-stream", 0) == 0) {
+          stream = section::parse_stream(text, source);
+        } else {
+          const auto points = section::parse_profile(text, source);
+          stream = section::profile_stream(section::fit_spline(points, points).spline);
+        }
+        section::camber_stream(stream, options);
+        for (const auto& issue : stream.issues)
+          if (issue.stage == "camber")
+            std::cerr << "camber: warning: section " << issue.section << ": " << issue.message << "\n";
+        stream.history.push_back(section::tool::command_line(argc, argv));
+        if (!params_file.empty()) section::write_file(params_file, table_csv(*stream.find("params")));
+        if (!thickness_file.empty()) section::write_file(thickness_file, table_csv(*stream.find("thickness")));
+        section::write_stream(common.output, stream);
+      });
+}
