@@ -160,18 +160,21 @@ TEST_CASE("camber: orientation follows the thickness or the given direction", "[
   const BSpline profile = dense_spline(truth.profile, 800);
   const section::CamberResult c = section::camber_line(profile);
   CHECK((c.le.point - truth.le_point).norm() < 1e-2);
-  // The pressure side is the concave one: the camber bulges away from it.
+  // The pressure side is the concave one: the camber line bulges away from it, so at
+  // mid-camber the pressure side lies on the chord's side of the camber line.
   const section::Sides sides = section::split_sides(profile, c, 101);
   const Vector2d chord = (c.te.point - c.le.point).normalized();
-  const Vector2d mid_camber = c.points[c.points.size() / 2];
-  auto side_of = [&](const Vector2d& q) { return chord.x() * (q - c.le.point).y() - chord.y() * (q - c.le.point).x(); };
-  CHECK(side_of(sides.suction[50]) * side_of(mid_camber) > 0);
-  CHECK(side_of(sides.pressure[50]) * side_of(mid_camber) < 0);
+  const std::size_t mid = c.points.size() / 2;
+  const Vector2d tangent = (c.points[mid + 1] - c.points[mid - 1]).normalized();
+  auto cross = [](const Vector2d& u, const Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double bulge = cross(chord, c.points[mid] - c.le.point);
+  CHECK(cross(tangent, sides.pressure[50] - c.points[mid]) * bulge < 0);
+  CHECK(cross(tangent, sides.suction[50] - c.points[mid]) * bulge > 0);
   CHECK((sides.pressure.front() - c.le.point).norm() < 1e-9);
   CHECK((sides.pressure.back() - c.te.point).norm() < 1e-9);
 
   section::CamberOptions o;
-  o.le_direction = -direction(truth.stagger);  // point at the TE instead: the ends swap
+  o.le_direction = direction(truth.stagger);  // point at the TE instead: the ends swap
   const section::CamberResult f = section::camber_line(profile, o);
   CHECK(f.le_by_direction);
   CHECK((f.le.point - truth.te_point).norm() < 1e-2);
@@ -227,4 +230,33 @@ TEST_CASE("camber: stream stage writes the tables and flags a two-loop section",
   REQUIRE(two.issues.size() == 1);
   CHECK(two.issues[0].stage == "camber");
   CHECK(two.issues[0].message.find("2 loops") != std::string::npos);
+}
+
+TEST_CASE("camber: a NACA 0012 with a closed trailing edge has a round LE and a sharp TE", "[camber]") {
+  // Chord 100, thickness 12; the closed-TE coefficient -0.1036 makes a wedge of ~16 deg.
+  auto half = [](double x) {
+    return 0.6 * (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x - 0.1036 * x * x * x * x);
+  };
+  std::vector<Vector2d> pts;
+  const int m = 2000;
+  const double pi = 3.14159265358979323846;
+  for (int i = 0; i < m; ++i) {
+    const double x = 0.5 * (1 + std::cos(pi * i / m));
+    pts.push_back({100 * x, -100 * half(x)});
+  }
+  for (int i = 0; i < m; ++i) {
+    const double x = 0.5 * (1 - std::cos(pi * i / m));
+    pts.push_back({100 * x, 100 * half(x)});
+  }
+  section::CamberOptions o;
+  o.edge = section::EdgeModel::automatic;
+  const section::CamberResult c = section::camber_line(dense_spline(pts), o);
+  CHECK(c.le.shape == section::EdgeShape::round);
+  CHECK(c.te.shape == section::EdgeShape::sharp);
+  CHECK(c.te.radius == 0);
+  // NACA leading-edge radius 1.1019 t^2 c = 1.587 (curvature radius at the nose).
+  CHECK(std::abs(c.le.curvature_radius - 1.1019 * 0.12 * 0.12 * 100) < 0.01);
+  CHECK(c.le.point.norm() < 1e-3);
+  CHECK((c.te.point - Vector2d(100, 0)).norm() < 0.05);
+  CHECK(std::abs(c.points[c.points.size() / 2].y()) < 1e-6);  // symmetric: camber on the chord
 }

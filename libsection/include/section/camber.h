@@ -73,6 +73,7 @@ struct CamberOptions {
   MedialAxisOptions medial;        ///< medial-axis seeding and refinement
   EdgeModel edge = EdgeModel::round;  ///< edge model, see EdgeModel
   double edge_arc = 120;           ///< degrees: the edge arc is the profile around the edge point whose normal turns at most edge_arc/2 either way
+  double edge_prune = 20;          ///< degrees: medial circles at the ends whose contacts subtend less than twice this are noise, trimmed
   double blunt_flatness = 2;       ///< an edge is blunt when its curvature radius at the edge point exceeds this many fitted radii (flat tip)
   double blunt_rms = 0.02;         ///< ... and the fit rms exceeds this fraction of the fitted radius
   double sharp_ratio = 0.01;       ///< an edge is sharp when its fitted radius is below this fraction of the largest inscribed diameter

@@ -9,9 +9,9 @@
 /// With the lengths l_i frozen, grad E = 0 is one linear system (cyclic pentadiagonal,
 /// symmetric positive definite, the same for u and v). Each outer iteration freezes the
 /// lengths at the current points, solves that system, and updates the lengths; it stops
-/// when the shape no longer moves, E no longer changes, or a step would raise E. E_C has units 1/length and E_S
-/// length^2, so `a` depends on the units and on the point spacing: `smoothing_length`
-/// gives a scale-free strength instead (docs/SMOOTH.md derives it).
+/// when the shape no longer moves, E no longer changes, or a step would raise E. E_C has
+/// units 1/length and E_S length^2, so `a` depends on the units and on the point spacing:
+/// `smoothing_length` gives a scale-free strength instead (docs/SMOOTH.md derives it).
 #include <Eigen/Core>
 
 #include <string>
