@@ -90,6 +90,7 @@ int main(int argc, char** argv) {
             ->check(CLI::IsMember({"round", "auto"}))->capture_default_str();
         app.add_option("--edge-arc", options.edge_arc, "Degrees of the edge arc the edge circle is fitted to")
             ->check(CLI::Range(10.0, 270.0))->capture_default_str();
+        app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
       },
       [&] {
         if (!stations.empty()) options.stations = numbers(stations, "--stations");

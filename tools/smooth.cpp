@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
         app.add_option("--max-iterations", options.max_iterations, "Cap on outer iterations")
             ->check(CLI::Range(1, 100000))->capture_default_str();
         app.add_option("--report", report, "Write the per-loop statistics (CSV) to FILE");
+        app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
       },
       [&] {
         options.solver = section::parse_smooth_solver(solver);
