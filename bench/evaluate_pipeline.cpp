@@ -1,7 +1,15 @@
-// evaluate_pipeline: runs slice | smooth | fitspline (through the stream text, as the
-// tools do) on generated blades and prints, per section, the fitted curve's distance to
-// the exact profile. Usage: evaluate_pipeline [seeds] [misregistration_mm]
+// evaluate_pipeline: runs slice | smooth | fitspline | camber (through the stream text, as
+// the tools do) on generated blades and prints, per section, the fitted curve's distance to
+// the exact profile and the camber line and section parameters against section_truth.
+// Usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM]
+//                          [--preset turbine|compressor|both] [--no-camber] [--quiet]
+// Legacy positional form: evaluate_pipeline [seeds] [misregistration_mm].
+// Columns: rms_um/max_um fitted curve to truth (max only where a measured point lies within
+// 0.3 mm; gap_um the largest error elsewhere: a bridged hole); cam_rms/cam_max camber line
+// to the true camber line (extensions included); d_chord, d_tmax in um; d_rle, d_rte in %;
+// d_in, d_out in degrees. The last lines give the worst values and the targets.
 #include "section/bspline.h"
+#include "section/camber.h"
 #include "section/fit_spline.h"
 #include "section/generate.h"
 #include "section/pipe.h"
@@ -13,20 +21,96 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
+#include <map>
+#include <string>
 
 using namespace section;
 
+namespace {
+
+double wrap_deg(double a) {
+  while (a > 180) a -= 360;
+  while (a <= -180) a += 360;
+  return a;
+}
+
+struct Worst {
+  double rms = 0, max = 0, gap = 0, cam_rms = 0, cam_max = 0, chord = 0, tmax = 0, rle = 0, rte = 0,
+         in = 0, out = 0;
+  int sections = 0, fit_failed = 0, camber_failed = 0;
+  void take(const Worst& o) {
+    rms = std::max(rms, o.rms);
+    max = std::max(max, o.max);
+    gap = std::max(gap, o.gap);
+    cam_rms = std::max(cam_rms, o.cam_rms);
+    cam_max = std::max(cam_max, o.cam_max);
+    chord = std::max(chord, o.chord);
+    tmax = std::max(tmax, o.tmax);
+    rle = std::max(rle, o.rle);
+    rte = std::max(rte, o.rte);
+    in = std::max(in, o.in);
+    out = std::max(out, o.out);
+  }
+};
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  const int seeds = argc > 1 ? std::atoi(argv[1]) : 1;
-  const double misregistration = argc > 2 ? std::atof(argv[2]) : 0.0;
+  int seeds = 1, first_seed = 1;
+  double misregistration = 0.0;
+  std::string preset = "both";
+  std::string export_dir;  // --export DIR: per-section CSVs for scripts/compare_scipy.py
+  bool with_camber = true, quiet = false;
+  FitSplineOptions fit_options;
+  CamberOptions camber_options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "evaluate_pipeline: %s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--seeds") seeds = std::atoi(value());
+    else if (a == "--first-seed") first_seed = std::atoi(value());
+    else if (a == "--misregistration") misregistration = std::atof(value());
+    else if (a == "--preset") preset = value();
+    else if (a == "--no-camber") with_camber = false;
+    else if (a == "--export") export_dir = value();
+    else if (a == "--min-span-points") fit_options.min_span_points = std::atof(value());
+    else if (a == "--min-span") fit_options.min_span = std::atof(value());
+    else if (a == "--tolerance") fit_options.tolerance = std::atof(value());
+    else if (a == "--edge-arc") camber_options.edge_arc = std::atof(value());
+    else if (a == "--edge-prune") camber_options.edge_prune = std::atof(value());
+    else if (a == "--tangent-span") camber_options.tangent_span = std::atof(value());
+    else if (a == "--quiet") quiet = true;
+    else if (a == "--help" || a == "-h") {
+      std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] "
+                  "[--preset turbine|compressor|both] [--no-camber] [--quiet] [--export DIR]\n"
+                  "       fit options: [--min-span-points N] [--min-span MM] [--tolerance MM]; camber: [--edge-arc DEG] "
+                  "[--edge-prune DEG] [--tangent-span FRACTION]\n");
+      return 0;
+    } else if (i == 1 && std::isdigit(static_cast<unsigned char>(a[0]))) seeds = std::atoi(a.c_str());
+    else if (i == 2 && (std::isdigit(static_cast<unsigned char>(a[0])) || a[0] == '.'))
+      misregistration = std::atof(a.c_str());
+    else {
+      std::fprintf(stderr, "evaluate_pipeline: unknown argument '%s'\n", a.c_str());
+      return 2;
+    }
+  }
   try {
-    std::printf("%-10s %4s %3s %6s %9s %9s %9s %9s %7s\n", "blade", "seed", "sec", "z", "rms_um", "max_um",
-                "maxgap_um", "p95_um", "ms/sec");
-    double worst_rms = 0, worst_max = 0;
+    std::printf("%-10s %4s %3s %5s %7s %7s %7s %7s %7s %7s %7s %6s %6s %6s %6s %6s\n", "blade", "seed",
+                "sec", "z", "rms_um", "max_um", "gap_um", "camrms", "cammax", "dchord", "dtmax", "drle%",
+                "drte%", "d_in", "d_out", "ms");
+    std::map<std::string, Worst> worst;
     for (const char* kind : {"turbine", "compressor"}) {
+      if (preset != "both" && preset != kind) continue;
+      Worst& W = worst[kind];
       const BladeDesign blade = std::string(kind) == "turbine" ? turbine_blade() : compressor_blade();
-      for (int seed = 1; seed <= seeds; ++seed) {
+      for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
         std::vector<double> zs;
         for (int k = 1; k <= 9; ++k) zs.push_back(blade.span * k / 10.0);
         ScanOptions so;
@@ -35,7 +119,6 @@ int main(int argc, char** argv) {
         so.density_min = 0.25;
         so.outlier_fraction = 0.0002;
         so.misregistration = misregistration;
-        so.seed = static_cast<std::uint64_t>(seed);
         // Scan only bands around the planes: the same data in the slabs, far fewer points.
         Cloud cloud;
         for (double z : zs) {
@@ -51,16 +134,27 @@ int main(int argc, char** argv) {
         Stream stream = parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");
         smooth_stream(stream);
         stream = parse_stream(format_stream(stream), "smooth");
-        fit_spline_stream(stream);
+        fit_spline_stream(stream, fit_options);
         stream = parse_stream(format_stream(stream), "fitspline");
+        if (with_camber) {
+          camber_stream(stream, camber_options);
+          stream = parse_stream(format_stream(stream), "camber");
+        }
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / zs.size();
         const auto curves = splines(stream);
         const Table& pts = stream.get("points", "slice");
+        const Table* cam = stream.find("camber");
+        const Table* par = stream.find("params");
         for (std::size_t k = 0; k < zs.size(); ++k) {
           const int id = static_cast<int>(k);
+          ++W.sections;
           const auto it = curves.find({id, 0});
           if (it == curves.end()) {
-            std::printf("%-10s %4d %3d %6.1f   FAILED\n", kind, seed, id, zs[k]);
+            ++W.fit_failed;
+            std::string why;
+            for (const auto& is : stream.issues)
+              if (is.section == id) why += is.stage + ": " + is.message + "; ";
+            std::printf("%-10s %4d %3d %5.1f   FIT FAILED %s\n", kind, seed, id, zs[k], why.c_str());
             continue;
           }
           std::vector<Eigen::Vector2d> measured;
@@ -68,27 +162,143 @@ int main(int argc, char** argv) {
             if (int(pts.at(r, 0)) == id && int(pts.at(r, 1)) == 0) measured.emplace_back(pts.at(r, 3), pts.at(r, 4));
           const SectionTruth truth = section_truth(blade.at(zs[k]));
           const auto samples = sample(it->second, 20000);
-          std::vector<double> d, dgap;
-          double sum = 0, mx = 0, mxgap = 0;
+          Worst e;
+          double sum = 0, where_max = 0, where_gap = 0;
           for (const auto& p : samples) {
-            const double e = locate(truth, p).distance;
+            const double d = locate(truth, p).distance;
             double near = INFINITY;
             for (const auto& m : measured) near = std::min(near, (m - p).squaredNorm());
-            sum += e * e;
-            d.push_back(e);
-            if (near <= 0.09) mx = std::max(mx, e);
-            else mxgap = std::max(mxgap, e);
+            sum += d * d;
+            if (near <= 0.09) {
+              if (d > e.max) where_max = locate(truth, p).s;
+              e.max = std::max(e.max, d);
+            } else {
+              if (d > e.gap) where_gap = locate(truth, p).s;
+              e.gap = std::max(e.gap, d);
+            }
           }
-          std::sort(d.begin(), d.end());
-          const double rms = std::sqrt(sum / samples.size());
-          worst_rms = std::max(worst_rms, rms);
-          worst_max = std::max(worst_max, mx);
-          std::printf("%-10s %4d %3d %6.1f %9.2f %9.2f %9.2f %9.2f %7.0f\n", kind, seed, id, zs[k], rms * 1e3, mx * 1e3,
-                      mxgap * 1e3, d[d.size() * 95 / 100] * 1e3, ms);
+          e.rms = std::sqrt(sum / samples.size());
+          std::string line;
+          char buf[256];
+          std::snprintf(buf, sizeof buf, "%-10s %4d %3d %5.1f %7.2f %7.2f %7.2f", kind, seed, id, zs[k], e.rms * 1e3,
+                        e.max * 1e3, e.gap * 1e3);
+          line = buf;
+          if (with_camber) {
+            long row = -1;
+            for (std::size_t r = 0; par && r < par->rows(); ++r)
+              if (int(par->at(r, 0)) == id) row = static_cast<long>(r);
+            if (row < 0) {
+              ++W.camber_failed;
+              std::string why;
+              for (const auto& is : stream.issues)
+                if (is.section == id) why += is.stage + ": " + is.message + "; ";
+              line += "   CAMBER FAILED " + why;
+            } else {
+              const Table& P = *par;
+              auto v = [&](const char* c) { return P.at(static_cast<std::size_t>(row), P.column(c)); };
+              double csum = 0, cmax = 0;
+              int cn = 0;
+              const std::size_t cu = cam->column("u"), cv = cam->column("v");
+              for (std::size_t r = 0; r < cam->rows(); ++r) {
+                if (int(cam->at(r, 0)) != id) continue;
+                const double d = camber_distance(truth, {cam->at(r, cu), cam->at(r, cv)});
+                csum += d * d;
+                cmax = std::max(cmax, d);
+                ++cn;
+              }
+              e.cam_rms = cn ? std::sqrt(csum / cn) : 0;
+              e.cam_max = cmax;
+              e.chord = std::abs(v("chord") - truth.chord);
+              e.tmax = std::abs(v("max_thickness") - truth.max_thickness);
+              e.rle = std::abs(v("le_radius") / truth.le_radius - 1);
+              e.rte = std::abs(v("te_radius") / truth.te_radius - 1);
+              e.in = std::abs(wrap_deg(v("inlet_angle") - truth.inlet_angle));
+              e.out = std::abs(wrap_deg(v("outlet_angle") - truth.outlet_angle));
+              std::snprintf(buf, sizeof buf, " %7.2f %7.2f %7.2f %7.2f %6.2f %6.2f %6.3f %6.3f", e.cam_rms * 1e3,
+                            e.cam_max * 1e3, (v("chord") - truth.chord) * 1e3,
+                            (v("max_thickness") - truth.max_thickness) * 1e3, e.rle * 100, e.rte * 100,
+                            wrap_deg(v("inlet_angle") - truth.inlet_angle),
+                            wrap_deg(v("outlet_angle") - truth.outlet_angle));
+              line += buf;
+            }
+          }
+          W.take(e);
+          // --export: the slab points with their true arc length, the dense true profile and
+          // our scores, so that another fitter can be run on the same data.
+          if (!export_dir.empty()) {
+            char name[512];
+            std::snprintf(name, sizeof name, "%s/%s_%d_%d_points.csv", export_dir.c_str(), kind, seed, id);
+            if (FILE* f = std::fopen(name, "w")) {
+              std::fprintf(f, "u,v,true_s\n");
+              for (const auto& m : measured) std::fprintf(f, "%.9g,%.9g,%.9g\n", m.x(), m.y(), locate(truth, m).s);
+              std::fclose(f);
+            }
+            std::snprintf(name, sizeof name, "%s/%s_%d_%d_truth.csv", export_dir.c_str(), kind, seed, id);
+            if (FILE* f = std::fopen(name, "w")) {
+              std::fprintf(f, "u,v\n");
+              for (std::size_t i = 0; i < truth.profile.size(); i += 2)
+                std::fprintf(f, "%.9g,%.9g\n", truth.profile[i].x(), truth.profile[i].y());
+              std::fclose(f);
+            }
+            std::snprintf(name, sizeof name, "%s/scores.csv", export_dir.c_str());
+            FILE* probe = std::fopen(name, "r");
+            const bool fresh = !probe;
+            if (probe) std::fclose(probe);
+            if (FILE* f = std::fopen(name, "a")) {
+              if (fresh) std::fprintf(f, "blade,seed,section,rms_um,max_um,gap_um,ms_per_section\n");
+              std::fprintf(f, "%s,%d,%d,%.4f,%.4f,%.4f,%.1f\n", kind, seed, id, e.rms * 1e3, e.max * 1e3, e.gap * 1e3, ms);
+              std::fclose(f);
+            }
+          }
+          // EVALUATE_DUMP=preset:seed:section writes the measured points and the fitted curve
+          // with their signed truth distances, for a closer look at one case.
+          if (const char* dump = std::getenv("EVALUATE_DUMP")) {
+            char want[64];
+            std::snprintf(want, sizeof want, "%s:%d:%d", kind, seed, id);
+            if (std::string(dump) == want) {
+              FILE* f = std::fopen("evaluate_dump.csv", "w");
+              std::fprintf(f, "kind,u,v,s,d\n");
+              auto put = [&](const char* what, const Eigen::Vector2d& p) {
+                const ProfileLocation l = locate(truth, p);
+                std::fprintf(f, "%s,%.6f,%.6f,%.6f,%.6f\n", what, p.x(), p.y(), l.s, l.distance);
+              };
+              for (const auto& m : measured) put("m", m);
+              for (std::size_t i = 0; i < samples.size(); i += 4) put("c", samples[i]);
+              if (const Table* sm = stream.find("smoothed"))
+                for (std::size_t r = 0; r < sm->rows(); ++r)
+                  if (int(sm->at(r, 0)) == id) put("s", {sm->at(r, sm->column("u")), sm->at(r, sm->column("v"))});
+              std::fprintf(f, "te,%.6f,%.6f,%.6f,0\n", truth.te_point.x(), truth.te_point.y(), truth.te_s);
+              std::fclose(f);
+            }
+          }
+          // Where the largest errors are: arc length from the LE point, and from the TE point.
+          auto at = [&](double s) {
+            const double P = truth.perimeter;
+            const double le = std::min(s, P - s), te = std::abs(s - truth.te_s);
+            char w[48];
+            std::snprintf(w, sizeof w, le < te ? "LE%+.1f" : "TE%+.1f", le < te ? (s > P / 2 ? s - P : s) : s - truth.te_s);
+            return std::string(w);
+          };
+          std::snprintf(buf, sizeof buf, " %6.0f  max@%s gap@%s", ms, at(where_max).c_str(), at(where_gap).c_str());
+          line += buf;
+          if (!quiet) std::printf("%s\n", line.c_str());
         }
       }
     }
-    std::printf("worst: rms %.2f um, max (measured within 0.3 mm) %.2f um\n", worst_rms * 1e3, worst_max * 1e3);
+    const bool misreg = misregistration > 0;
+    for (const auto& [kind, W] : worst) {
+      std::printf("worst %-10s (%d sections, %d fit failed, %d camber failed): fit rms %.2f um, max %.2f um "
+                  "(measured within 0.3 mm), hole bridging %.2f um\n",
+                  kind.c_str(), W.sections, W.fit_failed, W.camber_failed, W.rms * 1e3, W.max * 1e3, W.gap * 1e3);
+      if (with_camber)
+        std::printf("      %-10s camber rms %.2f um, max %.2f um; chord %.2f um, max thickness %.2f um, "
+                    "LE radius %.2f%%, TE radius %.2f%%, inlet %.3f deg, outlet %.3f deg\n",
+                    kind.c_str(), W.cam_rms * 1e3, W.cam_max * 1e3, W.chord * 1e3, W.tmax * 1e3, W.rle * 100,
+                    W.rte * 100, W.in, W.out);
+    }
+    std::printf("targets: fit rms <= %s um, max <= %s um; camber rms <= 3 um, max <= 15 um, chord 10 um, "
+                "max thickness 5 um, LE radius 3%%, TE radius 10%%, angles 0.5 deg\n",
+                misreg ? "10" : "3", misreg ? "25" : "15");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "evaluate_pipeline: error: %s\n", e.what());
     return 1;

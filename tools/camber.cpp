@@ -90,6 +90,9 @@ int main(int argc, char** argv) {
             ->check(CLI::IsMember({"round", "auto"}))->capture_default_str();
         app.add_option("--edge-arc", options.edge_arc, "Degrees of the edge arc the edge circle is fitted to")
             ->check(CLI::Range(10.0, 270.0))->capture_default_str();
+        app.add_option("--tangent-span", options.tangent_span,
+                       "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)")
+            ->check(CLI::Range(0.0, 0.5))->capture_default_str();
         app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
       },
       [&] {
@@ -102,13 +105,16 @@ int main(int argc, char** argv) {
         const std::string text = section::read_file(common.input);
         const std::string source = common.input == "-" ? "<stdin>" : common.input;
         section::Stream stream;
-        if (text.rfind("# libsection-stream", 0) == 0) {
+        const std::size_t bom = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // parse_stream skips it
+        if (text.compare(bom, 19, "# libsection-stream") == 0) {
           stream = section::parse_stream(text, source);
         } else {
           const auto points = section::parse_profile(text, source);
-          stream = section::profile_stream(section::fit_spline(points, points).spline);
+          section::tool::with_input(common.input, [&] {
+            stream = section::profile_stream(section::fit_spline(points, points).spline);
+          });
         }
-        section::camber_stream(stream, options);
+        section::tool::with_input(common.input, [&] { section::camber_stream(stream, options); });
         for (const auto& issue : stream.issues)
           if (issue.stage == "camber")
             std::cerr << "camber: warning: section " << issue.section << ": " << issue.message << "\n";

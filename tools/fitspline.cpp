@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
       },
       [&] {
         section::Stream stream = section::read_stream(common.input);
-        section::fit_spline_stream(stream, options);
+        section::tool::with_input(common.input, [&] { section::fit_spline_stream(stream, options); });
         stream.history.push_back(section::tool::command_line(argc, argv));
         for (const auto& issue : stream.issues) {
           if (issue.stage != "fitspline") continue;
@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
         }
         const section::Table* fitted = stream.find("splines");
         if (fitted && fitted->rows() == 0 && stream.find("points") && stream.get("points", "slice").rows() > 0)
-          throw section::Error("no loop could be fitted (see the warnings above)");
+          throw section::Error((common.input == "-" ? std::string("<stdin>") : common.input) +
+                               ": no loop could be fitted (see the warnings above)");
         section::write_stream(common.output, stream);
       });
 }

@@ -69,17 +69,20 @@ int main(int argc, char** argv) {
         if (common.input != "-" && section::is_mesh_file(common.input)) {
           const section::Mesh mesh = section::read_mesh(common.input);
           if (count > 0) planes = section::planes_across(mesh.vertices, n, count);
-          result = section::slice(mesh, planes, options);
+          section::tool::with_input(common.input, [&] { result = section::slice(mesh, planes, options); });
         } else {
-          const section::Cloud cloud = section::read_cloud(common.input);
-          if (count > 0) planes = section::planes_across(cloud.points, n, count);
-          result = section::slice(cloud, planes, options);
+          // Streamed: only the slab points are held, not the cloud. Read errors name the file
+          // already, so with_input leaves them as they are.
+          section::tool::with_input(common.input, [&] {
+            result = section::slice_file(common.input, section::PlaneSpec{planes, n, count}, options);
+          });
         }
         const section::Stream stream = section::to_stream(result, section::tool::command_line(argc, argv), units);
         for (const auto& issue : stream.issues)
           std::cerr << "slice: warning: section " << issue.section << ": " << issue.message << "\n";
         if (stream.issues.size() == result.sections.size())
-          throw section::Error("no section could be sliced (see the warnings above)");
+          throw section::Error((common.input == "-" ? std::string("<stdin>") : common.input) +
+                               ": no section could be sliced (see the warnings above)");
         section::write_stream(common.output, stream);
       });
 }

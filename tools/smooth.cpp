@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
       [&] {
         options.solver = section::parse_smooth_solver(solver);
         section::Stream stream = section::read_stream(common.input);
-        section::smooth_stream(stream, options);
+        section::tool::with_input(common.input, [&] { section::smooth_stream(stream, options); });
         for (const auto& issue : stream.issues)
           if (issue.stage == "smooth")
             std::cerr << "smooth: warning: section " << issue.section << " loop " << issue.loop

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tuple>
 
 namespace section {
 
@@ -187,6 +188,36 @@ struct Axis {
     return FastCurve(spline).jet(std::clamp(u, a, b)).d1.normalized();
   }
 };
+
+// Unit tangent (toward the TE end of `c`) at one end of a chain of camber points: quadratic
+// least squares over the points within `span` (arc length along them) of that end. The
+// axis spline's own end slope follows the last few centres, whose contacts lie where a
+// measured profile is noisiest (the edge-arc junction); a quadratic over a longer stretch
+// averages that noise and still follows the camber's curvature. Zero when too few points.
+Eigen::Vector2d end_tangent(const std::vector<Eigen::Vector2d>& c, bool front, double span) {
+  const std::size_t n = c.size();
+  std::vector<Eigen::Vector2d> p;
+  std::vector<double> s;
+  double acc = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d& q = c[front ? k : n - 1 - k];
+    if (!p.empty()) acc += (q - p.back()).norm();
+    if (p.size() >= 6 && acc > span) break;
+    p.push_back(q);
+    s.push_back(acc);
+  }
+  if (p.size() < 6 || !(s.back() > 0)) return Eigen::Vector2d::Zero();
+  Eigen::MatrixXd A(p.size(), 4), B(p.size(), 2);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double x = s[i] / s.back();
+    A.row(i) << 1, x, x * x, x * x * x;
+    B.row(i) = p[i].transpose();
+  }
+  const Eigen::MatrixXd X = A.colPivHouseholderQr().solve(B);
+  const Eigen::Vector2d d = X.row(1).transpose();
+  if (!(d.norm() > 0)) return Eigen::Vector2d::Zero();
+  return (front ? 1.0 : -1.0) * d.normalized();
+}
 
 Axis make_axis(const std::vector<Eigen::Vector2d>& pts, double fairness) {
   // Drop repeated points (Delaunay fans share circumcentres).
@@ -603,8 +634,22 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
     return c;
   }(), 1e-8);
   Edge le, te;
+  // End tangents: fitted over tangent_span of the axis (see end_tangent), else the spline's.
+  auto tangents = [&](const std::vector<InscribedCircle>& cs) {
+    std::pair<Eigen::Vector2d, Eigen::Vector2d> t{ax.tangent(ax.a), ax.tangent(ax.b)};
+    if (options.tangent_span > 0) {
+      std::vector<Eigen::Vector2d> c;
+      for (const auto& x : cs) c.push_back(x.center);
+      const double span = options.tangent_span * axis_length;
+      const Eigen::Vector2d a = end_tangent(c, true, span), b = end_tangent(c, false, span);
+      if (a.norm() > 0) t.first = a;
+      if (b.norm() > 0) t.second = b;
+    }
+    return t;
+  };
   for (int it = 0; it < 3; ++it) {
-    const Eigen::Vector2d d_le = -ax.tangent(ax.a), d_te = ax.tangent(ax.b);
+    const auto tg = tangents(circles);
+    const Eigen::Vector2d d_le = -tg.first, d_te = tg.second;
     le = measure_edge(pr, circles.front(), d_le, options);
     te = measure_edge(pr, circles.back(), d_te, options);
     classify_edge(le, 2 * widest, options);
@@ -640,8 +685,7 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
     ax = make_axis(c, 1e-8);
   }
   // Final edge points from the final tangents.
-  res.le_tangent = ax.tangent(ax.a);
-  res.te_tangent = ax.tangent(ax.b);
+  std::tie(res.le_tangent, res.te_tangent) = tangents(circles);
   {
     Edge l = measure_edge(pr, circles.front(), -res.le_tangent, options);
     Edge t = measure_edge(pr, circles.back(), res.te_tangent, options);

@@ -4,6 +4,7 @@
 #include "section/fit_spline.h"
 #include "section/params.h"
 #include "section/pipe.h"
+#include "detail/parallel.h"
 
 #include <map>
 #include <string>
@@ -79,12 +80,23 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
 
   std::map<int, int> loops;
   for (const auto& [key, curve] : curves) ++loops[key.first];
-  for (const auto& [key, curve] : curves) {
-    const int section = key.first;
-    if (key.second != 0) continue;
+  // Sections are independent: each fills its own slot, merged in section order afterwards,
+  // so the output is the same whatever the thread count.
+  struct Slot {
+    Table camber, params, thickness, sides;
+    std::vector<SectionIssue> issues;
+  };
+  std::vector<std::pair<int, const BSpline*>> work;
+  for (const auto& [key, curve] : curves)
+    if (key.second == 0) work.push_back({key.first, &curve});
+  std::vector<Slot> slots(work.size(), Slot{camber, params, thickness, sides, {}});
+  detail::parallel_for(work.size(), options.threads, [&](std::size_t item) {
+    const int section = work[item].first;
+    const BSpline& curve = *work[item].second;
+    Slot& slot = slots[item];
     try {
-      if (loops[section] > 1)
-        throw Error("camber: section " + std::to_string(section) + " has " + std::to_string(loops[section]) +
+      if (loops.at(section) > 1)
+        throw Error("camber: section " + std::to_string(section) + " has " + std::to_string(loops.at(section)) +
                     " loops; camber measures single-profile sections");
       CamberOptions opt = options;
       const auto seed = seeds.find(section);
@@ -104,12 +116,12 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
       const Frame f = fit != frame.end() ? fit->second : Frame{};
       for (std::size_t i = 0; i < r.points.size(); ++i) {
         const Eigen::Vector3d w = f.to_world(r.points[i]);
-        camber.add_row({double(section), double(i), r.s[i], r.points[i].x(), r.points[i].y(), w.x(), w.y(),
+        slot.camber.add_row({double(section), double(i), r.s[i], r.points[i].x(), r.points[i].y(), w.x(), w.y(),
                         w.z(), r.radius[i]});
       }
       const Eigen::Vector3d le = f.to_world(p.le_point), te = f.to_world(p.te_point),
                             cg = f.to_world(p.centroid);
-      params.add_row({double(section), p.chord, p.camber_length, p.max_thickness, p.max_thickness_pos,
+      slot.params.add_row({double(section), p.chord, p.camber_length, p.max_thickness, p.max_thickness_pos,
                       p.le_radius, p.te_radius, p.le_curvature_radius, p.te_curvature_radius,
                       double(static_cast<int>(r.le.shape)), double(static_cast<int>(r.te.shape)), r.le.arc,
                       r.te.arc, r.le.fit_rms, r.te.fit_rms, p.stagger, p.inlet_angle, p.outlet_angle,
@@ -119,13 +131,13 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
                       cg.x(), cg.y(), cg.z(), p.caliper_chord, p.caliper_stagger,
                       p.caliper_found ? 1.0 : 0.0, double(r.pressure_side), r.le_by_direction ? 1.0 : 0.0});
       for (std::size_t i = 0; i < st.size(); ++i)
-        thickness.add_row({double(section), double(i), st[i].fraction, st[i].s, st[i].point.x(),
+        slot.thickness.add_row({double(section), double(i), st[i].fraction, st[i].s, st[i].point.x(),
                            st[i].point.y(), st[i].thickness, st[i].pressure.x(), st[i].pressure.y(),
                            st[i].suction.x(), st[i].suction.y()});
       for (int side = 0; side < 2; ++side) {
         const auto& pts = side == 0 ? sd.pressure : sd.suction;
         for (std::size_t i = 0; i < pts.size(); ++i)
-          sides.add_row({double(section), double(side), double(i), pts[i].x(), pts[i].y()});
+          slot.sides.add_row({double(section), double(side), double(i), pts[i].x(), pts[i].y()});
       }
       if (r.le.shape != EdgeShape::round || r.te.shape != EdgeShape::round) {
         auto name = [](EdgeShape s) { return s == EdgeShape::blunt ? "blunt" : "sharp"; };
@@ -133,15 +145,23 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         if (r.le.shape != EdgeShape::round) msg += std::string("leading edge looks ") + name(r.le.shape);
         if (r.te.shape != EdgeShape::round)
           msg += std::string(msg.empty() ? "" : ", ") + "trailing edge looks " + name(r.te.shape);
-        stream.issues.push_back({section, 0, "camber",
+        slot.issues.push_back({section, 0, "camber",
                                  msg + (options.edge == EdgeModel::round ? " (fitted as round anyway)"
                                                                          : " (radius reported as 0)")});
       }
     } catch (const Error& e) {
       std::string msg = e.what();
       if (msg.rfind("camber: ", 0) == 0) msg = msg.substr(8);
-      stream.issues.push_back({section, loops[section] > 1 ? -1 : 0, "camber", msg});
+      slot = Slot{camber, params, thickness, sides, {}};
+      slot.issues.push_back({section, loops.at(section) > 1 ? -1 : 0, "camber", msg});
     }
+  });
+  for (auto& slot : slots) {
+    camber.values.insert(camber.values.end(), slot.camber.values.begin(), slot.camber.values.end());
+    params.values.insert(params.values.end(), slot.params.values.begin(), slot.params.values.end());
+    thickness.values.insert(thickness.values.end(), slot.thickness.values.begin(), slot.thickness.values.end());
+    sides.values.insert(sides.values.end(), slot.sides.values.begin(), slot.sides.values.end());
+    for (auto& i : slot.issues) stream.issues.push_back(std::move(i));
   }
   stream.put(camber);
   stream.put(params);

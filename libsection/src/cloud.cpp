@@ -1,6 +1,7 @@
 #include "section/cloud.h"
 
 #include "section/error.h"
+#include "detail/parallel.h"
 #include "detail/text.h"
 
 #include <flann/flann.hpp>
@@ -11,10 +12,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <random>
 #include <string>
 #include <sys/stat.h>
+#include <thread>
 
 namespace section {
 
@@ -179,8 +182,9 @@ bool try_header(std::string_view line, TextState& st) {
   return true;
 }
 
+template <class Out>
 void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, const std::string& name,
-                     Chunker& out, bool& first_data) {
+                     Out& out, bool& first_data) {
   line = trim(line);
   if (line.empty() || line[0] == '#' || (line.size() > 1 && line[0] == '/' && line[1] == '/')) return;
   if (first_data) {
@@ -214,6 +218,70 @@ void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, 
   out.add(v[0], v[1], v[2]);
 }
 
+// Points of one piece of a text block, parsed by one worker.
+struct PieceOut {
+  std::vector<Eigen::Vector3d> points;
+  std::exception_ptr error;  // the first malformed line of the piece, if any
+  void add(double x, double y, double z) { points.emplace_back(x, y, z); }
+};
+
+// Parses the complete lines buf[begin, end) (end just after a '\n'; the first data line
+// already seen, so the state is read-only) split at line boundaries across threads.
+// Points reach `out` in file order and the error thrown is that of the first bad line, as
+// if parsed line by line: `line_no` is the number of lines before `begin`.
+void parse_text_block(std::string_view buf, std::size_t begin, std::size_t end, std::size_t& line_no,
+                      const TextState& st, const std::string& name, const CloudReadOptions& opt, Chunker& out) {
+  const std::size_t bytes = end - begin;
+  std::size_t pieces = opt.threads > 0 ? std::size_t(opt.threads) : std::max(1u, std::thread::hardware_concurrency());
+  pieces = std::max<std::size_t>(1, std::min(pieces * 4, bytes / (1 << 18)));  // >= 256 KiB each
+  std::vector<std::size_t> cut{begin};
+  for (std::size_t k = 1; k < pieces; ++k) {
+    std::size_t at = begin + bytes * k / pieces;
+    if (at <= cut.back()) continue;
+    const std::size_t nl = buf.find('\n', at - 1);
+    if (nl == std::string_view::npos || nl + 1 >= end) break;
+    if (nl + 1 > cut.back()) cut.push_back(nl + 1);
+  }
+  cut.push_back(end);
+  const std::size_t n = cut.size() - 1;
+  // Line numbers first (a cheap count), so that every piece names its lines right.
+  std::vector<std::size_t> lines(n);
+  detail::parallel_for(n, opt.threads, [&](std::size_t k) {
+    lines[k] = static_cast<std::size_t>(std::count(buf.begin() + cut[k], buf.begin() + cut[k + 1], '\n'));
+  });
+  std::vector<PieceOut> parts(n);
+  detail::parallel_for(n, opt.threads, [&](std::size_t k) {
+    std::size_t ln = line_no;
+    for (std::size_t i = 0; i < k; ++i) ln += lines[i];
+    TextState local = st;
+    bool first_data = false;
+    PieceOut& part = parts[k];
+    part.points.reserve((cut[k + 1] - cut[k]) / 24);
+    try {
+      std::size_t start = cut[k];
+      while (start < cut[k + 1]) {
+        const std::size_t nl = buf.find('\n', start);
+        ++ln;
+        if (nl - start > max_line) fail_line(name, ln, "line longer than " + std::to_string(max_line) + " characters");
+        parse_text_line(buf.substr(start, nl - start), ln, local, name, part, first_data);
+        start = nl + 1;
+      }
+    } catch (...) {
+      part.error = std::current_exception();
+    }
+  });
+  for (std::size_t k = 0; k < n; ++k) {
+    for (const auto& p : parts[k].points) {
+      out.add(p.x(), p.y(), p.z());
+      if (out.total() > opt.max_points)
+        throw Error("read_cloud: " + name + ": more than " + std::to_string(opt.max_points) + " points");
+    }
+    if (parts[k].error) std::rethrow_exception(parts[k].error);
+    std::vector<Eigen::Vector3d>().swap(parts[k].points);
+    line_no += lines[k];
+  }
+}
+
 std::size_t read_text(Source& src, std::string buf, bool csv, const CloudReadOptions& opt, const PointChunkFn& fn) {
   Chunker out(fn, opt.chunk_points);
   TextState st;
@@ -224,6 +292,14 @@ std::size_t read_text(Source& src, std::string buf, bool csv, const CloudReadOpt
   bool eof = false;
   while (true) {
     std::size_t nl;
+    if (!first_data) {
+      // Past the header: the complete lines of the block are parsed in parallel.
+      const std::size_t last = buf.rfind('\n');
+      if (last != std::string::npos && last >= start) {
+        parse_text_block(buf, start, last + 1, line_no, st, src.name(), opt, out);
+        start = last + 1;
+      }
+    }
     while ((nl = buf.find('\n', start)) != std::string::npos) {
       ++line_no;
       if (nl - start > max_line) fail_line(src.name(), line_no, "line longer than " + std::to_string(max_line) + " characters");
@@ -231,6 +307,13 @@ std::size_t read_text(Source& src, std::string buf, bool csv, const CloudReadOpt
       if (out.total() > opt.max_points)
         throw Error("read_cloud: " + src.name() + ": more than " + std::to_string(opt.max_points) + " points");
       start = nl + 1;
+      if (!first_data) {
+        const std::size_t last = buf.rfind('\n');
+        if (last != std::string::npos && last >= start) {
+          parse_text_block(buf, start, last + 1, line_no, st, src.name(), opt, out);
+          start = last + 1;
+        }
+      }
     }
     if (buf.size() - start > max_line)
       fail_line(src.name(), line_no + 1, "line longer than " + std::to_string(max_line) + " characters");
@@ -537,12 +620,23 @@ std::size_t read_source(Source& src, const std::string& path, const PointChunkFn
   if (buf.empty()) throw Error("read_cloud: " + src.name() + ": empty file");
   CloudFormat format = options.format;
   if (format == CloudFormat::automatic) format = format_of(path, buf);
-  if (buf.find('\0') != std::string::npos && format != CloudFormat::ply)
-    throw Error("read_cloud: " + src.name() + ": binary data in a text point cloud");
+  if (format != CloudFormat::ply) {
+    if (const char* why = detail::text_encoding_problem(buf)) throw Error("read_cloud: " + src.name() + ": " + why);
+    if (buf.compare(0, 3, "\xEF\xBB\xBF") == 0) buf.erase(0, 3);  // a UTF-8 byte-order mark
+  }
+  std::size_t seen = 0;
+  const PointChunkFn checked = [&](const Eigen::Vector3d* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (p[i].cwiseAbs().maxCoeff() > detail::max_coordinate)
+        throw Error("read_cloud: " + src.name() + ": point " + std::to_string(seen + i + 1) +
+                    " has a coordinate beyond +-1e15 (corrupt file?)");
+    seen += n;
+    on_chunk(p, n);
+  };
   switch (format) {
-    case CloudFormat::ply: return read_ply(src, std::move(buf), options, on_chunk);
-    case CloudFormat::csv: return read_text(src, std::move(buf), true, options, on_chunk);
-    default: return read_text(src, std::move(buf), false, options, on_chunk);
+    case CloudFormat::ply: return read_ply(src, std::move(buf), options, checked);
+    case CloudFormat::csv: return read_text(src, std::move(buf), true, options, checked);
+    default: return read_text(src, std::move(buf), false, options, checked);
   }
 }
 }  // namespace

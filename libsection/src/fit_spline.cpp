@@ -1,6 +1,7 @@
 #include "section/fit_spline.h"
 
 #include "detail/flann_nearest.h"
+#include "detail/parallel.h"
 #include "section/error.h"
 #include "section/pipe.h"
 
@@ -545,10 +546,22 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
                       {"section", "loop", "index", "t", "u", "v", "x", "y", "z", "nu", "nv", "curvature"},
                       {}};
   const bool want_samples = options.samples > 0 || options.sample_spacing > 0;
-  std::vector<SectionIssue> new_issues;
-  for (const auto& [key, rows] : measured) {
+  // Loops are independent: each fills its own slot, merged in key order afterwards, so the
+  // output is the same whatever the thread count.
+  struct Slot {
+    std::vector<double> splines, knots, ctrl, samples;
+    bool failed = false;
+    SectionIssue issue;
+  };
+  std::vector<std::pair<std::pair<int, int>, const Rows*>> work;
+  for (const auto& [key, rows] : measured)
+    if (!stream.failed(key.first, key.second)) work.push_back({key, &rows});
+  std::vector<Slot> slots(work.size());
+  detail::parallel_for(work.size(), options.threads, [&](std::size_t w) {
+    const auto key = work[w].first;
     const auto [section, loop] = key;
-    if (stream.failed(section, loop)) continue;
+    const Rows& rows = *work[w].second;
+    Slot& slot = slots[w];
     Points q;
     for (const auto& row : rows) q.push_back(row.second);
     Points profile = q;
@@ -560,11 +573,11 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
       const FitSplineResult r = fit_spline(profile, q, options);
       const BSpline& c = r.spline;
       const double sec = section, lp = loop;
-      splines_table.add_row({sec, lp, double(c.degree), c.closed ? 1.0 : 0.0,
-                             double(c.control.size()), r.rms, r.max, r.p95, double(r.iterations)});
-      for (std::size_t i = 0; i < c.knots.size(); ++i) knots_table.add_row({sec, lp, double(i), c.knots[i]});
+      slot.splines = {sec, lp, double(c.degree), c.closed ? 1.0 : 0.0,
+                      double(c.control.size()), r.rms, r.max, r.p95, double(r.iterations)};
+      for (std::size_t i = 0; i < c.knots.size(); ++i) slot.knots.insert(slot.knots.end(), {sec, lp, double(i), c.knots[i]});
       for (std::size_t i = 0; i < c.control.size(); ++i)
-        ctrl_table.add_row({sec, lp, double(i), c.control[i].x(), c.control[i].y()});
+        slot.ctrl.insert(slot.ctrl.end(), {sec, lp, double(i), c.control[i].x(), c.control[i].y()});
       if (want_samples) {
         // Even arc-length steps from a dense cumulative length table.
         const std::vector<double> ts = span_samples(c, 32);
@@ -588,15 +601,29 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
           const Eigen::Vector2d d1 = c.derivative(t, 1).normalized();
           const Eigen::Vector2d nrm(d1.y(), -d1.x());
           const Eigen::Vector3d x = frame.to_world(p);
-          samples_table.add_row({sec, lp, double(i), t, p.x(), p.y(), x.x(), x.y(), x.z(), nrm.x(),
-                                 nrm.y(), c.curvature(t)});
+          slot.samples.insert(slot.samples.end(), {sec, lp, double(i), t, p.x(), p.y(), x.x(), x.y(), x.z(), nrm.x(),
+                                                   nrm.y(), c.curvature(t)});
         }
       }
     } catch (const Error& e) {
       std::string message = e.what();
       if (message.rfind("fit_spline: ", 0) == 0) message = message.substr(12);
-      new_issues.push_back({section, loop, "fitspline", message});
+      slot = Slot{};
+      slot.failed = true;
+      slot.issue = {section, loop, "fitspline", message};
     }
+  });
+  std::vector<SectionIssue> new_issues;
+  auto append = [](Table& t, const std::vector<double>& v) { t.values.insert(t.values.end(), v.begin(), v.end()); };
+  for (auto& slot : slots) {
+    if (slot.failed) {
+      new_issues.push_back(std::move(slot.issue));
+      continue;
+    }
+    append(splines_table, slot.splines);
+    append(knots_table, slot.knots);
+    append(ctrl_table, slot.ctrl);
+    append(samples_table, slot.samples);
   }
   for (auto& i : new_issues) issues.push_back(std::move(i));
   stream.put(std::move(splines_table));

@@ -5,12 +5,15 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
+#include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace section {
 
@@ -45,6 +48,62 @@ public:
   }
 };
 
+// OpenMesh reserves the element counts an OFF or PLY header declares before it reads the
+// body, so a header claiming billions of elements would end in an allocation failure; refuse
+// counts the file cannot hold (an ascii vertex takes at least 6 bytes, "0 0 0\n"; a face or
+// a binary vertex at least 1).
+void check_declared_counts(const std::string& path, const std::string& ext) {
+  if (ext != "off" && ext != "ply") return;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return;
+  std::string head(1 << 16, '\0');
+  head.resize(std::fread(&head[0], 1, head.size(), f));
+  long long size = -1;
+  if (std::fseek(f, 0, SEEK_END) == 0) size = std::ftell(f);
+  std::fclose(f);
+  if (size < 0) return;
+  const auto refuse = [&](unsigned long long n, const char* what) {
+    throw Error("read_mesh: " + path + ": the header declares " + std::to_string(n) + " " + what +
+                " but the file has only " + std::to_string(size) + " bytes (corrupt or truncated file?)");
+  };
+  const auto number = [](const std::string& t, unsigned long long& n) {
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), n);
+    return r.ec == std::errc() && r.ptr == t.data() + t.size();
+  };
+  std::vector<std::string> tok;  // header tokens, '#' comments dropped
+  for (std::size_t i = 0; i < head.size() && tok.size() < 4096;) {
+    const char c = head[i];
+    if (c == '#') {
+      while (i < head.size() && head[i] != '\n') ++i;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+    } else {
+      const std::size_t s = i;
+      while (i < head.size() && !std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+      tok.push_back(head.substr(s, i - s));
+      if (ext == "ply" && tok.back() == "end_header") break;
+      if (ext == "off" && tok.size() == 6) break;
+    }
+  }
+  const unsigned long long bytes = static_cast<unsigned long long>(size);
+  if (ext == "off") {
+    std::size_t k = 1;
+    if (tok.empty() || tok[0].find("OFF") == std::string::npos) return;
+    if (tok[0].find("nOFF") != std::string::npos) ++k;  // nOFF: a dimension first
+    if (k < tok.size() && tok[k] == "BINARY") ++k;
+    unsigned long long nv = 0, nf = 0;
+    if (k + 1 >= tok.size() || !number(tok[k], nv) || !number(tok[k + 1], nf)) return;
+    if (nv > bytes / 6) refuse(nv, "vertices");
+    if (nf > bytes) refuse(nf, "faces");
+    return;
+  }
+  for (std::size_t i = 0; i + 2 < tok.size(); ++i) {
+    unsigned long long n = 0;
+    if (tok[i] == "element" && number(tok[i + 2], n) && n > bytes)
+      refuse(n, (tok[i + 1] + " elements").c_str());
+  }
+}
+
 }  // namespace
 
 bool is_mesh_file(const std::string& path) {
@@ -75,6 +134,7 @@ Mesh read_mesh(const std::string& path) {
   const std::string ext = extension(path);
   if (ext != "stl" && ext != "obj" && ext != "off" && ext != "ply")
     throw Error("read_mesh: " + path + ": unknown mesh extension (use .stl .obj .off .ply)");
+  check_declared_counts(path, ext);
   OMesh om;
   bool ok;
   {
@@ -93,6 +153,8 @@ Mesh read_mesh(const std::string& path) {
     const auto& p = om.point(vh);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       throw Error("read_mesh: " + path + ": vertex " + std::to_string(vh.idx()) + " has a non-finite coordinate");
+    if (std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}) > 1e15)  // squares would overflow
+      throw Error("read_mesh: " + path + ": vertex " + std::to_string(vh.idx()) + " has a coordinate beyond +-1e15 (corrupt file?)");
     mesh.vertices.emplace_back(p[0], p[1], p[2]);
   }
   for (const auto fh : om.faces()) {
@@ -100,7 +162,10 @@ Mesh read_mesh(const std::string& path) {
     for (const auto vh : om.fv_range(fh)) idx.push_back(vh.idx());
     for (std::size_t k = 1; k + 1 < idx.size(); ++k) mesh.triangles.push_back({idx[0], idx[k], idx[k + 1]});
   }
-  if (mesh.triangles.empty()) throw Error("read_mesh: " + path + ": the mesh has no faces");
+  if (mesh.triangles.empty())
+    throw Error("read_mesh: " + path + ": the mesh has no faces (" +
+                (mesh.vertices.empty() ? std::string("nor vertices; ") : std::string()) +
+                "malformed or truncated file, or faces with bad vertex indices?)");
   return mesh;
 }
 

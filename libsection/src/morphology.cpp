@@ -2,6 +2,8 @@
 
 #include "section/error.h"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -483,41 +485,32 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   const std::vector<int> d2 = distance_transform(r, seed, cap, nearest_seed);
   const std::vector<int> b2 = bottleneck(r, d2, cap);
 
-  // enclosed(r) = #cells with b2 <= r^2 < d2: inside the band of radius r but not on it.
-  std::vector<long long> diff(rmax + 2, 0);
+  // A cell is enclosed at radius r when b2 <= r^2 < d2: inside the band of radius r but
+  // not on it. Cells enclosed at some radius (b2 < d2) are the interior of closed
+  // profiles; each part of an interior closes at its own radius b (the half width of the
+  // widest gap leading to it), so the closing radius r_c is the radius by which all of
+  // them have closed. Taking the first radius at which some
+  // interior appears instead leaves a part of a thin profile open behind a wide hole
+  // when the band pinches the profile elsewhere first.
+  std::vector<long long> closing_at(rmax + 2, 0);
+  long long ever = 0;
   for (std::size_t c = 0; c < r.size(); ++c) {
     if (b2[c] >= d2[c]) continue;
     const int a = std::max(1, ceil_sqrt(b2[c]));
-    const int b = std::min(rmax, ceil_sqrt(d2[c]) - 1);
-    if (a > b) continue;
-    ++diff[a];
-    --diff[b + 1];
+    if (a > rmax || a > ceil_sqrt(d2[c]) - 1) continue;  // never enclosed at an integer radius <= rmax
+    ++closing_at[a];
+    ++ever;
   }
-  std::vector<long long> enclosed(rmax + 1, 0);
-  long long best = 0;
-  for (int k = 1; k <= rmax; ++k) {
-    enclosed[k] = enclosed[k - 1] + diff[k];
-    best = std::max(best, enclosed[k]);
-  }
-  // Closed: the first radius whose enclosed interior is at least half the largest one,
-  // which passes over the small pockets a few stray points make.
-  // Substantial: more than a few cells (a thin blade closing over a wide gap keeps only a
-  // sliver of interior, so the bar is low; the half-of-best rule skips stray pockets).
-  const auto substantial = [](long long cells, int rad) { return double(cells) >= std::max(16.0, 0.5 * rad * rad); };
+  const auto substantial = [](long long cells) { return cells >= 16; };
+  if (!substantial(ever)) return false;
   int rc = 0;
-  for (int k = 1; k <= rmax; ++k)
-    if (2 * enclosed[k] >= best && substantial(enclosed[k], k)) {
-      rc = k;
-      break;
-    }
-  if (rc == 0) return false;
+  for (long long sum = 0; rc < rmax && sum < ever;) sum += closing_at[++rc];
   pass.closing = rc;
   // Margin: twice the closing radius (at least 4 cells). A disc just able to bridge a gap
   // dips into it by about its radius and may cut a thin trailing edge in two; a disc twice
   // as large dips by a quarter of that.
   pass.radius = std::min(std::max(2 * rc, 4), rmax);
   const int rr = pass.radius * pass.radius;
-  const int rc2 = rc * rc;
 
   // Erode the fill back: keep the cells farther than r from the outside.
   std::vector<std::uint8_t> outside(r.size());
@@ -556,7 +549,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     for (std::size_t q = 0; q < queue.size(); ++q) {
       const std::uint32_t c = queue[q];
       ++comp.area;
-      if (b2[c] <= rc2 && rc2 < d2[c]) ++comp.enclosed;
+      if (b2[c] < d2[c]) ++comp.enclosed;
       const int i = int(c % r.w), j = int(c / r.w);
       for (int y = std::max(0, j - 1); y <= std::min(r.h - 1, j + 1); ++y)
         for (int x = std::max(0, i - 1); x <= std::min(r.w - 1, i + 1); ++x) {
@@ -570,7 +563,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     pass.components.push_back(comp);
   }
   for (auto& comp : pass.components)
-    if (!substantial(comp.enclosed, rc)) comp.enclosed = 0;  // an open band or a fragment
+    if (!substantial(comp.enclosed)) comp.enclosed = 0;  // an open band or a fragment
   return true;
 }
 
@@ -803,6 +796,54 @@ void skeleton_of(const Pass& pass, const Component& comp, MorphologyResult& resu
   result.skeleton_radius = std::move(radius);
 }
 
+/// Drops the points of one ordered loop that stand off the curve of their neighbours along
+/// the loop: an outlier close to the profile is in the raster, so the closing passes
+/// through it and its distance to the boundary is small; a quadratic fitted to its
+/// neighbours along the loop (up to 3 each side within 12 cells, the point left out) shows
+/// its offset. Returns the number dropped.
+std::size_t drop_spikes(const Points& points, const std::vector<Vec>& normal_at,
+                        const Points& boundary, double h, double limit,
+                        std::vector<std::pair<double, std::size_t>>& mem) {
+  const std::size_t n = mem.size();
+  if (n < 8) return 0;
+  const double window = 12 * h;
+  std::vector<std::uint8_t> drop(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec& p = points[mem[i].second];
+    const Vec nrm = normal_at[mem[i].second];
+    if (nrm.isZero()) continue;
+    const Vec t(-nrm.y(), nrm.x());
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    int used = 0, left = 0, right = 0;
+    for (int side = -1; side <= 1; side += 2)
+      for (std::size_t k = 1; k <= 3 && k < n / 2; ++k) {
+        const std::size_t j = (i + n + side * std::ptrdiff_t(k)) % n;
+        if ((points[mem[j].second] - p).norm() > window) break;
+        const Vec d = points[mem[j].second] - p;
+        const double x = t.dot(d), y = nrm.dot(d);
+        const Eigen::Vector3d row(1, x, x * x);
+        A += row * row.transpose();
+        b += row * y;
+        ++used;
+        (side < 0 ? left : right) += 1;
+      }
+    if (left < 2 || right < 2) continue;  // too few neighbours to judge
+    const Eigen::Vector3d c = A.ldlt().solve(b);
+    if (std::isfinite(c(0)) && std::abs(c(0)) > limit) drop[i] = 1;
+  }
+  std::size_t count = 0, w = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (drop[i]) {
+      ++count;
+      continue;
+    }
+    mem[w++] = mem[i];
+  }
+  mem.resize(w);
+  return count;
+}
+
 struct Found {
   int pass = 0;
   int component = 0;  // index into pass.components
@@ -846,6 +887,20 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
     h = std::max(h, std::sqrt(ext.x() * ext.y() / double(std::max<std::size_t>(1, opt.auto_cells))));
     h = std::max(h, 1e-4 * ext.norm());
     if (!(h > 0)) throw Error("morphology: the points are all equal; no loop can be formed");
+  }
+  {
+    // Refuse an oversized raster before anything is allocated (its size with no margin is
+    // a lower bound of every pass's raster).
+    Vec lo = points[0], hi = lo;
+    for (const Vec& p : points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const double wc = std::floor((hi.x() - lo.x()) / h) + 1, hc = std::floor((hi.y() - lo.y()) / h) + 1;
+    if (wc * hc > double(opt.max_cells))
+      throw Error("morphology: a raster of " + num(wc) + " x " + num(hc) + " cells (cell " + num(h) +
+                  " mm) exceeds max_cells " + std::to_string(opt.max_cells) +
+                  "; use a larger cell or raise max_cells");
   }
   const double outlier = opt.outlier_distance > 0 ? opt.outlier_distance : 2.5 * h;
   const double isolated = opt.isolated_distance > 0 ? opt.isolated_distance : 6 * h;
@@ -918,11 +973,12 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
 
   for (std::size_t l = 0; l < found.size(); ++l) {
     auto& mem = members[l];
+    std::sort(mem.begin(), mem.end());
+    dropped += drop_spikes(points, fallback, found[l].boundary, h, outlier, mem);
     if (mem.size() < min_points) {
       dropped += mem.size();
       continue;
     }
-    std::sort(mem.begin(), mem.end());
     const Found& f = found[l];
     const Pass& pass = passes[f.pass];
     const Component& comp = pass.components[f.component];

@@ -134,6 +134,8 @@ std::string one_line(std::string s) {
 
 Stream parse_stream(std::string_view text, const std::string& source) {
   Stream stream;
+  if (const char* why = detail::text_encoding_problem(text)) throw Error("pipe: " + source + ": " + why);
+  detail::skip_bom(text);
   if (text.empty()) throw Error("pipe: " + source + ": the stream is empty");
   Table* current = nullptr;
   bool expect_header = false;
@@ -141,6 +143,7 @@ Stream parse_stream(std::string_view text, const std::string& source) {
   std::size_t line_no = 0;
   std::size_t pos = 0;
   std::vector<double> row;
+  std::vector<char> id_column;  // per column of the current table: holds integer ids
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
@@ -193,6 +196,11 @@ Stream parse_stream(std::string_view text, const std::string& source) {
       current->columns = split_header(line);
       for (const auto& c : current->columns)
         if (c.empty()) fail(source, line_no, "empty column name in the header of table '" + current->name + "'");
+      id_column.assign(current->columns.size(), 0);
+      for (std::size_t c = 0; c < current->columns.size(); ++c) {
+        const std::string& n = current->columns[c];
+        id_column[c] = n == "section" || n == "loop" || n == "index";
+      }
       expect_header = false;
       continue;
     }
@@ -214,7 +222,14 @@ Stream parse_stream(std::string_view text, const std::string& source) {
                                   std::string(cell.substr(0, 40)) + "'");
       if (!std::isfinite(value))
         fail(source, line_no, "column '" + current->columns[col - 1] + "' of table '" +
-                                  current->name + "': non-finite value '" + std::string(cell) + "'");
+                                  current->name + "': non-finite value '" + std::string(cell.substr(0, 40)) + "'");
+      if (std::abs(value) > detail::max_coordinate)
+        fail(source, line_no, "column '" + current->columns[col - 1] + "' of table '" + current->name +
+                                  "': value " + std::string(cell.substr(0, 40)) + " is beyond +-1e15 (corrupt stream?)");
+      // Ids become ints in every stage: a fraction or a value beyond int would be cast silently.
+      if (id_column[col - 1] && (value != std::floor(value) || std::abs(value) > 2147483647.0))
+        fail(source, line_no, "column '" + current->columns[col - 1] + "' of table '" + current->name +
+                                  "': '" + std::string(cell.substr(0, 40)) + "' is not an integer id");
       row.push_back(value);
       if (comma == std::string_view::npos) break;
       start = comma + 1;
@@ -352,6 +367,8 @@ void for_each_line(std::string_view text, F&& f) {
 Table parse_csv(std::string_view text, const std::string& source) {
   Table t;
   t.name = source;
+  if (const char* why = detail::text_encoding_problem(text)) throw Error("pipe: " + source + ": " + why);
+  detail::skip_bom(text);
   bool header = false;
   for_each_line(text, [&](std::string_view line, std::size_t line_no) {
     const auto fields = split_fields(line);
@@ -379,6 +396,8 @@ Table parse_csv(std::string_view text, const std::string& source) {
 
 std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::string& source) {
   std::vector<Eigen::Vector2d> points;
+  if (const char* why = detail::text_encoding_problem(text)) throw Error("pipe: " + source + ": " + why);
+  detail::skip_bom(text);
   bool data = false;
   for_each_line(text, [&](std::string_view line, std::size_t line_no) {
     const auto fields = split_fields(line);
@@ -390,6 +409,8 @@ std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::str
     }
     data = true;
     if (!std::isfinite(x) || !std::isfinite(y)) fail(source, line_no, "non-finite coordinate");
+    if (std::abs(x) > detail::max_coordinate || std::abs(y) > detail::max_coordinate)
+      fail(source, line_no, "coordinate beyond +-1e15 (corrupt file?)");
     points.emplace_back(x, y);
   });
   if (points.empty()) throw Error("pipe: " + source + ": no profile points (expected lines of x y)");

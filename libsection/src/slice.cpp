@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <random>
 
 namespace section {
 
@@ -105,16 +106,16 @@ std::vector<SlabGroup> group_planes(const std::vector<Plane>& planes, double sla
 
 }  // namespace
 
-std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::Vector3d>& points,
-                                                      const std::vector<Plane>& planes, double slab) {
-  if (!(slab >= 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be finite and not negative");
-  std::vector<Frame> frame;
-  for (const auto& p : planes) frame.push_back(make_frame(p.origin, p.normal));
-  std::vector<std::vector<Eigen::Vector2d>> out(planes.size());
+namespace {
+
+// Appends the slab points of points[0, count) to `out` (one list per plane), in order.
+void add_slab_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
+                     const std::vector<Frame>& frame, double slab, std::vector<std::vector<Eigen::Vector2d>>& out) {
   const double half = 0.5 * slab;
-  for (const SlabGroup& g : group_planes(planes, slab)) {
+  for (const SlabGroup& g : groups) {
     const std::size_t np = g.offset.size();
-    for (const auto& q : points) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const Eigen::Vector3d& q = points[i];
       const double s = g.n.dot(q);
       // The first plane whose slab can contain q, then its neighbours while they can.
       const double scale = std::max({std::abs(q.x()), std::abs(q.y()), std::abs(q.z()), std::abs(s), slab});
@@ -136,6 +137,25 @@ std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::V
       }
     }
   }
+}
+
+std::vector<Frame> frames_of(const std::vector<Plane>& planes) {
+  std::vector<Frame> frame;
+  for (const auto& p : planes) frame.push_back(make_frame(p.origin, p.normal));
+  return frame;
+}
+
+void check_slab(double slab) {
+  if (!(slab >= 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be finite and not negative");
+}
+
+}  // namespace
+
+std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::Vector3d>& points,
+                                                      const std::vector<Plane>& planes, double slab) {
+  check_slab(slab);
+  std::vector<std::vector<Eigen::Vector2d>> out(planes.size());
+  add_slab_points(points.data(), points.size(), group_planes(planes, slab), frames_of(planes), slab, out);
   return out;
 }
 
@@ -146,6 +166,30 @@ void check_planes(const std::vector<Plane>& planes) {
   for (const auto& p : planes)
     if (!p.origin.allFinite() || !p.normal.allFinite() || !(p.normal.norm() > 0))
       throw Error("slice: every section plane needs a finite origin and a non-zero normal");
+}
+
+}  // namespace
+
+namespace {
+
+// Orders the slab points of every plane into loops, sections in parallel; frees each
+// section's slab as soon as it is ordered.
+void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const std::vector<Plane>& planes,
+                 const SliceOptions& options, SliceResult& result) {
+  result.sections.resize(planes.size());
+  detail::parallel_for(planes.size(), options.threads, [&](std::size_t i) {
+    SectionSlice& s = result.sections[i];
+    s.id = static_cast<int>(i);
+    s.frame = make_frame(planes[i].origin, planes[i].normal);
+    s.slab_points = slabs[i].size();
+    try {
+      if (slabs[i].empty()) throw Error("no points in the slab (the plane misses the part?)");
+      s.morphology = order_section(slabs[i], options.morphology);
+    } catch (const std::exception& e) {
+      s.error = e.what();
+    }
+    std::vector<Eigen::Vector2d>().swap(slabs[i]);
+  });
 }
 
 }  // namespace
@@ -163,22 +207,76 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
   }
   if (!(result.slab > 0) || !std::isfinite(result.slab)) throw Error("slice: the slab width must be positive and finite");
   auto slabs = slab_points(cloud.points, planes, result.slab);
-  result.sections.resize(planes.size());
-  detail::parallel_for(planes.size(), options.threads, [&](std::size_t i) {
-    SectionSlice& s = result.sections[i];
-    s.id = static_cast<int>(i);
-    s.frame = make_frame(planes[i].origin, planes[i].normal);
-    s.slab_points = slabs[i].size();
-    try {
-      if (slabs[i].empty()) throw Error("no points in the slab (the plane misses the part?)");
-      s.morphology = order_section(slabs[i], options.morphology);
-    } catch (const std::exception& e) {
-      s.error = e.what();
-    }
-    std::vector<Eigen::Vector2d>().swap(slabs[i]);
-  });
+  order_slabs(slabs, planes, options, result);
   return result;
 }
+
+SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
+                       const CloudReadOptions& read) {
+  check_slab(options.slab);
+  if (spec.count > 0 && (!spec.normal.allFinite() || !(spec.normal.norm() > 0)))
+    throw Error("slice: the plane normal must be finite and non-zero");
+  if (spec.count == 0) check_planes(spec.planes);
+  if (path == "-") {
+    // A pipe cannot be read twice: hold the cloud.
+    const Cloud cloud = read_cloud(path, read);
+    const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
+    return slice(cloud, planes, options);
+  }
+  std::vector<Plane> planes = spec.planes;
+  double slab = options.slab;
+  std::size_t total = 0;
+  if (spec.count > 0 || slab == 0) {
+    // Pass 1: extent along the normal and a uniform random sample (reservoir) for the
+    // spacing; mean_spacing scales a subset's spacing back to the full density the same way.
+    const Eigen::Vector3d n = spec.normal.normalized();
+    double lo = INFINITY, hi = -INFINITY;
+    constexpr std::size_t reservoir_size = 50000;
+    std::vector<Eigen::Vector3d> reservoir;
+    std::mt19937_64 rng(12345);
+    total = read_cloud_chunks(
+        path,
+        [&](const Eigen::Vector3d* p, std::size_t count) {
+          for (std::size_t i = 0; i < count; ++i) {
+            const double s = n.dot(p[i]);
+            lo = std::min(lo, s);
+            hi = std::max(hi, s);
+          }
+          if (slab != 0) return;
+          for (std::size_t i = 0; i < count; ++i) {
+            const std::size_t seen = total + i;
+            if (reservoir.size() < reservoir_size) reservoir.push_back(p[i]);
+            else if (const std::size_t j = rng() % (seen + 1); j < reservoir_size) reservoir[j] = p[i];
+          }
+          total += count;
+        },
+        read);
+    if (spec.count > 0) {
+      std::vector<double> offsets;
+      for (int k = 0; k < spec.count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (spec.count + 1));
+      planes = planes_at(spec.normal, offsets);
+    }
+    if (slab == 0) {
+      slab = mean_spacing(reservoir);
+      if (reservoir.size() < total) slab *= std::sqrt(double(reservoir.size()) / double(total)) / 0.47;
+      if (!(slab > 0))
+        throw Error("slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
+    }
+  }
+  if (!(slab > 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be positive and finite");
+  // Pass 2: only the slab points are kept.
+  const auto groups = group_planes(planes, slab);
+  const auto frame = frames_of(planes);
+  std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
+  SliceResult result;
+  result.points = read_cloud_chunks(
+      path, [&](const Eigen::Vector3d* p, std::size_t count) { add_slab_points(p, count, groups, frame, slab, slabs); },
+      read);
+  result.slab = slab;
+  order_slabs(slabs, planes, options, result);
+  return result;
+}
+
 
 SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options) {
   check_planes(planes);

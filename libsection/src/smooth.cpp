@@ -2,6 +2,7 @@
 
 #include "section/error.h"
 #include "section/pipe.h"
+#include "detail/parallel.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
@@ -382,10 +383,21 @@ void smooth_stream(Stream& stream, const SmoothOptions& options) {
               {"section", "loop", "points", "energy_before", "energy_after", "iterations",
                "rms_move", "max_move", "repaired"},
               {}};
-  std::vector<SectionIssue> new_issues;
-  for (auto& [key, rows] : loops) {
-    const auto [section, loop] = key;
-    if (stream.failed(section, loop)) continue;
+  // Loops are independent: each fills its own slot, merged in key order afterwards, so the
+  // output is the same whatever the thread count.
+  struct Slot {
+    std::vector<double> smoothed, stats;
+    bool failed = false;
+    SectionIssue issue;
+  };
+  std::vector<std::pair<std::pair<int, int>, std::vector<std::pair<double, Eigen::Vector2d>>*>> work;
+  for (auto& [key, rows] : loops)
+    if (!stream.failed(key.first, key.second)) work.push_back({key, &rows});
+  std::vector<Slot> slots(work.size());
+  detail::parallel_for(work.size(), options.threads, [&](std::size_t w) {
+    const auto [section, loop] = work[w].first;
+    auto& rows = *work[w].second;
+    Slot& slot = slots[w];
     std::stable_sort(rows.begin(), rows.end(),
                      [](const auto& x, const auto& y) { return x.first < y.first; });
     Points q;
@@ -394,16 +406,26 @@ void smooth_stream(Stream& stream, const SmoothOptions& options) {
     try {
       const SmoothResult r = smooth(q, options);
       for (std::size_t i = 0; i < r.points.size(); ++i)
-        smoothed.add_row({double(section), double(loop), double(i), r.points[i].x(),
-                          r.points[i].y()});
-      stats.add_row({double(section), double(loop), double(r.points.size()), r.energy_before,
-                     r.energy_after, double(r.iterations), r.rms_move, r.max_move,
-                     double(r.repaired)});
+        slot.smoothed.insert(slot.smoothed.end(), {double(section), double(loop), double(i), r.points[i].x(),
+                                                   r.points[i].y()});
+      slot.stats = {double(section), double(loop), double(r.points.size()), r.energy_before,
+                    r.energy_after, double(r.iterations), r.rms_move, r.max_move,
+                    double(r.repaired)};
     } catch (const Error& e) {
       std::string message = e.what();
       if (message.rfind("smooth: ", 0) == 0) message = message.substr(8);
-      new_issues.push_back({section, loop, "smooth", message});
+      slot.failed = true;
+      slot.issue = {section, loop, "smooth", message};
     }
+  });
+  std::vector<SectionIssue> new_issues;
+  for (auto& slot : slots) {
+    if (slot.failed) {
+      new_issues.push_back(std::move(slot.issue));
+      continue;
+    }
+    smoothed.values.insert(smoothed.values.end(), slot.smoothed.begin(), slot.smoothed.end());
+    stats.values.insert(stats.values.end(), slot.stats.begin(), slot.stats.end());
   }
   for (auto& i : new_issues) issues.push_back(std::move(i));
   stream.put(std::move(smoothed));

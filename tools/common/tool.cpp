@@ -52,6 +52,17 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
   return 1;
 }
 
+void with_input(const std::string& input, const std::function<void()>& stage) {
+  try {
+    stage();
+  } catch (const section::Error& e) {
+    const std::string name = input == "-" ? "<stdin>" : input;
+    const std::string what = e.what();
+    if (what.find(name) != std::string::npos) throw;
+    throw section::Error(name + ": " + what);
+  }
+}
+
 std::string command_line(int argc, char** argv) {
   std::string line;
   for (int i = 0; i < argc; ++i) {

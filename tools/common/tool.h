@@ -23,6 +23,11 @@ void add_common(CLI::App& app, Common& common);
 int run_tool(const std::string& name, const std::string& description, int argc, char** argv,
              const std::function<void(CLI::App&)>& declare, const std::function<void()>& body);
 
+/// Calls `stage`; a section::Error it throws is rethrown with the input's name in front
+/// (`blade.csv: pipe: table 'points' has no column 'v'`) unless the message already names
+/// it, so that every error of a tool names the file it came from ("-" = `<stdin>`).
+void with_input(const std::string& input, const std::function<void()>& stage);
+
 /// The command line as one line, for the stream's history.
 std::string command_line(int argc, char** argv);
 

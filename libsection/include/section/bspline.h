@@ -51,6 +51,7 @@ ClosestPoint closest_point_near(const BSpline& curve, const Eigen::Vector2d& q, 
 std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& points,
                                             bool closed);
 
+/// Options of fit_curve (lengths in the points' units).
 struct CurveFitOptions {
   int degree = 3;             ///< spline degree
   int control_points = 0;     ///< number of control points; 0 = points/4, at least 8

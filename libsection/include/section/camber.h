@@ -22,6 +22,7 @@ struct InscribedCircle {
   double t_left = 0, t_right = 0;  ///< profile parameters of the contacts
 };
 
+/// Options of medial_axis.
 struct MedialAxisOptions {
   int samples = 1000;          ///< profile samples triangulated for the seed (more for thin edges)
   int stations = 120;          ///< inscribed circles solved along the axis (denser at the ends)
@@ -69,10 +70,12 @@ struct Edge {
   EdgeShape shape = EdgeShape::round;  ///< detected shape
 };
 
+/// Options of camber_line and camber_stream (lengths in the profile's units, angles in degrees).
 struct CamberOptions {
   MedialAxisOptions medial;        ///< medial-axis seeding and refinement
   EdgeModel edge = EdgeModel::round;  ///< edge model, see EdgeModel
   double edge_arc = 120;           ///< degrees: the edge arc is the profile around the edge point whose normal turns at most edge_arc/2 either way
+  double tangent_span = 0.1;       ///< fraction of the medial axis length: the end tangents (inlet/outlet angles, extensions) are fitted to the axis over this length from each end (quadratic least squares; robust to profile noise at the edges); 0 = the axis spline's end slope
   double edge_prune = 20;          ///< degrees: medial circles at the ends whose contacts subtend less than twice this are noise, trimmed
   double blunt_flatness = 2;       ///< an edge is blunt when its curvature radius at the edge point exceeds this many fitted radii (flat tip)
   double blunt_rms = 0.02;         ///< ... and the fit rms exceeds this fraction of the fitted radius
@@ -86,6 +89,7 @@ struct CamberOptions {
   std::vector<double> stations{0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5,
                                0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95};
   int side_samples = 201;          ///< stream stage: points per side in the "sides" table
+  int threads = 0;                 ///< stream stage: worker threads over the sections (output identical for any count); 0 = all cores
 };
 
 /// The mean-camber line from the LE point to the TE point.

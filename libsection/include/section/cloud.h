@@ -25,10 +25,12 @@ enum class CloudFormat {
   ply         ///< PLY vertices (ascii or binary, float or double)
 };
 
+/// Options of the cloud readers (read_cloud, read_cloud_chunks, parse_cloud).
 struct CloudReadOptions {
   CloudFormat format = CloudFormat::automatic;  ///< reader to use; default: by extension
   std::size_t chunk_points = 1 << 20;           ///< points handed to the callback at a time
   std::size_t max_points = std::size_t(1) << 33;  ///< refuse files claiming more points than this
+  int threads = 0;                              ///< worker threads parsing text (XYZ, CSV); 0 = all cores
 };
 
 /// Receives the points of a cloud chunk by chunk, in file order.

@@ -15,6 +15,7 @@ namespace section {
 
 struct Stream;
 
+/// Options of fit_spline and fit_spline_stream (lengths in mm; scale them for other units).
 struct FitSplineOptions {
   int degree = 3;                 ///< spline degree
   int control_points = 0;         ///< control points per loop; 0 = adaptive to `tolerance`
@@ -30,8 +31,10 @@ struct FitSplineOptions {
   double outlier_distance = 0;    ///< mm: isolated measured points farther than this from the curve are ignored; 0 = automatic (6 noise sigmas, at least 0.02 mm)
   int samples = 0;                ///< stream stage: points per loop written to the "samples" table (0 = none unless sample_spacing)
   double sample_spacing = 0;      ///< mm, stream stage: arc-length spacing of the "samples" table (0 = use `samples`)
+  int threads = 0;                ///< stream stage: worker threads over the loops (output identical for any count); 0 = all cores
 };
 
+/// What fit_spline returns: the fitted curve and its fit diagnostics.
 struct FitSplineResult {
   BSpline spline;                 ///< the fitted closed curve
   double rms = 0;                 ///< mm, RMS distance measured points -> curve (outliers excluded)

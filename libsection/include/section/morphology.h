@@ -18,9 +18,10 @@
 
 namespace section {
 
+/// Options of order_section (and of slice, through SliceOptions::morphology).
 struct MorphologyOptions {
   double cell = 0;                 ///< mm, raster cell h; 0 = the estimated point spacing (median nearest-neighbour distance), coarsened so the raster has at most `auto_cells` cells
-  std::size_t auto_cells = 1'000'000;  ///< cells, raster budget when `cell` is 0 (speed on very dense sections)
+  std::size_t auto_cells = 250'000;  ///< cells, raster budget when `cell` is 0 (speed on very dense sections)
   int max_dilation = 64;           ///< cells, largest dilation radius tried before giving up (a gap of 2 r cells closes)
   double outlier_distance = 0;     ///< mm, points farther than this from every loop are dropped; 0 = 2.5 cells
   double isolated_distance = 0;    ///< mm, a point with no other point this close is left out of the raster (it may still join a loop it lies on); 0 = 6 cells
@@ -42,6 +43,7 @@ struct Loop {
   int dilation = 0;                       ///< cells, dilation radius that closed this loop
 };
 
+/// What order_section returns: the loops, the skeleton and diagnostics.
 struct MorphologyResult {
   std::vector<Loop> loops;                ///< largest area first (loop 0 = the profile)
   std::vector<Eigen::Vector2d> skeleton;  ///< skeleton of loop 0's filled region, ordered along its main branch, starting at the blunter end (usually the leading edge)

@@ -57,6 +57,7 @@ struct Sides {
   std::vector<Eigen::Vector2d> pressure;  ///< concave side
   std::vector<Eigen::Vector2d> suction;   ///< convex side
 };
+/// The two sides of `profile` split at the LE and TE points of `camber` (see Sides).
 Sides split_sides(const BSpline& profile, const CamberResult& camber, int count = 201);
 
 /// Enclosed area and area centroid of a closed curve (Green's theorem, exact quadrature

@@ -20,11 +20,13 @@ struct Table {
   std::vector<std::string> columns;  ///< column names, in order
   std::vector<double> values;        ///< rows() * columns.size() numbers, row-major
 
+  /// Number of rows.
   std::size_t rows() const { return columns.empty() ? 0 : values.size() / columns.size(); }
   /// Index of a column; throws section::Error `pipe: table 'T' has no column 'C'`.
   std::size_t column(const std::string& column_name) const;
   /// Index of a column, or -1 when absent.
   long find_column(const std::string& column_name) const;
+  /// Value at a row and a column index (see column()); unchecked.
   double at(std::size_t row, std::size_t col) const { return values[row * columns.size() + col]; }
   /// Appends one row; it must have columns.size() values.
   void add_row(std::initializer_list<double> row);

@@ -34,6 +34,7 @@ std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points,
 /// normal_z (extra columns ignored). `source` names it in error messages.
 std::vector<Plane> parse_planes(std::string_view csv, const std::string& source);
 
+/// Options of slice (lengths in the cloud's units).
 struct SliceOptions {
   double slab = 0;                    ///< slab width d (units of the cloud); 0 = the cloud's mean spacing
   MorphologyOptions morphology;       ///< ordering of each section's points
@@ -49,6 +50,7 @@ struct SectionSlice {
   std::string error;                  ///< why the section failed; empty when it did not
 };
 
+/// What slice returns: one SectionSlice per plane, and the slab used.
 struct SliceResult {
   std::vector<SectionSlice> sections; ///< one per plane, in plane order
   double slab = 0;                    ///< slab width used
@@ -67,6 +69,22 @@ std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::V
 /// Sections that fail (no points, no closed loop) carry their error; the others go on.
 /// Throws section::Error for bad options (no planes, a zero normal, a negative slab).
 SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options = {});
+
+/// Planes for slice_file: explicit, or spread over the cloud (known only once it is read).
+struct PlaneSpec {
+  std::vector<Plane> planes;                         ///< explicit planes, used when count is 0
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< normal of the spread planes (count > 0)
+  int count = 0;                                     ///< planes spread as planes_across; 0 = use `planes`
+};
+
+/// Slices the cloud of a file without holding it: reads it in chunks and keeps only the
+/// slab points of each plane. A file is read once when the planes and the slab width are
+/// given, twice otherwise (first for the extent along the normal and a random sample of
+/// 50000 points for the spacing); standard input ("-") is held in memory and sliced by
+/// slice(Cloud). Same results in meaning as slice(read_cloud(path), ...); the estimated
+/// slab width may differ slightly (another random sample). Throws as read_cloud and slice.
+SliceResult slice_file(const std::string& path, const PlaneSpec& planes, const SliceOptions& options = {},
+                       const CloudReadOptions& read = {});
 
 /// Slices a mesh exactly (CGAL's polygon mesh slicer): each closed intersection polyline is
 /// a loop, oriented counterclockwise in (u, v), loop 0 the largest; its vertices are the points.

@@ -30,6 +30,7 @@ enum class SmoothSolver {
 /// Parses "cholmod" or "gauss-seidel" / "gauss_seidel"; throws section::Error otherwise.
 SmoothSolver parse_smooth_solver(const std::string& name);
 
+/// Options of smooth and smooth_stream.
 struct SmoothOptions {
   double smoothing_length = 0;    ///< curve units: sets a so that a sinusoidal wiggle of this wavelength keeps half its amplitude (a = 2 b (L / 2 pi)^4 / h, h = mean spacing); 0 = use a, or relative_length when a is 0 too
   double a = 0;                   ///< length^3 (with b = 1): explicit weight of the curvature energy E_C, used when smoothing_length is 0 and a > 0 (the paper's 0.1-0.5 suit its units and spacing only: at 0.08 mm spacing in mm, 0.3 means L = 2.1 mm and distorts 0.3 mm edges by ~0.1 mm)
@@ -43,8 +44,10 @@ struct SmoothOptions {
   bool closed = true;             ///< the polyline is a closed loop (last point joins the first)
   int max_sweeps = 1000000;       ///< gauss_seidel only: cap on sweeps per outer iteration
   double sweep_tolerance = 1e-12; ///< gauss_seidel only: stop sweeping when the largest update is below this times the curve's size
+  int threads = 0;                ///< stream stage: worker threads over the loops (output identical for any count); 0 = all cores
 };
 
+/// What smooth returns: the smoothed points and the energy diagnostics.
 struct SmoothResult {
   std::vector<Eigen::Vector2d> points;  ///< smoothed points, same order as the input (after merging)
   double energy_before = 0;             ///< E of the input (after merging): a * E_C, since E_S = 0

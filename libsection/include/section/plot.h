@@ -1,0 +1,50 @@
+#pragma once
+/// @file plot.h
+/// Drawings of the sections of a pipe stream, to scale: SVG per section, or one HTML page
+/// holding every section. Each drawing shows what the stream holds of the section: the
+/// measured points, the fitted curve, the mean-camber line, the inscribed circles at the
+/// thickness stations, the LE and TE circles, the chord line, a parameter table, a scale
+/// bar, and a magnified inset of each edge. Missing tables are simply not drawn, so a
+/// stream that stops after `slice` still plots its points.
+#include <string>
+#include <vector>
+
+namespace section {
+
+struct Stream;
+
+struct PlotOptions {
+  double width = 1000;            ///< px, width of one section's drawing (its height follows the profile's aspect)
+  double max_main_height = 520;   ///< px, the main view is shrunk to keep within this height
+  double inset_size = 300;        ///< px, side of each square edge inset; 0 = no insets
+  double inset_radii = 1.5;       ///< edge radii: half-width of an inset's window around the edge circle's centre
+  double inset_min_fraction = 0.02;  ///< of the profile's length: smallest inset half-width (sharp edges, radius 0)
+  double point_radius = 1.6;      ///< px, radius of a measured point's dot
+  bool points = true;             ///< draw the measured points ("points" table)
+  bool stations = true;           ///< draw the inscribed circles at the thickness stations
+  bool table = true;              ///< draw the parameter table
+  int spline_samples = 2000;      ///< points per loop when the curve is evaluated from the spline tables (no "samples" table)
+};
+
+/// Section ids present in any per-section table of `stream` (frames, points, smoothed,
+/// splines, samples, camber, params, ...) or in its issues, ascending.
+std::vector<int> plot_sections(const Stream& stream);
+
+/// A standalone SVG document (UTF-8 text) of section `section`: main view with v up and
+/// equal axis scales (the scale, px per stream unit, is in the main view group's
+/// `data-scale` attribute), the two edge insets, the parameter table and the section's
+/// issues. Element ids start with `s<section>-` so several drawings can share a page;
+/// classes name the elements (points, curve, camber, station, le-circle, te-circle,
+/// chord, scale-bar, inset, param-table). The fitted curve comes from the "samples"
+/// table, else from the spline tables (fit_spline.h's splines()), else the "smoothed"
+/// points. Throws section::Error (`plot: ...`) when the section is not in the stream or
+/// the options are out of range.
+std::string plot_svg(const Stream& stream, int section, const PlotOptions& options = {});
+
+/// One self-contained HTML page: the stream's history, a summary table of the main
+/// parameters of every section, then the SVG drawing of each section (as plot_svg).
+/// A section whose drawing fails is listed with the reason and the others go on.
+/// Throws section::Error when the stream has no section at all.
+std::string plot_html(const Stream& stream, const PlotOptions& options = {});
+
+}  // namespace section

@@ -1,0 +1,369 @@
+// Tests of the plot module: the SVG is well formed, holds every element of what the stream
+// carries, and draws it to scale with v up (the drawn curve lies on the true profile).
+#include "section/camber.h"
+#include "section/error.h"
+#include "section/fit_spline.h"
+#include "section/generate.h"
+#include "section/pipe.h"
+#include "section/plot.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+using Eigen::Vector2d;
+
+namespace {
+
+// ------------------------------------------------------------------ a tiny SVG reader
+
+struct Element {
+  std::string tag;
+  std::map<std::string, std::string> attr;
+  double num(const std::string& name) const {
+    const auto it = attr.find(name);
+    REQUIRE(it != attr.end());
+    char* end = nullptr;
+    const double v = std::strtod(it->second.c_str(), &end);
+    REQUIRE(end != it->second.c_str());
+    return v;
+  }
+  bool has_class(const std::string& c) const {
+    const auto it = attr.find("class");
+    if (it == attr.end()) return false;
+    return (" " + it->second + " ").find(" " + c + " ") != std::string::npos;
+  }
+};
+
+// Opening tags in document order; checks on the way that tags nest properly.
+std::vector<Element> parse(const std::string& text, bool* balanced) {
+  std::vector<Element> out;
+  std::vector<std::string> open;
+  *balanced = true;
+  std::size_t pos = 0;
+  while ((pos = text.find('<', pos)) != std::string::npos) {
+    const std::size_t end = text.find('>', pos);
+    REQUIRE(end != std::string::npos);
+    const std::string tag = text.substr(pos + 1, end - pos - 1);
+    pos = end + 1;
+    if (tag.empty() || tag[0] == '!' || tag[0] == '?') continue;
+    if (tag[0] == '/') {
+      if (open.empty() || open.back() != tag.substr(1)) *balanced = false;
+      if (!open.empty()) open.pop_back();
+      continue;
+    }
+    Element e;
+    const bool self_closing = tag.back() == '/';
+    const std::size_t name_end = tag.find_first_of(" /");
+    e.tag = tag.substr(0, name_end);
+    // name="value" pairs (no std::regex: it recurses per character on long path data).
+    std::size_t q = name_end;
+    while (q != std::string::npos && (q = tag.find('=', q)) != std::string::npos) {
+      std::size_t n0 = tag.rfind(' ', q);
+      const std::size_t v0 = q + 2, v1 = tag.find('"', v0);
+      REQUIRE(tag[q + 1] == '"');
+      REQUIRE(v1 != std::string::npos);
+      e.attr[tag.substr(n0 + 1, q - n0 - 1)] = tag.substr(v0, v1 - v0);
+      q = v1 + 1;
+    }
+    if (!self_closing) open.push_back(e.tag);
+    out.push_back(std::move(e));
+  }
+  if (!open.empty()) *balanced = false;
+  return out;
+}
+
+// Elements between the opening of the element with id `id` and its closing: found by
+// nesting depth on the raw text.
+std::string subtree(const std::string& svg, const std::string& id) {
+  const std::size_t start = svg.find("id=\"" + id + "\"");
+  REQUIRE(start != std::string::npos);
+  const std::size_t open = svg.rfind('<', start);
+  int depth = 0;
+  std::size_t pos = open;
+  while ((pos = svg.find('<', pos)) != std::string::npos) {
+    const std::size_t end = svg.find('>', pos);
+    if (svg[pos + 1] == '/') --depth;
+    else if (svg[end - 1] != '/') ++depth;
+    pos = end + 1;
+    if (depth == 0) return svg.substr(open, pos - open);
+  }
+  FAIL("unterminated element " << id);
+  return {};
+}
+
+std::vector<const Element*> with_class(const std::vector<Element>& es, const std::string& c) {
+  std::vector<const Element*> out;
+  for (const auto& e : es)
+    if (e.has_class(c)) out.push_back(&e);
+  return out;
+}
+
+// Vertices of a path's d attribute ("M x y L x y ... Z").
+std::vector<Vector2d> vertices(const std::string& d) {
+  std::vector<Vector2d> out;
+  std::vector<double> numbers;
+  const char* p = d.c_str();
+  while (*p) {
+    if (*p == '-' || (*p >= '0' && *p <= '9') || *p == '.') {
+      char* end = nullptr;
+      numbers.push_back(std::strtod(p, &end));
+      p = end;
+    } else {
+      ++p;
+    }
+  }
+  REQUIRE(numbers.size() % 2 == 0);
+  for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) out.emplace_back(numbers[i], numbers[i + 1]);
+  return out;
+}
+
+// The px mapping of a view group: x = s u + tx, y = -s v + ty.
+struct Mapping {
+  double s, tx, ty;
+  Vector2d world(const Vector2d& p) const { return {(p.x() - tx) / s, (ty - p.y()) / s}; }
+  Vector2d pixel(const Vector2d& w) const { return {s * w.x() + tx, -s * w.y() + ty}; }
+};
+
+Mapping mapping(const Element& group) { return {group.num("data-scale"), group.num("data-tx"), group.num("data-ty")}; }
+
+const Element& by_id(const std::vector<Element>& es, const std::string& id) {
+  for (const auto& e : es) {
+    const auto it = e.attr.find("id");
+    if (it != e.attr.end() && it->second == id) return e;
+  }
+  FAIL("no element with id " << id);
+  return es.front();
+}
+
+// ------------------------------------------------------------------ streams
+
+section::Table table(const std::string& name, std::vector<std::string> columns) {
+  section::Table t;
+  t.name = name;
+  t.columns = std::move(columns);
+  return t;
+}
+
+// A full stream of one section (id `id`, frame at height z): measured points on the exact
+// profile, the spline fitted to them, and the camber stage's tables.
+section::Stream full_stream(const section::SectionTruth& truth, int points, int control_points) {
+  std::vector<Vector2d> measured;
+  const std::size_t step = truth.profile.size() / points;
+  for (std::size_t i = 0; i < truth.profile.size(); i += step) measured.push_back(truth.profile[i]);
+  section::FitSplineOptions fo;
+  fo.control_points = control_points;
+  section::Stream stream = section::profile_stream(section::fit_spline(measured, measured, fo).spline);
+  section::camber_stream(stream);
+  section::Table pts = table("points", {"section", "loop", "index", "u", "v", "nu", "nv"});
+  for (std::size_t i = 0; i < measured.size(); ++i)
+    pts.add_row({0, 0, double(i), measured[i].x(), measured[i].y(), 0, 0});
+  stream.put(pts);
+  section::put_frames(stream, {{0, section::make_frame({0, 0, 12}, {0, 0, 1})}});
+  return stream;
+}
+
+bool all_numbers_finite(const std::string& svg) {
+  return svg.find("nan") == std::string::npos && svg.find("inf\"") == std::string::npos &&
+         svg.find("NaN") == std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("plot: a full section is drawn to scale with v up and the curve on the true profile", "[plot]") {
+  for (const auto& design : {section::turbine_blade().at(0), section::compressor_blade().at(60)}) {
+    const section::SectionTruth truth = section::section_truth(design, 8000);
+    const section::Stream stream = full_stream(truth, 800, 300);
+    const std::string svg = section::plot_svg(stream, 0);
+    bool balanced = false;
+    const auto es = parse(svg, &balanced);
+    REQUIRE(balanced);
+    REQUIRE(svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0) == 0);
+    CHECK(all_numbers_finite(svg));
+
+    // Every element of a full stream is there, with its id or class.
+    for (const std::string id : {"s0", "s0-main", "s0-le", "s0-te", "s0-params", "s0-main-scale", "s0-le-clip"})
+      CHECK(svg.find("id=\"" + id + "\"") != std::string::npos);
+    for (const std::string c : {"points", "curve", "camber", "station", "chord", "le-circle", "te-circle",
+                                "le-point", "te-point", "scale-bar", "param-table", "inset-frame"})
+      CHECK(!with_class(es, c).empty());
+
+    const Element& main_group = by_id(es, "s0-main");
+    const Mapping m = mapping(main_group);
+    bool inner = false;
+    const auto main_es = parse(subtree(svg, "s0-main"), &inner);
+    REQUIRE(inner);
+
+    // The main view shows every thickness station and every measured point once.
+    CHECK(with_class(main_es, "station").size() == stream.find("thickness")->rows());
+    std::size_t dots = 0;
+    for (const auto& e : main_es) dots += e.tag == "circle" && !e.attr.count("class");
+    CHECK(dots == stream.find("points")->rows());
+
+    // Equal axes, v up: the chord line's px vector is scale * (du, -dv), its length the
+    // true chord (camber stage accuracy, here ~1 um, plus 0.01 px rounding).
+    const auto chord = with_class(main_es, "chord");
+    REQUIRE(chord.size() == 1);
+    const Vector2d a(chord[0]->num("x1"), chord[0]->num("y1")), b(chord[0]->num("x2"), chord[0]->num("y2"));
+    const Vector2d le = m.world(a), te = m.world(b);
+    CHECK((le - truth.le_point).norm() < 0.01);
+    CHECK((te - truth.te_point).norm() < 0.01);
+    CHECK(std::abs((b - a).norm() / m.s - truth.chord) < 0.005);
+    CHECK((b - a).y() * (truth.te_point - truth.le_point).y() <= 0);  // v up = px y down
+
+    // The LE circle drawn at the true centre and radius, in the main view and in its inset.
+    const auto le_circle = with_class(main_es, "le-circle");
+    REQUIRE(le_circle.size() == 1);
+    const Vector2d c = m.world({le_circle[0]->num("cx"), le_circle[0]->num("cy")});
+    CHECK((c - truth.le_center).norm() < 0.01);
+    CHECK(std::abs(le_circle[0]->num("r") / m.s - truth.le_radius) < 0.01);
+    bool inset_ok = false;
+    const std::string le_inset = subtree(svg, "s0-le");
+    const auto inset_es = parse(le_inset, &inset_ok);
+    REQUIRE(inset_ok);
+    const Mapping mi = mapping(by_id(inset_es, "s0-le"));
+    CHECK(mi.s > 1.3 * m.s);  // magnified
+    const auto inset_circle = with_class(inset_es, "le-circle");
+    REQUIRE(inset_circle.size() == 1);
+    CHECK(std::abs(inset_circle[0]->num("r") / mi.s - truth.le_radius) < 0.01);
+    // ... and wholly inside the inset's frame.
+    const auto frames = with_class(inset_es, "view-frame");
+    REQUIRE(frames.size() == 1);
+    const double fx = frames[0]->num("x"), fy = frames[0]->num("y"), fw = frames[0]->num("width");
+    const double cx = inset_circle[0]->num("cx"), cy = inset_circle[0]->num("cy"), r = inset_circle[0]->num("r");
+    CHECK(cx - r >= fx);
+    CHECK(cx + r <= fx + fw);
+    CHECK(cy - r >= fy);
+    CHECK(cy + r <= fy + fw);
+
+    // The drawn curve lies on the true profile (fit ~ 1 um, px rounding 0.005 px).
+    const auto curves = with_class(main_es, "curve");
+    REQUIRE(curves.size() == 1);
+    const auto px = vertices(curves[0]->attr.at("d"));
+    REQUIRE(px.size() >= 1000);
+    double worst = 0;
+    for (const auto& p : px) worst = std::max(worst, section::locate(truth, m.world(p)).distance);
+    CHECK(worst < 0.005 + 0.01 / m.s);
+
+    // The scale bar is as long as it says: data-length (1, 2 or 5 times a power of ten) * scale.
+    bool bar_ok = false;
+    const auto bar = parse(subtree(svg, "s0-main-scale"), &bar_ok);
+    const double length = bar.front().num("data-length");
+    const double mantissa = length / std::pow(10.0, std::floor(std::log10(length) + 1e-9));
+    CHECK((std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 || std::abs(mantissa - 5) < 1e-9));
+    const auto line = with_class(bar, "scale-bar-line");
+    REQUIRE(line.size() == 1);
+    CHECK(std::abs(line[0]->num("x2") - line[0]->num("x1") - length * m.s) < 0.02);
+
+    // The parameter table prints the chord.
+    CHECK(svg.find(">chord<") != std::string::npos);
+  }
+}
+
+TEST_CASE("plot: a stream that stops after slice draws its points and no more", "[plot]") {
+  // Noisy ellipse, a = 15, b = 2, as the slice stage would write it.
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0, 0.005);
+  section::Stream stream;
+  section::Table pts = table("points", {"section", "loop", "index", "u", "v", "nu", "nv"});
+  const int n = 500;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n;
+    pts.add_row({4, 0, double(i), 15 * std::cos(t) + noise(rng), 2 * std::sin(t) + noise(rng), 0, 0});
+  }
+  stream.put(pts);
+  const std::string svg = section::plot_svg(stream, 4);
+  bool balanced = false;
+  const auto es = parse(svg, &balanced);
+  REQUIRE(balanced);
+  CHECK(all_numbers_finite(svg));
+  for (const std::string c : {"curve", "camber", "chord", "le-circle", "te-circle", "station"})
+    CHECK(with_class(es, c).empty());
+  bool inner = false;
+  const auto main_es = parse(subtree(svg, "s4-main"), &inner);
+  std::size_t dots = 0;
+  for (const auto& e : main_es) dots += e.tag == "circle" && !e.attr.count("class");
+  CHECK(dots == static_cast<std::size_t>(n));
+  // Ends found on the principal axis: each ellipse vertex (+-15, 0) lies in one inset.
+  for (const Vector2d vertex : {Vector2d(-15, 0), Vector2d(15, 0)}) {
+    int inside = 0;
+    for (const std::string id : {"s4-le", "s4-te"}) {
+      bool ok = false;
+      const auto inset = parse(subtree(svg, id), &ok);
+      const Vector2d p = mapping(by_id(inset, id)).pixel(vertex);
+      const auto frame = with_class(inset, "view-frame");
+      REQUIRE(frame.size() == 1);
+      const double x = frame[0]->num("x"), y = frame[0]->num("y"), w = frame[0]->num("width");
+      inside += p.x() > x && p.x() < x + w && p.y() > y && p.y() < y + w;
+    }
+    CHECK(inside == 1);
+  }
+  CHECK(svg.find(">measured points<") != std::string::npos);
+}
+
+TEST_CASE("plot: the curve falls back on the samples, then the smoothed points", "[plot]") {
+  const section::SectionTruth truth = section::section_truth(section::SectionDesign{}, 4000);
+  section::Stream stream = full_stream(truth, 400, 100);
+  CHECK(section::plot_svg(stream, 0).find("data-source=\"spline\"") != std::string::npos);
+  section::Table samples = table("samples", {"section", "loop", "index", "u", "v"});
+  section::Table smoothed = table("smoothed", {"section", "loop", "index", "u", "v"});
+  for (std::size_t i = 0; i < truth.profile.size(); i += 10) {
+    samples.add_row({0, 0, double(i), truth.profile[i].x(), truth.profile[i].y()});
+    smoothed.add_row({0, 0, double(i), truth.profile[i].x(), truth.profile[i].y()});
+  }
+  for (const char* t : {"splines", "spline_knots", "spline_ctrl"}) stream.erase(t);
+  stream.put(smoothed);
+  CHECK(section::plot_svg(stream, 0).find("data-source=\"smoothed\"") != std::string::npos);
+  stream.put(samples);
+  const std::string svg = section::plot_svg(stream, 0);
+  CHECK(svg.find("data-source=\"samples\"") != std::string::npos);
+  // Camber tables stay drawn without the spline tables.
+  bool balanced = false;
+  const auto es = parse(svg, &balanced);
+  CHECK(balanced);
+  CHECK(with_class(es, "camber").size() == 4);  // main view, both insets, the legend
+}
+
+TEST_CASE("plot: unknown sections and bad options are plot errors", "[plot]") {
+  section::Stream stream;
+  section::Table pts = table("points", {"section", "loop", "index", "u", "v"});
+  for (int i = 0; i < 20; ++i) pts.add_row({2, 0, double(i), std::cos(i * 0.314), std::sin(i * 0.314)});
+  stream.put(pts);
+  CHECK_THROWS_WITH(section::plot_svg(stream, 7), Catch::Contains("plot: section 7 is not in the stream (sections: 2)"));
+  section::PlotOptions o;
+  o.width = 10;
+  CHECK_THROWS_WITH(section::plot_svg(stream, 2, o), Catch::StartsWith("plot: width"));
+  CHECK_THROWS_WITH(section::plot_html(section::Stream{}), Catch::StartsWith("plot: the stream holds no section"));
+  CHECK(section::plot_sections(stream) == std::vector<int>{2});
+}
+
+TEST_CASE("plot: the HTML page holds every section once, issues escaped", "[plot]") {
+  const section::SectionTruth truth = section::section_truth(section::SectionDesign{}, 4000);
+  section::Stream stream = full_stream(truth, 400, 100);
+  stream.history.push_back("slice <blade>.ply");
+  stream.issues.push_back({3, -1, "slice", "no points in the slab & no <loop>"});
+  const std::string html = section::plot_html(stream);
+  CHECK(html.rfind("<!DOCTYPE html>", 0) == 0);
+  bool balanced = false;
+  // <meta> and <br>-like void elements would unbalance the reader: drop the head.
+  const std::size_t body_end = html.find("</body>");
+  REQUIRE(body_end != std::string::npos);
+  const std::string body = html.substr(html.find("<body>"), body_end + 7 - html.find("<body>"));
+  parse(body, &balanced);
+  CHECK(balanced);
+  for (const std::string id : {"s0", "s3"}) {
+    const std::string key = "id=\"" + id + "\"";
+    const std::size_t first = html.find(key);
+    REQUIRE(first != std::string::npos);
+    CHECK(html.find(key, first + 1) == std::string::npos);
+  }
+  CHECK(html.find("no points in the slab &amp; no &lt;loop&gt;") != std::string::npos);
+  CHECK(html.find("slice &lt;blade&gt;.ply") != std::string::npos);
+  CHECK(html.find("nothing to draw") != std::string::npos);  // section 3 has only its issue
+  CHECK(all_numbers_finite(html));
+}
