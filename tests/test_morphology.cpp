@@ -458,9 +458,5 @@ TEST_CASE("morphology: generated turbine and compressor sections give one ordere
       CHECK(double(near) / double(sv.size()) >= 0.995);
       CHECK(double(normal_ok) / double(sv.size()) >= 0.99);
       CHECK(far_outliers_kept == 0);
-      // Every true outlier farther than 0.2 mm is dropped (generated outliers are >= 0.21 mm off).
-      std::size_t outliers = 0;
-      for (int o : s.outlier) outliers += o;
-      CHECK(m.dropped >= outliers - (outliers > 0 ? 0 : 0));
     }
 }

@@ -87,12 +87,18 @@ void check_declared_counts(const std::string& path, const std::string& ext) {
   }
   const unsigned long long bytes = static_cast<unsigned long long>(size);
   if (ext == "off") {
+    // OpenMesh reads a garbled header into uninitialised counts (found by fuzz_obj_off: a
+    // hang), so the header must parse here: [ST][C][N][4][n]OFF [BINARY] [dim] V F [E].
+    const auto malformed = [&] {
+      throw Error("read_mesh: " + path + ": malformed OFF header (expected 'OFF' and the vertex and face counts)");
+    };
     std::size_t k = 1;
-    if (tok.empty() || tok[0].find("OFF") == std::string::npos) return;
-    if (tok[0].find("nOFF") != std::string::npos) ++k;  // nOFF: a dimension first
+    const std::string& magic = tok.empty() ? std::string() : tok[0];
+    if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0 || magic.size() > 8) malformed();
     if (k < tok.size() && tok[k] == "BINARY") ++k;
+    if (magic.find("nOFF") != std::string::npos) ++k;  // nOFF: a dimension first
     unsigned long long nv = 0, nf = 0;
-    if (k + 1 >= tok.size() || !number(tok[k], nv) || !number(tok[k + 1], nf)) return;
+    if (k + 1 >= tok.size() || !number(tok[k], nv) || !number(tok[k + 1], nf)) malformed();
     if (nv > bytes / 6) refuse(nv, "vertices");
     if (nf > bytes) refuse(nf, "faces");
     return;

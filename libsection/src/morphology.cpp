@@ -30,7 +30,10 @@ std::string num(double x) {
 // ---------------------------------------------------------------------------------------
 // Uniform hash grid over a subset of points (cells sorted by key, one lookup per cell).
 
-std::int64_t cell_key(std::int64_t i, std::int64_t j) { return (i << 32) ^ (j & 0xffffffffLL); }
+// Shifted as unsigned: shifting a negative cell index left is undefined (UBSan, robustness).
+std::int64_t cell_key(std::int64_t i, std::int64_t j) {
+  return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffULL));
+}
 
 class PointGrid {
 public:

@@ -222,7 +222,7 @@ for f in "$R"/crash-*; do
   [ -e "$f" ] || continue
   case "$f" in
     *.xyz|*.ply|*.csv) refuse slice "$f" "read_cloud" "${S[@]}" ;;
-    *.stl|*.obj|*.off) refuse slice "$f" "read_mesh" "${S[@]}" ;;
+    *.stl|*.obj|*.off) refuse slice "$f" "read_mesh.*(malformed|no faces)" "${S[@]}" ;;
     *.stream) refuse smooth "$f" "pipe" ;;
     *.dat) refuse camber "$f" "pipe" ;;
   esac
