@@ -21,18 +21,6 @@ const char* const description =
     "'sides' to the stream; sections that fail are recorded as issues.\n\n"
     "Example: slice blade.ply --count 9 | smooth | fitspline | camber --params params.csv";
 
-std::string table_csv(const section::Table& table) {
-  std::string out;
-  for (std::size_t c = 0; c < table.columns.size(); ++c) out += (c ? "," : "") + table.columns[c];
-  out += "\n";
-  for (std::size_t r = 0; r < table.rows(); ++r) {
-    for (std::size_t c = 0; c < table.columns.size(); ++c)
-      out += (c ? "," : "") + section::format_number(table.at(r, c));
-    out += "\n";
-  }
-  return out;
-}
-
 // "a,b,c" -> numbers; throws section::Error naming the flag.
 std::vector<double> numbers(const std::string& text, const std::string& flag) {
   std::vector<double> out;
@@ -119,8 +107,8 @@ int main(int argc, char** argv) {
           if (issue.stage == "camber")
             std::cerr << "camber: warning: section " << issue.section << ": " << issue.message << "\n";
         stream.history.push_back(section::tool::command_line(argc, argv));
-        if (!params_file.empty()) section::write_file(params_file, table_csv(*stream.find("params")));
-        if (!thickness_file.empty()) section::write_file(thickness_file, table_csv(*stream.find("thickness")));
+        if (!params_file.empty()) section::write_file(params_file, section::format_csv(*stream.find("params")));
+        if (!thickness_file.empty()) section::write_file(thickness_file, section::format_csv(*stream.find("thickness")));
         section::write_stream(common.output, stream);
       });
 }

@@ -22,18 +22,6 @@ const char* const description =
     "--a sets the paper's weight directly (it depends on the units and the spacing).\n\n"
     "Example: slice blade.ply --count 9 | smooth | fitspline | camber";
 
-std::string report_csv(const section::Table& table) {
-  std::string out;
-  for (std::size_t c = 0; c < table.columns.size(); ++c) out += (c ? "," : "") + table.columns[c];
-  out += "\n";
-  for (std::size_t r = 0; r < table.rows(); ++r) {
-    for (std::size_t c = 0; c < table.columns.size(); ++c)
-      out += (c ? "," : "") + section::format_number(table.at(r, c));
-    out += "\n";
-  }
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -71,7 +59,7 @@ int main(int argc, char** argv) {
             std::cerr << "smooth: warning: section " << issue.section << " loop " << issue.loop
                       << ": " << issue.message << "\n";
         stream.history.push_back(section::tool::command_line(argc, argv));
-        if (!report.empty()) section::write_file(report, report_csv(*stream.find("smooth_stats")));
+        if (!report.empty()) section::write_file(report, section::format_csv(*stream.find("smooth_stats")));
         section::write_stream(common.output, stream);
       });
 }

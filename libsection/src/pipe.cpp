@@ -286,6 +286,20 @@ std::string format_stream(const Stream& stream) {
   return out;
 }
 
+std::string format_csv(const Table& table) {
+  std::string out;
+  for (std::size_t c = 0; c < table.columns.size(); ++c) out += (c ? "," : "") + table.columns[c];
+  out += '\n';
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    for (std::size_t c = 0; c < table.columns.size(); ++c) {
+      if (c) out += ',';
+      out += format_number(table.at(r, c));
+    }
+    out += '\n';
+  }
+  return out;
+}
+
 std::string read_file(const std::string& path) {
   std::string data;
   if (path == "-") {

@@ -91,6 +91,10 @@ Table parse_csv(std::string_view text, const std::string& source);
 /// are skipped, as in airfoil .dat files. Throws section::Error naming `source` and the line.
 std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::string& source);
 
+/// Formats one table as a plain CSV file (header row, then the rows; no `#` lines), for
+/// tools that also write a table on its own (camber --params, smooth --report).
+std::string format_csv(const Table& table);
+
 /// Section frames of a stream (table "frames"), by section id.
 std::map<int, Frame> frames(const Stream& stream);
 
