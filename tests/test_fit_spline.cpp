@@ -107,6 +107,28 @@ TEST_CASE("fit_spline: noisy circle (sigma 5 um) is within 2 um RMS of the truth
   }
 }
 
+TEST_CASE("fit_spline: a hole in the data is reported with its length along the curve", "[fit_spline]") {
+  // Noisy circle of radius 10 mm, 0.04 mm spacing, with the arc a in [1, 1.3] rad missing:
+  // one hole of 3 mm; the natural spacing variations must not be listed.
+  const double r = 10;
+  auto f = [&](double a) { return Vector2d(r * std::cos(a), r * std::sin(a)); };
+  std::vector<Vector2d> p;
+  const int m = static_cast<int>(2 * pi * r / 0.04);
+  for (const Vector2d& q : curve_points(f, m, 0.005, 7)) {
+    const double a = std::atan2(q.y(), q.x());
+    if (a < 1.0 || a > 1.3) p.push_back(q);
+  }
+  const auto res = section::fit_spline(p, p);
+  REQUIRE(res.gaps.size() == 1);
+  // The hole spans from the last point before to the first after: 0.3 rad plus up to a spacing.
+  CHECK(res.gaps[0].length == Approx(3.0 + 0.04).margin(0.05));
+  CHECK(res.max_gap == res.gaps[0].length);
+  CHECK(res.spacing == Approx(0.04).epsilon(0.05));
+  const Vector2d start = res.spline.point(res.gaps[0].start), end = res.spline.point(res.gaps[0].end);
+  CHECK(std::atan2(start.y(), start.x()) == Approx(1.0).margin(0.005));
+  CHECK(std::atan2(end.y(), end.x()) == Approx(1.3).margin(0.005));
+}
+
 namespace {
 
 // Slab of a generated scan around height z, projected on the plane and ordered along the

@@ -53,6 +53,9 @@ int main(int argc, char** argv) {
         app.add_option("--outlier-distance", options.outlier_distance,
                        "Ignore isolated points farther than this from the curve; 0 = automatic")
             ->check(CLI::NonNegativeNumber)->capture_default_str();
+        app.add_option("--gap-factor", options.gap_factor,
+                       "List as a hole (table gaps) any stretch without measured points longer than this many median spacings")
+            ->check(CLI::PositiveNumber)->capture_default_str();
         app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
       },
       [&] {

@@ -1,6 +1,7 @@
 #include "section/bspline.h"
 
 #include "section/error.h"
+#include "detail/piecewise_curve.h"
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
@@ -161,54 +162,15 @@ void evaluate(const BSpline& c, double t, int nd, Eigen::Vector2d* out) {
   }
 }
 
-// |C(t) - q|^2 and its first two derivatives in t.
-struct DistanceDerivatives {
-  double g, dg, ddg;
-};
-
-DistanceDerivatives distance_derivatives(const BSpline& c, const Eigen::Vector2d& q, double t) {
-  Eigen::Vector2d d[3];
-  evaluate(c, t, 2, d);
-  const Eigen::Vector2d r = d[0] - q;
-  return {r.squaredNorm(), 2 * r.dot(d[1]), 2 * (d[1].squaredNorm() + r.dot(d[2]))};
-}
-
-// Minimum of |C(t) - q|^2 over the bracket [a, b] starting at t0: Newton on the derivative,
-// kept inside a shrinking bracket and falling back to bisection or golden section, so that
-// flat or non-convex stretches (points near a centre of curvature) cannot throw it out.
+// Minimum of |C(t) - q|^2 over [a, b] from t0 (see detail::minimise_bracket).
 double minimise_bracket(const BSpline& c, const Eigen::Vector2d& q, double a, double b, double t0) {
-  DistanceDerivatives fa = distance_derivatives(c, q, a);
-  DistanceDerivatives fb = distance_derivatives(c, q, b);
-  const double tol = 1e-13 * std::max({1.0, std::abs(a), std::abs(b)});
-  if (fa.dg < 0 && fb.dg > 0) {
-    double t = std::clamp(t0, a, b);
-    for (int it = 0; it < 60 && b - a > tol; ++it) {
-      const DistanceDerivatives f = distance_derivatives(c, q, t);
-      if (f.dg == 0) return t;
-      if (f.dg < 0) a = t; else b = t;
-      double next = f.ddg > 0 ? t - f.dg / f.ddg : 0.5 * (a + b);
-      if (!(next > a && next < b)) next = 0.5 * (a + b);
-      if (std::abs(next - t) < tol) return next;
-      t = next;
-    }
-    return 0.5 * (a + b);
-  }
-  // No sign change: golden section on the distance itself.
-  const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = b - gr * (b - a), x2 = a + gr * (b - a);
-  double g1 = distance_derivatives(c, q, x1).g, g2 = distance_derivatives(c, q, x2).g;
-  for (int it = 0; it < 100 && b - a > tol; ++it) {
-    if (g1 < g2) {
-      b = x2; x2 = x1; g2 = g1; x1 = b - gr * (b - a); g1 = distance_derivatives(c, q, x1).g;
-    } else {
-      a = x1; x1 = x2; g1 = g2; x2 = a + gr * (b - a); g2 = distance_derivatives(c, q, x2).g;
-    }
-  }
-  double t = 0.5 * (a + b);
-  double best = distance_derivatives(c, q, t).g;
-  if (fa.g < best) { t = a; best = fa.g; }
-  if (fb.g < best) t = b;
-  return t;
+  return detail::minimise_bracket(
+      [&](double t) {
+        Eigen::Vector2d d[3];
+        evaluate(c, t, 2, d);
+        return detail::squared_distance({d[0], d[1], d[2]}, q);
+      },
+      a, b, t0);
 }
 
 ClosestPoint make_closest(const BSpline& c, const Eigen::Vector2d& q, double t) {

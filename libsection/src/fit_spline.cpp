@@ -2,6 +2,7 @@
 
 #include "detail/flann_nearest.h"
 #include "detail/parallel.h"
+#include "detail/piecewise_curve.h"
 #include "section/error.h"
 #include "section/pipe.h"
 
@@ -49,23 +50,82 @@ std::vector<double> span_samples(const BSpline& c, int per_span) {
 struct Feet {
   std::vector<double> t;       // curve parameter of the foot
   std::vector<double> signed_distance;  // positive on the outer side (tangent turned clockwise)
+  std::vector<std::size_t> order;       // point indices sorted by t
 };
 
-Feet foot_points(const BSpline& c, const Points& q) {
-  const std::vector<double> ts = span_samples(c, 8);
-  Points pts(ts.size());
-  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = c.point(ts[i]);
-  const detail::NearestPoints tree(pts);
-  const std::vector<int> idx = tree.nearest(q);
+// With `previous` (the feet on a curve that moved a little since), each foot is tracked
+// by Newton from its old parameter; a point whose Newton leaves the old foot's
+// neighbourhood or meets a non-convex stretch gets the full search.
+Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullptr) {
+  const detail::PiecewiseCurve pc(c);
+  const double period = c.t_max() - c.t_min();
+  auto wrap = [&](double t) { return t < c.t_min() ? t + period : (t >= c.t_max() ? t - period : t); };
   Feet f;
-  f.t.resize(q.size());
+  f.t.assign(q.size(), std::numeric_limits<double>::quiet_NaN());
   f.signed_distance.resize(q.size());
+  const double step = period / (8.0 * static_cast<double>(c.control.size()));
+  const double converged = 1e-12 * period;  // parameter step (about a length) that ends Newton
+  std::vector<std::size_t> lost;
   for (std::size_t k = 0; k < q.size(); ++k) {
-    const ClosestPoint cp = closest_point_near(c, q[k], ts[idx[k]]);
-    const Eigen::Vector2d d1 = c.derivative(cp.t, 1);
-    const Eigen::Vector2d normal = Eigen::Vector2d(d1.y(), -d1.x()).normalized();
-    f.t[k] = cp.t;
-    f.signed_distance[k] = (q[k] - cp.point).dot(normal);
+    if (!previous) {
+      lost.push_back(k);
+      continue;
+    }
+    double t = previous->t[k];
+    bool ok = false;
+    for (int it = 0; it < 8; ++it) {
+      const detail::CurveJet j = pc.jet(t);
+      const detail::SquaredDistance g = detail::squared_distance(j, q[k]);
+      if (!(g.ddg > 0)) break;
+      const double dt = -g.dg / g.ddg;
+      t += dt;
+      if (std::abs(t - previous->t[k]) > step) break;
+      if (std::abs(dt) <= converged) {
+        // This jet is within `converged` of the foot: its distance is exact to far below a nm.
+        ok = true;
+        const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
+        f.signed_distance[k] = (q[k] - j.point).dot(normal);
+        break;
+      }
+    }
+    if (ok) f.t[k] = wrap(t);
+    else lost.push_back(k);
+  }
+  if (!lost.empty()) {
+    // Nearest dense sample from a kd-tree; the foot lies between its neighbours.
+    const std::vector<double> ts = span_samples(c, 8);
+    const std::size_t m = ts.size();
+    Points pts(m);
+    for (std::size_t i = 0; i < m; ++i) pts[i] = pc.point(ts[i]);
+    const detail::NearestPoints tree(pts);
+    Points lost_points(lost.size());
+    for (std::size_t l = 0; l < lost.size(); ++l) lost_points[l] = q[lost[l]];
+    const std::vector<int> idx = tree.nearest(lost_points);
+    for (std::size_t l = 0; l < lost.size(); ++l) {
+      const std::size_t k = lost[l];
+      const std::size_t i = static_cast<std::size_t>(idx[l]);
+      const double a = i > 0 ? ts[i - 1] : ts[m - 1] - period;
+      const double b = i + 1 < m ? ts[i + 1] : c.t_max();
+      f.t[k] = wrap(detail::minimise_bracket(
+          [&](double x) { return detail::squared_distance(pc.jet(x), q[k]); }, a, b, ts[i]));
+      const detail::CurveJet j = pc.jet(f.t[k]);
+      const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
+      f.signed_distance[k] = (q[k] - j.point).dot(normal);
+    }
+  }
+  auto before = [&](std::size_t x, std::size_t y) { return f.t[x] < f.t[y]; };
+  if (previous) {
+    // The previous order is nearly right: insertion sort, unless it moves too much.
+    f.order = previous->order;
+    std::size_t moves = 0;
+    for (std::size_t i = 1; i < f.order.size() && moves <= 8 * f.order.size(); ++i)
+      for (std::size_t j = i; j > 0 && before(f.order[j], f.order[j - 1]); --j, ++moves)
+        std::swap(f.order[j], f.order[j - 1]);
+    if (moves > 8 * f.order.size()) std::sort(f.order.begin(), f.order.end(), before);
+  } else {
+    f.order.resize(q.size());
+    std::iota(f.order.begin(), f.order.end(), 0);
+    std::sort(f.order.begin(), f.order.end(), before);
   }
   return f;
 }
@@ -73,9 +133,7 @@ Feet foot_points(const BSpline& c, const Points& q) {
 // Robust noise sigma: from differences of residuals consecutive along the curve, which
 // cancel the smooth (model) part of the residual and keep the noise.
 double noise_sigma(const Feet& f, const std::vector<double>& w) {
-  std::vector<std::size_t> order(f.t.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return f.t[a] < f.t[b]; });
+  const std::vector<std::size_t>& order = f.order;
   std::vector<double> diffs;
   std::size_t prev = order.size();
   for (std::size_t i : order) {
@@ -91,9 +149,7 @@ double noise_sigma(const Feet& f, const std::vector<double>& w) {
 // as they mean the curve is not there yet (a cut edge), not outliers.
 std::vector<double> outlier_weights(const Feet& f, double threshold) {
   const std::size_t m = f.t.size();
-  std::vector<std::size_t> order(m);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return f.t[a] < f.t[b]; });
+  const std::vector<std::size_t>& order = f.order;
   std::vector<double> w(m, 1.0);
   for (std::size_t i = 0; i < m; ++i) {
     const double s = f.signed_distance[order[i]];
@@ -118,21 +174,26 @@ std::vector<double> outlier_weights(const Feet& f, double threshold) {
 BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::vector<double>& w,
                  double fairness) {
   const int n = static_cast<int>(c.control.size());
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(q.size() * 64 + n * 40);
+  const int p = c.degree;
+  const detail::PiecewiseCurve pc(c);
+  // Each point couples p + 1 consecutive control points: accumulate the 2x2 blocks of
+  // the normal equations in a band (row i, offset 0..p), then hand them over as triplets.
+  std::vector<Eigen::Matrix2d> band(static_cast<std::size_t>(n) * (p + 1), Eigen::Matrix2d::Zero());
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * n);
-  std::vector<int> idx;
-  std::vector<double> val;
+  double val[8];
+  int idx[8];
   double trace = 0;
   for (std::size_t k = 0; k < q.size(); ++k) {
     if (w[k] <= 0) continue;
     const double t = f.t[k];
-    c.basis(t, idx, val);
-    const Eigen::Vector2d d1 = c.derivative(t, 1);
-    const Eigen::Vector2d tangent = d1.normalized();
+    const int first = pc.basis(t, val);
+    for (int a = 0; a <= p; ++a) idx[a] = (first + a) % n;
+    const detail::CurveJet jet = pc.jet(t);
+    const Eigen::Vector2d tangent = jet.d1.normalized();
     const Eigen::Vector2d normal(tangent.y(), -tangent.x());
     const double d = f.signed_distance[k];
-    const double kappa = c.curvature(t);
+    const double speed = jet.d1.norm();
+    const double kappa = speed > 0 ? (jet.d1.x() * jet.d2.y() - jet.d1.y() * jet.d2.x()) / (speed * speed * speed) : 0;
     double alpha = 1;
     if (kappa == 0) {
       alpha = 0;
@@ -142,17 +203,27 @@ BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::ve
       alpha = centre_side ? (std::abs(d) < rho ? 0 : 1) : std::abs(d) / (std::abs(d) + rho);
     }
     alpha = std::max(alpha, 1e-3);
-    const Eigen::Matrix2d M = normal * normal.transpose() + alpha * tangent * tangent.transpose();
+    const Eigen::Matrix2d M = w[k] * (normal * normal.transpose() + alpha * tangent * tangent.transpose());
     const Eigen::Vector2d Mq = M * q[k];
-    for (std::size_t a = 0; a < idx.size(); ++a) {
-      for (int r = 0; r < 2; ++r) rhs(2 * idx[a] + r) += w[k] * val[a] * Mq(r);
-      for (std::size_t b = 0; b < idx.size(); ++b)
-        for (int r = 0; r < 2; ++r)
-          for (int s = 0; s < 2; ++s)
-            trip.emplace_back(2 * idx[a] + r, 2 * idx[b] + s, w[k] * val[a] * val[b] * M(r, s));
+    for (int a = 0; a <= p; ++a) {
+      rhs.segment<2>(2 * idx[a]) += val[a] * Mq;
+      for (int b = a; b <= p; ++b) band[static_cast<std::size_t>(idx[a]) * (p + 1) + (b - a)] += val[a] * val[b] * M;
       trace += w[k] * val[a] * val[a];
     }
   }
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(n) * (8 * (p + 1) + 40));
+  for (int i = 0; i < n; ++i)
+    for (int o = 0; o <= p; ++o) {
+      const Eigen::Matrix2d& B = band[static_cast<std::size_t>(i) * (p + 1) + o];
+      if (o > 0 && B.isZero(0)) continue;
+      const int j = (i + o) % n;
+      for (int r = 0; r < 2; ++r)
+        for (int s = 0; s < 2; ++s) {
+          trip.emplace_back(2 * i + r, 2 * j + s, B(r, s));
+          if (o > 0) trip.emplace_back(2 * j + s, 2 * i + r, B(r, s));
+        }
+    }
   // Fairness (second differences of the control polygon) keeps spans without data
   // determined; a tiny pull toward the current control points keeps the system definite.
   const double lambda = fairness * std::max(trace / n, 1e-12);
@@ -295,7 +366,7 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o) {
   int it = 0;
   for (; it < o.max_iterations; ++it) {
     const BSpline next = sdm_step(c, q, f, w, o.fairness);
-    const Feet nf = foot_points(next, q);
+    const Feet nf = foot_points(next, q, &f);
     const std::vector<double> nw = weights_for(nf);
     const double nrms = weighted_rms(nf, nw);
     c = next;
@@ -384,6 +455,46 @@ bool self_intersects(const BSpline& curve) {
 
 namespace {
 
+// The longest stretch of the curve between consecutive measured feet, and the median
+// spacing, as arc lengths: a hole in the data is where the curve is bridged, not measured.
+void measure_gaps(const Refinement& r, double gap_factor, FitSplineResult& result) {
+  std::vector<double> ts;
+  for (std::size_t k : r.feet.order)
+    if (r.weights[k] > 0) ts.push_back(r.feet.t[k]);
+  if (ts.size() < 2) return;
+  const BSpline& c = r.curve;
+  const detail::PiecewiseCurve pc(c);
+  const double period = c.t_max() - c.t_min();
+  // Chords between consecutive feet (close to the arc for all but the holes), the
+  // longest one measured along the curve.
+  std::vector<double> lengths(ts.size());
+  Eigen::Vector2d previous = pc.point(ts[0]);
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    const Eigen::Vector2d next = pc.point(i + 1 < ts.size() ? ts[i + 1] : ts[0]);
+    lengths[i] = (next - previous).norm();
+    previous = next;
+  }
+  result.spacing = median(lengths);
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    if (!(lengths[i] > gap_factor * result.spacing)) continue;
+    const double end = i + 1 < ts.size() ? ts[i + 1] : ts[0] + period;
+    result.gaps.push_back({ts[i], ts[(i + 1) % ts.size()], arc_length(c, ts[i], end)});
+  }
+  std::stable_sort(result.gaps.begin(), result.gaps.end(),
+                   [](const auto& x, const auto& y) { return x.length > y.length; });
+  if (!result.gaps.empty()) {
+    result.max_gap = result.gaps.front().length;
+    result.gap_start = result.gaps.front().start;
+    result.gap_end = result.gaps.front().end;
+  } else {
+    const std::size_t worst = static_cast<std::size_t>(std::max_element(lengths.begin(), lengths.end()) - lengths.begin());
+    const double end = worst + 1 < ts.size() ? ts[worst + 1] : ts[0] + period;
+    result.max_gap = arc_length(c, ts[worst], end);
+    result.gap_start = ts[worst];
+    result.gap_end = ts[(worst + 1) % ts.size()];
+  }
+}
+
 struct FoldError : Error {
   using Error::Error;
 };
@@ -432,7 +543,11 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
     throw Error("fit_spline: the loop crosses itself (its points are not ordered along one profile)");
 
   FitSplineResult result;
-  Refinement r = refine(curve, measured, o);
+  // In adaptive mode the first curve only has to show where the curvature is: its
+  // uniform spans cannot follow the edges, and iterating them to convergence is slow.
+  FitSplineOptions first = o;
+  if (o.control_points == 0) first.max_iterations = std::min(o.max_iterations, 4);
+  Refinement r = refine(curve, measured, first);
   result.iterations = r.iterations;
   if (o.control_points == 0) {
     // Knots by curvature first (a few passes: an edge sharpens as it gets knots), then
@@ -482,6 +597,7 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
     result.p95 = d[std::min(d.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * d.size())) - 1)];
   }
   result.control_points = static_cast<int>(result.spline.control.size());
+  measure_gaps(r, o.gap_factor, result);
   return result;
 }
 
@@ -538,10 +654,11 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
 
   Table splines_table{"splines",
                       {"section", "loop", "degree", "closed", "control_points", "rms", "max", "p95",
-                       "iterations"},
+                       "iterations", "spacing", "max_gap", "gap_start", "gap_end"},
                       {}};
   Table knots_table{"spline_knots", {"section", "loop", "index", "knot"}, {}};
   Table ctrl_table{"spline_ctrl", {"section", "loop", "index", "u", "v"}, {}};
+  Table gaps_table{"gaps", {"section", "loop", "index", "t_start", "t_end", "length"}, {}};
   Table samples_table{"samples",
                       {"section", "loop", "index", "t", "u", "v", "x", "y", "z", "nu", "nv", "curvature"},
                       {}};
@@ -549,7 +666,7 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
   // Loops are independent: each fills its own slot, merged in key order afterwards, so the
   // output is the same whatever the thread count.
   struct Slot {
-    std::vector<double> splines, knots, ctrl, samples;
+    std::vector<double> splines, knots, ctrl, samples, gaps;
     bool failed = false;
     SectionIssue issue;
   };
@@ -574,10 +691,13 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
       const BSpline& c = r.spline;
       const double sec = section, lp = loop;
       slot.splines = {sec, lp, double(c.degree), c.closed ? 1.0 : 0.0,
-                      double(c.control.size()), r.rms, r.max, r.p95, double(r.iterations)};
+                      double(c.control.size()), r.rms, r.max, r.p95, double(r.iterations),
+                      r.spacing, r.max_gap, r.gap_start, r.gap_end};
       for (std::size_t i = 0; i < c.knots.size(); ++i) slot.knots.insert(slot.knots.end(), {sec, lp, double(i), c.knots[i]});
       for (std::size_t i = 0; i < c.control.size(); ++i)
         slot.ctrl.insert(slot.ctrl.end(), {sec, lp, double(i), c.control[i].x(), c.control[i].y()});
+      for (std::size_t i = 0; i < r.gaps.size(); ++i)
+        slot.gaps.insert(slot.gaps.end(), {sec, lp, double(i), r.gaps[i].start, r.gaps[i].end, r.gaps[i].length});
       if (want_samples) {
         // Even arc-length steps from a dense cumulative length table.
         const std::vector<double> ts = span_samples(c, 32);
@@ -623,12 +743,14 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
     append(splines_table, slot.splines);
     append(knots_table, slot.knots);
     append(ctrl_table, slot.ctrl);
+    append(gaps_table, slot.gaps);
     append(samples_table, slot.samples);
   }
   for (auto& i : new_issues) issues.push_back(std::move(i));
   stream.put(std::move(splines_table));
   stream.put(std::move(knots_table));
   stream.put(std::move(ctrl_table));
+  stream.put(std::move(gaps_table));
   if (want_samples) stream.put(std::move(samples_table));
   else stream.erase("samples");
 }

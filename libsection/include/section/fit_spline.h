@@ -31,6 +31,7 @@ struct FitSplineOptions {
   double outlier_distance = 0;    ///< mm: isolated measured points farther than this from the curve are ignored; 0 = automatic (6 noise sigmas, at least 0.02 mm)
   int samples = 0;                ///< stream stage: points per loop written to the "samples" table (0 = none unless sample_spacing)
   double sample_spacing = 0;      ///< mm, stream stage: arc-length spacing of the "samples" table (0 = use `samples`)
+  double gap_factor = 10;         ///< 1: a stretch of the curve without measured points longer than this many median spacings is listed as a hole (FitSplineResult::gaps, table "gaps")
   int threads = 0;                ///< stream stage: worker threads over the loops (output identical for any count); 0 = all cores
 };
 
@@ -46,6 +47,16 @@ struct FitSplineResult {
   int control_points = 0;         ///< control points of the result
   int points = 0;                 ///< measured points used
   int outliers = 0;               ///< measured points ignored as outliers
+  double max_gap = 0;             ///< mm, longest stretch of the curve (along it) without a measured point: a bridged hole, where the curve is a guess
+  double gap_start = 0;           ///< curve parameter where that stretch begins
+  double gap_end = 0;             ///< curve parameter where it ends (may be below gap_start: it wraps past t_max)
+  double spacing = 0;             ///< mm, median distance along the curve between consecutive measured points
+  /// Holes: stretches between consecutive measured points longer than `gap_factor`
+  /// spacings, longest first (parameters as gap_start/gap_end, length in mm along the curve).
+  struct Gap {
+    double start = 0, end = 0, length = 0;
+  };
+  std::vector<Gap> gaps;
 };
 
 /// Fits a closed B-spline to one loop. `profile` is the ordered loop the first curve is

@@ -1,0 +1,190 @@
+#pragma once
+// A B-spline converted to one polynomial per knot span, for the loops that evaluate the
+// same curve hundreds of thousands of times (foot points of every measured point in
+// every fit iteration): Horner's rule on a few coefficients instead of Cox-de Boor.
+#include "section/bspline.h"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace section::detail {
+
+/// Point and first two derivatives of a curve at one parameter.
+struct CurveJet {
+  Eigen::Vector2d point, d1, d2;
+};
+
+class PiecewiseCurve {
+public:
+  /// Converts `curve` (checked by the caller: a valid open or closed B-spline).
+  explicit PiecewiseCurve(const BSpline& curve)
+      : degree_(curve.degree), closed_(curve.closed), t_min_(curve.t_min()), t_max_(curve.t_max()) {
+    const std::vector<double>& k = curve.knots;
+    std::vector<double> breaks;
+    if (closed_) {
+      breaks = k;
+    } else {
+      for (std::size_t i = curve.degree; i + curve.degree < k.size(); ++i) breaks.push_back(k[i]);
+    }
+    // Zero-length spans carry no curve.
+    const long first = closed_ ? 0 : curve.degree;
+    const long n = static_cast<long>(curve.control.size());
+    const double period = closed_ ? k.back() - k.front() : 0;
+    auto knot = [&](long i) {  // periodically extended when closed
+      if (!closed_) return k[static_cast<std::size_t>(i)];
+      const long wraps = i >= 0 ? i / n : -((-i + n - 1) / n);
+      return k[static_cast<std::size_t>(i - wraps * n)] + static_cast<double>(wraps) * period;
+    };
+    breaks_.push_back(breaks.front());
+    for (std::size_t i = 1; i < breaks.size(); ++i) {
+      if (breaks[i] <= breaks_.back()) continue;
+      const long j = first + static_cast<long>(i) - 1;  // knot index of the span's start
+      breaks_.push_back(breaks[i]);
+      first_control_.push_back(static_cast<int>(closed_ ? ((j - degree_) % n + n) % n : j - degree_));
+      for (long r = j - degree_ + 1; r <= j + degree_; ++r) local_knots_.push_back(knot(r));
+    }
+    const int stride = degree_ + 1;
+    coef_.resize((breaks_.size() - 1) * stride);
+    for (std::size_t j = 0; j + 1 < breaks_.size(); ++j) {
+      // Taylor coefficients at the span's start, from inside the span (right limits).
+      const double a = breaks_[j];
+      double factorial = 1;
+      for (int d = 0; d <= degree_; ++d) {
+        if (d > 0) factorial *= d;
+        coef_[j * stride + d] = curve.derivative(a, d) / factorial;
+      }
+    }
+  }
+
+  double t_min() const { return t_min_; }
+  double t_max() const { return t_max_; }
+
+  /// Point and derivatives at t (wrapped into one period when closed, clamped when open).
+  CurveJet jet(double t) const {
+    const Local l = locate(t);
+    const Eigen::Vector2d* c = &coef_[l.span * (degree_ + 1)];
+    CurveJet out{c[degree_], Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+    for (int d = degree_ - 1; d >= 0; --d) {
+      out.d2 = out.d2 * l.s + 2 * out.d1;
+      out.d1 = out.d1 * l.s + out.point;
+      out.point = out.point * l.s + c[d];
+    }
+    return out;
+  }
+
+  /// The p + 1 basis functions non-zero at t: the first one's control index (the others
+  /// follow consecutively, wrapping around when closed) and their values in `value`.
+  int basis(double t, double* value) const {
+    const Local l = locate(t);
+    const double* u = &local_knots_[l.span * 2 * degree_];  // knots j-p+1 .. j+p
+    const double x = breaks_[l.span] + l.s;
+    double left[8], right[8];
+    value[0] = 1;
+    for (int r = 1; r <= degree_; ++r) {
+      left[r] = x - u[degree_ - r];
+      right[r] = u[degree_ - 1 + r] - x;
+      double saved = 0;
+      for (int i = 0; i < r; ++i) {
+        const double denominator = right[i + 1] + left[r - i];
+        const double temp = denominator == 0 ? 0 : value[i] / denominator;
+        value[i] = saved + right[i + 1] * temp;
+        saved = left[r - i] * temp;
+      }
+      value[r] = saved;
+    }
+    return first_control_[l.span];
+  }
+
+  Eigen::Vector2d point(double t) const {
+    const Local l = locate(t);
+    const Eigen::Vector2d* c = &coef_[l.span * (degree_ + 1)];
+    Eigen::Vector2d p = c[degree_];
+    for (int d = degree_ - 1; d >= 0; --d) p = p * l.s + c[d];
+    return p;
+  }
+
+private:
+  struct Local {
+    std::size_t span;
+    double s;  // parameter from the span's start
+  };
+
+  Local locate(double t) const {
+    if (closed_) {
+      const double period = t_max_ - t_min_;
+      if (t < t_min_ || t >= t_max_) {
+        t = t_min_ + std::fmod(t - t_min_, period);
+        if (t < t_min_) t += period;
+        if (t >= t_max_) t = t_min_;
+      }
+    } else {
+      t = std::clamp(t, t_min_, t_max_);
+    }
+    const auto it = std::upper_bound(breaks_.begin(), breaks_.end(), t);
+    const std::size_t span = std::min<std::size_t>(
+        static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - breaks_.begin() - 1, 0)), breaks_.size() - 2);
+    return {span, t - breaks_[span]};
+  }
+
+  int degree_;
+  bool closed_;
+  double t_min_, t_max_;
+  std::vector<double> breaks_;
+  std::vector<int> first_control_;   // per span: control index of its first basis function
+  std::vector<double> local_knots_;  // per span: the 2 degree knots around it
+  std::vector<Eigen::Vector2d> coef_;  // (degree + 1) per span, constant term first
+};
+
+/// |C(t) - q|^2 and its first two derivatives in t.
+struct SquaredDistance {
+  double g, dg, ddg;
+};
+
+inline SquaredDistance squared_distance(const CurveJet& j, const Eigen::Vector2d& q) {
+  const Eigen::Vector2d r = j.point - q;
+  return {r.squaredNorm(), 2 * r.dot(j.d1), 2 * (j.d1.squaredNorm() + r.dot(j.d2))};
+}
+
+/// Minimum of a squared distance g over the bracket [a, b] starting at t0, `f(t)` giving
+/// g and its derivatives: Newton on g', kept inside a shrinking bracket and falling back
+/// to bisection, or to golden section when g' does not change sign, so that flat or
+/// non-convex stretches (points near a centre of curvature) cannot throw it out.
+template <class F>
+double minimise_bracket(F&& f, double a, double b, double t0) {
+  const SquaredDistance fa = f(a), fb = f(b);
+  const double tol = 1e-13 * std::max({1.0, std::abs(a), std::abs(b)});
+  if (fa.dg < 0 && fb.dg > 0) {
+    double t = std::clamp(t0, a, b);
+    for (int it = 0; it < 60 && b - a > tol; ++it) {
+      const SquaredDistance ft = f(t);
+      if (ft.dg == 0) return t;
+      if (ft.dg < 0) a = t; else b = t;
+      double next = ft.ddg > 0 ? t - ft.dg / ft.ddg : 0.5 * (a + b);
+      if (!(next > a && next < b)) next = 0.5 * (a + b);
+      if (std::abs(next - t) < tol) return next;
+      t = next;
+    }
+    return 0.5 * (a + b);
+  }
+  const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
+  const double a0 = a, b0 = b;
+  double x1 = b - gr * (b - a), x2 = a + gr * (b - a);
+  double g1 = f(x1).g, g2 = f(x2).g;
+  for (int it = 0; it < 100 && b - a > tol; ++it) {
+    if (g1 < g2) {
+      b = x2; x2 = x1; g2 = g1; x1 = b - gr * (b - a); g1 = f(x1).g;
+    } else {
+      a = x1; x1 = x2; g1 = g2; x2 = a + gr * (b - a); g2 = f(x2).g;
+    }
+  }
+  double t = 0.5 * (a + b);
+  double best = f(t).g;
+  if (fa.g < best) { t = a0; best = fa.g; }
+  if (fb.g < best) t = b0;
+  return t;
+}
+
+}  // namespace section::detail
