@@ -127,6 +127,11 @@ TEST_CASE("fit_spline: a hole in the data is reported with its length along the 
   const Vector2d start = res.spline.point(res.gaps[0].start), end = res.spline.point(res.gaps[0].end);
   CHECK(std::atan2(start.y(), start.x()) == Approx(1.0).margin(0.005));
   CHECK(std::atan2(end.y(), end.x()) == Approx(1.3).margin(0.005));
+  const auto at_angle = [&](double a) { return section::closest_point(res.spline, f(a)).t; };
+  CHECK(section::in_gap(res.spline, res.gaps[0], at_angle(1.15)));
+  CHECK_FALSE(section::in_gap(res.spline, res.gaps[0], at_angle(0.9)));
+  CHECK_FALSE(section::in_gap(res.spline, res.gaps[0], at_angle(1.4)));
+  CHECK_FALSE(section::in_gap(res.spline, res.gaps[0], at_angle(-2.0)));
 }
 
 namespace {
@@ -243,6 +248,7 @@ TEST_CASE("fit_spline: stream stage writes splines that read back, failures beco
   section::Table pts{"points", {"section", "loop", "index", "u", "v", "nu", "nv"}, {}};
   for (int i = 0; i < 300; ++i) {
     const double a = 2 * pi * i / 300;
+    if (i >= 100 && i < 130) continue;  // a hole of 30 points (1.9 mm)
     pts.add_row({0, 0, double(i), 3 * std::cos(a), 3 * std::sin(a), std::cos(a), std::sin(a)});
   }
   for (int i = 0; i < 3; ++i) pts.add_row({1, 0, double(i), double(i), double(i * i), 0, 1});
@@ -265,4 +271,9 @@ TEST_CASE("fit_spline: stream stage writes splines that read back, failures beco
   const auto back = section::splines(section::parse_stream(section::format_stream(s), "test"));
   REQUIRE(back.at({0, 0}).control == c.control);
   REQUIRE(back.at({0, 0}).knots == c.knots);
+  // The hole: one gap of 31 spacings, read back from the text.
+  const auto holes = section::gaps(section::parse_stream(section::format_stream(s), "test"));
+  REQUIRE(holes.at({0, 0}).size() == 1);
+  CHECK(holes.at({0, 0})[0].length == Approx(31 * 2 * pi * 3 / 300).epsilon(0.01));
+  CHECK(section::in_gap(c, holes.at({0, 0})[0], section::closest_point(c, {3 * std::cos(2 * pi * 115 / 300), 3 * std::sin(2 * pi * 115 / 300)}).t));
 }

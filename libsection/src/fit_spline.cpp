@@ -755,6 +755,34 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
   else stream.erase("samples");
 }
 
+std::map<std::pair<int, int>, std::vector<FitSplineResult::Gap>> gaps(const Stream& stream) {
+  std::map<std::pair<int, int>, std::vector<FitSplineResult::Gap>> out;
+  const Table* g = stream.find("gaps");
+  if (!g) return out;
+  const std::size_t cs = g->column("section"), cl = g->column("loop"), ci = g->column("index"),
+                    ca = g->column("t_start"), cb = g->column("t_end"), cn = g->column("length");
+  std::map<std::pair<int, int>, std::vector<std::pair<double, FitSplineResult::Gap>>> rows;
+  for (std::size_t r = 0; r < g->rows(); ++r)
+    rows[{static_cast<int>(g->at(r, cs)), static_cast<int>(g->at(r, cl))}].push_back(
+        {g->at(r, ci), {g->at(r, ca), g->at(r, cb), g->at(r, cn)}});
+  for (auto& [key, list] : rows) {
+    std::stable_sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& entry : list) out[key].push_back(entry.second);
+  }
+  return out;
+}
+
+bool in_gap(const BSpline& curve, const FitSplineResult::Gap& gap, double t) {
+  const double period = curve.t_max() - curve.t_min();
+  auto wrap = [&](double x) {
+    if (!curve.closed || !(period > 0)) return x;
+    x = std::fmod(x - curve.t_min(), period);
+    return curve.t_min() + (x < 0 ? x + period : x);
+  };
+  const double a = wrap(gap.start), b = wrap(gap.end), x = wrap(t);
+  return a <= b ? (x >= a && x <= b) : (x >= a || x <= b);
+}
+
 std::map<std::pair<int, int>, BSpline> splines(const Stream& stream) {
   const Table& s = stream.get("splines", "fitspline");
   const Table& k = stream.get("spline_knots", "fitspline");

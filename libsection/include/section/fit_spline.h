@@ -79,6 +79,13 @@ bool self_intersects(const BSpline& curve);
 /// on. Throws section::Error when the "points" table is missing or lacks a column.
 void fit_spline_stream(Stream& stream, const FitSplineOptions& options = {});
 
+/// The holes of a stream written by fit_spline_stream (table "gaps"), by (section, loop),
+/// longest first; empty when the stream has no such table (written before it existed).
+std::map<std::pair<int, int>, std::vector<FitSplineResult::Gap>> gaps(const Stream& stream);
+
+/// True when curve parameter t lies in the gap (which may wrap past the curve's end).
+bool in_gap(const BSpline& curve, const FitSplineResult::Gap& gap, double t);
+
 /// The splines of a stream written by fit_spline_stream, by (section, loop). Throws
 /// section::Error when the tables are missing or inconsistent.
 std::map<std::pair<int, int>, BSpline> splines(const Stream& stream);
