@@ -4,9 +4,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <unistd.h>
 #include <algorithm>
@@ -166,4 +168,104 @@ TEST_CASE("read_mesh: STL, OBJ, OFF round-trip and bad files are named", "[mesh]
   CHECK_THROWS_WITH(read_mesh(bad), Catch::Contains(bad));
   std::remove(bad.c_str());
   CHECK_THROWS_WITH(read_mesh("/nonexistent/m.stl"), Catch::Contains("/nonexistent/m.stl"));
+}
+
+TEST_CASE("read_cloud: every row layout reads the same numbers, odd rows are refused with their line", "[cloud]") {
+  // The reader has a fast path for plain rows; each layout below must give the numbers
+  // themselves whatever path reads it.
+  const std::vector<std::string> rows = {
+      "1.5 -2 3e-3",        "1.5\t-2\t3e-3",        "  1.5 -2 3e-3  ",      "1.5,-2,3e-3",
+      "1.5, -2, 3e-3",      "1.5 , -2 , 3e-3",      "+1.5 -2 +3e-3",        "1.5 -2 3e-3 7 8",
+      "1.5,-2,3e-3,",       "1.5 -2 3e-3\r",        "1.5 -2 3e-3 # note",   "\t1.5 -2 3e-3\t\r",
+      "1.5E0 -2.0 0.003",   "1.5,-2,3e-3,extra",    ".15e1 -2. 3E-3"};
+  std::mt19937 rng(5);
+  std::string text;
+  std::vector<std::size_t> kind;
+  for (int i = 0; i < 3000; ++i) {
+    kind.push_back(rng() % rows.size());
+    text += rows[kind.back()] + "\n";
+    if (rng() % 50 == 0) text += "# comment\n\n";
+  }
+  for (int threads : {1, 2}) {
+    CloudReadOptions opt;
+    opt.threads = threads;
+    const Cloud c = parse_cloud(text, "rows.xyz", opt);
+    REQUIRE(c.points.size() == kind.size());
+    for (std::size_t i = 0; i < kind.size(); ++i) {
+      INFO("row '" << rows[kind[i]] << "'");
+      REQUIRE(c.points[i] == Eigen::Vector3d(1.5, -2, 3e-3));
+    }
+  }
+  // Rows the fast path must not take: the general reader words the error, with the line.
+  const std::string head = "1 2 3\n4 5 6\n";
+  CHECK_THAT(error_of(head + "1 2 3x\n", "r.xyz"), Catch::Contains("r.xyz:3") && Catch::Contains("'3x'"));
+  CHECK_THAT(error_of(head + "1\r2 3\n", "r.xyz"), Catch::Contains("r.xyz:3") && Catch::Contains("columns"));
+  CHECK_THAT(error_of(head + "1,,2,3\n", "r.xyz"), Catch::Contains("r.xyz:3") && Catch::Contains("column 2"));
+  CHECK_THAT(error_of(head + "1 2 inf\n", "r.xyz"), Catch::Contains("r.xyz:3") && Catch::Contains("non-finite"));
+  CHECK_THAT(error_of(head + "1 2 -nan\n", "r.xyz"), Catch::Contains("r.xyz:3") && Catch::Contains("non-finite"));
+  CHECK_THAT(error_of(head + "++1 2 3\n", "r.xyz"), Catch::Contains("r.xyz:3") && Catch::Contains("'++1'"));
+  CHECK_THAT(error_of(head + "0x10 2 3\n", "r.xyz"), Catch::Contains("r.xyz:3") && Catch::Contains("'0x10'"));
+  CHECK_THAT(error_of(head + "1 2\n", "r.xyz"), Catch::Contains("r.xyz:3") && Catch::Contains("columns"));
+  // No final newline: the last row still counts.
+  CHECK(parse_cloud(head + "7 8 9", "r.xyz").points.back() == Eigen::Vector3d(7, 8, 9));
+}
+
+TEST_CASE("read_cloud: a text file larger than one read window keeps every row and line number", "[cloud]") {
+  // ~20 MB: more than one 16 MiB window, so rows straddle a window boundary.
+  std::string text;
+  text.reserve(21 << 20);
+  const int n = 600000;
+  char line[96];
+  for (int i = 0; i < n; ++i) {
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", i * 1e-3, -i * 7e-4, 0.5 + i * 1e-9);
+    text += line;
+  }
+  const std::string path = temp_path(".xyz");
+  std::ofstream(path, std::ios::binary) << text;
+  std::size_t count = 0;
+  bool in_order = true;
+  read_cloud_chunks(path, [&](const Eigen::Vector3d* p, std::size_t m) {
+    for (std::size_t k = 0; k < m; ++k, ++count) in_order = in_order && p[k].x() == double(count) * 1e-3;
+  });
+  CHECK(count == std::size_t(n));
+  CHECK(in_order);
+  // A bad row past the first window is named by its line.
+  text.replace(text.rfind('\n', text.size() - 2) + 1, 1, "z");
+  std::ofstream(path, std::ios::binary) << text;
+  CHECK_THROWS_WITH(read_cloud(path), Catch::Contains(path + ":" + std::to_string(n) + ":"));
+  std::remove(path.c_str());
+}
+
+TEST_CASE("read_cloud: packed double PLY, aligned or not, in chunks, with its errors", "[cloud]") {
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 5000; ++i) pts.emplace_back(i * 0.25, -i / 3.0, std::sin(i));
+  // The comment shifts the vertex data: aligned and unaligned to 8 bytes.
+  for (const std::string comment : {"", "x", "xy", "xyz", "xyzw"}) {
+    const std::string header = "ply\nformat binary_little_endian 1.0\ncomment " + comment + "\nelement vertex " +
+                               std::to_string(pts.size()) + "\nproperty double x\nproperty double y\nproperty double z\nend_header\n";
+    std::string body(reinterpret_cast<const char*>(pts.data()), pts.size() * 24);
+    const std::string path = temp_path(".ply");
+    std::ofstream(path, std::ios::binary) << header << body;
+    CloudReadOptions opt;
+    opt.chunk_points = 999;
+    std::vector<Eigen::Vector3d> got;
+    std::size_t chunks = 0;
+    read_cloud_chunks(path, [&](const Eigen::Vector3d* p, std::size_t n) {
+      ++chunks;
+      got.insert(got.end(), p, p + n);
+    }, opt);
+    INFO("header of " << header.size() << " bytes");
+    CHECK(chunks == (pts.size() + 998) / 999);
+    CHECK(got == pts);
+    // A NaN at vertex 3210 and a value beyond 1e15 at vertex 4321 (index, 0-based).
+    std::string bad = body;
+    const double nan = std::numeric_limits<double>::quiet_NaN(), huge = 1e16;
+    std::memcpy(&bad[3210 * 24 + 8], &nan, 8);
+    CHECK_THAT(error_of(header + bad, "n.ply"), Catch::Contains("n.ply: vertex 3210 has a non-finite"));
+    bad = body;
+    std::memcpy(&bad[4321 * 24 + 16], &huge, 8);
+    CHECK_THAT(error_of(header + bad, "h.ply"), Catch::Contains("h.ply: point 4322 has a coordinate beyond"));
+    CHECK_THAT(error_of(header + body.substr(0, 24 * 4000 + 5), "t.ply"), Catch::Contains("t.ply") && Catch::Contains("truncated"));
+    std::remove(path.c_str());
+  }
 }

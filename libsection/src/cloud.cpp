@@ -10,13 +10,16 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <thread>
 
 namespace section {
@@ -39,28 +42,34 @@ std::string extension(const std::string& path) {
   return lower(path.substr(dot + 1));
 }
 
-// A source of bytes: a file or standard input, read in large blocks.
+// A source of bytes: a file, standard input or a pipe (read in blocks into one reused
+// buffer: faster than mapping windows of the file, and a file truncated while it is read
+// is a short read, not a SIGBUS), or bytes in memory.
+// bytes() are the unconsumed bytes at hand; fetch() brings more after them.
 class Source {
 public:
   explicit Source(const std::string& path) : name_(path == "-" ? "<stdin>" : path) {
     if (path == "-") {
       file_ = stdin;
-    } else {
-      file_ = std::fopen(path.c_str(), "rb");
-      if (!file_) throw Error("read_cloud: " + path + ": cannot open: " + std::strerror(errno));
-      owned_ = true;
-      struct stat st {};
-      if (::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) size_ = static_cast<long long>(st.st_size);
-      if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
-        std::fclose(file_);
-        file_ = nullptr;
-        throw Error("read_cloud: " + path + ": is a directory");
-      }
+      return;
     }
+    file_ = std::fopen(path.c_str(), "rb");
+    if (!file_) throw Error("read_cloud: " + path + ": cannot open: " + std::strerror(errno));
+    owned_ = true;
+    struct stat st {};
+    if (::fstat(fileno(file_), &st) == 0 && S_ISDIR(st.st_mode)) {
+      std::fclose(file_);
+      file_ = nullptr;
+      throw Error("read_cloud: " + path + ": is a directory");
+    }
+    if (S_ISREG(st.st_mode) && st.st_size > 0)  // (files of /proc claim 0 bytes: size unknown)
+      size_ = static_cast<long long>(st.st_size);
   }
   // A source over bytes in memory.
-  Source(std::string_view bytes, const std::string& name) : name_(name), memory_(bytes), in_memory_(true) {
+  Source(std::string_view bytes, const std::string& name) : name_(name) {
     size_ = static_cast<long long>(bytes.size());
+    base_ = bytes.data();
+    end_ = bytes.size();
   }
   ~Source() {
     if (owned_ && file_) std::fclose(file_);
@@ -68,18 +77,27 @@ public:
   Source(const Source&) = delete;
   Source& operator=(const Source&) = delete;
 
-  // Appends up to n bytes to `buf`; returns the count (0 at the end).
-  std::size_t read(std::string& buf, std::size_t n) {
-    if (in_memory_) {
-      const std::size_t got = std::min(n, memory_.size());
-      buf.append(memory_.data(), got);
-      memory_.remove_prefix(got);
-      return got;
+  std::string_view bytes() const { return {base_ + start_, end_ - start_}; }
+  void consume(std::size_t n) { start_ += n; }
+
+  // Makes up to n more bytes available after bytes(); returns how many (0 at the end).
+  std::size_t fetch(std::size_t n) {
+    if (!file_) return 0;  // in memory: all of it is at hand
+    // Keep the unconsumed bytes at the front of the buffer, then read after them.
+    const std::size_t keep = end_ - start_;
+    if (keep + n > cap_) {
+      cap_ = std::max(keep + n, 2 * cap_);
+      std::unique_ptr<char[]> bigger(new char[cap_]);
+      if (keep) std::memcpy(bigger.get(), base_ + start_, keep);
+      buf_ = std::move(bigger);
+    } else if (keep && start_) {
+      std::memmove(buf_.get(), base_ + start_, keep);
     }
-    const std::size_t old = buf.size();
-    buf.resize(old + n);
-    const std::size_t got = std::fread(&buf[old], 1, n, file_);
-    buf.resize(old + got);
+    base_ = buf_.get();
+    start_ = 0;
+    end_ = keep;
+    const std::size_t got = std::fread(buf_.get() + end_, 1, n, file_);
+    end_ += got;
     if (got == 0 && std::ferror(file_)) throw Error("read_cloud: " + name_ + ": read error");
     return got;
   }
@@ -91,8 +109,10 @@ private:
   std::FILE* file_ = nullptr;
   bool owned_ = false;
   long long size_ = -1;
-  std::string_view memory_;
-  bool in_memory_ = false;
+  std::unique_ptr<char[]> buf_;
+  std::size_t cap_ = 0;
+  const char* base_ = nullptr;     // bytes() = base_[start_, end_)
+  std::size_t start_ = 0, end_ = 0;
 };
 
 // Collects points and hands them on in chunks.
@@ -103,6 +123,34 @@ public:
   }
   void add(double x, double y, double z) {
     buf_.emplace_back(x, y, z);
+    if (buf_.size() == chunk_) flush();
+  }
+  // Adds points in bulk; whole chunks go to the callback straight from `p`.
+  void add_many(const Eigen::Vector3d* p, std::size_t n) {
+    while (n > 0) {
+      if (buf_.empty() && n >= chunk_) {
+        fn_(p, chunk_);
+        total_ += chunk_;
+        p += chunk_;
+        n -= chunk_;
+        continue;
+      }
+      const std::size_t m = std::min(n, chunk_ - buf_.size());
+      buf_.insert(buf_.end(), p, p + m);
+      p += m;
+      n -= m;
+      if (buf_.size() == chunk_) flush();
+    }
+  }
+  // Room for up to `n` points at the end of the chunk (n is cut to what fits); fill them,
+  // then call commit().
+  Eigen::Vector3d* room(std::size_t& n) {
+    const std::size_t old = buf_.size();
+    n = std::min(n, chunk_ - old);
+    buf_.resize(old + n);
+    return buf_.data() + old;
+  }
+  void commit() {
     if (buf_.size() == chunk_) flush();
   }
   void flush() {
@@ -218,10 +266,56 @@ void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, 
   out.add(v[0], v[1], v[2]);
 }
 
+// The common row "x y z [more columns]" (blank or comma separated) parsed without
+// splitting it into fields. True only when parse_text_line would read the same three
+// values; anything unusual (comment, header, bad cell, non-finite value, a '\r' inside the
+// row) returns false and the line goes to parse_text_line, which also words the error.
+inline bool parse_xyz_fast(const char* p, const char* e, double* v) {
+  for (int k = 0; k < 3; ++k) {
+    while (p < e && (*p == ' ' || *p == '\t')) ++p;
+    if (k > 0 && p < e && *p == ',') {
+      ++p;
+      while (p < e && (*p == ' ' || *p == '\t')) ++p;
+    }
+    if (p < e && *p == '+') ++p;
+    const auto r = std::from_chars(p, e, v[k]);
+    if (r.ec != std::errc() || !std::isfinite(v[k])) return false;
+    p = r.ptr;
+    // The cell must end here: at a separator, or (the last one) at the end of the line.
+    if (p == e) return k == 2;
+    if (*p == ' ' || *p == '\t' || *p == ',') continue;
+    return k == 2 && *p == '\r' && p + 1 == e;
+  }
+  return true;
+}
+
+// Parses the complete lines buf[begin, end) (end just after a '\n') past the first data
+// line; `line_no` counts the lines. Throws at the first bad line.
+template <class Out>
+void parse_text_lines(std::string_view buf, std::size_t begin, std::size_t end, std::size_t& line_no,
+                      TextState& st, const std::string& name, Out& out) {
+  const bool plain = st.cx == 0 && st.cy == 1 && st.cz == 2;
+  const char* p = buf.data() + begin;
+  const char* const stop = buf.data() + end;
+  bool first_data = false;
+  while (p < stop) {
+    const char* nl = static_cast<const char*>(std::memchr(p, '\n', std::size_t(stop - p)));
+    ++line_no;
+    if (std::size_t(nl - p) > max_line) fail_line(name, line_no, "line longer than " + std::to_string(max_line) + " characters");
+    double v[3];
+    if (plain && parse_xyz_fast(p, nl, v))
+      out.add(v[0], v[1], v[2]);
+    else
+      parse_text_line(std::string_view(p, std::size_t(nl - p)), line_no, st, name, out, first_data);
+    p = nl + 1;
+  }
+}
+
 // Points of one piece of a text block, parsed by one worker.
 struct PieceOut {
   std::vector<Eigen::Vector3d> points;
-  std::exception_ptr error;  // the first malformed line of the piece, if any
+  std::size_t lines = 0;  // lines of the piece (all of them unless it failed)
+  bool failed = false;    // a line is malformed: the piece is parsed again, in order, for the message
   void add(double x, double y, double z) { points.emplace_back(x, y, z); }
 };
 
@@ -229,8 +323,10 @@ struct PieceOut {
 // already seen, so the state is read-only) split at line boundaries across threads.
 // Points reach `out` in file order and the error thrown is that of the first bad line, as
 // if parsed line by line: `line_no` is the number of lines before `begin`.
+// `parts` is kept from block to block so that its buffers are reused, not faulted in anew.
 void parse_text_block(std::string_view buf, std::size_t begin, std::size_t end, std::size_t& line_no,
-                      const TextState& st, const std::string& name, const CloudReadOptions& opt, Chunker& out) {
+                      const TextState& st, const std::string& name, const CloudReadOptions& opt, Chunker& out,
+                      std::vector<PieceOut>& parts) {
   const std::size_t bytes = end - begin;
   std::size_t pieces = opt.threads > 0 ? std::size_t(opt.threads) : std::max(1u, std::thread::hardware_concurrency());
   pieces = std::max<std::size_t>(1, std::min(pieces * 4, bytes / (1 << 18)));  // >= 256 KiB each
@@ -244,86 +340,74 @@ void parse_text_block(std::string_view buf, std::size_t begin, std::size_t end, 
   }
   cut.push_back(end);
   const std::size_t n = cut.size() - 1;
-  // Line numbers first (a cheap count), so that every piece names its lines right.
-  std::vector<std::size_t> lines(n);
+  // Each piece counts its own lines; line numbers are only needed for a message, so a
+  // failed piece is parsed again once the lines before it are known.
+  if (parts.size() < n) parts.resize(n);
   detail::parallel_for(n, opt.threads, [&](std::size_t k) {
-    lines[k] = static_cast<std::size_t>(std::count(buf.begin() + cut[k], buf.begin() + cut[k + 1], '\n'));
-  });
-  std::vector<PieceOut> parts(n);
-  detail::parallel_for(n, opt.threads, [&](std::size_t k) {
-    std::size_t ln = line_no;
-    for (std::size_t i = 0; i < k; ++i) ln += lines[i];
-    TextState local = st;
-    bool first_data = false;
     PieceOut& part = parts[k];
+    part.points.clear();
+    part.lines = 0;
+    part.failed = false;
     part.points.reserve((cut[k + 1] - cut[k]) / 24);
+    TextState local = st;
     try {
-      std::size_t start = cut[k];
-      while (start < cut[k + 1]) {
-        const std::size_t nl = buf.find('\n', start);
-        ++ln;
-        if (nl - start > max_line) fail_line(name, ln, "line longer than " + std::to_string(max_line) + " characters");
-        parse_text_line(buf.substr(start, nl - start), ln, local, name, part, first_data);
-        start = nl + 1;
-      }
+      parse_text_lines(buf, cut[k], cut[k + 1], part.lines, local, name, part);
     } catch (...) {
-      part.error = std::current_exception();
+      part.failed = true;
     }
   });
   for (std::size_t k = 0; k < n; ++k) {
-    for (const auto& p : parts[k].points) {
-      out.add(p.x(), p.y(), p.z());
-      if (out.total() > opt.max_points)
-        throw Error("read_cloud: " + name + ": more than " + std::to_string(opt.max_points) + " points");
+    if (parts[k].failed) {
+      PieceOut again;
+      TextState local = st;
+      parse_text_lines(buf, cut[k], cut[k + 1], line_no, local, name, again);  // throws
     }
-    if (parts[k].error) std::rethrow_exception(parts[k].error);
-    std::vector<Eigen::Vector3d>().swap(parts[k].points);
-    line_no += lines[k];
+    if (out.total() + parts[k].points.size() > opt.max_points)
+      throw Error("read_cloud: " + name + ": more than " + std::to_string(opt.max_points) + " points");
+    out.add_many(parts[k].points.data(), parts[k].points.size());
+    line_no += parts[k].lines;
   }
 }
 
-std::size_t read_text(Source& src, std::string buf, bool csv, const CloudReadOptions& opt, const PointChunkFn& fn) {
+std::size_t read_text(Source& src, bool csv, const CloudReadOptions& opt, const PointChunkFn& fn) {
   Chunker out(fn, opt.chunk_points);
   TextState st;
   st.require_header = csv;
   bool first_data = true;
   std::size_t line_no = 0;
-  std::size_t start = 0;  // start of the unparsed part of buf
-  bool eof = false;
-  while (true) {
-    std::size_t nl;
-    if (!first_data) {
-      // Past the header: the complete lines of the block are parsed in parallel.
-      const std::size_t last = buf.rfind('\n');
-      if (last != std::string::npos && last >= start) {
-        parse_text_block(buf, start, last + 1, line_no, st, src.name(), opt, out);
-        start = last + 1;
-      }
-    }
-    while ((nl = buf.find('\n', start)) != std::string::npos) {
+  std::vector<PieceOut> parts;
+  // Parses the complete lines of `b`; returns the bytes used.
+  const auto parse = [&](std::string_view b) {
+    std::size_t used = 0, nl;
+    // Line by line up to the first data line (it decides the header), then in parallel.
+    while (first_data && (nl = b.find('\n', used)) != std::string_view::npos) {
       ++line_no;
-      if (nl - start > max_line) fail_line(src.name(), line_no, "line longer than " + std::to_string(max_line) + " characters");
-      parse_text_line(std::string_view(buf).substr(start, nl - start), line_no, st, src.name(), out, first_data);
+      if (nl - used > max_line) fail_line(src.name(), line_no, "line longer than " + std::to_string(max_line) + " characters");
+      parse_text_line(b.substr(used, nl - used), line_no, st, src.name(), out, first_data);
       if (out.total() > opt.max_points)
         throw Error("read_cloud: " + src.name() + ": more than " + std::to_string(opt.max_points) + " points");
-      start = nl + 1;
-      if (!first_data) {
-        const std::size_t last = buf.rfind('\n');
-        if (last != std::string::npos && last >= start) {
-          parse_text_block(buf, start, last + 1, line_no, st, src.name(), opt, out);
-          start = last + 1;
-        }
+      used = nl + 1;
+    }
+    if (!first_data) {
+      const std::size_t last = b.rfind('\n');
+      if (last != std::string_view::npos && last >= used) {
+        parse_text_block(b, used, last + 1, line_no, st, src.name(), opt, out, parts);
+        used = last + 1;
       }
     }
-    if (buf.size() - start > max_line)
+    return used;
+  };
+  while (true) {
+    src.consume(parse(src.bytes()));
+    if (src.bytes().size() > max_line)
       fail_line(src.name(), line_no + 1, "line longer than " + std::to_string(max_line) + " characters");
-    if (eof) break;
-    buf.erase(0, start);
-    start = 0;
-    if (src.read(buf, block_size) == 0) {
-      eof = true;
-      if (!buf.empty() && buf.back() != '\n') buf.push_back('\n');
-    }
+    if (src.fetch(block_size) == 0) break;
+  }
+  if (!src.bytes().empty()) {
+    // The last line has no '\n': parse a copy that has one.
+    std::string last(src.bytes());
+    last.push_back('\n');
+    parse(last);
   }
   out.flush();
   if (out.total() == 0) throw Error("read_cloud: " + src.name() + ": no points");
@@ -370,19 +454,21 @@ bool ply_type(const std::string& t, int& size, char& kind) {
 }
 
 // Parses the header from the start of `buf`, reading more from `src` as needed.
-PlyHeader parse_ply_header(Source& src, std::string& buf) {
+PlyHeader parse_ply_header(Source& src) {
   PlyHeader h;
+  std::string_view buf = src.bytes();
   std::size_t pos = 0;
   bool format_seen = false;
   while (true) {
     std::size_t nl = buf.find('\n', pos);
     while (nl == std::string::npos) {
       if (buf.size() > (1 << 20)) throw Error("read_cloud: " + src.name() + ": PLY header longer than 1 MiB");
-      if (src.read(buf, 1 << 16) == 0) throw Error("read_cloud: " + src.name() + ": truncated PLY header (no end_header)");
+      if (src.fetch(1 << 16) == 0) throw Error("read_cloud: " + src.name() + ": truncated PLY header (no end_header)");
+      buf = src.bytes();
       nl = buf.find('\n', pos);
     }
     ++h.header_lines;
-    std::string_view line = trim(std::string_view(buf).substr(pos, nl - pos));
+    std::string_view line = trim(buf.substr(pos, nl - pos));
     pos = nl + 1;
     const std::string where = src.name() + ":" + std::to_string(h.header_lines) + ": ";
     if (h.header_lines == 1) {
@@ -472,8 +558,10 @@ bool host_little_endian() {
   return c == 1;
 }
 
-std::size_t read_ply(Source& src, std::string buf, const CloudReadOptions& opt, const PointChunkFn& fn) {
-  const PlyHeader h = parse_ply_header(src, buf);
+// `fn` receives the points checked against max_coordinate; `raw` unchecked (the packed
+// binary path checks while it reads).
+std::size_t read_ply(Source& src, const CloudReadOptions& opt, const PointChunkFn& fn, const PointChunkFn& raw) {
+  const PlyHeader h = parse_ply_header(src);
   const std::string& name = src.name();
   std::size_t vi = h.elements.size();
   for (std::size_t i = 0; i < h.elements.size(); ++i)
@@ -506,29 +594,38 @@ std::size_t read_ply(Source& src, std::string buf, const CloudReadOptions& opt, 
                   (h.format == PlyFormat::ascii ? "far fewer" : "only " + std::to_string(body / record)) + " (truncated file?)");
   }
   Chunker out(fn, opt.chunk_points);
-  buf.erase(0, h.header_bytes);
+  src.consume(h.header_bytes);
   if (h.format == PlyFormat::ascii) {
     std::size_t line_no = h.header_lines;
     std::size_t start = 0;
     unsigned long long done = 0;
     bool eof = false;
+    std::string last;  // the last line when the file does not end with '\n'
+    std::string_view buf = src.bytes();
     std::vector<double> vals(ve.props.size());
     while (done < ve.count) {
       std::size_t nl = buf.find('\n', start);
       if (nl == std::string::npos) {
         if (eof) {
-          if (start < buf.size()) { buf.push_back('\n'); continue; }
+          if (start < buf.size() && last.empty()) {
+            last.assign(buf.substr(start));
+            last.push_back('\n');
+            buf = last;
+            start = 0;
+            continue;
+          }
           throw Error("read_cloud: " + name + ": PLY file ends after " + std::to_string(done) + " of " +
                       std::to_string(ve.count) + " vertices (truncated file?)");
         }
         if (buf.size() - start > max_line) fail_line(name, line_no + 1, "line longer than " + std::to_string(max_line) + " characters");
-        buf.erase(0, start);
+        src.consume(start);
         start = 0;
-        if (src.read(buf, block_size) == 0) eof = true;
+        if (src.fetch(block_size) == 0) eof = true;
+        buf = src.bytes();
         continue;
       }
       ++line_no;
-      std::string_view line = trim(std::string_view(buf).substr(start, nl - start));
+      std::string_view line = trim(buf.substr(start, nl - start));
       start = nl + 1;
       if (line.empty()) continue;
       std::size_t i = 0;
@@ -548,53 +645,119 @@ std::size_t read_ply(Source& src, std::string buf, const CloudReadOptions& opt, 
   } else {
     const bool swap = (h.format == PlyFormat::binary_le) != host_little_endian();
     unsigned long long done = 0;
-    std::size_t start = 0;
     const PlyProperty px = ve.props[ix], py = ve.props[iy], pz = ve.props[iz];
-    const bool fast = !swap && px.kind == 'f' && py.kind == 'f' && pz.kind == 'f' && px.size == py.size && py.size == pz.size;
+    const std::size_t ox = offset[ix], oy = offset[iy], oz = offset[iz];
+    const bool same = !swap && px.kind == 'f' && py.kind == 'f' && pz.kind == 'f' && px.size == py.size && py.size == pz.size;
+    // Converts n records at r into dst, one type test per block rather than per value.
+    const auto convert = [&](const unsigned char* r, std::size_t n, Eigen::Vector3d* dst) {
+      if (same && px.size == 8 && record == 24 && ox == 0 && oy == 8 && oz == 16) {
+        static_assert(sizeof(Eigen::Vector3d) == 24, "packed Vector3d");
+        std::memcpy(static_cast<void*>(dst), r, n * 24);
+      } else if (same && px.size == 8) {
+        for (std::size_t k = 0; k < n; ++k, r += record) {
+          double v[3];
+          std::memcpy(&v[0], r + ox, 8);
+          std::memcpy(&v[1], r + oy, 8);
+          std::memcpy(&v[2], r + oz, 8);
+          dst[k] = Eigen::Vector3d(v[0], v[1], v[2]);
+        }
+      } else if (same) {
+        for (std::size_t k = 0; k < n; ++k, r += record) {
+          float f[3];
+          std::memcpy(&f[0], r + ox, 4);
+          std::memcpy(&f[1], r + oy, 4);
+          std::memcpy(&f[2], r + oz, 4);
+          dst[k] = Eigen::Vector3d(f[0], f[1], f[2]);
+        }
+      } else {
+        for (std::size_t k = 0; k < n; ++k, r += record)
+          dst[k] = Eigen::Vector3d(read_scalar(r + ox, px, swap), read_scalar(r + oy, py, swap), read_scalar(r + oz, pz, swap));
+      }
+    };
+    // Packed little-endian doubles x, y, z (what write_cloud and many scanners write): one
+    // pass checks a whole chunk, which then goes to the callback straight from the read
+    // buffer when it is 8-byte aligned.
+    if (same && px.size == 8 && record == 24 && ox == 0 && oy == 8 && oz == 16) {
+      Chunker direct(raw, opt.chunk_points);
+      const std::size_t chunk = std::max<std::size_t>(opt.chunk_points, 1);
+      while (done < ve.count) {
+        const std::size_t want = static_cast<std::size_t>(std::min<unsigned long long>(chunk, ve.count - done));
+        while (src.bytes().size() < want * 24 && src.fetch(want * 24 - src.bytes().size()) > 0) {
+        }
+        const std::size_t n = std::min(want, src.bytes().size() / 24);
+        if (n == 0)
+          throw Error("read_cloud: " + name + ": PLY file ends after " + std::to_string(done) + " of " +
+                      std::to_string(ve.count) + " vertices (truncated file?)");
+        const char* r = src.bytes().data();
+        // Non-finite and out-of-range values in one branch-free test; the vertex is looked
+        // for only when it fails. `first` is the index of v[0]'s vertex.
+        const auto check = [&](const char* v, std::size_t m, unsigned long long first) {
+          bool bad = false;
+          for (std::size_t k = 0; k < 3 * m; ++k) {
+            double x;
+            std::memcpy(&x, v + 8 * k, 8);
+            bad |= !(std::abs(x) <= detail::max_coordinate);
+          }
+          for (std::size_t k = 0; bad && k < m; ++k) {
+            double x[3];
+            std::memcpy(x, v + 24 * k, 24);
+            if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+              throw Error("read_cloud: " + name + ": vertex " + std::to_string(first + k) + " has a non-finite coordinate");
+            if (std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])}) > detail::max_coordinate)
+              throw Error("read_cloud: " + name + ": point " + std::to_string(first + k + 1) +
+                          " has a coordinate beyond +-1e15 (corrupt file?)");
+          }
+        };
+        if (reinterpret_cast<std::uintptr_t>(r) % alignof(Eigen::Vector3d) == 0) {
+          check(r, n, done);
+          direct.add_many(reinterpret_cast<const Eigen::Vector3d*>(r), n);
+        } else {
+          // Copied in blocks that stay in the cache while they are checked.
+          for (std::size_t k = 0; k < n;) {
+            std::size_t m = std::min<std::size_t>(n - k, 2048);
+            Eigen::Vector3d* dst = direct.room(m);
+            std::memcpy(static_cast<void*>(dst), r + 24 * k, 24 * m);
+            check(reinterpret_cast<const char*>(dst), m, done + k);
+            direct.commit();
+            k += m;
+          }
+        }
+        done += n;
+        src.consume(n * 24);
+      }
+      direct.flush();
+      return direct.total();
+    }
     while (done < ve.count) {
-      const std::size_t avail = (buf.size() - start) / record;
+      const std::size_t avail = src.bytes().size() / record;
       if (avail == 0) {
-        buf.erase(0, start);
-        start = 0;
         const std::size_t want = std::max<std::size_t>(record, std::min<unsigned long long>((ve.count - done) * record, block_size));
-        if (src.read(buf, want) == 0)
+        if (src.fetch(want) == 0)
           throw Error("read_cloud: " + name + ": PLY file ends after " + std::to_string(done) + " of " +
                       std::to_string(ve.count) + " vertices (truncated file?)");
         continue;
       }
-      const std::size_t n = static_cast<std::size_t>(std::min<unsigned long long>(avail, ve.count - done));
-      const unsigned char* base = reinterpret_cast<const unsigned char*>(buf.data()) + start;
-      for (std::size_t k = 0; k < n; ++k) {
-        const unsigned char* r = base + k * record;
-        double x, y, z;
-        if (fast && px.size == 4) {
-          float f[3];
-          std::memcpy(&f[0], r + offset[ix], 4);
-          std::memcpy(&f[1], r + offset[iy], 4);
-          std::memcpy(&f[2], r + offset[iz], 4);
-          x = f[0]; y = f[1]; z = f[2];
-        } else if (fast) {
-          std::memcpy(&x, r + offset[ix], 8);
-          std::memcpy(&y, r + offset[iy], 8);
-          std::memcpy(&z, r + offset[iz], 8);
-        } else {
-          x = read_scalar(r + offset[ix], px, swap);
-          y = read_scalar(r + offset[iy], py, swap);
-          z = read_scalar(r + offset[iz], pz, swap);
-        }
-        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+      std::size_t n = static_cast<std::size_t>(std::min<unsigned long long>(avail, ve.count - done));
+      const unsigned char* r = reinterpret_cast<const unsigned char*>(src.bytes().data());
+      Eigen::Vector3d* dst = out.room(n);
+      convert(r, n, dst);
+      // One branch-free test over the block; the vertex is looked for only when it fails.
+      bool bad = false;
+      const double* d = dst[0].data();
+      for (std::size_t k = 0; k < 3 * n; ++k) bad |= !(std::abs(d[k]) <= std::numeric_limits<double>::max());
+      for (std::size_t k = 0; bad && k < n; ++k)
+        if (!dst[k].allFinite())
           throw Error("read_cloud: " + name + ": vertex " + std::to_string(done + k) + " has a non-finite coordinate");
-        out.add(x, y, z);
-      }
+      out.commit();
       done += n;
-      start += n * record;
+      src.consume(n * record);
     }
   }
   out.flush();
   return out.total();
 }
 
-CloudFormat format_of(const std::string& path, const std::string& head) {
+CloudFormat format_of(const std::string& path, std::string_view head) {
   if (path != "-") {
     const std::string ext = extension(path);
     if (ext == "ply") return CloudFormat::ply;
@@ -615,18 +778,21 @@ CloudFormat format_of(const std::string& path, const std::string& head) {
 namespace {
 std::size_t read_source(Source& src, const std::string& path, const PointChunkFn& on_chunk,
                         const CloudReadOptions& options) {
-  std::string buf;
-  src.read(buf, 1 << 16);
+  src.fetch(1 << 16);
+  std::string_view buf = src.bytes();
   if (buf.empty()) throw Error("read_cloud: " + src.name() + ": empty file");
   CloudFormat format = options.format;
   if (format == CloudFormat::automatic) format = format_of(path, buf);
   if (format != CloudFormat::ply) {
     if (const char* why = detail::text_encoding_problem(buf)) throw Error("read_cloud: " + src.name() + ": " + why);
-    if (buf.compare(0, 3, "\xEF\xBB\xBF") == 0) buf.erase(0, 3);  // a UTF-8 byte-order mark
+    if (buf.compare(0, 3, "\xEF\xBB\xBF") == 0) src.consume(3);  // a UTF-8 byte-order mark
   }
   std::size_t seen = 0;
   const PointChunkFn checked = [&](const Eigen::Vector3d* p, std::size_t n) {
-    for (std::size_t i = 0; i < n; ++i)
+    bool beyond = false;
+    const double* d = n ? p[0].data() : nullptr;
+    for (std::size_t i = 0; i < 3 * n; ++i) beyond |= std::abs(d[i]) > detail::max_coordinate;
+    for (std::size_t i = 0; beyond && i < n; ++i)
       if (p[i].cwiseAbs().maxCoeff() > detail::max_coordinate)
         throw Error("read_cloud: " + src.name() + ": point " + std::to_string(seen + i + 1) +
                     " has a coordinate beyond +-1e15 (corrupt file?)");
@@ -634,9 +800,9 @@ std::size_t read_source(Source& src, const std::string& path, const PointChunkFn
     on_chunk(p, n);
   };
   switch (format) {
-    case CloudFormat::ply: return read_ply(src, std::move(buf), options, checked);
-    case CloudFormat::csv: return read_text(src, std::move(buf), true, options, checked);
-    default: return read_text(src, std::move(buf), false, options, checked);
+    case CloudFormat::ply: return read_ply(src, options, checked, on_chunk);
+    case CloudFormat::csv: return read_text(src, true, options, checked);
+    default: return read_text(src, false, options, checked);
   }
 }
 }  // namespace

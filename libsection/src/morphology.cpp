@@ -162,19 +162,28 @@ struct Raster {
 };
 
 /// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples) into d.
-void distance_1d(const float* f, int n, std::size_t stride, float* d, int* arg, std::vector<int>& v,
+/// Samples with f >= `big` (no seed in their column) are left out of the lower envelope:
+/// they never win, and the envelope of the others is the same. Positions are q + base, so
+/// that the rounding of the parabola intersections, which decides between equidistant
+/// seeds, does not depend on where the raster starts (its margin).
+void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
                  std::vector<double>& z) {
   const double inf = std::numeric_limits<double>::infinity();
-  int k = 0;
-  v[0] = 0;
-  z[0] = -inf;
-  z[1] = inf;
-  for (int q = 1; q < n; ++q) {
-    const double fq = double(f[q * stride]) + double(q) * q;
+  int k = -1;
+  for (int q = 0; q < n; ++q) {
+    if (!(f[q] < big)) continue;
+    const double fq = double(f[q]) + double(q + base) * (q + base);
+    if (k < 0) {
+      k = 0;
+      v[0] = q;
+      z[0] = -inf;
+      z[1] = inf;
+      continue;
+    }
     double s;
     for (;;) {
       const int p = v[k];
-      s = (fq - (double(f[p * stride]) + double(p) * p)) / (2.0 * (q - p));
+      s = (fq - (double(f[p]) + double(p + base) * (p + base))) / (2.0 * (q - p));
       if (s > z[k] || k == 0) break;  // z[0] = -inf: k never drops below 0
       --k;
     }
@@ -183,45 +192,77 @@ void distance_1d(const float* f, int n, std::size_t stride, float* d, int* arg, 
     z[k] = s;
     z[k + 1] = inf;
   }
+  if (k < 0) {
+    for (int q = 0; q < n; ++q) {
+      d[q] = big;
+      arg[q] = -1;
+    }
+    return;
+  }
   k = 0;
   for (int q = 0; q < n; ++q) {
-    while (z[k + 1] < q) ++k;
+    while (z[k + 1] < q + base) ++k;
     const double dq = double(q - v[k]);
-    d[q] = float(dq * dq + double(f[v[k] * stride]));
+    d[q] = float(dq * dq + double(f[v[k]]));
     arg[q] = v[k];
   }
 }
 
 /// Exact squared Euclidean distance (in cells^2) of every cell to the nearest seed cell,
 /// clamped to `cap`, and that seed's cell index in `nearest` (-1 when there is no seed).
-/// `seed` is 1 at seeds.
-std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap,
+/// `seed` is 1 at seeds. `base` is added to the cell indices in the parabola arithmetic
+/// (see distance_1d). Between equidistant seeds the one of lower index wins, as in
+/// the envelope of the columns.
+std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
                                     std::vector<int>& nearest) {
   const float big = 1e20f;
+  const int w = r.w, h = r.h;
+  // Columns: with 0/1 seeds the 1D transform is the distance to the nearest seed above or
+  // below, found by one sweep each way over whole rows (cache friendly).
   std::vector<float> f(r.size());
-  for (std::size_t c = 0; c < r.size(); ++c) f[c] = seed[c] ? 0.f : big;
-  const int n = std::max(r.w, r.h);
-  std::vector<int> v(n + 1), arg(n), row_of(r.size());
-  std::vector<double> z(n + 2);
-  std::vector<float> out(n);
-  for (int i = 0; i < r.w; ++i) {
-    distance_1d(f.data() + i, r.h, std::size_t(r.w), out.data(), arg.data(), v, z);
-    for (int j = 0; j < r.h; ++j) {
-      f[std::size_t(j) * r.w + i] = out[j];
-      row_of[std::size_t(j) * r.w + i] = arg[j];
+  std::vector<int> row_of(r.size());
+  {
+    std::vector<int> last(w, -1);
+    for (int j = 0; j < h; ++j) {
+      const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
+      int* arow = row_of.data() + std::size_t(j) * w;
+      for (int i = 0; i < w; ++i) {
+        if (srow[i]) last[i] = j;
+        arow[i] = last[i];
+      }
+    }
+    std::fill(last.begin(), last.end(), -1);
+    for (int j = h - 1; j >= 0; --j) {
+      const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
+      int* arow = row_of.data() + std::size_t(j) * w;
+      float* frow = f.data() + std::size_t(j) * w;
+      for (int i = 0; i < w; ++i) {
+        if (srow[i]) last[i] = j;
+        const int above = arow[i], below = last[i];
+        // The seed above wins a tie (the lower index).
+        const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
+        arow[i] = s;
+        frow[i] = s < 0 ? big : float(double(j - s) * double(j - s));
+      }
     }
   }
+  const int n = std::max(w, h);
+  std::vector<int> v(n + 1), arg(n);
+  std::vector<double> z(n + 2);
+  std::vector<float> out(n);
   std::vector<int> d(r.size());
   nearest.assign(r.size(), -1);
-  for (int j = 0; j < r.h; ++j) {
-    float* row = f.data() + std::size_t(j) * r.w;
-    distance_1d(row, r.w, 1, out.data(), arg.data(), v, z);
-    for (int i = 0; i < r.w; ++i) {
-      const std::size_t c = std::size_t(j) * r.w + i;
-      d[c] = out[i] >= float(cap) ? cap : int(std::lround(out[i]));
+  for (int j = 0; j < h; ++j) {
+    const float* row = f.data() + std::size_t(j) * w;
+    distance_1d(row, w, big, base, out.data(), arg.data(), v, z);
+    for (int i = 0; i < w; ++i) {
+      const std::size_t c = std::size_t(j) * w + i;
+      // Squared distances are integers (exact in float below 2^24, and every float above
+      // 2^23 is an integer): rounding is a truncation of x + 0.5.
+      d[c] = out[i] >= float(cap) ? cap : int(out[i] + 0.5f);
       if (out[i] < 1e19f) {
         const int si = arg[i];
-        nearest[c] = row_of[std::size_t(j) * r.w + si] * r.w + si;
+        nearest[c] = row_of[std::size_t(j) * w + si] * w + si;
       }
     }
   }
@@ -234,12 +275,17 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
 /// integer) keys: O(cells).
 std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap) {
   std::vector<int> b2(r.size(), -1);
-  std::vector<std::vector<std::uint32_t>> bucket(std::size_t(cap) + 1);
+  // Each bucket is a stack threaded through `next` (a cell enters one bucket, once).
+  std::vector<std::int32_t> head(std::size_t(cap) + 1, -1), next(r.size());
+  const auto push = [&](std::size_t c) {
+    next[c] = head[b2[c]];
+    head[b2[c]] = std::int32_t(c);
+  };
   const auto seed = [&](int i, int j) {
     const std::size_t c = std::size_t(j) * r.w + i;
     if (b2[c] >= 0) return;
     b2[c] = d2[c];
-    bucket[b2[c]].push_back(std::uint32_t(c));
+    push(c);
   };
   for (int i = 0; i < r.w; ++i) {
     seed(i, 0);
@@ -250,17 +296,16 @@ std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap
     seed(r.w - 1, j);
   }
   for (int level = cap; level >= 0; --level) {
-    auto& bk = bucket[level];
-    while (!bk.empty()) {
-      const std::uint32_t c = bk.back();
-      bk.pop_back();
+    while (head[level] >= 0) {
+      const std::uint32_t c = std::uint32_t(head[level]);
+      head[level] = next[c];
       const int i = int(c % r.w), j = int(c / r.w);
       const std::size_t nb[4] = {c - 1, c + 1, c - r.w, c + r.w};
       const bool ok[4] = {i > 0, i + 1 < r.w, j > 0, j + 1 < r.h};
       for (int k = 0; k < 4; ++k) {
         if (!ok[k] || b2[nb[k]] >= 0) continue;
         b2[nb[k]] = std::min(level, d2[nb[k]]);
-        bucket[b2[nb[k]]].push_back(std::uint32_t(nb[k]));
+        push(nb[k]);
       }
     }
   }
@@ -362,8 +407,9 @@ Points trace(const Raster& r, const std::vector<int>& label, int label_id, std::
   return out;
 }
 
-/// Zhang-Suen thinning of a binary image (w x h, 1 = foreground), in place. Only cells next
-/// to a deletion are looked at again, so the cost is about the area.
+/// Zhang-Suen thinning of a binary image (w x h, 1 = foreground, the outermost rows and
+/// columns empty), in place. Only cells next to a deletion are looked at again, so the cost
+/// is about the area.
 void thin(std::vector<std::uint8_t>& img, int w, int h) {
   const auto at = [&](int i, int j) -> int {
     return i >= 0 && j >= 0 && i < w && j < h ? img[std::size_t(j) * w + i] : 0;
@@ -378,10 +424,12 @@ void thin(std::vector<std::uint8_t>& img, int w, int h) {
   for (int step = 0; idle < 2; step ^= 1) {
     std::vector<std::uint32_t> del, keep;
     for (std::uint32_t c : cand) {
-      const int i = int(c % w), j = int(c / w);
       if (!img[c]) continue;
-      const int p2 = at(i, j - 1), p3 = at(i + 1, j - 1), p4 = at(i + 1, j), p5 = at(i + 1, j + 1),
-                p6 = at(i, j + 1), p7 = at(i - 1, j + 1), p8 = at(i - 1, j), p9 = at(i - 1, j - 1);
+      // Foreground cells are never on the image's frame (the caller leaves it empty), so
+      // their neighbours are inside.
+      const std::uint8_t* q = img.data() + c;
+      const int p2 = q[-w], p3 = q[1 - w], p4 = q[1], p5 = q[w + 1], p6 = q[w], p7 = q[w - 1], p8 = q[-1],
+                p9 = q[-w - 1];
       const int b = p2 + p3 + p4 + p5 + p6 + p7 + p8 + p9;
       const int a = (!p2 && p3) + (!p3 && p4) + (!p4 && p5) + (!p5 && p6) + (!p6 && p7) +
                     (!p7 && p8) + (!p8 && p9) + (!p9 && p2);
@@ -448,71 +496,83 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   const double span_cells = std::max(hi.x() - lo.x(), hi.y() - lo.y()) / h;
   // A radius beyond half the extent cannot close anything a smaller one would not.
   const int rmax = std::max(1, std::min(opt.max_dilation, int(span_cells / 2) + 2));
-  const int margin = rmax + 2;
+  // The raster margin. The distance d2 and the bottleneck b2 are exact on any raster that
+  // holds the points: outward from a border cell the distance to every point grows, so a
+  // border cell's widest path from far away is its own d2. Hence the closing radius does
+  // not depend on the margin; the erosion needs the outside cells next to the band, i.e.
+  // radius + 2 cells. Start with a small margin and widen it only when the radius needs it:
+  // the result is that of a margin of rmax + 2, on a much smaller raster.
+  int margin = std::min(rmax, 8) + 2;
   Raster& r = pass.raster;
   r.cell = h;
-  const double wc = std::floor((hi.x() - lo.x()) / h) + 1 + 2.0 * margin;
-  const double hc = std::floor((hi.y() - lo.y()) / h) + 1 + 2.0 * margin;
-  if (wc * hc > double(opt.max_cells) || wc > 2e9 || hc > 2e9)
-    throw Error("morphology: a raster of " + num(wc) + " x " + num(hc) + " cells (cell " + num(h) +
-                " mm) exceeds max_cells " + std::to_string(opt.max_cells) +
-                "; use a larger cell or raise max_cells");
-  r.w = int(wc);
-  r.h = int(hc);
-  r.x0 = lo.x() - margin * h;
-  r.y0 = lo.y() - margin * h;
-
-  // Seeds: cells holding points; each keeps the mean of its points so that distances to
-  // the points are known to a small fraction of a cell (the raster alone gives half a cell).
-  std::vector<std::uint8_t> seed(r.size(), 0);
-  std::vector<int> slot(r.size(), -1);
   std::vector<Vec> mean;
-  std::vector<int> count;
-  for (std::size_t k : subset) {
-    const Vec c = r.to_cell(points[k]);
-    const int i = std::clamp(int(std::lround(c.x())), 0, r.w - 1);
-    const int j = std::clamp(int(std::lround(c.y())), 0, r.h - 1);
-    const std::size_t cell = std::size_t(j) * r.w + i;
-    seed[cell] = 1;
-    if (slot[cell] < 0) {
-      slot[cell] = int(mean.size());
-      mean.emplace_back(0, 0);
-      count.push_back(0);
-    }
-    mean[slot[cell]] += c;
-    ++count[slot[cell]];
-  }
-  for (std::size_t m = 0; m < mean.size(); ++m) mean[m] /= count[m];
-  const int cap = (rmax + 1) * (rmax + 1);
-  std::vector<int> nearest_seed;
-  const std::vector<int> d2 = distance_transform(r, seed, cap, nearest_seed);
-  const std::vector<int> b2 = bottleneck(r, d2, cap);
-
-  // A cell is enclosed at radius r when b2 <= r^2 < d2: inside the band of radius r but
-  // not on it. Cells enclosed at some radius (b2 < d2) are the interior of closed
-  // profiles; each part of an interior closes at its own radius b (the half width of the
-  // widest gap leading to it), so the closing radius r_c is the radius by which all of
-  // them have closed. Taking the first radius at which some
-  // interior appears instead leaves a part of a thin profile open behind a wide hole
-  // when the band pinches the profile elsewhere first.
-  std::vector<long long> closing_at(rmax + 2, 0);
-  long long ever = 0;
-  for (std::size_t c = 0; c < r.size(); ++c) {
-    if (b2[c] >= d2[c]) continue;
-    const int a = std::max(1, ceil_sqrt(b2[c]));
-    if (a > rmax || a > ceil_sqrt(d2[c]) - 1) continue;  // never enclosed at an integer radius <= rmax
-    ++closing_at[a];
-    ++ever;
-  }
-  const auto substantial = [](long long cells) { return cells >= 16; };
-  if (!substantial(ever)) return false;
+  std::vector<int> slot, nearest_seed, d2, b2;
   int rc = 0;
-  for (long long sum = 0; rc < rmax && sum < ever;) sum += closing_at[++rc];
-  pass.closing = rc;
-  // Margin: twice the closing radius (at least 4 cells). A disc just able to bridge a gap
-  // dips into it by about its radius and may cut a thin trailing edge in two; a disc twice
-  // as large dips by a quarter of that.
-  pass.radius = std::min(std::max(2 * rc, 4), rmax);
+  const auto substantial = [](long long cells) { return cells >= 16; };
+  for (;;) {
+    const double wc = std::floor((hi.x() - lo.x()) / h) + 1 + 2.0 * margin;
+    const double hc = std::floor((hi.y() - lo.y()) / h) + 1 + 2.0 * margin;
+    if (wc * hc > double(opt.max_cells) || wc > 2e9 || hc > 2e9)
+      throw Error("morphology: a raster of " + num(wc) + " x " + num(hc) + " cells (cell " + num(h) +
+                  " mm) exceeds max_cells " + std::to_string(opt.max_cells) +
+                  "; use a larger cell or raise max_cells");
+    r.w = int(wc);
+    r.h = int(hc);
+    r.x0 = lo.x() - margin * h;
+    r.y0 = lo.y() - margin * h;
+
+    // Seeds: cells holding points; each keeps the mean of its points so that distances to
+    // the points are known to a small fraction of a cell (the raster alone gives half a cell).
+    std::vector<std::uint8_t> seed(r.size(), 0);
+    slot.assign(r.size(), -1);
+    mean.clear();
+    std::vector<int> count;
+    for (std::size_t k : subset) {
+      const Vec c = r.to_cell(points[k]);
+      const int i = std::clamp(int(std::lround(c.x())), 0, r.w - 1);
+      const int j = std::clamp(int(std::lround(c.y())), 0, r.h - 1);
+      const std::size_t cell = std::size_t(j) * r.w + i;
+      seed[cell] = 1;
+      if (slot[cell] < 0) {
+        slot[cell] = int(mean.size());
+        mean.emplace_back(0, 0);
+        count.push_back(0);
+      }
+      mean[slot[cell]] += c;
+      ++count[slot[cell]];
+    }
+    for (std::size_t m = 0; m < mean.size(); ++m) mean[m] /= count[m];
+    const int cap = (rmax + 1) * (rmax + 1);
+    d2 = distance_transform(r, seed, cap, rmax + 2 - margin, nearest_seed);
+    b2 = bottleneck(r, d2, cap);
+
+    // A cell is enclosed at radius r when b2 <= r^2 < d2: inside the band of radius r but
+    // not on it. Cells enclosed at some radius (b2 < d2) are the interior of closed
+    // profiles; each part of an interior closes at its own radius b (the half width of the
+    // widest gap leading to it), so the closing radius r_c is the radius by which all of
+    // them have closed. Taking the first radius at which some
+    // interior appears instead leaves a part of a thin profile open behind a wide hole
+    // when the band pinches the profile elsewhere first.
+    std::vector<long long> closing_at(rmax + 2, 0);
+    long long ever = 0;
+    for (std::size_t c = 0; c < r.size(); ++c) {
+      if (b2[c] >= d2[c]) continue;
+      const int a = std::max(1, ceil_sqrt(b2[c]));
+      if (a > rmax || a > ceil_sqrt(d2[c]) - 1) continue;  // never enclosed at an integer radius <= rmax
+      ++closing_at[a];
+      ++ever;
+    }
+    if (!substantial(ever)) return false;
+    rc = 0;
+    for (long long sum = 0; rc < rmax && sum < ever;) sum += closing_at[++rc];
+    pass.closing = rc;
+    // Margin: twice the closing radius (at least 4 cells). A disc just able to bridge a gap
+    // dips into it by about its radius and may cut a thin trailing edge in two; a disc twice
+    // as large dips by a quarter of that.
+    pass.radius = std::min(std::max(2 * rc, 4), rmax);
+    if (pass.radius + 2 <= margin) break;
+    margin = pass.radius + 2;
+  }
   const int rr = pass.radius * pass.radius;
 
   // Erode the fill back: keep the cells farther than r from the outside.
@@ -521,7 +581,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
   const int cap_out = int(std::min(far, double(1 << 30)));
   std::vector<int> nearest_out;
-  const std::vector<int> out2 = distance_transform(r, outside, cap_out, nearest_out);
+  const std::vector<int> out2 = distance_transform(r, outside, cap_out, rmax + 2 - margin, nearest_out);
 
   // The closing's complement is about the union of the empty discs centred on outside
   // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <thread>
 
 namespace section {
 
@@ -139,6 +140,28 @@ void add_slab_points(const Eigen::Vector3d* points, std::size_t count, const std
   }
 }
 
+// Splits points[0, count) into parts of at least 64k points, one per thread at most.
+std::size_t parts_of(std::size_t count, int threads) {
+  const std::size_t workers = threads > 0 ? std::size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
+  return std::max<std::size_t>(1, std::min(workers, count / 65536));
+}
+
+// add_slab_points with the chunk split across threads; each part collects its own slab
+// points and the parts are appended in order, so the result does not depend on the threads.
+void add_slab_points_parallel(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
+                              const std::vector<Frame>& frame, double slab, int threads,
+                              std::vector<std::vector<Eigen::Vector2d>>& out) {
+  const std::size_t parts = parts_of(count, threads);
+  if (parts == 1) return add_slab_points(points, count, groups, frame, slab, out);
+  std::vector<std::vector<std::vector<Eigen::Vector2d>>> local(parts, std::vector<std::vector<Eigen::Vector2d>>(out.size()));
+  detail::parallel_for(parts, threads, [&](std::size_t t) {
+    const std::size_t a = count * t / parts, b = count * (t + 1) / parts;
+    add_slab_points(points + a, b - a, groups, frame, slab, local[t]);
+  });
+  for (const auto& part : local)
+    for (std::size_t k = 0; k < out.size(); ++k) out[k].insert(out[k].end(), part[k].begin(), part[k].end());
+}
+
 std::vector<Frame> frames_of(const std::vector<Plane>& planes) {
   std::vector<Frame> frame;
   for (const auto& p : planes) frame.push_back(make_frame(p.origin, p.normal));
@@ -223,6 +246,9 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
     return slice(cloud, planes, options);
   }
+  // Chunks of at most 256k points: each is still in the cache when the slab test reads it.
+  CloudReadOptions read_chunks = read;
+  read_chunks.chunk_points = std::min<std::size_t>(read.chunk_points, std::size_t(1) << 18);
   std::vector<Plane> planes = spec.planes;
   double slab = options.slab;
   std::size_t total = 0;
@@ -233,24 +259,44 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     double lo = INFINITY, hi = -INFINITY;
     constexpr std::size_t reservoir_size = 50000;
     std::vector<Eigen::Vector3d> reservoir;
+    // Reservoir sampling by skips (Li's algorithm L): random numbers only for the points
+    // taken, O(k log(n / k)) of them, instead of one per point.
     std::mt19937_64 rng(12345);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const auto u01 = [&] { return std::max(unit(rng), 1e-300); };
+    double w = std::exp(std::log(u01()) / reservoir_size);
+    std::size_t next = reservoir_size - 1;  // index of the next point to take once the reservoir is full
+    const auto skip = [&] {
+      next += std::size_t(std::floor(std::log(u01()) / std::log1p(-w))) + 1;
+      w *= std::exp(std::log(u01()) / reservoir_size);
+    };
+    skip();
     total = read_cloud_chunks(
         path,
         [&](const Eigen::Vector3d* p, std::size_t count) {
-          for (std::size_t i = 0; i < count; ++i) {
-            const double s = n.dot(p[i]);
-            lo = std::min(lo, s);
-            hi = std::max(hi, s);
+          const std::size_t parts = parts_of(count, options.threads);
+          std::vector<double> plo(parts, INFINITY), phi(parts, -INFINITY);
+          detail::parallel_for(parts, options.threads, [&](std::size_t t) {
+            double l = INFINITY, h = -INFINITY;
+            for (std::size_t i = count * t / parts, e = count * (t + 1) / parts; i < e; ++i) {
+              const double s = n.x() * p[i].x() + n.y() * p[i].y() + n.z() * p[i].z();
+              l = s < l ? s : l;
+              h = s > h ? s : h;
+            }
+            plo[t] = l;
+            phi[t] = h;
+          });
+          for (std::size_t t = 0; t < parts; ++t) {
+            lo = std::min(lo, plo[t]);
+            hi = std::max(hi, phi[t]);
           }
           if (slab != 0) return;
-          for (std::size_t i = 0; i < count; ++i) {
-            const std::size_t seen = total + i;
-            if (reservoir.size() < reservoir_size) reservoir.push_back(p[i]);
-            else if (const std::size_t j = rng() % (seen + 1); j < reservoir_size) reservoir[j] = p[i];
-          }
+          for (std::size_t i = 0; i < count && reservoir.size() < reservoir_size; ++i) reservoir.push_back(p[i]);
+          for (; next < total + count; skip())
+            reservoir[std::uniform_int_distribution<std::size_t>(0, reservoir_size - 1)(rng)] = p[next - total];
           total += count;
         },
-        read);
+        read_chunks);
     if (spec.count > 0) {
       std::vector<double> offsets;
       for (int k = 0; k < spec.count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (spec.count + 1));
@@ -270,8 +316,11 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
   SliceResult result;
   result.points = read_cloud_chunks(
-      path, [&](const Eigen::Vector3d* p, std::size_t count) { add_slab_points(p, count, groups, frame, slab, slabs); },
-      read);
+      path,
+      [&](const Eigen::Vector3d* p, std::size_t count) {
+        add_slab_points_parallel(p, count, groups, frame, slab, options.threads, slabs);
+      },
+      read_chunks);
   result.slab = slab;
   order_slabs(slabs, planes, options, result);
   return result;
