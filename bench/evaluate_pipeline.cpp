@@ -137,8 +137,11 @@ int main(int argc, char** argv) {
         stream = parse_stream(format_stream(stream), "smooth");
         fit_spline_stream(stream, fit_options);
         stream = parse_stream(format_stream(stream), "fitspline");
+        double camber_ms = NAN;
         if (with_camber) {
+          const auto c0 = std::chrono::steady_clock::now();
           camber_stream(stream, camber_options);
+          camber_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count() / zs.size();
           stream = parse_stream(format_stream(stream), "camber");
         }
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / zs.size();
@@ -177,6 +180,9 @@ int main(int argc, char** argv) {
             return std::min(after - s, s - before) <= 0.3;
           };
           Worst e;
+          // For --export: our camber scores (NaN without a camber result).
+          double cam_rms = NAN, cam_max = NAN, le_point_err = NAN, te_point_err = NAN, rle_signed = NAN,
+                 rte_signed = NAN;
           double sum = 0, sum_near = 0, where_max = 0, where_gap = 0;
           int count_near = 0;
           for (const auto& p : samples) {
@@ -224,6 +230,11 @@ int main(int argc, char** argv) {
               }
               e.cam_rms = cn ? std::sqrt(csum / cn) : 0;
               e.cam_max = cmax;
+              cam_rms = e.cam_rms, cam_max = e.cam_max;
+              le_point_err = (Eigen::Vector2d(v("le_u"), v("le_v")) - truth.le_point).norm();
+              te_point_err = (Eigen::Vector2d(v("te_u"), v("te_v")) - truth.te_point).norm();
+              rle_signed = v("le_radius") / truth.le_radius - 1;
+              rte_signed = v("te_radius") / truth.te_radius - 1;
               e.chord = std::abs(v("chord") - truth.chord);
               e.tmax = std::abs(v("max_thickness") - truth.max_thickness);
               e.rle = std::abs(v("le_radius") / truth.le_radius - 1);
@@ -256,13 +267,33 @@ int main(int argc, char** argv) {
                 std::fprintf(f, "%.9g,%.9g\n", truth.profile[i].x(), truth.profile[i].y());
               std::fclose(f);
             }
+            // The true camber line (extensions included) and edges, for the camber comparison.
+            std::snprintf(name, sizeof name, "%s/%s_%d_%d_camber.csv", export_dir.c_str(), kind, seed, id);
+            if (FILE* f = std::fopen(name, "w")) {
+              std::fprintf(f, "u,v\n");
+              for (const auto& c : truth.camber) std::fprintf(f, "%.9g,%.9g\n", c.x(), c.y());
+              std::fclose(f);
+            }
+            std::snprintf(name, sizeof name, "%s/%s_%d_%d_edges.csv", export_dir.c_str(), kind, seed, id);
+            if (FILE* f = std::fopen(name, "w")) {
+              std::fprintf(f, "le_u,le_v,te_u,te_v,le_center_u,le_center_v,le_radius,te_center_u,te_center_v,te_radius\n");
+              std::fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", truth.le_point.x(),
+                           truth.le_point.y(), truth.te_point.x(), truth.te_point.y(), truth.le_center.x(),
+                           truth.le_center.y(), truth.le_radius, truth.te_center.x(), truth.te_center.y(),
+                           truth.te_radius);
+              std::fclose(f);
+            }
             std::snprintf(name, sizeof name, "%s/scores.csv", export_dir.c_str());
             FILE* probe = std::fopen(name, "r");
             const bool fresh = !probe;
             if (probe) std::fclose(probe);
             if (FILE* f = std::fopen(name, "a")) {
-              if (fresh) std::fprintf(f, "blade,seed,section,rms_um,max_um,gap_um,ms_per_section\n");
-              std::fprintf(f, "%s,%d,%d,%.4f,%.4f,%.4f,%.1f\n", kind, seed, id, e.rms * 1e3, e.max * 1e3, e.gap * 1e3, ms);
+              if (fresh)
+                std::fprintf(f, "blade,seed,section,rms_um,max_um,gap_um,ms_per_section,cam_rms_um,cam_max_um,"
+                                "le_radius_err_pct,te_radius_err_pct,le_point_um,te_point_um,camber_ms\n");
+              std::fprintf(f, "%s,%d,%d,%.4f,%.4f,%.4f,%.1f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f\n", kind, seed, id,
+                           e.rms * 1e3, e.max * 1e3, e.gap * 1e3, ms, cam_rms * 1e3, cam_max * 1e3, rle_signed * 100,
+                           rte_signed * 100, le_point_err * 1e3, te_point_err * 1e3, camber_ms);
               std::fclose(f);
             }
           }

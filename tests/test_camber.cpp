@@ -2,6 +2,7 @@
 // against exact ground truth (sections built as envelopes of circles, an ellipse).
 #include "section/camber.h"
 #include "section/error.h"
+#include "section/fit_spline.h"
 #include "section/generate.h"
 #include "section/params.h"
 #include "section/pipe.h"
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 using Eigen::Vector2d;
@@ -56,6 +58,35 @@ std::vector<SectionDesign> designs() {
   return out;
 }
 
+// The profile of `truth` cut off by the line normal to the camber line `back` (arc length,
+// mm) before the TE centre: a blunt trailing edge whose flat face (sampled at the
+// profile's spacing) joins the sides at two corners. `cut` and `width` get the camber
+// point on the line and the face width.
+std::vector<Vector2d> cut_trailing_edge(const SectionTruth& truth, double back, Vector2d& cut, double& width) {
+  const double s_end = truth.camber_s[truth.camber_end - 1] - back;
+  std::size_t k = truth.camber_begin;
+  while (k + 1 < truth.camber_end && truth.camber_s[k + 1] < s_end) ++k;
+  cut = truth.camber[k];
+  const Vector2d t = (truth.camber[k + 1] - truth.camber[k]).normalized();
+  const auto& p = truth.profile;
+  const std::size_t n = p.size();
+  auto h = [&](std::size_t i) { return (p[i % n] - cut).dot(t); };
+  std::vector<Vector2d> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (h(i) < 0) out.push_back(p[i]);
+    if (h(i) < 0 && h(i + 1) >= 0) {  // leaving: the face runs to where the profile comes back
+      const Vector2d x = p[i] + (p[(i + 1) % n] - p[i]) * (h(i) / (h(i) - h(i + 1)));
+      std::size_t j = i + 1;
+      while (!(h(j) >= 0 && h(j + 1) < 0)) ++j;
+      const Vector2d y = p[j % n] + (p[(j + 1) % n] - p[j % n]) * (h(j) / (h(j) - h(j + 1)));
+      width = (y - x).norm();
+      const int m = std::max(2, static_cast<int>(width / (p[1] - p[0]).norm()));
+      for (int q = 0; q <= m; ++q) out.push_back(x + (y - x) * (static_cast<double>(q) / m));
+    }
+  }
+  return out;
+}
+
 Vector2d direction(double degrees) {
   const double a = degrees * 3.14159265358979323846 / 180;
   return {std::cos(a), std::sin(a)};
@@ -89,7 +120,9 @@ TEST_CASE("camber: envelope-of-circles sections give the true camber line and pa
     CHECK(relative(p.max_thickness, truth.max_thickness) < 1e-4);
     CHECK(relative(p.max_thickness_pos, truth.max_thickness_pos) < 1e-4);
     CHECK(relative(p.le_radius, truth.le_radius) < 1e-4);
-    CHECK(relative(p.te_radius, truth.te_radius) < 1e-4);
+    // The grown edge arc reaches the arc-flank junction, where the spline's O(h^2) error
+    // of the curvature jump sits: 1.4e-4 on the thinnest (0.15 mm) trailing edge = 20 nm.
+    CHECK(relative(p.te_radius, truth.te_radius) < 2e-4);
     CHECK(relative(p.area, truth.area) < 1e-4);
     CHECK((p.centroid - truth.centroid).norm() < 1e-4 * truth.chord);
     CHECK(relative(p.stagger, truth.stagger) < 1e-4);
@@ -263,4 +296,93 @@ TEST_CASE("camber: a NACA 0012 with a closed trailing edge has a round LE and a 
   CHECK(c.le.point.norm() < 1e-3);
   CHECK((c.te.point - Vector2d(100, 0)).norm() < 0.05);
   CHECK(std::abs(c.points[c.points.size() / 2].y()) < 1e-6);  // symmetric: camber on the chord
+}
+
+TEST_CASE("camber: edge radii on noisy profiles (sigma 5 um) stay within 3 % (LE) / 10 % (TE)", "[camber]") {
+  // Exact profile points every 40 um, moved by Gaussian noise (sigma 5 um) along the exact
+  // normal, fitted with fit_spline: the edge arc is chosen geometrically on the noisy
+  // curve (grown while the profile stays at noise level from the fitted circle).
+  std::vector<SectionDesign> ds = designs();
+  ds.erase(ds.begin() + 1);  // the turbine design is the slowest to fit; the others cover it
+  int k = 0;
+  for (const SectionDesign& design : ds) {
+    const SectionTruth truth = section::section_truth(design, 20000);
+    for (unsigned seed : {1u, 2u}) {
+      std::mt19937_64 rng(seed * 7919 + k);
+      std::normal_distribution<double> noise(0, 0.005);
+      std::vector<Vector2d> pts;
+      const int count = static_cast<int>(truth.perimeter / 0.04);
+      for (int i = 0; i < count; ++i) {
+        const std::size_t j = static_cast<std::size_t>(i) * truth.profile.size() / count;
+        pts.push_back(truth.profile[j] + noise(rng) * truth.profile_normal[j]);
+      }
+      const BSpline spline = section::fit_spline(pts, pts).spline;
+      const section::CamberResult c = section::camber_line(spline);
+      INFO("design " << k << " seed " << seed << " LE " << c.le.radius << " / " << truth.le_radius << " TE "
+                     << c.te.radius << " / " << truth.te_radius);
+      CHECK(relative(c.le.radius, truth.le_radius) < 0.03);
+      CHECK(relative(c.te.radius, truth.te_radius) < 0.10);
+      // The fitted centre ends the camber line: it lies within a few noise sigmas of the truth.
+      CHECK((c.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
+    }
+    ++k;
+  }
+}
+
+TEST_CASE("camber: a cut-off trailing edge is reported blunt with its face width", "[camber]") {
+  // Three designs (moderate, thin compressor, thick turbine) cut 0.5 and 1.5 mm before the
+  // TE centre; the spline through the exact points keeps the corners sharp to a few um.
+  const std::vector<SectionDesign> ds = {SectionDesign{}, section::compressor_blade().at(30),
+                                         section::turbine_blade().at(30)};
+  for (std::size_t k = 0; k < ds.size(); ++k) {
+    const SectionTruth truth = section::section_truth(ds[k], 20000);
+    for (double back : {0.5, 1.5}) {
+      Vector2d cut;
+      double width = 0;
+      const BSpline spline = dense_spline(cut_trailing_edge(truth, back, cut, width));
+      for (auto model : {section::EdgeModel::round, section::EdgeModel::automatic}) {
+        section::CamberOptions o;
+        o.edge = model;
+        const section::CamberResult c = section::camber_line(spline, o);
+        INFO("design " << k << " cut " << back << " mm back: face " << c.te.face << " / " << width << ", TE point "
+                       << (c.te.point - cut).norm() << " from the cut");
+        CHECK(c.te.shape == section::EdgeShape::blunt);
+        CHECK(c.te.radius == 0);                             // not forced into a circle
+        CHECK(relative(c.te.face, width) < 0.03);            // the corners' rounding by the spline
+        CHECK((c.te.point - cut).norm() < 0.025);            // the camber line ends mid-face
+        CHECK(c.le.shape == section::EdgeShape::round);      // the LE is untouched
+        CHECK(relative(c.le.radius, truth.le_radius) < 1e-4);
+        CHECK(c.le.face == 0);
+      }
+    }
+  }
+}
+
+TEST_CASE("camber: a cut-off trailing edge with 5 um noise is still blunt", "[camber]") {
+  // The cut profile sampled every ~20 um, moved by Gaussian noise (sigma 5 um) along its
+  // normal and fitted with fit_spline: the face is found on the noisy curve.
+  const std::vector<SectionDesign> ds = {SectionDesign{}, section::compressor_blade().at(30),
+                                         section::turbine_blade().at(30)};
+  for (std::size_t k = 0; k < ds.size(); ++k) {
+    const SectionTruth truth = section::section_truth(ds[k], 20000);
+    Vector2d cut;
+    double width = 0;
+    const std::vector<Vector2d> exact = cut_trailing_edge(truth, 1.0, cut, width);
+    std::mt19937_64 rng(11 + k);
+    std::normal_distribution<double> noise(0, 0.005);
+    std::vector<Vector2d> pts;
+    const std::size_t n = exact.size();
+    for (std::size_t i = 0; i < n; i += 4) {
+      const Vector2d t = (exact[(i + 1) % n] - exact[(i + n - 1) % n]).normalized();
+      pts.push_back(exact[i] + noise(rng) * Vector2d(-t.y(), t.x()));
+    }
+    const section::CamberResult c = section::camber_line(section::fit_spline(pts, pts).spline);
+    INFO("design " << k << ": face " << c.te.face << " / " << width << ", TE point " << (c.te.point - cut).norm()
+                   << " from the cut");
+    CHECK(c.te.shape == section::EdgeShape::blunt);
+    CHECK(relative(c.te.face, width) < 0.03);
+    CHECK((c.te.point - cut).norm() < 0.025);
+    CHECK(c.le.shape == section::EdgeShape::round);
+    CHECK(relative(c.le.radius, truth.le_radius) < 0.03);
+  }
 }

@@ -6,8 +6,10 @@
 #include "section/fit_spline.h"
 #include "section/pipe.h"
 
+#include <charconv>
+#include <cmath>
 #include <iostream>
-#include <sstream>
+#include <string_view>
 
 namespace {
 
@@ -21,19 +23,25 @@ const char* const description =
     "'sides' to the stream; sections that fail are recorded as issues.\n\n"
     "Example: slice blade.ply --count 9 | smooth | fitspline | camber --params params.csv";
 
-// "a,b,c" -> numbers; throws section::Error naming the flag.
+// "a,b,c" -> finite numbers, parsed like the pipe parses (std::from_chars: no locale, the
+// whole item, a leading '+' allowed); throws CLI::ValidationError naming the flag.
 std::vector<double> numbers(const std::string& text, const std::string& flag) {
   std::vector<double> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      std::size_t used = 0;
-      out.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw CLI::ValidationError(flag, "expected numbers separated by commas, found '" + item + "'");
-    }
+  std::string_view rest = text;
+  for (;;) {
+    const std::size_t comma = rest.find(',');
+    std::string_view item = rest.substr(0, comma);
+    while (!item.empty() && (item.front() == ' ' || item.front() == '\t')) item.remove_prefix(1);
+    while (!item.empty() && (item.back() == ' ' || item.back() == '\t')) item.remove_suffix(1);
+    std::string_view digits = item;
+    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+    double value = 0;
+    const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (digits.empty() || r.ec != std::errc() || r.ptr != digits.data() + digits.size() || !std::isfinite(value))
+      throw CLI::ValidationError(flag, "expected numbers separated by commas, found '" + std::string(item) + "'");
+    out.push_back(value);
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
   }
   return out;
 }
@@ -76,8 +84,8 @@ int main(int argc, char** argv) {
         app.add_option("--edge", edge, "Edge model: round (circle fitted to every edge) or auto "
                                        "(blunt and sharp edges get radius 0)")
             ->check(CLI::IsMember({"round", "auto"}))->capture_default_str();
-        app.add_option("--edge-arc", options.edge_arc, "Degrees of the edge arc the edge circle is fitted to")
-            ->check(CLI::Range(10.0, 270.0))->capture_default_str();
+        app.add_option("--edge-arc", options.edge_arc, "Degrees of a fixed edge arc the edge circle is fitted to (0 = grown geometrically)")
+            ->check(CLI::Range(0.0, 270.0))->capture_default_str();
         app.add_option("--tangent-span", options.tangent_span,
                        "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)")
             ->check(CLI::Range(0.0, 0.5))->capture_default_str();

@@ -453,32 +453,36 @@ struct CircleFit {
   double radius = 0, rms = 0;
 };
 
-// Geometric least-squares circle (Gauss-Newton from the algebraic fit).
+// Geometric least-squares circle (Gauss-Newton from the algebraic fit). Normal equations
+// (3 x 3) on centred points: well conditioned, and this runs tens of times per edge.
 CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
   const int n = static_cast<int>(p.size());
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const auto& q : p) mean += q;
   mean /= n;
-  Eigen::MatrixXd a(n, 3);
-  Eigen::VectorXd rhs(n);
+  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d q = p[i] - mean;
-    a.row(i) << q.x(), q.y(), 1;
-    rhs(i) = -q.squaredNorm();
+    const Eigen::Vector3d row(q.x(), q.y(), 1);
+    ata += row * row.transpose();
+    atb += row * -q.squaredNorm();
   }
-  const Eigen::Vector3d s = a.colPivHouseholderQr().solve(rhs);
+  const Eigen::Vector3d s = ata.ldlt().solve(atb);
   Eigen::Vector3d x(-0.5 * s(0), -0.5 * s(1), 0);
   x(2) = std::sqrt(std::max(x.head<2>().squaredNorm() - s(2), 0.0));
   for (int it = 0; it < 30; ++it) {
-    Eigen::MatrixXd j(n, 3);
-    Eigen::VectorXd e(n);
+    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d jte = Eigen::Vector3d::Zero();
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector2d q = p[i] - mean - x.head<2>();
       const double dist = q.norm();
-      e(i) = dist - x(2);
-      j.row(i) << -q.x() / dist, -q.y() / dist, -1;
+      if (!(dist > 0)) continue;
+      const Eigen::Vector3d row(-q.x() / dist, -q.y() / dist, -1);
+      jtj += row * row.transpose();
+      jte += row * (dist - x(2));
     }
-    const Eigen::Vector3d dx = -j.colPivHouseholderQr().solve(e);
+    const Eigen::Vector3d dx = -jtj.ldlt().solve(jte);
     if (!dx.allFinite()) break;
     x += dx;
     if (dx.norm() < 1e-13 * std::max(1.0, x(2))) break;
@@ -492,6 +496,126 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
   return fit;
 }
 
+// Arc of the profile around t_tip (walking both ways) seen from `c` within `half` radians of
+// direction d: the core of an edge, chosen by position (normals are the noisiest part of
+// a fitted profile).
+std::pair<double, double> angular_arc(const Profile& pr, double t_tip, const Eigen::Vector2d& c,
+                                      const Eigen::Vector2d& d, double half) {
+  auto angle = [&](double t) {
+    const Eigen::Vector2d q = pr.fast.jet(t).p - c;
+    return std::abs(std::atan2(cross(d, q), d.dot(q)));
+  };
+  const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
+  double ends[2];
+  for (int k = 0; k < 2; ++k) {
+    const int dir = k ? 1 : -1;
+    double a = t_tip, b = t_tip;
+    bool found = false;
+    for (double walked = 0; walked < 0.5 * pr.period; walked += h) {
+      b = a + dir * h;
+      if (angle(b) > half) {
+        found = true;
+        break;
+      }
+      a = b;
+    }
+    if (found)
+      for (int it = 0; it < 30; ++it) {
+        const double mid = 0.5 * (a + b);
+        (angle(mid) > half ? b : a) = mid;
+      }
+    ends[k] = a;
+  }
+  return {ends[0], ends[1]};
+}
+
+std::vector<Eigen::Vector2d> arc_points(const Profile& pr, double t0, double t1, int count = 121) {
+  std::vector<Eigen::Vector2d> arc;
+  for (int i = 0; i < count; ++i) arc.push_back(pr.fast.jet(t0 + (t1 - t0) * i / (count - 1)).p);
+  return arc;
+}
+
+// The edge arc grown geometrically: starting from a core of +-edge_core degrees around the
+// edge point, each end walks outward while the profile stays within `tau` outside the
+// fitted circle, tau = edge_residual x the core fit's rms (the profile's own noise level
+// there, floored at 1e-6 of the profile size). Past the arc's junction a flank leaves the
+// circle outward as x^2 / 2R (its curvature is far below the edge's), so the walk
+// overshoots by sqrt(2 R tau): that much is trimmed from each end. Circle, arc, trim are
+// iterated. Returns the arc's parameter range.
+std::pair<double, double> grown_arc(const Profile& pr, double t_tip, const Eigen::Vector2d& d,
+                                    const Eigen::Vector2d& c0, double r0, const CamberOptions& options,
+                                    CircleFit& fit) {
+  const double core = options.edge_core * pi / 180;
+  std::pair<double, double> range = angular_arc(pr, t_tip, c0, d, core);
+  fit = fit_circle(arc_points(pr, range.first, range.second));
+  if (!(fit.radius > 0) || !std::isfinite(fit.radius) || fit.radius > 50 * std::max(r0, 1e-9 * pr.scale)) {
+    fit.center = c0, fit.radius = r0;
+  }
+  // Re-centre the core on the fitted circle once: the medial end may sit off the edge centre.
+  range = angular_arc(pr, t_tip, fit.center, d, core);
+  fit = fit_circle(arc_points(pr, range.first, range.second));
+  const double tau = std::max(options.edge_residual * fit.rms, 1e-6 * pr.scale);
+  const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
+  const double cap = options.edge_max_arc * 0.5 * pi / 180;
+  const std::pair<double, double> core_range = range;
+  // Start the growth from a half circle about the core circle: a circle fitted to the core
+  // alone can be far off (a short noisy arc), and the profile then leaves it right past
+  // the core; from a longer arc the iteration shrinks onto the edge arc instead.
+  {
+    const std::pair<double, double> wide = angular_arc(pr, t_tip, fit.center, d, 0.5 * pi);
+    const CircleFit w = fit_circle(arc_points(pr, wide.first, wide.second));
+    if (w.radius > 0 && std::isfinite(w.radius)) fit = w, range = wide;
+  }
+  for (int pass = 0; pass < 4; ++pass) {
+    const CircleFit current = fit;
+    // The guard angle is measured from the middle of the current arc (the end tangent may
+    // be skewed on a noisy profile).
+    const Eigen::Vector2d mid_dir =
+        (pr.fast.jet(0.5 * (range.first + range.second)).p - current.center).normalized();
+    // Residual outside the circle; the walk ends where the profile has left the circle
+    // for good (far outside it, or past the largest arc), and the arc's end is the last
+    // point within tau before that: a noise bump inside the arc does not stop it.
+    auto residual = [&](double t) { return (pr.fast.jet(t).p - current.center).norm() - current.radius; };
+    double ends[2];
+    for (int k = 0; k < 2; ++k) {
+      const int dir = k ? 1 : -1;
+      double a = t_tip, last_in = t_tip;
+      for (double walked = 0; walked < 0.5 * pr.period; walked += h) {
+        const double b = a + dir * h;
+        const Eigen::Vector2d q = pr.fast.jet(b).p - current.center;
+        const double res = q.norm() - current.radius;
+        if (res > std::max(20 * tau, 0.2 * current.radius) ||
+            std::abs(std::atan2(cross(mid_dir, q), mid_dir.dot(q))) > cap)
+          break;
+        if (res <= tau) last_in = b;
+        a = b;
+      }
+      a = last_in;
+      {
+        // Refine the crossing between last_in and the next step.
+        double lo = last_in, hi = last_in + dir * h;
+        if (residual(hi) > tau)
+          for (int it = 0; it < 30; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            (residual(mid) > tau ? hi : lo) = mid;
+          }
+        a = lo;
+      }
+      // Trim the flank overshoot (arc length converted with the local speed), never past
+      // the core.
+      const double trim = std::sqrt(2 * current.radius * tau) / std::max(pr.fast.jet(a).d1.norm(), 1e-300);
+      const double keep = k ? core_range.second : core_range.first;
+      ends[k] = dir > 0 ? std::max(a - trim, std::min(keep, a)) : std::min(a + trim, std::max(keep, a));
+    }
+    const CircleFit next = fit_circle(arc_points(pr, ends[0], ends[1]));
+    if (!(next.radius > 0) || !std::isfinite(next.radius)) break;
+    fit = next;
+    range = {ends[0], ends[1]};
+    if ((next.center - current.center).norm() < 1e-9 * pr.scale) break;
+  }
+  return range;
+}
+
 // Edge point, arc and fitted circle for the axis end `end` pointing outward along `d`.
 Edge measure_edge(const Profile& pr, const InscribedCircle& end_circle, const Eigen::Vector2d& d,
                   const CamberOptions& options) {
@@ -500,23 +624,142 @@ Edge measure_edge(const Profile& pr, const InscribedCircle& end_circle, const Ei
   if (!ray_hit(pr, end, d, e.t))
     throw Error("camber: the camber line's end tangent does not meet the profile");
   e.point = pr.fast.jet(e.t).p;
-  const double half = 0.5 * options.edge_arc * pi / 180;
-  const double reach = 1.5 * std::max(end_circle.radius, (e.point - end).norm());
-  e.arc_t0 = arc_end(pr, e.t, d, half, -1, end, reach);
-  e.arc_t1 = arc_end(pr, e.t, d, half, +1, end, reach);
-  const Eigen::Vector2d n0 = pr.outward(e.arc_t0), n1 = pr.outward(e.arc_t1);
-  e.arc = std::abs(std::atan2(cross(n0, n1), n0.dot(n1))) * 180 / pi;
-  if (n0.dot(n1) < 0 && e.arc < 90) e.arc = 360 - e.arc;
-  std::vector<Eigen::Vector2d> arc;
-  const int count = 61;
-  for (int i = 0; i < count; ++i) arc.push_back(pr.fast.jet(e.arc_t0 + (e.arc_t1 - e.arc_t0) * i / (count - 1)).p);
-  const CircleFit fit = fit_circle(arc);
+  CircleFit fit;
+  if (options.edge_arc > 0) {
+    // Fixed arc: the profile around the edge point whose outward normal turns at most
+    // edge_arc / 2 either way.
+    const double half = 0.5 * options.edge_arc * pi / 180;
+    const double reach = 1.5 * std::max(end_circle.radius, (e.point - end).norm());
+    e.arc_t0 = arc_end(pr, e.t, d, half, -1, end, reach);
+    e.arc_t1 = arc_end(pr, e.t, d, half, +1, end, reach);
+    fit = fit_circle(arc_points(pr, e.arc_t0, e.arc_t1, 61));
+  } else {
+    std::tie(e.arc_t0, e.arc_t1) =
+        grown_arc(pr, e.t, d, end, std::max(end_circle.radius, (e.point - end).norm()), options, fit);
+  }
+  // Arc: the angle the edge arc subtends at the fitted centre.
+  const Eigen::Vector2d q0 = pr.fast.jet(e.arc_t0).p - fit.center, q1 = pr.fast.jet(e.arc_t1).p - fit.center;
+  e.arc = (std::abs(std::atan2(cross(d, q0), d.dot(q0))) + std::abs(std::atan2(cross(d, q1), d.dot(q1)))) * 180 / pi;
   e.center = fit.center;
   e.radius = fit.radius;
   e.fit_rms = fit.rms;
   const double k = pr.convexity(e.t);
   e.curvature_radius = k > 0 ? 1 / k : 0;  // 0: the edge point is flat or concave
   return e;
+}
+
+// A blunt (cut-off) edge: a flat face across the end of the blade.
+struct Face {
+  bool found = false;
+  double width = 0;             // extent of the face
+  Eigen::Vector2d mid{0, 0};    // its middle
+  Eigen::Vector2d normal{0, 0}; // outward unit normal
+};
+
+// Looks for a flat face at the end of the medial branch `from_end` (circles ordered from
+// the end inward), whose end tangent points outward along d. Scale: W, the diameter of
+// the first circle more than 1.5 radii back from the end (at a round edge a little over
+// 2R; at a blunt one the corner branch climbs at 45 degrees to the fork, 0.71 W back, so
+// W is about the face width). The cap of the profile within 0.1 W of its extreme point
+// along a direction f is, at a round edge, a circular segment 2 sqrt(2 R 0.1 W) <= 0.63 W
+// wide and bowed; at a blunt edge, with f the face normal, it is the face itself: as wide
+// as the blade there (at least `blunt_face` W) and straight (line-fit rms below 0.2 of the
+// cap depth; a circular segment gives 0.3).
+Face blunt_face(const Profile& pr, const std::vector<InscribedCircle>& from_end, const Eigen::Vector2d& d_end,
+                const CamberOptions& options) {
+  Face face;
+  if (from_end.size() < 4) return face;
+  const Eigen::Vector2d end = from_end.front().center;
+  double w = 0;
+  std::size_t iw = 0;
+  for (std::size_t i = 0; i < from_end.size(); ++i)
+    if ((from_end[i].center - end).norm() > 1.5 * from_end[i].radius) {
+      w = 2 * from_end[i].radius;
+      iw = i;
+      break;
+    }
+  if (!(w > 1e-9 * pr.scale)) return face;
+  // Reference direction: the axis behind the fork (the end tangent itself follows the
+  // corner branch and can be 40 degrees off the face normal).
+  Eigen::Vector2d d = d_end.normalized();
+  for (std::size_t j = iw + 1; j < from_end.size(); ++j)
+    if ((from_end[j].center - from_end[iw].center).norm() > w) {
+      d = (from_end[iw].center - from_end[j].center).normalized();
+      break;
+    }
+  // Profile near the end, densely resampled: the samples within 1.5 W of the end centre,
+  // contiguous around the nearest one.
+  const int n = static_cast<int>(pr.samples.size());
+  const int near = pr.nearest(end);
+  const double reach = 1.5 * w + 2 * pr.period / n;
+  int lo = 0, hi = 0;
+  while (lo > -n / 2 && (pr.samples[((near + lo - 1) % n + n) % n] - end).norm() < reach) --lo;
+  while (hi < n / 2 && (pr.samples[(near + hi + 1) % n] - end).norm() < reach) ++hi;
+  const double ta = pr.ts[near] + pr.period * lo / n, tb = pr.ts[near] + pr.period * hi / n;
+  std::vector<Eigen::Vector2d> p;
+  const int m = 600;
+  for (int i = 0; i <= m; ++i) p.push_back(pr.fast.jet(ta + (tb - ta) * i / m).p);
+  const double depth = 0.1 * w;
+  // The cap of depth `depth` below the extreme point along f: its points, width across f.
+  auto cap_along = [&](const Eigen::Vector2d& f, std::vector<Eigen::Vector2d>* out) {
+    int top = 0;
+    for (int i = 1; i <= m; ++i)
+      if (p[i].dot(f) > p[top].dot(f)) top = i;
+    const double hmax = p[top].dot(f);
+    int a = top, b = top;
+    while (a > 0 && p[a - 1].dot(f) >= hmax - depth) --a;
+    while (b < m && p[b + 1].dot(f) >= hmax - depth) ++b;
+    if (a == 0 || b == m) return -1.0;  // the cap runs out of the neighbourhood: not an edge
+    const Eigen::Vector2d u = left_normal(f);
+    double lo_u = std::numeric_limits<double>::infinity(), hi_u = -lo_u;
+    for (int i = a; i <= b; ++i) lo_u = std::min(lo_u, p[i].dot(u)), hi_u = std::max(hi_u, p[i].dot(u));
+    if (out) out->assign(p.begin() + a, p.begin() + b + 1);
+    return hi_u - lo_u;
+  };
+  // Straightness of a cap: rms distance from its total-least-squares line.
+  auto line_fit = [](const std::vector<Eigen::Vector2d>& q, Eigen::Vector2d& mean, Eigen::Vector2d& along,
+                     Eigen::Vector2d& normal) {
+    mean.setZero();
+    for (const auto& x : q) mean += x;
+    mean /= static_cast<double>(q.size());
+    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+    for (const auto& x : q) cov += (x - mean) * (x - mean).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+    along = eig.eigenvectors().col(1);
+    normal = eig.eigenvectors().col(0);
+    return std::sqrt(std::max(eig.eigenvalues()(0), 0.0) / q.size());
+  };
+  // The face need not be square to the end tangent (which the corner branch skews): the
+  // direction within 40 degrees of d whose cap is straightest. (The widest cap would be
+  // square to a flank, running along it and round the corner.)
+  std::vector<Eigen::Vector2d> cap, trial;
+  Eigen::Vector2d mean(0, 0), along(1, 0), f = d;
+  double best = -1, rms = std::numeric_limits<double>::infinity();
+  for (int k = -40; k <= 40; ++k) {
+    const double a = k * pi / 180;
+    const Eigen::Vector2d g =
+        Eigen::Vector2d(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y()).normalized();
+    const double width = cap_along(g, &trial);
+    if (width < 0 || trial.size() < 3) continue;
+    Eigen::Vector2d m0(0, 0), a0(1, 0), n0(0, 1);
+    const double r0 = line_fit(trial, m0, a0, n0);
+    if (r0 >= rms) continue;
+    best = width, cap = trial, mean = m0, along = a0, f = n0, rms = r0;
+  }
+  if (best < 0) return face;
+  if (f.dot(d) < 0) f = -f;
+  double smin = std::numeric_limits<double>::infinity(), smax = -smin;
+  for (const auto& q : cap) {
+    smin = std::min(smin, (q - mean).dot(along));
+    smax = std::max(smax, (q - mean).dot(along));
+  }
+  const double width = smax - smin;
+  if (width < options.blunt_face * w || rms > 0.2 * depth) return face;
+  face.found = true;
+  face.width = width;
+  face.mid = mean + 0.5 * (smin + smax) * along;
+  face.normal = f;
+  return face;
 }
 
 void classify_edge(Edge& e, double max_diameter, const CamberOptions& options) {
@@ -647,17 +890,68 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
     }
     return t;
   };
+  // Blunt faces, from the medial branch as found (before any end replacement).
+  const std::vector<InscribedCircle> medial_rev(medial.rbegin(), medial.rend());
+  Face face_le, face_te;
+  // An edge: a blunt face when one is found (the circle fit, when it succeeds, is kept
+  // for EdgeModel::round), else the fitted edge circle classified.
+  auto edge_at = [&](const InscribedCircle& end, const Eigen::Vector2d& d, const Face& face) {
+    Edge e;
+    try {
+      e = measure_edge(pr, end, d, options);
+    } catch (const Error&) {
+      if (!face.found) throw;
+      e.point = face.mid;
+      e.t = pr.ts[pr.nearest(face.mid)];
+    }
+    classify_edge(e, 2 * widest, options);
+    if (face.found) {  // a face, not a circle: no radius, whatever the edge model
+      e.shape = EdgeShape::blunt;
+      e.face = face.width;
+      e.radius = 0;
+      e.center = face.mid;
+    }
+    return e;
+  };
   for (int it = 0; it < 3; ++it) {
     const auto tg = tangents(circles);
     const Eigen::Vector2d d_le = -tg.first, d_te = tg.second;
-    le = measure_edge(pr, circles.front(), d_le, options);
-    te = measure_edge(pr, circles.back(), d_te, options);
-    classify_edge(le, 2 * widest, options);
-    classify_edge(te, 2 * widest, options);
+    if (it == 0) {
+      face_le = blunt_face(pr, medial, d_le, options);
+      face_te = blunt_face(pr, medial_rev, d_te, options);
+    }
+    le = edge_at(circles.front(), d_le, face_le);
+    te = edge_at(circles.back(), d_te, face_te);
     circles = medial;
+    // A blunt end: the medial branch runs into a corner of the face; the circles that
+    // touch the face belong to that corner branch and are dropped, so the camber line
+    // ends where the branch forks and is extended along its tangent to the face.
+    auto trim_face = [&](const Face& face, bool front) {
+      if (!face.found) return;
+      auto touches = [&](const InscribedCircle& c) {
+        return (c.center - face.mid).norm() < 2 * face.width &&
+               (face.mid - c.center).dot(face.normal) <= c.radius * 1.02;
+      };
+      // Everything from the first circle (coming from the other end) that touches the face.
+      const long n = static_cast<long>(circles.size());
+      std::vector<InscribedCircle> kept;
+      if (front) {
+        long i = n - 1;
+        while (i >= 0 && !touches(circles[static_cast<std::size_t>(i)])) --i;
+        kept.assign(circles.begin() + (i + 1), circles.end());
+      } else {
+        long i = 0;
+        while (i < n && !touches(circles[static_cast<std::size_t>(i)])) ++i;
+        kept.assign(circles.begin(), circles.begin() + i);
+      }
+      if (kept.size() >= 4) circles = kept;
+    };
+    trim_face(face_le, true);
+    trim_face(face_te, false);
     // Replace a medial end by the fitted centre when the edge is round and the centre is
     // consistent with the axis (inside the end circle's reach).
     auto replace = [&](const Edge& e, bool front) {
+      if (e.shape == EdgeShape::blunt && e.face > 0) return;  // a face, not a circle: see trim_face
       const bool round = e.shape == EdgeShape::round || options.edge == EdgeModel::round;
       const InscribedCircle& end = front ? medial.front() : medial.back();
       // A circle much larger than the end's inscribed circle fits a flank, not the edge.
@@ -687,10 +981,13 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
   // Final edge points from the final tangents.
   std::tie(res.le_tangent, res.te_tangent) = tangents(circles);
   {
-    Edge l = measure_edge(pr, circles.front(), -res.le_tangent, options);
-    Edge t = measure_edge(pr, circles.back(), res.te_tangent, options);
-    le.point = l.point, le.t = l.t;
-    te.point = t.point, te.t = t.t;
+    auto point = [&](const InscribedCircle& end, const Eigen::Vector2d& d, Edge& e) {
+      double t = 0;
+      if (ray_hit(pr, end.center, d, t)) e.point = pr.fast.jet(t).p, e.t = t;
+      else if (e.face == 0) throw Error("camber: the camber line's end tangent does not meet the profile");
+    };
+    point(circles.front(), -res.le_tangent, le);
+    point(circles.back(), res.te_tangent, te);
   }
   if (options.edge == EdgeModel::automatic) {
     if (le.shape != EdgeShape::round) le.radius = 0;

@@ -73,7 +73,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
        "camber_angle", "area", "centroid_u", "centroid_v", "le_u", "le_v", "te_u", "te_v",
        "le_center_u", "le_center_v", "te_center_u", "te_center_v", "le_x", "le_y", "le_z", "te_x",
        "te_y", "te_z", "centroid_x", "centroid_y", "centroid_z", "caliper_chord",
-       "caliper_stagger", "caliper_found", "pressure_side", "le_by_direction"});
+       "caliper_stagger", "caliper_found", "pressure_side", "le_by_direction", "le_face", "te_face"});
   Table thickness = make_table("thickness", {"section", "index", "fraction", "s", "u", "v", "thickness",
                                              "pressure_u", "pressure_v", "suction_u", "suction_v"});
   Table sides = make_table("sides", {"section", "side", "index", "u", "v"});
@@ -129,7 +129,8 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
                       p.le_point.y(), p.te_point.x(), p.te_point.y(), r.le.center.x(), r.le.center.y(),
                       r.te.center.x(), r.te.center.y(), le.x(), le.y(), le.z(), te.x(), te.y(), te.z(),
                       cg.x(), cg.y(), cg.z(), p.caliper_chord, p.caliper_stagger,
-                      p.caliper_found ? 1.0 : 0.0, double(r.pressure_side), r.le_by_direction ? 1.0 : 0.0});
+                      p.caliper_found ? 1.0 : 0.0, double(r.pressure_side), r.le_by_direction ? 1.0 : 0.0,
+                      r.le.face, r.te.face});
       for (std::size_t i = 0; i < st.size(); ++i)
         slot.thickness.add_row({double(section), double(i), st[i].fraction, st[i].s, st[i].point.x(),
                            st[i].point.y(), st[i].thickness, st[i].pressure.x(), st[i].pressure.y(),
@@ -139,16 +140,18 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         for (std::size_t i = 0; i < pts.size(); ++i)
           slot.sides.add_row({double(section), double(side), double(i), pts[i].x(), pts[i].y()});
       }
-      if (r.le.shape != EdgeShape::round || r.te.shape != EdgeShape::round) {
-        auto name = [](EdgeShape s) { return s == EdgeShape::blunt ? "blunt" : "sharp"; };
-        std::string msg;
-        if (r.le.shape != EdgeShape::round) msg += std::string("leading edge looks ") + name(r.le.shape);
-        if (r.te.shape != EdgeShape::round)
-          msg += std::string(msg.empty() ? "" : ", ") + "trailing edge looks " + name(r.te.shape);
-        slot.issues.push_back({section, 0, "camber",
-                                 msg + (options.edge == EdgeModel::round ? " (fitted as round anyway)"
-                                                                         : " (radius reported as 0)")});
-      }
+      // Edges that are not round: a flat face is reported with its width (never a
+      // circle); other blunt and sharp edges as the edge model says.
+      auto describe = [&](const Edge& e, const char* which) {
+        if (e.shape == EdgeShape::round) return std::string();
+        if (e.face > 0)
+          return std::string(which) + " is blunt: a flat face " + format_number(e.face) + " wide (radius reported as 0)";
+        return std::string(which) + " looks " + (e.shape == EdgeShape::blunt ? "blunt" : "sharp") +
+               (options.edge == EdgeModel::round ? " (fitted as round anyway)" : " (radius reported as 0)");
+      };
+      const std::string le_msg = describe(r.le, "leading edge"), te_msg = describe(r.te, "trailing edge");
+      if (!le_msg.empty() || !te_msg.empty())
+        slot.issues.push_back({section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
     } catch (const Error& e) {
       std::string msg = e.what();
       if (msg.rfind("camber: ", 0) == 0) msg = msg.substr(8);

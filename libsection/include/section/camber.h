@@ -52,7 +52,8 @@ struct MedialAxis {
 MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options = {});
 
 /// Edge model: `round` fits a circle to every edge; `automatic` fits it only to edges
-/// detected as round and reports blunt and sharp edges with radius 0.
+/// detected as round and reports blunt and sharp edges with radius 0. A blunt edge with a
+/// flat face (Edge::face > 0) gets radius 0 in both models: a face is not a circle.
 enum class EdgeModel { round, automatic };
 /// Detected edge shape.
 enum class EdgeShape { round = 0, blunt = 1, sharp = 2 };
@@ -64,21 +65,30 @@ struct Edge {
   Eigen::Vector2d center{0, 0};    ///< centre of the circle fitted to the edge arc
   double radius = 0;               ///< radius of that circle (0 for a blunt or sharp edge in automatic mode)
   double fit_rms = 0;              ///< rms distance of the edge arc from the fitted circle
-  double arc = 0;                  ///< degrees of the edge arc fitted (normal turning across it)
+  double arc = 0;                  ///< degrees: angle the fitted edge arc subtends at the fitted centre
   double arc_t0 = 0, arc_t1 = 0;   ///< profile parameter range of the edge arc
   double curvature_radius = 0;     ///< 1 / profile curvature at the edge point (0 when flat or concave there)
   EdgeShape shape = EdgeShape::round;  ///< detected shape
+  double face = 0;                 ///< blunt edges with a flat face: the face's width (0 otherwise)
 };
 
 /// Options of camber_line and camber_stream (lengths in the profile's units, angles in degrees).
 struct CamberOptions {
   MedialAxisOptions medial;        ///< medial-axis seeding and refinement
   EdgeModel edge = EdgeModel::round;  ///< edge model, see EdgeModel
-  double edge_arc = 120;           ///< degrees: the edge arc is the profile around the edge point whose normal turns at most edge_arc/2 either way
+  /// degrees; 0 (default) = the edge arc is grown geometrically: from a core of
+  /// +-edge_core degrees around the edge point, as far as the profile stays within
+  /// edge_residual core-fit rms of the fitted circle (see docs/CAMBER.md); > 0 = a fixed
+  /// arc: the profile around the edge point whose normal turns at most edge_arc/2 either way
+  double edge_arc = 0;
+  double edge_core = 45;           ///< degrees: half-angle (seen from the edge centre) of the core arc that starts the growth and gives the noise level
+  double edge_residual = 3;        ///< the edge arc grows while the profile stays within this many core-fit rms outside the circle
+  double edge_max_arc = 240;       ///< degrees: largest edge arc grown (a guard for blunt and unusual edges)
   double tangent_span = 0.1;       ///< fraction of the medial axis length: the end tangents (inlet/outlet angles, extensions) are fitted to the axis over this length from each end (quadratic least squares; robust to profile noise at the edges); 0 = the axis spline's end slope
   double edge_prune = 20;          ///< degrees: medial circles at the ends whose contacts subtend less than twice this are noise, trimmed
   double blunt_flatness = 2;       ///< an edge is blunt when its curvature radius at the edge point exceeds this many fitted radii (flat tip)
   double blunt_rms = 0.02;         ///< ... and the fit rms exceeds this fraction of the fitted radius
+  double blunt_face = 0.8;         ///< an edge is blunt (cut off) when the profile's cap 0.1 W deep is straight and at least this fraction of W wide, W the blade's width near the end (a round edge's cap is 0.63 W)
   double sharp_ratio = 0.01;       ///< an edge is sharp when its fitted radius is below this fraction of the largest inscribed diameter
   double min_slenderness = 2;      ///< medial axis length / largest inscribed diameter below which the section is not a blade
   /// Leading-edge direction: when non-zero, the LE is the end lying farther along it;
