@@ -1,7 +1,11 @@
 // libFuzzer target: the ply point-cloud reader (parse_cloud). Any input must either
-// parse into finite points or throw section::Error; anything else is a finding.
+// parse into finite points or throw section::Error; anything else is a finding. Inputs whose
+// header mentions faces also go through read_mesh (OpenMesh's PLY reader), as slice does.
+#include "mesh_common.h"
 #include "section/cloud.h"
 #include "section/error.h"
+
+#include <string_view>
 
 #include <cmath>
 #include <cstddef>
@@ -19,5 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (!p.allFinite()) std::abort();  // the reader promises finite coordinates
   } catch (const section::Error&) {
   }
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  if (text.substr(0, text.find("end_header")).find("face") != std::string_view::npos)
+    fuzz_read_mesh(data, size, "ply");
   return 0;
 }

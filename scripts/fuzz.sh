@@ -4,7 +4,7 @@
 #
 #   scripts/fuzz.sh build                 # install clang if missing, build every target
 #   scripts/fuzz.sh run TARGET [SECONDS [LIBFUZZER FLAGS]]  # fuzz one target (default
-#                                         # 600 s), seeded from tests/robustness/, new inputs in
+#                                         # 660 s), seeded from tests/robustness/, new inputs in
 #                                         # build-fuzz/corpus/TARGET; stops at the first crash
 #                                         # (add -fork=1 -ignore_crashes=1 to go on past them)
 #   scripts/fuzz.sh list                  # the target names
@@ -43,14 +43,14 @@ build() {
 }
 
 run() {
-  local target="$1" seconds="${2:-600}"
+  local target="$1" seconds="${2:-660}"
   local corpus="$BUILD_DIR/corpus/$target" crashes="$BUILD_DIR/crashes/$target"
   mkdir -p "$corpus" "$crashes"
   local seeds; seeds=$(seeds_for "$target" || true)
   for s in $seeds; do cp -n "$s" "$corpus/" 2>/dev/null || true; done
   # -rss_limit_mb: an input that makes a reader allocate gigabytes is a finding too.
   "$BUILD_DIR/fuzz/$target" "$corpus" -max_total_time="$seconds" -max_len=65536 \
-    -rss_limit_mb=2048 -timeout=20 -print_final_stats=1 -artifact_prefix="$crashes/" "${@:3}"
+    -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 -artifact_prefix="$crashes/" "${@:3}"
 }
 
 case "${1:-}" in

@@ -197,7 +197,7 @@ int split_fields(std::string_view line, std::string_view* fields, int max_fields
     if (i < len && line[i] == ',') {
       ++i;
       fields[n++] = line.substr(start, end - start);
-      if (i == len) fields[n++] = std::string_view{};  // trailing comma: empty last field
+      if (i == len && n < max_fields) fields[n++] = std::string_view{};  // trailing comma: empty last field
       continue;
     }
     if (end > start) fields[n++] = line.substr(start, end - start);

@@ -156,6 +156,32 @@ def main():
     put("billions.off", "OFF\n4000000000 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
     put("bad_index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")
     put("truncated.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n")
+    # Garbled OFF bodies behind a valid header (OpenMesh's OFF reader looped on such a body:
+    # crash-off-body-hang.off; mesh.cpp now reads ascii OFF itself and names the line).
+    off_head = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n"
+    put("off_negative_count.off", off_head + "-3 0 1 2\n")
+    put("off_short_face.off", off_head + "4 0 1 2\n")
+    put("off_text_coordinate.off", "OFF\n3 1 0\n0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n")
+    put("off_truncated_faces.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+    put("off_binary.off", b"OFF BINARY\n" + struct.pack(">3i", 3, 1, 0) +
+        struct.pack(">9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack(">5i", 3, 0, 1, 2, 0))
+    # Garbled ascii STL (OpenMesh read 'vertex 1 zero 0' as a vertex; mesh.cpp reads STL itself).
+    facet = " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex %s\n   vertex 0 1 0\n  endloop\n endfacet\n"
+    put("stl_text_coordinate.stl", "solid x\n" + facet % "1 zero 0" + "endsolid x\n")
+    put("stl_missing_coordinate.stl", "solid x\n" + facet % "1 0" + "endsolid x\n")
+    put("stl_no_endsolid.stl", "solid x\n" + facet % "1 0 0")
+    put("stl_two_vertices.stl", "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
+        "   vertex 1 0 0\n  endloop\n endfacet\nendsolid x\n")
+    # A good ascii OFF in the forms other writers use: comments, the counts on the keyword's
+    # line, vertex colours (COFF), a quad and a face colour.
+    put("good.off", "# a unit square and a triangle above it\nCOFF 5 2 0\n0 0 0 255 0 0 255\n"
+        "1 0 0 255 0 0 255\n1 1 0 255 0 0 255\n0 1 0 255 0 0 255  # last corner\n"
+        "0.5 0.5 1 0 0 255 255\n\n4 0 1 2 3 0.5 0.5 0.5\n3 0 1 4\n")
+
+    # A good ascii PLY mesh (a seed for fuzz_ply's read_mesh path).
+    put("good_mesh.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n")
 
     # ---- pipe streams (smooth, fitspline and camber read them)
     sec0 = points_rows(0, ellipse2d())

@@ -1,6 +1,7 @@
 #pragma once
 /// @file mesh.h
-/// Triangle meshes and their readers (OpenMesh): STL (ascii and binary), OBJ, OFF, PLY.
+/// Triangle meshes and their readers: STL (ascii and binary), OBJ, ascii OFF, PLY (ascii and
+/// binary); OpenMesh writes them.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
@@ -15,8 +16,10 @@ struct Mesh {
   std::vector<std::array<int, 3>> triangles;   ///< vertex indices, counterclockwise seen from outside
 };
 
-/// Reads a mesh (.stl .obj .off .ply). Throws section::Error naming the file when it
-/// cannot be read, has no triangles, or holds non-finite coordinates or bad indices.
+/// Reads a mesh (.stl .obj .off .ply); polygons are fanned into triangles, STL corners at
+/// the same coordinates become one vertex. Throws section::Error naming the file (and the
+/// line, for text) when it cannot be read, is truncated, has no triangles, or holds
+/// non-finite coordinates or bad indices.
 Mesh read_mesh(const std::string& path);
 
 /// Writes a mesh; the format follows the extension (.stl binary, .obj, .off, .ply).
