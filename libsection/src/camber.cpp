@@ -44,7 +44,7 @@ struct Profile {
     samples.reserve(count);
     for (int i = 0; i < count; ++i) {
       ts.push_back(t0 + period * i / count);
-      samples.push_back(fast.jet(ts.back()).p);
+      samples.push_back(fast.jet(ts.back()).point);
     }
     Eigen::Vector2d low = samples[0], high = samples[0];
     double area = 0;
@@ -106,7 +106,7 @@ bool solve_circle(const FastCurve& curve, const Eigen::Vector2d& p, const Eigen:
   double previous = std::numeric_limits<double>::infinity();
   for (int it = 0; it < 30; ++it) {
     const CurveJet ja = curve.jet(ta), jb = curve.jet(tb);
-    const Eigen::Vector2d &a = ja.p, &a1 = ja.d1, &a2 = ja.d2, &b = jb.p, &b1 = jb.d1, &b2 = jb.d2;
+    const Eigen::Vector2d &a = ja.point, &a1 = ja.d1, &a2 = ja.d2, &b = jb.point, &b1 = jb.d1, &b2 = jb.d2;
     const Eigen::Vector2d c = p + lambda * n;
     const Eigen::Vector3d f((c - a).dot(a1), (c - b).dot(b1),
                             0.5 * ((c - a).squaredNorm() - (c - b).squaredNorm()));
@@ -131,8 +131,8 @@ bool solve_circle(const FastCurve& curve, const Eigen::Vector2d& p, const Eigen:
       out.center = p + lambda * n;
       out.t_left = ta;
       out.t_right = tb;
-      out.left = curve.jet(ta).p;
-      out.right = curve.jet(tb).p;
+      out.left = curve.jet(ta).point;
+      out.right = curve.jet(tb).point;
       out.radius = 0.5 * ((out.center - out.left).norm() + (out.center - out.right).norm());
       if (kappa) {  // signed curvatures at the contacts, from the last iterate's derivatives
         kappa[0] = cross(a1, a2) / std::pow(a1.norm(), 3);
@@ -168,7 +168,7 @@ bool valid_circle(const Profile& pr, const Eigen::Vector2d& n, const InscribedCi
     const double length = pr.forward(from, to);
     for (int i = 1; i < 24; ++i) {
       const double t = from + length * (0.05 + 0.9 * i / 24.0);
-      if ((pr.fast.jet(t).p - c.center).norm() < r * (1 - 1e-4)) return false;
+      if ((pr.fast.jet(t).point - c.center).norm() < r * (1 - 1e-4)) return false;
     }
   }
   return pr.sample_distance(c.center) >= r * (1 - 1e-3);
@@ -180,9 +180,9 @@ struct Axis {
   double a = 0, b = 1;
   Eigen::Vector2d point(double u) const {
     const FastCurve f(spline);
-    if (u < a) return f.jet(a).p + (u - a) * tangent(a);
-    if (u > b) return f.jet(b).p + (u - b) * tangent(b);
-    return f.jet(u).p;
+    if (u < a) return f.jet(a).point + (u - a) * tangent(a);
+    if (u > b) return f.jet(b).point + (u - b) * tangent(b);
+    return f.jet(u).point;
   }
   Eigen::Vector2d tangent(double u) const {
     return FastCurve(spline).jet(std::clamp(u, a, b)).d1.normalized();
@@ -396,7 +396,7 @@ bool ray_hit(const Profile& pr, const Eigen::Vector2d& m, const Eigen::Vector2d&
   if (seg < 0) return false;
   // Safeguarded secant on g(t) = d x (C(t) - m) inside the bracketing span.
   double a = pr.ts[seg], b = a + pr.period / n;
-  auto g = [&](double t) { return cross(d, pr.fast.jet(t).p - m); };
+  auto g = [&](double t) { return cross(d, pr.fast.jet(t).point - m); };
   double ga = g(a), gb = g(b);
   for (int it = 0; it < 100 && std::abs(b - a) > 1e-15 * pr.period; ++it) {
     double t = ga == gb ? 0.5 * (a + b) : a - ga * (b - a) / (gb - ga);
@@ -426,7 +426,7 @@ double arc_end(const Profile& pr, double t_tip, const Eigen::Vector2d& d, double
   // way as the edge, as on a highly staggered blade): the value is > angle.
   auto turn = [&](double t) {
     const Eigen::Vector2d nn = pr.outward(t);
-    if ((pr.fast.jet(t).p - center).norm() > reach) return 4.0;
+    if ((pr.fast.jet(t).point - center).norm() > reach) return 4.0;
     return std::abs(std::atan2(cross(d, nn), d.dot(nn)));
   };
   const double h = pr.period / static_cast<double>(pr.samples.size());
@@ -502,7 +502,7 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
 std::pair<double, double> angular_arc(const Profile& pr, double t_tip, const Eigen::Vector2d& c,
                                       const Eigen::Vector2d& d, double half) {
   auto angle = [&](double t) {
-    const Eigen::Vector2d q = pr.fast.jet(t).p - c;
+    const Eigen::Vector2d q = pr.fast.jet(t).point - c;
     return std::abs(std::atan2(cross(d, q), d.dot(q)));
   };
   const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
@@ -531,7 +531,7 @@ std::pair<double, double> angular_arc(const Profile& pr, double t_tip, const Eig
 
 std::vector<Eigen::Vector2d> arc_points(const Profile& pr, double t0, double t1, int count = 121) {
   std::vector<Eigen::Vector2d> arc;
-  for (int i = 0; i < count; ++i) arc.push_back(pr.fast.jet(t0 + (t1 - t0) * i / (count - 1)).p);
+  for (int i = 0; i < count; ++i) arc.push_back(pr.fast.jet(t0 + (t1 - t0) * i / (count - 1)).point);
   return arc;
 }
 
@@ -571,18 +571,18 @@ std::pair<double, double> grown_arc(const Profile& pr, double t_tip, const Eigen
     // The guard angle is measured from the middle of the current arc (the end tangent may
     // be skewed on a noisy profile).
     const Eigen::Vector2d mid_dir =
-        (pr.fast.jet(0.5 * (range.first + range.second)).p - current.center).normalized();
+        (pr.fast.jet(0.5 * (range.first + range.second)).point - current.center).normalized();
     // Residual outside the circle; the walk ends where the profile has left the circle
     // for good (far outside it, or past the largest arc), and the arc's end is the last
     // point within tau before that: a noise bump inside the arc does not stop it.
-    auto residual = [&](double t) { return (pr.fast.jet(t).p - current.center).norm() - current.radius; };
+    auto residual = [&](double t) { return (pr.fast.jet(t).point - current.center).norm() - current.radius; };
     double ends[2];
     for (int k = 0; k < 2; ++k) {
       const int dir = k ? 1 : -1;
       double a = t_tip, last_in = t_tip;
       for (double walked = 0; walked < 0.5 * pr.period; walked += h) {
         const double b = a + dir * h;
-        const Eigen::Vector2d q = pr.fast.jet(b).p - current.center;
+        const Eigen::Vector2d q = pr.fast.jet(b).point - current.center;
         const double res = q.norm() - current.radius;
         if (res > std::max(20 * tau, 0.2 * current.radius) ||
             std::abs(std::atan2(cross(mid_dir, q), mid_dir.dot(q))) > cap)
@@ -623,7 +623,7 @@ Edge measure_edge(const Profile& pr, const InscribedCircle& end_circle, const Ei
   Edge e;
   if (!ray_hit(pr, end, d, e.t))
     throw Error("camber: the camber line's end tangent does not meet the profile");
-  e.point = pr.fast.jet(e.t).p;
+  e.point = pr.fast.jet(e.t).point;
   CircleFit fit;
   if (options.edge_arc > 0) {
     // Fixed arc: the profile around the edge point whose outward normal turns at most
@@ -638,7 +638,7 @@ Edge measure_edge(const Profile& pr, const InscribedCircle& end_circle, const Ei
         grown_arc(pr, e.t, d, end, std::max(end_circle.radius, (e.point - end).norm()), options, fit);
   }
   // Arc: the angle the edge arc subtends at the fitted centre.
-  const Eigen::Vector2d q0 = pr.fast.jet(e.arc_t0).p - fit.center, q1 = pr.fast.jet(e.arc_t1).p - fit.center;
+  const Eigen::Vector2d q0 = pr.fast.jet(e.arc_t0).point - fit.center, q1 = pr.fast.jet(e.arc_t1).point - fit.center;
   e.arc = (std::abs(std::atan2(cross(d, q0), d.dot(q0))) + std::abs(std::atan2(cross(d, q1), d.dot(q1)))) * 180 / pi;
   e.center = fit.center;
   e.radius = fit.radius;
@@ -698,7 +698,7 @@ Face blunt_face(const Profile& pr, const std::vector<InscribedCircle>& from_end,
   const double ta = pr.ts[near] + pr.period * lo / n, tb = pr.ts[near] + pr.period * hi / n;
   std::vector<Eigen::Vector2d> p;
   const int m = 600;
-  for (int i = 0; i <= m; ++i) p.push_back(pr.fast.jet(ta + (tb - ta) * i / m).p);
+  for (int i = 0; i <= m; ++i) p.push_back(pr.fast.jet(ta + (tb - ta) * i / m).point);
   const double depth = 0.1 * w;
   // The cap of depth `depth` below the extreme point along f: its points, width across f.
   auto cap_along = [&](const Eigen::Vector2d& f, std::vector<Eigen::Vector2d>* out) {
@@ -983,7 +983,7 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
   {
     auto point = [&](const InscribedCircle& end, const Eigen::Vector2d& d, Edge& e) {
       double t = 0;
-      if (ray_hit(pr, end.center, d, t)) e.point = pr.fast.jet(t).p, e.t = t;
+      if (ray_hit(pr, end.center, d, t)) e.point = pr.fast.jet(t).point, e.t = t;
       else if (e.face == 0) throw Error("camber: the camber line's end tangent does not meet the profile");
     };
     point(circles.front(), -res.le_tangent, le);
@@ -1154,8 +1154,8 @@ std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const C
       double tl = 0, tr = 0;
       if (!ray_hit(pr, c.center, left_normal(d), tl) || !ray_hit(pr, c.center, -left_normal(d), tr))
         throw Error("params: the camber normal at station " + std::to_string(f) + " misses the profile");
-      c.left = pr.fast.jet(tl).p;
-      c.right = pr.fast.jet(tr).p;
+      c.left = pr.fast.jet(tl).point;
+      c.right = pr.fast.jet(tr).point;
       st.thickness = (c.left - c.right).norm();
     }
     st.point = c.center;

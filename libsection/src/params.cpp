@@ -79,9 +79,9 @@ double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
         const double t = 0.5 * (a + b) + 0.5 * (b - a) * x[i];
         const detail::CurveJet j = f.jet(t);
         const double ww = 0.5 * (b - a) * w[i];
-        area += ww * 0.5 * cross(j.p, j.d1);
-        mx += ww * 0.5 * j.p.x() * j.p.x() * j.d1.y();
-        my -= ww * 0.5 * j.p.y() * j.p.y() * j.d1.x();
+        area += ww * 0.5 * cross(j.point, j.d1);
+        mx += ww * 0.5 * j.point.x() * j.point.x() * j.d1.y();
+        my -= ww * 0.5 * j.point.y() * j.point.y() * j.d1.x();
       }
     }
   if (centroid) *centroid = area != 0 ? Eigen::Vector2d(mx / area, my / area) : Eigen::Vector2d(0, 0);
@@ -112,7 +112,7 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
   const int n = 2000;
   const double t0 = profile.t_min(), period = profile.t_max() - t0;
   std::vector<Eigen::Vector2d> s(n);
-  for (int i = 0; i < n; ++i) s[i] = f.jet(t0 + period * i / n).p;
+  for (int i = 0; i < n; ++i) s[i] = f.jet(t0 + period * i / n).point;
   auto index_of = [&](double t) {
     double r = std::fmod(t - t0, period);
     if (r < 0) r += period;
@@ -138,7 +138,7 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
     double ta = t0 + period * ha / n, tb = t0 + period * hb / n;
     for (int it = 0; it < 40; ++it) {
       const detail::CurveJet a = f.jet(ta), b = f.jet(tb);
-      const Eigen::Vector2d d = b.p - a.p;
+      const Eigen::Vector2d d = b.point - a.point;
       const Eigen::Vector2d g(cross(d, a.d1), cross(d, b.d1));
       Eigen::Matrix2d j;
       j << cross(d, a.d2), cross(b.d1, a.d1), cross(-a.d1, b.d1), cross(d, b.d2);
@@ -148,7 +148,7 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
       tb -= step(1);
       if (step.norm() < 1e-14 * period) break;
     }
-    const Eigen::Vector2d a = f.jet(ta).p, b = f.jet(tb).p;
+    const Eigen::Vector2d a = f.jet(ta).point, b = f.jet(tb).point;
     if ((b - a).norm() > 0) {
       e = (b - a).normalized();
       out.caliper_found = true;
@@ -169,8 +169,8 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
     if (s[i].dot(e) > s[imax].dot(e)) imax = i;
     if (s[i].dot(e) < s[imin].dot(e)) imin = i;
   }
-  const double hi = f.jet(extreme(f, t0 + period * imax / n, e)).p.dot(e);
-  const double lo = f.jet(extreme(f, t0 + period * imin / n, e)).p.dot(e);
+  const double hi = f.jet(extreme(f, t0 + period * imax / n, e)).point.dot(e);
+  const double lo = f.jet(extreme(f, t0 + period * imin / n, e)).point.dot(e);
   out.caliper_chord = std::max(hi, s[imax].dot(e)) - std::min(lo, s[imin].dot(e));
   out.caliper_stagger = degrees(e);
   return out;
@@ -187,8 +187,8 @@ Sides split_sides(const BSpline& profile, const CamberResult& camber, int count)
   std::vector<Eigen::Vector2d> fwd, bwd;
   const double lf = forward(le, te), lb = forward(te, le);
   for (int i = 0; i < count; ++i) {
-    fwd.push_back(f.jet(le + lf * i / (count - 1)).p);
-    bwd.push_back(f.jet(le - lb * i / (count - 1)).p);
+    fwd.push_back(f.jet(le + lf * i / (count - 1)).point);
+    bwd.push_back(f.jet(le - lb * i / (count - 1)).point);
   }
   const bool forward_is_pressure = (camber.pressure_side < 0) == (camber.orientation > 0);
   Sides sides;

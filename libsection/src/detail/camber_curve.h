@@ -2,6 +2,7 @@
 // Fast joint evaluation of a B-spline's point and first two derivatives, for camber's
 // Newton solves (BSpline::derivative evaluates one order per call).
 #include "section/bspline.h"
+#include "detail/piecewise_curve.h"
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -13,9 +14,6 @@ namespace section::detail {
 // order per call; the Newton solves below need all three at once, thousands of times).
 // Same knot conventions as bspline.h: closed curves extend their breakpoints
 // periodically and wrap their control points.
-struct CurveJet {
-  Eigen::Vector2d p, d1, d2;
-};
 class FastCurve {
 public:
   explicit FastCurve(const BSpline& c)
@@ -71,7 +69,7 @@ public:
       q2[r] = den == 0 ? Eigen::Vector2d::Zero() : Eigen::Vector2d((p - 1) * (q1[r + 1] - q1[r]) / den);
     }
     CurveJet out{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
-    for (int r = 0; r <= p; ++r) out.p += nb[r] * q[r];
+    for (int r = 0; r <= p; ++r) out.point += nb[r] * q[r];
     for (int r = 0; r < p; ++r) out.d1 += n1[r] * q1[r];
     for (int r = 0; r + 1 < p; ++r) out.d2 += n2[r] * q2[r];
     return out;
