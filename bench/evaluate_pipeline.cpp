@@ -329,6 +329,12 @@ int main(int argc, char** argv) {
           std::snprintf(buf, sizeof buf, " %6.0f  max@%s gap@%s rms_near %.2f", ms, at(where_max).c_str(),
                         at(where_gap).c_str(), e.rms_near * 1e3);
           line += buf;
+          // Edges camber flagged as not measured (a hole or too few points on the edge).
+          for (const auto& is : stream.issues)
+            if (is.section == id && is.stage == "camber") {
+              if (is.message.find("leading edge not measured") != std::string::npos) line += " LE-unmeasured";
+              if (is.message.find("trailing edge not measured") != std::string::npos) line += " TE-unmeasured";
+            }
           if (!quiet) std::printf("%s\n", line.c_str());
         }
       }

@@ -386,3 +386,33 @@ TEST_CASE("camber: a cut-off trailing edge with 5 um noise is still blunt", "[ca
     CHECK(relative(c.le.radius, truth.le_radius) < 0.03);
   }
 }
+
+TEST_CASE("camber: an edge inside a hole of the measured points is flagged as not measured", "[camber]") {
+  for (const SectionDesign& design : {section::compressor_blade().at(30), section::turbine_blade().at(20)}) {
+    const SectionTruth truth = section::section_truth(design, 8000);
+    const BSpline profile = dense_spline(truth.profile, 800);
+    // Measured points every ~0.1 mm along the truth, none within 1.5 TE radii of the TE point.
+    section::Table points{"points", {"section", "loop", "index", "u", "v"}, {}};
+    const double hole = 1.5 * truth.te_radius;
+    std::size_t kept = 0;
+    const std::size_t step = std::max<std::size_t>(1, static_cast<std::size_t>(0.1 / (truth.perimeter / truth.profile.size())));
+    for (std::size_t i = 0; i < truth.profile.size(); i += step)
+      if ((truth.profile[i] - truth.te_point).norm() > hole)
+        points.add_row({0, 0, double(kept++), truth.profile[i].x(), truth.profile[i].y()});
+    section::Stream stream = section::profile_stream(profile);
+    stream.put(points);
+    section::camber_stream(stream, {});
+    const section::Table& params = *stream.find("params");
+    REQUIRE(params.rows() == 1);
+    INFO("te_unmeasured " << params.at(0, params.column("te_unmeasured")) << " te radius " << truth.te_radius);
+    // Points within 1.5 R of the tip lie within +-97 degrees of it on the edge circle: the
+    // hole is about 3.4 R of arc on a full circle (more where the sides leave it), plus up
+    // to a spacing.
+    CHECK(params.at(0, params.column("te_unmeasured")) > 3 * truth.te_radius);
+    CHECK(params.at(0, params.column("te_unmeasured")) < 4.5 * truth.te_radius + 0.1);
+    CHECK(params.at(0, params.column("le_unmeasured")) == 0);
+    REQUIRE(stream.issues.size() == 1);
+    CHECK(stream.issues[0].message.find("trailing edge not measured") != std::string::npos);
+    CHECK(stream.issues[0].message.find("leading edge") == std::string::npos);
+  }
+}

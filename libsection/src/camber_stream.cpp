@@ -6,6 +6,8 @@
 #include "section/pipe.h"
 #include "detail/parallel.h"
 
+#include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -39,6 +41,56 @@ std::map<int, std::vector<Eigen::Vector2d>> skeletons(const Stream& stream) {
   return out;
 }
 
+// Loop-0 measured points of each section (the slice stage's "points" table), if present.
+std::map<int, std::vector<Eigen::Vector2d>> measured_points(const Stream& stream) {
+  std::map<int, std::vector<Eigen::Vector2d>> out;
+  const Table* t = stream.find("points");
+  if (!t) return out;
+  const long cs = t->find_column("section"), cl = t->find_column("loop"), cu = t->find_column("u"),
+             cv = t->find_column("v");
+  if (cs < 0 || cl < 0 || cu < 0 || cv < 0) return out;
+  for (std::size_t r = 0; r < t->rows(); ++r)
+    if (t->at(r, cl) == 0) out[static_cast<int>(t->at(r, cs))].emplace_back(t->at(r, cu), t->at(r, cv));
+  return out;
+}
+
+// Length along the profile of the stretch around an edge point that no measured point
+// covers: a hole over the edge, or an edge sampled more sparsely than its radius. There
+// the edge point and radius come from the fit bridging the hole, not from measurements.
+double unmeasured_around(const BSpline& curve, const Edge& edge, const std::vector<Eigen::Vector2d>& measured) {
+  const double size = edge.radius > 0 ? edge.radius : edge.face;
+  if (measured.empty() || !(size > 0)) return 0;
+  const int half = 200;
+  const double reach = 3 * 3.14159265358979 * size, h = reach / half;
+  // Samples every h along the curve, from -reach to +reach around the edge point.
+  std::vector<Eigen::Vector2d> samples(2 * half + 1);
+  samples[half] = curve.point(edge.t);
+  for (int dir : {-1, 1}) {
+    double t = edge.t;
+    for (int k = 1; k <= half; ++k) {
+      const double speed = curve.derivative(t, 1).norm();
+      if (!(speed > 0)) return 0;
+      t += dir * h / speed;
+      samples[half + dir * k] = curve.point(t);
+    }
+  }
+  std::vector<char> covered(samples.size(), 0);
+  for (const auto& q : measured) {
+    if ((q - samples[half]).norm() > reach + 2 * h) continue;
+    std::size_t best = 0;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      const double d = (q - samples[k]).squaredNorm();
+      if (d < best_d) best_d = d, best = k;
+    }
+    if (std::sqrt(best_d) <= 2 * h) covered[best] = 1;
+  }
+  int lo = half, hi = half;
+  while (lo > 0 && !covered[lo]) --lo;
+  while (hi < 2 * half && !covered[hi]) ++hi;
+  return covered[half] ? 0 : (hi - lo) * h;
+}
+
 }  // namespace
 
 Stream profile_stream(const BSpline& spline) {
@@ -63,6 +115,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   std::map<int, Frame> frame;
   if (stream.find("frames")) frame = frames(stream);
   const auto seeds = skeletons(stream);
+  const auto measured = measured_points(stream);
 
   Table camber = make_table("camber", {"section", "index", "s", "u", "v", "x", "y", "z", "radius"});
   Table params = make_table(
@@ -73,7 +126,8 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
        "camber_angle", "area", "centroid_u", "centroid_v", "le_u", "le_v", "te_u", "te_v",
        "le_center_u", "le_center_v", "te_center_u", "te_center_v", "le_x", "le_y", "le_z", "te_x",
        "te_y", "te_z", "centroid_x", "centroid_y", "centroid_z", "caliper_chord",
-       "caliper_stagger", "caliper_found", "pressure_side", "le_by_direction", "le_face", "te_face"});
+       "caliper_stagger", "caliper_found", "pressure_side", "le_by_direction", "le_face", "te_face",
+       "le_unmeasured", "te_unmeasured"});
   Table thickness = make_table("thickness", {"section", "index", "fraction", "s", "u", "v", "thickness",
                                              "pressure_u", "pressure_v", "suction_u", "suction_v"});
   Table sides = make_table("sides", {"section", "side", "index", "u", "v"});
@@ -119,6 +173,10 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         slot.camber.add_row({double(section), double(i), r.s[i], r.points[i].x(), r.points[i].y(), w.x(), w.y(),
                         w.z(), r.radius[i]});
       }
+      const auto points = measured.find(section);
+      const std::vector<Eigen::Vector2d> none;
+      const auto& q = points != measured.end() ? points->second : none;
+      const double le_unmeasured = unmeasured_around(curve, r.le, q), te_unmeasured = unmeasured_around(curve, r.te, q);
       const Eigen::Vector3d le = f.to_world(p.le_point), te = f.to_world(p.te_point),
                             cg = f.to_world(p.centroid);
       slot.params.add_row({double(section), p.chord, p.camber_length, p.max_thickness, p.max_thickness_pos,
@@ -130,7 +188,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
                       r.te.center.x(), r.te.center.y(), le.x(), le.y(), le.z(), te.x(), te.y(), te.z(),
                       cg.x(), cg.y(), cg.z(), p.caliper_chord, p.caliper_stagger,
                       p.caliper_found ? 1.0 : 0.0, double(r.pressure_side), r.le_by_direction ? 1.0 : 0.0,
-                      r.le.face, r.te.face});
+                      r.le.face, r.te.face, le_unmeasured, te_unmeasured});
       for (std::size_t i = 0; i < st.size(); ++i)
         slot.thickness.add_row({double(section), double(i), st[i].fraction, st[i].s, st[i].point.x(),
                            st[i].point.y(), st[i].thickness, st[i].pressure.x(), st[i].pressure.y(),
@@ -149,7 +207,16 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         return std::string(which) + " looks " + (e.shape == EdgeShape::blunt ? "blunt" : "sharp") +
                (options.edge == EdgeModel::round ? " (fitted as round anyway)" : " (radius reported as 0)");
       };
-      const std::string le_msg = describe(r.le, "leading edge"), te_msg = describe(r.te, "trailing edge");
+      auto hole = [&](const Edge& e, double unmeasured, const char* which) {
+        const double size = e.radius > 0 ? e.radius : e.face;
+        if (!(unmeasured > size)) return std::string();
+        return std::string(which) + " not measured: " + format_number(unmeasured) +
+               " of the profile around it has no measured point (edge " + (e.radius > 0 ? "radius " : "face ") +
+               format_number(size) + "); its point and radius bridge a hole in the data";
+      };
+      auto join = [](std::string a, const std::string& b) { return a.empty() ? b : b.empty() ? a : a + ", " + b; };
+      const std::string le_msg = join(describe(r.le, "leading edge"), hole(r.le, le_unmeasured, "leading edge")),
+                        te_msg = join(describe(r.te, "trailing edge"), hole(r.te, te_unmeasured, "trailing edge"));
       if (!le_msg.empty() || !te_msg.empty())
         slot.issues.push_back({section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
     } catch (const Error& e) {
