@@ -3,6 +3,7 @@
 #include "section/error.h"
 #include "detail/parallel.h"
 #include "detail/text.h"
+#include "detail/ply.h"
 
 #include <flann/flann.hpp>
 
@@ -438,20 +439,7 @@ struct PlyHeader {
   std::size_t header_lines = 0;
 };
 
-bool ply_type(const std::string& t, int& size, char& kind) {
-  static const struct { const char* name; int size; char kind; } types[] = {
-      {"char", 1, 'i'},  {"int8", 1, 'i'},   {"uchar", 1, 'u'},   {"uint8", 1, 'u'},
-      {"short", 2, 'i'}, {"int16", 2, 'i'},  {"ushort", 2, 'u'},  {"uint16", 2, 'u'},
-      {"int", 4, 'i'},   {"int32", 4, 'i'},  {"uint", 4, 'u'},    {"uint32", 4, 'u'},
-      {"float", 4, 'f'}, {"float32", 4, 'f'}, {"double", 8, 'f'}, {"float64", 8, 'f'}};
-  for (const auto& e : types)
-    if (t == e.name) {
-      size = e.size;
-      kind = e.kind;
-      return true;
-    }
-  return false;
-}
+using detail::ply_type;
 
 // Parses the header from the start of `buf`, reading more from `src` as needed.
 PlyHeader parse_ply_header(Source& src) {

@@ -3,6 +3,7 @@
 #include "section/error.h"
 
 #include "detail/text.h"
+#include "detail/ply.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
@@ -302,20 +303,7 @@ struct PlyElement {
   std::vector<PlyProperty> props;
 };
 
-bool ply_type(std::string_view t, int& size, char& kind) {
-  static const struct { const char* name; int size; char kind; } types[] = {
-      {"char", 1, 'i'},  {"int8", 1, 'i'},    {"uchar", 1, 'u'},  {"uint8", 1, 'u'},
-      {"short", 2, 'i'}, {"int16", 2, 'i'},   {"ushort", 2, 'u'}, {"uint16", 2, 'u'},
-      {"int", 4, 'i'},   {"int32", 4, 'i'},   {"uint", 4, 'u'},   {"uint32", 4, 'u'},
-      {"float", 4, 'f'}, {"float32", 4, 'f'}, {"double", 8, 'f'}, {"float64", 8, 'f'}};
-  for (const auto& e : types)
-    if (t == e.name) {
-      size = e.size;
-      kind = e.kind;
-      return true;
-    }
-  return false;
-}
+using detail::ply_type;
 
 // A binary scalar of `size` bytes and `kind` at `p`, byte-swapped when `swap`.
 double binary_scalar(const char* p, int size, char kind, bool swap) {
