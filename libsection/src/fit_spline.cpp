@@ -350,11 +350,6 @@ struct Refinement {
 Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o) {
   Refinement best;
   Feet f = foot_points(c, q);
-  [[maybe_unused]] const double size = [&] {
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const auto& p : q) { lo = std::min({lo, p.x(), p.y()}); hi = std::max({hi, p.x(), p.y()}); }
-    return hi - lo;
-  }();
   auto weights_for = [&](const Feet& ft) {
     double threshold = o.outlier_distance;
     if (threshold <= 0) threshold = std::max(6 * noise_sigma(ft, std::vector<double>(q.size(), 1.0)), 0.02);
