@@ -114,21 +114,11 @@ int main(int argc, char** argv) {
       for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
         std::vector<double> zs;
         for (int k = 1; k <= 9; ++k) zs.push_back(blade.span * k / 10.0);
-        ScanOptions so;
-        so.noise = 0.005;
-        so.holes = 5;
-        so.density_min = 0.25;
-        so.outlier_fraction = 0.0002;
+        ScanOptions so = inspection_scan();
         so.misregistration = misregistration;
+        so.seed = static_cast<std::uint64_t>(seed);
         // Scan only bands around the planes: the same data in the slabs, far fewer points.
-        Cloud cloud;
-        for (double z : zs) {
-          so.z_min = z - 0.5;
-          so.z_max = z + 0.5;
-          so.seed = static_cast<std::uint64_t>(seed * 100 + int(z));
-          const Scan s = generate_scan(blade, so);
-          cloud.points.insert(cloud.points.end(), s.cloud.points.begin(), s.cloud.points.end());
-        }
+        const Cloud cloud = scan_bands(blade, zs, so);
         const auto t0 = std::chrono::steady_clock::now();
         SliceOptions sopt;
         sopt.slab = 0.08;

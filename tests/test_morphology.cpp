@@ -390,13 +390,9 @@ struct BladeSlab {
 
 /// Scan points of a noisy scan within |z - z0| <= slab / 2, projected to (x, y).
 BladeSlab blade_slab(const section::BladeDesign& blade, double z0, std::uint64_t seed, double slab = 0.08) {
-  section::ScanOptions o;
-  o.spacing = 0.08;
-  o.noise = 0.005;
+  section::ScanOptions o = section::inspection_scan();
   o.holes = 6;
-  o.density_min = 0.25;
   o.misregistration = 0.015;
-  o.outlier_fraction = 0.0002;
   o.z_min = z0 - 2;
   o.z_max = z0 + 2;
   o.seed = seed;

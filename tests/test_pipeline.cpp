@@ -39,20 +39,10 @@ double wrap_deg(double a) {
 
 std::vector<SectionErrors> run_pipe(const BladeDesign& blade, const std::vector<double>& zs, std::uint64_t seed,
                                     double misregistration) {
-  ScanOptions so;
-  so.noise = 0.005;
-  so.holes = 5;
-  so.density_min = 0.25;
-  so.outlier_fraction = 0.0002;
+  ScanOptions so = section::inspection_scan();
   so.misregistration = misregistration;
-  Cloud cloud;
-  for (double z : zs) {  // bands around the planes only: same slabs, far fewer points
-    so.z_min = z - 0.5;
-    so.z_max = z + 0.5;
-    so.seed = seed * 100 + static_cast<std::uint64_t>(z);
-    const Scan s = generate_scan(blade, so);
-    cloud.points.insert(cloud.points.end(), s.cloud.points.begin(), s.cloud.points.end());
-  }
+  so.seed = seed;
+  const Cloud cloud = section::scan_bands(blade, zs, so);  // bands around the planes only
   SliceOptions sopt;
   sopt.slab = 0.08;
   Stream stream = parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");

@@ -157,13 +157,9 @@ TEST_CASE("slice: a noisy blade scan gives one ordered closed loop per section",
   for (const auto& c : cases) {
     for (const double z0 : {0.2 * c.blade.span, 0.5 * c.blade.span, 0.85 * c.blade.span}) {
       for (const std::uint64_t seed : {11u, 12u}) {
-        ScanOptions so;
-        so.noise = 0.005;
-        so.spacing = 0.08;
+        ScanOptions so = section::inspection_scan();
         so.holes = 6;
-        so.density_min = 0.25;
         so.misregistration = 0.015;
-        so.outlier_fraction = 0.0002;
         so.z_min = z0 - 1.0;
         so.z_max = z0 + 1.0;
         so.seed = seed;

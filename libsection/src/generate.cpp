@@ -933,6 +933,30 @@ struct RowOutput {
 
 }  // namespace
 
+ScanOptions inspection_scan() {
+  ScanOptions o;
+  o.spacing = 0.08;
+  o.noise = 0.005;
+  o.holes = 5;
+  o.density_min = 0.25;
+  o.outlier_fraction = 0.0002;
+  return o;
+}
+
+Cloud scan_bands(const BladeDesign& blade, const std::vector<double>& heights, const ScanOptions& options,
+                 double half_band) {
+  Cloud cloud;
+  for (double z : heights) {
+    ScanOptions o = options;
+    o.z_min = z - half_band;
+    o.z_max = z + half_band;
+    o.seed = options.seed * 100 + static_cast<std::uint64_t>(std::floor(z));
+    const Scan s = generate_scan(blade, o);
+    cloud.points.insert(cloud.points.end(), s.cloud.points.begin(), s.cloud.points.end());
+  }
+  return cloud;
+}
+
 Scan generate_scan(const BladeDesign& blade, const ScanOptions& o) {
   const std::string who = "generate_scan";
   if (!(o.spacing > 0) || !std::isfinite(o.spacing)) throw Error(who + ": spacing must be positive");

@@ -138,6 +138,16 @@ struct Scan {
 /// Throws section::Error on bad options or a blade design invalid in the scanned range.
 Scan generate_scan(const BladeDesign& blade, const ScanOptions& options = {});
 
+/// The scan of the accuracy evaluations: realistic and hostile (0.08 mm spacing, 5 um
+/// noise, 5 holes, density 25-100 %, 0.02 % outliers, no misregistration, whole span).
+ScanOptions inspection_scan();
+
+/// Scans only the bands z +- `half_band` around `heights` (what the slabs of a full scan
+/// there would hold, for a fraction of the points): band at z uses seed
+/// `options.seed * 100 + floor(z)`, the other options as given, z_min/z_max ignored.
+Cloud scan_bands(const BladeDesign& blade, const std::vector<double>& heights, const ScanOptions& options,
+                 double half_band = 0.5);
+
 /// Closed triangle mesh of the blade (side surface plus end caps), `profile_points` per
 /// section and `layers` sections along the span.
 /// Ring k lies at z = span k / (layers - 1); its vertices are exact profile points at equal
