@@ -54,11 +54,14 @@ std::map<int, std::vector<Eigen::Vector2d>> measured_points(const Stream& stream
   return out;
 }
 
+// The edge's own scale: its radius, or a blunt edge's face width (0 for a sharp edge).
+double edge_size(const Edge& e) { return e.radius > 0 ? e.radius : e.face; }
+
 // Length along the profile of the stretch around an edge point that no measured point
 // covers: a hole over the edge, or an edge sampled more sparsely than its radius. There
 // the edge point and radius come from the fit bridging the hole, not from measurements.
 double unmeasured_around(const BSpline& curve, const Edge& edge, const std::vector<Eigen::Vector2d>& measured) {
-  const double size = edge.radius > 0 ? edge.radius : edge.face;
+  const double size = edge_size(edge);
   if (measured.empty() || !(size > 0)) return 0;
   const int half = 200;
   const double reach = 3 * 3.14159265358979 * size, h = reach / half;
@@ -208,7 +211,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
                (options.edge == EdgeModel::round ? " (fitted as round anyway)" : " (radius reported as 0)");
       };
       auto hole = [&](const Edge& e, double unmeasured, const char* which) {
-        const double size = e.radius > 0 ? e.radius : e.face;
+        const double size = edge_size(e);
         if (!(unmeasured > size)) return std::string();
         return std::string(which) + " not measured: " + format_number(unmeasured) +
                " of the profile around it has no measured point (edge " + (e.radius > 0 ? "radius " : "face ") +
