@@ -86,6 +86,12 @@ int main(int argc, char** argv) {
             ->check(CLI::IsMember({"round", "auto"}))->capture_default_str();
         app.add_option("--edge-arc", options.edge_arc, "Degrees of a fixed edge arc the edge circle is fitted to (0 = grown geometrically)")
             ->check(CLI::Range(0.0, 270.0))->capture_default_str();
+        app.add_option("--edge-core", options.edge_core,
+                       "Grown arc: half-angle in degrees of the core arc around the edge point that starts the growth")
+            ->check(CLI::Range(5.0, 90.0))->capture_default_str();
+        app.add_option("--edge-residual", options.edge_residual,
+                       "Grown arc: the arc grows while the profile stays within this many core-fit rms of the circle")
+            ->check(CLI::Range(0.5, 100.0))->capture_default_str();
         app.add_option("--tangent-span", options.tangent_span,
                        "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)")
             ->check(CLI::Range(0.0, 0.5))->capture_default_str();

@@ -1,7 +1,7 @@
 #include "section/camber.h"
 
-#include "detail/camber_curve.h"
 #include "detail/cgal_medial_axis.h"
+#include "detail/piecewise_curve.h"
 #include "section/error.h"
 #include "section/params.h"
 
@@ -16,7 +16,7 @@
 namespace section {
 
 using detail::CurveJet;
-using detail::FastCurve;
+using detail::PiecewiseCurve;
 
 namespace {
 
@@ -28,7 +28,7 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() 
 // A closed profile with dense samples for initial guesses and global checks.
 struct Profile {
   const BSpline& curve;
-  FastCurve fast;
+  PiecewiseCurve fast;
   double t0 = 0, period = 1;
   double sigma = 1;  // +1 counterclockwise, -1 clockwise
   double scale = 1;  // bounding-box diagonal
@@ -99,7 +99,7 @@ struct Profile {
 
 // Newton on (t_a, t_b, lambda): centre c = p + lambda n, both contacts foot points of c
 // and equally far from it.
-bool solve_circle(const FastCurve& curve, const Eigen::Vector2d& p, const Eigen::Vector2d& n,
+bool solve_circle(const PiecewiseCurve& curve, const Eigen::Vector2d& p, const Eigen::Vector2d& n,
                   double ta, double tb, double scale, InscribedCircle& out, double* kappa = nullptr) {
   double lambda = 0;
   const double tol = 1e-13 * scale;
@@ -178,14 +178,15 @@ bool valid_circle(const Profile& pr, const Eigen::Vector2d& n, const InscribedCi
 struct Axis {
   BSpline spline;
   double a = 0, b = 1;
+  PiecewiseCurve f;
+  explicit Axis(BSpline s) : spline(std::move(s)), a(spline.t_min()), b(spline.t_max()), f(spline) {}
   Eigen::Vector2d point(double u) const {
-    const FastCurve f(spline);
     if (u < a) return f.jet(a).point + (u - a) * tangent(a);
     if (u > b) return f.jet(b).point + (u - b) * tangent(b);
     return f.jet(u).point;
   }
   Eigen::Vector2d tangent(double u) const {
-    return FastCurve(spline).jet(std::clamp(u, a, b)).d1.normalized();
+    return f.jet(std::clamp(u, a, b)).d1.normalized();
   }
 };
 
@@ -229,11 +230,7 @@ Axis make_axis(const std::vector<Eigen::Vector2d>& pts, double fairness) {
   fo.closed = false;
   fo.control_points = std::clamp(static_cast<int>(p.size()) / 2, 4, 200);
   fo.fairness = fairness;
-  Axis ax;
-  ax.spline = fit_curve(p, fo);
-  ax.a = ax.spline.t_min();
-  ax.b = ax.spline.t_max();
-  return ax;
+  return Axis(fit_curve(p, fo));
 }
 
 // Solves the station at axis parameter u from a guess; falls back to nearest samples.
@@ -286,7 +283,7 @@ bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point,
                       InscribedCircle& circle) {
   double scale = 0;
   for (const auto& c : profile.control) scale = std::max(scale, (c - profile.control[0]).norm());
-  return solve_circle(FastCurve(profile), point, normal.normalized(), t_left, t_right,
+  return solve_circle(PiecewiseCurve(profile), point, normal.normalized(), t_left, t_right,
                       std::max(scale, 1e-300), circle);
 }
 
@@ -301,8 +298,7 @@ MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options)
   }
   result.seed_points = static_cast<int>(seed.size());
   // The seed's ends wander into the edges: a stiff fit only gives stations and normals.
-  Axis ax;
-  {
+  Axis ax = [&] {
     std::vector<Eigen::Vector2d> p;
     for (const auto& q : seed)
       if (p.empty() || (q - p.back()).norm() > 1e-9 * pr.scale) p.push_back(q);
@@ -317,10 +313,8 @@ MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options)
     fo.closed = false;
     fo.control_points = std::clamp(static_cast<int>(p.size()) / 4, 4, 24);
     fo.fairness = 1e-2;
-    ax.spline = fit_curve(p, fo);
-    ax.a = ax.spline.t_min();
-    ax.b = ax.spline.t_max();
-  }
+    return Axis(fit_curve(p, fo));
+  }();
 
   const int m = std::max(options.stations, 16);
   std::vector<InscribedCircle> circles;
@@ -341,7 +335,12 @@ MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options)
           start = k;
           break;
         }
-    if (start < 0) throw Error("camber: no circle inscribed in the profile was found on the seed axis");
+    if (start < 0) {
+      // A circle's medial axis is its centre: the seed collapses and no station solves.
+      if ((seed.front() - seed.back()).norm() < 1e-3 * pr.scale)
+        throw Error("camber: the profile is not blade-like: its medial axis collapses to a point");
+      throw Error("camber: no circle inscribed in the profile was found on the seed axis");
+    }
     int first = start, last = start;
     while (last + 1 < m && station(pr, ax, u[last + 1], &solved[last], solved[last + 1])) ok[++last] = 1;
     while (first - 1 >= 0 && station(pr, ax, u[first - 1], &solved[first], solved[first - 1])) ok[--first] = 1;
@@ -779,7 +778,7 @@ InscribedCircle reversed(InscribedCircle c) {
 }
 
 // Arc length of a spline between a and b (5-point Gauss-Legendre; the pieces are short).
-double piece_length(const FastCurve& f, double a, double b) {
+double piece_length(const PiecewiseCurve& f, double a, double b) {
   static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                               0.9061798459386640};
   static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
@@ -791,7 +790,7 @@ double piece_length(const FastCurve& f, double a, double b) {
 
 // Arc-length table of an open spline for the inverse map s -> t.
 struct ArcTable {
-  FastCurve f;
+  PiecewiseCurve f;
   std::vector<double> t, s;
   ArcTable(const BSpline& c, int pieces) : f(c) {
     const double a = c.t_min(), b = c.t_max();
@@ -1115,10 +1114,7 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
 std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const CamberResult& camber,
                                                  const std::vector<double>& fractions) {
   const Profile pr(profile, 1000);
-  Axis ax;
-  ax.spline = camber.medial.curve;
-  ax.a = ax.spline.t_min();
-  ax.b = ax.spline.t_max();
+  const Axis ax(camber.medial.curve);
   const ArcTable table(ax.spline, 4 * static_cast<int>(camber.medial.circles.size()));
   const auto& circles = camber.medial.circles;
   std::vector<ThicknessStation> out;

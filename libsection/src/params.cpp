@@ -1,6 +1,6 @@
 #include "section/params.h"
 
-#include "detail/camber_curve.h"
+#include "detail/piecewise_curve.h"
 #include "section/error.h"
 
 #include <Eigen/Dense>
@@ -47,7 +47,7 @@ std::vector<int> convex_hull(const std::vector<Eigen::Vector2d>& p) {
 }
 
 // Profile parameter where the projection onto e is extreme, refined from a sample.
-double extreme(const detail::FastCurve& f, double t, const Eigen::Vector2d& e) {
+double extreme(const detail::PiecewiseCurve& f, double t, const Eigen::Vector2d& e) {
   for (int it = 0; it < 30; ++it) {
     const detail::CurveJet j = f.jet(t);
     const double g = j.d1.dot(e), dg = j.d2.dot(e);
@@ -63,7 +63,7 @@ double extreme(const detail::FastCurve& f, double t, const Eigen::Vector2d& e) {
 
 double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
   if (!curve.closed) throw Error("params: the area needs a closed curve");
-  const detail::FastCurve f(curve);
+  const detail::PiecewiseCurve f(curve);
   // 5-point Gauss-Legendre is exact for the degree-8 integrands of a cubic per span.
   static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                               0.9061798459386640};
@@ -108,7 +108,7 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
 
   // Caliper: the convex-hull edge bridging the pressure side is the line a caliper laid
   // against that side touches at both ends; refined to the exact bitangent.
-  const detail::FastCurve f(profile);
+  const detail::PiecewiseCurve f(profile);
   const int n = 2000;
   const double t0 = profile.t_min(), period = profile.t_max() - t0;
   std::vector<Eigen::Vector2d> s(n);
@@ -178,7 +178,7 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
 
 Sides split_sides(const BSpline& profile, const CamberResult& camber, int count) {
   if (count < 2) throw Error("params: a side needs at least 2 samples");
-  const detail::FastCurve f(profile);
+  const detail::PiecewiseCurve f(profile);
   const double period = profile.t_max() - profile.t_min();
   auto forward = [&](double a, double b) { return std::fmod(std::fmod(b - a, period) + period, period); };
   const double le = camber.le.t, te = camber.te.t;
