@@ -180,8 +180,10 @@ TEST_CASE("pipeline: a misregistered second view gives a bounded fit without fol
 }
 
 TEST_CASE("pipeline: fitted end tangents stay true on exact profiles", "[pipeline]") {
-  // The default end tangents are fitted (cubic) over 10% of the medial axis to average the
-  // noise of measured edges; on exact envelope-of-circles profiles their bias stays small.
+  // The default end tangents are fitted (cubic) over 15% of the medial axis to average the
+  // noise of measured edges; on exact envelope-of-circles profiles their bias stays small:
+  // at most 0.03 deg, 0.11 deg on the thick 115-degree design (whose camber still turns
+  // fast near the TE), against the 0.5 deg target for measured sections.
   std::vector<SectionDesign> designs{SectionDesign{}, turbine_blade().at(0), compressor_blade().at(60)};
   SectionDesign d;
   d.inlet_angle = 60;
@@ -206,7 +208,7 @@ TEST_CASE("pipeline: fitted end tangents stay true on exact profiles", "[pipelin
     const double out = std::atan2(te.y(), te.x()) * 180 / 3.14159265358979323846;
     CAPTURE(design.inlet_angle, design.outlet_angle);
     CHECK(worst < 0.002);  // mm
-    CHECK(std::abs(wrap_deg(in - truth.inlet_angle)) < 0.05);
-    CHECK(std::abs(wrap_deg(out - truth.outlet_angle)) < 0.05);
+    CHECK(std::abs(wrap_deg(in - truth.inlet_angle)) < 0.15);
+    CHECK(std::abs(wrap_deg(out - truth.outlet_angle)) < 0.15);
   }
 }

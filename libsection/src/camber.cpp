@@ -962,6 +962,9 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
       // keeps the end tangent truer (wider gaps let the fit's end slope drift instead).
       for (const auto& c : circles)
         if ((c.center - e.center).dot(d) < -0.3 * e.radius) kept.push_back(c);
+      // A centre that would swallow half the axis fits a flank (a nose that is not
+      // circular), not the edge: the medial end stays.
+      if (kept.size() < std::max<std::size_t>(4, circles.size() / 2)) return;
       InscribedCircle tip;
       tip.center = e.center;
       tip.radius = e.radius;

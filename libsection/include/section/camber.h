@@ -84,7 +84,7 @@ struct CamberOptions {
   double edge_core = 45;           ///< degrees: half-angle (seen from the edge centre) of the core arc that starts the growth and gives the noise level
   double edge_residual = 3;        ///< the edge arc grows while the profile stays within this many core-fit rms outside the circle
   double edge_max_arc = 240;       ///< degrees: largest edge arc grown (a guard for blunt and unusual edges)
-  double tangent_span = 0.1;       ///< fraction of the medial axis length: the end tangents (inlet/outlet angles, extensions) are fitted to the axis over this length from each end (quadratic least squares; robust to profile noise at the edges); 0 = the axis spline's end slope
+  double tangent_span = 0.15;      ///< fraction of the medial axis length: the end tangents (inlet/outlet angles, extensions) are fitted (cubic least squares) to the axis over this length from each end, averaging the profile noise at the edges; 0 = the axis spline's end slope (exact profiles)
   double edge_prune = 20;          ///< degrees: medial circles at the ends whose contacts subtend less than twice this are noise, trimmed
   double blunt_flatness = 2;       ///< an edge is blunt when its curvature radius at the edge point exceeds this many fitted radii (flat tip)
   double blunt_rms = 0.02;         ///< ... and the fit rms exceeds this fraction of the fitted radius
