@@ -88,13 +88,14 @@ int main(int argc, char** argv) {
     else if (a == "--edge-arc") camber_options.edge_arc = std::atof(value());
     else if (a == "--edge-core") camber_options.edge_core = std::atof(value());
     else if (a == "--edge-residual") camber_options.edge_residual = std::atof(value());
+    else if (a == "--edge-circularity") camber_options.edge_circularity = std::atof(value());
     else if (a == "--edge-prune") camber_options.edge_prune = std::atof(value());
     else if (a == "--tangent-span") camber_options.tangent_span = std::atof(value());
     else if (a == "--quiet") quiet = true;
     else if (a == "--help" || a == "-h") {
       std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] "
                   "[--preset turbine|compressor|both] [--no-camber] [--quiet] [--export DIR]\n"
-                  "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] "
+                  "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] "
                   "[--edge-prune DEG] [--tangent-span FRACTION]\n");
       return 0;
     } else if (i == 1 && std::isdigit(static_cast<unsigned char>(a[0]))) seeds = std::atoi(a.c_str());

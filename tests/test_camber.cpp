@@ -269,8 +269,9 @@ TEST_CASE("camber: stream stage writes the tables and flags a two-loop section",
   CHECK(two.issues[0].message.find("2 loops") != std::string::npos);
 }
 
-TEST_CASE("camber: a NACA 0012 with a closed trailing edge has a round LE and a sharp TE", "[camber]") {
-  // Chord 100, thickness 12; the closed-TE coefficient -0.1036 makes a wedge of ~16 deg.
+// NACA 0012, chord 100, thickness 12; the closed-TE coefficient -0.1036 makes a wedge of
+// ~16 deg. Its nose is not a circular arc: the curvature radius grows from the tip.
+std::vector<Vector2d> naca0012() {
   auto half = [](double x) {
     return 0.6 * (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x - 0.1036 * x * x * x * x);
   };
@@ -285,6 +286,36 @@ TEST_CASE("camber: a NACA 0012 with a closed trailing edge has a round LE and a 
     const double x = 0.5 * (1 - std::cos(pi * i / m));
     pts.push_back({100 * x, 100 * half(x)});
   }
+  return pts;
+}
+
+TEST_CASE("camber: edges that are not circular arcs are flagged, circular ones are not", "[camber]") {
+  section::CamberOptions o;
+  o.profile_noise = 1e-3;  // 1 um
+  const section::CamberResult naca = section::camber_line(dense_spline(naca0012()), o);
+  CAPTURE(naca.le.fit_rms, naca.le.radius);
+  CHECK_FALSE(naca.le.circular);
+  CHECK(naca.le.fit_rms > 3 * o.profile_noise);
+  o.profile_noise = 0;  // unknown noise: not checked
+  CHECK(section::camber_line(dense_spline(naca0012()), o).le.circular);
+  // Through the stream, the noise comes from the splines table and the section says so.
+  section::Stream stream = section::profile_stream(dense_spline(naca0012()), 1e-3);
+  section::camber_stream(stream, o);
+  REQUIRE(stream.issues.size() == 1);
+  CHECK(stream.issues[0].message.find("leading edge is not circular") != std::string::npos);
+  CHECK(stream.find("params")->rows() == 1);
+  o.profile_noise = 1e-3;
+  for (const SectionDesign& design : designs()) {
+    const SectionTruth truth = section::section_truth(design, 20000);
+    const section::CamberResult c = section::camber_line(dense_spline(truth.profile, 2000), o);
+    CAPTURE(design.le_radius, design.te_radius, c.le.fit_rms, c.te.fit_rms);
+    CHECK(c.le.circular);
+    CHECK(c.te.circular);
+  }
+}
+
+TEST_CASE("camber: a NACA 0012 with a closed trailing edge has a round LE and a sharp TE", "[camber]") {
+  const std::vector<Vector2d> pts = naca0012();
   section::CamberOptions o;
   o.edge = section::EdgeModel::automatic;
   const section::CamberResult c = section::camber_line(dense_spline(pts), o);

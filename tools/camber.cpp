@@ -113,7 +113,8 @@ int main(int argc, char** argv) {
         } else {
           const auto points = section::parse_profile(text, source);
           section::tool::with_input(common.input, [&] {
-            stream = section::profile_stream(section::fit_spline(points, points).spline);
+            const section::FitSplineResult fit = section::fit_spline(points, points);
+            stream = section::profile_stream(fit.spline, fit.rms);
           });
         }
         section::tool::with_input(common.input, [&] { section::camber_stream(stream, options); });

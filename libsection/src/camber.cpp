@@ -904,6 +904,8 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
       e.t = pr.ts[pr.nearest(face.mid)];
     }
     classify_edge(e, 2 * widest, options);
+    if (options.profile_noise > 0 && e.radius > 0)
+      e.circular = e.fit_rms <= options.edge_circularity * std::max(options.profile_noise, 1e-4 * e.radius);
     if (face.found) {  // a face, not a circle: no radius, whatever the edge model
       e.shape = EdgeShape::blunt;
       e.face = face.width;
@@ -953,8 +955,9 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
       if (e.shape == EdgeShape::blunt && e.face > 0) return;  // a face, not a circle: see trim_face
       const bool round = e.shape == EdgeShape::round || options.edge == EdgeModel::round;
       const InscribedCircle& end = front ? medial.front() : medial.back();
-      // A circle much larger than the end's inscribed circle fits a flank, not the edge.
-      if (!round || (e.center - end.center).norm() > e.radius || e.radius > 3 * end.radius) return;
+      // A circle much larger than the end's inscribed circle fits a flank, not the edge; on
+      // an edge that is not circular the fitted centre moves with the arc taken.
+      if (!round || !e.circular || (e.center - end.center).norm() > e.radius || e.radius > 3 * end.radius) return;
       const Eigen::Vector2d d = front ? d_le : d_te;
       std::vector<InscribedCircle> kept;
       // Medial circles close to the centre touch the profile near the edge-arc junction,

@@ -7,6 +7,7 @@
 #include "detail/parallel.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <string>
@@ -96,12 +97,12 @@ double unmeasured_around(const BSpline& curve, const Edge& edge, const std::vect
 
 }  // namespace
 
-Stream profile_stream(const BSpline& spline) {
+Stream profile_stream(const BSpline& spline, double rms) {
   Stream stream;
   Table head = make_table("splines", {"section", "loop", "degree", "closed", "control_points", "rms",
                                       "max", "p95", "iterations"});
   head.add_row({0, 0, double(spline.degree), spline.closed ? 1.0 : 0.0, double(spline.control.size()),
-                0, 0, 0, 0});
+                rms, 0, 0, 0});
   Table knots = make_table("spline_knots", {"section", "loop", "index", "knot"});
   for (std::size_t i = 0; i < spline.knots.size(); ++i) knots.add_row({0, 0, double(i), spline.knots[i]});
   Table ctrl = make_table("spline_ctrl", {"section", "loop", "index", "u", "v"});
@@ -119,6 +120,13 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   if (stream.find("frames")) frame = frames(stream);
   const auto seeds = skeletons(stream);
   const auto measured = measured_points(stream);
+  // The profile's noise: the rms distance of the measured points to the fitted curve.
+  std::map<int, double> noise;
+  if (const Table* t = stream.find("splines"); t && t->find_column("rms") >= 0) {
+    const std::size_t cs = t->column("section"), cl = t->column("loop"), cr = t->column("rms");
+    for (std::size_t i = 0; i < t->rows(); ++i)
+      if (t->at(i, cl) == 0 && t->at(i, cr) > 0) noise[static_cast<int>(t->at(i, cs))] = t->at(i, cr);
+  }
 
   Table camber = make_table("camber", {"section", "index", "s", "u", "v", "x", "y", "z", "radius"});
   Table params = make_table(
@@ -156,6 +164,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         throw Error("camber: section " + std::to_string(section) + " has " + std::to_string(loops.at(section)) +
                     " loops; camber measures single-profile sections");
       CamberOptions opt = options;
+      if (const auto n = noise.find(section); n != noise.end() && opt.profile_noise <= 0) opt.profile_noise = n->second;
       const auto seed = seeds.find(section);
       if (seed != seeds.end() && seed->second.size() >= 4) opt.medial.seed = seed->second;
       CamberResult r;
@@ -217,9 +226,20 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
                " of the profile around it has no measured point (edge " + (e.radius > 0 ? "radius " : "face ") +
                format_number(size) + "); its point and radius bridge a hole in the data";
       };
+      auto circularity = [&](const Edge& e, const char* which) {
+        if (e.circular || e.shape != EdgeShape::round) return std::string();
+        char text[256];
+        std::snprintf(text, sizeof text,
+                      "%s is not circular: the circle fitted to its %.0f-degree arc leaves it by %.3g rms, %.0f times "
+                      "the points' rms distance to the profile; its radius and point depend on the arc taken",
+                      which, e.arc, e.fit_rms, e.fit_rms / opt.profile_noise);
+        return std::string(text);
+      };
       auto join = [](std::string a, const std::string& b) { return a.empty() ? b : b.empty() ? a : a + ", " + b; };
-      const std::string le_msg = join(describe(r.le, "leading edge"), hole(r.le, le_unmeasured, "leading edge")),
-                        te_msg = join(describe(r.te, "trailing edge"), hole(r.te, te_unmeasured, "trailing edge"));
+      const std::string le_msg = join(join(describe(r.le, "leading edge"), hole(r.le, le_unmeasured, "leading edge")),
+                                      circularity(r.le, "leading edge")),
+                        te_msg = join(join(describe(r.te, "trailing edge"), hole(r.te, te_unmeasured, "trailing edge")),
+                                      circularity(r.te, "trailing edge"));
       if (!le_msg.empty() || !te_msg.empty())
         slot.issues.push_back({section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
     } catch (const Error& e) {

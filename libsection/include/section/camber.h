@@ -69,6 +69,7 @@ struct Edge {
   double arc_t0 = 0, arc_t1 = 0;   ///< profile parameter range of the edge arc
   double curvature_radius = 0;     ///< 1 / profile curvature at the edge point (0 when flat or concave there)
   EdgeShape shape = EdgeShape::round;  ///< detected shape
+  bool circular = true;            ///< false: the fitted circle leaves the edge arc by more than edge_circularity x the profile noise (the edge is not a circular arc; radius depends on the arc taken, the axis keeps its medial end)
   double face = 0;                 ///< blunt edges with a flat face: the face's width (0 otherwise)
 };
 
@@ -83,6 +84,8 @@ struct CamberOptions {
   double edge_arc = 0;
   double edge_core = 45;           ///< degrees: half-angle (seen from the edge centre) of the core arc that starts the growth and gives the noise level
   double edge_residual = 3;        ///< the edge arc grows while the profile stays within this many core-fit rms outside the circle
+  double profile_noise = 0;        ///< rms distance of the measured points to the profile (0 = unknown: edge circles are not checked for circularity); camber_stream takes it from the splines table
+  double edge_circularity = 3;     ///< an edge circle whose fit rms exceeds this many times max(profile_noise, 1e-4 x its radius) is not circular (Edge::circular)
   double edge_max_arc = 240;       ///< degrees: largest edge arc grown (a guard for blunt and unusual edges)
   double tangent_span = 0.15;      ///< fraction of the medial axis length: the end tangents (inlet/outlet angles, extensions) are fitted (cubic least squares) to the axis over this length from each end, averaging the profile noise at the edges; 0 = the axis spline's end slope (exact profiles)
   double edge_prune = 20;          ///< degrees: medial circles at the ends whose contacts subtend less than twice this are noise, trimmed
@@ -143,6 +146,6 @@ void camber_stream(Stream& stream, const CamberOptions& options = {});
 /// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
 /// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain
 /// profile (an airfoil .dat file, a CMM section).
-Stream profile_stream(const BSpline& spline);
+Stream profile_stream(const BSpline& spline, double rms = 0);
 
 }  // namespace section
