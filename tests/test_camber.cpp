@@ -32,31 +32,7 @@ BSpline dense_spline(const std::vector<Vector2d>& points, int control_points = 2
 double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
 
 // Thick and thin, high and low turning, large and small edge radii.
-std::vector<SectionDesign> designs() {
-  std::vector<SectionDesign> out;
-  out.push_back(SectionDesign{});                    // moderate: 40 deg turning
-  out.push_back(section::turbine_blade().at(0));     // thick, 110 deg turning
-  out.push_back(section::compressor_blade().at(60)); // thin, small edge radii
-  SectionDesign d;
-  d.chord = 30;
-  d.stagger = -20;
-  d.inlet_angle = 5;
-  d.outlet_angle = -15;
-  d.le_radius = 0.6;
-  d.te_radius = 0.15;
-  d.max_thickness = 2.4;
-  d.max_thickness_pos = 0.45;
-  out.push_back(d);                                  // thin, low turning
-  d = SectionDesign{};
-  d.inlet_angle = 60;
-  d.outlet_angle = -55;
-  d.le_radius = 2.5;
-  d.te_radius = 0.8;
-  d.max_thickness = 9;
-  d.max_thickness_pos = 0.3;
-  out.push_back(d);                                  // thick, high turning, large edges
-  return out;
-}
+std::vector<SectionDesign> designs() { return section::design_family(); }
 
 // The profile of `truth` cut off by the line normal to the camber line `back` (arc length,
 // mm) before the TE centre: a blunt trailing edge whose flat face (sampled at the

@@ -184,15 +184,9 @@ TEST_CASE("pipeline: fitted end tangents stay true on exact profiles", "[pipelin
   // noise of measured edges; on exact envelope-of-circles profiles their bias stays small:
   // at most 0.03 deg, 0.11 deg on the thick 115-degree design (whose camber still turns
   // fast near the TE), against the 0.5 deg target for measured sections.
-  std::vector<SectionDesign> designs{SectionDesign{}, turbine_blade().at(0), compressor_blade().at(60)};
-  SectionDesign d;
-  d.inlet_angle = 60;
-  d.outlet_angle = -55;
-  d.le_radius = 2.5;
-  d.te_radius = 0.8;
-  d.max_thickness = 9;
-  d.max_thickness_pos = 0.3;
-  designs.push_back(d);  // thick, 115 deg turning, large edges: the hardest case
+  // design_family(): thick and thin, low and high turning; the last one (thick, 115 deg
+  // turning, large edges) is the hardest case.
+  const std::vector<SectionDesign> designs = section::design_family();
   for (const SectionDesign& design : designs) {
     const SectionTruth truth = section_truth(design, 20000);
     CurveFitOptions fo;

@@ -547,6 +547,32 @@ BladeDesign compressor_blade() {
   return b;
 }
 
+std::vector<SectionDesign> design_family() {
+  std::vector<SectionDesign> out;
+  out.push_back(SectionDesign{});
+  out.push_back(turbine_blade().at(0));
+  out.push_back(compressor_blade().at(60));
+  SectionDesign d;
+  d.chord = 30;
+  d.stagger = -20;
+  d.inlet_angle = 5;
+  d.outlet_angle = -15;
+  d.le_radius = 0.6;
+  d.te_radius = 0.15;
+  d.max_thickness = 2.4;
+  d.max_thickness_pos = 0.45;
+  out.push_back(d);
+  d = SectionDesign{};
+  d.inlet_angle = 60;
+  d.outlet_angle = -55;
+  d.le_radius = 2.5;
+  d.te_radius = 0.8;
+  d.max_thickness = 9;
+  d.max_thickness_pos = 0.3;
+  out.push_back(d);
+  return out;
+}
+
 // ---------------------------------------------------------------------------------------
 // Truth.
 

@@ -49,6 +49,12 @@ BladeDesign turbine_blade();
 /// Compressor-like blade: low turning (~30 deg), thin, edge radii 0.2-0.35 mm.
 BladeDesign compressor_blade();
 
+/// Five sections spanning the shapes a measure must hold on: a moderate one (40 deg
+/// turning), the turbine preset's hub (thick, 110 deg), the compressor preset at mid
+/// span (thin, small edges), a thin low-turning one with a 0.15 mm TE, and a thick
+/// 115-degree one with large edges.
+std::vector<SectionDesign> design_family();
+
 /// Exact ground truth of one section.
 struct SectionTruth {
   std::vector<Eigen::Vector2d> profile;  ///< dense closed profile, counterclockwise, no repeated end point
