@@ -13,6 +13,7 @@
 #include "section/fit_spline.h"
 #include "section/generate.h"
 #include "section/pipe.h"
+#include "section/score.h"
 #include "section/slice.h"
 #include "section/smooth.h"
 
@@ -29,12 +30,6 @@
 using namespace section;
 
 namespace {
-
-double wrap_deg(double a) {
-  while (a > 180) a -= 360;
-  while (a <= -180) a += 360;
-  return a;
-}
 
 struct Worst {
   double rms = 0, rms_near = 0, max = 0, gap = 0, cam_rms = 0, cam_max = 0, chord = 0, tmax = 0, rle = 0, rte = 0,
@@ -159,41 +154,16 @@ int main(int argc, char** argv) {
           for (std::size_t r = 0; r < pts.rows(); ++r)
             if (int(pts.at(r, 0)) == id && int(pts.at(r, 1)) == 0) measured.emplace_back(pts.at(r, 3), pts.at(r, 4));
           const SectionTruth truth = section_truth(blade.at(zs[k]));
-          const auto samples = sample(it->second, 20000);
-          // "Near data": a measured point within 0.3 mm along the true profile (not across
-          // a thin edge, where the other side's points are near but say nothing of the tip).
-          std::vector<double> measured_s;
-          for (const auto& m : measured) measured_s.push_back(locate(truth, m).s);
-          std::sort(measured_s.begin(), measured_s.end());
-          auto near_data = [&](double s) {
-            if (measured_s.empty()) return false;
-            const double per = truth.perimeter;
-            auto it = std::lower_bound(measured_s.begin(), measured_s.end(), s);
-            const double after = it == measured_s.end() ? measured_s.front() + per : *it;
-            const double before = it == measured_s.begin() ? measured_s.back() - per : *(it - 1);
-            return std::min(after - s, s - before) <= 0.3;
-          };
           Worst e;
           // For --export: our camber scores (NaN without a camber result).
           double cam_rms = NAN, cam_max = NAN, le_point_err = NAN, te_point_err = NAN, rle_signed = NAN,
                  rte_signed = NAN;
-          double sum = 0, sum_near = 0, where_max = 0, where_gap = 0;
-          int count_near = 0;
-          for (const auto& p : samples) {
-            const double d = locate(truth, p).distance;
-            sum += d * d;
-            if (near_data(locate(truth, p).s)) {
-              sum_near += d * d;
-              ++count_near;
-              if (d > e.max) where_max = locate(truth, p).s;
-              e.max = std::max(e.max, d);
-            } else {
-              if (d > e.gap) where_gap = locate(truth, p).s;
-              e.gap = std::max(e.gap, d);
-            }
-          }
-          e.rms = std::sqrt(sum / samples.size());
-          e.rms_near = count_near ? std::sqrt(sum_near / count_near) : 0;
+          const FitScore fs = score_fit(it->second, measured, truth);
+          e.rms = fs.rms;
+          e.rms_near = fs.rms_near;
+          e.max = fs.max_near;
+          e.gap = fs.gap;
+          const double where_max = fs.where_max, where_gap = fs.where_gap;
           std::string line;
           char buf[256];
           std::snprintf(buf, sizeof buf, "%-10s %4d %3d %5.1f %7.2f %7.2f %7.2f", kind, seed, id, zs[k], e.rms * 1e3,
@@ -210,36 +180,23 @@ int main(int argc, char** argv) {
                 if (is.section == id) why += is.stage + ": " + is.message + "; ";
               line += "   CAMBER FAILED " + why;
             } else {
-              const Table& P = *par;
-              auto v = [&](const char* c) { return P.at(static_cast<std::size_t>(row), P.column(c)); };
-              double csum = 0, cmax = 0;
-              int cn = 0;
-              const std::size_t cu = cam->column("u"), cv = cam->column("v");
-              for (std::size_t r = 0; r < cam->rows(); ++r) {
-                if (int(cam->at(r, 0)) != id) continue;
-                const double d = camber_distance(truth, {cam->at(r, cu), cam->at(r, cv)});
-                csum += d * d;
-                cmax = std::max(cmax, d);
-                ++cn;
-              }
-              e.cam_rms = cn ? std::sqrt(csum / cn) : 0;
-              e.cam_max = cmax;
+              const CamberScore cs = score_camber(stream, id, truth);
+              e.cam_rms = cs.camber_rms;
+              e.cam_max = cs.camber_max;
               cam_rms = e.cam_rms, cam_max = e.cam_max;
-              le_point_err = (Eigen::Vector2d(v("le_u"), v("le_v")) - truth.le_point).norm();
-              te_point_err = (Eigen::Vector2d(v("te_u"), v("te_v")) - truth.te_point).norm();
-              rle_signed = v("le_radius") / truth.le_radius - 1;
-              rte_signed = v("te_radius") / truth.te_radius - 1;
-              e.chord = std::abs(v("chord") - truth.chord);
-              e.tmax = std::abs(v("max_thickness") - truth.max_thickness);
-              e.rle = std::abs(v("le_radius") / truth.le_radius - 1);
-              e.rte = std::abs(v("te_radius") / truth.te_radius - 1);
-              e.in = std::abs(wrap_deg(v("inlet_angle") - truth.inlet_angle));
-              e.out = std::abs(wrap_deg(v("outlet_angle") - truth.outlet_angle));
+              le_point_err = cs.le_point;
+              te_point_err = cs.te_point;
+              rle_signed = cs.le_radius;
+              rte_signed = cs.te_radius;
+              e.chord = std::abs(cs.chord);
+              e.tmax = std::abs(cs.max_thickness);
+              e.rle = std::abs(cs.le_radius);
+              e.rte = std::abs(cs.te_radius);
+              e.in = std::abs(cs.inlet_angle);
+              e.out = std::abs(cs.outlet_angle);
               std::snprintf(buf, sizeof buf, " %7.2f %7.2f %7.2f %7.2f %6.2f %6.2f %6.3f %6.3f", e.cam_rms * 1e3,
-                            e.cam_max * 1e3, (v("chord") - truth.chord) * 1e3,
-                            (v("max_thickness") - truth.max_thickness) * 1e3, e.rle * 100, e.rte * 100,
-                            wrap_deg(v("inlet_angle") - truth.inlet_angle),
-                            wrap_deg(v("outlet_angle") - truth.outlet_angle));
+                            e.cam_max * 1e3, cs.chord * 1e3, cs.max_thickness * 1e3, e.rle * 100, e.rte * 100,
+                            cs.inlet_angle, cs.outlet_angle);
               line += buf;
             }
           }
@@ -304,7 +261,7 @@ int main(int argc, char** argv) {
                 std::fprintf(f, "%s,%.6f,%.6f,%.6f,%.6f\n", what, p.x(), p.y(), l.s, l.distance);
               };
               for (const auto& m : measured) put("m", m);
-              for (std::size_t i = 0; i < samples.size(); i += 4) put("c", samples[i]);
+              for (const auto& c : sample(it->second, 5000)) put("c", c);
               if (const Table* sm = stream.find("smoothed"))
                 for (std::size_t r = 0; r < sm->rows(); ++r)
                   if (int(sm->at(r, 0)) == id) put("s", {sm->at(r, sm->column("u")), sm->at(r, sm->column("v"))});

@@ -8,6 +8,7 @@
 #include "section/fit_spline.h"
 #include "section/generate.h"
 #include "section/pipe.h"
+#include "section/score.h"
 #include "section/slice.h"
 #include "section/smooth.h"
 
@@ -24,18 +25,12 @@ namespace {
 
 struct SectionErrors {
   bool fitted = false, cambered = false;
-  double rms = 0, max = 0;        // mm, fitted curve to the true profile (max where data lie within 0.3 mm)
+  double rms = 0, max = 0;        // mm, fitted curve to the true profile (max where data lie within 0.3 mm along it)
   double cam_rms = 0, cam_max = 0;  // mm, camber line to the true camber line
   double chord = 0, tmax = 0;     // mm, absolute errors
   double rle = 0, rte = 0;        // relative errors of the edge radii
   double in = 0, out = 0;         // degrees
 };
-
-double wrap_deg(double a) {
-  while (a > 180) a -= 360;
-  while (a <= -180) a += 360;
-  return a;
-}
 
 std::vector<SectionErrors> run_pipe(const BladeDesign& blade, const std::vector<double>& zs, std::uint64_t seed,
                                     double misregistration) {
@@ -55,7 +50,6 @@ std::vector<SectionErrors> run_pipe(const BladeDesign& blade, const std::vector<
 
   const auto curves = splines(stream);
   const Table& pts = stream.get("points", "slice");
-  const Table& cam = stream.get("camber", "camber");
   const Table& par = stream.get("params", "camber");
   std::vector<SectionErrors> out(zs.size());
   for (std::size_t k = 0; k < zs.size(); ++k) {
@@ -68,38 +62,24 @@ std::vector<SectionErrors> run_pipe(const BladeDesign& blade, const std::vector<
     std::vector<Eigen::Vector2d> measured;
     for (std::size_t r = 0; r < pts.rows(); ++r)
       if (int(pts.at(r, 0)) == id && int(pts.at(r, 1)) == 0) measured.emplace_back(pts.at(r, 3), pts.at(r, 4));
-    const auto samples = sample(it->second, 4000);
-    double sum = 0;
-    for (const auto& p : samples) {
-      const double d = locate(truth, p).distance;
-      double near = INFINITY;
-      for (const auto& m : measured) near = std::min(near, (m - p).squaredNorm());
-      sum += d * d;
-      if (near <= 0.09) e.max = std::max(e.max, d);
-    }
-    e.rms = std::sqrt(sum / samples.size());
-    long row = -1;
-    for (std::size_t r = 0; r < par.rows(); ++r)
-      if (int(par.at(r, 0)) == id) row = static_cast<long>(r);
-    if (row < 0) continue;
+    FitScoreOptions fo;
+    fo.samples = 4000;
+    const FitScore f = score_fit(it->second, measured, truth, fo);
+    e.rms = f.rms;
+    e.max = f.max_near;
+    bool has_params = false;
+    for (std::size_t r = 0; r < par.rows(); ++r) has_params = has_params || int(par.at(r, 0)) == id;
+    if (!has_params) continue;
     e.cambered = true;
-    auto v = [&](const char* c) { return par.at(static_cast<std::size_t>(row), par.column(c)); };
-    double csum = 0;
-    int cn = 0;
-    for (std::size_t r = 0; r < cam.rows(); ++r) {
-      if (int(cam.at(r, 0)) != id) continue;
-      const double d = camber_distance(truth, {cam.at(r, cam.column("u")), cam.at(r, cam.column("v"))});
-      csum += d * d;
-      e.cam_max = std::max(e.cam_max, d);
-      ++cn;
-    }
-    e.cam_rms = cn ? std::sqrt(csum / cn) : 0;
-    e.chord = std::abs(v("chord") - truth.chord);
-    e.tmax = std::abs(v("max_thickness") - truth.max_thickness);
-    e.rle = std::abs(v("le_radius") / truth.le_radius - 1);
-    e.rte = std::abs(v("te_radius") / truth.te_radius - 1);
-    e.in = std::abs(wrap_deg(v("inlet_angle") - truth.inlet_angle));
-    e.out = std::abs(wrap_deg(v("outlet_angle") - truth.outlet_angle));
+    const CamberScore c = score_camber(stream, id, truth);
+    e.cam_rms = c.camber_rms;
+    e.cam_max = c.camber_max;
+    e.chord = std::abs(c.chord);
+    e.tmax = std::abs(c.max_thickness);
+    e.rle = std::abs(c.le_radius);
+    e.rte = std::abs(c.te_radius);
+    e.in = std::abs(c.inlet_angle);
+    e.out = std::abs(c.outlet_angle);
   }
   return out;
 }
@@ -202,7 +182,7 @@ TEST_CASE("pipeline: fitted end tangents stay true on exact profiles", "[pipelin
     const double out = std::atan2(te.y(), te.x()) * 180 / 3.14159265358979323846;
     CAPTURE(design.inlet_angle, design.outlet_angle);
     CHECK(worst < 0.002);  // mm
-    CHECK(std::abs(wrap_deg(in - truth.inlet_angle)) < 0.15);
-    CHECK(std::abs(wrap_deg(out - truth.outlet_angle)) < 0.15);
+    CHECK(std::abs(wrap_degrees(in - truth.inlet_angle)) < 0.15);
+    CHECK(std::abs(wrap_degrees(out - truth.outlet_angle)) < 0.15);
   }
 }
