@@ -78,6 +78,8 @@ int main(int argc, char** argv) {
     else if (a == "--export") export_dir = value();
     else if (a == "--min-span-points") fit_options.min_span_points = std::atof(value());
     else if (a == "--fairness") fit_options.fairness = std::atof(value());
+    else if (a == "--smoothing-length") fit_options.smoothing_length = std::atof(value());
+    else if (a == "--outlier-floor") fit_options.outlier_floor = std::atof(value());
     else if (a == "--min-span") fit_options.min_span = std::atof(value());
     else if (a == "--tolerance") fit_options.tolerance = std::atof(value());
     else if (a == "--edge-arc") camber_options.edge_arc = std::atof(value());
@@ -90,7 +92,7 @@ int main(int argc, char** argv) {
     else if (a == "--help" || a == "-h") {
       std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] "
                   "[--preset turbine|compressor|both] [--no-camber] [--quiet] [--export DIR]\n"
-                  "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] "
+                  "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] "
                   "[--edge-prune DEG] [--tangent-span FRACTION]\n");
       return 0;
     } else if (i == 1 && std::isdigit(static_cast<unsigned char>(a[0]))) seeds = std::atoi(a.c_str());

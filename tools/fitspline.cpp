@@ -50,6 +50,9 @@ int main(int argc, char** argv) {
             ->check(CLI::Range(8, 1000000))->capture_default_str();
         app.add_option("--fairness", options.fairness, "Relative weight of the fairness term")
             ->check(CLI::NonNegativeNumber)->capture_default_str();
+        app.add_option("--smoothing-length", options.smoothing_length,
+                       "mm: change-of-curvature penalty (0 = off; 0.15 helps thick edges, docs/FITSPLINE.md)")
+            ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--outlier-distance", options.outlier_distance,
                        "Ignore isolated points farther than this from the curve; 0 = automatic")
             ->check(CLI::NonNegativeNumber)->capture_default_str();

@@ -172,7 +172,7 @@ std::vector<double> outlier_weights(const Feet& f, double threshold) {
 // within the radius of curvature rho (Wang, Pottmann and Liu 2006, eq. 9), kept above a
 // small floor so that sliding along the curve stays bounded.
 BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::vector<double>& w,
-                 double fairness) {
+                 double fairness, double smoothing_length) {
   const int n = static_cast<int>(c.control.size());
   const int p = c.degree;
   const detail::PiecewiseCurve pc(c);
@@ -209,6 +209,42 @@ BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::ve
       rhs.segment<2>(2 * idx[a]) += val[a] * Mq;
       for (int b = a; b <= p; ++b) band[static_cast<std::size_t>(idx[a]) * (p + 1) + (b - a)] += val[a] * val[b] * M;
       trace += w[k] * val[a] * val[a];
+    }
+  }
+  if (smoothing_length > 0 && p == 3) {
+    // Change of curvature: the normal component of C''' (for a curve parameterised by
+    // arc length, dk/ds), integrated over each span with the normal of the current curve,
+    // which keeps the term quadratic. It is zero on lines and circular arcs (edges keep
+    // their radius) and large on the wiggles a dense knot vector makes between sparse
+    // noisy points. Weight: mean point density times length^6, so that it balances the
+    // data on wiggles about 2 pi smoothing_length long where the data are of mean density
+    // (and on longer ones where they are sparser), times (noise sigma / 5 um)^2: exact
+    // data need no smoothing (it rounds the curvature jump where an edge meets a flank).
+    double points = 0;
+    for (double x : w) points += std::max(x, 0.0);
+    const double noise = noise_sigma(f, w) / 0.005;
+    const double lambda3 = points / (c.t_max() - c.t_min()) * std::pow(smoothing_length, 6) * noise * noise;
+    double v[4][8], jerk[4];
+    for (int j = 0; j < n; ++j) {
+      const double a = c.knots[j], h = (c.knots[j + 1] - a) / 4;
+      if (!(h > 0)) continue;
+      // C''' is constant on a cubic span: the third difference of the basis values at
+      // four equally spaced parameters.
+      int first = 0;
+      for (int g = 0; g < 4; ++g) first = pc.basis(a + (g + 0.5) * h, v[g]);
+      for (int b = 0; b <= p; ++b) {
+        idx[b] = (first + b) % n;
+        jerk[b] = (v[3][b] - 3 * v[2][b] + 3 * v[1][b] - v[0][b]) / (h * h * h);
+      }
+      for (int g = 0; g < 4; ++g) {
+        const Eigen::Vector2d d1 = pc.jet(a + (g + 0.5) * h).d1;
+        const double speed = d1.norm();
+        if (!(speed > 0)) continue;
+        const Eigen::Vector2d normal(d1.y() / speed, -d1.x() / speed);
+        const Eigen::Matrix2d M = lambda3 * h * normal * normal.transpose();
+        for (int a2 = 0; a2 <= p; ++a2)
+          for (int b = a2; b <= p; ++b) band[static_cast<std::size_t>(idx[a2]) * (p + 1) + (b - a2)] += jerk[a2] * jerk[b] * M;
+      }
     }
   }
   std::vector<Eigen::Triplet<double>> trip;
@@ -352,7 +388,8 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o) {
   Feet f = foot_points(c, q);
   auto weights_for = [&](const Feet& ft) {
     double threshold = o.outlier_distance;
-    if (threshold <= 0) threshold = std::max(6 * noise_sigma(ft, std::vector<double>(q.size(), 1.0)), 0.02);
+    if (threshold <= 0)
+      threshold = std::max(6 * noise_sigma(ft, std::vector<double>(q.size(), 1.0)), o.outlier_floor);
     return outlier_weights(ft, threshold);
   };
   std::vector<double> w = weights_for(f);
@@ -360,7 +397,7 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o) {
   best = {c, f, w, rms, 0};
   int it = 0;
   for (; it < o.max_iterations; ++it) {
-    const BSpline next = sdm_step(c, q, f, w, o.fairness);
+    const BSpline next = sdm_step(c, q, f, w, o.fairness, o.smoothing_length);
     const Feet nf = foot_points(next, q, &f);
     const std::vector<double> nw = weights_for(nf);
     const double nrms = weighted_rms(nf, nw);
@@ -503,6 +540,8 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
                 " are needed");
   if (!(o.tolerance > 0) || !(o.initial_span > 0) || !(o.min_span > 0))
     throw Error("fit_spline: tolerance, initial span and minimum span must be positive");
+  if (!(o.smoothing_length >= 0) || !(o.outlier_floor >= 0))
+    throw Error("fit_spline: smoothing length and outlier floor must not be negative");
   const std::size_t min_points = 8;
   if (profile.size() < min_points || measured.size() < min_points)
     throw Error("fit_spline: the loop has " + std::to_string(std::min(profile.size(), measured.size())) +

@@ -28,7 +28,9 @@ struct FitSplineOptions {
   int max_iterations = 30;        ///< distance-minimisation iterations per round
   double convergence = 1e-2;      ///< 1: stop iterating when the RMS changes by less than this fraction
   double fairness = 1e-5;         ///< 1: weight of the control-polygon second differences, relative to the data term (keeps holes well posed)
-  double outlier_distance = 0;    ///< mm: isolated measured points farther than this from the curve are ignored; 0 = automatic (6 noise sigmas, at least 0.02 mm)
+  double smoothing_length = 0;    ///< mm: weight of the change-of-curvature penalty (normal component of C''', zero on lines and circular arcs), as the length over which it balances data of mean density at 5 um noise (the weight scales with the noise variance); cubic curves only; 0 = off (0.15 helps thick edges, costs thin ones: docs/FITSPLINE.md)
+  double outlier_distance = 0;    ///< mm: isolated measured points farther than this from the curve are ignored; 0 = automatic (6 noise sigmas, at least `outlier_floor`)
+  double outlier_floor = 0.02;    ///< mm: least automatic outlier distance
   int samples = 0;                ///< stream stage: points per loop written to the "samples" table (0 = none unless sample_spacing)
   double sample_spacing = 0;      ///< mm, stream stage: arc-length spacing of the "samples" table (0 = use `samples`)
   double gap_factor = 10;         ///< 1: a stretch of the curve without measured points longer than this many median spacings is listed as a hole (FitSplineResult::gaps, table "gaps")
