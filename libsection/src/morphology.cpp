@@ -600,24 +600,44 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
   }
 
+  // 8-connected components of the fill (out2 > r^2), labelled in raster order of their
+  // first cell. `open` marks fill cells not labelled yet (one byte per cell: cheaper to
+  // test than out2 and label).
   pass.label.assign(r.size(), 0);
+  std::vector<std::uint8_t> open(r.size());
+  for (std::size_t c = 0; c < r.size(); ++c) open[c] = out2[c] > rr;
+  const std::ptrdiff_t W = r.w;
+  const std::ptrdiff_t around[8] = {-W - 1, -W, -W + 1, -1, 1, W - 1, W, W + 1};
   std::vector<std::uint32_t> queue;
   for (std::size_t c0 = 0; c0 < r.size(); ++c0) {
-    if (out2[c0] <= rr || pass.label[c0]) continue;
+    if (!open[c0]) continue;
     Component comp;
     comp.label = int(pass.components.size()) + 1;
     comp.start = c0;
     pass.label[c0] = comp.label;
+    open[c0] = 0;
     queue.assign(1, std::uint32_t(c0));
     for (std::size_t q = 0; q < queue.size(); ++q) {
       const std::uint32_t c = queue[q];
       ++comp.area;
       if (b2[c] < d2[c]) ++comp.enclosed;
       const int i = int(c % r.w), j = int(c / r.w);
+      if (i > 0 && j > 0 && i + 1 < r.w && j + 1 < r.h) {
+        for (const std::ptrdiff_t o : around) {
+          const std::size_t e = std::size_t(std::ptrdiff_t(c) + o);
+          if (open[e]) {
+            open[e] = 0;
+            pass.label[e] = comp.label;
+            queue.push_back(std::uint32_t(e));
+          }
+        }
+        continue;
+      }
       for (int y = std::max(0, j - 1); y <= std::min(r.h - 1, j + 1); ++y)
         for (int x = std::max(0, i - 1); x <= std::min(r.w - 1, i + 1); ++x) {
           const std::size_t e = std::size_t(y) * r.w + x;
-          if (out2[e] > rr && !pass.label[e]) {
+          if (open[e]) {
+            open[e] = 0;
             pass.label[e] = comp.label;
             queue.push_back(std::uint32_t(e));
           }

@@ -1,6 +1,7 @@
 #include "section/pipe.h"
 
 #include "section/error.h"
+#include "detail/parallel.h"
 #include "detail/text.h"
 
 #include <algorithm>
@@ -133,6 +134,46 @@ std::string one_line(std::string s) {
 
 }  // namespace
 
+namespace {
+
+// One data row of `columns` cells appended to `out`; false on anything parse_stream's
+// checks refuse (the serial parse then finds and names the problem).
+bool parse_row(std::string_view line, const std::vector<char>& id_column, std::vector<double>& out) {
+  const std::size_t columns = id_column.size();
+  std::size_t start = 0, col = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    const std::string_view cell = trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
+    if (col == columns) return false;
+    double value = 0;
+    if (!parse_double(cell, value) || !std::isfinite(value) || std::abs(value) > detail::max_coordinate) return false;
+    if (id_column[col] && (value != std::floor(value) || std::abs(value) > 2147483647.0)) return false;
+    out.push_back(value);
+    ++col;
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return col == columns;
+}
+
+// The data rows of text[0, size) (whole lines, blank ones skipped) into `out`; false when
+// any row is refused.
+bool parse_rows(std::string_view text, const std::vector<char>& id_column, std::vector<double>& out) {
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (trim(line).empty()) continue;
+    if (!parse_row(line, id_column, out)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 Stream parse_stream(std::string_view text, const std::string& source) {
   Stream stream;
   if (const char* why = detail::text_encoding_problem(text)) throw Error("pipe: " + source + ": " + why);
@@ -203,6 +244,40 @@ Stream parse_stream(std::string_view text, const std::string& source) {
         id_column[c] = n == "section" || n == "loop" || n == "index";
       }
       expect_header = false;
+      // The table's data rows run to the next line starting with '#': large blocks are
+      // parsed in pieces by all cores, appended in order. A piece that refuses a row sends
+      // the block through the line-by-line parse below, whose error names the line.
+      const std::size_t block_start = std::min(pos, text.size());  // pos is past the end after a last line without '\n'
+      std::size_t block_end = block_start;
+      while (block_end < text.size() && text[block_end] != '#') {
+        const std::size_t nl = text.find('\n', block_end);
+        block_end = nl == std::string_view::npos ? text.size() : nl + 1;
+      }
+      const std::string_view block = text.substr(block_start, block_end - block_start);
+      if (block.size() >= (std::size_t(1) << 18)) {
+        const std::size_t parts = std::min<std::size_t>(64, block.size() >> 17);
+        std::vector<std::size_t> cut(parts + 1, 0);
+        cut[parts] = block.size();
+        for (std::size_t k = 1; k < parts; ++k) {
+          const std::size_t at = block.find('\n', std::max(cut[k - 1], block.size() * k / parts));
+          cut[k] = at == std::string_view::npos ? block.size() : at + 1;
+        }
+        std::vector<std::vector<double>> piece(parts);
+        std::vector<char> ok(parts, 0);
+        detail::parallel_for(parts, 0, [&](std::size_t k) {
+          piece[k].reserve((cut[k + 1] - cut[k]) / 8);
+          ok[k] = parse_rows(block.substr(cut[k], cut[k + 1] - cut[k]), id_column, piece[k]);
+        });
+        if (std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) {
+          std::size_t total = 0;
+          for (const auto& v : piece) total += v.size();
+          current->values.reserve(current->values.size() + total);
+          for (const auto& v : piece) current->values.insert(current->values.end(), v.begin(), v.end());
+          line_no += std::count(block.begin(), block.end(), '\n');
+          if (!block.empty() && block.back() != '\n') ++line_no;  // the last line has no newline
+          pos = block_end;
+        }
+      }
       continue;
     }
     row.clear();
@@ -253,6 +328,49 @@ std::string format_number(double value) {
   return std::string(buf, r.ptr);
 }
 
+namespace {
+
+// Writes v as std::to_chars(double) does (shortest round trip, fixed or scientific,
+// whichever is shorter, fixed on a tie). Integers below 100000 in magnitude (ids, counts)
+// print in fixed notation, digit by digit, much faster.
+inline char* put_number(char* p, double v) {
+  if (v > -100000 && v < 100000) {
+    const int k = int(v);
+    if (double(k) == v && !(k == 0 && std::signbit(v))) {
+      unsigned u = k < 0 ? unsigned(-k) : unsigned(k);
+      if (k < 0) *p++ = '-';
+      char digits[8];
+      int n = 0;
+      do {
+        digits[n++] = char('0' + u % 10);
+        u /= 10;
+      } while (u);
+      while (n) *p++ = digits[--n];
+      return p;
+    }
+  }
+  return std::to_chars(p, p + 32, v).ptr;
+}
+
+// Rows [r0, r1) of a table's values as text.
+std::string format_rows(const Table& t, std::size_t r0, std::size_t r1) {
+  const std::size_t cols = t.columns.size();
+  std::string out((r1 - r0) * cols * 25, '\0');  // a double takes at most 24 characters
+  char* p = out.data();
+  const double* v = t.values.data() + r0 * cols;
+  for (std::size_t r = r0; r < r1; ++r) {
+    for (std::size_t c = 0; c < cols; ++c) {
+      p = put_number(p, *v++);
+      *p++ = ',';
+    }
+    p[-1] = '\n';
+  }
+  out.resize(std::size_t(p - out.data()));
+  return out;
+}
+
+}  // namespace
+
 std::string format_stream(const Stream& stream) {
   std::string out;
   out.reserve(64);
@@ -264,7 +382,6 @@ std::string format_stream(const Stream& stream) {
     out += "# issue section=" + std::to_string(i.section) + " loop=" + std::to_string(i.loop) +
            " stage=" + one_line(i.stage.empty() ? "unknown" : i.stage) +
            " message=" + one_line(i.message) + "\n";
-  char buf[32];
   for (const auto& t : stream.tables) {
     out += "# table " + t.name + "\n";
     for (std::size_t c = 0; c < t.columns.size(); ++c) {
@@ -273,14 +390,23 @@ std::string format_stream(const Stream& stream) {
     }
     out += '\n';
     const std::size_t cols = t.columns.size();
-    out.reserve(out.size() + t.values.size() * 12);
-    for (std::size_t i = 0; i < t.values.size(); ++i) {
-      const double v = t.values[i];
-      if (!std::isfinite(v))
+    if (cols == 0) continue;
+    for (std::size_t i = 0; i < t.values.size(); ++i)
+      if (!std::isfinite(t.values[i]))
         throw Error("pipe: refusing to write a non-finite value in table '" + t.name + "' row " +
                     std::to_string(i / cols) + " column '" + t.columns[i % cols] + "'");
-      const auto r = std::to_chars(buf, buf + sizeof buf, v);
-      out.append(buf, r.ptr);
+    // Large tables are formatted in pieces of rows by all cores and appended in order.
+    const std::size_t rows = t.values.size() / cols;
+    const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(64, rows * cols / 32768));
+    std::vector<std::string> piece(parts);
+    detail::parallel_for(parts, 0, [&](std::size_t k) { piece[k] = format_rows(t, rows * k / parts, rows * (k + 1) / parts); });
+    std::size_t total = out.size();
+    for (const auto& s : piece) total += s.size();
+    out.reserve(total);
+    for (const auto& s : piece) out += s;
+    char buf[32];
+    for (std::size_t i = rows * cols; i < t.values.size(); ++i) {  // a partial last row (not made by add_row)
+      out.append(buf, put_number(buf, t.values[i]));
       out += (i % cols == cols - 1) ? '\n' : ',';
     }
   }
@@ -307,10 +433,15 @@ std::string read_file(const std::string& path) {
   const bool in = path == "-";
   std::FILE* f = in ? stdin : std::fopen(path.c_str(), "rb");
   if (!f) throw Error(path + ": cannot open: " + std::strerror(errno));
-  std::string data;
-  std::vector<char> buf(1 << 20);
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) data.append(buf.data(), n);
+  // Straight into the string, doubling it when full (no copy out of a separate buffer).
+  std::string data(std::size_t(1) << 20, '\0');
+  std::size_t size = 0, n;
+  while (true) {
+    if (size == data.size()) data.resize(2 * data.size());
+    if ((n = std::fread(&data[size], 1, data.size() - size, f)) == 0) break;
+    size += n;
+  }
+  data.resize(size);
   const bool bad = std::ferror(f);
   if (!in) std::fclose(f);
   if (bad) throw Error(in ? std::string("cannot read standard input") : path + ": read error");
