@@ -25,11 +25,19 @@ namespace {
 
 struct SectionErrors {
   bool fitted = false, cambered = false;
-  double rms = 0, max = 0;        // mm, fitted curve to the true profile (max where data lie within 0.3 mm along it)
-  double cam_rms = 0, cam_max = 0;  // mm, camber line to the true camber line
-  double chord = 0, tmax = 0;     // mm, absolute errors
-  double rle = 0, rte = 0;        // relative errors of the edge radii
-  double in = 0, out = 0;         // degrees
+  FitScore fit;        // fitted curve against the true profile (max where data lie within 0.3 mm along it)
+  CamberScore camber;  // camber line and parameters against the truth
+  // Absolute errors: mm, relative for the radii, degrees for the angles.
+  double rms() const { return fit.rms; }
+  double max() const { return fit.max_near; }
+  double cam_rms() const { return camber.camber_rms; }
+  double cam_max() const { return camber.camber_max; }
+  double chord() const { return std::abs(camber.chord); }
+  double tmax() const { return std::abs(camber.max_thickness); }
+  double rle() const { return std::abs(camber.le_radius); }
+  double rte() const { return std::abs(camber.te_radius); }
+  double in() const { return std::abs(camber.inlet_angle); }
+  double out() const { return std::abs(camber.outlet_angle); }
 };
 
 std::vector<SectionErrors> run_pipe(const BladeDesign& blade, const std::vector<double>& zs, std::uint64_t seed,
@@ -64,22 +72,12 @@ std::vector<SectionErrors> run_pipe(const BladeDesign& blade, const std::vector<
       if (int(pts.at(r, 0)) == id && int(pts.at(r, 1)) == 0) measured.emplace_back(pts.at(r, 3), pts.at(r, 4));
     FitScoreOptions fo;
     fo.samples = 4000;
-    const FitScore f = score_fit(it->second, measured, truth, fo);
-    e.rms = f.rms;
-    e.max = f.max_near;
+    e.fit = score_fit(it->second, measured, truth, fo);
     bool has_params = false;
     for (std::size_t r = 0; r < par.rows(); ++r) has_params = has_params || int(par.at(r, 0)) == id;
     if (!has_params) continue;
     e.cambered = true;
-    const CamberScore c = score_camber(stream, id, truth);
-    e.cam_rms = c.camber_rms;
-    e.cam_max = c.camber_max;
-    e.chord = std::abs(c.chord);
-    e.tmax = std::abs(c.max_thickness);
-    e.rle = std::abs(c.le_radius);
-    e.rte = std::abs(c.te_radius);
-    e.in = std::abs(c.inlet_angle);
-    e.out = std::abs(c.outlet_angle);
+    e.camber = score_camber(stream, id, truth);
   }
   return out;
 }
@@ -87,11 +85,11 @@ std::vector<SectionErrors> run_pipe(const BladeDesign& blade, const std::vector<
 void report(const char* name, const std::vector<SectionErrors>& errors) {
   for (std::size_t k = 0; k < errors.size(); ++k) {
     const SectionErrors& e = errors[k];
-    UNSCOPED_INFO(name << " section " << k << ": fit rms " << e.rms * 1e3 << " um, max " << e.max * 1e3
-                       << " um; camber rms " << e.cam_rms * 1e3 << " um, max " << e.cam_max * 1e3 << " um; chord "
-                       << e.chord * 1e3 << " um, max thickness " << e.tmax * 1e3 << " um, LE radius "
-                       << e.rle * 100 << "%, TE radius " << e.rte * 100 << "%, inlet " << e.in << " deg, outlet "
-                       << e.out << " deg");
+    UNSCOPED_INFO(name << " section " << k << ": fit rms " << e.rms() * 1e3 << " um, max " << e.max() * 1e3
+                       << " um; camber rms " << e.cam_rms() * 1e3 << " um, max " << e.cam_max() * 1e3 << " um; chord "
+                       << e.chord() * 1e3 << " um, max thickness " << e.tmax() * 1e3 << " um, LE radius "
+                       << e.rle() * 100 << "%, TE radius " << e.rte() * 100 << "%, inlet " << e.in() << " deg, outlet "
+                       << e.out() << " deg");
   }
 }
 
@@ -110,16 +108,16 @@ TEST_CASE("pipeline: noisy generated blades are measured to micrometres", "[pipe
     for (const auto& e : errors) {
       REQUIRE(e.fitted);
       REQUIRE(e.cambered);
-      CHECK(e.rms <= 0.003);
-      CHECK(e.max <= 0.025);
-      CHECK(e.cam_rms <= 0.004);
-      CHECK(e.cam_max <= 0.030);
-      CHECK(e.chord <= 0.040);
-      CHECK(e.tmax <= 0.008);
-      CHECK(e.rle <= 0.08);
-      CHECK(e.rte <= 0.15);
-      CHECK(e.in <= 2.5);
-      CHECK(e.out <= 1.5);
+      CHECK(e.rms() <= 0.003);
+      CHECK(e.max() <= 0.025);
+      CHECK(e.cam_rms() <= 0.004);
+      CHECK(e.cam_max() <= 0.030);
+      CHECK(e.chord() <= 0.040);
+      CHECK(e.tmax() <= 0.008);
+      CHECK(e.rle() <= 0.08);
+      CHECK(e.rte() <= 0.15);
+      CHECK(e.in() <= 2.5);
+      CHECK(e.out() <= 1.5);
     }
   }
 }
@@ -134,16 +132,16 @@ TEST_CASE("pipeline: issue targets on noisy generated blades", "[pipeline][!mayf
     for (const auto& e : errors) {
       REQUIRE(e.fitted);
       REQUIRE(e.cambered);
-      CHECK(e.rms <= 0.003);
-      CHECK(e.max <= 0.015);
-      CHECK(e.cam_rms <= 0.003);
-      CHECK(e.cam_max <= 0.015);
-      CHECK(e.chord <= 0.010);
-      CHECK(e.tmax <= 0.005);
-      CHECK(e.rle <= 0.03);
-      CHECK(e.rte <= 0.10);
-      CHECK(e.in <= 0.5);
-      CHECK(e.out <= 0.5);
+      CHECK(e.rms() <= 0.003);
+      CHECK(e.max() <= 0.015);
+      CHECK(e.cam_rms() <= 0.003);
+      CHECK(e.cam_max() <= 0.015);
+      CHECK(e.chord() <= 0.010);
+      CHECK(e.tmax() <= 0.005);
+      CHECK(e.rle() <= 0.03);
+      CHECK(e.rte() <= 0.10);
+      CHECK(e.in() <= 0.5);
+      CHECK(e.out() <= 0.5);
     }
   }
 }
@@ -154,8 +152,8 @@ TEST_CASE("pipeline: a misregistered second view gives a bounded fit without fol
   report("compressor misregistered 15 um", errors);
   for (const auto& e : errors) {
     REQUIRE(e.fitted);  // a fold would be reported as a fit issue
-    CHECK(e.rms <= 0.012);
-    CHECK(e.max <= 0.030);
+    CHECK(e.rms() <= 0.012);
+    CHECK(e.max() <= 0.030);
   }
 }
 
