@@ -243,6 +243,27 @@ TEST_CASE("camber: stream stage writes the tables and flags a two-loop section",
   REQUIRE(two.issues.size() == 1);
   CHECK(two.issues[0].stage == "camber");
   CHECK(two.issues[0].message.find("2 loops") != std::string::npos);
+  CHECK(two.issues[0].message.find("cut off") == std::string::npos);  // a loop as large as the profile
+
+  // A small loop just past the trailing edge: the message says where it lies and what it
+  // usually is.
+  section::Stream cut = section::profile_stream(profile);
+  std::vector<Vector2d> blob;
+  const Vector2d centre = truth.te_point + 0.8 * (truth.te_point - truth.te_center).normalized();
+  for (int i = 0; i < 200; ++i) {
+    const double a = 2 * 3.14159265358979323846 * i / 200;
+    blob.push_back(centre + 0.5 * Vector2d(std::cos(a), std::sin(a)));
+  }
+  const BSpline piece = dense_spline(blob, 40);
+  cut.find("splines")->add_row({0, 1, 3, 1, double(piece.control.size()), 0, 0, 0, 0});
+  for (std::size_t i = 0; i < piece.knots.size(); ++i) cut.find("spline_knots")->add_row({0, 1, double(i), piece.knots[i]});
+  for (std::size_t i = 0; i < piece.control.size(); ++i)
+    cut.find("spline_ctrl")->add_row({0, 1, double(i), piece.control[i].x(), piece.control[i].y()});
+  section::camber_stream(cut, o);
+  REQUIRE(cut.issues.size() == 1);
+  CAPTURE(cut.issues[0].message);
+  CHECK(cut.issues[0].message.find("loop 1: area 0.78") != std::string::npos);
+  CHECK(cut.issues[0].message.find("cut off by a gap") != std::string::npos);
 }
 
 // NACA 0012, chord 100, thickness 12; the closed-TE coefficient -0.1036 makes a wedge of

@@ -55,6 +55,40 @@ std::map<int, std::vector<Eigen::Vector2d>> measured_points(const Stream& stream
   return out;
 }
 
+// Where a section's other loops lie, for the message that refuses it: a small loop close
+// outside the profile is usually a piece of it cut off by a gap in the data.
+std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section) {
+  const auto main = curves.find({section, 0});
+  if (main == curves.end()) return "";
+  const std::vector<Eigen::Vector2d> p0 = sample(main->second, 400);
+  Eigen::Vector2d low = p0[0], high = p0[0];
+  for (const auto& q : p0) low = low.cwiseMin(q), high = high.cwiseMax(q);
+  auto area = [](const std::vector<Eigen::Vector2d>& p) {
+    double a = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Eigen::Vector2d& b = p[(i + 1) % p.size()];
+      a += p[i].x() * b.y() - p[i].y() * b.x();
+    }
+    return std::abs(0.5 * a);
+  };
+  std::string out;
+  bool cut = false;
+  for (const auto& [key, curve] : curves) {
+    if (key.first != section || key.second == 0) continue;
+    const std::vector<Eigen::Vector2d> p = sample(curve, 400);
+    double gap = std::numeric_limits<double>::infinity();
+    for (const auto& a : p)
+      for (const auto& b : p0) gap = std::min(gap, (a - b).norm());
+    char text[160];
+    std::snprintf(text, sizeof text, "%sloop %d: area %.3g against %.3g, %.3g from loop 0", out.empty() ? "" : "; ",
+                  key.second, area(p), area(p0), gap);
+    out += text;
+    cut = cut || (area(p) < 0.2 * area(p0) && gap < 0.1 * (high - low).norm());
+  }
+  if (out.empty()) return "";
+  return " (" + out + ")" + (cut ? "; a small loop this close is often a piece of the profile cut off by a gap in the data" : "");
+}
+
 // The edge's own scale: its radius, or a blunt edge's face width (0 for a sharp edge).
 double edge_size(const Edge& e) { return e.radius > 0 ? e.radius : e.face; }
 
@@ -162,7 +196,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
     try {
       if (loops.at(section) > 1)
         throw Error("camber: section " + std::to_string(section) + " has " + std::to_string(loops.at(section)) +
-                    " loops; camber measures single-profile sections");
+                    " loops; camber measures single-profile sections" + other_loops(curves, section));
       CamberOptions opt = options;
       if (const auto n = noise.find(section); n != noise.end() && opt.profile_noise <= 0) opt.profile_noise = n->second;
       const auto seed = seeds.find(section);
