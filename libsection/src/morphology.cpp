@@ -295,15 +295,16 @@ std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap
     seed(0, j);
     seed(r.w - 1, j);
   }
+  const std::size_t size = r.size();
   for (int level = cap; level >= 0; --level) {
     while (head[level] >= 0) {
       const std::uint32_t c = std::uint32_t(head[level]);
       head[level] = next[c];
-      const int i = int(c % r.w), j = int(c / r.w);
-      const std::size_t nb[4] = {c - 1, c + 1, c - r.w, c + r.w};
-      const bool ok[4] = {i > 0, i + 1 < r.w, j > 0, j + 1 < r.h};
+      // Every border cell was seeded above, so a step that wraps to the other side of the
+      // raster lands on a cell already set; only steps off its ends need a test.
+      const std::size_t nb[4] = {std::size_t(c) - 1, std::size_t(c) + 1, std::size_t(c) - r.w, std::size_t(c) + r.w};
       for (int k = 0; k < 4; ++k) {
-        if (!ok[k] || b2[nb[k]] >= 0) continue;
+        if (nb[k] >= size || b2[nb[k]] >= 0) continue;
         b2[nb[k]] = std::min(level, d2[nb[k]]);
         push(nb[k]);
       }
@@ -407,35 +408,48 @@ Points trace(const Raster& r, const std::vector<int>& label, int label_id, std::
   return out;
 }
 
+/// Zhang-Suen's deletion test of a foreground cell for each of its 256 neighbourhoods
+/// (bit k - 2 holds p_k, clockwise from north) in each of the two sub-steps.
+struct ThinTable {
+  bool remove[2][256] = {};
+  ThinTable() {
+    for (int bits = 0; bits < 256; ++bits) {
+      int p[10] = {};
+      for (int k = 2; k <= 9; ++k) p[k] = (bits >> (k - 2)) & 1;
+      const int b = p[2] + p[3] + p[4] + p[5] + p[6] + p[7] + p[8] + p[9];
+      int a = 0;
+      for (int k = 2; k <= 9; ++k) a += !p[k] && p[k == 9 ? 2 : k + 1];
+      const bool ok = b >= 2 && b <= 6 && a == 1;
+      remove[0][bits] = ok && p[2] * p[4] * p[6] == 0 && p[4] * p[6] * p[8] == 0;
+      remove[1][bits] = ok && p[2] * p[4] * p[8] == 0 && p[2] * p[6] * p[8] == 0;
+    }
+  }
+};
+
 /// Zhang-Suen thinning of a binary image (w x h, 1 = foreground, the outermost rows and
 /// columns empty), in place. Only cells next to a deletion are looked at again, so the cost
 /// is about the area.
 void thin(std::vector<std::uint8_t>& img, int w, int h) {
-  const auto at = [&](int i, int j) -> int {
-    return i >= 0 && j >= 0 && i < w && j < h ? img[std::size_t(j) * w + i] : 0;
-  };
+  static const ThinTable table;
+  // Foreground cells are never on the image's frame (the caller leaves it empty), so their
+  // neighbours are all inside: fixed offsets, no bounds tests.
+  const std::ptrdiff_t W = w;
+  const std::ptrdiff_t around[9] = {-W - 1, -W, -W + 1, -1, 0, 1, W - 1, W, W + 1};
   std::vector<std::uint32_t> cand;
   std::vector<std::uint8_t> mark(img.size(), 0);
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i)
-      if (at(i, j) && (!at(i - 1, j) || !at(i + 1, j) || !at(i, j - 1) || !at(i, j + 1)))
-        cand.push_back(std::uint32_t(j) * w + i);
+  for (std::size_t c = 0; c < img.size(); ++c)
+    if (img[c] && (!img[c - 1] || !img[c + 1] || !img[c - W] || !img[c + W])) cand.push_back(std::uint32_t(c));
+  std::vector<std::uint32_t> del, keep;
   int idle = 0;
   for (int step = 0; idle < 2; step ^= 1) {
-    std::vector<std::uint32_t> del, keep;
+    del.clear();
+    keep.clear();
     for (std::uint32_t c : cand) {
       if (!img[c]) continue;
-      // Foreground cells are never on the image's frame (the caller leaves it empty), so
-      // their neighbours are inside.
       const std::uint8_t* q = img.data() + c;
-      const int p2 = q[-w], p3 = q[1 - w], p4 = q[1], p5 = q[w + 1], p6 = q[w], p7 = q[w - 1], p8 = q[-1],
-                p9 = q[-w - 1];
-      const int b = p2 + p3 + p4 + p5 + p6 + p7 + p8 + p9;
-      const int a = (!p2 && p3) + (!p3 && p4) + (!p4 && p5) + (!p5 && p6) + (!p6 && p7) +
-                    (!p7 && p8) + (!p8 && p9) + (!p9 && p2);
-      const bool cond = step == 0 ? (p2 * p4 * p6 == 0 && p4 * p6 * p8 == 0)
-                                  : (p2 * p4 * p8 == 0 && p2 * p6 * p8 == 0);
-      if (b >= 2 && b <= 6 && a == 1 && cond)
+      const int bits = q[-W] | q[1 - W] << 1 | q[1] << 2 | q[W + 1] << 3 | q[W] << 4 | q[W - 1] << 5 | q[-1] << 6 |
+                       q[-W - 1] << 7;
+      if (table.remove[step][bits])
         del.push_back(c);
       else
         keep.push_back(c);
@@ -449,18 +463,14 @@ void thin(std::vector<std::uint8_t>& img, int w, int h) {
         mark[c] = 1;
         cand.push_back(c);
       }
-    for (std::uint32_t c : del) {
-      const int i = int(c % w), j = int(c / w);
-      for (int y = j - 1; y <= j + 1; ++y)
-        for (int x = i - 1; x <= i + 1; ++x)
-          if (at(x, y)) {
-            const std::uint32_t e = std::uint32_t(y) * w + x;
-            if (!mark[e]) {
-              mark[e] = 1;
-              cand.push_back(e);
-            }
-          }
-    }
+    for (std::uint32_t c : del)
+      for (const std::ptrdiff_t o : around) {
+        const std::uint32_t e = std::uint32_t(std::ptrdiff_t(c) + o);
+        if (img[e] && !mark[e]) {
+          mark[e] = 1;
+          cand.push_back(e);
+        }
+      }
     for (std::uint32_t c : cand) mark[c] = 0;
   }
 }

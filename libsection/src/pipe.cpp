@@ -136,6 +136,21 @@ std::string one_line(std::string s) {
 
 namespace {
 
+// A cell of 1 to 9 digits, optionally after '-' (ids, indices, counts): its value without
+// from_chars, the same double (such integers are exact).
+inline bool small_integer(std::string_view cell, double& value) {
+  const bool minus = !cell.empty() && cell.front() == '-';
+  if (minus) cell.remove_prefix(1);
+  if (cell.empty() || cell.size() > 9) return false;
+  int v = 0;
+  for (const char ch : cell) {
+    if (ch < '0' || ch > '9') return false;
+    v = 10 * v + (ch - '0');
+  }
+  value = minus ? -double(v) : double(v);
+  return true;
+}
+
 // One data row of `columns` cells appended to `out`; false on anything parse_stream's
 // checks refuse (the serial parse then finds and names the problem).
 bool parse_row(std::string_view line, const std::vector<char>& id_column, std::vector<double>& out) {
@@ -146,7 +161,9 @@ bool parse_row(std::string_view line, const std::vector<char>& id_column, std::v
     const std::string_view cell = trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
     if (col == columns) return false;
     double value = 0;
-    if (!parse_double(cell, value) || !std::isfinite(value) || std::abs(value) > detail::max_coordinate) return false;
+    if (!small_integer(cell, value) &&
+        (!parse_double(cell, value) || !std::isfinite(value) || std::abs(value) > detail::max_coordinate))
+      return false;
     if (id_column[col] && (value != std::floor(value) || std::abs(value) > 2147483647.0)) return false;
     out.push_back(value);
     ++col;

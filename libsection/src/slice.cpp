@@ -73,6 +73,25 @@ struct SlabGroup {
   std::vector<int> plane;            // plane ids, sorted by offset
   std::vector<double> offset;        // n . origin, sorted
   std::vector<Boundary> lower, upper;
+  // Buckets over n . q: first[b] is near the first offset >= the bucket's keys, so that the
+  // search for the first candidate plane starts next to it.
+  double key0 = 0, inv_width = 0;
+  std::vector<std::size_t> first;
+  // Buckets over n . q itself, `near_width` wide from near0: near[b] is false when no slab
+  // comes within a bucket of bucket b, so that its points are passed over at once.
+  double near0 = 0, near_width = 0, inv_near = 0;
+  std::vector<char> near;
+
+  /// The index of the first offset >= key (std::lower_bound's answer), from the bucket's
+  /// guess and a few steps.
+  std::size_t first_at_least(double key) const {
+    const double x = (key - key0) * inv_width;
+    const std::size_t nb = first.size();
+    std::size_t k = first[x >= 0 ? (x < double(nb) ? std::size_t(x) : nb - 1) : 0];
+    while (k > 0 && offset[k - 1] >= key) --k;
+    while (k < offset.size() && offset[k] < key) ++k;
+    return k;
+  }
 };
 
 std::vector<SlabGroup> group_planes(const std::vector<Plane>& planes, double slab) {
@@ -83,7 +102,8 @@ std::vector<SlabGroup> group_planes(const std::vector<Plane>& planes, double sla
     for (auto& candidate : groups)
       if (candidate.n == f.n) g = &candidate;
     if (!g) {
-      groups.push_back(SlabGroup{f.n, {}, {}, {}, {}});
+      groups.emplace_back();
+      groups.back().n = f.n;
       g = &groups.back();
     }
     g->plane.push_back(i);
@@ -101,6 +121,38 @@ std::vector<SlabGroup> group_planes(const std::vector<Plane>& planes, double sla
       g.lower.push_back({lo, lo + f.u, lo + f.v});
       g.upper.push_back({hi, hi + f.u, hi + f.v});
     }
+    const std::size_t nb = 4 * g.offset.size() + 4;
+    const double a = g.offset.front() - slab, b = g.offset.back() + slab;
+    g.key0 = a;
+    g.inv_width = b > a ? double(nb) / (b - a) : 0;
+    g.first.resize(nb);
+    for (std::size_t k = 0; k < nb; ++k) {
+      const double key = g.inv_width > 0 ? a + double(k) / g.inv_width : a;
+      g.first[k] = std::lower_bound(g.offset.begin(), g.offset.end(), key) - g.offset.begin();
+    }
+    // Buckets a sixteenth of the narrowest gap between planes (or of the slab) wide, so
+    // that most of the space between slabs is in buckets far from them.
+    double gap = 0;
+    for (std::size_t k = 1; k < g.offset.size(); ++k) {
+      const double d = g.offset[k] - g.offset[k - 1];
+      if (d > 0 && (gap == 0 || d < gap)) gap = d;
+    }
+    const double half = 0.5 * slab, pad = std::max(4 * slab, g.offset.back() - g.offset.front());
+    const double from = g.offset.front() - half - pad, to = g.offset.back() + half + pad;
+    const double buckets = (to - from) / (std::max(gap, slab) / 16);
+    const std::size_t nn = buckets > 0 && buckets < double(1 << 20) ? std::size_t(buckets) + 1 : 0;
+    g.near0 = from;
+    g.near_width = nn ? (to - from) / double(nn) : 0;
+    if (nn && g.near_width > 0 && std::isfinite(g.near_width)) {
+      g.inv_near = 1 / g.near_width;
+      g.near.assign(nn, 0);
+      for (std::size_t b = 0; b < nn; ++b) {
+        const double from = g.near0 + (double(b) - 1) * g.near_width - half,
+                     to = g.near0 + (double(b) + 2) * g.near_width + half;
+        const auto at = std::lower_bound(g.offset.begin(), g.offset.end(), from);
+        g.near[b] = at != g.offset.end() && *at <= to;
+      }
+    }
   }
   return groups;
 }
@@ -113,15 +165,33 @@ namespace {
 void add_slab_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
                      const std::vector<Frame>& frame, double slab, std::vector<std::vector<Eigen::Vector2d>>& out) {
   const double half = 0.5 * slab;
+  // A bound of every point's tolerance below (|s| <= |q| <= sqrt(3) max |coordinate|; a
+  // NaN is left out, and its point takes the full test).
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "points are packed");
+  double largest = 0;
+  const double* v = count ? points[0].data() : nullptr;
+  for (std::size_t k = 0; k < 3 * count; ++k) {
+    const double a = std::abs(v[k]);
+    largest = a > largest ? a : largest;
+  }
+  const double any_tol = 1e-12 * (std::max(2 * largest, slab) + 1) * (1 + 1e-6);
   for (const SlabGroup& g : groups) {
     const std::size_t np = g.offset.size();
+    // A point in a bucket with no slab within a bucket of it has no candidate plane, when
+    // the tolerance is below half a bucket (the rest of a bucket covers the rounding).
+    const bool skip_far = !g.near.empty() && any_tol < 0.5 * g.near_width;
+    const double near_end = double(g.near.size());
     for (std::size_t i = 0; i < count; ++i) {
       const Eigen::Vector3d& q = points[i];
       const double s = g.n.dot(q);
+      if (skip_far) {
+        const double x = (s - g.near0) * g.inv_near;
+        if (x >= 0 && x < near_end && !g.near[std::size_t(x)]) continue;
+      }
       // The first plane whose slab can contain q, then its neighbours while they can.
       const double scale = std::max({std::abs(q.x()), std::abs(q.y()), std::abs(q.z()), std::abs(s), slab});
       const double tol = 1e-12 * (scale + 1);
-      std::size_t k = std::lower_bound(g.offset.begin(), g.offset.end(), s - half - tol) - g.offset.begin();
+      std::size_t k = g.first_at_least(s - half - tol);
       for (; k < np && g.offset[k] <= s + half + tol; ++k) {
         const double above_lower = s - (g.offset[k] - half);
         const double below_upper = (g.offset[k] + half) - s;

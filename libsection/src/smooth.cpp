@@ -4,8 +4,7 @@
 #include "section/pipe.h"
 #include "detail/parallel.h"
 
-#include <Eigen/CholmodSupport>
-#include <Eigen/Sparse>
+#include <cholmod.h>
 
 #include <algorithm>
 #include <array>
@@ -85,42 +84,137 @@ int band_column(int i, int o, const Topology& t) {
   return c < 0 ? c + t.n : c - t.n;
 }
 
-/// Global solve: the sparsity pattern is analysed once, the values refactored per outer
-/// iteration.
+/// Global solve with CHOLMOD (simplicial LL'). The pattern is analysed once per curve. The
+/// factorisation of A with the fill-reducing permutation P first builds P A P' (a sparse
+/// transpose) at every call; here P A P' is built once, its values refilled in place per
+/// outer iteration, and factored with the natural ordering: CHOLMOD then does the same
+/// arithmetic on the same matrix, without the transpose and the allocations around it,
+/// so the points are bit for bit those of the permuting factorisation.
 class CholmodSolver {
 public:
   explicit CholmodSolver(const Topology& t) : topo_(t) {
-    std::vector<Eigen::Triplet<double>> triplets;
-    for (int i = 0; i < t.n; ++i)
-      for (int o = -2; o <= 2; ++o) {
-        const int c = band_column(i, o, t);
-        if (c >= 0) triplets.emplace_back(i, c, 1.0);
-      }
-    matrix_.resize(t.n, t.n);
-    matrix_.setFromTriplets(triplets.begin(), triplets.end());
-    matrix_.makeCompressed();
-    llt_.analyzePattern(matrix_);
+    cholmod_start(&common_);
+    common_.final_asis = 0;
+    common_.supernodal = CHOLMOD_SIMPLICIAL;
+    common_.final_ll = 1;
+    try {
+      setup(t.n);
+    } catch (...) {
+      release();
+      throw;
+    }
   }
+  CholmodSolver(const CholmodSolver&) = delete;
+  CholmodSolver& operator=(const CholmodSolver&) = delete;
+  ~CholmodSolver() { release(); }
 
   void solve(const Band& band, const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d& x) {
-    for (int col = 0; col < matrix_.outerSize(); ++col)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(matrix_, col); it; ++it) {
-        int o = col - static_cast<int>(it.row());
-        if (o > 2) o -= topo_.n;
-        if (o < -2) o += topo_.n;
-        it.valueRef() = band[it.row()][2 + o];
-      }
-    llt_.factorize(matrix_);
-    if (llt_.info() != Eigen::Success)
+    double* px = static_cast<double*>(pap_->x);
+    static_assert(sizeof(Band::value_type) == 5 * sizeof(double), "band rows are packed");
+    const double* values = band.front().data();
+    for (std::size_t k = 0; k < from_.size(); ++k) px[k] = values[from_[k]];
+    double beta[2] = {0, 0};
+    cholmod_factorize_p(pap_, beta, nullptr, 0, factor_, &common_);
+    if (common_.status < CHOLMOD_OK || factor_->minor != factor_->n)
       throw Error("smooth: CHOLMOD could not factor the system (not positive definite?)");
-    x = llt_.solve(rhs);
-    if (llt_.info() != Eigen::Success) throw Error("smooth: CHOLMOD solve failed");
+    const int n = topo_.n;
+    double* b = static_cast<double*>(rhs_->x);
+    for (int k = 0; k < n; ++k) {
+      b[k] = rhs(perm_[k], 0);
+      b[n + k] = rhs(perm_[k], 1);
+    }
+    if (!cholmod_solve2(CHOLMOD_A, factor_, rhs_, nullptr, &x_, nullptr, &y_, &e_, &common_))
+      throw Error("smooth: CHOLMOD solve failed");
+    const double* s = static_cast<const double*>(x_->x);
+    const std::size_t d = x_->d;
+    x.resize(n, 2);
+    for (int k = 0; k < n; ++k) {
+      x(perm_[k], 0) = s[k];
+      x(perm_[k], 1) = s[d + k];
+    }
   }
 
 private:
+  void setup(int n) {
+    const Topology& t = topo_;
+    // A: all band entries (both triangles, columns sorted), read as its lower triangle.
+    std::vector<int> ap(n + 1, 0), ai;
+    for (int col = 0; col < n; ++col) {
+      std::vector<int> rows;
+      for (int o = -2; o <= 2; ++o) {
+        const int r = band_column(col, o, t);  // symmetric pattern: row r of column col
+        if (r >= 0) rows.push_back(r);
+      }
+      std::sort(rows.begin(), rows.end());
+      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+      for (int r : rows) {
+        ai.push_back(r);
+        int o = col - r;  // band entry (r, col) = band[r][2 + o]
+        if (o > 2) o -= n;
+        if (o < -2) o += n;
+        source_.push_back(5 * r + 2 + o);
+      }
+      ap[col + 1] = static_cast<int>(ai.size());
+    }
+    std::vector<double> ax(ai.size());
+    for (std::size_t k = 0; k < ax.size(); ++k) ax[k] = double(k);  // entry numbers, to follow them
+    cholmod_sparse a{};
+    a.nrow = a.ncol = n;
+    a.nzmax = ai.size();
+    a.p = ap.data();
+    a.i = ai.data();
+    a.x = ax.data();
+    a.stype = -1;
+    a.itype = CHOLMOD_INT;
+    a.xtype = CHOLMOD_REAL;
+    a.dtype = CHOLMOD_DOUBLE;
+    a.sorted = 1;
+    a.packed = 1;
+    // The fill-reducing ordering, as an analysis of A picks it.
+    cholmod_factor* ordered = cholmod_analyze(&a, &common_);
+    if (!ordered) throw Error("smooth: CHOLMOD could not analyse the system");
+    perm_.assign(static_cast<int*>(ordered->Perm), static_cast<int*>(ordered->Perm) + n);
+    // P A P' in upper form, as the permuting factorisation builds it; each of its entries
+    // carries the number of the entry of A it came from.
+    pap_ = cholmod_ptranspose(&a, 1, perm_.data(), nullptr, 0, &common_);
+    cholmod_free_factor(&ordered, &common_);
+    if (!pap_) throw Error("smooth: CHOLMOD could not permute the system");
+    const std::size_t nz = cholmod_nnz(pap_, &common_);
+    const double* px = static_cast<const double*>(pap_->x);
+    from_.resize(nz);
+    for (std::size_t k = 0; k < nz; ++k) from_[k] = source_[static_cast<std::size_t>(px[k])];
+    // Natural ordering of the permuted matrix, no postordering: P A P' is factored as given.
+    common_.nmethods = 1;
+    common_.method[0].ordering = CHOLMOD_NATURAL;
+    common_.postorder = 0;
+    factor_ = cholmod_analyze(pap_, &common_);
+    if (!factor_ || factor_->ordering != CHOLMOD_NATURAL)
+      throw Error("smooth: CHOLMOD could not analyse the permuted system");
+    const int* natural = static_cast<const int*>(factor_->Perm);
+    for (int k = 0; natural && k < n; ++k)
+      if (natural[k] != k) throw Error("smooth: CHOLMOD reordered the permuted system");
+    rhs_ = cholmod_allocate_dense(n, 2, n, CHOLMOD_REAL, &common_);
+    if (!rhs_) throw Error("smooth: CHOLMOD could not allocate the right-hand side");
+  }
+
+  void release() {
+    cholmod_free_dense(&x_, &common_);
+    cholmod_free_dense(&y_, &common_);
+    cholmod_free_dense(&e_, &common_);
+    cholmod_free_dense(&rhs_, &common_);
+    cholmod_free_factor(&factor_, &common_);
+    cholmod_free_sparse(&pap_, &common_);
+    cholmod_finish(&common_);
+  }
+
   Topology topo_;
-  Eigen::SparseMatrix<double> matrix_;
-  Eigen::CholmodSimplicialLLT<Eigen::SparseMatrix<double>> llt_;
+  cholmod_common common_;
+  std::vector<int> source_;  // entry of A -> its value in the band, 5 * row + 2 + offset
+  std::vector<int> from_;    // entry of P A P' -> its value in the band
+  std::vector<int> perm_;
+  cholmod_sparse* pap_ = nullptr;
+  cholmod_factor* factor_ = nullptr;
+  cholmod_dense *rhs_ = nullptr, *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;
 };
 
 /// The paper's point-by-point iteration on the same frozen-length system, warm-started
