@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
+#include <tuple>
 #include <vector>
 
 using Eigen::Vector2d;
@@ -442,5 +444,41 @@ TEST_CASE("camber: an edge inside a hole of the measured points is flagged as no
     REQUIRE(stream.issues.size() == 1);
     CHECK(stream.issues[0].message.find("trailing edge not measured") != std::string::npos);
     CHECK(stream.issues[0].message.find("leading edge") == std::string::npos);
+  }
+}
+
+TEST_CASE("camber: a hole beside an edge point is flagged as partly not measured", "[camber]") {
+  for (const SectionDesign& design : {section::compressor_blade().at(30), section::turbine_blade().at(20)}) {
+    const SectionTruth truth = section::section_truth(design, 8000);
+    const BSpline profile = dense_spline(truth.profile, 800);
+    const std::size_t n = truth.profile.size();
+    std::vector<double> s(n, 0.0);
+    for (std::size_t i = 1; i < n; ++i) s[i] = s[i - 1] + (truth.profile[i] - truth.profile[i - 1]).norm();
+    std::size_t te = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if ((truth.profile[i] - truth.te_point).norm() < (truth.profile[te] - truth.te_point).norm()) te = i;
+    const double r = truth.te_radius;
+    // Points every ~r/4 along the truth, none between `from` and `to` TE radii past the TE
+    // point along the profile: beside it (within its arc) or well away from it.
+    for (const auto& [from, to, flagged] : {std::tuple{0.3, 1.8, true}, std::tuple{3.0, 4.5, false}}) {
+      section::Table points{"points", {"section", "loop", "index", "u", "v"}, {}};
+      const std::size_t step = std::max<std::size_t>(1, static_cast<std::size_t>(0.25 * r / (truth.perimeter / n)));
+      std::size_t kept = 0;
+      for (std::size_t i = 0; i < n; i += step) {
+        const double along = s[i] - s[te];
+        if (along >= from * r && along <= to * r) continue;
+        points.add_row({0, 0, double(kept++), truth.profile[i].x(), truth.profile[i].y()});
+      }
+      section::Stream stream = section::profile_stream(profile);
+      stream.put(points);
+      section::camber_stream(stream, {});
+      REQUIRE(stream.find("params")->rows() == 1);
+      std::string messages;
+      for (const auto& issue : stream.issues) messages += issue.message + "; ";
+      INFO("hole " << from << "-" << to << " TE radii past the TE point: " << messages);
+      CHECK((messages.find("trailing edge partly not measured") != std::string::npos) == flagged);
+      CHECK(messages.find("leading edge") == std::string::npos);
+      CHECK(messages.find("trailing edge not measured") == std::string::npos);
+    }
   }
 }

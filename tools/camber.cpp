@@ -92,6 +92,13 @@ int main(int argc, char** argv) {
         app.add_option("--edge-residual", options.edge_residual,
                        "Grown arc: the arc grows while the profile stays within this many core-fit rms of the circle")
             ->check(CLI::Range(0.5, 100.0))->capture_default_str();
+        app.add_option("--edge-hole", options.edge_hole,
+                       "Edge radii: a stretch without measured points this long, beginning within --edge-hole-reach "
+                       "radii of the edge point, makes the edge 'partly not measured' (an issue)")
+            ->check(CLI::PositiveNumber)->capture_default_str();
+        app.add_option("--edge-hole-reach", options.edge_hole_reach,
+                       "Edge radii along the profile from the edge point within which such a stretch must begin")
+            ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--tangent-span", options.tangent_span,
                        "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)")
             ->check(CLI::Range(0.0, 0.5))->capture_default_str();

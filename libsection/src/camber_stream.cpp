@@ -6,6 +6,7 @@
 #include "section/pipe.h"
 #include "detail/parallel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -92,12 +93,23 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
 // The edge's own scale: its radius, or a blunt edge's face width (0 for a sharp edge).
 double edge_size(const Edge& e) { return e.radius > 0 ? e.radius : e.face; }
 
-// Length along the profile of the stretch around an edge point that no measured point
-// covers: a hole over the edge, or an edge sampled more sparsely than its radius. There
-// the edge point and radius come from the fit bridging the hole, not from measurements.
-double unmeasured_around(const BSpline& curve, const Edge& edge, const std::vector<Eigen::Vector2d>& measured) {
+// How well the measured points cover an edge.
+struct EdgeCoverage {
+  // Length along the profile of the stretch around the edge point that no measured point
+  // covers: a hole over the edge, or an edge sampled more sparsely than its radius. There
+  // the edge point and radius come from the fit bridging the hole, not from measurements.
+  double around = 0;
+  // The longest stretch without measured points that begins within the edge arc, and its
+  // distance from the edge point (0 when it holds the edge point), both along the
+  // profile: part of the arc the circle is fitted to is a bridge.
+  double hole = 0, hole_distance = 0;
+};
+
+EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge, const std::vector<Eigen::Vector2d>& measured,
+                           double arc_reach) {
+  EdgeCoverage out;
   const double size = edge_size(edge);
-  if (measured.empty() || !(size > 0)) return 0;
+  if (measured.empty() || !(size > 0)) return out;
   const int half = 200;
   const double reach = 3 * 3.14159265358979 * size, h = reach / half;
   // Samples every h along the curve, from -reach to +reach around the edge point.
@@ -107,26 +119,60 @@ double unmeasured_around(const BSpline& curve, const Edge& edge, const std::vect
     double t = edge.t;
     for (int k = 1; k <= half; ++k) {
       const double speed = curve.derivative(t, 1).norm();
-      if (!(speed > 0)) return 0;
+      if (!(speed > 0)) return out;
       t += dir * h / speed;
       samples[half + dir * k] = curve.point(t);
     }
   }
+  // A point covers its nearest sample if that lies within 2h. Samples are bucketed in
+  // cells wider than 2h, so the 3 x 3 cells around a point hold every sample that can
+  // count; ties go to the lowest index, as a scan of all samples would give.
+  const double cell = 2.5 * h;
+  Eigen::Vector2d low = samples[half], high = samples[half];
+  for (const auto& s : samples)
+    if (s.allFinite()) low = low.cwiseMin(s), high = high.cwiseMax(s);
+  const int nx = static_cast<int>((high.x() - low.x()) / cell) + 1, ny = static_cast<int>((high.y() - low.y()) / cell) + 1;
+  auto cell_of = [&](double v, double v0, int n) {
+    return static_cast<int>(std::clamp(std::floor((v - v0) / cell), -1.0, double(n)));
+  };
+  std::vector<int> head(static_cast<std::size_t>(nx) * ny, -1), next(samples.size(), -1);
+  for (int k = static_cast<int>(samples.size()) - 1; k >= 0; --k) {
+    if (!samples[k].allFinite()) continue;
+    const std::size_t c = std::size_t(cell_of(samples[k].y(), low.y(), ny - 1)) * nx + cell_of(samples[k].x(), low.x(), nx - 1);
+    next[k] = head[c];
+    head[c] = k;
+  }
   std::vector<char> covered(samples.size(), 0);
   for (const auto& q : measured) {
     if ((q - samples[half]).norm() > reach + 2 * h) continue;
-    std::size_t best = 0;
+    const int cx = cell_of(q.x(), low.x(), nx), cy = cell_of(q.y(), low.y(), ny);
+    int best = -1;
     double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < samples.size(); ++k) {
-      const double d = (q - samples[k]).squaredNorm();
-      if (d < best_d) best_d = d, best = k;
-    }
-    if (std::sqrt(best_d) <= 2 * h) covered[best] = 1;
+    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ny - 1); ++y)
+      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, nx - 1); ++x)
+        for (int k = head[std::size_t(y) * nx + x]; k >= 0; k = next[k]) {
+          const double d = (q - samples[k]).squaredNorm();
+          if (d < best_d || (d == best_d && k < best)) best_d = d, best = k;
+        }
+    if (best >= 0 && std::sqrt(best_d) <= 2 * h) covered[best] = 1;
   }
   int lo = half, hi = half;
   while (lo > 0 && !covered[lo]) --lo;
   while (hi < 2 * half && !covered[hi]) ++hi;
-  return covered[half] ? 0 : (hi - lo) * h;
+  if (!covered[half]) out.around = (hi - lo) * h;
+  for (int k = 0; k <= 2 * half;) {
+    if (covered[k]) {
+      ++k;
+      continue;
+    }
+    int e = k;
+    while (e <= 2 * half && !covered[e]) ++e;
+    const double length = (e - k + 1) * h,
+                 distance = k > half ? (k - 1 - half) * h : e <= half ? (half - e) * h : 0.0;
+    if (distance <= arc_reach * size && length > out.hole) out.hole = length, out.hole_distance = distance;
+    k = e;
+  }
+  return out;
 }
 
 }  // namespace
@@ -222,7 +268,9 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
       const auto points = measured.find(section);
       const std::vector<Eigen::Vector2d> none;
       const auto& q = points != measured.end() ? points->second : none;
-      const double le_unmeasured = unmeasured_around(curve, r.le, q), te_unmeasured = unmeasured_around(curve, r.te, q);
+      const EdgeCoverage le_cover = edge_coverage(curve, r.le, q, opt.edge_hole_reach),
+                         te_cover = edge_coverage(curve, r.te, q, opt.edge_hole_reach);
+      const double le_unmeasured = le_cover.around, te_unmeasured = te_cover.around;
       const Eigen::Vector3d le = f.to_world(p.le_point), te = f.to_world(p.te_point),
                             cg = f.to_world(p.centroid);
       slot.params.add_row({double(section), p.chord, p.camber_length, p.max_thickness, p.max_thickness_pos,
@@ -253,8 +301,13 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         return std::string(which) + " looks " + (e.shape == EdgeShape::blunt ? "blunt" : "sharp") +
                (options.edge == EdgeModel::round ? " (fitted as round anyway)" : " (radius reported as 0)");
       };
-      auto hole = [&](const Edge& e, double unmeasured, const char* which) {
-        const double size = edge_size(e);
+      auto hole = [&](const Edge& e, const EdgeCoverage& cover, const char* which) {
+        const double size = edge_size(e), unmeasured = cover.around;
+        if (cover.hole >= opt.edge_hole * size && !(unmeasured > size))
+          return std::string(which) + " partly not measured: " + format_number(cover.hole) +
+                 " of the profile without a measured point begins " + format_number(cover.hole_distance) +
+                 " from the edge point (edge " + (e.radius > 0 ? "radius " : "face ") + format_number(size) +
+                 "); its radius and point rest partly on the curve bridging that hole";
         if (!(unmeasured > size)) return std::string();
         return std::string(which) + " not measured: " + format_number(unmeasured) +
                " of the profile around it has no measured point (edge " + (e.radius > 0 ? "radius " : "face ") +
@@ -270,9 +323,9 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         return std::string(text);
       };
       auto join = [](std::string a, const std::string& b) { return a.empty() ? b : b.empty() ? a : a + ", " + b; };
-      const std::string le_msg = join(join(describe(r.le, "leading edge"), hole(r.le, le_unmeasured, "leading edge")),
+      const std::string le_msg = join(join(describe(r.le, "leading edge"), hole(r.le, le_cover, "leading edge")),
                                       circularity(r.le, "leading edge")),
-                        te_msg = join(join(describe(r.te, "trailing edge"), hole(r.te, te_unmeasured, "trailing edge")),
+                        te_msg = join(join(describe(r.te, "trailing edge"), hole(r.te, te_cover, "trailing edge")),
                                       circularity(r.te, "trailing edge"));
       if (!le_msg.empty() || !te_msg.empty())
         slot.issues.push_back({section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});

@@ -86,6 +86,8 @@ struct CamberOptions {
   double edge_residual = 3;        ///< the edge arc grows while the profile stays within this many core-fit rms outside the circle
   double profile_noise = 0;        ///< rms distance of the measured points to the profile (0 = unknown: edge circles are not checked for circularity); camber_stream takes it from the splines table
   double edge_circularity = 3;     ///< an edge circle whose fit rms exceeds this many times max(profile_noise, 1e-4 x its radius) is not circular (Edge::circular)
+  double edge_hole = 1;            ///< stream stage: an edge is reported "partly not measured" when a stretch of the profile without measured points, this many edge radii long or longer, begins within edge_hole_reach radii of the edge point
+  double edge_hole_reach = 1.2;    ///< edge radii along the profile from the edge point (the half arc of a round edge is 1.57)
   double edge_max_arc = 240;       ///< degrees: largest edge arc grown (a guard for blunt and unusual edges)
   double tangent_span = 0.15;      ///< fraction of the medial axis length: the end tangents (inlet/outlet angles, extensions) are fitted (cubic least squares) to the axis over this length from each end, averaging the profile noise at the edges; 0 = the axis spline's end slope (exact profiles)
   double edge_prune = 20;          ///< degrees: medial circles at the ends whose contacts subtend less than twice this are noise, trimmed
