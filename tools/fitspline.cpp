@@ -51,8 +51,11 @@ int main(int argc, char** argv) {
         app.add_option("--fairness", options.fairness, "Relative weight of the fairness term")
             ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--smoothing-length", options.smoothing_length,
-                       "mm: change-of-curvature penalty (0 = off; 0.15 helps thick edges, docs/FITSPLINE.md)")
+                       "mm: change-of-curvature penalty, zero on lines and circular arcs (0 = off; docs/FITSPLINE.md)")
             ->check(CLI::NonNegativeNumber)->capture_default_str();
+        app.add_option("--min-span-points", options.min_span_points,
+                       "Adaptive knots: fewest measured points per knot span (on noisy data)")
+            ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
         app.add_option("--outlier-distance", options.outlier_distance,
                        "Ignore isolated points farther than this from the curve; 0 = automatic")
             ->check(CLI::NonNegativeNumber)->capture_default_str();

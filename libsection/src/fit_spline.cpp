@@ -308,8 +308,16 @@ BSpline reknot(const BSpline& c, const std::vector<double>& knots) {
   shape.control.assign(knots.size() - 1, Eigen::Vector2d::Zero());
   std::vector<double> ts = span_samples(shape, 12);
   Points pts(ts.size());
-  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = c.point(ts[i]);
+  const detail::PiecewiseCurve pc(c);
+  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = pc.point(ts[i]);
   return fit_control_points(pts, ts, shape, 1e-12);
+}
+
+// Fewest measured points per knot span: on near-exact data the change-of-curvature
+// penalty, scaled by the noise variance, no longer acts and a denser floor keeps the
+// curve from wiggling between points.
+double points_per_span(const FitSplineOptions& o, double sigma) {
+  return sigma < o.exact_noise ? std::max(o.min_span_points, o.exact_min_span_points) : o.min_span_points;
 }
 
 // Knots spread by the approximation error of a cubic on a circle: a span of length h on
@@ -321,6 +329,9 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
                                     const FitSplineOptions& o) {
   const std::vector<double> ts = span_samples(c, 32);
   const std::size_t m = ts.size();
+  const detail::PiecewiseCurve pc(c);
+  std::vector<detail::CurveJet> jets(m);
+  for (std::size_t i = 0; i < m; ++i) jets[i] = pc.jet(ts[i]);
   std::vector<double> density(m), ds(m);
   const double tol = std::max(o.tolerance, 0.5 * sigma);
   // Measured points per unit length around each sample, over a window of +-window.
@@ -330,7 +341,7 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
     hits[std::max<std::ptrdiff_t>(it - ts.begin() - 1, 0)] += 1;
   }
   for (std::size_t i = 0; i < m; ++i)
-    ds[i] = c.derivative(ts[i], 1).norm() * ((i + 1 < m ? ts[i + 1] : c.t_max()) - ts[i]);
+    ds[i] = jets[i].d1.norm() * ((i + 1 < m ? ts[i + 1] : c.t_max()) - ts[i]);
   std::vector<double> point_density(m);
   const double window = 0.5 * o.initial_span;
   for (std::size_t i = 0; i < m; ++i) {
@@ -342,9 +353,12 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
     point_density[i] = length > 0 ? count / length : 0;
   }
   for (std::size_t i = 0; i < m; ++i) {
-    const double k = std::abs(c.curvature(ts[i]));
+    const Eigen::Vector2d& d1 = jets[i].d1;
+    const Eigen::Vector2d& d2 = jets[i].d2;
+    const double speed = d1.norm();
+    const double k = speed > 0 ? std::abs(d1.x() * d2.y() - d1.y() * d2.x()) / (speed * speed * speed) : 0.0;
     const double h = std::pow(76.8 * tol / std::max(k * k * k, 1e-300), 0.25);
-    const double supported = std::max(1 / o.initial_span, point_density[i] / o.min_span_points);
+    const double supported = std::max(1 / o.initial_span, point_density[i] / points_per_span(o, sigma));
     density[i] = std::min(1 / std::clamp(h, o.min_span, o.initial_span), supported);
   }
   // Widen the dense stretches a little: the curvature of a curve that still cuts an
@@ -383,9 +397,11 @@ struct Refinement {
 };
 
 // Squared-distance minimisation iterations on fixed knots until the RMS settles.
-Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o) {
+// `start`: feet on a curve of nearly the same shape and parameter (the curve before a
+// change of knots), tracked instead of searched afresh.
+Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const Feet* start = nullptr) {
   Refinement best;
-  Feet f = foot_points(c, q);
+  Feet f = foot_points(c, q, start);
   auto weights_for = [&](const Feet& ft) {
     double threshold = o.outlier_distance;
     if (threshold <= 0)
@@ -433,7 +449,7 @@ std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vect
   std::vector<double> knots;
   for (std::size_t j = 0; j < spans; ++j) {
     knots.push_back(c.knots[j]);
-    if (count[j] < o.min_span_points) continue;
+    if (count[j] < points_per_span(o, sigma)) continue;
     const double ms = sum[j] / count[j];
     const double limit = sigma * sigma * (1 + 3 * std::sqrt(2 / count[j])) + o.tolerance * o.tolerance;
     const double a = c.knots[j], b = c.knots[j + 1];
@@ -588,7 +604,7 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
     // splits where the residuals still hold more than noise.
     for (int pass = 0; pass < 3; ++pass) {
       const std::vector<double> knots = curvature_knots(r.curve, r.feet, noise_sigma(r.feet, r.weights), o);
-      Refinement next = refine(reknot(r.curve, knots), measured, o);
+      Refinement next = refine(reknot(r.curve, knots), measured, o, &r.feet);
       result.iterations += next.iterations;
       const bool same = knots.size() == r.curve.knots.size();
       r = std::move(next);
@@ -600,7 +616,7 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
       if (knots.size() == r.curve.knots.size() ||
           static_cast<int>(knots.size()) - 1 > o.max_control_points)
         break;
-      Refinement next = refine(reknot(r.curve, knots), measured, o);
+      Refinement next = refine(reknot(r.curve, knots), measured, o, &r.feet);
       result.iterations += next.iterations;
       result.rounds = round + 1;
       r = std::move(next);
@@ -647,6 +663,7 @@ FitSplineResult fit_spline(const Points& profile, const Points& measured, const 
     } catch (const FoldError&) {
       if (attempt == 2 || o.control_points != 0) throw;
       retry.min_span_points *= 2;
+      retry.exact_min_span_points *= 2;
       retry.min_span *= 2;
       retry.tolerance *= 4;
     }

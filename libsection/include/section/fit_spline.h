@@ -22,13 +22,15 @@ struct FitSplineOptions {
   double tolerance = 0.00025;     ///< mm, adaptive mode: largest systematic (non-noise) RMS deviation allowed in a knot span before it is split
   double initial_span = 2.0;      ///< mm, adaptive mode: knot spacing (along the profile) of the first curve
   double min_span = 0.04;         ///< mm, adaptive mode: spans are not split below this length
-  double min_span_points = 4;     ///< 1, adaptive mode: fewest measured points per knot span (more knots would fit the noise)
+  double min_span_points = 2;     ///< 1, adaptive mode: fewest measured points per knot span (the change-of-curvature penalty keeps sparse spans from fitting the noise)
+  double exact_min_span_points = 4;  ///< 1, adaptive mode: the same floor on near-exact data (noise sigma below exact_noise), where the change-of-curvature penalty does not act
+  double exact_noise = 0.001;     ///< mm: estimated noise sigma below which the data count as near-exact
   int max_control_points = 1500;  ///< adaptive mode: cap on control points per loop
   int max_rounds = 12;            ///< adaptive mode: knot insertion rounds
   int max_iterations = 30;        ///< distance-minimisation iterations per round
   double convergence = 1e-2;      ///< 1: stop iterating when the RMS changes by less than this fraction
   double fairness = 1e-5;         ///< 1: weight of the control-polygon second differences, relative to the data term (keeps holes well posed)
-  double smoothing_length = 0;    ///< mm: weight of the change-of-curvature penalty (normal component of C''', zero on lines and circular arcs), as the length over which it balances data of mean density at 5 um noise (the weight scales with the noise variance); cubic curves only; 0 = off (0.15 helps thick edges, costs thin ones: docs/FITSPLINE.md)
+  double smoothing_length = 0.15; ///< mm: weight of the change-of-curvature penalty (normal component of C''', zero on lines and circular arcs), as the length over which it balances data of mean density at 5 um noise (the weight scales with the noise variance); cubic curves only; 0 = off (docs/FITSPLINE.md)
   double outlier_distance = 0;    ///< mm: isolated measured points farther than this from the curve are ignored; 0 = automatic (6 noise sigmas, at least `outlier_floor`)
   double outlier_floor = 0.02;    ///< mm: least automatic outlier distance
   int samples = 0;                ///< stream stage: points per loop written to the "samples" table (0 = none unless sample_spacing)
