@@ -56,6 +56,8 @@ struct Worst {
 int main(int argc, char** argv) {
   int seeds = 1, first_seed = 1;
   double misregistration = 0.0;
+  double noise = -1, density_min = -1, slab = 0.08;  // scan overrides (< 0: the inspection scan's)
+  int holes = -1;
   std::string preset = "both";
   std::string export_dir;  // --export DIR: per-section CSVs for scripts/compare_scipy.py
   bool with_camber = true, quiet = false;
@@ -73,6 +75,10 @@ int main(int argc, char** argv) {
     if (a == "--seeds") seeds = std::atoi(value());
     else if (a == "--first-seed") first_seed = std::atoi(value());
     else if (a == "--misregistration") misregistration = std::atof(value());
+    else if (a == "--noise") noise = std::atof(value());
+    else if (a == "--holes") holes = std::atoi(value());
+    else if (a == "--density-min") density_min = std::atof(value());
+    else if (a == "--slab") slab = std::atof(value());
     else if (a == "--preset") preset = value();
     else if (a == "--no-camber") with_camber = false;
     else if (a == "--export") export_dir = value();
@@ -86,13 +92,15 @@ int main(int argc, char** argv) {
     else if (a == "--edge-core") camber_options.edge_core = std::atof(value());
     else if (a == "--edge-residual") camber_options.edge_residual = std::atof(value());
     else if (a == "--edge-circularity") camber_options.edge_circularity = std::atof(value());
+    else if (a == "--edge-hole") camber_options.edge_hole = std::atof(value());
+    else if (a == "--edge-hole-reach") camber_options.edge_hole_reach = std::atof(value());
     else if (a == "--edge-prune") camber_options.edge_prune = std::atof(value());
     else if (a == "--tangent-span") camber_options.tangent_span = std::atof(value());
     else if (a == "--quiet") quiet = true;
     else if (a == "--help" || a == "-h") {
-      std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] "
+      std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] "
                   "[--preset turbine|compressor|both] [--no-camber] [--quiet] [--export DIR]\n"
-                  "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] "
+                  "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] "
                   "[--edge-prune DEG] [--tangent-span FRACTION]\n");
       return 0;
     } else if (i == 1 && std::isdigit(static_cast<unsigned char>(a[0]))) seeds = std::atoi(a.c_str());
@@ -117,12 +125,15 @@ int main(int argc, char** argv) {
         for (int k = 1; k <= 9; ++k) zs.push_back(blade.span * k / 10.0);
         ScanOptions so = inspection_scan();
         so.misregistration = misregistration;
+        if (noise >= 0) so.noise = noise;
+        if (holes >= 0) so.holes = holes;
+        if (density_min >= 0) so.density_min = density_min;
         so.seed = static_cast<std::uint64_t>(seed);
         // Scan only bands around the planes: the same data in the slabs, far fewer points.
         const Cloud cloud = scan_bands(blade, zs, so);
         const auto t0 = std::chrono::steady_clock::now();
         SliceOptions sopt;
-        sopt.slab = 0.08;
+        sopt.slab = slab;
         Stream stream = parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");
         smooth_stream(stream);
         stream = parse_stream(format_stream(stream), "smooth");
@@ -220,6 +231,18 @@ int main(int argc, char** argv) {
                 std::fprintf(f, "%.9g,%.9g\n", truth.profile[i].x(), truth.profile[i].y());
               std::fclose(f);
             }
+            // Our fitted curve, densely sampled.
+            std::snprintf(name, sizeof name, "%s/%s_%d_%d_fit.csv", export_dir.c_str(), kind, seed, id);
+            if (FILE* f = std::fopen(name, "w")) {
+              std::fprintf(f, "u,v\n");
+              const BSpline& c = it->second;
+              const int n = 20000;
+              for (int i = 0; i < n; ++i) {
+                const Eigen::Vector2d p = c.point(c.t_min() + (c.t_max() - c.t_min()) * i / n);
+                std::fprintf(f, "%.9g,%.9g\n", p.x(), p.y());
+              }
+              std::fclose(f);
+            }
             // The true camber line (extensions included) and edges, for the camber comparison.
             std::snprintf(name, sizeof name, "%s/%s_%d_%d_camber.csv", export_dir.c_str(), kind, seed, id);
             if (FILE* f = std::fopen(name, "w")) {
@@ -287,6 +310,8 @@ int main(int argc, char** argv) {
             if (is.section == id && is.stage == "camber") {
               if (is.message.find("leading edge not measured") != std::string::npos) line += " LE-unmeasured";
               if (is.message.find("trailing edge not measured") != std::string::npos) line += " TE-unmeasured";
+              if (is.message.find("leading edge partly not measured") != std::string::npos) line += " LE-partly";
+              if (is.message.find("trailing edge partly not measured") != std::string::npos) line += " TE-partly";
             }
           if (!quiet) std::printf("%s\n", line.c_str());
         }
