@@ -71,7 +71,8 @@ int main(int argc, char** argv) {
             });
         app.add_option("--le-direction", le_direction,
                        "u,v: the leading edge is the end lying farther along this direction "
-                       "(default: the end nearer the maximum thickness)")
+                       "(default: the end nearer the maximum thickness, which is wrong on blades "
+                       "thickest aft of mid-chord, e.g. transonic compressor rotors: give it when known)")
             ->check([](const std::string& s) {
               try {
                 const auto v = numbers(s, "--le-direction");
