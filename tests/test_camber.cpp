@@ -482,3 +482,37 @@ TEST_CASE("camber: a hole beside an edge point is flagged as partly not measured
     }
   }
 }
+
+TEST_CASE("camber: a 3D leading-edge direction is projected onto each section's plane", "[camber]") {
+  const SectionTruth truth = section::section_truth(section::compressor_blade().at(30), 4000);
+  const BSpline profile = dense_spline(truth.profile, 600);
+  // The section's plane is the 3D y-z plane (u = z, v = x, normal = y): the true LE-to-TE
+  // direction in (u, v) is a 3D direction there.
+  const Vector2d along = truth.le_point - truth.te_point;
+  const Eigen::Vector3d u(0, 0, 1), v(1, 0, 0);
+  const Eigen::Vector3d upstream = along.x() * u + along.y() * v + Eigen::Vector3d(0, 5, 0);  // plus a normal part
+  for (const double sign : {1.0, -1.0}) {
+    section::Stream stream = section::profile_stream(profile);
+    stream.put(section::Table{"frames",
+                              {"section", "origin_x", "origin_y", "origin_z", "u_x", "u_y", "u_z", "v_x", "v_y", "v_z",
+                               "n_x", "n_y", "n_z"},
+                              {0, 0, 0, 0, u.x(), u.y(), u.z(), v.x(), v.y(), v.z(), 0, 1, 0}});
+    section::CamberOptions options;
+    options.le_direction_3d = sign * upstream;
+    section::camber_stream(stream, options);
+    const section::Table& params = *stream.find("params");
+    REQUIRE(params.rows() == 1);
+    const Vector2d le(params.at(0, params.column("le_u")), params.at(0, params.column("le_v")));
+    INFO("sign " << sign << ": LE point " << le.transpose());
+    CHECK(params.at(0, params.column("le_by_direction")) == 1);
+    CHECK((le - (sign > 0 ? truth.le_point : truth.te_point)).norm() < 0.01);
+  }
+  // A direction along the plane's normal cannot choose: the section gets an issue.
+  section::Stream stream = section::profile_stream(profile);
+  section::CamberOptions options;
+  options.le_direction_3d = Eigen::Vector3d(0, 0, 2);  // no frames table: the plane is x, y
+  section::camber_stream(stream, options);
+  CHECK(stream.find("params")->rows() == 0);
+  REQUIRE(stream.issues.size() == 1);
+  CHECK(stream.issues[0].message.find("normal to the plane of section 0") != std::string::npos);
+}

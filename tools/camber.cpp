@@ -6,6 +6,7 @@
 #include "section/fit_spline.h"
 #include "section/pipe.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <iostream>
@@ -70,13 +71,16 @@ int main(int argc, char** argv) {
               return std::string();
             });
         app.add_option("--le-direction", le_direction,
-                       "u,v: the leading edge is the end lying farther along this direction "
-                       "(default: the end nearer the maximum thickness, which is wrong on blades "
-                       "thickest aft of mid-chord, e.g. transonic compressor rotors: give it when known)")
+                       "u,v (in each section's plane) or x,y,z (in 3D, e.g. upstream along the machine "
+                       "axis; projected onto each section's plane): the leading edge is the end lying "
+                       "farther along this direction (default: the end nearer the maximum thickness, which "
+                       "is wrong on blades thickest aft of mid-chord, e.g. transonic compressor rotors: "
+                       "give it when known)")
             ->check([](const std::string& s) {
               try {
                 const auto v = numbers(s, "--le-direction");
-                if (v.size() != 2 || (v[0] == 0 && v[1] == 0)) return std::string("expected two numbers u,v, not both 0");
+                if ((v.size() != 2 && v.size() != 3) || std::all_of(v.begin(), v.end(), [](double x) { return x == 0; }))
+                  return std::string("expected two numbers u,v or three x,y,z, not all 0");
               } catch (const CLI::ValidationError& e) {
                 return std::string(e.what());
               }
@@ -109,7 +113,10 @@ int main(int argc, char** argv) {
         if (!stations.empty()) options.stations = numbers(stations, "--stations");
         if (!le_direction.empty()) {
           const auto v = numbers(le_direction, "--le-direction");
-          options.le_direction = {v[0], v[1]};
+          if (v.size() == 3)
+            options.le_direction_3d = {v[0], v[1], v[2]};
+          else
+            options.le_direction = {v[0], v[1]};
         }
         options.edge = edge == "auto" ? section::EdgeModel::automatic : section::EdgeModel::round;
         const std::string text = section::read_file(common.input);

@@ -244,6 +244,16 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         throw Error("camber: section " + std::to_string(section) + " has " + std::to_string(loops.at(section)) +
                     " loops; camber measures single-profile sections" + other_loops(curves, section));
       CamberOptions opt = options;
+      const auto fit = frame.find(section);
+      const Frame f = fit != frame.end() ? fit->second : Frame{};
+      if (opt.le_direction.norm() == 0 && opt.le_direction_3d.norm() > 0) {
+        const Eigen::Vector3d& d = opt.le_direction_3d;
+        opt.le_direction = {d.dot(f.u), d.dot(f.v)};
+        if (!(opt.le_direction.norm() > 1e-6 * d.norm()))
+          throw Error("camber: the leading-edge direction (" + format_number(d.x()) + ", " + format_number(d.y()) +
+                      ", " + format_number(d.z()) + ") is normal to the plane of section " +
+                      std::to_string(section) + ": it cannot tell the edges apart there");
+      }
       if (const auto n = noise.find(section); n != noise.end() && opt.profile_noise <= 0) opt.profile_noise = n->second;
       const auto seed = seeds.find(section);
       if (seed != seeds.end() && seed->second.size() >= 4) opt.medial.seed = seed->second;
@@ -258,8 +268,6 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
       const SectionParams p = section_params(curve, r);
       const auto st = thickness_stations(curve, r, options.stations);
       const Sides sd = split_sides(curve, r, options.side_samples);
-      const auto fit = frame.find(section);
-      const Frame f = fit != frame.end() ? fit->second : Frame{};
       for (std::size_t i = 0; i < r.points.size(); ++i) {
         const Eigen::Vector3d w = f.to_world(r.points[i]);
         slot.camber.add_row({double(section), double(i), r.s[i], r.points[i].x(), r.points[i].y(), w.x(), w.y(),

@@ -99,6 +99,11 @@ struct CamberOptions {
   /// Leading-edge direction: when non-zero, the LE is the end lying farther along it;
   /// zero = the LE is the end nearer the maximum thickness.
   Eigen::Vector2d le_direction{0, 0};
+  /// Stream stage: the leading-edge direction in 3D (the cloud's x, y, z), e.g. upstream
+  /// along the machine axis; each section uses its projection onto the section's plane
+  /// (table frames; a plain profile's plane is x, y). Used when non-zero and le_direction
+  /// is zero.
+  Eigen::Vector3d le_direction_3d{0, 0, 0};
   int samples = 201;               ///< points of the sampled camber line (CamberResult::points)
   /// Stream stage: thickness stations as fractions of the camber length from the LE.
   std::vector<double> stations{0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5,
