@@ -516,3 +516,23 @@ TEST_CASE("camber: a 3D leading-edge direction is projected onto each section's 
   REQUIRE(stream.issues.size() == 1);
   CHECK(stream.issues[0].message.find("normal to the plane of section 0") != std::string::npos);
 }
+
+TEST_CASE("camber: an LE chosen by thickness near mid-chord is reported as a guess", "[camber]") {
+  for (const double position : {0.3, 0.5}) {
+    SectionDesign design = section::compressor_blade().at(30);
+    design.max_thickness_pos = position;
+    const SectionTruth truth = section::section_truth(design, 4000);
+    const BSpline profile = dense_spline(truth.profile, 600);
+    for (const bool given : {false, true}) {
+      section::Stream stream = section::profile_stream(profile);
+      section::CamberOptions options;
+      if (given) options.le_direction = truth.le_point - truth.te_point;
+      section::camber_stream(stream, options);
+      REQUIRE(stream.find("params")->rows() == 1);
+      std::string messages;
+      for (const auto& issue : stream.issues) messages += issue.message + "; ";
+      INFO("maximum thickness at " << position << ", direction given " << given << ": " << messages);
+      CHECK((messages.find("too near mid-chord") != std::string::npos) == (position == 0.5 && !given));
+    }
+  }
+}

@@ -337,6 +337,15 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
                                       circularity(r.te, "trailing edge"));
       if (!le_msg.empty() || !te_msg.empty())
         slot.issues.push_back({section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
+      // The thickness rule is a near tie: say so rather than let the orientation pass as known.
+      if (!r.le_by_direction && std::abs(p.max_thickness_pos - 0.5) <= opt.le_thickness_margin) {
+        char text[256];
+        std::snprintf(text, sizeof text,
+                      "the leading edge was taken as the end nearer the maximum thickness, which lies at %.2f of "
+                      "the camber line: too near mid-chord to tell; give the leading-edge direction",
+                      p.max_thickness_pos);
+        slot.issues.push_back({section, 0, "camber", text});
+      }
     } catch (const Error& e) {
       std::string msg = e.what();
       if (msg.rfind("camber: ", 0) == 0) msg = msg.substr(8);

@@ -104,6 +104,7 @@ struct CamberOptions {
   /// (table frames; a plain profile's plane is x, y). Used when non-zero and le_direction
   /// is zero.
   Eigen::Vector3d le_direction_3d{0, 0, 0};
+  double le_thickness_margin = 0.05;  ///< stream stage: an LE chosen by thickness whose maximum thickness lies within this fraction of the camber length of mid-chord gets an issue (the rule is then a guess)
   int samples = 201;               ///< points of the sampled camber line (CamberResult::points)
   /// Stream stage: thickness stations as fractions of the camber length from the LE.
   std::vector<double> stations{0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5,
