@@ -35,6 +35,18 @@ expect 0 "camber --le-direction 1,0" -- "$camber" "$TMP/ellipse.dat" --le-direct
 check "--le-direction sets the LE" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } { if ($c["le_u"] < 19.9 || $c["le_by_direction"] != 1) exit 1 }' \
   "$TMP/p2.csv"
 
+# A 3D direction is projected onto the section's plane (a plain profile's is x, y): -x
+# puts the LE at -u, +x at +u; one along z cannot choose and the section gets an issue.
+expect 0 "camber --le-direction 1,0,0.5" -- "$camber" "$TMP/ellipse.dat" --le-direction 1,0,0.5 --params "$TMP/p3.csv" -o /dev/null
+check "a 3D --le-direction sets the LE" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } { if ($c["le_u"] < 19.9 || $c["le_by_direction"] != 1) exit 1 }' \
+  "$TMP/p3.csv"
+expect 0 "camber --le-direction -1,0,0" -- "$camber" "$TMP/ellipse.dat" --le-direction=-1,0,0 --params "$TMP/p4.csv" -o /dev/null
+check "a 3D --le-direction the other way" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } { if ($c["le_u"] > -19.9 || $c["le_by_direction"] != 1) exit 1 }' \
+  "$TMP/p4.csv"
+expect 0 "camber --le-direction 0,0,1" -- "$camber" "$TMP/ellipse.dat" --le-direction 0,0,1 -o "$TMP/normal.txt"
+check "a direction normal to the plane is an issue" -- grep -q "is normal to the plane of section 0" "$TMP/normal.txt"
+expect 2 "camber --le-direction 1,2,3,4" -- "$camber" "$TMP/ellipse.dat" --le-direction 1,2,3,4
+
 # A circle is not a blade: an issue and a warning, no params row, exit 0.
 awk 'BEGIN { for (i = 0; i < 500; ++i) { t = 2 * 3.14159265358979 * i / 500; printf "%.9f,%.9f\n", 5 * cos(t), 5 * sin(t) } }' > "$TMP/circle.csv"
 expect 0 "camber on a circle" -- "$camber" "$TMP/circle.csv" -o "$TMP/circle.txt"
