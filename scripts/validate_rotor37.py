@@ -17,6 +17,8 @@ import argparse, os, subprocess, sys, tempfile
 
 import numpy as np
 
+from stream_tables import table
+
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
 ap.add_argument("--camber", default=os.path.join(here, "..", "build", "tools", "camber"))
@@ -35,20 +37,6 @@ for line in open(args.data):
     f = line.split()
     if current is not None and len(f) == 5 and f[0].isdigit():
         current.append([float(x) for x in f[1:]])
-
-
-def table(path, name):
-    rows, header, inside = [], None, False
-    for line in open(path):
-        if line.startswith("#"):
-            inside, header = line.strip() == "# table " + name, None
-            continue
-        if inside:
-            if header is None:
-                header = line.strip().split(",")
-            else:
-                rows.append(dict(zip(header, map(float, line.strip().split(",")))))
-    return rows
 
 
 with tempfile.TemporaryDirectory() as tmp:

@@ -19,6 +19,8 @@ import argparse, csv, os, subprocess, sys, tempfile
 
 import numpy as np
 
+from stream_tables import table
+
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
 ap.add_argument("--camber", default=os.path.join(here, "..", "build", "tools", "camber"))
@@ -38,20 +40,6 @@ def distance_to_polyline(q, p):
     ab = b - a
     t = np.clip(((q - a) * ab).sum(1) / (ab * ab).sum(1), 0, 1)
     return np.min(np.linalg.norm(a + ab * t[:, None] - q, axis=1))
-
-
-def table(path, name):
-    rows, header, inside = [], None, False
-    for line in open(path):
-        if line.startswith("#"):
-            inside, header = line.strip() == "# table " + name, None
-            continue
-        if inside:
-            if header is None:
-                header = line.strip().split(",")
-            else:
-                rows.append(dict(zip(header, map(float, line.strip().split(",")))))
-    return rows
 
 
 def run(options, tmp, le_direction):
