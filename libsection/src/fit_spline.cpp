@@ -192,8 +192,7 @@ BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::ve
     const Eigen::Vector2d tangent = jet.d1.normalized();
     const Eigen::Vector2d normal(tangent.y(), -tangent.x());
     const double d = f.signed_distance[k];
-    const double speed = jet.d1.norm();
-    const double kappa = speed > 0 ? (jet.d1.x() * jet.d2.y() - jet.d1.y() * jet.d2.x()) / (speed * speed * speed) : 0;
+    const double kappa = jet.curvature();
     double alpha = 1;
     if (kappa == 0) {
       alpha = 0;
@@ -353,10 +352,7 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
     point_density[i] = length > 0 ? count / length : 0;
   }
   for (std::size_t i = 0; i < m; ++i) {
-    const Eigen::Vector2d& d1 = jets[i].d1;
-    const Eigen::Vector2d& d2 = jets[i].d2;
-    const double speed = d1.norm();
-    const double k = speed > 0 ? std::abs(d1.x() * d2.y() - d1.y() * d2.x()) / (speed * speed * speed) : 0.0;
+    const double k = std::abs(jets[i].curvature());
     const double h = std::pow(76.8 * tol / std::max(k * k * k, 1e-300), 0.25);
     const double supported = std::max(1 / o.initial_span, point_density[i] / points_per_span(o, sigma));
     density[i] = std::min(1 / std::clamp(h, o.min_span, o.initial_span), supported);

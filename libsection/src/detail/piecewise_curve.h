@@ -15,6 +15,11 @@ namespace section::detail {
 /// Point and first two derivatives of a curve at one parameter.
 struct CurveJet {
   Eigen::Vector2d point, d1, d2;
+  /// Signed curvature (positive turning counterclockwise); 0 where the curve stops.
+  double curvature() const {
+    const double speed = d1.norm();
+    return speed > 0 ? (d1.x() * d2.y() - d1.y() * d2.x()) / (speed * speed * speed) : 0;
+  }
 };
 
 class PiecewiseCurve {
