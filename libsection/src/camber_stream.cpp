@@ -311,12 +311,13 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
       };
       auto hole = [&](const Edge& e, const EdgeCoverage& cover, const char* which) {
         const double size = edge_size(e), unmeasured = cover.around;
-        if (cover.hole >= opt.edge_hole * size && !(unmeasured > size))
+        if (!(unmeasured > size)) {
+          if (!(cover.hole >= opt.edge_hole * size)) return std::string();
           return std::string(which) + " partly not measured: " + format_number(cover.hole) +
                  " of the profile without a measured point begins " + format_number(cover.hole_distance) +
                  " from the edge point (edge " + (e.radius > 0 ? "radius " : "face ") + format_number(size) +
                  "); its radius and point rest partly on the curve bridging that hole";
-        if (!(unmeasured > size)) return std::string();
+        }
         return std::string(which) + " not measured: " + format_number(unmeasured) +
                " of the profile around it has no measured point (edge " + (e.radius > 0 ? "radius " : "face ") +
                format_number(size) + "); its point and radius bridge a hole in the data";
