@@ -61,6 +61,11 @@ int main(int argc, char** argv) {
   std::string preset = "both";
   std::string export_dir;  // --export DIR: per-section CSVs for scripts/compare_scipy.py
   bool with_camber = true, quiet = false;
+  // --full-scan: scan the whole blade, as a user would, instead of bands around the planes.
+  // The bands draw each band's holes within the band (5 per band at the defaults, nearly
+  // all crossing the plane), far more holes per section than a whole-blade scan has.
+  bool full_scan = false;
+  bool fill_gaps = true;  // --no-fill: the slab points alone
   FitSplineOptions fit_options;
   CamberOptions camber_options;
   for (int i = 1; i < argc; ++i) {
@@ -81,6 +86,8 @@ int main(int argc, char** argv) {
     else if (a == "--slab") slab = std::atof(value());
     else if (a == "--preset") preset = value();
     else if (a == "--no-camber") with_camber = false;
+    else if (a == "--full-scan") full_scan = true;
+    else if (a == "--no-fill") fill_gaps = false;
     else if (a == "--export") export_dir = value();
     else if (a == "--min-span-points") fit_options.min_span_points = std::atof(value());
     else if (a == "--fairness") fit_options.fairness = std::atof(value());
@@ -99,7 +106,7 @@ int main(int argc, char** argv) {
     else if (a == "--quiet") quiet = true;
     else if (a == "--help" || a == "-h") {
       std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] "
-                  "[--preset turbine|compressor|both] [--no-camber] [--quiet] [--export DIR]\n"
+                  "[--preset turbine|compressor|both] [--full-scan] [--no-fill] [--no-camber] [--quiet] [--export DIR]\n"
                   "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] "
                   "[--edge-prune DEG] [--tangent-span FRACTION]\n");
       return 0;
@@ -130,10 +137,11 @@ int main(int argc, char** argv) {
         if (density_min >= 0) so.density_min = density_min;
         so.seed = static_cast<std::uint64_t>(seed);
         // Scan only bands around the planes: the same data in the slabs, far fewer points.
-        const Cloud cloud = scan_bands(blade, zs, so);
+        const Cloud cloud = full_scan ? generate_scan(blade, so).cloud : scan_bands(blade, zs, so);
         const auto t0 = std::chrono::steady_clock::now();
         SliceOptions sopt;
         sopt.slab = slab;
+        sopt.fill_gaps = fill_gaps;
         Stream stream = parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");
         smooth_stream(stream);
         stream = parse_stream(format_stream(stream), "smooth");

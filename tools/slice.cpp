@@ -18,6 +18,11 @@ const char* const description =
     "per section: the plane frame, the measured points of the slab projected onto the plane\n"
     "and ordered along each closed loop with outward normals, and the skeleton of the\n"
     "filled profile. Loop 0 is the profile (largest area).\n\n"
+    "Gaps: where the slab leaves a gap longer than --fill-gap slab widths (a hole, a sparse\n"
+    "thin edge), scan points up to --fill-reach from the plane are carried onto it along the\n"
+    "surface (the section's drift with height is fitted beside the gap) and fill it; the\n"
+    "stream notes how many per section ('# fill ...'). --no-fill keeps the slab points alone.\n"
+    "Meshes are cut exactly and need no filling.\n\n"
     "Planes: --normal with --at offsets or --count planes spread over the part, or --planes FILE\n"
     "(CSV with origin_x,origin_y,origin_z,normal_x,normal_y,normal_z).\n\n"
     "Example: slice blade.ply --normal 0,0,1 --at 12,20,28 | smooth | fitspline | camber";
@@ -52,6 +57,14 @@ int main(int argc, char** argv) {
             ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--cell", options.morphology.cell, "Raster cell h; 0 = the estimated spacing in the section")
             ->check(CLI::NonNegativeNumber)->capture_default_str();
+        app.add_flag("--no-fill", [&](std::int64_t) { options.fill_gaps = false; },
+                     "Do not fill the slab's gaps from points beside the plane");
+        app.add_option("--fill-reach", options.fill.reach,
+                       "Farthest distance from the plane of the points that fill gaps; 0 = 12 slab widths")
+            ->check(CLI::NonNegativeNumber);
+        app.add_option("--fill-gap", options.fill.min_gap, "Fill gaps longer than this many slab widths")
+            ->check(CLI::PositiveNumber)
+            ->capture_default_str();
         app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
         app.add_option("--units", units, "Length unit recorded in the stream")->capture_default_str();
         app.callback([&] {

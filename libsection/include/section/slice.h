@@ -5,6 +5,7 @@
 /// intersection polylines).
 #include "section/cloud.h"
 #include "section/frame.h"
+#include "section/gap_fill.h"
 #include "section/mesh.h"
 #include "section/morphology.h"
 #include "section/pipe.h"
@@ -38,6 +39,8 @@ std::vector<Plane> parse_planes(std::string_view csv, const std::string& source)
 struct SliceOptions {
   double slab = 0;                    ///< slab width d (units of the cloud); 0 = the cloud's mean spacing
   MorphologyOptions morphology;       ///< ordering of each section's points
+  bool fill_gaps = true;              ///< fill gaps of the slab from scan points beside the plane (gap_fill.h)
+  GapFillOptions fill;                ///< how (reach 0 = 12 slab widths)
   int threads = 0;                    ///< worker threads for the sections; 0 = all cores
 };
 
@@ -47,6 +50,7 @@ struct SectionSlice {
   Frame frame;                        ///< the plane's frame (u, v in-plane)
   std::size_t slab_points = 0;        ///< points found in the slab
   MorphologyResult morphology;        ///< ordered loops, normals, skeleton (empty on error)
+  GapFillResult fill;                 ///< gaps found and filled (counts; the carried points are in the loops)
   std::string error;                  ///< why the section failed; empty when it did not
 };
 

@@ -1,0 +1,317 @@
+#include "section/gap_fill.h"
+
+#include "section/error.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+namespace section {
+
+namespace {
+
+using Vec = Eigen::Vector2d;
+
+// Uniform hash grid over 2D points; queries return indices in ascending order.
+class Grid {
+public:
+  Grid(const std::vector<Vec>& points, double cell) : points_(points), cell_(cell) {
+    for (std::size_t i = 0; i < points.size(); ++i) bins_[key(points[i])].push_back(int(i));
+  }
+  void add(int i) { bins_[key(points_[std::size_t(i)])].push_back(i); }
+  std::vector<int> within(const Vec& c, double r) const {
+    std::vector<int> out;
+    const std::int64_t x0 = coord(c.x() - r), x1 = coord(c.x() + r), y0 = coord(c.y() - r), y1 = coord(c.y() + r);
+    for (std::int64_t x = x0; x <= x1; ++x)
+      for (std::int64_t y = y0; y <= y1; ++y) {
+        const auto it = bins_.find(pack(x, y));
+        if (it == bins_.end()) continue;
+        for (int i : it->second)
+          if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) out.push_back(i);
+      }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+  // Nearest point within r (ties: the lower index), or -1.
+  int nearest(const Vec& c, double r) const {
+    int best = -1;
+    double bd = r * r;
+    for (int i : within(c, r)) {
+      const double d = (points_[std::size_t(i)] - c).squaredNorm();
+      if (best < 0 || d < bd) best = i, bd = d;
+    }
+    return best;
+  }
+
+private:
+  // Clamped: a cell index must fit an int64 whatever the coordinates and cell.
+  std::int64_t coord(double v) const { return std::int64_t(std::clamp(std::floor(v / cell_), -1e15, 1e15)); }
+  static std::int64_t pack(std::int64_t x, std::int64_t y) {
+    return std::int64_t((std::uint64_t(x) << 32) ^ (std::uint64_t(y) & 0xffffffffULL));
+  }
+  std::int64_t key(const Vec& p) const { return pack(coord(p.x()), coord(p.y())); }
+  const std::vector<Vec>& points_;
+  double cell_;
+  std::unordered_map<std::int64_t, std::vector<int>> bins_;
+};
+
+// The slab's ordered points, all loops, with their place in their loop.
+struct Reference {
+  std::vector<Vec> point, normal;
+  std::vector<int> loop, next, prev;  // indices into `point` of the loop neighbours
+};
+
+Reference reference_of(const MorphologyResult& ordered) {
+  Reference r;
+  for (std::size_t l = 0; l < ordered.loops.size(); ++l) {
+    const Loop& loop = ordered.loops[l];
+    const int base = int(r.point.size()), n = int(loop.points.size());
+    for (int k = 0; k < n; ++k) {
+      r.point.push_back(loop.points[std::size_t(k)]);
+      r.normal.push_back(std::size_t(k) < loop.normals.size() ? loop.normals[std::size_t(k)] : Vec::Zero());
+      r.loop.push_back(int(l));
+      r.next.push_back(base + (k + 1) % n);
+      r.prev.push_back(base + (k + n - 1) % n);
+    }
+  }
+  return r;
+}
+
+struct Drift {
+  bool ok = false;
+  Vec v = Vec::Zero();
+};
+
+// Fits the drift V near a gap: a point at height z beside the gap lies z (V . n) from the
+// slab's own curve (the line through its nearest slab point and that point's neighbour, n
+// its normal), plus a constant for the chords' sagitta. Rounds widen from the points
+// nearest the plane to all, each carrying the points by the last V before it looks for
+// their slab neighbours (so that a steep drift does not pair a point with the wrong side).
+Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const std::vector<double>& dz,
+                const Reference& ref, const Grid& ref_grid, double reach, double slab, double gap_min,
+                int min_support) {
+  Drift d;
+  Vec v = Vec::Zero();
+  for (int round = 0; round < 3; ++round) {
+    const double zmax = reach * (round + 1) / 3.0;
+    std::vector<Eigen::Vector3d> rows;
+    std::vector<double> rhs;
+    for (int i : near) {
+      const double z = dz[std::size_t(i)];
+      if (std::abs(z) > zmax) continue;
+      const Vec raw = uv[std::size_t(i)], c = raw - z * v;
+      const int k = ref_grid.nearest(c, 3 * slab);
+      if (k < 0) continue;
+      const Vec pk = ref.point[std::size_t(k)];
+      // The neighbour on the side of c, unless that span is a gap.
+      const int a = ref.next[std::size_t(k)], b = ref.prev[std::size_t(k)];
+      const int m = (c - ref.point[std::size_t(a)]).squaredNorm() <= (c - ref.point[std::size_t(b)]).squaredNorm() ? a : b;
+      const Vec t = ref.point[std::size_t(m)] - pk;
+      const double len = t.norm();
+      if (!(len > 0) || len > gap_min) continue;
+      // Beside the span only: a line carried on past a gap's end misses a curving edge.
+      const double along = (c - pk).dot(t) / (len * len);
+      if (along < -0.25 || along > 1.25) continue;
+      Vec n(t.y() / len, -t.x() / len);
+      if (n.dot(ref.normal[std::size_t(k)]) < 0) n = -n;
+      rows.emplace_back(z * n.x(), z * n.y(), 1.0);
+      rhs.push_back((raw - pk).dot(n));
+    }
+    if (int(rows.size()) < min_support) return d;
+    std::vector<char> use(rows.size(), 1);
+    Eigen::Vector3d sol = Eigen::Vector3d::Zero();
+    for (int pass = 0; pass < 3; ++pass) {
+      Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d b = Eigen::Vector3d::Zero();
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        if (use[r]) {
+          A += rows[r] * rows[r].transpose();
+          b += rows[r] * rhs[r];
+        }
+      // A ridge on V: along a straight side only V . n is seen, the rest stays near 0;
+      // a direction the points do see is shrunk by about 0.1 %.
+      const double ridge = 1e-3 * (A(0, 0) + A(1, 1)) + 1e-12;
+      A(0, 0) += ridge;
+      A(1, 1) += ridge;
+      sol = A.ldlt().solve(b);
+      if (!sol.allFinite()) return d;
+      std::vector<double> res;
+      for (std::size_t r = 0; r < rows.size(); ++r) res.push_back(std::abs(rhs[r] - rows[r].dot(sol)));
+      std::vector<double> sorted = res;
+      std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+      const double cut = 3 * 1.4826 * sorted[sorted.size() / 2] + 0.05 * slab;
+      int kept = 0;
+      for (std::size_t r = 0; r < rows.size(); ++r) kept += (use[r] = res[r] <= cut);
+      if (kept < min_support) return d;
+    }
+    v = sol.head<2>();
+  }
+  d.ok = true;
+  d.v = v;
+  return d;
+}
+
+}  // namespace
+
+GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby, double slab,
+                        std::size_t first_index, const GapFillOptions& options) {
+  if (!(slab > 0) || !std::isfinite(slab)) throw Error("gap fill: the slab width must be positive and finite");
+  if (!(options.reach >= 0) || !std::isfinite(options.reach)) throw Error("gap fill: reach must be >= 0 and finite");
+  if (!(options.min_gap > 0) || !std::isfinite(options.min_gap)) throw Error("gap fill: min_gap must be positive");
+  GapFillResult result;
+  result.filled = ordered;
+  const double reach = options.reach > 0 ? options.reach : 12 * slab;
+  const double gap_min = options.min_gap * slab;
+  const int min_support = std::max(4, options.min_support);
+
+  const Reference ref = reference_of(ordered);
+  if (ref.point.size() < 3) return result;
+  struct Gap {
+    int from, to;
+    double length;
+    std::vector<std::pair<double, std::size_t>> fill;  // (angle along the gap, carried point)
+  };
+  std::vector<Gap> gaps;
+  for (std::size_t k = 0; k < ref.point.size(); ++k) {
+    const int to = ref.next[k];
+    const double g = (ref.point[std::size_t(to)] - ref.point[k]).norm();
+    if (g > gap_min) gaps.push_back({int(k), to, g, {}});
+  }
+  result.gaps = int(gaps.size());
+  for (const Gap& g : gaps) result.largest_gap = std::max(result.largest_gap, g.length);
+  if (gaps.empty()) return result;
+  // The gap whose chord is nearest to p (a carried point belongs to one gap only).
+  const auto nearest_gap = [&](const Vec& p) {
+    std::size_t best = 0;
+    double bd = INFINITY;
+    for (std::size_t q = 0; q < gaps.size(); ++q) {
+      const Vec a = ref.point[std::size_t(gaps[q].from)], b = ref.point[std::size_t(gaps[q].to)];
+      const Vec t = b - a;
+      const double u = std::clamp((p - a).dot(t) / t.squaredNorm(), 0.0, 1.0);
+      const double d = (a + u * t - p).squaredNorm();
+      if (d < bd) bd = d, best = q;
+    }
+    return best;
+  };
+
+  std::vector<Vec> uv;
+  std::vector<double> dz;
+  for (const auto& p : nearby)
+    if (p.allFinite() && std::abs(p.z()) <= reach) {
+      uv.emplace_back(p.x(), p.y());
+      dz.push_back(p.z());
+    }
+  if (uv.empty()) return result;
+  const Grid ref_grid(ref.point, 2 * slab);
+  const Grid near_grid(uv, 4 * slab);
+  std::vector<Vec> taken;  // carried points, in the order taken
+  std::vector<double> taken_dz;
+  Grid taken_grid(taken, slab);
+
+  for (std::size_t gi = 0; gi < gaps.size(); ++gi) {
+    Gap& g = gaps[gi];
+    // Points within the reach cannot span a much longer gap; its search would be slow.
+    if (g.length > 8 * reach) continue;
+    const Vec a = ref.point[std::size_t(g.from)], b = ref.point[std::size_t(g.to)];
+    const Vec mid = 0.5 * (a + b);
+    // Beyond half the gap: an edge's arc can bulge out of the circle on the gap's chord.
+    const double radius = 0.5 * g.length + std::max(g.length, 8 * slab);
+    const std::vector<int> near = near_grid.within(mid, radius);
+    const Drift drift = fit_drift(near, uv, dz, ref, ref_grid, reach, slab, gap_min, min_support);
+    if (!drift.ok) continue;
+    std::vector<Vec> carried;
+    carried.reserve(near.size());
+    for (int i : near) carried.push_back(uv[std::size_t(i)] - dz[std::size_t(i)] * drift.v);
+    const Grid carried_grid(carried, slab);
+    std::vector<std::pair<double, int>> candidates;
+    for (std::size_t j = 0; j < near.size(); ++j) {
+      if (ref_grid.nearest(carried[j], 0.5 * gap_min) >= 0) continue;  // the slab has points here
+      if (nearest_gap(carried[j]) != gi) continue;
+      // Carried by the right drift, points from heights farther apart than this one's own
+      // offset land beside it (a wrong drift would part them by twice the error); a stray
+      // point has no neighbours at all.
+      const double zj = dz[std::size_t(near[j])];
+      int agree = 0;
+      for (int o : carried_grid.within(carried[j], 1.5 * slab))
+        agree += std::abs(dz[std::size_t(near[std::size_t(o)])] - zj) >= std::max(0.5 * std::abs(zj), slab);
+      if (agree < 2) continue;
+      candidates.emplace_back(std::abs(zj), int(j));
+    }
+    std::sort(candidates.begin(), candidates.end());
+    // Order along the gap: the angle about a point half a gap behind the chord's middle,
+    // from a through the outside (loops run counterclockwise: the outside is to the right
+    // of a -> b) to b. Seen from behind, both a straight run along the chord and an edge's
+    // arc beyond it sweep the angle one way.
+    const Vec uo = Vec((b - a).y(), -(b - a).x()).normalized();
+    const Vec centre = mid - 0.5 * g.length * uo;
+    const Vec ua = (a - centre).normalized();
+    const Vec ub = uo - uo.dot(ua) * ua;  // completes ua towards the outside
+    const Vec va = ub.normalized();
+    for (const auto& [z, j] : candidates) {
+      const Vec& c = carried[std::size_t(j)];
+      if (!taken_grid.within(c, slab).empty()) continue;
+      taken.push_back(c);
+      taken_dz.push_back(dz[std::size_t(near[std::size_t(j)])]);
+      taken_grid.add(int(taken.size() - 1));
+      double phi = std::atan2((c - centre).dot(va), (c - centre).dot(ua));
+      if (phi < -0.5 * M_PI) phi += 2 * M_PI;
+      g.fill.emplace_back(phi, taken.size() - 1);
+      result.max_offset = std::max(result.max_offset, z);
+    }
+    result.gaps_filled += !g.fill.empty();
+  }
+  if (taken.empty()) return result;
+
+  // Insert each gap's points after its first end, in angle order.
+  std::vector<const Gap*> after(ref.point.size(), nullptr);
+  const auto crosses = [](const Vec& p, const Vec& q, const Vec& r, const Vec& t) {
+    const auto side = [](const Vec& a, const Vec& b, const Vec& c) {
+      const double x = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+      return (x > 0) - (x < 0);
+    };
+    return side(p, q, r) * side(p, q, t) < 0 && side(r, t, p) * side(r, t, q) < 0;
+  };
+  for (Gap& g : gaps) {
+    std::sort(g.fill.begin(), g.fill.end());
+    // The run a, fill..., b must not cross itself; if it does, the gap stays open.
+    std::vector<Vec> run{ref.point[std::size_t(g.from)]};
+    for (const auto& f : g.fill) run.push_back(taken[f.second]);
+    run.push_back(ref.point[std::size_t(g.to)]);
+    bool ok = true;
+    for (std::size_t x = 0; ok && x + 1 < run.size(); ++x)
+      for (std::size_t y = x + 2; ok && y + 1 < run.size(); ++y) ok = !crosses(run[x], run[x + 1], run[y], run[y + 1]);
+    if (!ok) {
+      result.gaps_filled -= !g.fill.empty();
+      g.fill.clear();
+    }
+    after[std::size_t(g.from)] = &g;
+  }
+  result.offsets = taken_dz;
+  std::size_t r = 0;
+  for (Loop& loop : result.filled.loops) {
+    Loop grown = loop;
+    grown.points.clear();
+    grown.normals.clear();
+    grown.index.clear();
+    for (std::size_t k = 0; k < loop.points.size(); ++k, ++r) {
+      grown.points.push_back(loop.points[k]);
+      grown.normals.push_back(k < loop.normals.size() ? loop.normals[k] : Vec::Zero());
+      grown.index.push_back(k < loop.index.size() ? loop.index[k] : 0);
+      if (!after[r]) continue;
+      const Vec mid = 0.5 * (ref.point[std::size_t(after[r]->from)] + ref.point[std::size_t(after[r]->to)]);
+      for (const auto& [phi, t] : after[r]->fill) {
+        grown.points.push_back(taken[t]);
+        const Vec n = taken[t] - mid;  // rough: the slab's normals are not used downstream
+        grown.normals.push_back(n.norm() > 0 ? Vec(n.normalized()) : Vec::Zero());
+        grown.index.push_back(first_index + t);
+      }
+    }
+    loop = std::move(grown);
+  }
+  result.points = taken.size();
+  return result;
+}
+
+}  // namespace section
