@@ -14,34 +14,45 @@ namespace {
 
 using Vec = Eigen::Vector2d;
 
-// Uniform hash grid over 2D points; queries return indices in ascending order.
+// Uniform hash grid over 2D points.
 class Grid {
 public:
   Grid(const std::vector<Vec>& points, double cell) : points_(points), cell_(cell) {
     for (std::size_t i = 0; i < points.size(); ++i) bins_[key(points[i])].push_back(int(i));
   }
   void add(int i) { bins_[key(points_[std::size_t(i)])].push_back(i); }
-  std::vector<int> within(const Vec& c, double r) const {
-    std::vector<int> out;
+  // Calls f(i) for every point within r of c, in no particular order.
+  template <class F>
+  void for_each_within(const Vec& c, double r, F&& f) const {
     const std::int64_t x0 = coord(c.x() - r), x1 = coord(c.x() + r), y0 = coord(c.y() - r), y1 = coord(c.y() + r);
     for (std::int64_t x = x0; x <= x1; ++x)
       for (std::int64_t y = y0; y <= y1; ++y) {
         const auto it = bins_.find(pack(x, y));
         if (it == bins_.end()) continue;
         for (int i : it->second)
-          if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) out.push_back(i);
+          if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) f(i);
       }
+  }
+  // The points within r of c, in ascending order.
+  std::vector<int> within(const Vec& c, double r) const {
+    std::vector<int> out;
+    for_each_within(c, r, [&](int i) { out.push_back(i); });
     std::sort(out.begin(), out.end());
     return out;
+  }
+  bool any_within(const Vec& c, double r) const {
+    bool any = false;
+    for_each_within(c, r, [&](int) { any = true; });
+    return any;
   }
   // Nearest point within r (ties: the lower index), or -1.
   int nearest(const Vec& c, double r) const {
     int best = -1;
-    double bd = r * r;
-    for (int i : within(c, r)) {
+    double bd = 0;
+    for_each_within(c, r, [&](int i) {
       const double d = (points_[std::size_t(i)] - c).squaredNorm();
-      if (best < 0 || d < bd) best = i, bd = d;
-    }
+      if (best < 0 || d < bd || (d == bd && i < best)) best = i, bd = d;
+    });
     return best;
   }
 
@@ -94,6 +105,7 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
                 int min_support) {
   Drift d;
   Vec v = Vec::Zero();
+  std::size_t last_rows = 0;
   for (int round = 0; round < 3; ++round) {
     const double zmax = reach * (round + 1) / 3.0;
     std::vector<Eigen::Vector3d> rows;
@@ -120,6 +132,10 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
       rhs.push_back((raw - pk).dot(n));
     }
     if (int(rows.size()) < min_support) return d;
+    // Each round takes points from farther off the plane, so it pairs more of them; fewer
+    // means the last drift carried them off the slab's curve: a wrong fit.
+    if (rows.size() < last_rows) return d;
+    last_rows = rows.size();
     std::vector<char> use(rows.size(), 1);
     Eigen::Vector3d sol = Eigen::Vector3d::Zero();
     for (int pass = 0; pass < 3; ++pass) {
@@ -147,6 +163,9 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
       if (kept < min_support) return d;
     }
     v = sol.head<2>();
+    // The constant stands for the chords' sagitta beside the gap: a few um. A large one
+    // means the points were paired with the wrong lines.
+    if (std::abs(sol(2)) > 0.25 * slab) return d;
   }
   d.ok = true;
   d.v = v;
@@ -160,10 +179,15 @@ GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen
   if (!(slab > 0) || !std::isfinite(slab)) throw Error("gap fill: the slab width must be positive and finite");
   if (!(options.reach >= 0) || !std::isfinite(options.reach)) throw Error("gap fill: reach must be >= 0 and finite");
   if (!(options.min_gap > 0) || !std::isfinite(options.min_gap)) throw Error("gap fill: min_gap must be positive");
+  if (!(options.min_gap_fraction >= 0) || !(options.min_gap_fraction < 1))
+    throw Error("gap fill: min_gap_fraction must be in [0, 1)");
   GapFillResult result;
   result.filled = ordered;
   const double reach = options.reach > 0 ? options.reach : 12 * slab;
-  const double gap_min = options.min_gap * slab;
+  // The profile's length sets a floor: on a dense scan, gaps of a few slab widths are many,
+  // cost time, and change nothing a fit would see.
+  const double profile_length = ordered.loops.empty() ? 0.0 : ordered.loops[0].length;
+  const double gap_min = std::max(options.min_gap * slab, options.min_gap_fraction * profile_length);
   const int min_support = std::max(4, options.min_support);
 
   const Reference ref = reference_of(ordered);
@@ -174,7 +198,10 @@ GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen
     std::vector<std::pair<double, std::size_t>> fill;  // (angle along the gap, carried point)
   };
   std::vector<Gap> gaps;
-  for (std::size_t k = 0; k < ref.point.size(); ++k) {
+  // The profile's gaps only: a small extra loop is often two outliers' or a double
+  // layer's, and filled it would pass for a second profile (cooling channels are not
+  // filled either; their points stay as measured).
+  for (std::size_t k = 0; k < ref.point.size() && ref.loop[k] == 0; ++k) {
     const int to = ref.next[k];
     const double g = (ref.point[std::size_t(to)] - ref.point[k]).norm();
     if (g > gap_min) gaps.push_back({int(k), to, g, {}});
@@ -234,8 +261,9 @@ GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen
       // point has no neighbours at all.
       const double zj = dz[std::size_t(near[j])];
       int agree = 0;
-      for (int o : carried_grid.within(carried[j], 1.5 * slab))
+      carried_grid.for_each_within(carried[j], 1.5 * slab, [&](int o) {
         agree += std::abs(dz[std::size_t(near[std::size_t(o)])] - zj) >= std::max(0.5 * std::abs(zj), slab);
+      });
       if (agree < 2) continue;
       candidates.emplace_back(std::abs(zj), int(j));
     }
@@ -251,7 +279,7 @@ GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen
     const Vec va = ub.normalized();
     for (const auto& [z, j] : candidates) {
       const Vec& c = carried[std::size_t(j)];
-      if (!taken_grid.within(c, slab).empty()) continue;
+      if (taken_grid.any_within(c, slab)) continue;
       taken.push_back(c);
       taken_dz.push_back(dz[std::size_t(near[std::size_t(j)])]);
       taken_grid.add(int(taken.size() - 1));

@@ -19,8 +19,9 @@ namespace section {
 /// Options of fill_gaps (lengths in the cloud's units).
 struct GapFillOptions {
   double reach = 0;       ///< farthest distance from the plane of the points used; 0 = 12 slab widths
-  double min_gap = 4;     ///< slab widths: a gap between consecutive ordered points longer than this is filled
-  int min_support = 12;   ///< points beside a gap needed to fit its drift; fewer leave the gap as it is
+  double min_gap = 3;     ///< slab widths: a gap between consecutive ordered points longer than this is filled
+  double min_gap_fraction = 0.0025;  ///< and longer than this fraction of the profile's length (0.25 mm on a 100 mm profile)
+  int min_support = 24;   ///< points beside a gap needed to fit its drift; fewer leave the gap as it is
 };
 
 /// What fill_gaps returns.
@@ -34,8 +35,8 @@ struct GapFillResult {
   double max_offset = 0;                ///< largest |offset| among the carried points
 };
 
-/// Fills the gaps of the ordered loops of `ordered` (what order_section made of the slab
-/// points) from `nearby`: points of the scan near the plane as (u, v, signed distance from
+/// Fills the gaps of the profile (loop 0) of `ordered` (what order_section made of the
+/// slab points) from `nearby`: points of the scan near the plane as (u, v, signed distance from
 /// the plane), in any order. `slab` is the slab width used. The slab's own points keep
 /// their order; carried points go between the two ends of their gap, in order along it,
 /// with input indices from `first_index` on (normals there: rough, from the gap's middle).
