@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
   bool full_scan = false;
   bool fill_gaps = true;  // --no-fill: the slab points alone
   GapFillOptions fill_options;
+  std::size_t auto_cells = 0;  // --auto-cells N: the morphology raster budget (0 = the default)
   FitSplineOptions fit_options;
   CamberOptions camber_options;
   for (int i = 1; i < argc; ++i) {
@@ -91,6 +92,8 @@ int main(int argc, char** argv) {
     else if (a == "--no-fill") fill_gaps = false;
     else if (a == "--fill-gap") fill_options.min_gap = std::atof(value());
     else if (a == "--fill-reach") fill_options.reach = std::atof(value());
+    else if (a == "--fill-fraction") fill_options.min_gap_fraction = std::atof(value());
+    else if (a == "--auto-cells") auto_cells = std::size_t(std::atol(value()));
     else if (a == "--export") export_dir = value();
     else if (a == "--min-span-points") fit_options.min_span_points = std::atof(value());
     else if (a == "--fairness") fit_options.fairness = std::atof(value());
@@ -109,7 +112,7 @@ int main(int argc, char** argv) {
     else if (a == "--quiet") quiet = true;
     else if (a == "--help" || a == "-h") {
       std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] "
-                  "[--preset turbine|compressor|both] [--full-scan] [--no-fill] [--fill-gap K] [--fill-reach MM] [--no-camber] [--quiet] [--export DIR]\n"
+                  "[--preset turbine|compressor|both] [--full-scan] [--no-fill] [--fill-gap K] [--fill-fraction F] [--fill-reach MM] [--auto-cells N] [--no-camber] [--quiet] [--export DIR]\n"
                   "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] "
                   "[--edge-prune DEG] [--tangent-span FRACTION]\n");
       return 0;
@@ -146,6 +149,7 @@ int main(int argc, char** argv) {
         sopt.slab = slab;
         sopt.fill_gaps = fill_gaps;
         sopt.fill = fill_options;
+        if (auto_cells > 0) sopt.morphology.auto_cells = auto_cells;
         Stream stream = parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");
         smooth_stream(stream);
         stream = parse_stream(format_stream(stream), "smooth");
