@@ -83,6 +83,12 @@ struct SlabGroup {
   double near0 = 0, near_width = 0, inv_near = 0;
   std::vector<char> near;
 
+  /// True when n . q = s lies in a bucket with no slab within a bucket of it.
+  bool far_from_slabs(double s) const {
+    const double x = (s - near0) * inv_near;
+    return x >= 0 && x < double(near.size()) && !near[std::size_t(x)];
+  }
+
   /// The index of the first offset >= key (std::lower_bound's answer), from the bucket's
   /// guess and a few steps.
   std::size_t first_at_least(double key) const {
@@ -181,14 +187,10 @@ void add_slab_points(const Eigen::Vector3d* points, std::size_t count, const std
     // A point in a bucket with no slab within a bucket of it has no candidate plane, when
     // the tolerance is below half a bucket (the rest of a bucket covers the rounding).
     const bool skip_far = !g.near.empty() && any_tol < 0.5 * g.near_width;
-    const double near_end = double(g.near.size());
     for (std::size_t i = 0; i < count; ++i) {
       const Eigen::Vector3d& q = points[i];
       const double s = g.n.dot(q);
-      if (skip_far) {
-        const double x = (s - g.near0) * g.inv_near;
-        if (x >= 0 && x < near_end && !g.near[std::size_t(x)]) continue;
-      }
+      if (skip_far && g.far_from_slabs(s)) continue;
       // The first plane whose slab can contain q, then its neighbours while they can.
       const double scale = std::max({std::abs(q.x()), std::abs(q.y()), std::abs(q.z()), std::abs(s), slab});
       const double tol = 1e-12 * (scale + 1);
@@ -217,39 +219,44 @@ std::size_t parts_of(std::size_t count, int threads) {
   return std::max<std::size_t>(1, std::min(workers, count / 65536));
 }
 
-// add_slab_points with the chunk split across threads; each part collects its own slab
-// points and the parts are appended in order, so the result does not depend on the threads.
-void add_slab_points_parallel(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
-                              const std::vector<Frame>& frame, double slab, int threads,
-                              std::vector<std::vector<Eigen::Vector2d>>& out) {
+// add(points, count, out) with the chunk split across threads; each part collects into
+// its own lists and the parts are appended in order, so the result does not depend on
+// the threads.
+template <class T, class Add>
+void add_parallel(const Eigen::Vector3d* points, std::size_t count, int threads, std::vector<std::vector<T>>& out,
+                  const Add& add) {
   const std::size_t parts = parts_of(count, threads);
-  if (parts == 1) return add_slab_points(points, count, groups, frame, slab, out);
-  std::vector<std::vector<std::vector<Eigen::Vector2d>>> local(parts, std::vector<std::vector<Eigen::Vector2d>>(out.size()));
+  if (parts == 1) return add(points, count, out);
+  std::vector<std::vector<std::vector<T>>> local(parts, std::vector<std::vector<T>>(out.size()));
   detail::parallel_for(parts, threads, [&](std::size_t t) {
     const std::size_t a = count * t / parts, b = count * (t + 1) / parts;
-    add_slab_points(points + a, b - a, groups, frame, slab, local[t]);
+    add(points + a, b - a, local[t]);
   });
   for (const auto& part : local)
     for (std::size_t k = 0; k < out.size(); ++k) out[k].insert(out[k].end(), part[k].begin(), part[k].end());
 }
 
+void add_slab_points_parallel(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
+                              const std::vector<Frame>& frame, double slab, int threads,
+                              std::vector<std::vector<Eigen::Vector2d>>& out) {
+  add_parallel(points, count, threads, out, [&](const Eigen::Vector3d* p, std::size_t n, auto& o) {
+    add_slab_points(p, n, groups, frame, slab, o);
+  });
+}
+
 // Appends to `out` the points of points[0, count) within `reach` of each plane of
 // `groups` (built with a slab of 2 reach) as (u, v, signed distance from the plane), in
-// order. (Keeping a quarter of them, by a hash, cut the 20 M point pipe by 0.7 s but
-// cost the generated compressor sections several targets: they are all kept.) A plain double test: these points only fill gaps, no boundary needs to be exact.
+// order. A plain double test: these points only fill gaps, no boundary needs to be exact.
+// (Keeping a quarter of them, by a hash, cut the 20 M point pipe by 0.7 s but cost the
+// generated compressor sections several targets: they are all kept.)
 void add_near_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
                      const std::vector<Frame>& frame, double reach, std::vector<std::vector<Eigen::Vector3d>>& out) {
   for (const SlabGroup& g : groups) {
     const std::size_t np = g.offset.size();
-    const bool skip_far = !g.near.empty();
-    const double near_end = double(g.near.size());
     for (std::size_t i = 0; i < count; ++i) {
       const Eigen::Vector3d& q = points[i];
       const double s = g.n.dot(q);
-      if (skip_far) {
-        const double x = (s - g.near0) * g.inv_near;
-        if (x >= 0 && x < near_end && !g.near[std::size_t(x)]) continue;
-      }
+      if (!g.near.empty() && g.far_from_slabs(s)) continue;
       for (std::size_t k = g.first_at_least(s - reach); k < np && g.offset[k] <= s + reach; ++k) {
         const Eigen::Vector2d uv = frame[g.plane[k]].to_plane(q);
         out[g.plane[k]].emplace_back(uv.x(), uv.y(), s - g.offset[k]);
@@ -261,15 +268,9 @@ void add_near_points(const Eigen::Vector3d* points, std::size_t count, const std
 void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
                               const std::vector<Frame>& frame, double reach, int threads,
                               std::vector<std::vector<Eigen::Vector3d>>& out) {
-  const std::size_t parts = parts_of(count, threads);
-  if (parts == 1) return add_near_points(points, count, groups, frame, reach, out);
-  std::vector<std::vector<std::vector<Eigen::Vector3d>>> local(parts, std::vector<std::vector<Eigen::Vector3d>>(out.size()));
-  detail::parallel_for(parts, threads, [&](std::size_t t) {
-    const std::size_t a = count * t / parts, b = count * (t + 1) / parts;
-    add_near_points(points + a, b - a, groups, frame, reach, local[t]);
+  add_parallel(points, count, threads, out, [&](const Eigen::Vector3d* p, std::size_t n, auto& o) {
+    add_near_points(p, n, groups, frame, reach, o);
   });
-  for (const auto& part : local)
-    for (std::size_t k = 0; k < out.size(); ++k) out[k].insert(out[k].end(), part[k].begin(), part[k].end());
 }
 
 // Gap filling's reach for a slab; 0 when filling is off.
