@@ -63,6 +63,21 @@ double ellipse_distance(Vector2d p, double a, double b) {
 
 }  // namespace
 
+TEST_CASE("fit_spline: a lone point off its neighbours' line is an outlier; one on it is kept", "[fit_spline]") {
+  // A circle sampled every 0.08 mm with one point pushed 0.2 mm out: the line through its
+  // neighbours passes 0.2 mm from it, so it is dropped and the curve stays on the circle.
+  const Vector2d centre(0, 0);
+  const double r = 5;
+  auto f = [&](double a) { return Vector2d(centre + r * Vector2d(std::cos(a), std::sin(a))); };
+  auto p = curve_points(f, static_cast<int>(2 * pi * r / 0.08), 0, 1);
+  p[100] *= (r + 0.2) / r;
+  const auto res = section::fit_spline(p, p);
+  const auto [worst, rms] = circle_error(res.spline, centre, r);
+  INFO("worst " << worst << " outliers " << res.outliers);
+  CHECK(res.outliers == 1);
+  CHECK(worst < 2e-3);
+}
+
 TEST_CASE("fit_spline: exact circle points give a curve within 1 um", "[fit_spline]") {
   for (double r : {1.0, 20.0}) {
     const Vector2d centre(5, -3);

@@ -146,8 +146,10 @@ double noise_sigma(const Feet& f, const std::vector<double>& w) {
 }
 
 // Ignores isolated points far from the curve; runs of far points on one side are kept,
-// as they mean the curve is not there yet (a cut edge), not outliers.
-std::vector<double> outlier_weights(const Feet& f, double threshold) {
+// as they mean the curve is not there yet (a cut edge), not outliers. So is a lone far
+// point that lies on the line through its two neighbours (in the order along the curve):
+// the data agree with it, the curve does not (a sharp edge's tip point).
+std::vector<double> outlier_weights(const Feet& f, const Points& q, double threshold) {
   const std::size_t m = f.t.size();
   const std::vector<std::size_t>& order = f.order;
   std::vector<double> w(m, 1.0);
@@ -159,6 +161,14 @@ std::vector<double> outlier_weights(const Feet& f, double threshold) {
       if (m < 5) break;
       const double o = f.signed_distance[order[(i + d) % m]];
       if (std::abs(o) > 0.5 * threshold && o * s > 0) supported = true;
+    }
+    if (!supported && m >= 5) {
+      const Eigen::Vector2d& a = q[order[(i + m - 1) % m]];
+      const Eigen::Vector2d& b = q[order[(i + 1) % m]];
+      const Eigen::Vector2d ab = b - a, ap = q[order[i]] - a;
+      const double len = ab.norm();
+      supported = len > 0 && std::abs(ab.x() * ap.y() - ab.y() * ap.x()) / len <= threshold &&
+                  ap.dot(ab) > 0 && ap.dot(ab) < len * len;
     }
     if (!supported) w[order[i]] = 0;
   }
@@ -402,7 +412,7 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
     double threshold = o.outlier_distance;
     if (threshold <= 0)
       threshold = std::max(6 * noise_sigma(ft, std::vector<double>(q.size(), 1.0)), o.outlier_floor);
-    return outlier_weights(ft, threshold);
+    return outlier_weights(ft, q, threshold);
   };
   std::vector<double> w = weights_for(f);
   double rms = weighted_rms(f, w);
