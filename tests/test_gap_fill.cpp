@@ -147,3 +147,20 @@ TEST_CASE("gap fill: holes and sparse edges of noisy blade scans are filled with
   CHECK(with_gaps >= 4);
   CHECK(improved >= with_gaps * 3 / 4);
 }
+
+TEST_CASE("gap fill: bad options are refused before any work", "[gap_fill]") {
+  Cloud c;
+  for (int k = 0; k < 100; ++k) c.points.emplace_back(std::cos(k * 0.0628), std::sin(k * 0.0628), 0.0);
+  SliceOptions o;
+  o.slab = 0.1;
+  o.fill.min_gap = 0;
+  CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("min_gap must be positive"));
+  o.fill.min_gap = 3;
+  o.fill.reach = -1;
+  CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("reach"));
+  o.fill.reach = 0;
+  o.fill.min_gap_fraction = 1;
+  CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("min_gap_fraction"));
+  o.fill_gaps = false;  // options of a fill that does not run are not looked at
+  CHECK_NOTHROW(slice(c, planes_at({0, 0, 1}, {0.0}), o));
+}

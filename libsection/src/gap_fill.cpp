@@ -174,13 +174,17 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
 
 }  // namespace
 
-GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby, double slab,
-                        std::size_t first_index, const GapFillOptions& options) {
-  if (!(slab > 0) || !std::isfinite(slab)) throw Error("gap fill: the slab width must be positive and finite");
+void check_gap_fill_options(const GapFillOptions& options) {
   if (!(options.reach >= 0) || !std::isfinite(options.reach)) throw Error("gap fill: reach must be >= 0 and finite");
   if (!(options.min_gap > 0) || !std::isfinite(options.min_gap)) throw Error("gap fill: min_gap must be positive");
   if (!(options.min_gap_fraction >= 0) || !(options.min_gap_fraction < 1))
     throw Error("gap fill: min_gap_fraction must be in [0, 1)");
+}
+
+GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby, double slab,
+                        std::size_t first_index, const GapFillOptions& options) {
+  if (!(slab > 0) || !std::isfinite(slab)) throw Error("gap fill: the slab width must be positive and finite");
+  check_gap_fill_options(options);
   GapFillResult result;
   result.filled = ordered;
   const double reach = options.reach > 0 ? options.reach : 12 * slab;

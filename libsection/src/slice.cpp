@@ -312,8 +312,8 @@ void check_planes(const std::vector<Plane>& planes) {
 
 namespace {
 
-// Orders the slab points of every plane into loops, sections in parallel, and fills their
-// gaps from the near points (then orders again); frees each section's points once done.
+// Orders the slab points of every plane into loops, sections in parallel, and fills the
+// profile's gaps from the near points; frees each section's points once done.
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<std::vector<Eigen::Vector3d>>& near,
                  const std::vector<Plane>& planes, double slab, const SliceOptions& options, SliceResult& result) {
   result.sections.resize(planes.size());
@@ -346,6 +346,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
 
 SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options) {
   check_planes(planes);
+  if (options.fill_gaps) check_gap_fill_options(options.fill);
   if (cloud.points.empty()) throw Error("slice: the cloud has no points");
   SliceResult result;
   result.points = cloud.points.size();
@@ -368,6 +369,7 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
 SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
                        const CloudReadOptions& read) {
   check_slab(options.slab);
+  if (options.fill_gaps) check_gap_fill_options(options.fill);
   if (spec.count > 0 && (!spec.normal.allFinite() || !(spec.normal.norm() > 0)))
     throw Error("slice: the plane normal must be finite and non-zero");
   if (spec.count == 0) check_planes(spec.planes);

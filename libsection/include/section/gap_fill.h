@@ -35,6 +35,9 @@ struct GapFillResult {
   double max_offset = 0;                ///< largest |offset| among the carried points
 };
 
+/// Throws section::Error naming the option when `options` are out of range.
+void check_gap_fill_options(const GapFillOptions& options);
+
 /// Fills the gaps of the profile (loop 0) of `ordered` (what order_section made of the
 /// slab points) from `nearby`: points of the scan near the plane as (u, v, signed distance from
 /// the plane), in any order. `slab` is the slab width used. The slab's own points keep
