@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
         auto* o_mesh = app.add_flag("--mesh", mesh, "Write a closed triangle mesh");
         o_points->excludes(o_mesh);
         app.add_option("-o,--output", output, "Output file (.ply .xyz; .stl .obj .off .ply for --mesh), - = stdout (points)");
-        app.add_option("--spacing", scan.spacing, "Scan point spacing, mm")->check(CLI::PositiveNumber)->capture_default_str();
+        app.add_option("--spacing", scan.spacing, "Scan point spacing, mm")->check(section::tool::positive)->capture_default_str();
         app.add_option("--noise", scan.noise, "Noise sigma along the surface normal, mm")->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--holes", scan.holes, "Number of unscanned patches (0.5-2 mm across)")->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--density-min", scan.density_min, "Lowest relative local density, (0, 1]")->check(CLI::Range(1e-6, 1.0))->capture_default_str();

@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         app.add_option("--edge-hole", options.edge_hole,
                        "Edge radii: a stretch without measured points this long, beginning within --edge-hole-reach "
                        "radii of the edge point, makes the edge 'partly not measured' (an issue)")
-            ->check(CLI::PositiveNumber)->capture_default_str();
+            ->check(section::tool::positive)->capture_default_str();
         app.add_option("--edge-hole-reach", options.edge_hole_reach,
                        "Edge radii along the profile from the edge point within which such a stretch must begin")
             ->check(CLI::NonNegativeNumber)->capture_default_str();

@@ -34,13 +34,13 @@ int main(int argc, char** argv) {
                          ->check(CLI::Range(4, 100000));
         auto* tol = app.add_option("--tolerance", options.tolerance,
                                    "Systematic deviation allowed per knot span before a knot is inserted")
-                        ->check(CLI::PositiveNumber)->capture_default_str();
+                        ->check(section::tool::positive)->capture_default_str();
         ctrl->excludes(tol);
         auto* n = app.add_option("--samples", options.samples, "Write N curve samples per loop")
                       ->check(CLI::Range(3, 10000000));
         auto* d = app.add_option("--spacing", options.sample_spacing,
                                  "Write curve samples every D length units along the curve")
-                      ->check(CLI::PositiveNumber);
+                      ->check(section::tool::positive);
         n->excludes(d);
         app.add_option("--max-iterations", options.max_iterations,
                        "Distance-minimisation iterations per refinement round")
@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
             ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--gap-factor", options.gap_factor,
                        "List as a hole (table gaps) any stretch without measured points longer than this many median spacings")
-            ->check(CLI::PositiveNumber)->capture_default_str();
+            ->check(section::tool::positive)->capture_default_str();
         app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
       },
       [&] {

@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
                        "Farthest distance from the plane of the points that fill gaps; 0 = 12 slab widths")
             ->check(CLI::NonNegativeNumber);
         app.add_option("--fill-gap", options.fill.min_gap, "Fill gaps longer than this many slab widths")
-            ->check(CLI::PositiveNumber)
+            ->check(section::tool::positive)
             ->capture_default_str();
         app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
         app.add_option("--units", units, "Length unit recorded in the stream")->capture_default_str();

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
         app.add_option("--a", options.a, "Explicit curvature weight a (units^3 with b = 1); 0 = not used")
             ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--b", options.b, "Closeness weight b")
-            ->check(CLI::PositiveNumber)->capture_default_str();
+            ->check(section::tool::positive)->capture_default_str();
         app.add_option("--solver", solver, "Linear solver: cholmod or gauss-seidel")
             ->check(CLI::IsMember({"cholmod", "gauss-seidel", "gauss_seidel"}))->capture_default_str();
         app.add_option("--max-iterations", options.max_iterations, "Cap on outer iterations")

@@ -11,6 +11,8 @@ expect 2 "bad normal" -- "$BIN/slice" x.xyz --normal 0,1 --at 1
 expect 1 "missing file" -- "$BIN/slice" "$TMP/none.xyz" --at 1
 check "missing file named" -- grep -q "none.xyz" "$TMP/err"
 check "no partial output" -- test ! -s "$TMP/out"
+expect 2 "fill gap not positive" -- "$BIN/slice" x.xyz --at 1 --fill-gap 0
+check "says what a fill gap must be" -- grep -q -- "--fill-gap: must be a number above 0, got '0'" "$TMP/err"
 
 printf '0 0 0\n1 2 abc\n' > "$TMP/bad.xyz"
 expect 1 "malformed row" -- "$BIN/slice" "$TMP/bad.xyz" --at 0
@@ -30,6 +32,13 @@ check "points table" -- grep -q "^# table points" "$TMP/out"
 check "missed plane reported as an issue" -- grep -q "^# issue section=1" "$TMP/out"
 check "missed plane warned" -- grep -q "section 1" "$TMP/err"
 cp "$TMP/out" "$TMP/from_file.csv"
+# A ring leaning 0.2 mm per mm of height, with a hole across the plane: the slab's gap is
+# filled from the rows above and below.
+awk 'BEGIN { for (z = -0.6; z <= 0.6; z += 0.05) for (i = 0; i < 1200; i++) { a = 6.283185307179586 * i / 1200; if (a > 1 && a < 1.2 && z > -0.3 && z < 0.3) continue; printf "%.9f %.9f %.3f\n", 10*cos(a), 5*sin(a) + 0.2*z, z } }' > "$TMP/holed.xyz"
+expect 0 "holed ring" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05
+check "gap filled and noted" -- grep -q "^# fill section=0 gaps=1 filled=1" "$TMP/out"
+expect 0 "holed ring, no fill" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --no-fill
+check "no fill note without filling" -- sh -c "! grep -q '^# fill' '$TMP/out'"
 "$BIN/slice" --at 0,5 --slab 0.1 < "$TMP/ring.xyz" > "$TMP/from_stdin.csv" 2>/dev/null
 check "stdin gives the same rows" -- cmp -s <(grep -v '^# history' "$TMP/from_file.csv") <(grep -v '^# history' "$TMP/from_stdin.csv")
 expect 1 "all planes miss" -- "$BIN/slice" "$TMP/ring.xyz" --at 50 --slab 0.1

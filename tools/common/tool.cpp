@@ -2,6 +2,7 @@
 
 #include "section/error.h"
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <new>
@@ -72,5 +73,20 @@ std::string command_line(int argc, char** argv) {
   }
   return line;
 }
+
+const CLI::Validator positive(
+    [](std::string& text) -> std::string {
+      double v = 0;
+      std::size_t used = 0;
+      try {
+        v = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != text.size() || !(v > 0) || !std::isfinite(v))
+        return "must be a number above 0, got '" + text + "'";
+      return {};
+    },
+    "POSITIVE", "positive");
 
 }  // namespace section::tool

@@ -28,6 +28,10 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
 /// it, so that every error of a tool names the file it came from ("-" = `<stdin>`).
 void with_input(const std::string& input, const std::function<void()>& stage);
 
+/// Accepts a number above 0 ("must be a number above 0, got '0'"): CLI::PositiveNumber
+/// answers with the range 0 to 1.8e308 written out in full.
+extern const CLI::Validator positive;
+
 /// The command line as one line, for the stream's history.
 std::string command_line(int argc, char** argv);
 
