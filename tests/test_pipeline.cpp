@@ -187,6 +187,45 @@ TEST_CASE("pipeline: a thin trailing edge's lone tip point is fitted, not droppe
   CHECK(errors[0].chord() <= 0.010);
 }
 
+TEST_CASE("pipeline: an edge measured only by carried points says so", "[pipeline][generated]") {
+  // A clean compressor scan with a hole 1 mm across at the trailing edge, 0.6 mm high
+  // around the plane: the slab keeps no point of the edge. With the gap fill the edge is
+  // measured by points from 0.3-1 mm off the plane, and camber says so; without it camber
+  // says the edge is not measured.
+  const BladeDesign blade = compressor_blade();
+  const double z0 = 30;
+  ScanOptions so = inspection_scan();
+  so.holes = 0;
+  so.density_min = 1;
+  so.outlier_fraction = 0;
+  so.z_min = z0 - 1.5;
+  so.z_max = z0 + 1.5;
+  so.seed = 5;
+  const Scan scan = generate_scan(blade, so);
+  const SectionTruth truth = section_truth(blade.at(z0));
+  Cloud cloud;
+  for (const auto& p : scan.cloud.points)
+    if (!(std::abs(p.z() - z0) < 0.3 && (Eigen::Vector2d(p.x(), p.y()) - truth.te_point).norm() < 0.5))
+      cloud.points.push_back(p);
+  for (const bool fill : {true, false}) {
+    SliceOptions sopt;
+    sopt.slab = 0.08;
+    sopt.fill_gaps = fill;
+    Stream stream = to_stream(slice(cloud, planes_at({0, 0, 1}, {z0}), sopt), "slice");
+    smooth_stream(stream);
+    fit_spline_stream(stream);
+    camber_stream(stream);
+    std::string messages;
+    for (const auto& issue : stream.issues) messages += issue.message + "; ";
+    INFO("fill " << fill << ": " << messages);
+    REQUIRE(stream.get("params", "camber").rows() == 1);
+    if (fill)
+      CHECK(messages.find("trailing edge measured with points carried onto the plane") != std::string::npos);
+    else
+      CHECK(messages.find("trailing edge not measured") != std::string::npos);
+  }
+}
+
 TEST_CASE("pipeline: a misregistered second view gives a bounded fit without fold", "[pipeline]") {
   const BladeDesign blade = compressor_blade();
   const auto errors = run_pipe(blade, planes(blade), 3, 0.015);

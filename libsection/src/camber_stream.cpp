@@ -43,16 +43,33 @@ std::map<int, std::vector<Eigen::Vector2d>> skeletons(const Stream& stream) {
   return out;
 }
 
-// Loop-0 measured points of each section (the slice stage's "points" table), if present.
-std::map<int, std::vector<Eigen::Vector2d>> measured_points(const Stream& stream) {
-  std::map<int, std::vector<Eigen::Vector2d>> out;
+// Loop-0 measured points of each section (the slice stage's "points" table), if present,
+// and apart those the slab held itself (offset 0: not carried onto the plane by the gap
+// fill) with the largest |offset| of the carried ones.
+struct Measured {
+  std::vector<Eigen::Vector2d> all, in_slab, carried;
+  std::vector<double> carried_offset;
+};
+std::map<int, Measured> measured_points(const Stream& stream) {
+  std::map<int, Measured> out;
   const Table* t = stream.find("points");
   if (!t) return out;
   const long cs = t->find_column("section"), cl = t->find_column("loop"), cu = t->find_column("u"),
-             cv = t->find_column("v");
+             cv = t->find_column("v"), co = t->find_column("offset");
   if (cs < 0 || cl < 0 || cu < 0 || cv < 0) return out;
-  for (std::size_t r = 0; r < t->rows(); ++r)
-    if (t->at(r, cl) == 0) out[static_cast<int>(t->at(r, cs))].emplace_back(t->at(r, cu), t->at(r, cv));
+  for (std::size_t r = 0; r < t->rows(); ++r) {
+    if (t->at(r, cl) != 0) continue;
+    Measured& m = out[static_cast<int>(t->at(r, cs))];
+    const Eigen::Vector2d q(t->at(r, cu), t->at(r, cv));
+    const double offset = co >= 0 ? t->at(r, co) : 0.0;
+    m.all.push_back(q);
+    if (offset != 0 && std::isfinite(offset)) {
+      m.carried.push_back(q);
+      m.carried_offset.push_back(std::abs(offset));
+    } else {
+      m.in_slab.push_back(q);
+    }
+  }
   return out;
 }
 
@@ -274,10 +291,10 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
                         w.z(), r.radius[i]});
       }
       const auto points = measured.find(section);
-      const std::vector<Eigen::Vector2d> none;
-      const auto& q = points != measured.end() ? points->second : none;
-      const EdgeCoverage le_cover = edge_coverage(curve, r.le, q, opt.edge_hole_reach),
-                         te_cover = edge_coverage(curve, r.te, q, opt.edge_hole_reach);
+      const Measured none;
+      const Measured& q = points != measured.end() ? points->second : none;
+      const EdgeCoverage le_cover = edge_coverage(curve, r.le, q.all, opt.edge_hole_reach),
+                         te_cover = edge_coverage(curve, r.te, q.all, opt.edge_hole_reach);
       const double le_unmeasured = le_cover.around, te_unmeasured = te_cover.around;
       const Eigen::Vector3d le = f.to_world(p.le_point), te = f.to_world(p.te_point),
                             cg = f.to_world(p.centroid);
@@ -322,6 +339,24 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
                " of the profile around it has no measured point (edge " + (e.radius > 0 ? "radius " : "face ") +
                format_number(size) + "); its point and radius bridge a hole in the data";
       };
+      // An edge covered only thanks to points the gap fill carried onto the plane: say so,
+      // with how far they came from (their positions rest on the drift fitted beside the gap).
+      auto carried = [&](const Edge& e, const EdgeCoverage& cover, const char* which) {
+        if (q.carried.empty() || !hole(e, cover, which).empty()) return std::string();
+        const EdgeCoverage own = edge_coverage(curve, e, q.in_slab, opt.edge_hole_reach);
+        if (hole(e, own, which).empty()) return std::string();
+        const double size = edge_size(e);
+        const Eigen::Vector2d at = curve.point(e.t);
+        double far = 0;
+        for (std::size_t i = 0; i < q.carried.size(); ++i)
+          if ((q.carried[i] - at).norm() <= 3 * size + own.around) far = std::max(far, q.carried_offset[i]);
+        char text[256];
+        std::snprintf(text, sizeof text,
+                      "%s measured with points carried onto the plane from up to %.3g off it (slice's gap fill: "
+                      "the slab alone leaves %.3g of the profile there without a point)",
+                      which, far, std::max(own.around, own.hole));
+        return std::string(text);
+      };
       auto circularity = [&](const Edge& e, const char* which) {
         if (e.circular || e.shape != EdgeShape::round) return std::string();
         char text[256];
@@ -332,9 +367,11 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         return std::string(text);
       };
       auto join = [](std::string a, const std::string& b) { return a.empty() ? b : b.empty() ? a : a + ", " + b; };
-      const std::string le_msg = join(join(describe(r.le, "leading edge"), hole(r.le, le_cover, "leading edge")),
+      const std::string le_msg = join(join(join(describe(r.le, "leading edge"), hole(r.le, le_cover, "leading edge")),
+                                           carried(r.le, le_cover, "leading edge")),
                                       circularity(r.le, "leading edge")),
-                        te_msg = join(join(describe(r.te, "trailing edge"), hole(r.te, te_cover, "trailing edge")),
+                        te_msg = join(join(join(describe(r.te, "trailing edge"), hole(r.te, te_cover, "trailing edge")),
+                                           carried(r.te, te_cover, "trailing edge")),
                                       circularity(r.te, "trailing edge"));
       if (!le_msg.empty() || !te_msg.empty())
         slot.issues.push_back({section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});

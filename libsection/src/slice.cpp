@@ -332,7 +332,6 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
         s.morphology = std::move(r.filled);
         r.filled = MorphologyResult{};
         s.fill = std::move(r);
-        std::vector<double>().swap(s.fill.offsets);
       }
     } catch (const std::exception& e) {
       s.error = e.what();
@@ -530,7 +529,7 @@ Stream to_stream(const SliceResult& result, const std::string& command, const st
   stream.history.push_back(command);
   std::map<int, Frame> frame_map;
   Table loops{"loops", {"section", "loop", "points", "dropped", "area", "length", "cell"}, {}};
-  Table points{"points", {"section", "loop", "index", "u", "v", "nu", "nv"}, {}};
+  Table points{"points", {"section", "loop", "index", "u", "v", "nu", "nv", "offset"}, {}};
   Table skeleton{"skeleton", {"section", "loop", "index", "u", "v", "radius"}, {}};
   for (const auto& s : result.sections) {
     frame_map[s.id] = s.frame;
@@ -554,7 +553,13 @@ Stream to_stream(const SliceResult& result, const std::string& command, const st
                      loop.length, m.cell});
       for (std::size_t k = 0; k < loop.points.size(); ++k) {
         const Eigen::Vector2d nrm = k < loop.normals.size() ? loop.normals[k] : Eigen::Vector2d(0, 0);
-        points.add_row({double(s.id), double(l), double(k), loop.points[k].x(), loop.points[k].y(), nrm.x(), nrm.y()});
+        // A point the gap fill carried onto the plane: its distance from it, else 0.
+        const std::size_t carried = k < loop.index.size() && loop.index[k] >= s.slab_points
+                                        ? loop.index[k] - s.slab_points
+                                        : s.fill.offsets.size();
+        const double offset = carried < s.fill.offsets.size() ? s.fill.offsets[carried] : 0.0;
+        points.add_row({double(s.id), double(l), double(k), loop.points[k].x(), loop.points[k].y(), nrm.x(), nrm.y(),
+                        offset});
       }
     }
     for (std::size_t k = 0; k < m.skeleton.size(); ++k)
