@@ -304,6 +304,33 @@ TEST_CASE("plot: a stream that stops after slice draws its points and no more", 
     CHECK(inside == 1);
   }
   CHECK(svg.find(">measured points<") != std::string::npos);
+  CHECK(with_class(es, "carried").empty());  // no offset column: nothing was carried
+}
+
+TEST_CASE("plot: points the gap fill carried are ringed and counted", "[plot]") {
+  section::Stream stream;
+  section::Table pts = table("points", {"section", "loop", "index", "u", "v", "nu", "nv", "offset"});
+  const int n = 400;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n;
+    pts.add_row({2, 0, double(i), 15 * std::cos(t), 2 * std::sin(t), 0, 0, i % 50 == 0 ? 0.3 : 0.0});
+  }
+  stream.put(pts);
+  const std::string svg = section::plot_svg(stream, 2);
+  bool balanced = false;
+  const auto es = parse(svg, &balanced);
+  REQUIRE(balanced);
+  bool inner = false;
+  const auto main_es = parse(subtree(svg, "s2-main"), &inner);
+  std::size_t rings = 0;
+  bool in_carried = false;
+  for (const auto& e : main_es) {
+    if (e.tag == "g") in_carried = e.attr.count("class") && e.attr.at("class") == "carried";
+    rings += in_carried && e.tag == "circle";
+  }
+  CHECK(rings == 8);
+  CHECK(svg.find("8 carried onto the plane") != std::string::npos);
+  CHECK(svg.find(">points carried onto the plane (gap fill)<") != std::string::npos);
 }
 
 TEST_CASE("plot: the curve falls back on the samples, then the smoothed points", "[plot]") {

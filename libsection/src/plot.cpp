@@ -80,6 +80,7 @@ struct SectionData {
   bool has_frame = false;
   Frame frame;
   std::map<int, std::vector<V2>> points;   // measured, by loop, in loop order
+  std::vector<V2> carried;                 // those the gap fill carried onto the plane (offset != 0)
   std::map<int, BSpline> splines;          // fitted curves by loop (spline tables)
   std::map<int, std::vector<V2>> polyline; // fitted curve by loop when there is no spline
   std::string curve_source;                // "spline", "samples", "smoothed" or ""
@@ -175,6 +176,8 @@ SectionData collect(const Stream& stream, int section, const Curves& curves) {
     }
   }
   d.points = loops_of(stream, "points", section);
+  for (const auto& row : rows_of(stream, "points", section, {"u", "v", "offset"}))
+    if (std::isfinite(row[2]) && row[2] != 0 && finite(V2(row[0], row[1]))) d.carried.emplace_back(row[0], row[1]);
   for (const auto& [key, b] : curves.splines)
     if (key.first == section && b.control.size() >= static_cast<std::size_t>(b.degree + 1))
       d.splines[key.second] = b;
@@ -402,6 +405,7 @@ const char* const style =
     ".title{font-size:17px;font-weight:bold}.subtitle{fill:#555}"
     ".view-frame{fill:#fff;stroke:#aaa;stroke-width:1}"
     ".points circle{fill:#1f77b4;fill-opacity:.6}"
+    ".carried circle{fill:none;stroke:#ff7f0e;stroke-width:1}"
     ".curve{fill:none;stroke:#111;stroke-width:1.3}"
     ".camber{fill:none;stroke:#d62728;stroke-width:1.5}"
     ".skeleton{fill:none;stroke:#d62728;stroke-width:1.2;stroke-dasharray:5 3}"
@@ -478,6 +482,14 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
         if (near.contains(p))
           s += "<circle cx=\"" + px(v.x(p.x())) + "\" cy=\"" + px(v.y(p.y())) + "\" r=\"" + px(r) + "\"/>";
     s += "</g>";
+    // Carried points ringed on top of their dots: the slab had no point there.
+    if (!d.carried.empty()) {
+      s += "<g class=\"carried\">";
+      for (const auto& p : d.carried)
+        if (near.contains(p))
+          s += "<circle cx=\"" + px(v.x(p.x())) + "\" cy=\"" + px(v.y(p.y())) + "\" r=\"" + px(2 * r) + "\"/>";
+      s += "</g>";
+    }
   }
   for (int loop : curve_loops(d)) {
     const std::string data = path_data(curve_of(d, loop, o, density), closed_loop(d, loop), v, near, whole);
@@ -549,7 +561,10 @@ std::vector<Row> parameter_rows(const SectionData& d) {
   }
   std::size_t n = 0;
   for (const auto& [loop, pts] : d.points) n += pts.size();
-  if (n) rows.push_back({"measured points", std::to_string(n) + (d.points.size() > 1 ? " in " + std::to_string(d.points.size()) + " loops" : "")});
+  if (n)
+    rows.push_back({"measured points", std::to_string(n) +
+                                           (d.points.size() > 1 ? " in " + std::to_string(d.points.size()) + " loops" : "") +
+                                           (d.carried.empty() ? "" : ", " + std::to_string(d.carried.size()) + " carried onto the plane")});
   if (!d.curve_source.empty()) rows.push_back({"curve from", d.curve_source});
   return rows;
 }
@@ -645,6 +660,7 @@ std::string svg_of(const SectionData& d, const PlotOptions& o) {
   {
     std::vector<std::pair<std::string, std::string>> items;  // class, label
     if (o.points && !d.points.empty()) items.push_back({"points", "measured points"});
+    if (o.points && !d.carried.empty()) items.push_back({"carried", "points carried onto the plane (gap fill)"});
     if (d.curve_source == "smoothed") items.push_back({"curve", "smoothed points"});
     else if (!d.curve_source.empty()) items.push_back({"curve", "fitted curve (" + d.curve_source + ")"});
     if (d.camber.size() >= 2) items.push_back({"camber", "mean-camber line"});
@@ -657,8 +673,8 @@ std::string svg_of(const SectionData& d, const PlotOptions& o) {
     double x = margin;
     for (const auto& [cls, label] : items) {
       const double ly = y + 10;
-      if (cls == "points")
-        body += "<g class=\"points\"><circle cx=\"" + px(x + 10) + "\" cy=\"" + px(ly) + "\" r=\"3\"/></g>";
+      if (cls == "points" || cls == "carried")
+        body += "<g class=\"" + cls + "\"><circle cx=\"" + px(x + 10) + "\" cy=\"" + px(ly) + "\" r=\"3\"/></g>";
       else
         body += "<line class=\"" + cls + "\" x1=\"" + px(x) + "\" y1=\"" + px(ly) + "\" x2=\"" + px(x + 22) +
                 "\" y2=\"" + px(ly) + "\"/>";
