@@ -341,8 +341,8 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
       };
       // An edge covered only thanks to points the gap fill carried onto the plane: say so,
       // with how far they came from (their positions rest on the drift fitted beside the gap).
-      auto carried = [&](const Edge& e, const EdgeCoverage& cover, const char* which) {
-        if (q.carried.empty() || !hole(e, cover, which).empty()) return std::string();
+      auto carried = [&](const Edge& e, const std::string& hole_message, const char* which) {
+        if (q.carried.empty() || !hole_message.empty()) return std::string();
         const EdgeCoverage own = edge_coverage(curve, e, q.in_slab, opt.edge_hole_reach);
         if (hole(e, own, which).empty()) return std::string();
         const double size = edge_size(e);
@@ -367,11 +367,12 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         return std::string(text);
       };
       auto join = [](std::string a, const std::string& b) { return a.empty() ? b : b.empty() ? a : a + ", " + b; };
-      const std::string le_msg = join(join(join(describe(r.le, "leading edge"), hole(r.le, le_cover, "leading edge")),
-                                           carried(r.le, le_cover, "leading edge")),
+      const std::string le_hole = hole(r.le, le_cover, "leading edge"), te_hole = hole(r.te, te_cover, "trailing edge");
+      const std::string le_msg = join(join(join(describe(r.le, "leading edge"), le_hole),
+                                           carried(r.le, le_hole, "leading edge")),
                                       circularity(r.le, "leading edge")),
-                        te_msg = join(join(join(describe(r.te, "trailing edge"), hole(r.te, te_cover, "trailing edge")),
-                                           carried(r.te, te_cover, "trailing edge")),
+                        te_msg = join(join(join(describe(r.te, "trailing edge"), te_hole),
+                                           carried(r.te, te_hole, "trailing edge")),
                                       circularity(r.te, "trailing edge"));
       if (!le_msg.empty() || !te_msg.empty())
         slot.issues.push_back({section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});

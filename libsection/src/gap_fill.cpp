@@ -174,6 +174,10 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
 
 }  // namespace
 
+double gap_fill_reach(const GapFillOptions& options, double slab) {
+  return options.reach > 0 ? options.reach : 12 * slab;
+}
+
 void check_gap_fill_options(const GapFillOptions& options) {
   if (!(options.reach >= 0) || !std::isfinite(options.reach)) throw Error("gap fill: reach must be >= 0 and finite");
   if (!(options.min_gap > 0) || !std::isfinite(options.min_gap)) throw Error("gap fill: min_gap must be positive");
@@ -187,7 +191,7 @@ GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen
   check_gap_fill_options(options);
   GapFillResult result;
   result.filled = ordered;
-  const double reach = options.reach > 0 ? options.reach : 12 * slab;
+  const double reach = gap_fill_reach(options, slab);
   // The profile's length sets a floor: on a dense scan, gaps of a few slab widths are many,
   // cost time, and change nothing a fit would see.
   const double profile_length = ordered.loops.empty() ? 0.0 : ordered.loops[0].length;

@@ -275,8 +275,7 @@ void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count, 
 
 // Gap filling's reach for a slab; 0 when filling is off.
 double fill_reach(const SliceOptions& options, double slab) {
-  if (!options.fill_gaps) return 0;
-  return options.fill.reach > 0 ? options.fill.reach : 12 * slab;
+  return options.fill_gaps ? gap_fill_reach(options.fill, slab) : 0;
 }
 
 std::vector<Frame> frames_of(const std::vector<Plane>& planes) {
@@ -326,9 +325,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
       if (slabs[i].empty()) throw Error("no points in the slab (the plane misses the part?)");
       s.morphology = order_section(slabs[i], options.morphology);
       if (i < near.size() && !near[i].empty()) {
-        GapFillOptions fill = options.fill;
-        fill.reach = fill_reach(options, slab);
-        GapFillResult r = fill_gaps(s.morphology, near[i], slab, slabs[i].size(), fill);
+        GapFillResult r = fill_gaps(s.morphology, near[i], slab, slabs[i].size(), options.fill);
         s.morphology = std::move(r.filled);
         r.filled = MorphologyResult{};
         s.fill = std::move(r);

@@ -2,6 +2,7 @@
 
 #include "section/error.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -76,14 +77,10 @@ std::string command_line(int argc, char** argv) {
 
 const CLI::Validator positive(
     [](std::string& text) -> std::string {
+      // from_chars: the whole text, no locale, as the tools read their number lists.
       double v = 0;
-      std::size_t used = 0;
-      try {
-        v = std::stod(text, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != text.size() || !(v > 0) || !std::isfinite(v))
+      const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !(v > 0) || !std::isfinite(v))
         return "must be a number above 0, got '" + text + "'";
       return {};
     },

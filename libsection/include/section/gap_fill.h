@@ -35,6 +35,9 @@ struct GapFillResult {
   double max_offset = 0;                ///< largest |offset| among the carried points
 };
 
+/// The reach fill_gaps uses for a slab: options.reach, or 12 slab widths when it is 0.
+double gap_fill_reach(const GapFillOptions& options, double slab);
+
 /// Throws section::Error naming the option when `options` are out of range.
 void check_gap_fill_options(const GapFillOptions& options);
 
