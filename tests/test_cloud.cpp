@@ -269,3 +269,50 @@ TEST_CASE("read_cloud: packed double PLY, aligned or not, in chunks, with its er
     std::remove(path.c_str());
   }
 }
+
+TEST_CASE("read_cloud: a packed double PLY file is read in parts by the threads, in order, with its errors", "[cloud]") {
+  // 40000 points in one chunk: two parts of 20000 read side by side by two threads.
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 40000; ++i) pts.emplace_back(i * 0.25, -i / 3.0, std::cos(i));
+  const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(pts.size()) +
+                             "\nproperty double x\nproperty double y\nproperty double z\nend_header\n";
+  const std::string body(reinterpret_cast<const char*>(pts.data()), pts.size() * 24);
+  const std::string path = temp_path(".ply");
+  const auto read_with = [&](const std::string& bytes, int threads, std::size_t chunk) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << header << bytes;
+    CloudReadOptions opt;
+    opt.chunk_points = chunk;
+    opt.threads = threads;
+    std::vector<Eigen::Vector3d> got;
+    read_cloud_chunks(path, [&](const Eigen::Vector3d* p, std::size_t n) { got.insert(got.end(), p, p + n); }, opt);
+    return got;
+  };
+  for (int threads : {1, 2, 3})
+    for (std::size_t chunk : {std::size_t(40000), std::size_t(33333), std::size_t(1) << 20}) {
+      INFO("threads " << threads << " chunk " << chunk);
+      CHECK(read_with(body, threads, chunk) == pts);
+    }
+  // Bad vertices in both parts: the first in the file is the one named, whatever the threads.
+  std::string bad = body;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), huge = 1e16;
+  std::memcpy(&bad[30001 * 24 + 8], &nan, 8);
+  std::memcpy(&bad[25000 * 24 + 16], &huge, 8);
+  for (int threads : {1, 2}) {
+    std::string message;
+    try {
+      read_with(bad, threads, 40000);
+    } catch (const section::Error& e) {
+      message = e.what();
+    }
+    CHECK_THAT(message, Catch::Contains(path + ": point 25001 has a coordinate beyond"));
+  }
+  std::memcpy(&bad[25000 * 24 + 16], &pts[25000].z(), 8);
+  CHECK_THROWS_WITH(read_with(bad, 2, 40000), Catch::Contains(path + ": vertex 30001 has a non-finite"));
+  // A file cut short is refused before any point is handed on.
+  std::size_t handed = 0;
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << header << body.substr(0, 24 * 30000 + 7);
+  CHECK_THROWS_WITH(read_cloud_chunks(path, [&](const Eigen::Vector3d*, std::size_t n) { handed += n; }),
+                    Catch::Contains("truncated"));
+  CHECK(handed == 0);
+  std::remove(path.c_str());
+}

@@ -234,6 +234,11 @@ Eigen::Vector2d BSpline::derivative(double t, int k) const {
   return out[k];
 }
 
+void BSpline::derivatives(double t, int k, Eigen::Vector2d* out) const {
+  if (k < 0) throw Error("bspline: derivative order " + std::to_string(k) + " is negative");
+  evaluate(*this, t, k, out);
+}
+
 double BSpline::curvature(double t) const {
   Eigen::Vector2d d[3];
   evaluate(*this, t, 2, d);

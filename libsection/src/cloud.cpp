@@ -79,7 +79,15 @@ public:
   Source& operator=(const Source&) = delete;
 
   std::string_view bytes() const { return {base_ + start_, end_ - start_}; }
-  void consume(std::size_t n) { start_ += n; }
+  void consume(std::size_t n) {
+    start_ += n;
+    consumed_ += n;
+  }
+  /// The descriptor of a regular file of known size (which pread can read anywhere), or -1.
+  int regular_fd() const { return owned_ && file_ && size_ > 0 ? fileno(file_) : -1; }
+  /// Bytes consumed since the start of the source: the file offset of bytes() when it is
+  /// a file.
+  unsigned long long offset() const { return consumed_; }
 
   // Makes up to n more bytes available after bytes(); returns how many (0 at the end).
   std::size_t fetch(std::size_t n) {
@@ -114,6 +122,7 @@ private:
   std::size_t cap_ = 0;
   const char* base_ = nullptr;     // bytes() = base_[start_, end_)
   std::size_t start_ = 0, end_ = 0;
+  unsigned long long consumed_ = 0;
 };
 
 // Collects points and hands them on in chunks.
@@ -548,6 +557,73 @@ bool host_little_endian() {
 
 // `fn` receives the points checked against max_coordinate; `raw` unchecked (the packed
 // binary path checks while it reads).
+// Throws for the first vertex of v[0, m) (vertex `first` is v[0]) with a non-finite
+// coordinate or one beyond +-1e15; returns when there is none.
+void check_vertices(const Eigen::Vector3d* v, std::size_t m, unsigned long long first, const std::string& name) {
+  bool bad = false;
+  const double* d = m ? v[0].data() : nullptr;
+  for (std::size_t k = 0; k < 3 * m; ++k) bad |= !(std::abs(d[k]) <= detail::max_coordinate);
+  for (std::size_t k = 0; bad && k < m; ++k) {
+    if (!v[k].allFinite())
+      throw Error("read_cloud: " + name + ": vertex " + std::to_string(first + k) + " has a non-finite coordinate");
+    if (v[k].cwiseAbs().maxCoeff() > detail::max_coordinate)
+      throw Error("read_cloud: " + name + ": point " + std::to_string(first + k + 1) +
+                  " has a coordinate beyond +-1e15 (corrupt file?)");
+  }
+}
+
+// Packed little-endian doubles x, y, z in a regular file, from the source's offset on:
+// each chunk is read with pread straight into the (aligned) chunk, in parts that the
+// threads read and check side by side. The copy out of the page cache is most of a pass
+// over a binary cloud, and one thread alone cannot keep up with the slab tests after it.
+std::size_t read_packed_file(Source& src, unsigned long long count, const CloudReadOptions& opt, Chunker& out) {
+  const int fd = src.regular_fd();
+  const unsigned long long start = src.offset();
+  const std::size_t chunk = std::max<std::size_t>(opt.chunk_points, 1);
+  const std::size_t workers =
+      opt.threads > 0 ? std::size_t(opt.threads) : std::max(1u, std::thread::hardware_concurrency());
+  unsigned long long done = 0;
+  while (done < count) {
+    std::size_t m = static_cast<std::size_t>(std::min<unsigned long long>(chunk, count - done));
+    Eigen::Vector3d* dst = out.room(m);
+    const std::size_t parts = std::max<std::size_t>(1, std::min(workers, m / 16384));
+    std::vector<char> short_read(parts, 0), bad(parts, 0);
+    detail::parallel_for(parts, opt.threads, [&](std::size_t t) {
+      const std::size_t a = m * t / parts, b = m * (t + 1) / parts;
+      char* p = reinterpret_cast<char*>(dst + a);
+      std::size_t want = 24 * (b - a);
+      off_t at = static_cast<off_t>(start + 24 * (done + a));
+      while (want > 0) {
+        const ssize_t got = ::pread(fd, p, want, at);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) {
+          short_read[t] = 1;
+          return;
+        }
+        p += got;
+        want -= std::size_t(got);
+        at += got;
+      }
+      try {
+        check_vertices(dst + a, b - a, done + a, src.name());
+      } catch (const Error&) {
+        bad[t] = 1;
+      }
+    });
+    for (std::size_t t = 0; t < parts; ++t) {
+      const std::size_t a = m * t / parts, b = m * (t + 1) / parts;
+      if (short_read[t])
+        throw Error("read_cloud: " + src.name() + ": PLY file ends or cannot be read after at most " +
+                    std::to_string(done + a) + " of " + std::to_string(count) + " vertices (truncated file?)");
+      if (bad[t]) check_vertices(dst + a, b - a, done + a, src.name());  // throws the first bad vertex's message
+    }
+    out.commit();
+    done += m;
+  }
+  out.flush();
+  return out.total();
+}
+
 std::size_t read_ply(Source& src, const CloudReadOptions& opt, const PointChunkFn& fn, const PointChunkFn& raw) {
   const PlyHeader h = parse_ply_header(src);
   const std::string& name = src.name();
@@ -668,6 +744,7 @@ std::size_t read_ply(Source& src, const CloudReadOptions& opt, const PointChunkF
     if (same && px.size == 8 && record == 24 && ox == 0 && oy == 8 && oz == 16) {
       Chunker direct(raw, opt.chunk_points);
       const std::size_t chunk = std::max<std::size_t>(opt.chunk_points, 1);
+      if (src.regular_fd() >= 0) return read_packed_file(src, ve.count, opt, direct);
       while (done < ve.count) {
         const std::size_t want = static_cast<std::size_t>(std::min<unsigned long long>(chunk, ve.count - done));
         while (src.bytes().size() < want * 24 && src.fetch(want * 24 - src.bytes().size()) > 0) {

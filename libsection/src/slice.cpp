@@ -378,6 +378,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   // Chunks of at most 256k points: each is still in the cache when the slab test reads it.
   CloudReadOptions read_chunks = read;
   read_chunks.chunk_points = std::min<std::size_t>(read.chunk_points, std::size_t(1) << 18);
+  if (read_chunks.threads == 0) read_chunks.threads = options.threads;
   std::vector<Plane> planes = spec.planes;
   double slab = options.slab;
   std::size_t total = 0;

@@ -24,6 +24,9 @@ struct BSpline {
   Eigen::Vector2d point(double t) const;
   /// k-th derivative at t (k = 0 gives the point).
   Eigen::Vector2d derivative(double t, int k) const;
+  /// The point and the derivatives up to order k at t into out[0..k], from one evaluation
+  /// of the basis (each equal to derivative(t, i)); orders above the degree are zero.
+  void derivatives(double t, int k, Eigen::Vector2d* out) const;
   /// Signed curvature at t (positive turning counterclockwise).
   double curvature(double t) const;
   /// Basis functions non-zero at t: their control indices (already wrapped) and values.

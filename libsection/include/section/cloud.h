@@ -30,7 +30,7 @@ struct CloudReadOptions {
   CloudFormat format = CloudFormat::automatic;  ///< reader to use; default: by extension
   std::size_t chunk_points = 1 << 20;           ///< points handed to the callback at a time
   std::size_t max_points = std::size_t(1) << 33;  ///< refuse files claiming more points than this
-  int threads = 0;                              ///< worker threads parsing text (XYZ, CSV); 0 = all cores
+  int threads = 0;                              ///< worker threads parsing text (XYZ, CSV) and reading binary PLY files; 0 = all cores (the points and their order do not depend on it)
 };
 
 /// Receives the points of a cloud chunk by chunk, in file order.

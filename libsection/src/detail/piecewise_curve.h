@@ -56,10 +56,12 @@ public:
     for (std::size_t j = 0; j + 1 < breaks_.size(); ++j) {
       // Taylor coefficients at the span's start, from inside the span (right limits).
       const double a = breaks_[j];
+      Eigen::Vector2d ders[8];
+      curve.derivatives(a, degree_, ders);
       double factorial = 1;
       for (int d = 0; d <= degree_; ++d) {
         if (d > 0) factorial *= d;
-        coef_[j * stride + d] = curve.derivative(a, d) / factorial;
+        coef_[j * stride + d] = ders[d] / factorial;
       }
     }
   }
