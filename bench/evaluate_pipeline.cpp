@@ -56,7 +56,9 @@ struct Worst {
 int main(int argc, char** argv) {
   int seeds = 1, first_seed = 1;
   double misregistration = 0.0;
-  double noise = -1, density_min = -1, slab = 0.08;  // scan overrides (< 0: the inspection scan's)
+  double noise = -1, density_min = -1, slab = 0.08;
+  double twist = 0;  // --twist DEG: extra twist from hub to tip (robustness to drift)
+  double band_spacing = -1;  // --band-spacing MM / --no-band (0); < 0: slice's default  // scan overrides (< 0: the inspection scan's)
   int holes = -1;
   std::string preset = "both";
   std::string export_dir;  // --export DIR: per-section CSVs for scripts/compare_scipy.py
@@ -86,6 +88,9 @@ int main(int argc, char** argv) {
     else if (a == "--holes") holes = std::atoi(value());
     else if (a == "--density-min") density_min = std::atof(value());
     else if (a == "--slab") slab = std::atof(value());
+    else if (a == "--twist") twist = std::atof(value());
+    else if (a == "--band-spacing") band_spacing = std::atof(value());
+    else if (a == "--no-band") band_spacing = 0;
     else if (a == "--preset") preset = value();
     else if (a == "--no-camber") with_camber = false;
     else if (a == "--full-scan") full_scan = true;
@@ -111,7 +116,7 @@ int main(int argc, char** argv) {
     else if (a == "--tangent-span") camber_options.tangent_span = std::atof(value());
     else if (a == "--quiet") quiet = true;
     else if (a == "--help" || a == "-h") {
-      std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] "
+      std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] [--twist DEG] [--band-spacing MM] [--no-band] "
                   "[--preset turbine|compressor|both] [--full-scan] [--no-fill] [--fill-gap K] [--fill-fraction F] [--fill-reach MM] [--auto-cells N] [--no-camber] [--quiet] [--export DIR]\n"
                   "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] "
                   "[--edge-prune DEG] [--tangent-span FRACTION]\n");
@@ -132,7 +137,13 @@ int main(int argc, char** argv) {
     for (const char* kind : {"turbine", "compressor"}) {
       if (preset != "both" && preset != kind) continue;
       Worst& W = worst[kind];
-      const BladeDesign blade = std::string(kind) == "turbine" ? turbine_blade() : compressor_blade();
+      BladeDesign blade = std::string(kind) == "turbine" ? turbine_blade() : compressor_blade();
+      if (twist != 0) {
+        // --twist: the tip section turned by this much more about its mid-chord.
+        blade.tip.stagger += twist;
+        const double a = blade.tip.stagger * M_PI / 180;
+        blade.tip.offset = -0.5 * blade.tip.chord * Eigen::Vector2d(std::cos(a), std::sin(a));
+      }
       for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
         std::vector<double> zs;
         for (int k = 1; k <= 9; ++k) zs.push_back(blade.span * k / 10.0);
@@ -150,6 +161,7 @@ int main(int argc, char** argv) {
         sopt.fill_gaps = fill_gaps;
         sopt.fill = fill_options;
         if (auto_cells > 0) sopt.morphology.auto_cells = auto_cells;
+        if (band_spacing >= 0) sopt.band_spacing = band_spacing;
         Stream stream = parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");
         smooth_stream(stream);
         stream = parse_stream(format_stream(stream), "smooth");

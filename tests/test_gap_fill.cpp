@@ -1,3 +1,4 @@
+#include "section/drift_band.h"
 #include "section/gap_fill.h"
 #include "section/generate.h"
 #include "section/slice.h"
@@ -50,6 +51,7 @@ TEST_CASE("gap fill: a drifting ellipse's gap is filled on the section of the pl
     SliceOptions o;
     o.slab = slab;
     o.fill_gaps = fill;
+    o.band_spacing = 0;  // the fill alone: carried points follow the slab's
     const SliceResult r = slice(c, planes_at({0, 0, 1}, {0.0}), o);
     REQUIRE(r.sections.size() == 1);
     REQUIRE(r.sections[0].error.empty());
@@ -98,6 +100,7 @@ TEST_CASE("gap fill: holes and sparse edges of noisy blade scans are filled with
         INFO(c.name << " z0=" << z0 << " seed=" << seed);
         SliceOptions off, on;
         off.slab = on.slab = 0.08;
+        off.band_spacing = on.band_spacing = 0;  // the fill alone, on the slab
         off.fill_gaps = false;
         on.threads = 2;
         const SliceResult r0 = slice(scan.cloud, planes_at({0, 0, 1}, {z0}), off);
@@ -163,4 +166,53 @@ TEST_CASE("gap fill: bad options are refused before any work", "[gap_fill]") {
   CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("min_gap_fraction"));
   o.fill_gaps = false;  // options of a fill that does not run are not looked at
   CHECK_NOTHROW(slice(c, planes_at({0, 0, 1}, {0.0}), o));
+}
+
+TEST_CASE("drift band: a twisting, drifting ellipse's band lands on the section of the plane", "[gap_fill]") {
+  // The section at height z is the plane's ellipse turned by w z about the origin and moved
+  // by z V0: a blade's twist and lean. Projected straight, a point 0.1 mm off the plane
+  // would lie up to |w| a 0.1 = 0.1 mm off; carried along the fitted drift it must land
+  // on the plane's ellipse. Noise-free, rows one slab apart.
+  const Eigen::Vector2d V0(0.05, -0.08);
+  const double w = 0.2, a = 5, b = 1.5, slab = 0.05;
+  const auto at = [&](double t) { return Eigen::Vector2d(a * std::cos(t), b * std::sin(t)); };
+  const auto distance = [&](const Eigen::Vector2d& p) {
+    double best = 1e9;
+    for (int k = 0; k < 100000; ++k) best = std::min(best, (at(2 * M_PI * k / 100000.0) - p).norm());
+    return best;
+  };
+  Cloud c;
+  for (double z = -0.3; z <= 0.3 + 1e-9; z += slab)
+    for (double t = 0; t < 2 * M_PI; t += 0.02) {
+      const Eigen::Rotation2Dd turn(w * z);
+      const Eigen::Vector2d p = turn * at(t) + z * V0;
+      c.points.emplace_back(p.x(), p.y(), z);
+    }
+  for (const double spacing : {0.0, 0.001}) {
+    SliceOptions o;
+    o.slab = slab;
+    o.fill_gaps = false;
+    o.band_spacing = spacing;
+    const SliceResult r = slice(c, planes_at({0, 0, 1}, {0.0}), o);
+    REQUIRE(r.sections.at(0).error.empty());
+    const SectionSlice& s = r.sections[0];
+    const Loop& loop = s.morphology.loops.at(0);
+    double worst = 0;
+    for (std::size_t k = 0; k < loop.points.size(); k += 7) worst = std::max(worst, distance(loop.points[k]));
+    INFO("band spacing " << spacing << ": " << loop.points.size() << " points, worst " << worst * 1e3 << " um");
+    if (spacing == 0) {
+      CHECK(s.band_points == 0);
+      CHECK(loop.points.size() == s.slab_points);
+    } else {
+      CHECK(s.band_half_width == Approx(2 * slab));  // band_max slab widths: the target is far
+      CHECK(s.band_points >= 4 * s.slab_points);     // rows at 0, +-1, +-2 slab widths
+      CHECK(loop.points.size() == s.band_points);
+    }
+    // The affine drift is the turn's first order: (w z)^2 a / 2 = 1 um is left at z = 0.1.
+    CHECK(worst < 0.002);
+  }
+  // The half width: one point per spacing along the profile, within [slab / 2, max slabs].
+  CHECK(band_half_width(100, 10, 0.08, 0.02, 2) == Approx(0.16));  // wants 0.2: capped at 2 slabs
+  CHECK(band_half_width(400, 10, 0.08, 0.02, 2) == Approx(0.05));  // 0.05: 1.25 slabs wide
+  CHECK(band_half_width(2000, 10, 0.08, 0.02, 2) == Approx(0.04));  // dense enough: the slab
 }

@@ -153,24 +153,44 @@ TEST_CASE("pipeline: issue targets on noisy generated blades", "[pipeline][!mayf
   }
 }
 
-TEST_CASE("pipeline: whole-blade turbine scans meet the issue's targets", "[pipeline][generated]") {
+TEST_CASE("pipeline: whole-blade scans meet the issue's targets", "[pipeline][generated]") {
   // Scans of the whole blade (noise 5 um, 5 holes, density 25-100 %, outliers, two views),
-  // 9 sections each, seeds not used to choose anything; the slab's gaps are filled from
-  // points beside the plane (gap_fill.h). Held out (docs/ACCURACY.md), 2 of 108 turbine
-  // sections had the chord 10.0-10.3 um off: its bound here is 12 um, the rest are the
-  // issue's.
-  const BladeDesign blade = turbine_blade();
-  std::vector<double> zs;
-  for (int k = 1; k <= 9; ++k) zs.push_back(blade.span * k / 10.0);
-  for (const std::uint64_t seed : {31u, 32u}) {
-    const auto errors = run_pipe(blade, zs, seed, 0, true);
-    report("turbine", errors);
-    for (const auto& e : errors) {
-      REQUIRE(e.fitted);
-      REQUIRE(e.cambered);
-      check_issue_targets(e, 0.012);
+  // 9 sections each, both presets, seeds not used to choose anything; where the slab is
+  // sparse it is widened into a drift-corrected band (drift_band.h) and its gaps are filled
+  // from points beside the plane (gap_fill.h). Held out (docs/ACCURACY.md), the compressor
+  // missed the 3 % LE radius on 3 of 108 sections and the 15 um fit max on 2: these seeds
+  // meet every target.
+  for (const char* kind : {"turbine", "compressor"}) {
+    const BladeDesign blade = std::string(kind) == "turbine" ? turbine_blade() : compressor_blade();
+    std::vector<double> zs;
+    for (int k = 1; k <= 9; ++k) zs.push_back(blade.span * k / 10.0);
+    for (const std::uint64_t seed : {31u, 32u}) {
+      const auto errors = run_pipe(blade, zs, seed, 0, true);
+      report(kind, errors);
+      for (const auto& e : errors) {
+        REQUIRE(e.fitted);
+        REQUIRE(e.cambered);
+        check_issue_targets(e, 0.010);
+      }
     }
   }
+}
+
+TEST_CASE("pipeline: a fit whose knot rounds fold keeps the last curve that does not", "[pipeline][generated]") {
+  // Compressor, whole-blade scan, seed 10, z = 36, with the band: the adaptive knots wrap
+  // the leading edge twice, at every knot floor fit_spline retries with. The last resort
+  // stops the knot rounds before the first curve that folds.
+  const BladeDesign blade = compressor_blade();
+  const auto errors = run_pipe(blade, {36.0}, 10, 0, true);
+  report("compressor", errors);
+  REQUIRE(errors.at(0).fitted);
+  REQUIRE(errors.at(0).cambered);
+  const SectionErrors& e = errors[0];
+  CHECK(e.rms() <= 0.003);
+  CHECK(e.max() <= 0.015);
+  CHECK(e.cam_max() <= 0.015);
+  CHECK(e.chord() <= 0.010);
+  CHECK(e.rle() <= 0.035);  // one of the held-out LE misses (3.1 %): the curve is less refined there
 }
 
 TEST_CASE("pipeline: a thin trailing edge's lone tip point is fitted, not dropped", "[pipeline][generated]") {

@@ -22,7 +22,11 @@ const char* const description =
     "thin edge), scan points up to --fill-reach from the plane are carried onto it along the\n"
     "surface (the section's drift with height is fitted beside the gap) and fill it; the\n"
     "stream notes how many per section ('# fill ...'). --no-fill keeps the slab points alone.\n"
-    "Meshes are cut exactly and need no filling.\n\n"
+    "Band: where the slab is sparse, points up to --band-max slab widths from the plane join\n"
+    "it, each carried onto the plane along the section's drift (lean, sweep, twist and taper,\n"
+    "fitted over the section) rather than projected straight, until the profile holds about\n"
+    "one point per --band-spacing ('# band ...' in the stream). --band-spacing 0 keeps the slab.\n"
+    "Meshes are cut exactly and need neither.\n\n"
     "Planes: --normal with --at offsets or --count planes spread over the part, or --planes FILE\n"
     "(CSV with origin_x,origin_y,origin_z,normal_x,normal_y,normal_z).\n\n"
     "Example: slice blade.ply --normal 0,0,1 --at 12,20,28 | smooth | fitspline | camber";
@@ -57,6 +61,14 @@ int main(int argc, char** argv) {
             ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--cell", options.morphology.cell, "Raster cell h; 0 = the estimated spacing in the section")
             ->check(CLI::NonNegativeNumber)->capture_default_str();
+        app.add_option("--band-spacing", options.band_spacing,
+                       "Widen the slab into a drift-corrected band until the profile holds one point per this "
+                       "length; 0 = the slab alone")
+            ->check(CLI::NonNegativeNumber)
+            ->capture_default_str();
+        app.add_option("--band-max", options.band_max, "Largest half width of the band, in slab widths (>= 0.5)")
+            ->check(CLI::Range(0.5, 1e6))
+            ->capture_default_str();
         app.add_flag("--no-fill", [&](std::int64_t) { options.fill_gaps = false; },
                      "Do not fill the slab's gaps from points beside the plane");
         app.add_option("--fill-reach", options.fill.reach,

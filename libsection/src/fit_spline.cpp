@@ -553,7 +553,10 @@ struct FoldError : Error {
   using Error::Error;
 };
 
-FitSplineResult fit_once(const Points& profile, const Points& measured, const FitSplineOptions& o) {
+// `stop_at_fold`: a knot round whose curve folds is not taken and ends the rounds (the
+// last resort of fit_spline: dense knots on a thin edge can wrap the edge twice).
+FitSplineResult fit_once(const Points& profile, const Points& measured, const FitSplineOptions& o,
+                         bool stop_at_fold = false) {
   if (o.degree < 1 || o.degree > 7)
     throw Error("fit_spline: degree " + std::to_string(o.degree) + " is not in 1..7");
   if (o.control_points != 0 && o.control_points < o.degree + 1)
@@ -612,6 +615,7 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
       const std::vector<double> knots = curvature_knots(r.curve, r.feet, noise_sigma(r.feet, r.weights), o);
       Refinement next = refine(reknot(r.curve, knots), measured, o, &r.feet);
       result.iterations += next.iterations;
+      if (stop_at_fold && self_intersects(next.curve)) break;
       const bool same = knots.size() == r.curve.knots.size();
       r = std::move(next);
       if (same) break;
@@ -624,6 +628,7 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
         break;
       Refinement next = refine(reknot(r.curve, knots), measured, o, &r.feet);
       result.iterations += next.iterations;
+      if (stop_at_fold && self_intersects(next.curve)) break;
       result.rounds = round + 1;
       r = std::move(next);
     }
@@ -667,6 +672,13 @@ FitSplineResult fit_spline(const Points& profile, const Points& measured, const 
     try {
       return fit_once(profile, measured, retry);
     } catch (const FoldError&) {
+      if (attempt == 2 && o.control_points == 0) {
+        // Last: the default knots again, the rounds stopped before the first that folds.
+        try {
+          return fit_once(profile, measured, o, true);
+        } catch (const FoldError&) {
+        }
+      }
       if (attempt == 2 || o.control_points != 0) throw;
       retry.min_span_points *= 2;
       retry.exact_min_span_points *= 2;

@@ -1,4 +1,5 @@
 #include "section/gap_fill.h"
+#include "section/drift_band.h"
 
 #include "section/error.h"
 
@@ -172,7 +173,126 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
   return d;
 }
 
+// The section's drift over the whole profile, affine in the plane: a point p at height z
+// lies z (V(p) . n) + c from the slab's curve, V(p) = V0 + A (p - centre). Fitted like
+// fit_drift (pairs with the slab's spans, trimmed least squares, widening rounds) but with
+// every point within `zmax` of the plane. ok false when it cannot be fitted.
+struct AffineDrift {
+  bool ok = false;
+  Vec centre = Vec::Zero(), v0 = Vec::Zero();
+  Eigen::Matrix2d a = Eigen::Matrix2d::Zero();
+  double constant = 0;  // the curve's offset from the slab's spans (their sagitta)
+  double cut = 0;       // residual beyond which a pair was left out of the fit
+  Vec at(const Vec& p) const { return v0 + a * (p - centre); }
+};
+
+AffineDrift fit_affine_drift(const std::vector<Vec>& uv, const std::vector<double>& dz, const Reference& ref,
+                             const Grid& ref_grid, double zmax, double slab, double gap_min, int min_support) {
+  AffineDrift d;
+  for (std::size_t k = 0; k < ref.point.size() && ref.loop[k] == 0; ++k) d.centre += ref.point[k];
+  std::size_t n0 = 0;
+  while (n0 < ref.point.size() && ref.loop[n0] == 0) ++n0;
+  if (n0 < 3) return d;
+  d.centre /= double(n0);
+  using Row = Eigen::Matrix<double, 7, 1>;
+  AffineDrift cur = d;
+  for (int round = 0; round < 2; ++round) {
+    const double zr = zmax * (round + 1) / 2.0;
+    std::vector<Row> rows;
+    std::vector<double> rhs;
+    for (std::size_t i = 0; i < uv.size(); ++i) {
+      const double z = dz[i];
+      if (std::abs(z) > zr) continue;
+      const Vec raw = uv[i], c = raw - z * cur.at(raw);
+      const int k = ref_grid.nearest(c, 3 * slab);
+      if (k < 0 || ref.loop[std::size_t(k)] != 0) continue;
+      const Vec pk = ref.point[std::size_t(k)];
+      const int a = ref.next[std::size_t(k)], b = ref.prev[std::size_t(k)];
+      const int m = (c - ref.point[std::size_t(a)]).squaredNorm() <= (c - ref.point[std::size_t(b)]).squaredNorm() ? a : b;
+      const Vec t = ref.point[std::size_t(m)] - pk;
+      const double len = t.norm();
+      if (!(len > 0) || len > gap_min) continue;
+      const double along = (c - pk).dot(t) / (len * len);
+      if (along < -0.25 || along > 1.25) continue;
+      Vec n(t.y() / len, -t.x() / len);
+      if (n.dot(ref.normal[std::size_t(k)]) < 0) n = -n;
+      const Vec q = pk - d.centre;
+      Row r;
+      r << z * n.x(), z * n.y(), z * n.x() * q.x(), z * n.x() * q.y(), z * n.y() * q.x(), z * n.y() * q.y(), 1.0;
+      rows.push_back(r);
+      rhs.push_back((raw - pk).dot(n));
+    }
+    if (int(rows.size()) < min_support) return d;
+    std::vector<char> use(rows.size(), 1);
+    Row sol = Row::Zero();
+    for (int pass = 0; pass < 3; ++pass) {
+      Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
+      Row b = Row::Zero();
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        if (use[r]) {
+          A += rows[r] * rows[r].transpose();
+          b += rows[r] * rhs[r];
+        }
+      const double ridge = 1e-3 * (A(0, 0) + A(1, 1)) + 1e-12;
+      for (int j = 0; j < 6; ++j) A(j, j) += (j < 2 ? 1.0 : 1.0) * ridge;
+      sol = A.ldlt().solve(b);
+      if (!sol.allFinite()) return d;
+      std::vector<double> res;
+      for (std::size_t r = 0; r < rows.size(); ++r) res.push_back(std::abs(rhs[r] - rows[r].dot(sol)));
+      std::vector<double> sorted = res;
+      std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+      const double cut = 3 * 1.4826 * sorted[sorted.size() / 2] + 0.05 * slab;
+      int kept = 0;
+      for (std::size_t r = 0; r < rows.size(); ++r) kept += (use[r] = res[r] <= cut);
+      if (kept < min_support) return d;
+    }
+    if (std::abs(sol(6)) > 0.25 * slab) return d;
+    cur.v0 = sol.head<2>();
+    cur.a << sol(2), sol(3), sol(4), sol(5);
+    cur.constant = sol(6);
+    std::vector<double> res;
+    for (std::size_t r = 0; r < rows.size(); ++r) res.push_back(std::abs(rhs[r] - rows[r].dot(sol)));
+    std::nth_element(res.begin(), res.begin() + long(res.size() / 2), res.end());
+    cur.cut = 3 * 1.4826 * res[res.size() / 2] + 0.05 * slab;
+  }
+  cur.ok = true;
+  return cur;
+}
+
 }  // namespace
+
+std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby,
+                                        double slab, double half_width) {
+  const Reference ref = reference_of(ordered);
+  if (ref.point.size() < 3 || !(slab > 0)) return {};
+  const double profile_length = ordered.loops.empty() ? 0.0 : ordered.loops[0].length;
+  const double gap_min = std::max(3 * slab, 0.0025 * profile_length);
+  std::vector<Vec> uv;
+  std::vector<double> dz;
+  const double zfit = std::max(2 * half_width, 3 * slab);
+  for (const auto& p : nearby)
+    if (p.allFinite() && std::abs(p.z()) <= zfit) {
+      uv.emplace_back(p.x(), p.y());
+      dz.push_back(p.z());
+    }
+  const Grid ref_grid(ref.point, 2 * slab);
+  const AffineDrift drift = fit_affine_drift(uv, dz, ref, ref_grid, zfit, slab, gap_min, 64);
+  if (!drift.ok) return {};
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t i = 0; i < uv.size(); ++i) {
+    if (std::abs(dz[i]) > half_width) continue;
+    const Vec c = uv[i] - dz[i] * drift.at(uv[i]);
+    out.push_back(c);
+  }
+  return out;
+}
+
+double band_half_width(std::size_t slab_points, double length, double slab, double spacing, double max_widths) {
+  if (!(spacing > 0) || !(length > 0) || slab_points == 0) return 0.5 * slab;
+  // Points per length grow with the band's width: slab_points / length in the slab.
+  const double wanted = 0.5 * slab * (length / double(slab_points)) / spacing;
+  return std::clamp(wanted, 0.5 * slab, std::max(0.5, max_widths) * slab);
+}
 
 double gap_fill_reach(const GapFillOptions& options, double slab) {
   return options.reach > 0 ? options.reach : 12 * slab;

@@ -274,8 +274,19 @@ void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count, 
 }
 
 // Gap filling's reach for a slab; 0 when filling is off.
+// How far from the plane the points beside it are kept: the fill's reach and the band's
+// drift fit (drift_band); 0 when neither runs.
 double fill_reach(const SliceOptions& options, double slab) {
-  return options.fill_gaps ? gap_fill_reach(options.fill, slab) : 0;
+  const double fill = options.fill_gaps ? gap_fill_reach(options.fill, slab) : 0;
+  const double band = options.band_spacing > 0 ? std::max(2 * std::max(0.5, options.band_max), 3.0) * slab : 0;
+  return std::max(fill, band);
+}
+
+void check_band_options(const SliceOptions& options) {
+  if (!(options.band_spacing >= 0) || !std::isfinite(options.band_spacing))
+    throw Error("slice: the band spacing must be zero or positive and finite");
+  if (!(options.band_max >= 0.5) || !std::isfinite(options.band_max))
+    throw Error("slice: the band's largest half width must be at least 0.5 slab widths");
 }
 
 std::vector<Frame> frames_of(const std::vector<Plane>& planes) {
@@ -324,8 +335,24 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
     try {
       if (slabs[i].empty()) throw Error("no points in the slab (the plane misses the part?)");
       s.morphology = order_section(slabs[i], options.morphology);
-      if (i < near.size() && !near[i].empty()) {
-        GapFillResult r = fill_gaps(s.morphology, near[i], slab, slabs[i].size(), options.fill);
+      std::size_t first = slabs[i].size();
+      if (options.band_spacing > 0 && i < near.size() && !near[i].empty() && !s.morphology.loops.empty()) {
+        const Loop& profile = s.morphology.loops[0];
+        const double half = band_half_width(profile.points.size(), profile.length, slab, options.band_spacing,
+                                            options.band_max);
+        // A band hardly wider than the slab is not worth a second ordering.
+        if (half > 0.6 * slab) {
+          std::vector<Eigen::Vector2d> band = drift_band(s.morphology, near[i], slab, half);
+          if (band.size() > slabs[i].size()) {
+            s.morphology = order_section(band, options.morphology);
+            first = band.size();
+            s.band_points = band.size();
+            s.band_half_width = half;
+          }
+        }
+      }
+      if (options.fill_gaps && i < near.size() && !near[i].empty()) {
+        GapFillResult r = fill_gaps(s.morphology, near[i], slab, first, options.fill);
         s.morphology = std::move(r.filled);
         r.filled = MorphologyResult{};
         s.fill = std::move(r);
@@ -343,6 +370,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
 SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options) {
   check_planes(planes);
   if (options.fill_gaps) check_gap_fill_options(options.fill);
+  check_band_options(options);
   if (cloud.points.empty()) throw Error("slice: the cloud has no points");
   SliceResult result;
   result.points = cloud.points.size();
@@ -366,6 +394,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
                        const CloudReadOptions& read) {
   check_slab(options.slab);
   if (options.fill_gaps) check_gap_fill_options(options.fill);
+  check_band_options(options);
   if (spec.count > 0 && (!spec.normal.allFinite() || !(spec.normal.norm() > 0)))
     throw Error("slice: the plane normal must be finite and non-zero");
   if (spec.count == 0) check_planes(spec.planes);
@@ -536,6 +565,12 @@ Stream to_stream(const SliceResult& result, const std::string& command, const st
       continue;
     }
     const auto& m = s.morphology;
+    if (s.band_points > 0) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "band section=%d half_width=%.6g points=%zu slab_points=%zu", s.id,
+                    s.band_half_width, s.band_points, s.slab_points);
+      stream.notes.push_back(buf);
+    }
     if (s.fill.gaps > 0) {
       char buf[200];
       std::snprintf(buf, sizeof buf, "fill section=%d gaps=%d filled=%d points=%zu largest_gap=%.6g max_offset=%.6g", s.id,
@@ -551,10 +586,11 @@ Stream to_stream(const SliceResult& result, const std::string& command, const st
                      loop.length, m.cell});
       for (std::size_t k = 0; k < loop.points.size(); ++k) {
         const Eigen::Vector2d nrm = k < loop.normals.size() ? loop.normals[k] : Eigen::Vector2d(0, 0);
-        // A point the gap fill carried onto the plane: its distance from it, else 0.
-        const std::size_t carried = k < loop.index.size() && loop.index[k] >= s.slab_points
-                                        ? loop.index[k] - s.slab_points
-                                        : s.fill.offsets.size();
+        // A point the gap fill carried onto the plane: its distance from it, else 0. Its
+        // index follows those of the points ordered before the fill (the band's or the slab's).
+        const std::size_t base = s.band_points > 0 ? s.band_points : s.slab_points;
+        const std::size_t carried = k < loop.index.size() && loop.index[k] >= base ? loop.index[k] - base
+                                                                                 : s.fill.offsets.size();
         const double offset = carried < s.fill.offsets.size() ? s.fill.offsets[carried] : 0.0;
         points.add_row({double(s.id), double(l), double(k), loop.points[k].x(), loop.points[k].y(), nrm.x(), nrm.y(),
                         offset});

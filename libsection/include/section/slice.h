@@ -5,6 +5,7 @@
 /// intersection polylines).
 #include "section/cloud.h"
 #include "section/frame.h"
+#include "section/drift_band.h"
 #include "section/gap_fill.h"
 #include "section/mesh.h"
 #include "section/morphology.h"
@@ -39,6 +40,8 @@ std::vector<Plane> parse_planes(std::string_view csv, const std::string& source)
 struct SliceOptions {
   double slab = 0;                    ///< slab width d (units of the cloud); 0 = the cloud's mean spacing
   MorphologyOptions morphology;       ///< ordering of each section's points
+  double band_spacing = 0.02;         ///< widen the slab into a drift-corrected band (drift_band.h) until it holds about one point per this length along the profile (units of the cloud); 0 = the slab alone
+  double band_max = 2;                ///< slab widths: the band's largest half width
   bool fill_gaps = true;              ///< fill gaps of the slab from scan points beside the plane (gap_fill.h)
   GapFillOptions fill;                ///< how (reach 0 = 12 slab widths)
   int threads = 0;                    ///< worker threads for the sections; 0 = all cores
@@ -50,6 +53,8 @@ struct SectionSlice {
   Frame frame;                        ///< the plane's frame (u, v in-plane)
   std::size_t slab_points = 0;        ///< points found in the slab
   MorphologyResult morphology;        ///< ordered loops, normals, skeleton (empty on error)
+  std::size_t band_points = 0;        ///< points of the drift-corrected band that replaced the slab's (0: the slab alone)
+  double band_half_width = 0;         ///< its half width (0: the slab alone)
   GapFillResult fill;                 ///< gaps found and filled (counts; the carried points are in the loops)
   std::string error;                  ///< why the section failed; empty when it did not
 };
