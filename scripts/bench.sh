@@ -5,7 +5,8 @@
 # /usr/bin/time (wall s, peak MB):
 #   read     bench/bench_read on the binary PLY and on the XYZ text (points per second)
 #   slice    `slice FILE.ply --count 20`
-#   pipe     `slice --count 20 | smooth | fitspline | camber` (peak = the largest process)
+#   pipe     `slice --count 20 | smooth | fitspline | camber` (peak = the largest process), and
+#            the same with `slice --band-spacing 0` (the slab alone, no drift-corrected band)
 #   peer     scripts/peers/slice_peer.py: numpy slab mask, NN chaining, splprep per section
 # and on a ~1 M triangle mesh: `slice MESH --count 20` against trimesh section_multiplane
 # (scripts/peers/mesh_peer.py). Ratios are peer / libsection wall time (> 1: we are faster).
@@ -58,6 +59,9 @@ for m in "${SIZES[@]}"; do
   pipe_s=$WALL
   fitted=$(awk -F, '/^# table params/{t=1; getline; next} /^#/{t=0} t&&NF>1{n++} END{print n+0}' "$WORK/last.out")
   printf '%-7s %-22s %9s %9s %12s\n' "$m" "pipe to camber" "$WALL" "$PEAK_MB" "$fitted sections"
+  # The same pipe with the slab alone (no drift-corrected band: what a sparse scan costs).
+  timed bash -c "set -o pipefail; '$T/slice' '$ply' --count 20 --band-spacing 0 2>/dev/null | '$T/smooth' | '$T/fitspline' | '$T/camber' 2>/dev/null"
+  printf '%-7s %-22s %9s %9s %12s\n' "$m" "pipe, slab alone" "$WALL" "$PEAK_MB" ""
   if [ "$PEER" = 1 ]; then
     timed python3 "$SRC/scripts/peers/slice_peer.py" "$ply" --count 20
     peer_fitted=$(sed -E 's/.*sections=([0-9]+).*/\1/' "$WORK/last.out")

@@ -340,8 +340,9 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
         const Loop& profile = s.morphology.loops[0];
         const double half = band_half_width(profile.points.size(), profile.length, slab, options.band_spacing,
                                             options.band_max);
-        // A band hardly wider than the slab is not worth a second ordering.
-        if (half > 0.6 * slab) {
+        // A band less than twice as wide as the slab is not worth a second ordering and
+        // the later stages' time for its points (the slab is dense enough then).
+        if (half >= slab) {
           std::vector<Eigen::Vector2d> band = drift_band(s.morphology, near[i], slab, half);
           if (band.size() > slabs[i].size()) {
             s.morphology = order_section(band, options.morphology);
