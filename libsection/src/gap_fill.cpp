@@ -91,6 +91,27 @@ Reference reference_of(const MorphologyResult& ordered) {
   return r;
 }
 
+// The slab's span beside c: its nearest ordered point within 3 slab widths (k, at pk) and
+// that point's neighbour on the side of c, when the span is no gap and c lies beside it
+// (a line carried on past a gap's end misses a curving edge); n its unit normal, turned
+// like the point's outward normal. False when there is none.
+bool span_beside(const Reference& ref, const Grid& ref_grid, const Vec& c, double slab, double gap_min, int& k,
+                 Vec& pk, Vec& n) {
+  k = ref_grid.nearest(c, 3 * slab);
+  if (k < 0) return false;
+  pk = ref.point[std::size_t(k)];
+  const int a = ref.next[std::size_t(k)], b = ref.prev[std::size_t(k)];
+  const int m = (c - ref.point[std::size_t(a)]).squaredNorm() <= (c - ref.point[std::size_t(b)]).squaredNorm() ? a : b;
+  const Vec t = ref.point[std::size_t(m)] - pk;
+  const double len = t.norm();
+  if (!(len > 0) || len > gap_min) return false;
+  const double along = (c - pk).dot(t) / (len * len);
+  if (along < -0.25 || along > 1.25) return false;
+  n = Vec(t.y() / len, -t.x() / len);
+  if (n.dot(ref.normal[std::size_t(k)]) < 0) n = -n;
+  return true;
+}
+
 struct Drift {
   bool ok = false;
   Vec v = Vec::Zero();
@@ -115,20 +136,9 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
       const double z = dz[std::size_t(i)];
       if (std::abs(z) > zmax) continue;
       const Vec raw = uv[std::size_t(i)], c = raw - z * v;
-      const int k = ref_grid.nearest(c, 3 * slab);
-      if (k < 0) continue;
-      const Vec pk = ref.point[std::size_t(k)];
-      // The neighbour on the side of c, unless that span is a gap.
-      const int a = ref.next[std::size_t(k)], b = ref.prev[std::size_t(k)];
-      const int m = (c - ref.point[std::size_t(a)]).squaredNorm() <= (c - ref.point[std::size_t(b)]).squaredNorm() ? a : b;
-      const Vec t = ref.point[std::size_t(m)] - pk;
-      const double len = t.norm();
-      if (!(len > 0) || len > gap_min) continue;
-      // Beside the span only: a line carried on past a gap's end misses a curving edge.
-      const double along = (c - pk).dot(t) / (len * len);
-      if (along < -0.25 || along > 1.25) continue;
-      Vec n(t.y() / len, -t.x() / len);
-      if (n.dot(ref.normal[std::size_t(k)]) < 0) n = -n;
+      int k;
+      Vec pk, n;
+      if (!span_beside(ref, ref_grid, c, slab, gap_min, k, pk, n)) continue;
       rows.emplace_back(z * n.x(), z * n.y(), 1.0);
       rhs.push_back((raw - pk).dot(n));
     }
@@ -173,16 +183,15 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
   return d;
 }
 
-// The section's drift over the whole profile, affine in the plane: a point p at height z
-// lies z (V(p) . n) + c from the slab's curve, V(p) = V0 + A (p - centre). Fitted like
-// fit_drift (pairs with the slab's spans, trimmed least squares, widening rounds) but with
-// every point within `zmax` of the plane. ok false when it cannot be fitted.
+// The section's drift over the whole profile (drift_band.h), affine in the plane: a point
+// p at height z lies z (V(p) . n) + c from the slab's curve, V(p) = V0 + A (p - centre).
+// Fitted like fit_drift (pairs with the profile's spans, trimmed least squares, two rounds
+// widening from the plane to `zmax`, a constant c beyond a quarter slab refused). ok is
+// false when it cannot be fitted.
 struct AffineDrift {
   bool ok = false;
   Vec centre = Vec::Zero(), v0 = Vec::Zero();
   Eigen::Matrix2d a = Eigen::Matrix2d::Zero();
-  double constant = 0;  // the curve's offset from the slab's spans (their sagitta)
-  double cut = 0;       // residual beyond which a pair was left out of the fit
   Vec at(const Vec& p) const { return v0 + a * (p - centre); }
 };
 
@@ -204,18 +213,9 @@ AffineDrift fit_affine_drift(const std::vector<Vec>& uv, const std::vector<doubl
       const double z = dz[i];
       if (std::abs(z) > zr) continue;
       const Vec raw = uv[i], c = raw - z * cur.at(raw);
-      const int k = ref_grid.nearest(c, 3 * slab);
-      if (k < 0 || ref.loop[std::size_t(k)] != 0) continue;
-      const Vec pk = ref.point[std::size_t(k)];
-      const int a = ref.next[std::size_t(k)], b = ref.prev[std::size_t(k)];
-      const int m = (c - ref.point[std::size_t(a)]).squaredNorm() <= (c - ref.point[std::size_t(b)]).squaredNorm() ? a : b;
-      const Vec t = ref.point[std::size_t(m)] - pk;
-      const double len = t.norm();
-      if (!(len > 0) || len > gap_min) continue;
-      const double along = (c - pk).dot(t) / (len * len);
-      if (along < -0.25 || along > 1.25) continue;
-      Vec n(t.y() / len, -t.x() / len);
-      if (n.dot(ref.normal[std::size_t(k)]) < 0) n = -n;
+      int k;
+      Vec pk, n;
+      if (!span_beside(ref, ref_grid, c, slab, gap_min, k, pk, n) || ref.loop[std::size_t(k)] != 0) continue;
       const Vec q = pk - d.centre;
       Row r;
       r << z * n.x(), z * n.y(), z * n.x() * q.x(), z * n.x() * q.y(), z * n.y() * q.x(), z * n.y() * q.y(), 1.0;
@@ -233,8 +233,10 @@ AffineDrift fit_affine_drift(const std::vector<Vec>& uv, const std::vector<doubl
           A += rows[r] * rows[r].transpose();
           b += rows[r] * rhs[r];
         }
+      // A ridge on the drift's six numbers, as in fit_drift: what the pairs do not see (along
+      // a straight stretch, V . t) stays near 0.
       const double ridge = 1e-3 * (A(0, 0) + A(1, 1)) + 1e-12;
-      for (int j = 0; j < 6; ++j) A(j, j) += (j < 2 ? 1.0 : 1.0) * ridge;
+      for (int j = 0; j < 6; ++j) A(j, j) += ridge;
       sol = A.ldlt().solve(b);
       if (!sol.allFinite()) return d;
       std::vector<double> res;
@@ -249,11 +251,6 @@ AffineDrift fit_affine_drift(const std::vector<Vec>& uv, const std::vector<doubl
     if (std::abs(sol(6)) > 0.25 * slab) return d;
     cur.v0 = sol.head<2>();
     cur.a << sol(2), sol(3), sol(4), sol(5);
-    cur.constant = sol(6);
-    std::vector<double> res;
-    for (std::size_t r = 0; r < rows.size(); ++r) res.push_back(std::abs(rhs[r] - rows[r].dot(sol)));
-    std::nth_element(res.begin(), res.begin() + long(res.size() / 2), res.end());
-    cur.cut = 3 * 1.4826 * res[res.size() / 2] + 0.05 * slab;
   }
   cur.ok = true;
   return cur;
@@ -280,9 +277,7 @@ std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const s
   if (!drift.ok) return {};
   std::vector<Eigen::Vector2d> out;
   for (std::size_t i = 0; i < uv.size(); ++i) {
-    if (std::abs(dz[i]) > half_width) continue;
-    const Vec c = uv[i] - dz[i] * drift.at(uv[i]);
-    out.push_back(c);
+    if (std::abs(dz[i]) <= half_width) out.push_back(uv[i] - dz[i] * drift.at(uv[i]));
   }
   return out;
 }
