@@ -166,6 +166,13 @@ TEST_CASE("gap fill: bad options are refused before any work", "[gap_fill]") {
   CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("min_gap_fraction"));
   o.fill_gaps = false;  // options of a fill that does not run are not looked at
   CHECK_NOTHROW(slice(c, planes_at({0, 0, 1}, {0.0}), o));
+  o.band_spacing = -0.02;
+  CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("band spacing"));
+  o.band_spacing = std::nan("");
+  CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("band spacing"));
+  o.band_spacing = 0.02;
+  o.band_max = 0.2;
+  CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("at least 0.5 slab widths"));
 }
 
 TEST_CASE("drift band: a twisting, drifting ellipse's band lands on the section of the plane", "[gap_fill]") {

@@ -37,6 +37,12 @@ cp "$TMP/out" "$TMP/from_file.csv"
 awk 'BEGIN { for (z = -0.6; z <= 0.6; z += 0.05) for (i = 0; i < 1200; i++) { a = 6.283185307179586 * i / 1200; if (a > 1 && a < 1.2 && z > -0.3 && z < 0.3) continue; printf "%.9f %.9f %.3f\n", 10*cos(a), 5*sin(a) + 0.2*z, z } }' > "$TMP/holed.xyz"
 expect 0 "holed ring" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05
 check "gap filled and noted" -- grep -q "^# fill section=0 gaps=1 filled=1" "$TMP/out"
+# One row in the slab (25 points per mm): the band takes the rows at +-0.05 too.
+check "band of three rows noted" -- grep -q "^# band section=0 half_width=0.05[0-9]* points=34[0-9][0-9] slab_points=11[0-9][0-9]" "$TMP/out"
+expect 0 "holed ring, slab alone" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --band-spacing 0
+check "no band note without a band" -- sh -c "! grep -q '^# band' '$TMP/out'"
+expect 2 "band max below half a slab" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --band-max 0.2
+expect 2 "negative band spacing" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --band-spacing -1
 expect 0 "holed ring, no fill" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --no-fill
 check "no fill note without filling" -- sh -c "! grep -q '^# fill' '$TMP/out'"
 "$BIN/slice" --at 0,5 --slab 0.1 < "$TMP/ring.xyz" > "$TMP/from_stdin.csv" 2>/dev/null
