@@ -273,7 +273,6 @@ void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count, 
   });
 }
 
-// Gap filling's reach for a slab; 0 when filling is off.
 // How far from the plane the points beside it are kept: the fill's reach and the band's
 // drift fit (drift_band); 0 when neither runs.
 double fill_reach(const SliceOptions& options, double slab) {
@@ -345,10 +344,14 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
         if (half >= slab) {
           std::vector<Eigen::Vector2d> band = drift_band(s.morphology, near[i], slab, half);
           if (band.size() > slabs[i].size()) {
-            s.morphology = order_section(band, options.morphology);
-            first = band.size();
-            s.band_points = band.size();
-            s.band_half_width = half;
+            // A band that cannot be ordered leaves the slab's ordering as it is.
+            try {
+              s.morphology = order_section(band, options.morphology);
+              first = band.size();
+              s.band_points = band.size();
+              s.band_half_width = half;
+            } catch (const Error&) {
+            }
           }
         }
       }
