@@ -112,6 +112,40 @@ bool span_beside(const Reference& ref, const Grid& ref_grid, const Vec& c, doubl
   return true;
 }
 
+// Trimmed least squares for the drift fits: three passes, each on the rows within
+// 3 robust sigmas (plus 0.05 slab) of the last fit, with a ridge on the first `ridged`
+// unknowns (1e-3 of the first two's weight: a direction the pairs do not see, as V . t
+// along a straight side, stays near 0; one they see is shrunk by about 0.1 %). False when
+// the solve fails or fewer than `min_support` rows are kept.
+template <int N>
+bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs, int ridged,
+                 double slab, int min_support, Eigen::Matrix<double, N, 1>& sol) {
+  std::vector<char> use(rows.size(), 1);
+  sol.setZero();
+  for (int pass = 0; pass < 3; ++pass) {
+    Eigen::Matrix<double, N, N> A = Eigen::Matrix<double, N, N>::Zero();
+    Eigen::Matrix<double, N, 1> b = Eigen::Matrix<double, N, 1>::Zero();
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (use[r]) {
+        A += rows[r] * rows[r].transpose();
+        b += rows[r] * rhs[r];
+      }
+    const double ridge = 1e-3 * (A(0, 0) + A(1, 1)) + 1e-12;
+    for (int j = 0; j < ridged; ++j) A(j, j) += ridge;
+    sol = A.ldlt().solve(b);
+    if (!sol.allFinite()) return false;
+    std::vector<double> res;
+    for (std::size_t r = 0; r < rows.size(); ++r) res.push_back(std::abs(rhs[r] - rows[r].dot(sol)));
+    std::vector<double> sorted = res;
+    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+    const double cut = 3 * 1.4826 * sorted[sorted.size() / 2] + 0.05 * slab;
+    int kept = 0;
+    for (std::size_t r = 0; r < rows.size(); ++r) kept += (use[r] = res[r] <= cut);
+    if (kept < min_support) return false;
+  }
+  return true;
+}
+
 struct Drift {
   bool ok = false;
   Vec v = Vec::Zero();
@@ -147,32 +181,8 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
     // means the last drift carried them off the slab's curve: a wrong fit.
     if (rows.size() < last_rows) return d;
     last_rows = rows.size();
-    std::vector<char> use(rows.size(), 1);
-    Eigen::Vector3d sol = Eigen::Vector3d::Zero();
-    for (int pass = 0; pass < 3; ++pass) {
-      Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-      Eigen::Vector3d b = Eigen::Vector3d::Zero();
-      for (std::size_t r = 0; r < rows.size(); ++r)
-        if (use[r]) {
-          A += rows[r] * rows[r].transpose();
-          b += rows[r] * rhs[r];
-        }
-      // A ridge on V: along a straight side only V . n is seen, the rest stays near 0;
-      // a direction the points do see is shrunk by about 0.1 %.
-      const double ridge = 1e-3 * (A(0, 0) + A(1, 1)) + 1e-12;
-      A(0, 0) += ridge;
-      A(1, 1) += ridge;
-      sol = A.ldlt().solve(b);
-      if (!sol.allFinite()) return d;
-      std::vector<double> res;
-      for (std::size_t r = 0; r < rows.size(); ++r) res.push_back(std::abs(rhs[r] - rows[r].dot(sol)));
-      std::vector<double> sorted = res;
-      std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
-      const double cut = 3 * 1.4826 * sorted[sorted.size() / 2] + 0.05 * slab;
-      int kept = 0;
-      for (std::size_t r = 0; r < rows.size(); ++r) kept += (use[r] = res[r] <= cut);
-      if (kept < min_support) return d;
-    }
+    Eigen::Vector3d sol;
+    if (!trimmed_fit<3>(rows, rhs, 2, slab, min_support, sol)) return d;
     v = sol.head<2>();
     // The constant stands for the chords' sagitta beside the gap: a few um. A large one
     // means the points were paired with the wrong lines.
@@ -223,31 +233,8 @@ AffineDrift fit_affine_drift(const std::vector<Vec>& uv, const std::vector<doubl
       rhs.push_back((raw - pk).dot(n));
     }
     if (int(rows.size()) < min_support) return d;
-    std::vector<char> use(rows.size(), 1);
-    Row sol = Row::Zero();
-    for (int pass = 0; pass < 3; ++pass) {
-      Eigen::Matrix<double, 7, 7> A = Eigen::Matrix<double, 7, 7>::Zero();
-      Row b = Row::Zero();
-      for (std::size_t r = 0; r < rows.size(); ++r)
-        if (use[r]) {
-          A += rows[r] * rows[r].transpose();
-          b += rows[r] * rhs[r];
-        }
-      // A ridge on the drift's six numbers, as in fit_drift: what the pairs do not see (along
-      // a straight stretch, V . t) stays near 0.
-      const double ridge = 1e-3 * (A(0, 0) + A(1, 1)) + 1e-12;
-      for (int j = 0; j < 6; ++j) A(j, j) += ridge;
-      sol = A.ldlt().solve(b);
-      if (!sol.allFinite()) return d;
-      std::vector<double> res;
-      for (std::size_t r = 0; r < rows.size(); ++r) res.push_back(std::abs(rhs[r] - rows[r].dot(sol)));
-      std::vector<double> sorted = res;
-      std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
-      const double cut = 3 * 1.4826 * sorted[sorted.size() / 2] + 0.05 * slab;
-      int kept = 0;
-      for (std::size_t r = 0; r < rows.size(); ++r) kept += (use[r] = res[r] <= cut);
-      if (kept < min_support) return d;
-    }
+    Row sol;
+    if (!trimmed_fit<7>(rows, rhs, 6, slab, min_support, sol)) return d;
     if (std::abs(sol(6)) > 0.25 * slab) return d;
     cur.v0 = sol.head<2>();
     cur.a << sol(2), sol(3), sol(4), sol(5);
