@@ -56,9 +56,9 @@ struct Worst {
 int main(int argc, char** argv) {
   int seeds = 1, first_seed = 1;
   double misregistration = 0.0;
-  double noise = -1, density_min = -1, slab = 0.08;
-  double twist = 0;  // --twist DEG: extra twist from hub to tip (robustness to drift)
-  double band_spacing = -1;  // --band-spacing MM / --no-band (0); < 0: slice's default  // scan overrides (< 0: the inspection scan's)
+  double noise = -1, density_min = -1, slab = 0.08;  // scan overrides (< 0: the inspection scan's)
+  double twist = 0;          // --twist DEG: extra twist from hub to tip (robustness to drift)
+  double band_spacing = -1;  // --band-spacing MM / --no-band (0); < 0: slice's default
   int holes = -1;
   std::string preset = "both";
   std::string export_dir;  // --export DIR: per-section CSVs for scripts/compare_scipy.py

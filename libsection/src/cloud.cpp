@@ -555,8 +555,6 @@ bool host_little_endian() {
   return c == 1;
 }
 
-// `fn` receives the points checked against max_coordinate; `raw` unchecked (the packed
-// binary path checks while it reads).
 // Throws for the first vertex of v[0, m) (vertex `first` is v[0]) with a non-finite
 // coordinate or one beyond +-1e15; returns when there is none.
 void check_vertices(const Eigen::Vector3d* v, std::size_t m, unsigned long long first, const std::string& name) {
@@ -624,6 +622,8 @@ std::size_t read_packed_file(Source& src, unsigned long long count, const CloudR
   return out.total();
 }
 
+// `fn` receives the points checked against max_coordinate; `raw` unchecked (the packed
+// binary path checks while it reads).
 std::size_t read_ply(Source& src, const CloudReadOptions& opt, const PointChunkFn& fn, const PointChunkFn& raw) {
   const PlyHeader h = parse_ply_header(src);
   const std::string& name = src.name();
@@ -754,27 +754,8 @@ std::size_t read_ply(Source& src, const CloudReadOptions& opt, const PointChunkF
           throw Error("read_cloud: " + name + ": PLY file ends after " + std::to_string(done) + " of " +
                       std::to_string(ve.count) + " vertices (truncated file?)");
         const char* r = src.bytes().data();
-        // Non-finite and out-of-range values in one branch-free test; the vertex is looked
-        // for only when it fails. `first` is the index of v[0]'s vertex.
-        const auto check = [&](const char* v, std::size_t m, unsigned long long first) {
-          bool bad = false;
-          for (std::size_t k = 0; k < 3 * m; ++k) {
-            double x;
-            std::memcpy(&x, v + 8 * k, 8);
-            bad |= !(std::abs(x) <= detail::max_coordinate);
-          }
-          for (std::size_t k = 0; bad && k < m; ++k) {
-            double x[3];
-            std::memcpy(x, v + 24 * k, 24);
-            if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
-              throw Error("read_cloud: " + name + ": vertex " + std::to_string(first + k) + " has a non-finite coordinate");
-            if (std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])}) > detail::max_coordinate)
-              throw Error("read_cloud: " + name + ": point " + std::to_string(first + k + 1) +
-                          " has a coordinate beyond +-1e15 (corrupt file?)");
-          }
-        };
         if (reinterpret_cast<std::uintptr_t>(r) % alignof(Eigen::Vector3d) == 0) {
-          check(r, n, done);
+          check_vertices(reinterpret_cast<const Eigen::Vector3d*>(r), n, done, name);
           direct.add_many(reinterpret_cast<const Eigen::Vector3d*>(r), n);
         } else {
           // Copied in blocks that stay in the cache while they are checked.
@@ -782,7 +763,7 @@ std::size_t read_ply(Source& src, const CloudReadOptions& opt, const PointChunkF
             std::size_t m = std::min<std::size_t>(n - k, 2048);
             Eigen::Vector3d* dst = direct.room(m);
             std::memcpy(static_cast<void*>(dst), r + 24 * k, 24 * m);
-            check(reinterpret_cast<const char*>(dst), m, done + k);
+            check_vertices(dst, m, done + k, name);
             direct.commit();
             k += m;
           }

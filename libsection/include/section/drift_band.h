@@ -12,6 +12,7 @@
 #include "section/morphology.h"
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 namespace section {
