@@ -112,6 +112,12 @@ bool span_beside(const Reference& ref, const Grid& ref_grid, const Vec& c, doubl
   return true;
 }
 
+// A step along the profile longer than this is a gap (the fill's threshold; the drift
+// fits pair no point with a span that long).
+double gap_length(const GapFillOptions& options, double slab, double profile_length) {
+  return std::max(options.min_gap * slab, options.min_gap_fraction * profile_length);
+}
+
 // Trimmed least squares for the drift fits: three passes, each on the rows within
 // 3 robust sigmas (plus 0.05 slab) of the last fit, with a ridge on the first `ridged`
 // unknowns (1e-3 of the first two's weight: a direction the pairs do not see, as V . t
@@ -208,9 +214,8 @@ struct AffineDrift {
 AffineDrift fit_affine_drift(const std::vector<Vec>& uv, const std::vector<double>& dz, const Reference& ref,
                              const Grid& ref_grid, double zmax, double slab, double gap_min, int min_support) {
   AffineDrift d;
-  for (std::size_t k = 0; k < ref.point.size() && ref.loop[k] == 0; ++k) d.centre += ref.point[k];
-  std::size_t n0 = 0;
-  while (n0 < ref.point.size() && ref.loop[n0] == 0) ++n0;
+  std::size_t n0 = 0;  // loop 0 comes first in the reference
+  for (; n0 < ref.point.size() && ref.loop[n0] == 0; ++n0) d.centre += ref.point[n0];
   if (n0 < 3) return d;
   d.centre /= double(n0);
   using Row = Eigen::Matrix<double, 7, 1>;
@@ -250,7 +255,7 @@ std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const s
   const Reference ref = reference_of(ordered);
   if (ref.point.size() < 3 || !(slab > 0)) return {};
   const double profile_length = ordered.loops.empty() ? 0.0 : ordered.loops[0].length;
-  const double gap_min = std::max(3 * slab, 0.0025 * profile_length);
+  const double gap_min = gap_length(GapFillOptions{}, slab, profile_length);
   std::vector<Vec> uv;
   std::vector<double> dz;
   const double zfit = std::max(2 * half_width, 3 * slab);
@@ -297,7 +302,7 @@ GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen
   // The profile's length sets a floor: on a dense scan, gaps of a few slab widths are many,
   // cost time, and change nothing a fit would see.
   const double profile_length = ordered.loops.empty() ? 0.0 : ordered.loops[0].length;
-  const double gap_min = std::max(options.min_gap * slab, options.min_gap_fraction * profile_length);
+  const double gap_min = gap_length(options, slab, profile_length);
   const int min_support = std::max(4, options.min_support);
 
   const Reference ref = reference_of(ordered);
