@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <exception>
 #include <map>
 #include <string>
@@ -114,12 +115,15 @@ int main(int argc, char** argv) {
     else if (a == "--edge-hole-reach") camber_options.edge_hole_reach = std::atof(value());
     else if (a == "--edge-prune") camber_options.edge_prune = std::atof(value());
     else if (a == "--tangent-span") camber_options.tangent_span = std::atof(value());
+    else if (a == "--edge-on-spline") camber_options.edge_on_points = false;
+    else if (a == "--edge-point-gap") camber_options.edge_point_gap = std::atof(value());
+    else if (a == "--edge-point-sigma") camber_options.edge_point_sigma = std::atof(value());
     else if (a == "--quiet") quiet = true;
     else if (a == "--help" || a == "-h") {
       std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] [--twist DEG] [--band-spacing MM] [--no-band] "
                   "[--preset turbine|compressor|both] [--full-scan] [--no-fill] [--fill-gap K] [--fill-fraction F] [--fill-reach MM] [--auto-cells N] [--no-camber] [--quiet] [--export DIR]\n"
                   "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] "
-                  "[--edge-prune DEG] [--tangent-span FRACTION]\n");
+                  "[--edge-prune DEG] [--tangent-span FRACTION] [--edge-on-spline] [--edge-point-gap F] [--edge-point-sigma F]\n");
       return 0;
     } else if (i == 1 && std::isdigit(static_cast<unsigned char>(a[0]))) seeds = std::atoi(a.c_str());
     else if (i == 2 && (std::isdigit(static_cast<unsigned char>(a[0])) || a[0] == '.'))
@@ -165,6 +169,10 @@ int main(int argc, char** argv) {
         Stream stream = parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");
         smooth_stream(stream);
         stream = parse_stream(format_stream(stream), "smooth");
+        // EVALUATE_STREAMS=PREFIX writes each blade's stream as fitspline reads it
+        // (PREFIX_preset_seed.smooth), to rerun the tools on one case.
+        if (const char* prefix = std::getenv("EVALUATE_STREAMS"))
+          std::ofstream(std::string(prefix) + "_" + kind + "_" + std::to_string(seed) + ".smooth") << format_stream(stream);
         fit_spline_stream(stream, fit_options);
         stream = parse_stream(format_stream(stream), "fitspline");
         double camber_ms = NAN;

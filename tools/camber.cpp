@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   section::tool::Common common;
   section::CamberOptions options;
   std::string params_file, thickness_file, stations, le_direction, edge = "round";
+  bool edge_on_spline = false;
   return section::tool::run_tool(
       "camber", description, argc, argv,
       [&](CLI::App& app) {
@@ -104,6 +105,9 @@ int main(int argc, char** argv) {
         app.add_option("--edge-hole-reach", options.edge_hole_reach,
                        "Edge radii along the profile from the edge point within which such a stretch must begin")
             ->check(CLI::NonNegativeNumber)->capture_default_str();
+        app.add_flag("--edge-on-spline", edge_on_spline,
+                     "Fit the edge circles to the spline's edge arcs alone (default: refitted to the measured points "
+                     "on the arcs, when the stream has them)");
         app.add_option("--tangent-span", options.tangent_span,
                        "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)")
             ->check(CLI::Range(0.0, 0.5))->capture_default_str();
@@ -119,6 +123,7 @@ int main(int argc, char** argv) {
             options.le_direction = {v[0], v[1]};
         }
         options.edge = edge == "auto" ? section::EdgeModel::automatic : section::EdgeModel::round;
+        options.edge_on_points = !edge_on_spline;
         const std::string text = section::read_file(common.input);
         const std::string source = common.input == "-" ? "<stdin>" : common.input;
         section::Stream stream;

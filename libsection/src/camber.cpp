@@ -450,6 +450,7 @@ double arc_end(const Profile& pr, double t_tip, const Eigen::Vector2d& d, double
 struct CircleFit {
   Eigen::Vector2d center{0, 0};
   double radius = 0, rms = 0;
+  double radius_sigma = 0;  // standard error of the radius, from the fit's covariance and rms
 };
 
 // Geometric least-squares circle (Gauss-Newton from the algebraic fit). Normal equations
@@ -492,6 +493,18 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
   double sum = 0;
   for (const auto& q : p) sum += std::pow((q - fit.center).norm() - fit.radius, 2);
   fit.rms = std::sqrt(sum / n);
+  if (n > 3) {
+    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+    for (const auto& q : p) {
+      const Eigen::Vector2d r = q - fit.center;
+      const double dist = r.norm();
+      if (!(dist > 0)) continue;
+      const Eigen::Vector3d row(-r.x() / dist, -r.y() / dist, -1);
+      jtj += row * row.transpose();
+    }
+    const Eigen::Matrix3d cov = jtj.inverse();
+    fit.radius_sigma = std::sqrt(std::max(cov(2, 2), 0.0) * sum / (n - 3));
+  }
   return fit;
 }
 
@@ -615,9 +628,54 @@ std::pair<double, double> grown_arc(const Profile& pr, double t_tip, const Eigen
   return range;
 }
 
+// The circle of an edge refitted to the measured points on its arc. The spline's arc
+// carries the fit's own shape error at a tight edge (a micrometre or two: a percent or
+// more of a 0.2 mm radius); the measured points do not. Points are taken within the arc's
+// angles seen from the spline circle's centre and within a band about that circle. They
+// must cover the arc without a large angular gap and fix the radius well (its standard
+// error), else (holes, a sparse edge) the spline's circle stands. Twice, the band
+// re-centred on the refitted circle.
+void refit_on_measured(const Profile& pr, const Edge& e, const Eigen::Vector2d& d,
+                       const std::vector<Eigen::Vector2d>& measured, const CamberOptions& options, CircleFit& fit) {
+  if (measured.size() < 8 || !(fit.radius > 0)) return;
+  auto signed_angle = [&](const Eigen::Vector2d& c, const Eigen::Vector2d& q) {
+    const Eigen::Vector2d r = q - c;
+    return std::atan2(cross(d, r), d.dot(r));
+  };
+  CircleFit current = fit;
+  for (int pass = 0; pass < 2; ++pass) {
+    const double a0 = signed_angle(current.center, pr.fast.jet(e.arc_t0).point),
+                 a1 = signed_angle(current.center, pr.fast.jet(e.arc_t1).point);
+    const double lo = std::min(a0, a1), hi = std::max(a0, a1);
+    const double band = std::max({0.25 * current.radius, 6 * options.profile_noise, 3 * current.rms});
+    std::vector<Eigen::Vector2d> on_arc;
+    std::vector<double> angles;
+    for (const auto& q : measured) {
+      const double dist = (q - current.center).norm();
+      if (std::abs(dist - current.radius) > band) continue;
+      const double a = signed_angle(current.center, q);
+      if (a < lo || a > hi) continue;
+      on_arc.push_back(q);
+      angles.push_back(a);
+    }
+    if (on_arc.size() < 8) return;
+    std::sort(angles.begin(), angles.end());
+    double gap = std::max(angles.front() - lo, hi - angles.back());
+    for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+    if (gap > options.edge_point_gap * (hi - lo)) return;
+    const CircleFit next = fit_circle(on_arc);
+    if (!(next.radius > 0) || !std::isfinite(next.radius) || !(next.radius_sigma <= options.edge_point_sigma * next.radius) ||
+        std::abs(next.radius - fit.radius) > 0.2 * fit.radius ||
+        (next.center - fit.center).norm() > 0.2 * fit.radius)
+      return;
+    current = next;
+  }
+  fit = current;
+}
+
 // Edge point, arc and fitted circle for the axis end `end` pointing outward along `d`.
 Edge measure_edge(const Profile& pr, const InscribedCircle& end_circle, const Eigen::Vector2d& d,
-                  const CamberOptions& options) {
+                  const CamberOptions& options, const std::vector<Eigen::Vector2d>& measured) {
   const Eigen::Vector2d& end = end_circle.center;
   Edge e;
   if (!ray_hit(pr, end, d, e.t))
@@ -635,6 +693,14 @@ Edge measure_edge(const Profile& pr, const InscribedCircle& end_circle, const Ei
   } else {
     std::tie(e.arc_t0, e.arc_t1) =
         grown_arc(pr, e.t, d, end, std::max(end_circle.radius, (e.point - end).norm()), options, fit);
+  }
+  if (options.edge_on_points) {
+    refit_on_measured(pr, e, d, measured, options, fit);
+    // The rms of the spline's arc about the final circle (the circularity test's measure).
+    double sum = 0;
+    const auto arc = arc_points(pr, e.arc_t0, e.arc_t1);
+    for (const auto& q : arc) sum += std::pow((q - fit.center).norm() - fit.radius, 2);
+    fit.rms = std::sqrt(sum / arc.size());
   }
   // Arc: the angle the edge arc subtends at the fitted centre.
   const Eigen::Vector2d q0 = pr.fast.jet(e.arc_t0).point - fit.center, q1 = pr.fast.jet(e.arc_t1).point - fit.center;
@@ -824,7 +890,8 @@ struct ArcTable {
 
 }  // namespace
 
-CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
+CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
+                         const std::vector<Eigen::Vector2d>& measured) {
   const Profile pr(profile, options.medial.samples);
   CamberResult res;
   res.orientation = pr.sigma;
@@ -897,7 +964,7 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options) {
   auto edge_at = [&](const InscribedCircle& end, const Eigen::Vector2d& d, const Face& face) {
     Edge e;
     try {
-      e = measure_edge(pr, end, d, options);
+      e = measure_edge(pr, end, d, options, measured);
     } catch (const Error&) {
       if (!face.found) throw;
       e.point = face.mid;

@@ -274,13 +274,16 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
       if (const auto n = noise.find(section); n != noise.end() && opt.profile_noise <= 0) opt.profile_noise = n->second;
       const auto seed = seeds.find(section);
       if (seed != seeds.end() && seed->second.size() >= 4) opt.medial.seed = seed->second;
+      const auto points = measured.find(section);
+      const Measured none;
+      const Measured& q = points != measured.end() ? points->second : none;
       CamberResult r;
       try {
-        r = camber_line(curve, opt);
+        r = camber_line(curve, opt, q.all);
       } catch (const Error&) {
         if (opt.medial.seed.empty()) throw;
         opt.medial.seed.clear();  // a poor skeleton: fall back to the Delaunay seed
-        r = camber_line(curve, opt);
+        r = camber_line(curve, opt, q.all);
       }
       const SectionParams p = section_params(curve, r);
       const auto st = thickness_stations(curve, r, options.stations);
@@ -290,9 +293,6 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
         slot.camber.add_row({double(section), double(i), r.s[i], r.points[i].x(), r.points[i].y(), w.x(), w.y(),
                         w.z(), r.radius[i]});
       }
-      const auto points = measured.find(section);
-      const Measured none;
-      const Measured& q = points != measured.end() ? points->second : none;
       const EdgeCoverage le_cover = edge_coverage(curve, r.le, q.all, opt.edge_hole_reach),
                          te_cover = edge_coverage(curve, r.te, q.all, opt.edge_hole_reach);
       const double le_unmeasured = le_cover.around, te_unmeasured = te_cover.around;

@@ -555,8 +555,10 @@ struct FoldError : Error {
 
 // `stop_at_fold`: a knot round whose curve folds is not taken and ends the rounds (the
 // last resort of fit_spline: dense knots on a thin edge can wrap the edge twice).
+// `distances`, when given, receives every measured point's distance to the curve
+// (outliers included).
 FitSplineResult fit_once(const Points& profile, const Points& measured, const FitSplineOptions& o,
-                         bool stop_at_fold = false) {
+                         bool stop_at_fold = false, std::vector<double>* distances = nullptr) {
   if (o.degree < 1 || o.degree > 7)
     throw Error("fit_spline: degree " + std::to_string(o.degree) + " is not in 1..7");
   if (o.control_points != 0 && o.control_points < o.degree + 1)
@@ -659,33 +661,62 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
   }
   result.control_points = static_cast<int>(result.spline.control.size());
   measure_gaps(r, o.gap_factor, result);
+  if (distances) {
+    distances->clear();
+    for (double x : r.feet.signed_distance) distances->push_back(std::abs(x));
+  }
   return result;
 }
 
 }  // namespace
 
 FitSplineResult fit_spline(const Points& profile, const Points& measured, const FitSplineOptions& o) {
-  // A fold comes from knots denser than the data supports (thin edges, misregistered
-  // views): retry with fewer, longer spans before giving up on the loop.
-  FitSplineOptions retry = o;
-  for (int attempt = 0;; ++attempt) {
-    try {
-      return fit_once(profile, measured, retry);
-    } catch (const FoldError&) {
-      if (attempt == 2 && o.control_points == 0) {
-        // Last: the default knots again, the rounds stopped before the first that folds.
-        try {
-          return fit_once(profile, measured, o, true);
-        } catch (const FoldError&) {
-        }
-      }
-      if (attempt == 2 || o.control_points != 0) throw;
-      retry.min_span_points *= 2;
-      retry.exact_min_span_points *= 2;
-      retry.min_span *= 2;
-      retry.tolerance *= 4;
-    }
+  try {
+    return fit_once(profile, measured, o);
+  } catch (const FoldError&) {
+    if (o.control_points != 0) throw;
   }
+  // A fold comes from knots denser than the data support (a thin edge measured sparsely,
+  // misregistered views). Candidates: the same knots with the rounds stopped before the
+  // first curve that folds, and fewer, longer spans (twice and four times). A coarser
+  // curve may not fold yet cut a tight edge short, so the candidate lying closest to all
+  // the measured points is taken: truncated squares (10 noise sigmas), so that outliers
+  // weigh alike on every candidate.
+  struct Candidate {
+    FitSplineResult result;
+    std::vector<double> distances;
+  };
+  std::vector<Candidate> candidates;
+  auto attempt = [&](const FitSplineOptions& options, bool stop_at_fold) {
+    Candidate c;
+    try {
+      c.result = fit_once(profile, measured, options, stop_at_fold, &c.distances);
+      candidates.push_back(std::move(c));
+    } catch (const Error&) {
+    }
+  };
+  attempt(o, true);
+  FitSplineOptions coarser = o;
+  for (int k = 0; k < 2; ++k) {
+    coarser.min_span_points *= 2;
+    coarser.exact_min_span_points *= 2;
+    coarser.min_span *= 2;
+    coarser.tolerance *= 4;
+    attempt(coarser, false);
+  }
+  if (candidates.empty()) throw FoldError("fit_spline: the fitted curve folds or crosses itself");
+  double sigma = std::numeric_limits<double>::infinity();
+  for (const auto& c : candidates)
+    if (c.result.noise > 0) sigma = std::min(sigma, c.result.noise);
+  const double cap = std::isfinite(sigma) ? 10 * sigma : std::numeric_limits<double>::infinity();
+  std::size_t best = 0;
+  double best_score = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    double score = 0;
+    for (double d : candidates[i].distances) score += std::pow(std::min(d, cap), 2);
+    if (score < best_score) best_score = score, best = i;
+  }
+  return std::move(candidates[best].result);
 }
 
 void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {

@@ -88,6 +88,9 @@ struct CamberOptions {
   double edge_circularity = 3;     ///< an edge circle whose fit rms exceeds this many times max(profile_noise, 1e-4 x its radius) is not circular (Edge::circular)
   double edge_hole = 1;            ///< stream stage: an edge is reported "partly not measured" when a stretch of the profile without measured points, this many edge radii long or longer, begins within edge_hole_reach radii of the edge point
   double edge_hole_reach = 1.2;    ///< edge radii along the profile from the edge point (the half arc of a round edge is 1.57)
+  bool edge_on_points = true;      ///< with measured points given (camber_line's `measured`, the stream's "points" table): the edge circle is refitted to the measured points on the edge arc (the spline's arc is a little flattened at a tight edge); false = fitted to the spline's arc alone
+  double edge_point_gap = 0.25;    ///< ... provided no angular gap between those points exceeds this fraction of the arc
+  double edge_point_sigma = 0.05;  ///< ... and the refitted radius's standard error (from the points' scatter about the circle) is at most this fraction of it (a few sparse points on a short arc); else the spline's circle stands
   double edge_max_arc = 240;       ///< degrees: largest edge arc grown (a guard for blunt and unusual edges)
   double tangent_span = 0.15;      ///< fraction of the medial axis length: the end tangents (inlet/outlet angles, extensions) are fitted (cubic least squares) to the axis over this length from each end, averaging the profile noise at the edges; 0 = the axis spline's end slope (exact profiles)
   double edge_prune = 20;          ///< degrees: medial circles at the ends whose contacts subtend less than twice this are noise, trimmed
@@ -136,7 +139,10 @@ struct CamberResult {
 /// tangents to the profile (LE and TE points), oriented LE to TE. Lengths in the profile's
 /// units. Throws section::Error `camber: ...` when the profile is not blade-like (a circle,
 /// a square: medial axis shorter than min_slenderness largest diameters).
-CamberResult camber_line(const BSpline& profile, const CamberOptions& options = {});
+/// `measured`: the measured points of the profile, when known (the edge circles are then
+/// fitted to those on the edge arcs, see CamberOptions::edge_on_points).
+CamberResult camber_line(const BSpline& profile, const CamberOptions& options = {},
+                         const std::vector<Eigen::Vector2d>& measured = {});
 
 /// The circle inscribed in `profile` whose centre lies on the line through `point` along
 /// `normal`, touching the profile near the parameters `t_left` and `t_right` (Newton on
