@@ -13,6 +13,7 @@
 #include "section/fit_spline.h"
 #include "section/generate.h"
 #include "section/pipe.h"
+#include "section/register_views.h"
 #include "section/score.h"
 #include "section/slice.h"
 #include "section/smooth.h"
@@ -68,6 +69,7 @@ int main(int argc, char** argv) {
   // The bands draw each band's holes within the band (5 per band at the defaults, nearly
   // all crossing the plane), far more holes per section than a whole-blade scan has.
   bool full_scan = false;
+  bool register_views_first = false;  // --register (implies --full-scan): register the two views first
   bool fill_gaps = true;  // --no-fill: the slab points alone
   GapFillOptions fill_options;
   std::size_t auto_cells = 0;  // --auto-cells N: the morphology raster budget (0 = the default)
@@ -95,6 +97,7 @@ int main(int argc, char** argv) {
     else if (a == "--preset") preset = value();
     else if (a == "--no-camber") with_camber = false;
     else if (a == "--full-scan") full_scan = true;
+    else if (a == "--register") register_views_first = full_scan = true;
     else if (a == "--no-fill") fill_gaps = false;
     else if (a == "--fill-gap") fill_options.min_gap = std::atof(value());
     else if (a == "--fill-reach") fill_options.reach = std::atof(value());
@@ -121,7 +124,7 @@ int main(int argc, char** argv) {
     else if (a == "--quiet") quiet = true;
     else if (a == "--help" || a == "-h") {
       std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] [--twist DEG] [--band-spacing MM] [--no-band] "
-                  "[--preset turbine|compressor|both] [--full-scan] [--no-fill] [--fill-gap K] [--fill-fraction F] [--fill-reach MM] [--auto-cells N] [--no-camber] [--quiet] [--export DIR]\n"
+                  "[--preset turbine|compressor|both] [--full-scan] [--register] [--no-fill] [--fill-gap K] [--fill-fraction F] [--fill-reach MM] [--auto-cells N] [--no-camber] [--quiet] [--export DIR]\n"
                   "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] "
                   "[--edge-prune DEG] [--tangent-span FRACTION] [--edge-on-spline] [--edge-point-gap F] [--edge-point-sigma F]\n");
       return 0;
@@ -158,7 +161,27 @@ int main(int argc, char** argv) {
         if (density_min >= 0) so.density_min = density_min;
         so.seed = static_cast<std::uint64_t>(seed);
         // Scan only bands around the planes: the same data in the slabs, far fewer points.
-        const Cloud cloud = full_scan ? generate_scan(blade, so).cloud : scan_bands(blade, zs, so);
+        Cloud cloud;
+        if (full_scan) {
+          Scan scan = generate_scan(blade, so);
+          if (register_views_first) {
+            // --register: the views apart, as a scanner delivers them, registered onto view 0.
+            std::vector<Cloud> views(2);
+            for (std::size_t i = 0; i < scan.cloud.points.size(); ++i)
+              views[scan.view[i] ? 1 : 0].points.push_back(scan.cloud.points[i]);
+            const RegisterResult reg = register_views(views);
+            const auto& r = reg.views[1];
+            if (!quiet)
+              std::printf("# %s seed %d: view 1 registered: translation %.2f %.2f %.2f um, pairs %zu, rms %.2f -> %.2f um, %d iterations\n",
+                          kind, seed, r.transform.translation().x() * 1e3, r.transform.translation().y() * 1e3,
+                          r.transform.translation().z() * 1e3, r.pairs, r.rms_before * 1e3, r.rms_after * 1e3, r.iterations);
+            cloud = merge_views(views, reg);
+          } else {
+            cloud = std::move(scan.cloud);
+          }
+        } else {
+          cloud = scan_bands(blade, zs, so);
+        }
         const auto t0 = std::chrono::steady_clock::now();
         SliceOptions sopt;
         sopt.slab = slab;

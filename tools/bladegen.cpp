@@ -63,7 +63,7 @@ void write_truth(const std::string& path, const section::BladeDesign& blade, con
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string output, kind = "turbine", truth;
+  std::string output, kind = "turbine", truth, second_view;
   bool points = false, mesh = false;
   section::ScanOptions scan;
   int profile_points = 400, layers = 60;
@@ -87,6 +87,9 @@ int main(int argc, char** argv) {
         app.add_option("--z-max", scan.z_max, "Highest scanned height, mm; below --z-min = the whole span")->capture_default_str();
         app.add_option("--profile-points", profile_points, "Mesh: points per section ring")->check(CLI::Range(16, 1000000))->capture_default_str();
         app.add_option("--layers", layers, "Mesh: number of section rings along the span")->check(CLI::Range(2, 100000))->capture_default_str();
+        app.add_option("--second-view", second_view,
+                       "Points: write the second view's points to this file and only the first view's to -o "
+                       "(the views apart, as a scanner delivers them; slice --view registers them)");
         auto* o_truth = app.add_option("--truth", truth, "Write the true section parameters (CSV) to this file");
         app.add_option("--at", at, "Heights of the --truth sections, comma-separated, mm")->delimiter(',')->needs(o_truth);
         app.callback([&] {
@@ -94,11 +97,19 @@ int main(int argc, char** argv) {
           if (!points && !mesh && truth.empty()) throw CLI::RequiredError("one of --points, --mesh or --truth");
           if (!truth.empty() && at.empty()) throw CLI::RequiredError("--at (with --truth)");
           if (!output.empty() && !points && !mesh) throw CLI::ValidationError("-o needs --points or --mesh");
+          if (!second_view.empty() && !points) throw CLI::ValidationError("--second-view needs --points");
         });
       },
       [&] {
         const section::BladeDesign blade = kind == "turbine" ? section::turbine_blade() : section::compressor_blade();
-        if (points) section::write_cloud(output, section::generate_scan(blade, scan).cloud);
+        if (points && second_view.empty()) section::write_cloud(output, section::generate_scan(blade, scan).cloud);
+        if (points && !second_view.empty()) {
+          const section::Scan s = section::generate_scan(blade, scan);
+          section::Cloud views[2];
+          for (std::size_t i = 0; i < s.cloud.points.size(); ++i) views[s.view[i] ? 1 : 0].points.push_back(s.cloud.points[i]);
+          section::write_cloud(output, views[0]);
+          section::write_cloud(second_view, views[1]);
+        }
         if (mesh) section::write_mesh(output, section::generate_mesh(blade, profile_points, layers));
         if (!truth.empty()) write_truth(truth, blade, at);
       });

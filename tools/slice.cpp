@@ -5,6 +5,7 @@
 #include "section/error.h"
 #include "section/mesh.h"
 #include "section/pipe.h"
+#include "section/register_views.h"
 #include "section/slice.h"
 
 #include <iostream>
@@ -27,6 +28,11 @@ const char* const description =
     "fitted over the section) rather than projected straight, until the profile holds about\n"
     "one point per --band-spacing ('# band ...' in the stream). --band-spacing 0 keeps the slab.\n"
     "Meshes are cut exactly and need neither.\n\n"
+    "Views: a part scanned in several views, each in its own file: the input is the first,\n"
+    "--view adds each other one. Each is registered onto the first (rigid point-to-plane ICP on\n"
+    "the surface they share; the views must be aligned to within --view-reach already) before\n"
+    "slicing, and the stream notes how it moved ('# register ...'). A view misregistered by a\n"
+    "few micrometres otherwise shifts every section it alone covers by that much.\n\n"
     "Planes: --normal with --at offsets or --count planes spread over the part, or --planes FILE\n"
     "(CSV with origin_x,origin_y,origin_z,normal_x,normal_y,normal_z).\n\n"
     "Example: slice blade.ply --normal 0,0,1 --at 12,20,28 | smooth | fitspline | camber";
@@ -44,6 +50,8 @@ int main(int argc, char** argv) {
   std::vector<double> at;
   int count = 0;
   std::string planes_file;
+  std::vector<std::string> views;
+  section::RegisterOptions register_options;
   section::SliceOptions options;
   std::string units = "mm";
   return section::tool::run_tool(
@@ -77,6 +85,12 @@ int main(int argc, char** argv) {
         app.add_option("--fill-gap", options.fill.min_gap, "Fill gaps longer than this many slab widths")
             ->check(section::tool::positive)
             ->capture_default_str();
+        app.add_option("--view", views, "Another view of the same part (a point cloud), registered onto the input "
+                                        "before slicing; repeat for more views");
+        app.add_option("--view-reach", register_options.reach,
+                       "Views: pairs are sought within this distance; 0 = 3 x the input's point spacing")
+            ->check(CLI::NonNegativeNumber)
+            ->capture_default_str();
         app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
         app.add_option("--units", units, "Length unit recorded in the stream")->capture_default_str();
         app.callback([&] {
@@ -91,7 +105,32 @@ int main(int argc, char** argv) {
         if (!planes_file.empty()) planes = section::parse_planes(section::read_file(planes_file), planes_file);
         else if (!at.empty()) planes = section::planes_at(n, at);
         section::SliceResult result;
-        if (common.input != "-" && section::is_mesh_file(common.input)) {
+        std::vector<std::string> notes;
+        if (!views.empty()) {
+          // Views apart: held in memory, registered, merged, then sliced.
+          std::vector<std::string> names{common.input};
+          names.insert(names.end(), views.begin(), views.end());
+          std::vector<section::Cloud> clouds;
+          for (const auto& name : names) {
+            if (name != "-" && section::is_mesh_file(name))
+              throw section::Error(name + ": --view takes point clouds, not meshes");
+            clouds.push_back(section::read_cloud(name));
+          }
+          section::RegisterResult reg;
+          try {
+            reg = section::register_views(clouds, register_options);
+          } catch (const section::Error& e) {
+            std::string what = e.what();
+            for (std::size_t k = 1; k < names.size(); ++k)
+              if (what.find("view " + std::to_string(k) + " ") != std::string::npos)
+                what += " (view " + std::to_string(k) + ": " + names[k] + ")";
+            throw section::Error(what);
+          }
+          for (std::size_t k = 1; k < names.size(); ++k) notes.push_back(section::describe(reg.views[k], names[k]));
+          const section::Cloud merged = section::merge_views(clouds, reg);
+          if (count > 0) planes = section::planes_across(merged.points, n, count);
+          section::tool::with_input(common.input, [&] { result = section::slice(merged, planes, options); });
+        } else if (common.input != "-" && section::is_mesh_file(common.input)) {
           const section::Mesh mesh = section::read_mesh(common.input);
           if (count > 0) planes = section::planes_across(mesh.vertices, n, count);
           section::tool::with_input(common.input, [&] { result = section::slice(mesh, planes, options); });
@@ -102,7 +141,8 @@ int main(int argc, char** argv) {
             result = section::slice_file(common.input, section::PlaneSpec{planes, n, count}, options);
           });
         }
-        const section::Stream stream = section::to_stream(result, section::tool::command_line(argc, argv), units);
+        section::Stream stream = section::to_stream(result, section::tool::command_line(argc, argv), units);
+        stream.notes.insert(stream.notes.begin(), notes.begin(), notes.end());
         for (const auto& issue : stream.issues)
           std::cerr << "slice: warning: section " << issue.section << ": " << issue.message << "\n";
         if (stream.issues.size() == result.sections.size())

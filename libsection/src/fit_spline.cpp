@@ -465,6 +465,43 @@ std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vect
   return knots;
 }
 
+// A finger: the curve runs out and back (and out again) alongside itself, two hairpin
+// turns of opposite sense close together, without crossing. Within any stretch of 2.5 %
+// of the perimeter, the turning that cancels out (total absolute turning less the net
+// turning) is a few degrees on a fitted blade profile, even around a 0.2 mm edge; two
+// opposite hairpins give about 360. More than 180 is a fold.
+bool doubles_back(const Points& p) {
+  const std::size_t m = p.size();
+  if (m < 4) return false;
+  std::vector<double> turn(m), at(m);
+  double length = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const Eigen::Vector2d a = p[i] - p[(i + m - 1) % m], b = p[(i + 1) % m] - p[i];
+    turn[i] = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    at[i] = length;
+    length += b.norm();
+  }
+  const double window = 0.025 * length, limit = 3.14159265358979323846;
+  // Two pointers over the vertices, the window wrapping past the start.
+  double absolute = 0, net = 0;
+  std::size_t j = 0;  // window [i, j), j counted over two laps
+  auto position = [&](std::size_t k) { return k < m ? at[k] : at[k - m] + length; };
+  for (std::size_t i = 0; i < m; ++i) {
+    if (j < i) j = i, absolute = net = 0;
+    while (j < i + m && position(j) - at[i] <= window) {
+      absolute += std::abs(turn[j % m]);
+      net += turn[j % m];
+      ++j;
+    }
+    if (absolute - std::abs(net) > limit) return true;
+    if (j > i) {
+      absolute -= std::abs(turn[i]);
+      net -= turn[i];
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 bool self_intersects(const BSpline& curve) {
@@ -480,6 +517,7 @@ bool self_intersects(const BSpline& curve) {
   }
   for (double s : speed)
     if (!(s > 1e-9 * speed_max)) return true;  // cusp: the curve stops and turns back
+  if (doubles_back(p)) return true;
   // Segments sorted by their lowest x; sweep to test only overlapping boxes.
   std::vector<std::size_t> order(m);
   std::iota(order.begin(), order.end(), 0);

@@ -50,4 +50,18 @@ check "stdin gives the same rows" -- cmp -s <(grep -v '^# history' "$TMP/from_fi
 expect 1 "all planes miss" -- "$BIN/slice" "$TMP/ring.xyz" --at 50 --slab 0.1
 check "nothing on stdout when all fail" -- test ! -s "$TMP/out"
 
+# Views apart: the second view of a generated scan, misregistered by 15 um, is registered
+# onto the first before slicing; the stream notes it. A view far off is refused, named.
+"$BIN/bladegen" --kind compressor --points --noise 0.005 --misregistration 0.015 --z-min 25 --z-max 35 \
+  --seed 4 -o "$TMP/view0.ply" --second-view "$TMP/view1.xyz" 2>/dev/null
+expect 0 "views registered" -- "$BIN/slice" "$TMP/view0.ply" --view "$TMP/view1.xyz" --at 30
+check "registration noted" -- grep -q "^# register view=$TMP/view1.xyz translation=" "$TMP/out"
+# The view moved by about the misregistration (15 um) in the plane.
+check "registration moved the view ~15 um" -- awk -F'[ =,]' '/^# register/ { d = sqrt($6*$6 + $7*$7); exit !(d > 0.013 && d < 0.017) }' "$TMP/out"
+awk '{ printf "%.9f %s %s\n", $1 + 5, $2, $3 }' "$TMP/view1.xyz" > "$TMP/far.xyz"
+expect 1 "a view 5 mm off" -- "$BIN/slice" "$TMP/view0.ply" --view "$TMP/far.xyz" --at 30
+check "far view named" -- grep -q "far.xyz" "$TMP/err"
+expect 1 "a missing view" -- "$BIN/slice" "$TMP/view0.ply" --view "$TMP/none.ply" --at 30
+check "missing view named" -- grep -q "none.ply" "$TMP/err"
+
 finish

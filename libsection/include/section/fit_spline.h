@@ -73,7 +73,8 @@ FitSplineResult fit_spline(const std::vector<Eigen::Vector2d>& profile,
                            const std::vector<Eigen::Vector2d>& measured,
                            const FitSplineOptions& options = {});
 
-/// True when the closed curve crosses itself or has a cusp (tested on a dense polyline).
+/// True when the closed curve crosses itself, has a cusp, or doubles back alongside itself
+/// (a finger: two opposite hairpin turns close together), tested on a dense polyline.
 bool self_intersects(const BSpline& curve);
 
 /// Stream stage: fits every (section, loop) of the "points" table (first curve from the

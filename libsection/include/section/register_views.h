@@ -1,0 +1,62 @@
+#pragma once
+/// @file register_views.h
+/// Fine registration of scanner views: the views of one part, roughly aligned already (as
+/// a scanner delivers them), are moved onto the first by rigid point-to-plane ICP on the
+/// surface they share. A view misregistered by some micrometres otherwise shifts every
+/// section it alone covers by that much (the pressure side of a blade scanned from two
+/// sides), which no later fit can tell from the shape.
+#include "section/cloud.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace section {
+
+/// Options of register_views (lengths in the clouds' units).
+struct RegisterOptions {
+  /// Pairs are sought within this distance of the reference view; 0 = 3 x the reference
+  /// view's mean spacing. Views must be aligned to within about this already.
+  double reach = 0;
+  std::size_t reference_points = 2000000;  ///< reference view points kept (evenly) in its kd-tree
+  std::size_t moving_points = 200000;      ///< points of each moving view paired per iteration (evenly)
+  int neighbours = 20;                     ///< reference points a pair's surface patch (quadric, least squares) is fitted to
+  int max_iterations = 50;                 ///< ICP iterations at most
+  double tolerance = 1e-5;                 ///< stop when a step changes the pairs' distances to their planes by less than this (rms)
+  std::size_t min_pairs = 100;             ///< fewer pairs than this: the views do not overlap enough (Error)
+  /// Directions of the motion (rotations scaled by the overlap's extent) constrained less
+  /// than this fraction of the best constrained one are not moved along: on a blade the
+  /// spanwise slide is nearly free and would only follow noise.
+  double weak = 0.05;
+  double trim = 3;                         ///< pairs farther than this many robust sigmas from their plane are left out
+};
+
+/// How one view was moved.
+struct ViewRegistration {
+  Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();  ///< maps the view onto the reference
+  std::size_t pairs = 0;          ///< pairs used in the last iteration
+  double rms_before = 0;          ///< rms point-to-plane distance of the pairs before
+  double rms_after = 0;           ///< ... and after
+  int iterations = 0;             ///< ICP iterations run
+};
+
+/// Result of register_views: one entry per view, the first (the reference) the identity.
+struct RegisterResult {
+  std::vector<ViewRegistration> views;
+};
+
+/// Registers views[1..] onto views[0]. Throws section::Error naming the view when it
+/// shares too little surface with the reference (fewer than min_pairs pairs) or the
+/// problem is degenerate.
+RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOptions& options = {});
+
+/// One line for the stream's notes: `register view=NAME translation=x,y,z rotation=DEG
+/// pairs=N rms_before=R0 rms_after=R1 iterations=K` (lengths in the cloud's units).
+std::string describe(const ViewRegistration& registration, const std::string& name);
+
+/// The views merged into one cloud, each moved by its registration.
+Cloud merge_views(const std::vector<Cloud>& views, const RegisterResult& registration);
+
+}  // namespace section

@@ -1,0 +1,303 @@
+#include "section/register_views.h"
+
+#include "section/error.h"
+
+#include <flann/flann.hpp>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+namespace section {
+
+namespace {
+
+// Every k-th point, k chosen so that at most `limit` are kept.
+std::vector<Eigen::Vector3d> evenly(const std::vector<Eigen::Vector3d>& points, std::size_t limit) {
+  const std::size_t stride = std::max<std::size_t>(1, (points.size() + limit - 1) / std::max<std::size_t>(limit, 1));
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points.size() / stride + 1);
+  for (std::size_t i = 0; i < points.size(); i += stride) out.push_back(points[i]);
+  return out;
+}
+
+// A local patch of the reference surface: a frame (origin, tangents, normal) from the
+// neighbours' principal axes and the height above it, h = a + b x + c y + d x^2 + e xy +
+// f y^2, fitted to the neighbours. A tangent plane alone is biased on a tight edge: a point
+// a spacing s along a 0.3 mm edge lies s^2 / 2R (some micrometres) inside its neighbour's
+// plane, always on the same side.
+struct Patch {
+  bool valid = false;
+  Eigen::Vector3d origin{0, 0, 0}, e1{0, 0, 0}, e2{0, 0, 0}, n{0, 0, 0};
+  Eigen::Matrix<double, 6, 1> h = Eigen::Matrix<double, 6, 1>::Zero();
+  double scale = 1;  // local coordinates are divided by it (conditioning)
+
+  // Signed distance of q along the normal from the patch, and its gradient in q.
+  double residual(const Eigen::Vector3d& q, Eigen::Vector3d& gradient) const {
+    const Eigen::Vector3d r = q - origin;
+    const double x = e1.dot(r) / scale, y = e2.dot(r) / scale, z = n.dot(r);
+    const double height = h(0) + h(1) * x + h(2) * y + h(3) * x * x + h(4) * x * y + h(5) * y * y;
+    const double hx = (h(1) + 2 * h(3) * x + h(4) * y) / scale, hy = (h(2) + h(4) * x + 2 * h(5) * y) / scale;
+    gradient = n - hx * e1 - hy * e2;
+    return z - height;
+  }
+};
+
+// The reference view: a kd-tree over its points and the surface patch at each, fitted
+// when a pair first needs it (most of the reference is never paired).
+class Reference {
+public:
+  Reference(std::vector<Eigen::Vector3d> points, int neighbours)
+      : points_(std::move(points)), neighbours_(std::min<int>(neighbours, static_cast<int>(points_.size()))),
+        data_(points_.size() * 3), patch_(points_.size()), state_(points_.size(), 0) {
+    for (std::size_t i = 0; i < points_.size(); ++i)
+      for (int k = 0; k < 3; ++k) data_[3 * i + k] = points_[i][k];
+    index_ = std::make_unique<flann::Index<flann::L2<double>>>(
+        flann::Matrix<double>(data_.data(), points_.size(), 3), flann::KDTreeSingleIndexParams(12));
+    index_->buildIndex();
+  }
+
+  // Nearest reference point of each query (index, squared distance).
+  void nearest(const std::vector<Eigen::Vector3d>& queries, std::vector<int>& index, std::vector<double>& d2) const {
+    std::vector<double> q(queries.size() * 3);
+    for (std::size_t i = 0; i < queries.size(); ++i)
+      for (int k = 0; k < 3; ++k) q[3 * i + k] = queries[i][k];
+    index.assign(queries.size(), -1);
+    d2.assign(queries.size(), 0);
+    flann::Matrix<double> qm(q.data(), queries.size(), 3);
+    flann::Matrix<int> im(index.data(), queries.size(), 1);
+    flann::Matrix<double> dm(d2.data(), queries.size(), 1);
+    flann::SearchParams params(flann::FLANN_CHECKS_UNLIMITED);
+    params.cores = 0;
+    index_->knnSearch(qm, im, dm, 1, params);
+  }
+
+  // The patch around point i; invalid where the neighbourhood is not a surface (an edge
+  // seen from one side, a corner, too few points).
+  const Patch& patch(int i) {
+    const std::size_t s = static_cast<std::size_t>(i);
+    if (state_[s]) return patch_[s];
+    state_[s] = 1;
+    Patch& pa = patch_[s];
+    if (neighbours_ < 10) return pa;
+    std::vector<int> idx(static_cast<std::size_t>(neighbours_));
+    std::vector<double> d2(static_cast<std::size_t>(neighbours_));
+    flann::Matrix<double> qm(&data_[3 * s], 1, 3);
+    flann::Matrix<int> im(idx.data(), 1, static_cast<std::size_t>(neighbours_));
+    flann::Matrix<double> dm(d2.data(), 1, static_cast<std::size_t>(neighbours_));
+    index_->knnSearch(qm, im, dm, neighbours_, flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (int j : idx) mean += points_[static_cast<std::size_t>(j)];
+    mean /= neighbours_;
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (int j : idx) {
+      const Eigen::Vector3d r = points_[static_cast<std::size_t>(j)] - mean;
+      cov += r * r.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::Vector3d ev = eig.eigenvalues();  // ascending
+    // A surface: the spread across it well below the spread along it, both ways.
+    if (!(ev(1) > 0) || !(ev(0) < 0.1 * ev(1))) return pa;
+    pa.origin = mean;
+    pa.n = eig.eigenvectors().col(0).normalized();
+    pa.e1 = eig.eigenvectors().col(2).normalized();
+    pa.e2 = pa.n.cross(pa.e1);
+    pa.scale = std::sqrt(ev(2) / neighbours_);
+    Eigen::Matrix<double, 6, 6> ata = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> atb = Eigen::Matrix<double, 6, 1>::Zero();
+    for (int j : idx) {
+      const Eigen::Vector3d r = points_[static_cast<std::size_t>(j)] - mean;
+      const double x = pa.e1.dot(r) / pa.scale, y = pa.e2.dot(r) / pa.scale;
+      Eigen::Matrix<double, 6, 1> row;
+      row << 1, x, y, x * x, x * y, y * y;
+      ata += row * row.transpose();
+      atb += row * pa.n.dot(r);
+    }
+    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(ata);
+    Eigen::Matrix<double, 6, 1> h = ldlt.solve(atb);
+    // Neighbours nearly on a line (a scan row) do not fix the cross terms: a plane then.
+    if (ldlt.info() != Eigen::Success || !h.allFinite() || !(ldlt.vectorD().minCoeff() > 1e-6 * ldlt.vectorD().maxCoeff()))
+      h.setZero();
+    pa.h = h;
+    pa.valid = true;
+    return pa;
+  }
+
+private:
+  std::vector<Eigen::Vector3d> points_;
+  int neighbours_;
+  std::vector<double> data_;
+  std::unique_ptr<flann::Index<flann::L2<double>>> index_;
+  std::vector<Patch> patch_;
+  std::vector<char> state_;
+};
+
+struct Pairs {
+  std::vector<Eigen::Vector3d> p, n;  // moved point, gradient of its residual
+  std::vector<double> r;              // signed distance from the reference surface patch
+};
+
+// Pairs of the moved points with the reference: nearest point within reach, a surface
+// patch there, and a distance within `trim` robust sigmas (a pair across a thin part, or
+// into another surface, is far from its patch).
+Pairs pair_up(Reference& ref, const std::vector<Eigen::Vector3d>& moved, double reach, double trim) {
+  std::vector<int> index;
+  std::vector<double> d2;
+  ref.nearest(moved, index, d2);
+  Pairs all;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    if (index[i] < 0 || !(d2[i] <= reach * reach)) continue;
+    const Patch& patch = ref.patch(index[i]);
+    if (!patch.valid) continue;
+    Eigen::Vector3d gradient;
+    const double r = patch.residual(moved[i], gradient);
+    all.p.push_back(moved[i]);
+    all.n.push_back(gradient);
+    all.r.push_back(r);
+  }
+  if (all.r.empty()) return all;
+  std::vector<double> a(all.r.size());
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = std::abs(all.r[i]);
+  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
+  const double sigma = 1.4826 * a[a.size() / 2];
+  const double limit = std::max(trim * sigma, 1e-12 * reach);
+  Pairs kept;
+  for (std::size_t i = 0; i < all.r.size(); ++i)
+    if (std::abs(all.r[i]) <= limit) {
+      kept.p.push_back(all.p[i]);
+      kept.n.push_back(all.n[i]);
+      kept.r.push_back(all.r[i]);
+    }
+  return kept;
+}
+
+double rms(const std::vector<double>& r) {
+  double s = 0;
+  for (double x : r) s += x * x;
+  return r.empty() ? 0 : std::sqrt(s / r.size());
+}
+
+}  // namespace
+
+RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOptions& o) {
+  if (views.empty()) throw Error("register_views: no views given");
+  if (!(o.reach >= 0) || !std::isfinite(o.reach) || !(o.tolerance > 0) || !(o.trim > 0) || o.neighbours < 10 ||
+      !(o.weak >= 0 && o.weak < 1) ||
+      o.max_iterations < 1 || o.reference_points < 1 || o.moving_points < 1)
+    throw Error("register_views: reach must be >= 0, tolerance and trim positive, weak in [0, 1), neighbours >= 10, "
+                "iterations and point counts >= 1");
+  RegisterResult result;
+  result.views.resize(views.size());
+  if (views.size() == 1) return result;
+  const std::vector<Eigen::Vector3d>& ref_points = views[0].points;
+  if (ref_points.size() < std::max<std::size_t>(o.min_pairs, 5))
+    throw Error("register_views: the reference view (view 0) has " + std::to_string(ref_points.size()) +
+                " points, too few to register onto");
+  const double spacing = mean_spacing(ref_points);
+  const double reach = o.reach > 0 ? o.reach : 3 * spacing;
+  if (!(reach > 0)) throw Error("register_views: the reference view's points coincide: no surface to register onto");
+  Reference ref(evenly(ref_points, o.reference_points), o.neighbours);
+
+  for (std::size_t v = 1; v < views.size(); ++v) {
+    const std::string who = "register_views: view " + std::to_string(v);
+    std::vector<Eigen::Vector3d> moving = evenly(views[v].points, o.moving_points);
+    {
+      // Only points near the reference can pair: the rest of the view is left out of the
+      // iterations (the views are aligned to within the reach already).
+      std::vector<int> index;
+      std::vector<double> d2;
+      ref.nearest(moving, index, d2);
+      std::size_t kept = 0;
+      for (std::size_t i = 0; i < moving.size(); ++i)
+        if (index[i] >= 0 && d2[i] <= 4 * reach * reach) moving[kept++] = moving[i];
+      moving.resize(kept);
+    }
+    ViewRegistration& out = result.views[v];
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    std::vector<Eigen::Vector3d> moved(moving.size());
+    Pairs pairs;
+    for (int it = 0; it <= o.max_iterations; ++it) {
+      for (std::size_t i = 0; i < moving.size(); ++i) moved[i] = T * moving[i];
+      pairs = pair_up(ref, moved, reach, o.trim);
+      if (pairs.r.size() < o.min_pairs)
+        throw Error(who + " shares too little surface with view 0: " + std::to_string(pairs.r.size()) +
+                    " point pairs within " + std::to_string(reach) + " (at least " + std::to_string(o.min_pairs) +
+                    " are needed; are the views roughly aligned?)");
+      if (it == 0) out.rms_before = rms(pairs.r);
+      if (it == o.max_iterations) break;
+      // Linearised about the pairs' centroid: r + n.(w x a) + n.t, a = p - c.
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      for (const auto& p : pairs.p) c += p;
+      c /= static_cast<double>(pairs.p.size());
+      Eigen::Matrix<double, 6, 6> ata = Eigen::Matrix<double, 6, 6>::Zero();
+      Eigen::Matrix<double, 6, 1> atb = Eigen::Matrix<double, 6, 1>::Zero();
+      // Rotations scaled by the pairs' rms extent, so that all six unknowns are lengths.
+      double extent = 0;
+      for (const auto& p : pairs.p) extent += (p - c).squaredNorm();
+      extent = std::sqrt(extent / pairs.p.size());
+      if (!(extent > 0)) throw Error(who + ": the registration is degenerate (all pairs at one point)");
+      for (std::size_t i = 0; i < pairs.p.size(); ++i) {
+        const Eigen::Vector3d a = (pairs.p[i] - c) / extent;
+        Eigen::Matrix<double, 6, 1> row;
+        row << a.cross(pairs.n[i]), pairs.n[i];
+        ata += row * row.transpose();
+        atb -= row * pairs.r[i];
+      }
+      // Directions the shared surface hardly constrains (sliding along the span of a blade
+      // whose surface is nearly parallel to it) are left alone rather than fitted to noise:
+      // the solve is truncated below `weak` of the strongest direction.
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(ata);
+      const Eigen::Matrix<double, 6, 1> lambda = eig.eigenvalues();
+      if (!(lambda(5) > 0) || !lambda.allFinite())
+        throw Error(who + ": the registration is degenerate (the shared surface is too simple)");
+      Eigen::Matrix<double, 6, 1> x = Eigen::Matrix<double, 6, 1>::Zero();
+      for (int k = 0; k < 6; ++k)
+        if (lambda(k) > o.weak * lambda(5)) x += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(atb) / lambda(k));
+      const Eigen::Vector3d w = x.head<3>() / extent, t = x.tail<3>();
+      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+      if (w.norm() > 0) step.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+      step.translation() = c + t - step.linear() * c;
+      T = step * T;
+      out.iterations = it + 1;
+      // Converged when the step changes the pairs' plane distances by less than the
+      // tolerance (rms); a direction the overlap hardly constrains may still creep.
+      double change = 0;
+      for (std::size_t i = 0; i < pairs.p.size(); ++i) change += std::pow(pairs.n[i].dot(step * pairs.p[i] - pairs.p[i]), 2);
+      if (std::sqrt(change / pairs.p.size()) < o.tolerance) break;
+    }
+    out.transform = T;
+    out.pairs = pairs.r.size();
+    out.rms_after = rms(pairs.r);
+  }
+  return result;
+}
+
+std::string describe(const ViewRegistration& r, const std::string& name) {
+  const Eigen::Vector3d t = r.transform.translation();
+  const double degrees = Eigen::AngleAxisd(r.transform.linear()).angle() * 180 / 3.14159265358979323846;
+  char buf[512];
+  std::snprintf(buf, sizeof buf, " translation=%.6g,%.6g,%.6g rotation=%.6g pairs=%zu rms_before=%.6g rms_after=%.6g iterations=%d",
+                t.x(), t.y(), t.z(), degrees, r.pairs, r.rms_before, r.rms_after, r.iterations);
+  return "register view=" + name + buf;
+}
+
+Cloud merge_views(const std::vector<Cloud>& views, const RegisterResult& registration) {
+  if (registration.views.size() != views.size())
+    throw Error("merge_views: " + std::to_string(views.size()) + " views but " +
+                std::to_string(registration.views.size()) + " registrations");
+  Cloud out;
+  std::size_t total = 0;
+  for (const auto& v : views) total += v.points.size();
+  out.points.reserve(total);
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    const Eigen::Isometry3d& T = registration.views[k].transform;
+    for (const auto& p : views[k].points) out.points.push_back(T * p);
+  }
+  return out;
+}
+
+}  // namespace section
