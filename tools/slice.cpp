@@ -128,6 +128,7 @@ int main(int argc, char** argv) {
           }
           for (std::size_t k = 1; k < names.size(); ++k) notes.push_back(section::describe(reg.views[k], names[k]));
           const section::Cloud merged = section::merge_views(clouds, reg);
+          clouds = {};  // the views apart are no longer needed
           if (count > 0) planes = section::planes_across(merged.points, n, count);
           section::tool::with_input(common.input, [&] { result = section::slice(merged, planes, options); });
         } else if (common.input != "-" && section::is_mesh_file(common.input)) {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <memory>
 #include <string>
 
@@ -53,7 +54,7 @@ class Reference {
 public:
   Reference(std::vector<Eigen::Vector3d> points, int neighbours)
       : points_(std::move(points)), neighbours_(std::min<int>(neighbours, static_cast<int>(points_.size()))),
-        data_(points_.size() * 3), patch_(points_.size()), state_(points_.size(), 0) {
+        data_(points_.size() * 3), slot_(points_.size(), -1) {
     for (std::size_t i = 0; i < points_.size(); ++i)
       for (int k = 0; k < 3; ++k) data_[3 * i + k] = points_[i][k];
     index_ = std::make_unique<flann::Index<flann::L2<double>>>(
@@ -61,8 +62,10 @@ public:
     index_->buildIndex();
   }
 
-  // Nearest reference point of each query (index, squared distance).
-  void nearest(const std::vector<Eigen::Vector3d>& queries, std::vector<int>& index, std::vector<double>& d2) const {
+  // Nearest reference point of each query within `radius` (index, squared distance; -1
+  // where none): a bounded search, as most of a view lies far from the other.
+  void nearest(const std::vector<Eigen::Vector3d>& queries, double radius, std::vector<int>& index,
+               std::vector<double>& d2) const {
     std::vector<double> q(queries.size() * 3);
     for (std::size_t i = 0; i < queries.size(); ++i)
       for (int k = 0; k < 3; ++k) q[3 * i + k] = queries[i][k];
@@ -73,16 +76,18 @@ public:
     flann::Matrix<double> dm(d2.data(), queries.size(), 1);
     flann::SearchParams params(flann::FLANN_CHECKS_UNLIMITED);
     params.cores = 0;
-    index_->knnSearch(qm, im, dm, 1, params);
+    params.max_neighbors = 1;
+    index_->radiusSearch(qm, im, dm, static_cast<float>(radius * radius), params);
   }
 
   // The patch around point i; invalid where the neighbourhood is not a surface (an edge
   // seen from one side, a corner, too few points).
   const Patch& patch(int i) {
     const std::size_t s = static_cast<std::size_t>(i);
-    if (state_[s]) return patch_[s];
-    state_[s] = 1;
-    Patch& pa = patch_[s];
+    if (slot_[s] >= 0) return patches_[static_cast<std::size_t>(slot_[s])];
+    // A deque: references handed out stay valid as patches are added.
+    slot_[s] = static_cast<int>(patches_.size());
+    Patch& pa = patches_.emplace_back();
     if (neighbours_ < 10) return pa;
     std::vector<int> idx(static_cast<std::size_t>(neighbours_));
     std::vector<double> d2(static_cast<std::size_t>(neighbours_));
@@ -132,8 +137,8 @@ private:
   int neighbours_;
   std::vector<double> data_;
   std::unique_ptr<flann::Index<flann::L2<double>>> index_;
-  std::vector<Patch> patch_;
-  std::vector<char> state_;
+  std::vector<int> slot_;      // index into patches_, -1 = not fitted yet
+  std::deque<Patch> patches_;  // only those pairs needed: a few percent of the reference
 };
 
 struct Pairs {
@@ -147,7 +152,7 @@ struct Pairs {
 Pairs pair_up(Reference& ref, const std::vector<Eigen::Vector3d>& moved, double reach, double trim) {
   std::vector<int> index;
   std::vector<double> d2;
-  ref.nearest(moved, index, d2);
+  ref.nearest(moved, reach, index, d2);
   Pairs all;
   for (std::size_t i = 0; i < moved.size(); ++i) {
     if (index[i] < 0 || !(d2[i] <= reach * reach)) continue;
@@ -210,7 +215,7 @@ RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOpt
       // iterations (the views are aligned to within the reach already).
       std::vector<int> index;
       std::vector<double> d2;
-      ref.nearest(moving, index, d2);
+      ref.nearest(moving, 2 * reach, index, d2);
       std::size_t kept = 0;
       for (std::size_t i = 0; i < moving.size(); ++i)
         if (index[i] >= 0 && d2[i] <= 4 * reach * reach) moving[kept++] = moving[i];
