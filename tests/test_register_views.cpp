@@ -94,6 +94,10 @@ TEST_CASE("register_views: views that do not overlap, and bad input, are refused
     o.reach = NAN;
     CHECK_THROWS_AS(register_views(views, o), Error);
   }
+  SECTION("a point that is not finite") {
+    views[1].points[7].y() = NAN;
+    CHECK_THROWS_WITH(register_views(views), Catch::Contains("view 1 has a point that is not finite"));
+  }
   SECTION("one view: the identity") {
     const RegisterResult r = register_views({views[0]});
     REQUIRE(r.views.size() == 1);

@@ -195,6 +195,9 @@ RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOpt
       o.max_iterations < 1 || o.reference_points < 1 || o.moving_points < 1)
     throw Error("register_views: reach must be >= 0, tolerance and trim positive, weak in [0, 1), neighbours >= 10, "
                 "iterations and point counts >= 1");
+  for (std::size_t v = 0; v < views.size(); ++v)
+    for (const auto& p : views[v].points)
+      if (!p.allFinite()) throw Error("register_views: view " + std::to_string(v) + " has a point that is not finite");
   RegisterResult result;
   result.views.resize(views.size());
   if (views.size() == 1) return result;
