@@ -453,6 +453,13 @@ struct CircleFit {
   double radius_sigma = 0;  // standard error of the radius, from the fit's covariance and rms
 };
 
+// Rms distance of the points from the circle.
+double rms_about(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& center, double radius) {
+  double sum = 0;
+  for (const auto& q : p) sum += std::pow((q - center).norm() - radius, 2);
+  return p.empty() ? 0.0 : std::sqrt(sum / p.size());
+}
+
 // Geometric least-squares circle (Gauss-Newton from the algebraic fit). Normal equations
 // (3 x 3) on centred points: well conditioned, and this runs tens of times per edge.
 CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
@@ -490,9 +497,7 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
   CircleFit fit;
   fit.center = mean + x.head<2>();
   fit.radius = std::abs(x(2));
-  double sum = 0;
-  for (const auto& q : p) sum += std::pow((q - fit.center).norm() - fit.radius, 2);
-  fit.rms = std::sqrt(sum / n);
+  fit.rms = rms_about(p, fit.center, fit.radius);
   if (n > 3) {
     Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
     for (const auto& q : p) {
@@ -503,7 +508,7 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
       jtj += row * row.transpose();
     }
     const Eigen::Matrix3d cov = jtj.inverse();
-    fit.radius_sigma = std::sqrt(std::max(cov(2, 2), 0.0) * sum / (n - 3));
+    fit.radius_sigma = std::sqrt(std::max(cov(2, 2), 0.0) * fit.rms * fit.rms * n / (n - 3));
   }
   return fit;
 }
@@ -635,9 +640,10 @@ std::pair<double, double> grown_arc(const Profile& pr, double t_tip, const Eigen
 // must cover the arc without a large angular gap and fix the radius well (its standard
 // error), else (holes, a sparse edge) the spline's circle stands. Twice, the band
 // re-centred on the refitted circle.
-void refit_on_measured(const Profile& pr, const Edge& e, const Eigen::Vector2d& d,
+// True when the refit stands (`fit` replaced).
+bool refit_on_measured(const Profile& pr, const Edge& e, const Eigen::Vector2d& d,
                        const std::vector<Eigen::Vector2d>& measured, const CamberOptions& options, CircleFit& fit) {
-  if (measured.size() < 8 || !(fit.radius > 0)) return;
+  if (measured.size() < 8 || !(fit.radius > 0)) return false;
   auto signed_angle = [&](const Eigen::Vector2d& c, const Eigen::Vector2d& q) {
     const Eigen::Vector2d r = q - c;
     return std::atan2(cross(d, r), d.dot(r));
@@ -658,19 +664,20 @@ void refit_on_measured(const Profile& pr, const Edge& e, const Eigen::Vector2d& 
       on_arc.push_back(q);
       angles.push_back(a);
     }
-    if (on_arc.size() < 8) return;
+    if (on_arc.size() < 8) return false;
     std::sort(angles.begin(), angles.end());
     double gap = std::max(angles.front() - lo, hi - angles.back());
     for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
-    if (gap > options.edge_point_gap * (hi - lo)) return;
+    if (gap > options.edge_point_gap * (hi - lo)) return false;
     const CircleFit next = fit_circle(on_arc);
     if (!(next.radius > 0) || !std::isfinite(next.radius) || !(next.radius_sigma <= options.edge_point_sigma * next.radius) ||
         std::abs(next.radius - fit.radius) > 0.2 * fit.radius ||
         (next.center - fit.center).norm() > 0.2 * fit.radius)
-      return;
+      return false;
     current = next;
   }
   fit = current;
+  return true;
 }
 
 // Edge point, arc and fitted circle for the axis end `end` pointing outward along `d`.
@@ -694,14 +701,9 @@ Edge measure_edge(const Profile& pr, const InscribedCircle& end_circle, const Ei
     std::tie(e.arc_t0, e.arc_t1) =
         grown_arc(pr, e.t, d, end, std::max(end_circle.radius, (e.point - end).norm()), options, fit);
   }
-  if (options.edge_on_points) {
-    refit_on_measured(pr, e, d, measured, options, fit);
-    // The rms of the spline's arc about the final circle (the circularity test's measure).
-    double sum = 0;
-    const auto arc = arc_points(pr, e.arc_t0, e.arc_t1);
-    for (const auto& q : arc) sum += std::pow((q - fit.center).norm() - fit.radius, 2);
-    fit.rms = std::sqrt(sum / arc.size());
-  }
+  // The fit rms stays the spline arc's about the circle (the circularity test's measure).
+  if (options.edge_on_points && refit_on_measured(pr, e, d, measured, options, fit))
+    fit.rms = rms_about(arc_points(pr, e.arc_t0, e.arc_t1), fit.center, fit.radius);
   // Arc: the angle the edge arc subtends at the fitted centre.
   const Eigen::Vector2d q0 = pr.fast.jet(e.arc_t0).point - fit.center, q1 = pr.fast.jet(e.arc_t1).point - fit.center;
   e.arc = (std::abs(std::atan2(cross(d, q0), d.dot(q0))) + std::abs(std::atan2(cross(d, q1), d.dot(q1)))) * 180 / pi;
