@@ -166,9 +166,7 @@ int main(int argc, char** argv) {
           Scan scan = generate_scan(blade, so);
           if (register_views_first) {
             // --register: the views apart, as a scanner delivers them, registered onto view 0.
-            std::vector<Cloud> views(2);
-            for (std::size_t i = 0; i < scan.cloud.points.size(); ++i)
-              views[scan.view[i] ? 1 : 0].points.push_back(scan.cloud.points[i]);
+            const std::vector<Cloud> views = views_of(scan);
             const RegisterResult reg = register_views(views);
             const auto& r = reg.views[1];
             if (!quiet)

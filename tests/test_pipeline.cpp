@@ -51,10 +51,7 @@ std::vector<SectionErrors> run_pipe(const BladeDesign& blade, const std::vector<
   // registered onto the first.
   Cloud cloud;
   if (register_first) {
-    const Scan scan = section::generate_scan(blade, so);
-    std::vector<Cloud> views(2);
-    for (std::size_t i = 0; i < scan.cloud.points.size(); ++i)
-      views[scan.view[i] ? 1 : 0].points.push_back(scan.cloud.points[i]);
+    const std::vector<Cloud> views = views_of(section::generate_scan(blade, so));
     cloud = merge_views(views, register_views(views));
   } else {
     cloud = whole_blade ? section::generate_scan(blade, so).cloud : section::scan_bands(blade, zs, so);

@@ -20,11 +20,7 @@ std::vector<Cloud> two_views(const BladeDesign& blade, std::uint64_t seed) {
   so.seed = seed;
   so.z_min = 25;
   so.z_max = 35;
-  const Scan scan = generate_scan(blade, so);
-  std::vector<Cloud> views(2);
-  for (std::size_t i = 0; i < scan.cloud.points.size(); ++i)
-    views[scan.view[i] ? 1 : 0].points.push_back(scan.cloud.points[i]);
-  return views;
+  return views_of(generate_scan(blade, so));
 }
 
 // Largest in-plane (x, y) displacement over the points of the view by the transform.

@@ -104,9 +104,7 @@ int main(int argc, char** argv) {
         const section::BladeDesign blade = kind == "turbine" ? section::turbine_blade() : section::compressor_blade();
         if (points && second_view.empty()) section::write_cloud(output, section::generate_scan(blade, scan).cloud);
         if (points && !second_view.empty()) {
-          const section::Scan s = section::generate_scan(blade, scan);
-          section::Cloud views[2];
-          for (std::size_t i = 0; i < s.cloud.points.size(); ++i) views[s.view[i] ? 1 : 0].points.push_back(s.cloud.points[i]);
+          const std::vector<section::Cloud> views = section::views_of(section::generate_scan(blade, scan));
           section::write_cloud(output, views[0]);
           section::write_cloud(second_view, views[1]);
         }

@@ -983,6 +983,13 @@ Cloud scan_bands(const BladeDesign& blade, const std::vector<double>& heights, c
   return cloud;
 }
 
+std::vector<Cloud> views_of(const Scan& scan) {
+  std::vector<Cloud> views(2);
+  for (std::size_t i = 0; i < scan.cloud.points.size(); ++i)
+    views[i < scan.view.size() && scan.view[i] ? 1 : 0].points.push_back(scan.cloud.points[i]);
+  return views;
+}
+
 Scan generate_scan(const BladeDesign& blade, const ScanOptions& o) {
   const std::string who = "generate_scan";
   if (!(o.spacing > 0) || !std::isfinite(o.spacing)) throw Error(who + ": spacing must be positive");

@@ -123,6 +123,9 @@ struct Scan {
   std::vector<std::uint8_t> view;  ///< 0 or 1: which scanner view produced the point
 };
 
+/// The scan's points apart by view (index 0 and 1), as a scanner delivers them.
+std::vector<Cloud> views_of(const Scan& scan);
+
 /// Samples the blade's side surface as a scanner would (no end caps).
 /// - Rows of points `spacing` apart in z; within a row, points `spacing` apart in profile
 ///   arc length, each jittered. Heights take one of 64 levels per row (steps of
