@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <string>
 #include <tuple>
@@ -29,6 +30,20 @@ BSpline dense_spline(const std::vector<Vector2d>& points, int control_points = 2
   fo.control_points = control_points;
   fo.fairness = 1e-9;
   return section::fit_curve(points, fo);
+}
+
+// Points every `spacing` along the exact profile, moved by Gaussian noise (sigma 5 um)
+// along the exact normal.
+std::vector<Vector2d> noisy_profile(const SectionTruth& truth, double spacing, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0, 0.005);
+  std::vector<Vector2d> pts;
+  const int count = static_cast<int>(truth.perimeter / spacing);
+  for (int i = 0; i < count; ++i) {
+    const std::size_t j = static_cast<std::size_t>(i) * truth.profile.size() / count;
+    pts.push_back(truth.profile[j] + noise(rng) * truth.profile_normal[j]);
+  }
+  return pts;
 }
 
 double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
@@ -338,14 +353,7 @@ TEST_CASE("camber: edge radii on noisy profiles (sigma 5 um) stay within 3 % (LE
   for (const SectionDesign& design : ds) {
     const SectionTruth truth = section::section_truth(design, 20000);
     for (unsigned seed : {1u, 2u}) {
-      std::mt19937_64 rng(seed * 7919 + k);
-      std::normal_distribution<double> noise(0, 0.005);
-      std::vector<Vector2d> pts;
-      const int count = static_cast<int>(truth.perimeter / 0.04);
-      for (int i = 0; i < count; ++i) {
-        const std::size_t j = static_cast<std::size_t>(i) * truth.profile.size() / count;
-        pts.push_back(truth.profile[j] + noise(rng) * truth.profile_normal[j]);
-      }
+      const std::vector<Vector2d> pts = noisy_profile(truth, 0.04, seed * 7919 + k);
       const BSpline spline = section::fit_spline(pts, pts).spline;
       const section::CamberResult c = section::camber_line(spline);
       INFO("design " << k << " seed " << seed << " LE " << c.le.radius << " / " << truth.le_radius << " TE "
@@ -372,14 +380,7 @@ TEST_CASE("camber: edge circles refitted to the measured points lose the spline'
   for (const SectionDesign& design : ds) {
     const SectionTruth truth = section::section_truth(design, 20000);
     for (unsigned seed : {3u, 4u}) {
-      std::mt19937_64 rng(seed * 7919 + k);
-      std::normal_distribution<double> noise(0, 0.005);
-      std::vector<Vector2d> pts;
-      const int count = static_cast<int>(truth.perimeter / 0.02);
-      for (int i = 0; i < count; ++i) {
-        const std::size_t j = static_cast<std::size_t>(i) * truth.profile.size() / count;
-        pts.push_back(truth.profile[j] + noise(rng) * truth.profile_normal[j]);
-      }
+      const std::vector<Vector2d> pts = noisy_profile(truth, 0.02, seed * 7919 + k);
       const BSpline spline = section::fit_spline(pts, pts).spline;
       section::CamberOptions o;
       o.profile_noise = 0.005;

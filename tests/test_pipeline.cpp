@@ -117,6 +117,15 @@ void check_issue_targets(const SectionErrors& e, double chord) {
   CHECK(e.out() <= 0.5);
 }
 
+// One section of a whole-blade compressor scan, which must be fitted and cambered.
+SectionErrors compressor_section(double z, std::uint64_t seed) {
+  const auto errors = run_pipe(compressor_blade(), {z}, seed, 0, true);
+  report("compressor", errors);
+  REQUIRE(errors.at(0).fitted);
+  REQUIRE(errors.at(0).cambered);
+  return errors[0];
+}
+
 // Sections at 30% and 60% of the span; the same planes for both presets.
 std::vector<double> planes(const BladeDesign& blade) { return {0.3 * blade.span, 0.6 * blade.span}; }
 
@@ -188,12 +197,7 @@ TEST_CASE("pipeline: a fit whose knot rounds fold keeps the last curve that does
   // Compressor, whole-blade scan, seed 10, z = 36, with the band: the adaptive knots wrap
   // the leading edge twice, at every knot floor fit_spline retries with. The last resort
   // stops the knot rounds before the first curve that folds.
-  const BladeDesign blade = compressor_blade();
-  const auto errors = run_pipe(blade, {36.0}, 10, 0, true);
-  report("compressor", errors);
-  REQUIRE(errors.at(0).fitted);
-  REQUIRE(errors.at(0).cambered);
-  const SectionErrors& e = errors[0];
+  const SectionErrors e = compressor_section(36.0, 10);
   CHECK(e.rms() <= 0.003);
   CHECK(e.max() <= 0.015);
   CHECK(e.cam_max() <= 0.015);
@@ -206,12 +210,7 @@ TEST_CASE("pipeline: of the fits tried after a fold, the one nearest the points 
   // measured by 34 points with a 30-degree gap. The default knots fold there, and so do
   // knots twice as long; knots four times as long do not fold but bulge the edge 80 um
   // off its points. The curve with the knot rounds stopped before the fold fits them.
-  const BladeDesign blade = compressor_blade();
-  const auto errors = run_pipe(blade, {30.0}, 29, 0, true);
-  report("compressor", errors);
-  REQUIRE(errors.at(0).fitted);
-  REQUIRE(errors.at(0).cambered);
-  const SectionErrors& e = errors[0];
+  const SectionErrors e = compressor_section(30.0, 29);
   CHECK(e.rms() <= 0.003);
   CHECK(e.max() <= 0.015);
   CHECK(e.chord() <= 0.010);
@@ -223,13 +222,9 @@ TEST_CASE("pipeline: a thin trailing edge's lone tip point is fitted, not droppe
   // TE point, alone at the tip of a 0.23 mm radius edge. Taken for an outlier (the curve
   // first cut the corner) it left the fit 42 um and the chord 43 um off; it lies on the
   // line through its neighbours, so it now stays.
-  const BladeDesign blade = compressor_blade();
-  const auto errors = run_pipe(blade, {36.0}, 12, 0, true);
-  report("compressor", errors);
-  REQUIRE(errors.at(0).fitted);
-  REQUIRE(errors.at(0).cambered);
-  CHECK(errors[0].max() <= 0.015);
-  CHECK(errors[0].chord() <= 0.010);
+  const SectionErrors e = compressor_section(36.0, 12);
+  CHECK(e.max() <= 0.015);
+  CHECK(e.chord() <= 0.010);
 }
 
 TEST_CASE("pipeline: an edge measured only by carried points says so", "[pipeline][generated]") {
