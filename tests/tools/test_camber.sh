@@ -67,4 +67,20 @@ if [ -x "$BIN/bladegen" ] && [ -x "$BIN/slice" ] && [ -x "$BIN/smooth" ] && [ -x
   check "the full pipe runs (exit statuses $st)" -- test "$st" = "0 0 0 0"
   check "the full pipe writes params for 3 sections" -- test "$(grep -c '^[0-9]' "$TMP/pipe.csv")" -eq 3
 fi
+# Edge circles refitted to the measured points (the stream's points table), or fitted to
+# the spline's arcs alone with --edge-on-spline: both within 3 % of the true LE radius
+# of a generated compressor section (sigma 5 um), and not the same number.
+"$BIN/bladegen" --kind compressor --points --noise 0.005 --z-min 29 --z-max 31 --seed 5 -o "$TMP/c.ply" 2>/dev/null
+"$BIN/bladegen" --kind compressor --truth "$TMP/truth.csv" --at 30 2>/dev/null
+"$BIN/slice" "$TMP/c.ply" --at 30 2>/dev/null | "$BIN/smooth" 2>/dev/null | "$BIN/fitspline" > "$TMP/c_fit.txt" 2>/dev/null
+expect 0 "camber, edges on the points" -- "$camber" "$TMP/c_fit.txt" --params "$TMP/c_pts.csv" -o /dev/null
+expect 0 "camber --edge-on-spline" -- "$camber" "$TMP/c_fit.txt" --edge-on-spline --params "$TMP/c_spl.csv" -o /dev/null
+col() { awk -F, -v name="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i; next } { print $c; exit }' "$1"; }
+true_le=$(col "$TMP/truth.csv" le_radius)
+le_pts=$(col "$TMP/c_pts.csv" le_radius)
+le_spl=$(col "$TMP/c_spl.csv" le_radius)
+check "LE radius on the points within 3 % ($le_pts vs $true_le)" -- awk -v a="$le_pts" -v t="$true_le" 'BEGIN { d = a / t - 1; exit !(d < 0.03 && d > -0.03) }'
+check "LE radius on the spline within 3 % ($le_spl vs $true_le)" -- awk -v a="$le_spl" -v t="$true_le" 'BEGIN { d = a / t - 1; exit !(d < 0.03 && d > -0.03) }'
+check "the refit changes the LE radius" -- test "$le_pts" != "$le_spl"
+
 finish
