@@ -371,7 +371,7 @@ TEST_CASE("camber: edge circles refitted to the measured points lose the spline'
   // Points every 20 um (a band's density) with 5 um noise along the exact normal. The
   // fitted spline's arc at an edge carries the fit's shape error (a micrometre or two, a
   // percent or more of a 0.2-0.3 mm radius); refitted to the measured points on the arc
-  // the circle does not. Where the points cannot fix the radius to 1 % (a sparse edge) or
+  // the circle does not. Where the points cannot fix the radius to 5 % (a sparse edge) or
   // the arc lies in a hole, the spline's circle stands.
   std::vector<SectionDesign> ds = designs();
   ds.erase(ds.begin() + 1);  // the turbine design is the slowest to fit; the others cover it

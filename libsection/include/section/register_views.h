@@ -1,7 +1,7 @@
 #pragma once
 /// @file register_views.h
 /// Fine registration of scanner views: the views of one part, roughly aligned already (as
-/// a scanner delivers them), are moved onto the first by rigid point-to-plane ICP on the
+/// a scanner delivers them), are moved onto the first by rigid point-to-surface ICP on the
 /// surface they share. A view misregistered by some micrometres otherwise shifts every
 /// section it alone covers by that much (the pressure side of a blade scanned from two
 /// sides), which no later fit can tell from the shape.
@@ -37,7 +37,7 @@ struct RegisterOptions {
 struct ViewRegistration {
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();  ///< maps the view onto the reference
   std::size_t pairs = 0;          ///< pairs used in the last iteration
-  double rms_before = 0;          ///< rms point-to-plane distance of the pairs before
+  double rms_before = 0;          ///< rms distance of the pairs from the reference surface (local quadric patches) before
   double rms_after = 0;           ///< ... and after
   int iterations = 0;             ///< ICP iterations run
 };
