@@ -60,7 +60,10 @@ int main(int argc, char** argv) {
   double misregistration = 0.0;
   double noise = -1, density_min = -1, slab = 0.08;  // scan overrides (< 0: the inspection scan's)
   double twist = 0;          // --twist DEG: extra twist from hub to tip (robustness to drift)
+  bool rigid_twist = false;  // --rigid-twist: --twist turns the metal angles too (the tip section turned whole)
   double band_spacing = -1;  // --band-spacing MM / --no-band (0); < 0: slice's default
+  double band_max = -1;      // --band-max SLABS; < 0: slice's default
+  double band_sparse_max = -1;  // --band-sparse-max SLABS; < 0: slice's default
   int holes = -1;
   std::string preset = "both";
   std::string export_dir;  // --export DIR: per-section CSVs for scripts/compare_scipy.py
@@ -92,8 +95,11 @@ int main(int argc, char** argv) {
     else if (a == "--density-min") density_min = std::atof(value());
     else if (a == "--slab") slab = std::atof(value());
     else if (a == "--twist") twist = std::atof(value());
+    else if (a == "--rigid-twist") rigid_twist = true;
     else if (a == "--band-spacing") band_spacing = std::atof(value());
     else if (a == "--no-band") band_spacing = 0;
+    else if (a == "--band-max") band_max = std::atof(value());
+    else if (a == "--band-sparse-max") band_sparse_max = std::atof(value());
     else if (a == "--preset") preset = value();
     else if (a == "--no-camber") with_camber = false;
     else if (a == "--full-scan") full_scan = true;
@@ -123,7 +129,7 @@ int main(int argc, char** argv) {
     else if (a == "--edge-point-sigma") camber_options.edge_point_sigma = std::atof(value());
     else if (a == "--quiet") quiet = true;
     else if (a == "--help" || a == "-h") {
-      std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] [--twist DEG] [--band-spacing MM] [--no-band] "
+      std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] [--twist DEG [--rigid-twist]] [--band-spacing MM] [--band-max SLABS] [--band-sparse-max SLABS] [--no-band] "
                   "[--preset turbine|compressor|both] [--full-scan] [--register] [--no-fill] [--fill-gap K] [--fill-fraction F] [--fill-reach MM] [--auto-cells N] [--no-camber] [--quiet] [--export DIR]\n"
                   "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] "
                   "[--edge-prune DEG] [--tangent-span FRACTION] [--edge-on-spline] [--edge-point-gap F] [--edge-point-sigma F]\n");
@@ -148,6 +154,11 @@ int main(int argc, char** argv) {
       if (twist != 0) {
         // --twist: the tip section turned by this much more about its mid-chord.
         blade.tip.stagger += twist;
+        // Without --rigid-twist the metal angles stay: the tip's camber changes by the twist too.
+        if (rigid_twist) {
+          blade.tip.inlet_angle += twist;
+          blade.tip.outlet_angle += twist;
+        }
         const double a = blade.tip.stagger * M_PI / 180;
         blade.tip.offset = -0.5 * blade.tip.chord * Eigen::Vector2d(std::cos(a), std::sin(a));
       }
@@ -187,6 +198,8 @@ int main(int argc, char** argv) {
         sopt.fill = fill_options;
         if (auto_cells > 0) sopt.morphology.auto_cells = auto_cells;
         if (band_spacing >= 0) sopt.band_spacing = band_spacing;
+        if (band_max >= 0) sopt.band_max = band_max;
+        if (band_sparse_max >= 0) sopt.band_sparse_max = band_sparse_max;
         Stream stream = parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");
         smooth_stream(stream);
         stream = parse_stream(format_stream(stream), "smooth");

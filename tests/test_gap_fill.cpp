@@ -173,6 +173,11 @@ TEST_CASE("gap fill: bad options are refused before any work", "[gap_fill]") {
   o.band_spacing = 0.02;
   o.band_max = 0.2;
   CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("at least 0.5 slab widths"));
+  o.band_max = 2;
+  o.band_sparse_max = std::nan("");
+  CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("beside sparse stretches"));
+  o.band_sparse_max = -1;
+  CHECK_THROWS_WITH(slice(c, planes_at({0, 0, 1}, {0.0}), o), Catch::Contains("beside sparse stretches"));
 }
 
 TEST_CASE("drift band: a twisting, drifting ellipse's band lands on the section of the plane", "[gap_fill]") {
@@ -222,4 +227,102 @@ TEST_CASE("drift band: a twisting, drifting ellipse's band lands on the section 
   CHECK(band_half_width(100, 10, 0.08, 0.02, 2) == Approx(0.16));  // wants 0.2: capped at 2 slabs
   CHECK(band_half_width(400, 10, 0.08, 0.02, 2) == Approx(0.05));  // 0.05: 1.25 slabs wide
   CHECK(band_half_width(2000, 10, 0.08, 0.02, 2) == Approx(0.04));  // dense enough: the slab
+}
+
+TEST_CASE("drift band: beside a sparse stretch of the profile the band widens", "[gap_fill]") {
+  // A leaning ellipse scanned in rows half a slab apart, a quarter of it at a quarter of
+  // the density. The band's half width from the average density is 1.5 slabs; beside the
+  // sparse quarter one point per band spacing needs 5: band_sparse_max (4 slabs) allows
+  // that there, and nowhere else. Every point must still land on the plane's ellipse: the
+  // drift is fitted against the slab's own rows, which lie +-2.4 um apart (projected
+  // straight), so a point carried from 4 slabs keeps up to ~1 % of its offset.
+  const Eigen::Vector2d V0(0.05, -0.08);
+  const double a = 5, b = 1.5, slab = 0.05;
+  const auto sparse = [](double t) { return t > 0.25 * M_PI && t < 0.75 * M_PI; };
+  const auto distance = [&](const Eigen::Vector2d& p) {  // to the ellipse, near angle t
+    const double t0 = std::atan2(p.y() / b, p.x() / a);
+    double best = 1e9;
+    for (int k = -2000; k <= 2000; ++k) {
+      const double t = t0 + 1e-5 * k;
+      best = std::min(best, (Eigen::Vector2d(a * std::cos(t), b * std::sin(t)) - p).norm());
+    }
+    return best;
+  };
+  Cloud c;
+  for (double z = -0.3; z <= 0.3 + 1e-9; z += 0.5 * slab)
+    for (double t = 0; t < 2 * M_PI; t += 0.01) {
+      if (sparse(t) && std::lround(t / 0.01) % 4 != 0) continue;
+      const Eigen::Vector2d p = Eigen::Vector2d(a * std::cos(t), b * std::sin(t)) + z * V0;
+      c.points.emplace_back(p.x(), p.y(), z);
+    }
+  const auto band_of = [&](double sparse_max) {
+    SliceOptions o;
+    o.slab = slab;
+    o.fill_gaps = false;
+    o.band_spacing = 0.01;
+    o.band_max = 2;
+    o.band_sparse_max = sparse_max;
+    const SliceResult r = slice(c, planes_at({0, 0, 1}, {0.0}), o);
+    REQUIRE(r.sections.at(0).error.empty());
+    return r.sections[0];
+  };
+  const SectionSlice narrow = band_of(0), wide = band_of(4);
+  CHECK(narrow.band_half_width == Approx(wide.band_half_width));
+  CHECK(wide.band_half_width < 2 * slab);
+  const auto counts = [&](const SectionSlice& s) {
+    std::pair<int, int> n{0, 0};  // (sparse quarter, the rest away from its ends)
+    double worst = 0;
+    for (const auto& p : s.morphology.loops.at(0).points) {
+      double t = std::atan2(p.y() / b, p.x() / a);
+      if (t < 0) t += 2 * M_PI;
+      worst = std::max(worst, distance(p));
+      if (sparse(t)) ++n.first;
+      else if (t > 0.85 * M_PI || t < 0.15 * M_PI) ++n.second;
+    }
+    INFO("worst " << worst * 1e3 << " um");
+    CHECK(worst < 0.003);
+    return n;
+  };
+  const auto [sparse_narrow, rest_narrow] = counts(narrow);
+  const auto [sparse_wide, rest_wide] = counts(wide);
+  INFO("sparse quarter " << sparse_narrow << " -> " << sparse_wide << ", rest " << rest_narrow << " -> " << rest_wide);
+  CHECK(sparse_wide >= 2 * sparse_narrow);
+  CHECK(rest_wide == rest_narrow);
+}
+
+TEST_CASE("drift band: a section whose camber grows with height lands on the plane's", "[gap_fill]") {
+  // A thin ellipse bent by k(z) x^2, k growing with height: the drift V = (0, k' x^2) is
+  // quadratic across the section (a blade's camber changing along the span). The best
+  // affine field leaves up to 0.105 mm per mm across the profile: 10 um at z = 0.1 mm. The
+  // fitted drift must carry the band onto the plane's section within 5 um (its quadratic
+  // terms are held firm against noise: on so thin a profile ~40 % of the bending stays).
+  const double a = 10, b = 0.8, k0 = 0.01, k1 = 0.002, slab = 0.05;
+  const auto at = [&](double t, double z) {
+    const double x = a * std::cos(t);
+    return Eigen::Vector2d(x, b * std::sin(t) + (k0 + k1 * z) * x * x);
+  };
+  const auto distance = [&](const Eigen::Vector2d& p) {
+    double best = 1e9;
+    for (int k = 0; k < 200000; ++k) best = std::min(best, (at(2 * M_PI * k / 200000.0, 0) - p).norm());
+    return best;
+  };
+  Cloud c;
+  for (double z = -0.3; z <= 0.3 + 1e-9; z += slab)
+    for (double t = 0; t < 2 * M_PI; t += 0.005) {
+      const Eigen::Vector2d p = at(t, z);
+      c.points.emplace_back(p.x(), p.y(), z);
+    }
+  SliceOptions o;
+  o.slab = slab;
+  o.fill_gaps = false;
+  o.band_spacing = 0.001;
+  const SliceResult r = slice(c, planes_at({0, 0, 1}, {0.0}), o);
+  REQUIRE(r.sections.at(0).error.empty());
+  const SectionSlice& s = r.sections[0];
+  REQUIRE(s.band_points >= 4 * s.slab_points);
+  const Loop& loop = s.morphology.loops.at(0);
+  double worst = 0;
+  for (std::size_t k = 0; k < loop.points.size(); k += 5) worst = std::max(worst, distance(loop.points[k]));
+  INFO(loop.points.size() << " points, worst " << worst * 1e3 << " um");
+  CHECK(worst < 0.005);
 }

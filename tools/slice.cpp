@@ -24,9 +24,11 @@ const char* const description =
     "surface (the section's drift with height is fitted beside the gap) and fill it; the\n"
     "stream notes how many per section ('# fill ...'). --no-fill keeps the slab points alone.\n"
     "Band: where the slab is sparse, points up to --band-max slab widths from the plane join\n"
-    "it, each carried onto the plane along the section's drift (lean, sweep, twist and taper,\n"
-    "fitted over the section) rather than projected straight, until the profile holds about\n"
-    "one point per --band-spacing ('# band ...' in the stream). --band-spacing 0 keeps the slab.\n"
+    "it, each carried onto the plane along the section's drift (lean, sweep, twist, taper and\n"
+    "a camber or thickness changing with height, fitted over the section) rather than\n"
+    "projected straight, until the profile holds about one point per --band-spacing ('# band\n"
+    "...' in the stream); --band-sparse-max widens it beside sparse stretches of the profile.\n"
+    "--band-spacing 0 keeps the slab.\n"
     "Meshes are cut exactly and need neither.\n\n"
     "Views: a part scanned in several views, each in its own file: the input is the first,\n"
     "--view adds each other one. Each is registered onto the first (rigid ICP to the surface\n"
@@ -76,6 +78,11 @@ int main(int argc, char** argv) {
             ->capture_default_str();
         app.add_option("--band-max", options.band_max, "Largest half width of the band, in slab widths (>= 0.5)")
             ->check(CLI::Range(0.5, 1e6))
+            ->capture_default_str();
+        app.add_option("--band-sparse-max", options.band_sparse_max,
+                       "Widen the band beside a sparse stretch of the profile up to this half width, in slab "
+                       "widths; 0 = off")
+            ->check(CLI::Range(0.0, 1e6))
             ->capture_default_str();
         app.add_flag("--no-fill", [&](std::int64_t) { options.fill_gaps = false; },
                      "Do not fill the slab's gaps from points beside the plane");

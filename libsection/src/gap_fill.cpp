@@ -101,7 +101,12 @@ bool span_beside(const Reference& ref, const Grid& ref_grid, const Vec& c, doubl
   if (k < 0) return false;
   pk = ref.point[std::size_t(k)];
   const int a = ref.next[std::size_t(k)], b = ref.prev[std::size_t(k)];
-  const int m = (c - ref.point[std::size_t(a)]).squaredNorm() <= (c - ref.point[std::size_t(b)]).squaredNorm() ? a : b;
+  const bool forward = (c - ref.point[std::size_t(a)]).squaredNorm() <= (c - ref.point[std::size_t(b)]).squaredNorm();
+  int m = forward ? a : b;
+  // Points that (nearly) coincide make no span: a band carries rows scanned at the same
+  // places along the profile onto one another. Step on to the first that stands apart.
+  for (int step = 0; step < 8 && (ref.point[std::size_t(m)] - pk).norm() < 0.05 * slab && m != k; ++step)
+    m = forward ? ref.next[std::size_t(m)] : ref.prev[std::size_t(m)];
   const Vec t = ref.point[std::size_t(m)] - pk;
   const double len = t.norm();
   if (!(len > 0) || len > gap_min) return false;
@@ -121,11 +126,12 @@ double gap_length(const GapFillOptions& options, double slab, double profile_len
 // Trimmed least squares for the drift fits: three passes, each on the rows within
 // 3 robust sigmas (plus 0.05 slab) of the last fit, with a ridge on the first `ridged`
 // unknowns (1e-3 of the first two's weight: a direction the pairs do not see, as V . t
-// along a straight side, stays near 0; one they see is shrunk by about 0.1 %). False when
-// the solve fails or fewer than `min_support` rows are kept.
+// along a straight side, stays near 0; one they see is shrunk by about 0.1 %), and the
+// unknowns from `firm` on held firmer, by `firm_ridge` of that weight. False when the
+// solve fails or fewer than `min_support` rows are kept.
 template <int N>
 bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs, int ridged,
-                 double slab, int min_support, Eigen::Matrix<double, N, 1>& sol) {
+                 double slab, int min_support, Eigen::Matrix<double, N, 1>& sol, int firm = N, double firm_ridge = 1e-3) {
   std::vector<char> use(rows.size(), 1);
   sol.setZero();
   for (int pass = 0; pass < 3; ++pass) {
@@ -136,8 +142,8 @@ bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std
         A += rows[r] * rows[r].transpose();
         b += rows[r] * rhs[r];
       }
-    const double ridge = 1e-3 * (A(0, 0) + A(1, 1)) + 1e-12;
-    for (int j = 0; j < ridged; ++j) A(j, j) += ridge;
+    const double weight = A(0, 0) + A(1, 1);
+    for (int j = 0; j < ridged; ++j) A(j, j) += (j < firm ? 1e-3 : firm_ridge) * weight + 1e-12;
     sol = A.ldlt().solve(b);
     if (!sol.allFinite()) return false;
     std::vector<double> res;
@@ -199,27 +205,41 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
   return d;
 }
 
-// The section's drift over the whole profile (drift_band.h), affine in the plane: a point
-// p at height z lies z (V(p) . n) + c from the slab's curve, V(p) = V0 + A (p - centre).
-// Fitted like fit_drift (pairs with the profile's spans, trimmed least squares, two rounds
-// widening from the plane to `zmax`, a constant c beyond a quarter slab refused). ok is
-// false when it cannot be fitted.
-struct AffineDrift {
+// The section's drift over the whole profile (drift_band.h), quadratic in the plane: a
+// point p at height z lies z (V(p) . n) + c from the slab's curve, V(p) = sum_j phi_j(q) w_j
+// with phi = 1, qx, qy, qx^2, qx qy, qy^2 and q = (p - centre) / scale. Fitted like
+// fit_drift (pairs with the profile's spans, trimmed least squares, two rounds widening
+// from the plane to `zmax`, a constant c beyond a quarter slab refused). ok is false when
+// it cannot be fitted.
+struct QuadraticDrift {
+  static constexpr int terms = 6;
   bool ok = false;
-  Vec centre = Vec::Zero(), v0 = Vec::Zero();
-  Eigen::Matrix2d a = Eigen::Matrix2d::Zero();
-  Vec at(const Vec& p) const { return v0 + a * (p - centre); }
+  Vec centre = Vec::Zero();
+  double scale = 1;
+  Eigen::Matrix<double, 2, terms> w = Eigen::Matrix<double, 2, terms>::Zero();
+  Eigen::Matrix<double, terms, 1> basis(const Vec& p) const {
+    const Vec q = (p - centre) / scale;
+    Eigen::Matrix<double, terms, 1> phi;
+    phi << 1, q.x(), q.y(), q.x() * q.x(), q.x() * q.y(), q.y() * q.y();
+    return phi;
+  }
+  Vec at(const Vec& p) const { return w * basis(p); }
 };
 
-AffineDrift fit_affine_drift(const std::vector<Vec>& uv, const std::vector<double>& dz, const Reference& ref,
-                             const Grid& ref_grid, double zmax, double slab, double gap_min, int min_support) {
-  AffineDrift d;
+QuadraticDrift fit_profile_drift(const std::vector<Vec>& uv, const std::vector<double>& dz, const Reference& ref,
+                                 const Grid& ref_grid, double zmax, double slab, double gap_min, int min_support) {
+  constexpr int T = QuadraticDrift::terms;
+  QuadraticDrift d;
   std::size_t n0 = 0;  // loop 0 comes first in the reference
   for (; n0 < ref.point.size() && ref.loop[n0] == 0; ++n0) d.centre += ref.point[n0];
   if (n0 < 3) return d;
   d.centre /= double(n0);
-  using Row = Eigen::Matrix<double, 7, 1>;
-  AffineDrift cur = d;
+  double spread = 0;
+  for (std::size_t i = 0; i < n0; ++i) spread = std::max(spread, (ref.point[i] - d.centre).norm());
+  if (!(spread > 0)) return d;
+  d.scale = spread;
+  using Row = Eigen::Matrix<double, 2 * T + 1, 1>;
+  QuadraticDrift cur = d;
   for (int round = 0; round < 2; ++round) {
     const double zr = zmax * (round + 1) / 2.0;
     std::vector<Row> rows;
@@ -231,18 +251,23 @@ AffineDrift fit_affine_drift(const std::vector<Vec>& uv, const std::vector<doubl
       int k;
       Vec pk, n;
       if (!span_beside(ref, ref_grid, c, slab, gap_min, k, pk, n) || ref.loop[std::size_t(k)] != 0) continue;
-      const Vec q = pk - d.centre;
+      const Eigen::Matrix<double, T, 1> phi = d.basis(pk);
       Row r;
-      r << z * n.x(), z * n.y(), z * n.x() * q.x(), z * n.x() * q.y(), z * n.y() * q.x(), z * n.y() * q.y(), 1.0;
+      for (int j = 0; j < T; ++j) {
+        r(2 * j) = z * n.x() * phi(j);
+        r(2 * j + 1) = z * n.y() * phi(j);
+      }
+      r(2 * T) = 1.0;
       rows.push_back(r);
       rhs.push_back((raw - pk).dot(n));
     }
     if (int(rows.size()) < min_support) return d;
     Row sol;
-    if (!trimmed_fit<7>(rows, rhs, 6, slab, min_support, sol)) return d;
-    if (std::abs(sol(6)) > 0.25 * slab) return d;
-    cur.v0 = sol.head<2>();
-    cur.a << sol(2), sol(3), sol(4), sol(5);
+    // The quadratic terms are held firmer: at the tips, where only a few points see them,
+    // the constant and the x^2 term look alike, and their split would follow the noise.
+    if (!trimmed_fit<2 * T + 1>(rows, rhs, 2 * T, slab, min_support, sol, 6, 0.05)) return d;
+    if (std::abs(sol(2 * T)) > 0.25 * slab) return d;
+    for (int j = 0; j < T; ++j) cur.w.col(j) = sol.segment<2>(2 * j);
   }
   cur.ok = true;
   return cur;
@@ -251,25 +276,52 @@ AffineDrift fit_affine_drift(const std::vector<Vec>& uv, const std::vector<doubl
 }  // namespace
 
 std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby,
-                                        double slab, double half_width) {
+                                        double slab, double half_width, double spacing, double sparse_half_width) {
   const Reference ref = reference_of(ordered);
   if (ref.point.size() < 3 || !(slab > 0)) return {};
   const double profile_length = ordered.loops.empty() ? 0.0 : ordered.loops[0].length;
   const double gap_min = gap_length(GapFillOptions{}, slab, profile_length);
+  const bool widen = spacing > 0 && sparse_half_width > half_width;
+  const double widest = widen ? sparse_half_width : half_width;
   std::vector<Vec> uv;
   std::vector<double> dz;
   const double zfit = std::max(2 * half_width, 3 * slab);
   for (const auto& p : nearby)
-    if (p.allFinite() && std::abs(p.z()) <= zfit) {
+    if (p.allFinite() && std::abs(p.z()) <= std::max(zfit, widest)) {
       uv.emplace_back(p.x(), p.y());
       dz.push_back(p.z());
     }
   const Grid ref_grid(ref.point, 2 * slab);
-  const AffineDrift drift = fit_affine_drift(uv, dz, ref, ref_grid, zfit, slab, gap_min, 64);
+  const QuadraticDrift drift = fit_profile_drift(uv, dz, ref, ref_grid, zfit, slab, gap_min, 64);
   if (!drift.ok) return {};
+  // Beside a sparse stretch of the profile (a low-density patch, a thin edge seen
+  // obliquely) the band widens locally, up to sparse_half_width, for one point per
+  // `spacing` there too: the half width at each slab point from the slab's points per
+  // length over +-8 neighbours.
+  std::vector<double> local(ref.point.size(), half_width);
+  if (widen) {
+    for (std::size_t k = 0; k < ref.point.size(); ++k) {
+      double length = 0;
+      int a = int(k), b = int(k);
+      for (int step = 0; step < 8; ++step) {
+        const int na = ref.prev[std::size_t(a)], nb = ref.next[std::size_t(b)];
+        length += (ref.point[std::size_t(na)] - ref.point[std::size_t(a)]).norm() +
+                  (ref.point[std::size_t(nb)] - ref.point[std::size_t(b)]).norm();
+        a = na, b = nb;
+      }
+      local[k] = std::clamp(0.5 * slab * (length / 16) / spacing, half_width, sparse_half_width);
+    }
+  }
   std::vector<Eigen::Vector2d> out;
   for (std::size_t i = 0; i < uv.size(); ++i) {
-    if (std::abs(dz[i]) <= half_width) out.push_back(uv[i] - dz[i] * drift.at(uv[i]));
+    const double z = std::abs(dz[i]);
+    if (z > widest) continue;
+    const Vec c = uv[i] - dz[i] * drift.at(uv[i]);
+    if (z > half_width) {
+      const int k = ref_grid.nearest(c, 3 * slab);
+      if (k < 0 || z > local[std::size_t(k)]) continue;
+    }
+    out.push_back(c);
   }
   return out;
 }

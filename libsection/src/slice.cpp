@@ -277,7 +277,9 @@ void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count, 
 // drift fit (drift_band); 0 when neither runs.
 double fill_reach(const SliceOptions& options, double slab) {
   const double fill = options.fill_gaps ? gap_fill_reach(options.fill, slab) : 0;
-  const double band = options.band_spacing > 0 ? std::max(2 * std::max(0.5, options.band_max), 3.0) * slab : 0;
+  const double band = options.band_spacing > 0
+                         ? std::max({2 * std::max(0.5, options.band_max), options.band_sparse_max, 3.0}) * slab
+                         : 0;
   return std::max(fill, band);
 }
 
@@ -286,6 +288,8 @@ void check_band_options(const SliceOptions& options) {
     throw Error("slice: the band spacing must be zero or positive and finite");
   if (!(options.band_max >= 0.5) || !std::isfinite(options.band_max))
     throw Error("slice: the band's largest half width must be at least 0.5 slab widths");
+  if (!(options.band_sparse_max >= 0) || !std::isfinite(options.band_sparse_max))
+    throw Error("slice: the band's half width beside sparse stretches must be zero or positive and finite");
 }
 
 std::vector<Frame> frames_of(const std::vector<Plane>& planes) {
@@ -342,7 +346,8 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
         // A band less than twice as wide as the slab is not worth a second ordering and
         // the later stages' time for its points (the slab is dense enough then).
         if (half >= slab) {
-          std::vector<Eigen::Vector2d> band = drift_band(s.morphology, near[i], slab, half);
+          std::vector<Eigen::Vector2d> band =
+              drift_band(s.morphology, near[i], slab, half, options.band_spacing, options.band_sparse_max * slab);
           if (band.size() > slabs[i].size()) {
             // A band that cannot be ordered leaves the slab's ordering as it is.
             try {

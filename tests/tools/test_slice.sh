@@ -43,6 +43,10 @@ expect 0 "holed ring, slab alone" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab
 check "no band note without a band" -- sh -c "! grep -q '^# band' '$TMP/out'"
 expect 2 "band max below half a slab" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --band-max 0.2
 expect 2 "negative band spacing" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --band-spacing -1
+expect 2 "negative sparse band width" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --band-sparse-max -1
+# Beside the hole's ends the slab is sparse: --band-sparse-max reaches farther there only.
+expect 0 "holed ring, band widened beside sparse stretches" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --band-sparse-max 4
+check "wider band noted" -- grep -q "^# band section=0 half_width=0.05[0-9]* points=35[0-9][0-9] slab_points=11[0-9][0-9]" "$TMP/out"
 expect 0 "holed ring, no fill" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --no-fill
 check "no fill note without filling" -- sh -c "! grep -q '^# fill' '$TMP/out'"
 "$BIN/slice" --at 0,5 --slab 0.1 < "$TMP/ring.xyz" > "$TMP/from_stdin.csv" 2>/dev/null

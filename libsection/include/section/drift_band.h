@@ -6,9 +6,9 @@
 /// radius then has 5-10 points, too few to measure its radius to 3 % through 5 um of
 /// noise. The surface at height z above the plane lies z V from the plane's section (V the
 /// drift: lean, sweep, twist, taper), so a wider band projected straight would smear the
-/// profile by z V. Fitted as an affine field over the section (V(p) = V0 + A (p - c),
-/// twist and taper included) against the slab's ordered profile, the drift is taken out:
-/// each point p at height z goes to p - z V(p).
+/// profile by z V. Fitted as a quadratic field over the section (twist and taper, and a
+/// camber or thickness that changes with height) against the slab's ordered profile, the
+/// drift is taken out: each point p at height z goes to p - z V(p).
 #include "section/morphology.h"
 
 #include <Eigen/Core>
@@ -18,13 +18,17 @@
 namespace section {
 
 /// Points of `nearby` (u, v, signed height above the plane) within `half_width` of the
-/// plane, carried onto it along the section's drift, fitted against loop 0 of `ordered`
+/// plane, carried onto it along the section's drift. With `spacing` > 0 and
+/// `sparse_half_width` > `half_width`, beside a stretch of the profile where the slab's
+/// points lie sparser, as far from the plane as it takes for about one point per
+/// `spacing` there, up to `sparse_half_width`. The drift is fitted against loop 0 of `ordered`
 /// (what order_section made of the slab of width `slab`) from the points within
 /// max(2 half_width, 3 slab) of the plane. Points keep the order of `nearby`. Empty when
 /// the drift cannot be fitted (fewer than 64 points pair with the profile, or the fit is
 /// inconsistent). Deterministic for given inputs.
 std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby,
-                                        double slab, double half_width);
+                                        double slab, double half_width, double spacing = 0,
+                                        double sparse_half_width = 0);
 
 /// The half width of the band for one section: wide enough for one point per `spacing`
 /// along the profile, given that the slab (width `slab`) holds `slab_points` points on a
