@@ -1042,8 +1042,45 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
       tip.radius = e.radius;
       tip.left = tip.right = e.point;
       tip.t_left = tip.t_right = e.t;
-      if (front) kept.insert(kept.begin(), tip);
-      else kept.push_back(tip);
+      // The medial branch can stop well short of the edge centre (pruned at a noise bump
+      // on a thin edge's flank); bridged by the axis spline alone, the line there bulges
+      // off the axis. Across a gap longer than the end circle's radius, march inscribed
+      // circles from the branch's end toward the centre, each from the last one's contacts.
+      std::vector<InscribedCircle> bridge;
+      {
+        const InscribedCircle& from = front ? kept.front() : kept.back();
+        const Eigen::Vector2d to = e.center - 0.3 * e.radius * d;
+        const double gap = (to - from.center).norm();
+        if (gap > from.radius) {
+          const Eigen::Vector2d dir = (to - from.center) / gap;
+          const Eigen::Vector2d n = left_normal(front ? Eigen::Vector2d(-dir) : dir);
+          const double step = 0.25 * std::min(from.radius, e.radius);
+          InscribedCircle last = from;
+          for (double u = step; u < gap; u += step) {
+            const Eigen::Vector2d q = from.center + u * dir;
+            // From the last circle's contacts, else (a contact that jumps past a bump ends
+            // the branch there) from the profile's nearest samples on either side.
+            auto solved = [&](double ta, double tb, InscribedCircle& c) {
+              return solve_circle(pr.fast, q, n, ta, tb, pr.scale, c) && valid_circle(pr, n, c, nullptr) &&
+                     (c.center - q).norm() <= 0.5 * c.radius && (c.center - e.center).dot(d) < -0.3 * e.radius;
+            };
+            InscribedCircle c;
+            if (!solved(last.t_left, last.t_right, c)) {
+              const int l = pr.nearest_on_side(q, n), r = pr.nearest_on_side(q, -n);
+              if (l < 0 || r < 0 || !solved(pr.ts[std::size_t(l)], pr.ts[std::size_t(r)], c)) break;
+            }
+            bridge.push_back(c);
+            last = c;
+          }
+        }
+      }
+      if (front) {
+        kept.insert(kept.begin(), bridge.rbegin(), bridge.rend());
+        kept.insert(kept.begin(), tip);
+      } else {
+        kept.insert(kept.end(), bridge.begin(), bridge.end());
+        kept.push_back(tip);
+      }
       circles = kept;
     };
     replace(le, true);
@@ -1117,6 +1154,10 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
     res.points.push_back(p);
     res.s.push_back(s);
     res.radius.push_back(r);
+    if (s > res.ext_le && s < res.length - res.ext_te) {
+      const double off = r - pr.sample_distance(p);
+      if (off > res.off_axis) res.off_axis = off, res.off_axis_s = s;
+    }
   }
 
   // Thickest circle: the widest station refined by golden-section search on the axis.

@@ -376,6 +376,21 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
                                       circularity(r.te, "trailing edge"));
       if (!le_msg.empty() || !te_msg.empty())
         slot.issues.push_back({section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
+      // A camber line that strays from the medial axis (no inscribed circle solved there)
+      // is not a measured one: say where and by how much.
+      if (r.off_axis > 0) {
+        std::size_t k = 0;
+        while (k + 1 < r.s.size() && r.s[k] < r.off_axis_s) ++k;
+        if (k < r.radius.size() && r.off_axis > opt.off_axis * r.radius[k]) {
+          char text[256];
+          std::snprintf(text, sizeof text,
+                        "the camber line strays from the medial axis by up to %.3g at %.2f of its length (no "
+                        "inscribed circle could be solved there): its shape and the thickness stations there are "
+                        "interpolated",
+                        r.off_axis, r.off_axis_s / std::max(r.length, 1e-300));
+          slot.issues.push_back({section, 0, "camber", text});
+        }
+      }
       // The thickness rule is a near tie: say so rather than let the orientation pass as known.
       if (!r.le_by_direction && std::abs(p.max_thickness_pos - 0.5) <= opt.le_thickness_margin) {
         char text[256];

@@ -88,6 +88,7 @@ struct CamberOptions {
   double edge_circularity = 3;     ///< an edge circle whose fit rms exceeds this many times max(profile_noise, 1e-4 x its radius) is not circular (Edge::circular)
   double edge_hole = 1;            ///< stream stage: an edge is reported "partly not measured" when a stretch of the profile without measured points, this many edge radii long or longer, begins within edge_hole_reach radii of the edge point
   double edge_hole_reach = 1.2;    ///< edge radii along the profile from the edge point (the half arc of a round edge is 1.57)
+  double off_axis = 0.1;           ///< stream stage: a camber line that strays from the medial axis by more than this many inscribed radii (CamberResult::off_axis) is reported as an issue
   bool edge_on_points = true;      ///< with measured points given (camber_line's `measured`, the stream's "points" table): the edge circle is refitted to the measured points on the edge arc (the spline's arc is a little flattened at a tight edge); false = fitted to the spline's arc alone
   double edge_point_gap = 0.25;    ///< ... provided no angular gap between those points exceeds this fraction of the arc
   double edge_point_sigma = 0.05;  ///< ... and the refitted radius's standard error (from the points' scatter about the circle) is at most this fraction of it (a few sparse points on a short arc); else the spline's circle stands
@@ -132,6 +133,11 @@ struct CamberResult {
   int pressure_side = -1;
   bool le_by_direction = false;    ///< LE chosen by CamberOptions::le_direction (else by thickness)
   double orientation = 1;          ///< +1 when the profile runs counterclockwise, -1 clockwise
+  /// The largest amount by which a sample between the extensions lies nearer the profile
+  /// than its inscribed radius says (0 on the medial axis), and its arc length from the LE
+  /// point: where no inscribed circle could be solved the line is interpolated, and a
+  /// large value means it strays from the axis there.
+  double off_axis = 0, off_axis_s = 0;
 };
 
 /// Mean-camber line of the closed blade profile `profile`: the medial axis, with round
