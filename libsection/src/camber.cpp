@@ -233,10 +233,10 @@ Axis make_axis(const std::vector<Eigen::Vector2d>& pts, double fairness) {
   return Axis(fit_curve(p, fo));
 }
 
-// Solves the station at axis parameter u from a guess; falls back to nearest samples.
-bool station(const Profile& pr, const Axis& ax, double u, const InscribedCircle* guess,
-             InscribedCircle& out, bool fresh = true, int end = -1) {
-  const Eigen::Vector2d p = ax.point(u), n = left_normal(ax.tangent(u));
+// The inscribed circle centred on the line through p along n, solved from a guess's
+// contacts; unless !fresh, falls back to the profile's nearest samples on either side.
+bool circle_on_normal(const Profile& pr, const Eigen::Vector2d& p, const Eigen::Vector2d& n,
+                      const InscribedCircle* guess, InscribedCircle& out, bool fresh = true, int end = -1) {
   double k[2];
   if (guess && solve_circle(pr.fast, p, n, guess->t_left, guess->t_right, pr.scale, out, k) &&
       valid_circle(pr, n, out, k, end))
@@ -246,6 +246,12 @@ bool station(const Profile& pr, const Axis& ax, double u, const InscribedCircle*
   if (l < 0 || r < 0) return false;
   return solve_circle(pr.fast, p, n, pr.ts[l], pr.ts[r], pr.scale, out, k) &&
          valid_circle(pr, n, out, k, end);
+}
+
+// The station at axis parameter u.
+bool station(const Profile& pr, const Axis& ax, double u, const InscribedCircle* guess,
+             InscribedCircle& out, bool fresh = true, int end = -1) {
+  return circle_on_normal(pr, ax.point(u), left_normal(ax.tangent(u)), guess, out, fresh, end);
 }
 
 // From the last valid station outward (direction +1 or -1 in u): march until a station
@@ -1057,18 +1063,13 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
           const double step = 0.25 * std::min(from.radius, e.radius);
           InscribedCircle last = from;
           for (double u = step; u < gap; u += step) {
-            const Eigen::Vector2d q = from.center + u * dir;
             // From the last circle's contacts, else (a contact that jumps past a bump ends
             // the branch there) from the profile's nearest samples on either side.
-            auto solved = [&](double ta, double tb, InscribedCircle& c) {
-              return solve_circle(pr.fast, q, n, ta, tb, pr.scale, c) && valid_circle(pr, n, c, nullptr) &&
-                     (c.center - q).norm() <= 0.5 * c.radius && (c.center - e.center).dot(d) < -0.3 * e.radius;
-            };
+            const Eigen::Vector2d q = from.center + u * dir;
             InscribedCircle c;
-            if (!solved(last.t_left, last.t_right, c)) {
-              const int l = pr.nearest_on_side(q, n), r = pr.nearest_on_side(q, -n);
-              if (l < 0 || r < 0 || !solved(pr.ts[std::size_t(l)], pr.ts[std::size_t(r)], c)) break;
-            }
+            if (!circle_on_normal(pr, q, n, &last, c) || (c.center - q).norm() > 0.5 * c.radius ||
+                (c.center - e.center).dot(d) >= -0.3 * e.radius)
+              break;
             bridge.push_back(c);
             last = c;
           }
