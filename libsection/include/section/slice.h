@@ -42,7 +42,7 @@ struct SliceOptions {
   MorphologyOptions morphology;       ///< ordering of each section's points
   double band_spacing = 0.02;         ///< widen the slab into a drift-corrected band (drift_band.h) until it holds about one point per this length along the profile (units of the cloud); 0 = the slab alone
   double band_max = 2;                ///< slab widths: the band's largest half width
-  double band_sparse_max = 0;         ///< slab widths: widen the band beside a sparse stretch of the profile up to this half width (one point per band_spacing there too); 0 = off (docs/MORPHOLOGY.md: it costs strongly twisted blades)
+  double band_sparse_max = 0;         ///< slab widths: widen the band beside a sparse stretch of the profile up to this half width (one point per band_spacing there too); 0 = off (docs/MORPHOLOGY.md: it costs blades whose camber changes fast with height)
   bool fill_gaps = true;              ///< fill gaps of the slab from scan points beside the plane (gap_fill.h)
   GapFillOptions fill;                ///< how (reach 0 = 12 slab widths)
   int threads = 0;                    ///< worker threads for the sections; 0 = all cores
