@@ -212,7 +212,7 @@ Drift fit_drift(const std::vector<int>& near, const std::vector<Vec>& uv, const 
 // from the plane to `zmax`, a constant c beyond a quarter slab refused). ok is false when
 // it cannot be fitted.
 struct QuadraticDrift {
-  static constexpr int terms = 6;
+  static constexpr int terms = 6, affine_terms = 3;
   bool ok = false;
   Vec centre = Vec::Zero();
   double scale = 1;
@@ -265,7 +265,8 @@ QuadraticDrift fit_profile_drift(const std::vector<Vec>& uv, const std::vector<d
     Row sol;
     // The quadratic terms are held firmer: at the tips, where only a few points see them,
     // the constant and the x^2 term look alike, and their split would follow the noise.
-    if (!trimmed_fit<2 * T + 1>(rows, rhs, 2 * T, slab, min_support, sol, 6, 0.05)) return d;
+    if (!trimmed_fit<2 * T + 1>(rows, rhs, 2 * T, slab, min_support, sol, 2 * QuadraticDrift::affine_terms, 0.05))
+      return d;
     if (std::abs(sol(2 * T)) > 0.25 * slab) return d;
     for (int j = 0; j < T; ++j) cur.w.col(j) = sol.segment<2>(2 * j);
   }
@@ -309,7 +310,7 @@ std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const s
                   (ref.point[std::size_t(nb)] - ref.point[std::size_t(b)]).norm();
         a = na, b = nb;
       }
-      local[k] = std::clamp(0.5 * slab * (length / 16) / spacing, half_width, sparse_half_width);
+      local[k] = std::max(half_width, band_half_width(16, length, slab, spacing, sparse_half_width / slab));
     }
   }
   std::vector<Eigen::Vector2d> out;
