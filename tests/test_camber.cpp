@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <random>
 #include <string>
 #include <tuple>
@@ -50,6 +51,24 @@ double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs
 
 // Thick and thin, high and low turning, large and small edge radii.
 std::vector<SectionDesign> designs() { return section::design_family(); }
+
+// f(design index, seed, truth, points, spline) for each design but the turbine (the
+// slowest to fit; the others cover it) and each seed: noisy_profile points every
+// `spacing`, and the spline fit_spline makes of them.
+template <class F>
+void for_noisy_fits(double spacing, std::initializer_list<unsigned> seeds, F&& f) {
+  std::vector<SectionDesign> ds = designs();
+  ds.erase(ds.begin() + 1);
+  int k = 0;
+  for (const SectionDesign& design : ds) {
+    const SectionTruth truth = section::section_truth(design, 20000);
+    for (unsigned seed : seeds) {
+      const std::vector<Vector2d> pts = noisy_profile(truth, spacing, seed * 7919 + k);
+      f(k, seed, truth, pts, section::fit_spline(pts, pts).spline);
+    }
+    ++k;
+  }
+}
 
 // The profile of `truth` cut off by the line normal to the camber line `back` (arc length,
 // mm) before the TE centre: a blunt trailing edge whose flat face (sampled at the
@@ -347,24 +366,16 @@ TEST_CASE("camber: edge radii on noisy profiles (sigma 5 um) stay within 3 % (LE
   // Exact profile points every 40 um, moved by Gaussian noise (sigma 5 um) along the exact
   // normal, fitted with fit_spline: the edge arc is chosen geometrically on the noisy
   // curve (grown while the profile stays at noise level from the fitted circle).
-  std::vector<SectionDesign> ds = designs();
-  ds.erase(ds.begin() + 1);  // the turbine design is the slowest to fit; the others cover it
-  int k = 0;
-  for (const SectionDesign& design : ds) {
-    const SectionTruth truth = section::section_truth(design, 20000);
-    for (unsigned seed : {1u, 2u}) {
-      const std::vector<Vector2d> pts = noisy_profile(truth, 0.04, seed * 7919 + k);
-      const BSpline spline = section::fit_spline(pts, pts).spline;
-      const section::CamberResult c = section::camber_line(spline);
-      INFO("design " << k << " seed " << seed << " LE " << c.le.radius << " / " << truth.le_radius << " TE "
-                     << c.te.radius << " / " << truth.te_radius);
-      CHECK(relative(c.le.radius, truth.le_radius) < 0.03);
-      CHECK(relative(c.te.radius, truth.te_radius) < 0.10);
-      // The fitted centre ends the camber line: it lies within a few noise sigmas of the truth.
-      CHECK((c.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
-    }
-    ++k;
-  }
+  for_noisy_fits(0.04, {1u, 2u}, [](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>&,
+                                     const BSpline& spline) {
+    const section::CamberResult c = section::camber_line(spline);
+    INFO("design " << k << " seed " << seed << " LE " << c.le.radius << " / " << truth.le_radius << " TE "
+                   << c.te.radius << " / " << truth.te_radius);
+    CHECK(relative(c.le.radius, truth.le_radius) < 0.03);
+    CHECK(relative(c.te.radius, truth.te_radius) < 0.10);
+    // The fitted centre ends the camber line: it lies within a few noise sigmas of the truth.
+    CHECK((c.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
+  });
 }
 
 TEST_CASE("camber: edge circles refitted to the measured points lose the spline's shape error", "[camber]") {
@@ -373,41 +384,33 @@ TEST_CASE("camber: edge circles refitted to the measured points lose the spline'
   // percent or more of a 0.2-0.3 mm radius); refitted to the measured points on the arc
   // the circle does not. Where the points cannot fix the radius to 5 % (a sparse edge) or
   // the arc lies in a hole, the spline's circle stands.
-  std::vector<SectionDesign> ds = designs();
-  ds.erase(ds.begin() + 1);  // the turbine design is the slowest to fit; the others cover it
   double worst_le = 0, worst_te = 0, error_points = 0, error_spline = 0;
-  int k = 0;
-  for (const SectionDesign& design : ds) {
-    const SectionTruth truth = section::section_truth(design, 20000);
-    for (unsigned seed : {3u, 4u}) {
-      const std::vector<Vector2d> pts = noisy_profile(truth, 0.02, seed * 7919 + k);
-      const BSpline spline = section::fit_spline(pts, pts).spline;
-      section::CamberOptions o;
-      o.profile_noise = 0.005;
-      const section::CamberResult on_points = section::camber_line(spline, o, pts);
-      o.edge_on_points = false;
-      const section::CamberResult on_spline = section::camber_line(spline, o);
-      INFO("design " << k << " seed " << seed << ": LE " << on_points.le.radius << ", spline's "
-                     << on_spline.le.radius << ", true " << truth.le_radius << "; TE " << on_points.te.radius
-                     << ", spline's " << on_spline.te.radius << ", true " << truth.te_radius);
-      const double le = relative(on_points.le.radius, truth.le_radius), te = relative(on_points.te.radius, truth.te_radius);
-      worst_le = std::max(worst_le, le);
-      worst_te = std::max(worst_te, te);
-      error_points += le + te;
-      error_spline += relative(on_spline.le.radius, truth.le_radius) + relative(on_spline.te.radius, truth.te_radius);
-      CHECK((on_points.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
-      CHECK((on_points.te.center - truth.te_center).norm() < 0.03 * truth.te_radius + 0.005);
+  for_noisy_fits(0.02, {3u, 4u}, [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
+                                     const BSpline& spline) {
+    section::CamberOptions o;
+    o.profile_noise = 0.005;
+    const section::CamberResult on_points = section::camber_line(spline, o, pts);
+    o.edge_on_points = false;
+    const section::CamberResult on_spline = section::camber_line(spline, o);
+    INFO("design " << k << " seed " << seed << ": LE " << on_points.le.radius << ", spline's "
+                   << on_spline.le.radius << ", true " << truth.le_radius << "; TE " << on_points.te.radius
+                   << ", spline's " << on_spline.te.radius << ", true " << truth.te_radius);
+    const double le = relative(on_points.le.radius, truth.le_radius), te = relative(on_points.te.radius, truth.te_radius);
+    worst_le = std::max(worst_le, le);
+    worst_te = std::max(worst_te, te);
+    error_points += le + te;
+    error_spline += relative(on_spline.le.radius, truth.le_radius) + relative(on_spline.te.radius, truth.te_radius);
+    CHECK((on_points.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
+    CHECK((on_points.te.center - truth.te_center).norm() < 0.03 * truth.te_radius + 0.005);
 
-      // A hole over the LE arc: no measured point within 1.2 radii of the LE point.
-      std::vector<Vector2d> holed;
-      for (const auto& p : pts)
-        if ((p - truth.le_point).norm() > 1.2 * truth.le_radius) holed.push_back(p);
-      o.edge_on_points = true;
-      const section::CamberResult with_hole = section::camber_line(spline, o, holed);
-      CHECK(with_hole.le.radius == Approx(on_spline.le.radius).epsilon(1e-12));
-    }
-    ++k;
-  }
+    // A hole over the LE arc: no measured point within 1.2 radii of the LE point.
+    std::vector<Vector2d> holed;
+    for (const auto& p : pts)
+      if ((p - truth.le_point).norm() > 1.2 * truth.le_radius) holed.push_back(p);
+    o.edge_on_points = true;
+    const section::CamberResult with_hole = section::camber_line(spline, o, holed);
+    CHECK(with_hole.le.radius == Approx(on_spline.le.radius).epsilon(1e-12));
+  });
   INFO("worst LE " << worst_le * 100 << " %, worst TE " << worst_te * 100 << " %; summed relative errors "
                    << error_points << " on the points, " << error_spline << " on the spline");
   CHECK(worst_le < 0.015);
