@@ -119,6 +119,7 @@ int main(int argc, char** argv) {
     else if (a == "--edge-arc") camber_options.edge_arc = std::atof(value());
     else if (a == "--edge-core") camber_options.edge_core = std::atof(value());
     else if (a == "--edge-residual") camber_options.edge_residual = std::atof(value());
+    else if (a == "--edge-noise-residual") camber_options.edge_noise_residual = std::atof(value());
     else if (a == "--edge-circularity") camber_options.edge_circularity = std::atof(value());
     else if (a == "--edge-hole") camber_options.edge_hole = std::atof(value());
     else if (a == "--edge-hole-reach") camber_options.edge_hole_reach = std::atof(value());
@@ -131,7 +132,7 @@ int main(int argc, char** argv) {
     else if (a == "--help" || a == "-h") {
       std::printf("usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] [--density-min F] [--slab MM] [--twist DEG [--rigid-twist]] [--band-spacing MM] [--band-max SLABS] [--band-sparse-max SLABS] [--no-band] "
                   "[--preset turbine|compressor|both] [--full-scan] [--register] [--no-fill] [--fill-gap K] [--fill-fraction F] [--fill-reach MM] [--auto-cells N] [--no-camber] [--quiet] [--export DIR]\n"
-                  "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] "
+                  "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] [--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] [--edge-noise-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] "
                   "[--edge-prune DEG] [--tangent-span FRACTION] [--edge-on-spline] [--edge-point-gap F] [--edge-point-sigma F]\n");
       return 0;
     } else if (i == 1 && std::isdigit(static_cast<unsigned char>(a[0]))) seeds = std::atoi(a.c_str());

@@ -98,6 +98,10 @@ int main(int argc, char** argv) {
         app.add_option("--edge-residual", options.edge_residual,
                        "Grown arc: the arc grows while the profile stays within this many core-fit rms of the circle")
             ->check(CLI::Range(0.5, 100.0))->capture_default_str();
+        app.add_option("--edge-noise-residual", options.edge_noise_residual,
+                       "Grown arc: that noise level is at least this many times the points' rms distance to the "
+                       "profile (the spline's noise ripples over the arc; 0 = off)")
+            ->check(CLI::Range(0.0, 100.0))->capture_default_str();
         app.add_option("--edge-hole", options.edge_hole,
                        "Edge radii: a stretch without measured points this long, beginning within --edge-hole-reach "
                        "radii of the edge point, makes the edge 'partly not measured' (an issue)")

@@ -561,10 +561,10 @@ std::vector<Eigen::Vector2d> arc_points(const Profile& pr, double t0, double t1,
 // The edge arc grown geometrically: starting from a core of +-edge_core degrees around the
 // edge point, each end walks outward while the profile stays within `tau` outside the
 // fitted circle, tau = edge_residual x the core fit's rms (the profile's own noise level
-// there, floored at 1e-6 of the profile size). Past the arc's junction a flank leaves the
-// circle outward as x^2 / 2R (its curvature is far below the edge's), so the walk
-// overshoots by sqrt(2 R tau): that much is trimmed from each end. Circle, arc, trim are
-// iterated. Returns the arc's parameter range.
+// there), at least edge_noise_residual x the points' noise and 1e-6 of the profile size.
+// Past the arc's junction a flank leaves the circle outward as x^2 / 2R (its curvature is
+// far below the edge's), so the walk overshoots by sqrt(2 R tau): that much is trimmed
+// from each end. Circle, arc, trim are iterated. Returns the arc's parameter range.
 std::pair<double, double> grown_arc(const Profile& pr, double t_tip, const Eigen::Vector2d& d,
                                     const Eigen::Vector2d& c0, double r0, const CamberOptions& options,
                                     CircleFit& fit) {
@@ -577,7 +577,11 @@ std::pair<double, double> grown_arc(const Profile& pr, double t_tip, const Eigen
   // Re-centre the core on the fitted circle once: the medial end may sit off the edge centre.
   range = angular_arc(pr, t_tip, fit.center, d, core);
   fit = fit_circle(arc_points(pr, range.first, range.second));
-  const double tau = std::max(options.edge_residual * fit.rms, 1e-6 * pr.scale);
+  // The core of a smooth spline can fit its circle far better than the spline follows the
+  // edge over a longer arc (its noise-driven ripples run a micrometre or more per 5 um of
+  // point noise): tau is at least edge_noise_residual x the points' noise, else the arc
+  // can shrink pass by pass onto a few quiet degrees around the edge point.
+  const double tau = std::max({options.edge_residual * fit.rms, options.edge_noise_residual * options.profile_noise, 1e-6 * pr.scale});
   const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
   const double cap = options.edge_max_arc * 0.5 * pi / 180;
   const std::pair<double, double> core_range = range;

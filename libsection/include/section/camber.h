@@ -84,6 +84,7 @@ struct CamberOptions {
   double edge_arc = 0;
   double edge_core = 45;           ///< degrees: half-angle (seen from the edge centre) of the core arc that starts the growth and gives the noise level
   double edge_residual = 3;        ///< the edge arc grows while the profile stays within this many core-fit rms outside the circle
+  double edge_noise_residual = 2;  ///< ... or within this many profile_noise, if more (a spline's noise ripples along a longer arc exceed its core's rms; 0 = off)
   double profile_noise = 0;        ///< rms distance of the measured points to the profile (0 = unknown: edge circles are not checked for circularity); camber_stream takes it from the splines table
   double edge_circularity = 3;     ///< an edge circle whose fit rms exceeds this many times max(profile_noise, 1e-4 x its radius) is not circular (Edge::circular)
   double edge_hole = 1;            ///< stream stage: an edge is reported "partly not measured" when a stretch of the profile without measured points, this many edge radii long or longer, begins within edge_hole_reach radii of the edge point
