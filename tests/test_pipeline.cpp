@@ -228,6 +228,14 @@ TEST_CASE("pipeline: a noisy leading edge is grown over its whole round arc", "[
   CHECK(e.rle() <= 0.015);
 }
 
+TEST_CASE("pipeline: the edge points lie on the circles through the measured points", "[pipeline][generated]") {
+  // Compressor, whole-blade scan, seed 80, z = 30: the spline cut both tight edges inside
+  // their points (the LE point 7.1 um, the TE point 3.7 um short along the chord) and the
+  // chord came out 10.8 um short. On the edge circles refitted to the points: 3.6 um.
+  const SectionErrors e = compressor_section(30.0, 80);
+  check_issue_targets(e, 0.006);
+}
+
 TEST_CASE("pipeline: a thin trailing edge's lone tip point is fitted, not dropped", "[pipeline][generated]") {
   // Compressor, whole-blade scan, seed 12, z = 36: one measured point lies 37 um from the
   // TE point, alone at the tip of a 0.23 mm radius edge. Taken for an outlier (the curve

@@ -60,7 +60,7 @@ enum class EdgeShape { round = 0, blunt = 1, sharp = 2 };
 
 /// A leading or trailing edge.
 struct Edge {
-  Eigen::Vector2d point{0, 0};     ///< edge point: the camber line's end tangent meets the profile
+  Eigen::Vector2d point{0, 0};     ///< edge point: the camber line's end tangent meets the profile (the edge circle when `on_points` and the edge is round and circular)
   double t = 0;                    ///< its profile parameter
   Eigen::Vector2d center{0, 0};    ///< centre of the circle fitted to the edge arc
   double radius = 0;               ///< radius of that circle (0 for a blunt or sharp edge in automatic mode)
@@ -71,6 +71,7 @@ struct Edge {
   EdgeShape shape = EdgeShape::round;  ///< detected shape
   bool circular = true;            ///< false: the fitted circle leaves the edge arc by more than edge_circularity x the profile noise (the edge is not a circular arc; radius depends on the arc taken, the axis keeps its medial end)
   double face = 0;                 ///< blunt edges with a flat face: the face's width (0 otherwise)
+  bool on_points = false;          ///< the circle was refitted to the measured points on the arc (CamberOptions::edge_on_points); a round, circular such edge has its point on that circle
 };
 
 /// Options of camber_line and camber_stream (lengths in the profile's units, angles in degrees).
