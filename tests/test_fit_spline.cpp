@@ -122,6 +122,59 @@ TEST_CASE("fit_spline: noisy circle (sigma 5 um) is within 2 um RMS of the truth
   }
 }
 
+TEST_CASE("fit_spline: two views merged with a misregistration are reported as two layers", "[fit_spline]") {
+  // A circle of radius 12 mm scanned as two views, the right half and the left half, each
+  // reaching 0.15 rad past the top and the bottom (two overlaps of 3.6 mm), points every
+  // 0.04 mm with 5 um of noise. Shifted 15 um along y, the left view lies 15 um off the
+  // right one in the overlaps (where the normal is along y): two layers there.
+  const double r = 12;
+  auto view = [&](double a0, double a1, Vector2d shift, double noise, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> g(0, 1);
+    std::vector<Vector2d> p;
+    const int m = static_cast<int>((a1 - a0) * r / 0.04);
+    for (int i = 0; i < m; ++i) {
+      const double a = a0 + (a1 - a0) * (i + 0.5) / m;
+      const Vector2d n(std::cos(a), std::sin(a));
+      p.push_back(r * n + noise * g(rng) * n + shift);
+    }
+    return p;
+  };
+  for (const double noise : {0.005, 0.0}) {
+    for (const double shift : {0.015, 0.0}) {
+      for (unsigned seed : {1u, 2u}) {
+        std::vector<Vector2d> p = view(-pi / 2 - 0.15, pi / 2 + 0.15, {0, 0}, noise, seed);
+        const std::vector<Vector2d> left = view(pi / 2 - 0.15, 3 * pi / 2 + 0.15, {0, shift}, noise, seed + 100);
+        p.insert(p.end(), left.begin(), left.end());
+        // In angular order, as slice would give them.
+        std::sort(p.begin(), p.end(), [](const Vector2d& a, const Vector2d& b) {
+          return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x());
+        });
+        const auto res = section::fit_spline(p, p);
+        INFO("noise " << noise << " shift " << shift << " seed " << seed << ": layers " << res.layers
+                      << " over " << res.layers_length << ", noise " << res.noise);
+        if (shift > 0) {
+          CHECK(res.layers > 0.6 * shift);
+          CHECK(res.layers < 1.3 * shift);
+          CHECK(res.layers_length > 2);
+          CHECK(res.layers_length < 10);
+        } else {
+          CHECK(res.layers == 0);
+          CHECK(res.layers_length == 0);
+        }
+      }
+    }
+  }
+  // layer_ratio 0: not looked for.
+  FitSplineOptions o;
+  o.layer_ratio = 0;
+  std::vector<Vector2d> p = view(-pi / 2 - 0.15, pi / 2 + 0.15, {0, 0}, 0.005, 1);
+  const std::vector<Vector2d> left = view(pi / 2 - 0.15, 3 * pi / 2 + 0.15, {0, 0.015}, 0.005, 101);
+  p.insert(p.end(), left.begin(), left.end());
+  std::sort(p.begin(), p.end(), [](const Vector2d& a, const Vector2d& b) { return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x()); });
+  CHECK(section::fit_spline(p, p, o).layers == 0);
+}
+
 TEST_CASE("fit_spline: a hole in the data is reported with its length along the curve", "[fit_spline]") {
   // Noisy circle of radius 10 mm, 0.04 mm spacing, with the arc a in [1, 1.3] rad missing:
   // one hole of 3 mm; the natural spacing variations must not be listed.

@@ -5,6 +5,7 @@
 #include "section/fit_spline.h"
 #include "section/pipe.h"
 
+#include <iomanip>
 #include <iostream>
 
 namespace {
@@ -17,7 +18,9 @@ const char* const description =
     "knots inserted where the curve misses the data (blade edges). Writes the tables\n"
     "'splines' (fit statistics), 'spline_knots', 'spline_ctrl' and, with --samples or\n"
     "--spacing, 'samples' (points, normals and curvature along the curve, also in 3D).\n"
-    "A loop that cannot be fitted is reported as an issue; the other loops go on.\n\n"
+    "A loop that cannot be fitted is reported as an issue; the other loops go on. Points\n"
+    "lying in two layers (views merged with a misregistration) are reported on stderr and\n"
+    "in the splines table (columns layers, layers_length).\n\n"
     "Example: slice blade.ply --count 9 | smooth | fitspline --spacing 0.1 | camber";
 
 }  // namespace
@@ -62,6 +65,10 @@ int main(int argc, char** argv) {
         app.add_option("--gap-factor", options.gap_factor,
                        "List as a hole (table gaps) any stretch without measured points longer than this many median spacings")
             ->check(section::tool::positive)->capture_default_str();
+        app.add_option("--layer-ratio", options.layer_ratio,
+                       "Report two layers of points where their spread about the curve exceeds this many noise "
+                       "sigmas over two overlapping windows of 48 points; 0 = off")
+            ->check(CLI::NonNegativeNumber)->capture_default_str();
         app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
       },
       [&] {
@@ -74,6 +81,17 @@ int main(int argc, char** argv) {
                     << ": " << issue.message << "\n";
         }
         const section::Table* fitted = stream.find("splines");
+        if (fitted)
+          for (std::size_t r = 0; r < fitted->rows(); ++r) {
+            const double layers = fitted->at(r, fitted->column("layers"));
+            if (!(layers > 0)) continue;
+            std::cerr << "fitspline: warning: section " << fitted->at(r, 0) << " loop " << fitted->at(r, 1)
+                      << std::setprecision(3) << ": the points lie in two layers about " << layers << " apart over "
+                      << fitted->at(r, fitted->column("layers_length")) << " of the profile (" << stream.units
+                      << "), and the curve runs between them: views merged with a misregistration? (register "
+                         "them: slice --view, docs/REGISTRATION.md)\n"
+                      << std::setprecision(6);
+          }
         if (fitted && fitted->rows() == 0 && stream.find("points") && stream.get("points", "slice").rows() > 0)
           throw section::Error((common.input == "-" ? std::string("<stdin>") : common.input) +
                                ": no loop could be fitted (see the warnings above)");

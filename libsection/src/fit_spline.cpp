@@ -587,6 +587,79 @@ void measure_gaps(const Refinement& r, double gap_factor, FitSplineResult& resul
   }
 }
 
+// Two layers of points along the profile: views merged with a misregistration put two
+// copies of the surface a few noise sigmas apart where they overlap, and the curve runs
+// between them. Windows of consecutive points (in the order of their feet) get their
+// residuals' robust spread (1.4826 MAD about a straight trend along the window: the fit's
+// own smooth error is no layer). A spread above `layer_ratio` x the noise estimated from
+// consecutive differences (dominated by the single-layer rest) in at least two
+// overlapping windows is a second layer. Its distance from the first: two equal layers
+// Delta apart have a standard deviation sqrt(noise^2 + Delta^2 / 4) (the MAD overstates
+// Delta by a third), median over those windows; reported from layer_separation noise
+// sigmas up.
+void measure_layers(const Refinement& r, const FitSplineOptions& o, FitSplineResult& result) {
+  // On near-exact data the fit's own shape error (a fraction of a micrometre) is what
+  // spreads: the noise counts as at least exact_noise.
+  const double noise = std::max(result.noise, o.exact_noise);
+  if (!(o.layer_ratio > 0) || !(noise > 0)) return;
+  std::vector<double> s, arc;
+  const detail::PiecewiseCurve pc(r.curve);
+  Eigen::Vector2d previous{0, 0};
+  for (std::size_t k : r.feet.order) {
+    if (r.weights[k] <= 0) continue;
+    const Eigen::Vector2d p = pc.point(r.feet.t[k]);
+    arc.push_back(arc.empty() ? 0.0 : arc.back() + (p - previous).norm());
+    previous = p;
+    s.push_back(r.feet.signed_distance[k]);
+  }
+  const std::size_t window = 48, step = 16;
+  if (s.size() < 4 * window) return;
+  struct Hit {
+    std::size_t begin;
+    double separation;
+  };
+  std::vector<Hit> hits;
+  std::vector<double> res(window), dev(window);
+  const double noise2 = noise * noise;
+  for (std::size_t b = 0; b + window <= s.size(); b += step) {
+    double sa = 0, ss = 0, saa = 0, sas = 0;
+    for (std::size_t i = b; i < b + window; ++i) sa += arc[i], ss += s[i], saa += arc[i] * arc[i], sas += arc[i] * s[i];
+    const double n = double(window), det = n * saa - sa * sa;
+    const double slope = det > 0 ? (n * sas - sa * ss) / det : 0, icpt = (ss - slope * sa) / n;
+    for (std::size_t i = 0; i < window; ++i) res[i] = s[b + i] - (icpt + slope * arc[b + i]);
+    const double m = median(res);
+    for (std::size_t i = 0; i < window; ++i) dev[i] = std::abs(res[i] - m);
+    const double spread = 1.4826 * median(dev);
+    if (!(spread > o.layer_ratio * noise)) continue;
+    // Standard deviation without stragglers (beyond 3.5 spreads).
+    double sum = 0, sum2 = 0;
+    int kept = 0;
+    for (double x : res)
+      if (std::abs(x - m) <= 3.5 * spread) sum += x, sum2 += x * x, ++kept;
+    const double var = kept > 1 ? (sum2 - sum * sum / kept) / (kept - 1) : 0;
+    hits.push_back({b, 2 * std::sqrt(std::max(var - noise2, 0.0))});
+  }
+  // Runs of overlapping windows; a run of one window is chance.
+  std::vector<double> separations;
+  for (std::size_t i = 0; i < hits.size();) {
+    std::size_t j = i + 1;
+    while (j < hits.size() && hits[j].begin < hits[j - 1].begin + window) ++j;
+    if (j - i >= 2) {
+      result.layers_length += arc[hits[j - 1].begin + window - 1] - arc[hits[i].begin];
+      for (std::size_t k = i; k < j; ++k) separations.push_back(hits[k].separation);
+    }
+    i = j;
+  }
+  if (separations.empty()) return;
+  // Noise alone, where it runs high, also spreads a few windows: their "layers" come out
+  // 6-10 um apart at 5 um of noise (11 of 1458 clean generated sections); two views 15 um
+  // apart give 9-16 um. Below layer_separation noise sigmas nothing is reported.
+  const double separation = median(separations);
+  if (separation >= o.layer_separation * noise) result.layers = separation;
+  else result.layers_length = 0;
+}
+
+
 struct FoldError : Error {
   using Error::Error;
 };
@@ -699,6 +772,7 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
   }
   result.control_points = static_cast<int>(result.spline.control.size());
   measure_gaps(r, o.gap_factor, result);
+  measure_layers(r, o, result);
   if (distances) {
     distances->clear();
     for (double x : r.feet.signed_distance) distances->push_back(std::abs(x));
@@ -792,7 +866,7 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
 
   Table splines_table{"splines",
                       {"section", "loop", "degree", "closed", "control_points", "rms", "max", "p95",
-                       "iterations", "spacing", "max_gap", "gap_start", "gap_end"},
+                       "iterations", "spacing", "max_gap", "gap_start", "gap_end", "layers", "layers_length"},
                       {}};
   Table knots_table{"spline_knots", {"section", "loop", "index", "knot"}, {}};
   Table ctrl_table{"spline_ctrl", {"section", "loop", "index", "u", "v"}, {}};
@@ -830,7 +904,7 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
       const double sec = section, lp = loop;
       slot.splines = {sec, lp, double(c.degree), c.closed ? 1.0 : 0.0,
                       double(c.control.size()), r.rms, r.max, r.p95, double(r.iterations),
-                      r.spacing, r.max_gap, r.gap_start, r.gap_end};
+                      r.spacing, r.max_gap, r.gap_start, r.gap_end, r.layers, r.layers_length};
       for (std::size_t i = 0; i < c.knots.size(); ++i) slot.knots.insert(slot.knots.end(), {sec, lp, double(i), c.knots[i]});
       for (std::size_t i = 0; i < c.control.size(); ++i)
         slot.ctrl.insert(slot.ctrl.end(), {sec, lp, double(i), c.control[i].x(), c.control[i].y()});

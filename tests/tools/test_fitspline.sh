@@ -50,6 +50,36 @@ awk -F, '/^# table samples/ { s = 1; getline; next } /^#/ { s = 0 }
 awk -F, '/^# table splines/ { getline; getline; if ($5 != 24) { print "FAIL: control points " $5; exit 1 } }' \
   "$TMP/out2.stream" || fail=1
 
+grep -q "two layers" "$TMP/err" && { echo "FAIL: a clean circle is reported as two layers"; fail=1; }
+
+# Two views of a circle of radius 12 (right and left halves, each 0.15 rad past the top and
+# bottom), 5 um of noise, the left one shifted 15 um along y: reported as two layers.
+{
+  echo "# libsection-stream 1"
+  echo "# units mm"
+  echo "# table frames"
+  echo "section,origin_x,origin_y,origin_z,u_x,u_y,u_z,v_x,v_y,v_z,n_x,n_y,n_z"
+  echo "0,0,0,0,1,0,0,0,1,0,0,0,1"
+  echo "# table points"
+  echo "section,loop,index,u,v,nu,nv"
+  awk 'BEGIN { pi = atan2(0, -1); srand(5)
+       for (v = 0; v < 2; v++) {
+         a0 = v ? pi / 2 - 0.15 : -pi / 2 - 0.15; m = int((pi + 0.3) * 12 / 0.04)
+         for (i = 0; i < m; i++) {
+           a = a0 + (pi + 0.3) * (i + 0.5) / m
+           g = sqrt(-2 * log(1 - rand())) * cos(2 * pi * rand())
+           x = (12 + 0.005 * g) * cos(a); y = (12 + 0.005 * g) * sin(a) + (v ? 0.015 : 0)
+           printf "%.12f %.12f %.12f\n", atan2(y, x), x, y } } }' |
+    sort -g | awk '{ printf "0,0,%d,%s,%s,0,0\n", NR - 1, $2, $3 }'
+} > "$TMP/views.stream"
+"$BIN" "$TMP/views.stream" -o "$TMP/views.out" 2> "$TMP/err"; check "two views exit 0" 0 $?
+grep -q "two layers" "$TMP/err" || { echo "FAIL: two views 15 um apart not reported: $(cat "$TMP/err")"; fail=1; }
+awk -F, '/^# table splines/ { getline; for (i = 1; i <= NF; i++) c[$i] = i; getline;
+  if (!($c["layers"] > 0.010 && $c["layers"] < 0.020)) { print "FAIL: layers " $c["layers"]; exit 1 } }' \
+  "$TMP/views.out" || fail=1
+"$BIN" "$TMP/views.stream" --layer-ratio 0 -o /dev/null 2> "$TMP/err"; check "--layer-ratio 0 exits 0" 0 $?
+grep -q "two layers" "$TMP/err" && { echo "FAIL: --layer-ratio 0 still reports layers"; fail=1; }
+
 # A malformed row: exit 1 and the message names the line.
 sed '12s/.*/0,0,3,abc,1,0,0/' "$TMP/in.stream" > "$TMP/bad.stream"
 "$BIN" "$TMP/bad.stream" > /dev/null 2> "$TMP/err"; check "malformed stream exits 1" 1 $?

@@ -36,6 +36,8 @@ struct FitSplineOptions {
   int samples = 0;                ///< stream stage: points per loop written to the "samples" table (0 = none unless sample_spacing)
   double sample_spacing = 0;      ///< mm, stream stage: arc-length spacing of the "samples" table (0 = use `samples`)
   double gap_factor = 10;         ///< 1: a stretch of the curve without measured points longer than this many median spacings is listed as a hole (FitSplineResult::gaps, table "gaps")
+  double layer_ratio = 1.6;       ///< 1: a stretch where the residuals spread more than this many noise sigmas is a second layer of points (misregistered views; FitSplineResult::layers); 0 = not looked for
+  double layer_separation = 2;    ///< 1: ... and reported when the layers lie at least this many noise sigmas apart (noise alone spreads a few windows too)
   int threads = 0;                ///< stream stage: worker threads over the loops (output identical for any count); 0 = all cores
 };
 
@@ -55,6 +57,8 @@ struct FitSplineResult {
   double gap_start = 0;           ///< curve parameter where that stretch begins
   double gap_end = 0;             ///< curve parameter where it ends (may be below gap_start: it wraps past t_max)
   double spacing = 0;             ///< mm, median distance along the curve between consecutive measured points
+  double layers = 0;              ///< mm, separation of two layers of measured points found along the profile (views merged with a misregistration: the curve runs between them); 0 = none
+  double layers_length = 0;       ///< mm, length of profile over which they were found
   /// Holes: stretches between consecutive measured points longer than `gap_factor`
   /// spacings, longest first (parameters as gap_start/gap_end, length in mm along the curve).
   struct Gap {
