@@ -171,7 +171,8 @@ TEST_CASE("fit_spline: two views merged with a misregistration are reported as t
   std::vector<Vector2d> p = view(-pi / 2 - 0.15, pi / 2 + 0.15, {0, 0}, 0.005, 1);
   const std::vector<Vector2d> left = view(pi / 2 - 0.15, 3 * pi / 2 + 0.15, {0, 0.015}, 0.005, 101);
   p.insert(p.end(), left.begin(), left.end());
-  std::sort(p.begin(), p.end(), [](const Vector2d& a, const Vector2d& b) { return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x()); });
+  std::sort(p.begin(), p.end(),
+            [](const Vector2d& a, const Vector2d& b) { return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x()); });
   CHECK(section::fit_spline(p, p, o).layers == 0);
 }
 

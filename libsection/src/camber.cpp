@@ -581,7 +581,8 @@ std::pair<double, double> grown_arc(const Profile& pr, double t_tip, const Eigen
   // edge over a longer arc (its noise-driven ripples run a micrometre or more per 5 um of
   // point noise): tau is at least edge_noise_residual x the points' noise, else the arc
   // can shrink pass by pass onto a few quiet degrees around the edge point.
-  const double tau = std::max({options.edge_residual * fit.rms, options.edge_noise_residual * options.profile_noise, 1e-6 * pr.scale});
+  const double tau = std::max(
+      {options.edge_residual * fit.rms, options.edge_noise_residual * options.profile_noise, 1e-6 * pr.scale});
   const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
   const double cap = options.edge_max_arc * 0.5 * pi / 180;
   const std::pair<double, double> core_range = range;
