@@ -547,25 +547,38 @@ bool self_intersects(const BSpline& curve) {
 
 namespace {
 
-// The longest stretch of the curve between consecutive measured feet, and the median
-// spacing, as arc lengths: a hole in the data is where the curve is bridged, not measured.
-void measure_gaps(const Refinement& r, double gap_factor, FitSplineResult& result) {
-  std::vector<double> ts;
+// The measured points (outliers left out) in the order of their feet along the curve:
+// the foot parameters, and the chord from each foot to the next (the last to the first),
+// close to the arc for all but the holes.
+struct Along {
+  std::vector<std::size_t> points;
+  std::vector<double> ts, chords;
+};
+
+Along along_curve(const Refinement& r) {
+  Along a;
   for (std::size_t k : r.feet.order)
-    if (r.weights[k] > 0) ts.push_back(r.feet.t[k]);
-  if (ts.size() < 2) return;
-  const BSpline& c = r.curve;
-  const detail::PiecewiseCurve pc(c);
-  const double period = c.t_max() - c.t_min();
-  // Chords between consecutive feet (close to the arc for all but the holes), the
-  // longest one measured along the curve.
-  std::vector<double> lengths(ts.size());
-  Eigen::Vector2d previous = pc.point(ts[0]);
-  for (std::size_t i = 0; i < ts.size(); ++i) {
-    const Eigen::Vector2d next = pc.point(i + 1 < ts.size() ? ts[i + 1] : ts[0]);
-    lengths[i] = (next - previous).norm();
+    if (r.weights[k] > 0) a.points.push_back(k), a.ts.push_back(r.feet.t[k]);
+  if (a.ts.empty()) return a;
+  const detail::PiecewiseCurve pc(r.curve);
+  a.chords.resize(a.ts.size());
+  Eigen::Vector2d previous = pc.point(a.ts[0]);
+  for (std::size_t i = 0; i < a.ts.size(); ++i) {
+    const Eigen::Vector2d next = pc.point(i + 1 < a.ts.size() ? a.ts[i + 1] : a.ts[0]);
+    a.chords[i] = (next - previous).norm();
     previous = next;
   }
+  return a;
+}
+
+// The longest stretch of the curve between consecutive measured feet, and the median
+// spacing, as arc lengths: a hole in the data is where the curve is bridged, not measured.
+void measure_gaps(const Refinement& r, const Along& along, double gap_factor, FitSplineResult& result) {
+  const std::vector<double>& ts = along.ts;
+  const std::vector<double>& lengths = along.chords;
+  if (ts.size() < 2) return;
+  const BSpline& c = r.curve;
+  const double period = c.t_max() - c.t_min();
   result.spacing = median(lengths);
   for (std::size_t i = 0; i < ts.size(); ++i) {
     if (!(lengths[i] > gap_factor * result.spacing)) continue;
@@ -597,20 +610,15 @@ void measure_gaps(const Refinement& r, double gap_factor, FitSplineResult& resul
 // Delta apart have a standard deviation sqrt(noise^2 + Delta^2 / 4) (the MAD overstates
 // Delta by a third), median over those windows; reported from layer_separation noise
 // sigmas up.
-void measure_layers(const Refinement& r, const FitSplineOptions& o, FitSplineResult& result) {
+void measure_layers(const Refinement& r, const Along& along, const FitSplineOptions& o, FitSplineResult& result) {
   // On near-exact data the fit's own shape error (a fraction of a micrometre) is what
   // spreads: the noise counts as at least exact_noise.
   const double noise = std::max(result.noise, o.exact_noise);
   if (!(o.layer_ratio > 0) || !(noise > 0)) return;
   std::vector<double> s, arc;
-  const detail::PiecewiseCurve pc(r.curve);
-  Eigen::Vector2d previous{0, 0};
-  for (std::size_t k : r.feet.order) {
-    if (r.weights[k] <= 0) continue;
-    const Eigen::Vector2d p = pc.point(r.feet.t[k]);
-    arc.push_back(arc.empty() ? 0.0 : arc.back() + (p - previous).norm());
-    previous = p;
-    s.push_back(r.feet.signed_distance[k]);
+  for (std::size_t i = 0; i < along.points.size(); ++i) {
+    arc.push_back(i ? arc.back() + along.chords[i - 1] : 0.0);
+    s.push_back(r.feet.signed_distance[along.points[i]]);
   }
   const std::size_t window = 48, step = 16;
   if (s.size() < 4 * window) return;
@@ -771,8 +779,9 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
     result.p95 = d[std::min(d.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * d.size())) - 1)];
   }
   result.control_points = static_cast<int>(result.spline.control.size());
-  measure_gaps(r, o.gap_factor, result);
-  measure_layers(r, o, result);
+  const Along along = along_curve(r);
+  measure_gaps(r, along, o.gap_factor, result);
+  measure_layers(r, along, o, result);
   if (distances) {
     distances->clear();
     for (double x : r.feet.signed_distance) distances->push_back(std::abs(x));
