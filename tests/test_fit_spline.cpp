@@ -140,16 +140,19 @@ TEST_CASE("fit_spline: two views merged with a misregistration are reported as t
     }
     return p;
   };
+  // The two views merged, in angular order as slice would give them.
+  auto merged = [&](double shift, double noise, unsigned seed) {
+    std::vector<Vector2d> p = view(-pi / 2 - 0.15, pi / 2 + 0.15, {0, 0}, noise, seed);
+    const std::vector<Vector2d> left = view(pi / 2 - 0.15, 3 * pi / 2 + 0.15, {0, shift}, noise, seed + 100);
+    p.insert(p.end(), left.begin(), left.end());
+    std::sort(p.begin(), p.end(),
+              [](const Vector2d& a, const Vector2d& b) { return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x()); });
+    return p;
+  };
   for (const double noise : {0.005, 0.0}) {
     for (const double shift : {0.015, 0.0}) {
       for (unsigned seed : {1u, 2u}) {
-        std::vector<Vector2d> p = view(-pi / 2 - 0.15, pi / 2 + 0.15, {0, 0}, noise, seed);
-        const std::vector<Vector2d> left = view(pi / 2 - 0.15, 3 * pi / 2 + 0.15, {0, shift}, noise, seed + 100);
-        p.insert(p.end(), left.begin(), left.end());
-        // In angular order, as slice would give them.
-        std::sort(p.begin(), p.end(), [](const Vector2d& a, const Vector2d& b) {
-          return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x());
-        });
+        const std::vector<Vector2d> p = merged(shift, noise, seed);
         const auto res = section::fit_spline(p, p);
         INFO("noise " << noise << " shift " << shift << " seed " << seed << ": layers " << res.layers
                       << " over " << res.layers_length << ", noise " << res.noise);
@@ -168,11 +171,7 @@ TEST_CASE("fit_spline: two views merged with a misregistration are reported as t
   // layer_ratio 0: not looked for.
   FitSplineOptions o;
   o.layer_ratio = 0;
-  std::vector<Vector2d> p = view(-pi / 2 - 0.15, pi / 2 + 0.15, {0, 0}, 0.005, 1);
-  const std::vector<Vector2d> left = view(pi / 2 - 0.15, 3 * pi / 2 + 0.15, {0, 0.015}, 0.005, 101);
-  p.insert(p.end(), left.begin(), left.end());
-  std::sort(p.begin(), p.end(),
-            [](const Vector2d& a, const Vector2d& b) { return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x()); });
+  const std::vector<Vector2d> p = merged(0.015, 0.005, 1);
   CHECK(section::fit_spline(p, p, o).layers == 0);
 }
 
