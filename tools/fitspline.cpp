@@ -81,17 +81,19 @@ int main(int argc, char** argv) {
                     << ": " << issue.message << "\n";
         }
         const section::Table* fitted = stream.find("splines");
-        if (fitted)
+        if (fitted) {
+          const std::size_t cl = fitted->column("layers"), cll = fitted->column("layers_length");
           for (std::size_t r = 0; r < fitted->rows(); ++r) {
-            const double layers = fitted->at(r, fitted->column("layers"));
+            const double layers = fitted->at(r, cl);
             if (!(layers > 0)) continue;
             std::cerr << "fitspline: warning: section " << fitted->at(r, 0) << " loop " << fitted->at(r, 1)
                       << std::setprecision(3) << ": the points lie in two layers about " << layers << " apart over "
-                      << fitted->at(r, fitted->column("layers_length")) << " of the profile (" << stream.units
+                      << fitted->at(r, cll) << " of the profile (" << stream.units
                       << "), and the curve runs between them: views merged with a misregistration? (register "
                          "them: slice --view, docs/REGISTRATION.md)\n"
                       << std::setprecision(6);
           }
+        }
         if (fitted && fitted->rows() == 0 && stream.find("points") && stream.get("points", "slice").rows() > 0)
           throw section::Error((common.input == "-" ? std::string("<stdin>") : common.input) +
                                ": no loop could be fitted (see the warnings above)");
