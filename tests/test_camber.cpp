@@ -70,6 +70,17 @@ void for_noisy_fits(double spacing, std::initializer_list<unsigned> seeds, F&& f
   }
 }
 
+// The camber of a noisy fit with its edge circles refitted to the measured points (at
+// 5 um of profile noise), and the same with the circles on the spline alone.
+std::pair<section::CamberResult, section::CamberResult> on_points_and_spline(const BSpline& spline,
+                                                                               const std::vector<Vector2d>& pts) {
+  section::CamberOptions o;
+  o.profile_noise = 0.005;
+  section::CamberResult on_points = section::camber_line(spline, o, pts);
+  o.edge_on_points = false;
+  return {std::move(on_points), section::camber_line(spline, o)};
+}
+
 // The profile of `truth` cut off by the line normal to the camber line `back` (arc length,
 // mm) before the TE centre: a blunt trailing edge whose flat face (sampled at the
 // profile's spacing) joins the sides at two corners. `cut` and `width` get the camber
@@ -387,11 +398,7 @@ TEST_CASE("camber: edge circles refitted to the measured points lose the spline'
   double worst_le = 0, worst_te = 0, error_points = 0, error_spline = 0;
   for_noisy_fits(0.02, {3u, 4u}, [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
                                      const BSpline& spline) {
-    section::CamberOptions o;
-    o.profile_noise = 0.005;
-    const section::CamberResult on_points = section::camber_line(spline, o, pts);
-    o.edge_on_points = false;
-    const section::CamberResult on_spline = section::camber_line(spline, o);
+    const auto [on_points, on_spline] = on_points_and_spline(spline, pts);
     INFO("design " << k << " seed " << seed << ": LE " << on_points.le.radius << ", spline's "
                    << on_spline.le.radius << ", true " << truth.le_radius << "; TE " << on_points.te.radius
                    << ", spline's " << on_spline.te.radius << ", true " << truth.te_radius);
@@ -407,7 +414,8 @@ TEST_CASE("camber: edge circles refitted to the measured points lose the spline'
     std::vector<Vector2d> holed;
     for (const auto& p : pts)
       if ((p - truth.le_point).norm() > 1.2 * truth.le_radius) holed.push_back(p);
-    o.edge_on_points = true;
+    section::CamberOptions o;
+    o.profile_noise = 0.005;
     const section::CamberResult with_hole = section::camber_line(spline, o, holed);
     CHECK(with_hole.le.radius == Approx(on_spline.le.radius).epsilon(1e-12));
   });
@@ -425,11 +433,7 @@ TEST_CASE("camber: a round edge's point lies on the circle through the measured 
   double chord_points = 0, chord_spline = 0, point_points = 0, point_spline = 0;
   for_noisy_fits(0.02, {3u, 4u, 5u, 6u}, [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
                                      const BSpline& spline) {
-    section::CamberOptions o;
-    o.profile_noise = 0.005;
-    const section::CamberResult on_points = section::camber_line(spline, o, pts);
-    o.edge_on_points = false;
-    const section::CamberResult on_spline = section::camber_line(spline, o);
+    const auto [on_points, on_spline] = on_points_and_spline(spline, pts);
     auto chord = [](const section::CamberResult& c) { return (c.te.point - c.le.point).norm(); };
     INFO("design " << k << " seed " << seed << ": chord error " << (chord(on_points) - truth.chord) * 1e3
                    << " um, on the spline " << (chord(on_spline) - truth.chord) * 1e3 << " um");
