@@ -431,8 +431,8 @@ TEST_CASE("camber: a round edge's point lies on the circle through the measured 
   // of the edge (the compressor preset's chords came out 1.9 um short at the mean, up to
   // 10.8 um). Where the circle was refitted to the measured points, the point is on it.
   double chord_points = 0, chord_spline = 0, point_points = 0, point_spline = 0;
-  for_noisy_fits(0.02, {3u, 4u, 5u, 6u}, [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
-                                     const BSpline& spline) {
+  for_noisy_fits(0.02, {3u, 4u, 5u, 6u}, [&](int k, unsigned seed, const SectionTruth& truth,
+                                             const std::vector<Vector2d>& pts, const BSpline& spline) {
     const auto [on_points, on_spline] = on_points_and_spline(spline, pts);
     auto chord = [](const section::CamberResult& c) { return (c.te.point - c.le.point).norm(); };
     INFO("design " << k << " seed " << seed << ": chord error " << (chord(on_points) - truth.chord) * 1e3
@@ -448,7 +448,8 @@ TEST_CASE("camber: a round edge's point lies on the circle through the measured 
     point_spline += (on_spline.le.point - truth.le_point).norm() + (on_spline.te.point - truth.te_point).norm();
   });
   INFO("summed chord errors " << chord_points * 1e3 << " um on the circles, " << chord_spline * 1e3
-                              << " um on the spline; edge points " << point_points * 1e3 << " / " << point_spline * 1e3 << " um");
+                              << " um on the spline; edge points " << point_points * 1e3 << " / "
+                              << point_spline * 1e3 << " um");
   // Measured: 26.1 against 42.4 um of chord error, 54.3 against 74.3 um of edge points.
   CHECK(chord_points < 0.7 * chord_spline);
   CHECK(point_points < 0.85 * point_spline);
