@@ -377,13 +377,14 @@ int main(int argc, char** argv) {
                         at(where_gap).c_str(), e.rms_near * 1e3);
           line += buf;
           // Two layers of points found by fitspline (views merged with a misregistration).
-          if (const Table* sp = stream.find("splines"))
+          if (const Table* sp = stream.find("splines")) {
+            const std::size_t cl = sp->column("layers"), cll = sp->column("layers_length");
             for (std::size_t r = 0; r < sp->rows(); ++r)
-              if (int(sp->at(r, 0)) == id && int(sp->at(r, 1)) == 0 && sp->at(r, sp->column("layers")) > 0) {
-                std::snprintf(buf, sizeof buf, " layers %.1f/%.2f", sp->at(r, sp->column("layers")) * 1e3,
-                              sp->at(r, sp->column("layers_length")));
+              if (int(sp->at(r, 0)) == id && int(sp->at(r, 1)) == 0 && sp->at(r, cl) > 0) {
+                std::snprintf(buf, sizeof buf, " layers %.1f/%.2f", sp->at(r, cl) * 1e3, sp->at(r, cll));
                 line += buf;
               }
+          }
           // Edges camber flagged as not measured (a hole or too few points on the edge).
           for (const auto& is : stream.issues)
             if (is.section == id && is.stage == "camber") {
