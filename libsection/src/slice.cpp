@@ -168,49 +168,60 @@ std::vector<SlabGroup> group_planes(const std::vector<Plane>& planes, double sla
 
 namespace {
 
+// Appends q to the list of every plane of `g` whose slab contains it (s = g.n . q).
+inline void add_if_in_slab(const Eigen::Vector3d& q, double s, const SlabGroup& g, const std::vector<Frame>& frame,
+                           double slab, std::vector<std::vector<Eigen::Vector2d>>& out) {
+  const double half = 0.5 * slab;
+  const std::size_t np = g.offset.size();
+  // The first plane whose slab can contain q, then its neighbours while they can.
+  const double scale = std::max({std::abs(q.x()), std::abs(q.y()), std::abs(q.z()), std::abs(s), slab});
+  const double tol = 1e-12 * (scale + 1);
+  std::size_t k = g.first_at_least(s - half - tol);
+  for (; k < np && g.offset[k] <= s + half + tol; ++k) {
+    const double above_lower = s - (g.offset[k] - half);
+    const double below_upper = (g.offset[k] + half) - s;
+    bool inside;
+    if (above_lower > tol && below_upper > tol) {
+      inside = true;
+    } else {
+      // Near a boundary the double test cannot decide: the exact predicate does.
+      const Boundary& lo = g.lower[k];
+      const Boundary& hi = g.upper[k];
+      inside = detail::orientation(lo.a, lo.b, lo.c, q) >= 0 && detail::orientation(hi.a, hi.b, hi.c, q) <= 0;
+    }
+    if (inside) out[g.plane[k]].push_back(frame[g.plane[k]].to_plane(q));
+  }
+}
+
+// True when q (s = g.n . q) is in a bucket of `g` with no slab near it and its rounding
+// tolerance (add_if_in_slab) is below half a bucket (the rest of a bucket covers it): no
+// slab can contain it.
+inline bool far_from_every_slab(const Eigen::Vector3d& q, double s, const SlabGroup& g, double slab) {
+  if (g.near.empty() || !g.far_from_slabs(s)) return false;
+  const double scale = std::max({std::abs(q.x()), std::abs(q.y()), std::abs(q.z()), std::abs(s), slab});
+  return 1e-12 * (scale + 1) < 0.5 * g.near_width;
+}
+
+// Appends (u, v, signed distance from the plane) of q to the list of every plane of `g`
+// within `reach` of it (s = g.n . q; `g` built with a slab of 2 reach).
+inline void add_if_near(const Eigen::Vector3d& q, double s, const SlabGroup& g, const std::vector<Frame>& frame,
+                        double reach, std::vector<std::vector<Eigen::Vector3d>>& out) {
+  if (!g.near.empty() && g.far_from_slabs(s)) return;
+  const std::size_t np = g.offset.size();
+  for (std::size_t k = g.first_at_least(s - reach); k < np && g.offset[k] <= s + reach; ++k) {
+    const Eigen::Vector2d uv = frame[g.plane[k]].to_plane(q);
+    out[g.plane[k]].emplace_back(uv.x(), uv.y(), s - g.offset[k]);
+  }
+}
+
 // Appends the slab points of points[0, count) to `out` (one list per plane), in order.
 void add_slab_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
                      const std::vector<Frame>& frame, double slab, std::vector<std::vector<Eigen::Vector2d>>& out) {
-  const double half = 0.5 * slab;
-  // A bound of every point's tolerance below (|s| <= |q| <= sqrt(3) max |coordinate|; a
-  // NaN is left out, and its point takes the full test).
-  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "points are packed");
-  double largest = 0;
-  const double* v = count ? points[0].data() : nullptr;
-  for (std::size_t k = 0; k < 3 * count; ++k) {
-    const double a = std::abs(v[k]);
-    largest = a > largest ? a : largest;
-  }
-  const double any_tol = 1e-12 * (std::max(2 * largest, slab) + 1) * (1 + 1e-6);
-  for (const SlabGroup& g : groups) {
-    const std::size_t np = g.offset.size();
-    // A point in a bucket with no slab within a bucket of it has no candidate plane, when
-    // the tolerance is below half a bucket (the rest of a bucket covers the rounding).
-    const bool skip_far = !g.near.empty() && any_tol < 0.5 * g.near_width;
+  for (const SlabGroup& g : groups)
     for (std::size_t i = 0; i < count; ++i) {
-      const Eigen::Vector3d& q = points[i];
-      const double s = g.n.dot(q);
-      if (skip_far && g.far_from_slabs(s)) continue;
-      // The first plane whose slab can contain q, then its neighbours while they can.
-      const double scale = std::max({std::abs(q.x()), std::abs(q.y()), std::abs(q.z()), std::abs(s), slab});
-      const double tol = 1e-12 * (scale + 1);
-      std::size_t k = g.first_at_least(s - half - tol);
-      for (; k < np && g.offset[k] <= s + half + tol; ++k) {
-        const double above_lower = s - (g.offset[k] - half);
-        const double below_upper = (g.offset[k] + half) - s;
-        bool inside;
-        if (above_lower > tol && below_upper > tol) {
-          inside = true;
-        } else {
-          // Near a boundary the double test cannot decide: the exact predicate does.
-          const Boundary& lo = g.lower[k];
-          const Boundary& hi = g.upper[k];
-          inside = detail::orientation(lo.a, lo.b, lo.c, q) >= 0 && detail::orientation(hi.a, hi.b, hi.c, q) <= 0;
-        }
-        if (inside) out[g.plane[k]].push_back(frame[g.plane[k]].to_plane(q));
-      }
+      const double s = g.n.dot(points[i]);
+      if (!far_from_every_slab(points[i], s, g, slab)) add_if_in_slab(points[i], s, g, frame, slab, out);
     }
-  }
 }
 
 // Splits points[0, count) into parts of at least 64k points, one per thread at most.
@@ -251,18 +262,8 @@ void add_slab_points_parallel(const Eigen::Vector3d* points, std::size_t count, 
 // generated compressor sections several targets: they are all kept.)
 void add_near_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
                      const std::vector<Frame>& frame, double reach, std::vector<std::vector<Eigen::Vector3d>>& out) {
-  for (const SlabGroup& g : groups) {
-    const std::size_t np = g.offset.size();
-    for (std::size_t i = 0; i < count; ++i) {
-      const Eigen::Vector3d& q = points[i];
-      const double s = g.n.dot(q);
-      if (!g.near.empty() && g.far_from_slabs(s)) continue;
-      for (std::size_t k = g.first_at_least(s - reach); k < np && g.offset[k] <= s + reach; ++k) {
-        const Eigen::Vector2d uv = frame[g.plane[k]].to_plane(q);
-        out[g.plane[k]].emplace_back(uv.x(), uv.y(), s - g.offset[k]);
-      }
-    }
-  }
+  for (const SlabGroup& g : groups)
+    for (std::size_t i = 0; i < count; ++i) add_if_near(points[i], g.n.dot(points[i]), g, frame, reach, out);
 }
 
 void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
@@ -271,6 +272,39 @@ void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count, 
   add_parallel(points, count, threads, out, [&](const Eigen::Vector3d* p, std::size_t n, auto& o) {
     add_near_points(p, n, groups, frame, reach, o);
   });
+}
+
+// The slab points (add_slab_points) and the points within `reach` (add_near_points) of
+// points[0, count) in one pass, split across threads: n . q once per point, and the
+// chunk read from memory once. `near_groups` are `groups` built with a slab of 2 reach
+// (same normals, same planes, same order).
+void add_slab_and_near_points_parallel(const Eigen::Vector3d* points, std::size_t count,
+                                       const std::vector<SlabGroup>& groups, const std::vector<SlabGroup>& near_groups,
+                                       const std::vector<Frame>& frame, double slab, double reach, int threads,
+                                       std::vector<std::vector<Eigen::Vector2d>>& slabs,
+                                       std::vector<std::vector<Eigen::Vector3d>>& near) {
+  const std::size_t parts = parts_of(count, threads);
+  std::vector<std::vector<std::vector<Eigen::Vector2d>>> local_slabs(parts, std::vector<std::vector<Eigen::Vector2d>>(slabs.size()));
+  std::vector<std::vector<std::vector<Eigen::Vector3d>>> local_near(parts, std::vector<std::vector<Eigen::Vector3d>>(near.size()));
+  detail::parallel_for(parts, threads, [&](std::size_t t) {
+    const std::size_t a = count * t / parts, b = count * (t + 1) / parts;
+    for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+      const SlabGroup& g = groups[gi];
+      const SlabGroup& ng = near_groups[gi];
+      for (std::size_t i = a; i < b; ++i) {
+        const Eigen::Vector3d& q = points[i];
+        const double s = g.n.dot(q);
+        if (!far_from_every_slab(q, s, g, slab)) add_if_in_slab(q, s, g, frame, slab, local_slabs[t]);
+        add_if_near(q, s, ng, frame, reach, local_near[t]);
+      }
+    }
+  });
+  for (std::size_t t = 0; t < parts; ++t) {
+    for (std::size_t k = 0; k < slabs.size(); ++k)
+      slabs[k].insert(slabs[k].end(), local_slabs[t][k].begin(), local_slabs[t][k].end());
+    for (std::size_t k = 0; k < near.size(); ++k)
+      near[k].insert(near[k].end(), local_near[t][k].begin(), local_near[t][k].end());
+  }
 }
 
 // How far from the plane the points beside it are kept: the fill's reach and the band's
@@ -489,8 +523,11 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   result.points = read_cloud_chunks(
       path,
       [&](const Eigen::Vector3d* p, std::size_t count) {
-        add_slab_points_parallel(p, count, groups, frame, slab, options.threads, slabs);
-        if (reach > 0) add_near_points_parallel(p, count, near_groups, frame, reach, options.threads, near);
+        if (reach > 0)
+          add_slab_and_near_points_parallel(p, count, groups, near_groups, frame, slab, reach, options.threads, slabs,
+                                            near);
+        else
+          add_slab_points_parallel(p, count, groups, frame, slab, options.threads, slabs);
       },
       read_chunks);
   result.slab = slab;
