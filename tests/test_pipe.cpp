@@ -4,7 +4,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
+#include <memory>
 
 using namespace section;
 
@@ -94,6 +97,45 @@ TEST_CASE("pipe: large tables (parsed and formatted in pieces) round-trip and na
   // The last line without its newline still counts.
   const Stream cut = parse_stream(text.substr(0, text.size() - 1), "big");
   CHECK(cut.get("points", "slice").values == t.values);
+}
+
+TEST_CASE("pipe: a table passed through is written back as it was read, a changed one formatted", "[pipe]") {
+  // Rows in a form this library does not write ("1.50", "+2", "3e0"): kept as they came
+  // while the table is unchanged, shortest form once it changes.
+  std::string rows;
+  for (int i = 0; i < 30000; ++i) rows += std::to_string(i) + ",1.50,+2,3e0\n";
+  const std::string text = "# libsection-stream 1\n# units mm\n# table t\nindex,a,b,c\n" + rows +
+                           "# table small\nx\n0.250\n";
+  for (const bool shared : {false, true}) {
+    Stream s = shared ? parse_stream(std::make_shared<const std::string>(text), "in") : parse_stream(text, "in");
+    REQUIRE(s.get("t", "test").rows() == 30000);
+    REQUIRE(s.get("t", "test").source);
+    const std::string out = format_stream(s);
+    CHECK(out.find("# table t\nindex,a,b,c\n0,1.50,+2,3e0\n1,1.50,+2,3e0\n") != std::string::npos);
+    CHECK(out.find("\n0.25\n") != std::string::npos);  // a small table is formatted
+    CHECK(parse_stream(out, "out").get("t", "test").values == s.get("t", "test").values);
+    // A value changed in place, a sign flipped to -0, a column renamed: formatted again.
+    Stream changed = s;
+    changed.find("t")->values[1] = 1.25;
+    const std::string c1 = format_stream(changed);
+    CHECK(c1.find("\n0,1.25,2,3\n1,1.5,2,3\n") != std::string::npos);
+    changed = s;
+    changed.find("t")->values[0] = -0.0;
+    CHECK(format_stream(changed).find("\n-0,1.5,2,3\n") != std::string::npos);
+    changed = s;
+    changed.find("t")->columns[1] = "a2";
+    CHECK(format_stream(changed).find("index,a2,b,c\n0,1.5,2,3\n") != std::string::npos);
+    // A table appended to: formatted whole.
+    changed = s;
+    changed.find("t")->add_row({30000, 1, 2, 3});
+    CHECK(format_stream(changed).find("\n29999,1.5,2,3\n30000,1,2,3\n") != std::string::npos);
+  }
+  // The file written by write_stream is the text format_stream gives.
+  const Stream s = parse_stream(text, "in");
+  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/libsection_passthrough_test.csv";
+  write_stream(path, s);
+  CHECK(read_file(path) == format_stream(s));
+  std::remove(path.c_str());
 }
 
 TEST_CASE("pipe: writing refuses NaN rather than passing it on", "[pipe]") {

@@ -10,6 +10,7 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <string_view>
 
 namespace {
@@ -128,14 +129,14 @@ int main(int argc, char** argv) {
         }
         options.edge = edge == "auto" ? section::EdgeModel::automatic : section::EdgeModel::round;
         options.edge_on_points = !edge_on_spline;
-        const std::string text = section::read_file(common.input);
+        const auto text = std::make_shared<const std::string>(section::read_file(common.input));
         const std::string source = common.input == "-" ? "<stdin>" : common.input;
         section::Stream stream;
-        const std::size_t bom = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // parse_stream skips it
-        if (text.compare(bom, 19, "# libsection-stream") == 0) {
+        const std::size_t bom = text->rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // parse_stream skips it
+        if (text->compare(bom, 19, "# libsection-stream") == 0) {
           stream = section::parse_stream(text, source);
         } else {
-          const auto points = section::parse_profile(text, source);
+          const auto points = section::parse_profile(*text, source);
           section::tool::with_input(common.input, [&] {
             const section::FitSplineResult fit = section::fit_spline(points, points);
             stream = section::profile_stream(fit.spline, fit.rms);

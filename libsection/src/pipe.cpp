@@ -191,7 +191,12 @@ bool parse_rows(std::string_view text, const std::vector<char>& id_column, std::
 
 }  // namespace
 
-Stream parse_stream(std::string_view text, const std::string& source) {
+namespace {
+
+// parse_stream; the source rows of large tables are kept as parts of `owner` when it
+// holds `text`, else as copies.
+Stream parse_stream_text(std::string_view text, const std::string& source,
+                         const std::shared_ptr<const std::string>& owner) {
   Stream stream;
   if (const char* why = detail::text_encoding_problem(text)) throw Error("pipe: " + source + ": " + why);
   detail::skip_bom(text);
@@ -290,6 +295,21 @@ Stream parse_stream(std::string_view text, const std::string& source) {
           for (const auto& v : piece) total += v.size();
           current->values.reserve(current->values.size() + total);
           for (const auto& v : piece) current->values.insert(current->values.end(), v.begin(), v.end());
+          // Kept to be written back as it is (Table::source); not with '\r' line ends,
+          // which the written stream does not use.
+          if (block.find('\r') == std::string_view::npos) {
+            auto kept = std::make_shared<TableText>();
+            if (owner) {
+              kept->text = owner;
+              kept->rows = block;
+            } else {
+              kept->text = std::make_shared<const std::string>(block);
+              kept->rows = *kept->text;
+            }
+            kept->columns = current->columns;
+            kept->values = current->values;
+            current->source = std::move(kept);
+          }
           line_no += std::count(block.begin(), block.end(), '\n');
           if (!block.empty() && block.back() != '\n') ++line_no;  // the last line has no newline
           pos = block_end;
@@ -337,6 +357,17 @@ Stream parse_stream(std::string_view text, const std::string& source) {
   if (expect_header)
     throw Error("pipe: " + source + ": table '" + current->name + "' has no header row (truncated stream?)");
   return stream;
+}
+
+}  // namespace
+
+Stream parse_stream(std::string_view text, const std::string& source) {
+  return parse_stream_text(text, source, nullptr);
+}
+
+Stream parse_stream(std::shared_ptr<const std::string> text, const std::string& source) {
+  if (!text) throw Error("pipe: " + source + ": no text");
+  return parse_stream_text(*text, source, text);
 }
 
 std::string format_number(double value) {
@@ -388,45 +419,107 @@ std::string format_rows(const Table& t, std::size_t r0, std::size_t r1) {
 
 }  // namespace
 
-std::string format_stream(const Stream& stream) {
-  std::string out;
-  out.reserve(64);
-  out += "# libsection-stream " + std::to_string(stream_version) + "\n";
-  out += "# units " + one_line(stream.units) + "\n";
-  for (const auto& h : stream.history) out += "# history " + one_line(h) + "\n";
-  for (const auto& n : stream.notes) out += "# " + one_line(n) + "\n";
+namespace {
+
+// True when `t` holds what its source text reads as (bit for bit: -0 is not 0).
+bool unchanged_since_read(const Table& t) {
+  const TableText* src = t.source.get();
+  return src && src->columns == t.columns && src->values.size() == t.values.size() &&
+         (t.values.empty() || std::memcmp(src->values.data(), t.values.data(), t.values.size() * sizeof(double)) == 0);
+}
+
+}  // namespace
+
+namespace {
+
+// The stream's text in order: formatted pieces and the source rows of unchanged tables.
+struct FormattedStream {
+  std::vector<std::string> formatted;  // pieces made here
+  std::vector<std::string_view> parts; // every piece in order: views of `formatted` or of sources
+  std::size_t size() const {
+    std::size_t n = 0;
+    for (const auto& p : parts) n += p.size();
+    return n;
+  }
+};
+
+FormattedStream format_parts(const Stream& stream) {
+  // Pieces are collected first and viewed at the end (a growing vector moves its strings).
+  struct Piece {
+    std::string text;
+    std::string_view kept;  // source rows, when not empty
+  };
+  std::vector<Piece> pieces(1);
+  std::string* out = &pieces.back().text;
+  *out += "# libsection-stream " + std::to_string(stream_version) + "\n";
+  *out += "# units " + one_line(stream.units) + "\n";
+  for (const auto& h : stream.history) *out += "# history " + one_line(h) + "\n";
+  for (const auto& n : stream.notes) *out += "# " + one_line(n) + "\n";
   for (const auto& i : stream.issues)
-    out += "# issue section=" + std::to_string(i.section) + " loop=" + std::to_string(i.loop) +
-           " stage=" + one_line(i.stage.empty() ? "unknown" : i.stage) +
-           " message=" + one_line(i.message) + "\n";
+    *out += "# issue section=" + std::to_string(i.section) + " loop=" + std::to_string(i.loop) +
+            " stage=" + one_line(i.stage.empty() ? "unknown" : i.stage) + " message=" + one_line(i.message) + "\n";
   for (const auto& t : stream.tables) {
-    out += "# table " + t.name + "\n";
+    *out += "# table " + t.name + "\n";
     for (std::size_t c = 0; c < t.columns.size(); ++c) {
-      if (c) out += ',';
-      out += t.columns[c];
+      if (c) *out += ',';
+      *out += t.columns[c];
     }
-    out += '\n';
+    *out += '\n';
     const std::size_t cols = t.columns.size();
     if (cols == 0) continue;
+    if (unchanged_since_read(t)) {
+      const std::string_view rows = t.source->rows;
+      pieces.push_back({{}, rows});
+      pieces.emplace_back();
+      out = &pieces.back().text;
+      if (!rows.empty() && rows.back() != '\n') *out += '\n';
+      continue;
+    }
     for (std::size_t i = 0; i < t.values.size(); ++i)
       if (!std::isfinite(t.values[i]))
         throw Error("pipe: refusing to write a non-finite value in table '" + t.name + "' row " +
                     std::to_string(i / cols) + " column '" + t.columns[i % cols] + "'");
-    // Large tables are formatted in pieces of rows by all cores and appended in order.
+    // Large tables are formatted in pieces of rows by all cores, kept in order.
     const std::size_t rows = t.values.size() / cols;
     const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(64, rows * cols / 32768));
     std::vector<std::string> piece(parts);
     detail::parallel_for(parts, 0, [&](std::size_t k) { piece[k] = format_rows(t, rows * k / parts, rows * (k + 1) / parts); });
-    std::size_t total = out.size();
-    for (const auto& s : piece) total += s.size();
-    out.reserve(total);
-    for (const auto& s : piece) out += s;
+    for (auto& s : piece) pieces.push_back({std::move(s), {}});
+    pieces.emplace_back();
+    out = &pieces.back().text;
     char buf[32];
     for (std::size_t i = rows * cols; i < t.values.size(); ++i) {  // a partial last row (not made by add_row)
-      out.append(buf, put_number(buf, t.values[i]));
-      out += (i % cols == cols - 1) ? '\n' : ',';
+      out->append(buf, put_number(buf, t.values[i]));
+      *out += (i % cols == cols - 1) ? '\n' : ',';
     }
   }
+  FormattedStream f;
+  f.formatted.reserve(pieces.size());
+  for (auto& p : pieces) {
+    if (!p.kept.empty()) {
+      f.parts.push_back(p.kept);
+    } else if (!p.text.empty()) {
+      f.formatted.push_back(std::move(p.text));
+      f.parts.emplace_back(f.formatted.back());
+    }
+  }
+  return f;
+}
+
+// Writes the parts to `f`; false on a short write.
+bool write_parts(std::FILE* f, const FormattedStream& s) {
+  for (const auto& p : s.parts)
+    if (std::fwrite(p.data(), 1, p.size(), f) != p.size()) return false;
+  return true;
+}
+
+}  // namespace
+
+std::string format_stream(const Stream& stream) {
+  const FormattedStream f = format_parts(stream);
+  std::string out;
+  out.reserve(f.size());
+  for (const auto& p : f.parts) out += p;
   return out;
 }
 
@@ -480,11 +573,22 @@ void write_file(const std::string& path, const std::string& bytes) {
 }
 
 Stream read_stream(const std::string& path) {
-  return parse_stream(read_file(path), path == "-" ? "<stdin>" : path);
+  return parse_stream(std::make_shared<const std::string>(read_file(path)), path == "-" ? "<stdin>" : path);
 }
 
 void write_stream(const std::string& path, const Stream& stream) {
-  write_file(path, format_stream(stream));
+  // Formatted whole before the first byte is written; the parts are written as they are
+  // (no copy into one string).
+  const FormattedStream f = format_parts(stream);
+  if (path == "-") {
+    std::cout.flush();  // anything written through std::cout before goes first
+    if (!write_parts(stdout, f) || std::fflush(stdout) != 0) throw Error("cannot write standard output");
+    return;
+  }
+  std::FILE* out = std::fopen(path.c_str(), "wb");
+  if (!out) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
+  const bool bad = !write_parts(out, f);
+  if (std::fclose(out) != 0 || bad) throw Error(path + ": write error");
 }
 
 namespace {

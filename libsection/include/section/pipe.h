@@ -8,17 +8,37 @@
 #include <cstddef>
 #include <iosfwd>
 #include <map>
+#include <memory>
 #include <string_view>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace section {
 
+/// The text a table's rows were read from, and what they read as (see Table::source).
+struct TableText {
+  std::shared_ptr<const std::string> text;  ///< the text the rows lie in
+  std::string_view rows;                    ///< the data lines as they came, a part of `text`
+  std::vector<std::string> columns;         ///< the columns they were read under
+  std::vector<double> values;               ///< the numbers they gave
+};
+
 /// One named table: a header of column names and numeric rows (row-major).
 struct Table {
+  Table() = default;
+  /// A table made in memory (no source text).
+  Table(std::string table_name, std::vector<std::string> column_names, std::vector<double> row_values = {})
+      : name(std::move(table_name)), columns(std::move(column_names)), values(std::move(row_values)) {}
+
   std::string name;                  ///< e.g. "points"
   std::vector<std::string> columns;  ///< column names, in order
   std::vector<double> values;        ///< rows() * columns.size() numbers, row-major
+  /// Set by parse_stream on large tables: format_stream writes `rows` back as they came
+  /// while columns and values are still those read, so that a stage passing a table
+  /// through does not format it again (the same numbers, in less time). Null for tables
+  /// made in memory; a changed table is formatted from its values.
+  std::shared_ptr<const TableText> source;
 
   /// Number of rows.
   std::size_t rows() const { return columns.empty() ? 0 : values.size() / columns.size(); }
@@ -70,14 +90,17 @@ constexpr int stream_version = 1;
 /// carry the line number. Throws section::Error on any malformed content.
 Stream parse_stream(std::string_view text, const std::string& source);
 
+/// As above; the tables' source rows (Table::source) stay in `text` instead of copies.
+Stream parse_stream(std::shared_ptr<const std::string> text, const std::string& source);
+
 /// Reads a stream from `path` ("-" = standard input).
 Stream read_stream(const std::string& path);
 
 /// Formats a stream; numbers use the shortest form that round-trips.
 std::string format_stream(const Stream& stream);
 
-/// Writes a stream to `path` ("-" = standard output) all at once, so that a failure
-/// before this call leaves no partial output.
+/// Writes a stream to `path` ("-" = standard output) once it is all formatted, so that a
+/// failure before this call leaves no partial output.
 void write_stream(const std::string& path, const Stream& stream);
 
 /// Parses a plain CSV table (not a stream): `#` lines and blank lines skipped, the first
