@@ -142,6 +142,48 @@ TEST_CASE("parallel: XYZ text parsed by several threads keeps points and line nu
   }
 }
 
+TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a first look hold, two when not", "[parallel][slice]") {
+  section::ScanOptions so;
+  so.spacing = 0.2;
+  so.noise = 0.005;
+  so.seed = 5;
+  section::Scan scan = section::generate_scan(section::turbine_blade(), so);
+  const std::string path = "/tmp/libsection_test_one_pass_" + std::to_string(::getpid()) + ".ply";
+  section::CloudReadOptions small_chunks;
+  small_chunks.chunk_points = 10007;  // many chunks, boundaries anywhere
+  // The same sections as the held cloud sliced with the planes and slab found.
+  const auto same_as_held = [&](const section::Cloud& cloud, const section::PlaneSpec& spec, int passes) {
+    section::write_cloud(path, cloud);
+    const section::SliceResult r = section::slice_file(path, spec, {}, small_chunks);
+    CHECK(r.file_passes == passes);
+    section::SliceOptions held;
+    held.slab = r.slab;
+    std::vector<section::Plane> planes;
+    for (const auto& s : r.sections) planes.push_back({s.frame.origin, s.frame.n});
+    for (const auto& s : r.sections) CHECK(s.error.empty());
+    CHECK(section::format_stream(section::to_stream(r, "t")) ==
+          section::format_stream(section::to_stream(section::slice(cloud, planes, held), "t")));
+  };
+  SECTION("planes spread over the extent: the first look finds it") {
+    same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 1);
+  }
+  SECTION("explicit planes, the slab estimated") {
+    same_as_held(scan.cloud, section::PlaneSpec{section::planes_at({0, 0, 1}, {15, 30, 45}), {0, 0, 1}, 0}, 1);
+  }
+  SECTION("a lone point far above the blade, which the first look misses: the file is read again") {
+    auto& p = scan.cloud.points;
+    p.insert(p.begin() + std::ptrdiff_t(p.size() / 2 + 1), Eigen::Vector3d(10, 0, 70));
+    same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 2);
+  }
+  SECTION("XYZ text: no first look, two passes") {
+    const std::string xyz = path + ".xyz";
+    section::write_cloud(xyz, scan.cloud);
+    CHECK(section::slice_file(xyz, section::PlaneSpec{{}, {0, 0, 1}, 3}, {}).file_passes == 2);
+    std::remove(xyz.c_str());
+  }
+  std::remove(path.c_str());
+}
+
 TEST_CASE("slice_file: streaming the file gives the same sections as slicing the held cloud", "[parallel][slice]") {
   section::ScanOptions so;
   so.spacing = 0.12;

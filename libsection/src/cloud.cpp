@@ -858,6 +858,54 @@ std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_ch
   return read_source(src, path, on_chunk, options);
 }
 
+CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudReadOptions& options) {
+  CloudPeek out;
+  if (path == "-" || count == 0) return out;
+  try {
+    Source src(path);
+    const int fd = src.regular_fd();
+    if (fd < 0 || src.fetch(1 << 16) == 0) return out;
+    const CloudFormat format = options.format == CloudFormat::automatic ? format_of(path, src.bytes()) : options.format;
+    if (format != CloudFormat::ply) return out;
+    const PlyHeader h = parse_ply_header(src);
+    if (h.format == PlyFormat::ascii || h.elements.empty() || h.elements[0].name != "vertex") return out;
+    const PlyElement& ve = h.elements[0];
+    std::size_t record = 0, off[3] = {0, 0, 0};
+    const PlyProperty* prop[3] = {nullptr, nullptr, nullptr};
+    for (const auto& p : ve.props) {
+      if (p.list) return out;
+      for (int c = 0; c < 3; ++c)
+        if (p.name.size() == 1 && p.name[0] == char('x' + c)) {
+          prop[c] = &p;
+          off[c] = record;
+        }
+      record += static_cast<std::size_t>(p.size);
+    }
+    if (!prop[0] || !prop[1] || !prop[2] || record == 0 || record > 4096) return out;
+    const unsigned long long body = static_cast<unsigned long long>(src.size()) - h.header_bytes;
+    if (ve.count == 0 || ve.count > options.max_points || body / record < ve.count) return out;
+    const bool swap = (h.format == PlyFormat::binary_le) != host_little_endian();
+    const unsigned long long m = std::min<unsigned long long>(count, ve.count);
+    unsigned char rec[4096];
+    out.points.reserve(static_cast<std::size_t>(m));
+    for (unsigned long long i = 0; i < m; ++i) {
+      // Vertex i of m evenly spaced ones, moved within its stride by a golden-ratio
+      // sequence: no lattice from a regular scan order, and the same points every time.
+      const double jitter = std::fmod(0.5 + 0.6180339887498949 * double(i), 1.0);
+      const unsigned long long v =
+          std::min<unsigned long long>(ve.count - 1, static_cast<unsigned long long>((double(i) + jitter) * double(ve.count) / double(m)));
+      if (::pread(fd, rec, record, static_cast<off_t>(h.header_bytes + v * record)) != static_cast<ssize_t>(record)) return {};
+      const Eigen::Vector3d p(read_scalar(rec + off[0], *prop[0], swap), read_scalar(rec + off[1], *prop[1], swap),
+                              read_scalar(rec + off[2], *prop[2], swap));
+      if (p.allFinite() && p.cwiseAbs().maxCoeff() <= detail::max_coordinate) out.points.push_back(p);
+    }
+    out.total = ve.count;
+  } catch (const Error&) {
+    return {};
+  }
+  return out;
+}
+
 Cloud read_cloud(const std::string& path, const CloudReadOptions& options) {
   Cloud cloud;
   read_cloud_chunks(path, [&](const Eigen::Vector3d* p, std::size_t n) { cloud.points.insert(cloud.points.end(), p, p + n); },

@@ -43,6 +43,19 @@ using PointChunkFn = std::function<void(const Eigen::Vector3d* points, std::size
 std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_chunk,
                               const CloudReadOptions& options = {});
 
+/// A first look at a cloud file (peek_cloud).
+struct CloudPeek {
+  std::vector<Eigen::Vector3d> points;  ///< vertices spread over the file, in file order
+  unsigned long long total = 0;         ///< vertices the file declares
+};
+
+/// About `count` vertices of a binary PLY file spread over it (evenly spaced with a
+/// deterministic jitter, each read on its own with pread), for estimates before the file
+/// is read: its extent and spacing. Empty when that is not possible (standard input,
+/// text formats, ASCII PLY, a file shorter than its header says); non-finite points are
+/// left out. Never throws for the file's content: the reader proper reports it.
+CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudReadOptions& options = {});
+
 /// Reads the whole cloud of `path` ("-" = standard input). Throws as read_cloud_chunks.
 Cloud read_cloud(const std::string& path, const CloudReadOptions& options = {});
 

@@ -65,6 +65,7 @@ struct SliceResult {
   std::vector<SectionSlice> sections; ///< one per plane, in plane order
   double slab = 0;                    ///< slab width used
   std::size_t points = 0;             ///< points in the cloud (or mesh vertices)
+  int file_passes = 0;                ///< slice_file: times the file was read (1 when the planes and slab guessed from a first look at a binary PLY file held, 2 when they had to be found first); 0 for a cloud or mesh in memory
 };
 
 /// Points of `points` in the closed slab |(p - origin) . n| <= slab / 2 of each plane,
