@@ -138,6 +138,147 @@ TEST_CASE("pipe: a table passed through is written back as it was read, a change
   std::remove(path.c_str());
 }
 
+namespace {
+
+// A stream of three sections, whole and split into parts (as the slice tool writes it).
+struct ThreeSections {
+  std::string whole, parted;
+};
+
+ThreeSections three_sections() {
+  Stream head;
+  head.units = "mm";
+  head.history = {"slice --count 3 blade.ply"};
+  ThreeSections t;
+  Stream all = head;
+  Table pts{"points", {"section", "loop", "index", "u", "v"}};
+  Table frames{"frames", {"section", "z"}};
+  std::vector<Stream> parts;
+  for (int s = 0; s < 3; ++s) {
+    Stream part;
+    Table p{"points", {"section", "loop", "index", "u", "v"}};
+    Table f{"frames", {"section", "z"}};
+    f.add_row({double(s), 10.0 * s});
+    frames.add_row({double(s), 10.0 * s});
+    if (s == 1) {
+      part.issues.push_back({1, -1, "slice", "no points in the slab"});
+      all.issues.push_back({1, -1, "slice", "no points in the slab"});
+    } else {
+      for (int i = 0; i < 4; ++i) {
+        p.add_row({double(s), 0, double(i), std::cos(i * 1.5) + s, std::sin(i * 1.5) / 3});
+        pts.add_row({double(s), 0, double(i), std::cos(i * 1.5) + s, std::sin(i * 1.5) / 3});
+      }
+    }
+    part.put(f);
+    part.put(p);
+    parts.push_back(part);
+  }
+  all.put(frames);
+  all.put(pts);
+  t.whole = format_stream(all);
+  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/libsection_parts_" +
+                           std::to_string(std::rand()) + ".csv";
+  {
+    StreamWriter w(path, head);
+    for (int s = 0; s < 3; ++s) w.part(std::to_string(s), parts[s]);
+    w.finish();
+  }
+  t.parted = read_file(path);
+  std::remove(path.c_str());
+  return t;
+}
+
+std::string temp_path(const std::string& name) {
+  return std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/libsection_" + name + "_" +
+         std::to_string(std::rand());
+}
+
+}  // namespace
+
+TEST_CASE("pipe: a stream split into parts reads as the whole stream and must end with '# end'", "[pipe]") {
+  const ThreeSections t = three_sections();
+  REQUIRE(t.parted.find("# part 2\n") != std::string::npos);
+  REQUIRE(t.parted.size() > 6);
+  CHECK(t.parted.substr(t.parted.size() - 6) == "# end\n");
+  // Merged, the parts give the whole stream's tables and issues.
+  CHECK(format_stream(parse_stream(t.parted, "parted")) == t.whole);
+  const auto message = [](const std::string& text) {
+    try {
+      parse_stream(text, "s.csv");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // Cut before '# end' (a tool that failed half way): refused.
+  CHECK_THAT(message(t.parted.substr(0, t.parted.size() - 6)), Catch::Contains("lacks its closing '# end'"));
+  std::string bad = t.parted;
+  bad.replace(bad.rfind("section,loop,index,u,v"), 22, "section,loop,index,v,u");
+  CHECK_THAT(message(bad), Catch::Contains("other columns than in the parts before"));
+  bad = t.parted;
+  bad.insert(bad.rfind("# end"), "# table frames\nsection,z\n");
+  CHECK_THAT(message(bad), Catch::Contains("appears twice in a part"));
+  CHECK_THAT(message(t.parted + "0,0\n"), Catch::Contains("after '# end'"));
+}
+
+TEST_CASE("pipe: run_stage stages a stream part by part, the same whatever the threads", "[pipe]") {
+  const ThreeSections t = three_sections();
+  const std::string in = temp_path("stage_in"), out1 = temp_path("stage_out1"), out2 = temp_path("stage_out2");
+  write_file(in, t.parted);
+  // A stage that adds a table of its own; the part's tables are seen alone.
+  const auto stage = [](Stream& s, int) {
+    Table twice{"twice", {"section", "u2"}};
+    const Table& p = s.get("points", "slice");
+    for (std::size_t r = 0; r < p.rows(); ++r) twice.add_row({p.at(r, 0), 2 * p.at(r, 3)});
+    s.put(twice);
+  };
+  std::vector<int> seen;
+  for (const auto& [threads, out] : {std::pair<int, std::string>{1, out1}, {2, out2}}) {
+    StageRun run;
+    run.input = in;
+    run.output = out;
+    run.history = "double";
+    run.threads = threads;
+    run.stage = stage;
+    run.written = [&](const Stream& part) { seen.push_back(int(part.get("frames", "slice").at(0, 0))); };
+    run_stage(run);
+  }
+  CHECK(seen == std::vector<int>{0, 1, 2, 0, 1, 2});  // in order
+  const std::string a = read_file(out1);
+  CHECK(a == read_file(out2));
+  CHECK(a.find("# history double\n") != std::string::npos);
+  CHECK(a.substr(a.size() - 6) == "# end\n");
+  Stream whole = parse_stream(t.whole, "whole");
+  stage(whole, 1);
+  const Stream merged = parse_stream(a, "out");
+  CHECK(merged.get("twice", "t").values == whole.get("twice", "t").values);
+  CHECK(merged.issues.size() == 1);
+  // A stage that fails on a part: the error goes out, no file is left behind.
+  StageRun failing;
+  failing.input = in;
+  failing.output = out1 + ".fail";
+  failing.threads = 2;
+  failing.stage = [](Stream& s, int) {
+    if (s.get("frames", "slice").at(0, 0) == 2) throw Error("stage: section 2 is bad");
+  };
+  CHECK_THROWS_WITH(run_stage(failing), Catch::Contains("section 2 is bad"));
+  CHECK_THROWS(read_file(out1 + ".fail"));
+  CHECK_THROWS(read_file(out1 + ".fail.partial"));
+  // A cut input: refused, naming the file.
+  write_file(in, t.parted.substr(0, t.parted.size() - 6));
+  StageRun cut = failing;
+  cut.stage = stage;
+  CHECK_THROWS_WITH(run_stage(cut), Catch::Contains(in) && Catch::Contains("lacks its closing '# end'"));
+  // A whole stream: staged and written whole.
+  write_file(in, t.whole);
+  StageRun whole_run = cut;
+  whole_run.output = out1;
+  run_stage(whole_run);
+  CHECK(read_file(out1).find("# part") == std::string::npos);
+  CHECK(parse_stream(read_file(out1), "out").get("twice", "t").values == whole.get("twice", "t").values);
+  for (const auto& p : {in, out1, out2}) std::remove(p.c_str());
+}
+
 TEST_CASE("pipe: writing refuses NaN rather than passing it on", "[pipe]") {
   Stream s;
   Table t{"t", {"a"}, {}};

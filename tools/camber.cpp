@@ -129,26 +129,35 @@ int main(int argc, char** argv) {
         }
         options.edge = edge == "auto" ? section::EdgeModel::automatic : section::EdgeModel::round;
         options.edge_on_points = !edge_on_spline;
-        const auto text = std::make_shared<const std::string>(section::read_file(common.input));
-        const std::string source = common.input == "-" ? "<stdin>" : common.input;
-        section::Stream stream;
-        const std::size_t bom = text->rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // parse_stream skips it
-        if (text->compare(bom, 19, "# libsection-stream") == 0) {
-          stream = section::parse_stream(text, source);
-        } else {
-          const auto points = section::parse_profile(*text, source);
+        section::Table params, thickness;
+        section::StageRun run;
+        run.input = common.input;
+        run.output = common.output;
+        run.history = section::tool::command_line(argc, argv);
+        run.threads = options.threads;
+        run.other_input = [&](const std::string& text, const std::string& source) {
+          const auto points = section::parse_profile(text, source);
+          section::Stream stream;
           section::tool::with_input(common.input, [&] {
             const section::FitSplineResult fit = section::fit_spline(points, points);
             stream = section::profile_stream(fit.spline, fit.rms);
           });
-        }
-        section::tool::with_input(common.input, [&] { section::camber_stream(stream, options); });
-        for (const auto& issue : stream.issues)
-          if (issue.stage == "camber")
-            std::cerr << "camber: warning: section " << issue.section << ": " << issue.message << "\n";
-        stream.history.push_back(section::tool::command_line(argc, argv));
-        if (!params_file.empty()) section::write_file(params_file, section::format_csv(*stream.find("params")));
-        if (!thickness_file.empty()) section::write_file(thickness_file, section::format_csv(*stream.find("thickness")));
-        section::write_stream(common.output, stream);
+          return stream;
+        };
+        run.stage = [&](section::Stream& part, int threads) {
+          section::CamberOptions o = options;
+          o.threads = threads;
+          section::tool::with_input(common.input, [&] { section::camber_stream(part, o); });
+        };
+        run.written = [&](const section::Stream& stream) {
+          for (const auto& issue : stream.issues)
+            if (issue.stage == "camber")
+              std::cerr << "camber: warning: section " << issue.section << ": " << issue.message << "\n";
+          section::append_rows(params, stream.get("params", "camber"));
+          section::append_rows(thickness, stream.get("thickness", "camber"));
+        };
+        section::run_stage(run);
+        if (!params_file.empty()) section::write_file(params_file, section::format_csv(params));
+        if (!thickness_file.empty()) section::write_file(thickness_file, section::format_csv(thickness));
       });
 }

@@ -72,31 +72,44 @@ int main(int argc, char** argv) {
         app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
       },
       [&] {
-        section::Stream stream = section::read_stream(common.input);
-        section::tool::with_input(common.input, [&] { section::fit_spline_stream(stream, options); });
-        stream.history.push_back(section::tool::command_line(argc, argv));
-        for (const auto& issue : stream.issues) {
-          if (issue.stage != "fitspline") continue;
-          std::cerr << "fitspline: warning: section " << issue.section << " loop " << issue.loop
-                    << ": " << issue.message << "\n";
-        }
-        const section::Table* fitted = stream.find("splines");
-        if (fitted) {
-          const std::size_t cl = fitted->column("layers"), cll = fitted->column("layers_length");
-          for (std::size_t r = 0; r < fitted->rows(); ++r) {
-            const double layers = fitted->at(r, cl);
-            if (!(layers > 0)) continue;
-            std::cerr << "fitspline: warning: section " << fitted->at(r, 0) << " loop " << fitted->at(r, 1)
-                      << std::setprecision(3) << ": the points lie in two layers about " << layers << " apart over "
-                      << fitted->at(r, cll) << " of the profile (" << stream.units
-                      << "), and the curve runs between them: views merged with a misregistration? (register "
-                         "them: slice --view, docs/REGISTRATION.md)\n"
-                      << std::setprecision(6);
+        std::size_t fitted = 0, measured = 0;
+        section::StageRun run;
+        run.input = common.input;
+        run.output = common.output;
+        run.history = section::tool::command_line(argc, argv);
+        run.threads = options.threads;
+        run.stage = [&](section::Stream& part, int threads) {
+          section::FitSplineOptions o = options;
+          o.threads = threads;
+          section::tool::with_input(common.input, [&] { section::fit_spline_stream(part, o); });
+        };
+        run.written = [&](const section::Stream& stream) {
+          for (const auto& issue : stream.issues) {
+            if (issue.stage != "fitspline") continue;
+            std::cerr << "fitspline: warning: section " << issue.section << " loop " << issue.loop << ": "
+                      << issue.message << "\n";
           }
-        }
-        if (fitted && fitted->rows() == 0 && stream.find("points") && stream.get("points", "slice").rows() > 0)
-          throw section::Error((common.input == "-" ? std::string("<stdin>") : common.input) +
-                               ": no loop could be fitted (see the warnings above)");
-        section::write_stream(common.output, stream);
+          if (const section::Table* splines = stream.find("splines")) {
+            const std::size_t cl = splines->column("layers"), cll = splines->column("layers_length");
+            for (std::size_t r = 0; r < splines->rows(); ++r) {
+              const double layers = splines->at(r, cl);
+              if (!(layers > 0)) continue;
+              std::cerr << "fitspline: warning: section " << splines->at(r, 0) << " loop " << splines->at(r, 1)
+                        << std::setprecision(3) << ": the points lie in two layers about " << layers << " apart over "
+                        << splines->at(r, cll) << " of the profile (" << stream.units
+                        << "), and the curve runs between them: views merged with a misregistration? (register "
+                           "them: slice --view, docs/REGISTRATION.md)\n"
+                        << std::setprecision(6);
+            }
+            fitted += splines->rows();
+          }
+          if (const section::Table* points = stream.find("points")) measured += points->rows();
+        };
+        run.before_end = [&] {
+          if (fitted == 0 && measured > 0)
+            throw section::Error((common.input == "-" ? std::string("<stdin>") : common.input) +
+                                 ": no loop could be fitted (see the warnings above)");
+        };
+        section::run_stage(run);
       });
 }

@@ -9,6 +9,9 @@
 #include "section/slice.h"
 
 #include <iostream>
+#include <optional>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -113,6 +116,37 @@ int main(int argc, char** argv) {
         else if (!at.empty()) planes = section::planes_at(n, at);
         section::SliceResult result;
         std::vector<std::string> notes;
+        // Each section is written as a part of the stream once it and those before it are
+        // done (the next tool starts on it meanwhile). Nothing is written before a section
+        // has been sliced: failed sections wait until then, and when all fail, the output
+        // stays empty.
+        std::optional<section::StreamWriter> writer;
+        std::vector<std::pair<int, section::Stream>> waiting;
+        std::size_t failed = 0, sections = 0;
+        const std::string history = section::tool::command_line(argc, argv);
+        const section::SectionSink write_section = [&](const section::SectionSlice& s) {
+          section::SliceResult one;
+          one.sections = {s};
+          section::Stream part = section::to_stream(one, history, units);
+          for (const auto& issue : part.issues)
+            std::cerr << "slice: warning: section " << issue.section << ": " << issue.message << "\n";
+          ++sections;
+          if (!s.error.empty()) ++failed;
+          if (!writer && !s.error.empty()) {
+            waiting.emplace_back(s.id, std::move(part));
+            return;
+          }
+          if (!writer) {
+            section::Stream head;
+            head.units = units;
+            head.history = {history};
+            head.notes = notes;
+            writer.emplace(common.output, head);
+            for (const auto& [id, earlier] : waiting) writer->part(std::to_string(id), earlier);
+            waiting.clear();
+          }
+          writer->part(std::to_string(s.id), part);
+        };
         if (!views.empty()) {
           // Views apart: held in memory, registered, merged, then sliced.
           std::vector<std::string> names{common.input};
@@ -138,24 +172,22 @@ int main(int argc, char** argv) {
           clouds = {};  // the views apart are no longer needed
           if (count > 0) planes = section::planes_across(merged.points, n, count);
           section::tool::with_input(common.input, [&] { result = section::slice(merged, planes, options); });
+          for (const auto& s : result.sections) write_section(s);
         } else if (common.input != "-" && section::is_mesh_file(common.input)) {
           const section::Mesh mesh = section::read_mesh(common.input);
           if (count > 0) planes = section::planes_across(mesh.vertices, n, count);
           section::tool::with_input(common.input, [&] { result = section::slice(mesh, planes, options); });
+          for (const auto& s : result.sections) write_section(s);
         } else {
           // Streamed: only the slab points are held, not the cloud. Read errors name the file
           // already, so with_input leaves them as they are.
           section::tool::with_input(common.input, [&] {
-            result = section::slice_file(common.input, section::PlaneSpec{planes, n, count}, options);
+            result = section::slice_file(common.input, section::PlaneSpec{planes, n, count}, options, {}, write_section);
           });
         }
-        section::Stream stream = section::to_stream(result, section::tool::command_line(argc, argv), units);
-        stream.notes.insert(stream.notes.begin(), notes.begin(), notes.end());
-        for (const auto& issue : stream.issues)
-          std::cerr << "slice: warning: section " << issue.section << ": " << issue.message << "\n";
-        if (stream.issues.size() == result.sections.size())
+        if (failed == sections)
           throw section::Error((common.input == "-" ? std::string("<stdin>") : common.input) +
                                ": no section could be sliced (see the warnings above)");
-        section::write_stream(common.output, stream);
+        writer->finish();
       });
 }

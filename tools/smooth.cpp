@@ -52,14 +52,25 @@ int main(int argc, char** argv) {
       },
       [&] {
         options.solver = section::parse_smooth_solver(solver);
-        section::Stream stream = section::read_stream(common.input);
-        section::tool::with_input(common.input, [&] { section::smooth_stream(stream, options); });
-        for (const auto& issue : stream.issues)
-          if (issue.stage == "smooth")
-            std::cerr << "smooth: warning: section " << issue.section << " loop " << issue.loop
-                      << ": " << issue.message << "\n";
-        stream.history.push_back(section::tool::command_line(argc, argv));
-        if (!report.empty()) section::write_file(report, section::format_csv(*stream.find("smooth_stats")));
-        section::write_stream(common.output, stream);
+        section::Table stats;
+        section::StageRun run;
+        run.input = common.input;
+        run.output = common.output;
+        run.history = section::tool::command_line(argc, argv);
+        run.threads = options.threads;
+        run.stage = [&](section::Stream& part, int threads) {
+          section::SmoothOptions o = options;
+          o.threads = threads;
+          section::tool::with_input(common.input, [&] { section::smooth_stream(part, o); });
+        };
+        run.written = [&](const section::Stream& part) {
+          for (const auto& issue : part.issues)
+            if (issue.stage == "smooth")
+              std::cerr << "smooth: warning: section " << issue.section << " loop " << issue.loop << ": "
+                        << issue.message << "\n";
+          section::append_rows(stats, part.get("smooth_stats", "smooth"));
+        };
+        section::run_stage(run);
+        if (!report.empty()) section::write_file(report, section::format_csv(stats));
       });
 }

@@ -5,6 +5,11 @@
 #include "detail/text.h"
 
 #include <algorithm>
+#include <exception>
+#include <thread>
+#include <mutex>
+#include <deque>
+#include <condition_variable>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -195,16 +200,28 @@ namespace {
 
 // parse_stream; the source rows of large tables are kept as parts of `owner` when it
 // holds `text`, else as copies.
+// A part of a stream split into parts (run_stage) is parsed alone: no version line, its
+// lines numbered from `first_line`.
+struct PartText {
+  bool is_part = false;
+  std::size_t first_line = 1;
+};
+
 Stream parse_stream_text(std::string_view text, const std::string& source,
-                         const std::shared_ptr<const std::string>& owner) {
+                         const std::shared_ptr<const std::string>& owner, const PartText& part = {}) {
   Stream stream;
   if (const char* why = detail::text_encoding_problem(text)) throw Error("pipe: " + source + ": " + why);
-  detail::skip_bom(text);
+  if (!part.is_part) detail::skip_bom(text);
   if (text.empty()) throw Error("pipe: " + source + ": the stream is empty");
   Table* current = nullptr;
   bool expect_header = false;
-  bool seen_version = false;
-  std::size_t line_no = 0;
+  bool seen_version = part.is_part;
+  std::size_t line_no = part.first_line - 1;
+  // Parts (docs/FORMAT.md): a table may come again in a later part, with the same header.
+  std::size_t parts = 0;
+  bool ended = false;
+  std::vector<std::string> in_part;       // tables seen in the current part
+  std::vector<std::string> continued_columns;  // header a continued table must repeat (empty: a new table)
   std::size_t pos = 0;
   std::vector<double> row;
   std::vector<char> id_column;  // per column of the current table: holds integer ids
@@ -223,6 +240,7 @@ Stream parse_stream_text(std::string_view text, const std::string& source,
       const std::string_view rest = space == std::string_view::npos ? std::string_view{}
                                                                      : trim(body.substr(space));
       if (expect_header) fail(source, line_no, "table '" + current->name + "' has no header row");
+      if (ended) fail(source, line_no, "a line after '# end'");
       if (!seen_version) {
         if (key != "libsection-stream")
           fail(source, line_no,
@@ -236,11 +254,28 @@ Stream parse_stream_text(std::string_view text, const std::string& source,
       current = nullptr;
       if (key == "table") {
         if (rest.empty()) fail(source, line_no, "'# table' without a name");
-        if (stream.find(std::string(rest)))
-          fail(source, line_no, "table '" + std::string(rest) + "' appears twice");
-        stream.tables.push_back(Table{std::string(rest), {}, {}});
-        current = &stream.tables.back();
+        const std::string name(rest);
+        if (std::find(in_part.begin(), in_part.end(), name) != in_part.end() || (parts == 0 && stream.find(name)))
+          fail(source, line_no, "table '" + name + "' appears twice" + (parts ? " in a part" : ""));
+        in_part.push_back(name);
+        continued_columns.clear();
+        if (Table* earlier = stream.find(name)) {
+          // The same table in a later part: its rows follow those before.
+          continued_columns = earlier->columns;
+          earlier->source = nullptr;  // its text is no longer one piece
+          current = earlier;
+        } else {
+          stream.tables.push_back(Table{name, {}, {}});
+          current = &stream.tables.back();
+        }
         expect_header = true;
+      } else if (key == "part") {
+        if (part.is_part && parts > 0) fail(source, line_no, "two parts in one");
+        ++parts;
+        in_part.clear();
+      } else if (key == "end") {
+        if (!rest.empty()) fail(source, line_no, "'# end' takes nothing after it");
+        ended = true;
       } else if (key == "units") {
         if (rest.empty()) fail(source, line_no, "'# units' without a unit");
         stream.units = std::string(rest);
@@ -255,9 +290,13 @@ Stream parse_stream_text(std::string_view text, const std::string& source,
     }
     if (!seen_version)
       fail(source, line_no, "not a libsection stream (the first line must be '# libsection-stream 1')");
+    if (ended) fail(source, line_no, "a line after '# end'");
     if (!current) fail(source, line_no, "a data row outside any table (missing '# table NAME')");
     if (expect_header) {
-      current->columns = split_header(line);
+      const std::vector<std::string> header = split_header(line);
+      if (!continued_columns.empty() && header != continued_columns)
+        fail(source, line_no, "table '" + current->name + "' has other columns than in the parts before");
+      current->columns = header;
       for (const auto& c : current->columns)
         if (c.empty()) fail(source, line_no, "empty column name in the header of table '" + current->name + "'");
       id_column.assign(current->columns.size(), 0);
@@ -297,7 +336,7 @@ Stream parse_stream_text(std::string_view text, const std::string& source,
           for (const auto& v : piece) current->values.insert(current->values.end(), v.begin(), v.end());
           // Kept to be written back as it is (Table::source); not with '\r' line ends,
           // which the written stream does not use.
-          if (block.find('\r') == std::string_view::npos) {
+          if (continued_columns.empty() && block.find('\r') == std::string_view::npos) {
             auto kept = std::make_shared<TableText>();
             if (owner) {
               kept->text = owner;
@@ -356,6 +395,9 @@ Stream parse_stream_text(std::string_view text, const std::string& source,
   if (!seen_version) throw Error("pipe: " + source + ": the stream is empty");
   if (expect_header)
     throw Error("pipe: " + source + ": table '" + current->name + "' has no header row (truncated stream?)");
+  if (parts > 0 && !ended && !part.is_part)
+    throw Error("pipe: " + source + ": the stream is split into parts but lacks its closing '# end' line (truncated "
+                "stream, or the tool that wrote it failed)");
   return stream;
 }
 
@@ -443,7 +485,18 @@ struct FormattedStream {
   }
 };
 
-FormattedStream format_parts(const Stream& stream) {
+// The preamble of a stream: version, units, history, notes.
+std::string format_preamble(const Stream& stream) {
+  std::string out = "# libsection-stream " + std::to_string(stream_version) + "\n";
+  out += "# units " + one_line(stream.units) + "\n";
+  for (const auto& h : stream.history) out += "# history " + one_line(h) + "\n";
+  for (const auto& n : stream.notes) out += "# " + one_line(n) + "\n";
+  return out;
+}
+
+// The stream's text: the preamble, then issues and tables; for a part (`part_line` not
+// empty), that line and the part's notes instead of the preamble.
+FormattedStream format_parts(const Stream& stream, const std::string& part_line = "") {
   // Pieces are collected first and viewed at the end (a growing vector moves its strings).
   struct Piece {
     std::string text;
@@ -451,10 +504,12 @@ FormattedStream format_parts(const Stream& stream) {
   };
   std::vector<Piece> pieces(1);
   std::string* out = &pieces.back().text;
-  *out += "# libsection-stream " + std::to_string(stream_version) + "\n";
-  *out += "# units " + one_line(stream.units) + "\n";
-  for (const auto& h : stream.history) *out += "# history " + one_line(h) + "\n";
-  for (const auto& n : stream.notes) *out += "# " + one_line(n) + "\n";
+  if (part_line.empty()) {
+    *out += format_preamble(stream);
+  } else {
+    *out += part_line;
+    for (const auto& n : stream.notes) *out += "# " + one_line(n) + "\n";
+  }
   for (const auto& i : stream.issues)
     *out += "# issue section=" + std::to_string(i.section) + " loop=" + std::to_string(i.loop) +
             " stage=" + one_line(i.stage.empty() ? "unknown" : i.stage) + " message=" + one_line(i.message) + "\n";
@@ -589,6 +644,304 @@ void write_stream(const std::string& path, const Stream& stream) {
   if (!out) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
   const bool bad = !write_parts(out, f);
   if (std::fclose(out) != 0 || bad) throw Error(path + ": write error");
+}
+
+StreamWriter::StreamWriter(const std::string& path, const Stream& head) : path_(path) {
+  if (path == "-") {
+    std::cout.flush();  // anything written through std::cout before goes first
+    file_ = stdout;
+  } else {
+    temporary_ = path + ".partial";
+    file_ = std::fopen(temporary_.c_str(), "wb");
+    if (!file_) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
+  }
+  write(format_preamble(head));
+}
+
+StreamWriter::~StreamWriter() {
+  if (file_ && file_ != stdout) {
+    std::fclose(file_);
+    std::remove(temporary_.c_str());
+  }
+}
+
+void StreamWriter::write(std::string_view bytes) {
+  if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size())
+    throw Error(path_ == "-" ? std::string("cannot write standard output") : path_ + ": write error");
+}
+
+void StreamWriter::part(const std::string& label, const Stream& part) {
+  if (finished_) throw Error("pipe: a part written after '# end'");
+  const FormattedStream f = format_parts(part, "# part " + one_line(label) + "\n");
+  for (const auto& p : f.parts) write(p);
+  if (std::fflush(file_) != 0)
+    throw Error(path_ == "-" ? std::string("cannot write standard output") : path_ + ": write error");
+}
+
+void StreamWriter::finish() {
+  if (finished_) return;
+  write("# end\n");
+  if (file_ == stdout) {
+    if (std::fflush(stdout) != 0) throw Error("cannot write standard output");
+  } else {
+    const bool bad = std::fclose(file_) != 0;
+    file_ = nullptr;
+    if (bad || std::rename(temporary_.c_str(), path_.c_str()) != 0) {
+      std::remove(temporary_.c_str());
+      throw Error(path_ + ": write error");
+    }
+  }
+  finished_ = true;
+}
+
+namespace {
+
+// Reads a stream line by line from a file or standard input, in blocks.
+class LineReader {
+public:
+  explicit LineReader(const std::string& path) : name_(path == "-" ? "<stdin>" : path) {
+    file_ = path == "-" ? stdin : std::fopen(path.c_str(), "rb");
+    if (!file_) throw Error(path + ": cannot open: " + std::strerror(errno));
+    owned_ = path != "-";
+  }
+  ~LineReader() {
+    if (owned_) std::fclose(file_);
+  }
+  LineReader(const LineReader&) = delete;
+  LineReader& operator=(const LineReader&) = delete;
+  // The next line with its '\n' (the last may lack it); false at the end.
+  bool next(std::string_view& line) {
+    while (true) {
+      const char* nl = static_cast<const char*>(std::memchr(buf_.data() + at_, '\n', end_ - at_));
+      if (nl) {
+        const std::size_t n = std::size_t(nl - (buf_.data() + at_)) + 1;
+        line = std::string_view(buf_.data() + at_, n);
+        at_ += n;
+        return true;
+      }
+      if (eof_) {
+        if (at_ == end_) return false;
+        line = std::string_view(buf_.data() + at_, end_ - at_);
+        at_ = end_;
+        return true;
+      }
+      fill();
+    }
+  }
+  const std::string& name() const { return name_; }
+
+private:
+  void fill() {
+    // Keep the unfinished line at the front, then read after it.
+    const std::size_t keep = end_ - at_;
+    if (keep && at_) std::memmove(buf_.data(), buf_.data() + at_, keep);
+    at_ = 0;
+    end_ = keep;
+    if (buf_.size() < keep + block) buf_.resize(std::max(2 * buf_.size(), keep + block));
+    const std::size_t got = std::fread(buf_.data() + end_, 1, buf_.size() - end_, file_);
+    end_ += got;
+    if (got == 0) {
+      if (std::ferror(file_)) throw Error(file_ == stdin ? std::string("cannot read standard input") : name_ + ": read error");
+      eof_ = true;
+    }
+  }
+  static constexpr std::size_t block = std::size_t(1) << 20;
+  std::string name_;
+  std::FILE* file_ = nullptr;
+  bool owned_ = false, eof_ = false;
+  std::vector<char> buf_;
+  std::size_t at_ = 0, end_ = 0;
+};
+
+// The key of a `# key ...` line ("part", "end", "table", ...), or "" for any other line.
+std::string_view key_of(std::string_view line) {
+  if (line.empty() || line[0] != '#') return {};
+  std::string_view body = trim(line.substr(1));
+  while (!body.empty() && (body.back() == '\n' || body.back() == '\r')) body.remove_suffix(1);
+  return body.substr(0, body.find(' '));
+}
+
+// What follows the key of a `# key ...` line, trimmed.
+std::string rest_of(std::string_view line) {
+  std::string_view body = trim(line.substr(1));
+  while (!body.empty() && (body.back() == '\n' || body.back() == '\r')) body.remove_suffix(1);
+  const std::size_t space = body.find(' ');
+  return space == std::string_view::npos ? std::string() : std::string(trim(body.substr(space)));
+}
+
+bool blank(std::string_view line) { return line.find_first_not_of(" \t\r\n") == std::string_view::npos; }
+
+}  // namespace
+
+void run_stage(const StageRun& run) {
+  const int threads = run.threads;
+  const auto& stage = run.stage;
+  const auto written = [&](const Stream& s) {
+    if (run.written) run.written(s);
+  };
+  const auto& before_end = run.before_end;
+  const std::string& history = run.history;
+  const std::string& output = run.output;
+  LineReader reader(run.input);
+  const std::string& source = reader.name();
+  // The preamble: the lines before the first `# part`, `# table` or data line.
+  std::string head_text, first;
+  std::string_view line;
+  std::size_t line_no = 0;
+  while (reader.next(line)) {
+    ++line_no;
+    const std::string_view key = key_of(line);
+    if (key == "part" || key == "table" || (!blank(line) && line[0] != '#')) {
+      first = std::string(line);
+      break;
+    }
+    head_text += line;
+  }
+  if (key_of(first) != "part") {
+    // Not split into parts: the whole stream at once.
+    std::string text = std::move(head_text);
+    text += first;
+    while (reader.next(line)) text += line;
+    const std::size_t bom = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // parse_stream skips it
+    Stream stream = run.other_input && text.compare(bom, 19, "# libsection-stream") != 0
+                        ? run.other_input(text, source)
+                        : parse_stream(std::make_shared<const std::string>(std::move(text)), source);
+    stage(stream, threads);
+    stream.history.push_back(history);
+    written(stream);
+    if (before_end) before_end();
+    write_stream(output, stream);
+    return;
+  }
+  Stream head = parse_stream(head_text, source);
+  if (!head.issues.empty()) throw Error("pipe: " + source + ": issues before the first '# part'");
+  head.history.push_back(history);
+  StreamWriter writer(output, head);
+  // Parts are staged by the workers as they are read, and written in order by this thread.
+  struct Job {
+    std::string label, text;
+    std::size_t first_line = 0;
+    Stream result;
+    bool done = false;
+  };
+  std::deque<Job> jobs;           // read and not yet written, in order (references stay valid)
+  std::size_t first_job = 0;      // index of jobs.front()
+  std::size_t next_to_stage = 0;  // index of the next job a worker takes
+  std::mutex mutex;
+  std::condition_variable changed;
+  bool input_done = false;
+  std::exception_ptr error;
+  const std::size_t workers =
+      threads > 0 ? std::size_t(threads) : std::max<std::size_t>(1, std::thread::hardware_concurrency());
+  const auto work = [&] {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (true) {
+      changed.wait(lock, [&] { return error || next_to_stage < first_job + jobs.size() || input_done; });
+      if (error || next_to_stage >= first_job + jobs.size()) return;
+      Job& job = jobs[next_to_stage++ - first_job];
+      lock.unlock();
+      try {
+        Stream part = parse_stream_text(job.text, source, nullptr, PartText{true, job.first_line});
+        part.units = head.units;
+        stage(part, 1);
+        std::string().swap(job.text);
+        job.result = std::move(part);
+        lock.lock();
+        job.done = true;
+      } catch (...) {
+        lock.lock();
+        if (!error) error = std::current_exception();
+      }
+      changed.notify_all();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t w = 0; w < workers; ++w) pool.emplace_back(work);
+  // Writes the finished parts at the front, in order. With `room`, until fewer than two
+  // parts per worker wait (the memory of a pipe stays that of a few sections); with
+  // `all`, until every part is written.
+  const auto write_done = [&](bool room, bool all) {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (!error) {
+      if (!jobs.empty() && jobs.front().done) {
+        Job job = std::move(jobs.front());
+        jobs.pop_front();
+        ++first_job;
+        lock.unlock();
+        written(job.result);
+        writer.part(job.label, job.result);
+        lock.lock();
+        continue;
+      }
+      if (all ? jobs.empty() : !(room && jobs.size() >= 2 * workers)) return;
+      changed.wait(lock, [&] { return error || (!jobs.empty() && jobs.front().done); });
+    }
+  };
+  try {
+    std::string label = rest_of(first), text = first;
+    std::size_t first_line = line_no;
+    bool ended = false;
+    // Queues the part read so far; false once a part has failed (no use reading on).
+    const auto submit = [&] {
+      write_done(true, false);
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (error) return false;
+        jobs.push_back(Job{label, std::move(text), first_line, {}, false});
+      }
+      changed.notify_all();
+      return true;
+    };
+    while (reader.next(line)) {
+      ++line_no;
+      if (ended) {
+        if (!blank(line)) fail(source, line_no, "a line after '# end'");
+        continue;
+      }
+      const std::string_view key = key_of(line);
+      if (key == "part" || key == "end") {
+        if (!submit()) break;
+        text.clear();
+        first_line = line_no;
+        label = rest_of(line);
+        if (key == "end") ended = true;
+        if (key == "end" && !label.empty()) fail(source, line_no, "'# end' takes nothing after it");
+        if (key == "end") continue;
+      }
+      text += line;
+    }
+    bool failed;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      failed = bool(error);
+    }
+    if (!ended && !failed)
+      throw Error("pipe: " + source + ": the stream is split into parts but lacks its closing '# end' line (truncated "
+                  "stream, or the tool that wrote it failed)");
+    write_done(false, true);
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!error) error = std::current_exception();
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    input_done = true;
+  }
+  changed.notify_all();
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  if (before_end) before_end();
+  writer.finish();
+}
+
+void append_rows(Table& to, const Table& from) {
+  if (to.columns.empty() && to.values.empty()) {
+    to.name = from.name;
+    to.columns = from.columns;
+  } else if (to.columns != from.columns) {
+    throw Error("pipe: table '" + from.name + "' has other columns than before");
+  }
+  to.values.insert(to.values.end(), from.values.begin(), from.values.end());
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 #include <random>
 #include <thread>
@@ -361,9 +362,46 @@ namespace {
 
 // Orders the slab points of every plane into loops, sections in parallel, and fills the
 // profile's gaps from the near points; frees each section's points once done.
+// Hands finished sections to a callback in plane order, from one thread at a time,
+// without holding up the threads that finish sections meanwhile.
+class InOrder {
+public:
+  InOrder(std::size_t count, const SectionSink& sink) : done_(count, 0), sink_(sink) {}
+  void finished(std::size_t i, const std::vector<SectionSlice>& sections) {
+    if (!sink_) return;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_[i] = 1;
+      if (handing_) return;  // the thread handing sections over takes this one too
+      handing_ = true;
+    }
+    while (true) {
+      std::size_t k;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (next_ == done_.size() || !done_[next_]) {
+          handing_ = false;
+          return;
+        }
+        k = next_++;
+      }
+      sink_(sections[k]);
+    }
+  }
+
+private:
+  std::mutex mutex_;
+  std::vector<char> done_;
+  std::size_t next_ = 0;
+  bool handing_ = false;
+  const SectionSink& sink_;
+};
+
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<std::vector<Eigen::Vector3d>>& near,
-                 const std::vector<Plane>& planes, double slab, const SliceOptions& options, SliceResult& result) {
+                 const std::vector<Plane>& planes, double slab, const SliceOptions& options, SliceResult& result,
+                 const SectionSink& sink = {}) {
   result.sections.resize(planes.size());
+  InOrder in_order(planes.size(), sink);
   detail::parallel_for(planes.size(), options.threads, [&](std::size_t i) {
     SectionSlice& s = result.sections[i];
     s.id = static_cast<int>(i);
@@ -405,6 +443,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
     }
     std::vector<Eigen::Vector2d>().swap(slabs[i]);
     if (i < near.size()) std::vector<Eigen::Vector3d>().swap(near[i]);
+    in_order.finished(i, result.sections);
   });
 }
 
@@ -527,7 +566,7 @@ Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOp
 }  // namespace
 
 SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
-                       const CloudReadOptions& read) {
+                       const CloudReadOptions& read, const SectionSink& sink) {
   check_slab(options.slab);
   if (options.fill_gaps) check_gap_fill_options(options.fill);
   check_band_options(options);
@@ -538,7 +577,10 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     // A pipe cannot be read twice: hold the cloud.
     const Cloud cloud = read_cloud(path, read);
     const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
-    return slice(cloud, planes, options);
+    SliceResult result = slice(cloud, planes, options);
+    if (sink)
+      for (const auto& s : result.sections) sink(s);
+    return result;
   }
   // Chunks of at most 256k points: each is still in the cache when the slab test reads it.
   CloudReadOptions read_chunks = read;
@@ -654,7 +696,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
       result.points = total;
       result.slab = slab;
       result.file_passes = 1;
-      order_slabs(slabs, near, planes, slab, options, result);
+      order_slabs(slabs, near, planes, slab, options, result, sink);
       return result;
     }
   }
@@ -678,7 +720,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
       read_chunks);
   result.slab = slab;
   result.file_passes = spec.count > 0 || options.slab == 0 ? 2 : 1;
-  order_slabs(slabs, near, planes, slab, options, result);
+  order_slabs(slabs, near, planes, slab, options, result, sink);
   return result;
 }
 

@@ -6,6 +6,8 @@
 #include "section/frame.h"
 
 #include <cstddef>
+#include <cstdio>
+#include <functional>
 #include <iosfwd>
 #include <map>
 #include <memory>
@@ -102,6 +104,67 @@ std::string format_stream(const Stream& stream);
 /// Writes a stream to `path` ("-" = standard output) once it is all formatted, so that a
 /// failure before this call leaves no partial output.
 void write_stream(const std::string& path, const Stream& stream);
+
+/// Writes a stream split into parts as they come (docs/FORMAT.md, "Parts"): the preamble
+/// (version, units, history, notes) at once, each part when given, and the closing
+/// `# end` at finish(), so that the next tool of a pipe can work on a part while this one
+/// makes the next. Standard output is written as it goes; a file is written under a
+/// temporary name and renamed at finish(), so that a failure leaves no file. A stream
+/// that is not finished lacks `# end`, and every reader refuses it.
+class StreamWriter {
+public:
+  /// Opens `path` ("-" = standard output) and writes the preamble of `head` (its tables,
+  /// issues and notes are not written). Throws section::Error when it cannot.
+  StreamWriter(const std::string& path, const Stream& head);
+  StreamWriter(const StreamWriter&) = delete;
+  StreamWriter& operator=(const StreamWriter&) = delete;
+  /// Removes the temporary file of an unfinished file output.
+  ~StreamWriter();
+  /// Writes one part: `# part LABEL`, then the part's issues, notes and tables (every
+  /// table with its header, also when it has no rows) and flushes.
+  void part(const std::string& label, const Stream& part);
+  /// Writes `# end` and closes the output.
+  void finish();
+
+private:
+  void write(std::string_view bytes);
+  std::string path_, temporary_;
+  std::FILE* file_ = nullptr;
+  bool finished_ = false;
+};
+
+/// A stage of the pipe (smooth, fitspline, camber) as run_stage runs it.
+struct StageRun {
+  std::string input = "-";   ///< stream to read ("-" = standard input)
+  std::string output = "-";  ///< stream to write ("-" = standard output)
+  std::string history;       ///< line added to the stream's history
+  int threads = 0;           ///< parts staged at a time, or threads of a whole stream; 0 = all cores
+  /// The stage: runs on each part (or the whole stream), from several threads at once,
+  /// told how many threads it may use itself (1 for a part, `threads` for a whole stream).
+  std::function<void(Stream&, int threads)> stage;
+  /// Sees each part (or the whole stream) as it is written, in order, from one thread.
+  std::function<void(const Stream&)> written;
+  /// Runs once all is staged, before `# end`; may throw to leave the output unfinished.
+  std::function<void()> before_end;
+  /// Turns an input that is not a stream into one (camber: a plain profile); unset, such
+  /// input is refused.
+  std::function<Stream(const std::string& text, const std::string& source)> other_input;
+};
+
+/// Runs a stage of the pipe:
+/// - a stream split into parts is read, staged and written part by part: up to
+///   `threads` parts at a time, each written with StreamWriter as soon as it and the parts
+///   before it are done, so that the tools of a pipe work side by side;
+/// - any other stream is read, staged and written whole (write_stream).
+/// Throws section::Error naming the input and its line on malformed input (a stream split
+/// into parts must end with `# end`), and whatever the callbacks throw; the output then
+/// lacks its `# end` line, or is not written.
+void run_stage(const StageRun& run);
+
+/// Appends the rows of `from` to `to`, taking its name and columns when `to` has none
+/// (to gather a table over the parts of a stream). Throws section::Error when the columns
+/// differ.
+void append_rows(Table& to, const Table& from);
 
 /// Parses a plain CSV table (not a stream): `#` lines and blank lines skipped, the first
 /// remaining line is the header of column names, then numeric rows with as many values,

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -88,14 +89,20 @@ struct PlaneSpec {
   int count = 0;                                     ///< planes spread as planes_across; 0 = use `planes`
 };
 
+/// Receives each section of slice_file as soon as it and the sections before it are done.
+using SectionSink = std::function<void(const SectionSlice&)>;
+
 /// Slices the cloud of a file without holding it: reads it in chunks and keeps only the
 /// slab points of each plane. A file is read once when the planes and the slab width are
 /// given, twice otherwise (first for the extent along the normal and a random sample of
 /// 50000 points for the spacing); standard input ("-") is held in memory and sliced by
 /// slice(Cloud). Same results in meaning as slice(read_cloud(path), ...); the estimated
 /// slab width may differ slightly (another random sample). Throws as read_cloud and slice.
+/// `sink`, when set, receives each section in plane order as soon as it and those before
+/// it are done, from one thread at a time (the slice tool writes it to the pipe while the
+/// others are still being ordered); the result holds them all the same.
 SliceResult slice_file(const std::string& path, const PlaneSpec& planes, const SliceOptions& options = {},
-                       const CloudReadOptions& read = {});
+                       const CloudReadOptions& read = {}, const SectionSink& sink = {});
 
 /// Slices a mesh exactly (CGAL's polygon mesh slicer): each closed intersection polyline is
 /// a loop, oriented counterclockwise in (u, v), loop 0 the largest; its vertices are the points.
