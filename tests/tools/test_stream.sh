@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Black-box test of the stream between the tools: split into parts, one per section, and
+# closed by '# end'; a cut stream is refused; an output file appears only whole.
+. "$(dirname "$0")/lib.sh"
+
+"$BIN/bladegen" --kind turbine --points --spacing 0.1 --noise 0.005 --z-min 10 --z-max 30 --seed 3 \
+  -o "$TMP/blade.ply" 2>/dev/null
+expect 0 "slice 3 planes, one missing the part" -- "$BIN/slice" "$TMP/blade.ply" --at 15,20,50
+cp "$TMP/out" "$TMP/sliced.csv"
+check "one part per section" -- test "$(grep -c '^# part ' "$TMP/sliced.csv")" -eq 3
+check "closed by # end" -- test "$(tail -n 1 "$TMP/sliced.csv")" = "# end"
+check "the failed section's part has its issue" -- sh -c "sed -n '/^# part 2/,\$p' '$TMP/sliced.csv' | grep -q '^# issue section=2 '"
+expect 0 "smooth the parts" -- "$BIN/smooth" "$TMP/sliced.csv"
+cp "$TMP/out" "$TMP/smoothed.csv"
+check "smooth keeps the parts" -- test "$(grep -c '^# part ' "$TMP/smoothed.csv")" -eq 3
+check "smooth closes with # end" -- test "$(tail -n 1 "$TMP/smoothed.csv")" = "# end"
+# One thread or all: the same bytes.
+"$BIN/smooth" "$TMP/sliced.csv" --threads 1 > "$TMP/one_thread.csv" 2>/dev/null
+check "one thread, same bytes" -- cmp -s <(grep -v "^# history" "$TMP/smoothed.csv") <(grep -v "^# history" "$TMP/one_thread.csv")
+
+# Cut before '# end' (a tool that failed half way): every tool refuses it, naming the file.
+head -n -1 "$TMP/sliced.csv" > "$TMP/cut.csv"
+for tool in smooth fitspline camber plot; do
+  expect 1 "$tool refuses a cut stream" -- "$BIN/$tool" "$TMP/cut.csv"
+  check "$tool says why" -- grep -q "cut.csv.*lacks its closing '# end'" "$TMP/err"
+done
+# A bad line in a later part: the error names its line; no '# end' is written.
+line=$(grep -n '^# part 1' "$TMP/sliced.csv" | cut -d: -f1)
+bad=$((line + 7))  # the loops table's row
+sed "${bad}s/^1,/1,x/" "$TMP/sliced.csv" > "$TMP/bad.csv"
+expect 1 "a bad line in part 1" -- "$BIN/smooth" "$TMP/bad.csv"
+check "its line is named" -- grep -q "bad.csv:$bad:" "$TMP/err"
+check "no '# end' after a failure" -- sh -c "! grep -q '^# end' '$TMP/out'"
+# To a file: written whole or not at all.
+expect 0 "smooth -o FILE" -- "$BIN/smooth" "$TMP/sliced.csv" -o "$TMP/file.csv"
+check "the file is the stream" -- cmp -s <(grep -v "^# history" "$TMP/file.csv") <(grep -v "^# history" "$TMP/smoothed.csv")
+check "no temporary file left" -- test ! -e "$TMP/file.csv.partial"
+expect 1 "smooth -o FILE on a bad stream" -- "$BIN/smooth" "$TMP/bad.csv" -o "$TMP/none.csv"
+check "no file written" -- test ! -e "$TMP/none.csv" -a ! -e "$TMP/none.csv.partial"
+# The whole pipe through pipes.
+"$BIN/slice" "$TMP/blade.ply" --at 15,20 2>/dev/null | "$BIN/smooth" | "$BIN/fitspline" 2>/dev/null |
+  "$BIN/camber" --params "$TMP/params.csv" > "$TMP/camber.csv" 2>/dev/null
+check "pipe: parameters of both sections" -- test "$(grep -c '^[01],' "$TMP/params.csv")" -eq 2
+check "pipe: closed by # end" -- test "$(tail -n 1 "$TMP/camber.csv")" = "# end"
+finish
