@@ -315,8 +315,9 @@ Stream parse_stream_text(std::string_view text, const std::string& source,
         block_end = nl == std::string_view::npos ? text.size() : nl + 1;
       }
       const std::string_view block = text.substr(block_start, block_end - block_start);
-      if (block.size() >= (std::size_t(1) << 18)) {
-        const std::size_t parts = std::min<std::size_t>(64, block.size() >> 17);
+      // Blocks of a few kB and up: a section's table in a stream split into parts.
+      if (block.size() >= (std::size_t(1) << 12)) {
+        const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(64, block.size() >> 17));
         std::vector<std::size_t> cut(parts + 1, 0);
         cut[parts] = block.size();
         for (std::size_t k = 1; k < parts; ++k) {
@@ -819,7 +820,8 @@ void run_stage(const StageRun& run) {
   StreamWriter writer(output, head);
   // Parts are staged by the workers as they are read, and written in order by this thread.
   struct Job {
-    std::string label, text;
+    std::string label;
+    std::shared_ptr<const std::string> text;  // kept by the tables passed through (Table::source)
     std::size_t first_line = 0;
     Stream result;
     bool done = false;
@@ -841,10 +843,10 @@ void run_stage(const StageRun& run) {
       Job& job = jobs[next_to_stage++ - first_job];
       lock.unlock();
       try {
-        Stream part = parse_stream_text(job.text, source, nullptr, PartText{true, job.first_line});
+        Stream part = parse_stream_text(*job.text, source, job.text, PartText{true, job.first_line});
         part.units = head.units;
         stage(part, 1);
-        std::string().swap(job.text);
+        job.text = nullptr;
         job.result = std::move(part);
         lock.lock();
         job.done = true;
@@ -887,7 +889,7 @@ void run_stage(const StageRun& run) {
       {
         std::lock_guard<std::mutex> lock(mutex);
         if (error) return false;
-        jobs.push_back(Job{label, std::move(text), first_line, {}, false});
+        jobs.push_back(Job{label, std::make_shared<const std::string>(std::move(text)), first_line, {}, false});
       }
       changed.notify_all();
       return true;
