@@ -166,7 +166,7 @@ struct Raster {
 /// they never win, and the envelope of the others is the same. Positions are q + base, so
 /// that the rounding of the parabola intersections, which decides between equidistant
 /// seeds, does not depend on where the raster starts (its margin).
-void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
+void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
                  std::vector<double>& z) {
   const double inf = std::numeric_limits<double>::infinity();
   int k = -1;
@@ -205,6 +205,30 @@ void distance_1d(const float* f, int n, float big, int base, float* d, int* arg,
     const double dq = double(q - v[k]);
     d[q] = float(dq * dq + double(f[v[k]]));
     arg[q] = v[k];
+  }
+}
+
+/// envelope_1d of f split at its zero samples (seeds in the sample's own cell). A zero
+/// sample is its own nearest, and no parabola on one side of it wins on the other (their
+/// intersections with it lie at least half a cell away, far beyond rounding), so the
+/// envelope of a run between two zeros, zeros included, is the whole row's there, with the
+/// same arithmetic. Runs of seeds then cost nothing: most of a raster is outside.
+void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
+                 std::vector<double>& z) {
+  for (int a = 0; a < n;) {
+    if (f[a] == 0) {
+      d[a] = 0;
+      arg[a] = a;
+      ++a;
+      continue;
+    }
+    int b = a + 1;
+    while (b < n && f[b] != 0) ++b;
+    const int lo = a > 0 ? a - 1 : 0, hi = b < n ? b + 1 : n;
+    envelope_1d(f + lo, hi - lo, big, base + lo, d + lo, arg + lo, v, z);
+    for (int q = lo; q < hi; ++q)
+      if (arg[q] >= 0) arg[q] += lo;
+    a = b;
   }
 }
 
