@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <queue>
 #include <string>
@@ -850,8 +851,10 @@ void skeleton_of(const Pass& pass, const Component& comp, MorphologyResult& resu
   for (std::size_t c = 0; c < img.size(); ++c)
     if (img[c]) cells.push_back(std::uint32_t(c));
   if (cells.empty()) return;
-  std::vector<double> dist(img.size());
-  std::vector<std::int64_t> prev(img.size());
+  // Read and written at skeleton cells only (set by each search): left uninitialised, the
+  // pages of the other cells are never touched.
+  const std::unique_ptr<double[]> dist(new double[img.size()]);
+  const std::unique_ptr<std::int64_t[]> prev(new std::int64_t[img.size()]);
   const auto search = [&](std::uint32_t from) {
     for (std::uint32_t c : cells) {
       dist[c] = std::numeric_limits<double>::infinity();
