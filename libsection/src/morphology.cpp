@@ -12,7 +12,6 @@
 #include <numeric>
 #include <queue>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 namespace section {
@@ -36,6 +35,53 @@ std::int64_t cell_key(std::int64_t i, std::int64_t j) {
   return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffULL));
 }
 
+/// The [begin, end) ranges of the occupied cells of a grid in a list sorted by cell key:
+/// an open-addressing table, as grid queries look up several cells each (cheaper than
+/// std::unordered_map's modulo and node chase).
+class CellTable {
+public:
+  /// `keys` sorted; each run of equal keys is one cell.
+  explicit CellTable(const std::vector<std::int64_t>& keys) {
+    std::size_t cells = 0;
+    for (std::size_t a = 0; a < keys.size(); ++a) cells += a == 0 || keys[a] != keys[a - 1];
+    std::size_t size = 16;
+    while (size < 2 * cells) size *= 2;
+    mask_ = size - 1;
+    while ((std::size_t(1) << shift_) < size) ++shift_;
+    slots_.assign(size, Slot{});
+    for (std::size_t a = 0; a < keys.size();) {
+      std::size_t b = a;
+      while (b < keys.size() && keys[b] == keys[a]) ++b;
+      std::size_t i = home(keys[a]);
+      while (slots_[i].end != 0) i = (i + 1) & mask_;
+      slots_[i] = Slot{keys[a], std::uint32_t(a), std::uint32_t(b)};
+      a = b;
+    }
+  }
+
+  /// The range of cell `key`, empty when the cell holds nothing.
+  std::pair<std::uint32_t, std::uint32_t> find(std::int64_t key) const {
+    for (std::size_t i = home(key);; i = (i + 1) & mask_) {
+      const Slot& s = slots_[i];
+      if (s.end == 0) return {0, 0};
+      if (s.key == key) return {s.begin, s.end};
+    }
+  }
+
+private:
+  struct Slot {
+    std::int64_t key = 0;
+    std::uint32_t begin = 0, end = 0;  // end 0: a free slot (a cell's range is never empty)
+  };
+  // Fibonacci hashing: the top bits of key * 2^64 / phi.
+  std::size_t home(std::int64_t key) const {
+    return shift_ == 0 ? 0 : std::size_t((std::uint64_t(key) * 0x9E3779B97F4A7C15ULL) >> (64 - shift_));
+  }
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0;
+  int shift_ = 0;
+};
+
 class PointGrid {
 public:
   PointGrid(const Points& points, const std::vector<std::size_t>& subset, double cell)
@@ -44,15 +90,13 @@ public:
     keyed.reserve(subset.size());
     for (std::size_t k : subset) keyed.emplace_back(key_of(points[k]), std::uint32_t(k));
     std::sort(keyed.begin(), keyed.end());
+    std::vector<std::int64_t> keys(keyed.size());
     order_.resize(keyed.size());
-    ranges_.reserve(keyed.size() / 2 + 1);
-    for (std::size_t a = 0; a < keyed.size();) {
-      std::size_t b = a;
-      while (b < keyed.size() && keyed[b].first == keyed[a].first) ++b;
-      ranges_.emplace(keyed[a].first, std::make_pair(std::uint32_t(a), std::uint32_t(b)));
-      a = b;
+    for (std::size_t a = 0; a < keyed.size(); ++a) {
+      keys[a] = keyed[a].first;
+      order_[a] = keyed[a].second;
     }
-    for (std::size_t a = 0; a < keyed.size(); ++a) order_[a] = keyed[a].second;
+    cells_ = CellTable(keys);
   }
 
   std::int64_t ix(double x) const { return std::int64_t(std::floor(x / cell_)); }
@@ -60,9 +104,8 @@ public:
 
   /// Calls f(index) for the points of cell (i, j).
   template <class F> void visit(std::int64_t i, std::int64_t j, F&& f) const {
-    auto it = ranges_.find(cell_key(i, j));
-    if (it == ranges_.end()) return;
-    for (std::uint32_t a = it->second.first; a < it->second.second; ++a) f(order_[a]);
+    const auto [begin, end] = cells_.find(cell_key(i, j));
+    for (std::uint32_t a = begin; a < end; ++a) f(order_[a]);
   }
 
   /// Distance from point k to its nearest other point at a positive distance, searching
@@ -104,7 +147,7 @@ private:
   const Points& points_;
   double cell_;
   std::vector<std::uint32_t> order_;
-  std::unordered_map<std::int64_t, std::pair<std::uint32_t, std::uint32_t>> ranges_;
+  CellTable cells_{{}};
 };
 
 /// Bounding box of a subset cut at the given quantiles (robust to a few far outliers).
@@ -737,14 +780,13 @@ public:
       }
     }
     std::sort(keyed.begin(), keyed.end());
+    std::vector<std::int64_t> keys(keyed.size());
     ids_.resize(keyed.size());
-    for (std::size_t a = 0; a < keyed.size();) {
-      std::size_t b = a;
-      while (b < keyed.size() && keyed[b].first == keyed[a].first) ++b;
-      ranges_.emplace(keyed[a].first, std::make_pair(a, b));
-      a = b;
+    for (std::size_t a = 0; a < keyed.size(); ++a) {
+      keys[a] = keyed[a].first;
+      ids_[a] = keyed[a].second;
     }
-    for (std::size_t a = 0; a < keyed.size(); ++a) ids_[a] = keyed[a].second;
+    cells_ = CellTable(keys);
   }
 
   double length(int loop) const { return cum_[loop].back(); }
@@ -756,9 +798,8 @@ public:
     const std::int64_t ci = ix(p.x()), cj = ix(p.y());
     for (std::int64_t j = cj - 1; j <= cj + 1; ++j)
       for (std::int64_t i = ci - 1; i <= ci + 1; ++i) {
-        auto it = ranges_.find(cell_key(i, j));
-        if (it == ranges_.end()) continue;
-        for (std::size_t a = it->second.first; a < it->second.second; ++a) {
+        const auto [begin, end] = cells_.find(cell_key(i, j));
+        for (std::size_t a = begin; a < end; ++a) {
           const int l = int(ids_[a] >> 32);
           const std::size_t k = std::size_t(ids_[a] & 0xffffffffu);
           const Points& q = *loops_[l];
@@ -786,7 +827,7 @@ private:
   double cell_;
   std::vector<std::vector<double>> cum_;
   std::vector<std::uint64_t> ids_;
-  std::unordered_map<std::int64_t, std::pair<std::size_t, std::size_t>> ranges_;
+  CellTable cells_{{}};
 };
 
 /// Outward normal at p from the gradient of the component's filled image blurred by a
