@@ -276,19 +276,30 @@ void distance_1d(const float* f, int n, float big, int base, float* d, int* arg,
   }
 }
 
+/// Raster-sized buffers handed from step to step of one pass: each fresh page costs a page
+/// fault (the kernel zeroes it), more than most steps' own work on it.
+struct Scratch {
+  std::vector<float> f;
+  std::vector<int> ints;
+  std::vector<std::uint8_t> bytes;
+};
+
 /// Exact squared Euclidean distance (in cells^2) of every cell to the nearest seed cell,
 /// clamped to `cap`, and that seed's cell index in `nearest` (-1 when there is no seed).
 /// `seed` is 1 at seeds. `base` is added to the cell indices in the parabola arithmetic
 /// (see distance_1d). Between equidistant seeds the one of lower index wins, as in
 /// the envelope of the columns.
+/// Uses scratch.f and scratch.ints (not scratch.bytes, which may hold `seed`).
 std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest) {
+                                    std::vector<int>& nearest, Scratch& scratch) {
   const float big = 1e20f;
   const int w = r.w, h = r.h;
   // Columns: with 0/1 seeds the 1D transform is the distance to the nearest seed above or
   // below, found by one sweep each way over whole rows (cache friendly).
-  std::vector<float> f(r.size());
-  std::vector<int> row_of(r.size());
+  std::vector<float>& f = scratch.f;
+  std::vector<int>& row_of = scratch.ints;
+  f.resize(r.size());  // both written in full by the sweeps below
+  row_of.resize(r.size());
   {
     std::vector<int> last(w, -1);
     for (int j = 0; j < h; ++j) {
@@ -341,10 +352,12 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
 /// reaches it through cells with d2 >= t (the bottleneck of the widest path): the cell is
 /// outside the band of radius r exactly when b2 > r^2. Bucket queue over the (clamped,
 /// integer) keys: O(cells).
-std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap) {
+std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next) {
   std::vector<int> b2(r.size(), -1);
-  // Each bucket is a stack threaded through `next` (a cell enters one bucket, once).
-  std::vector<std::int32_t> head(std::size_t(cap) + 1, -1), next(r.size());
+  // Each bucket is a stack threaded through `next` (a cell enters one bucket, once; its
+  // entry is written before it is read).
+  std::vector<std::int32_t> head(std::size_t(cap) + 1, -1);
+  next.resize(r.size());
   const auto push = [&](std::size_t c) {
     next[c] = head[b2[c]];
     head[b2[c]] = std::int32_t(c);
@@ -585,6 +598,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   r.cell = h;
   std::vector<Vec> mean;
   std::vector<int> slot, nearest_seed, d2, b2;
+  Scratch scratch;
   int rc = 0;
   const auto substantial = [](long long cells) { return cells >= 16; };
   for (;;) {
@@ -601,7 +615,8 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
 
     // Seeds: cells holding points; each keeps the mean of its points so that distances to
     // the points are known to a small fraction of a cell (the raster alone gives half a cell).
-    std::vector<std::uint8_t> seed(r.size(), 0);
+    std::vector<std::uint8_t>& seed = scratch.bytes;
+    seed.assign(r.size(), 0);
     slot.assign(r.size(), -1);
     mean.clear();
     std::vector<int> count;
@@ -621,8 +636,8 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     }
     for (std::size_t m = 0; m < mean.size(); ++m) mean[m] /= count[m];
     const int cap = (rmax + 1) * (rmax + 1);
-    d2 = distance_transform(r, seed, cap, rmax + 2 - margin, nearest_seed);
-    b2 = bottleneck(r, d2, cap);
+    d2 = distance_transform(r, seed, cap, rmax + 2 - margin, nearest_seed, scratch);
+    b2 = bottleneck(r, d2, cap, scratch.ints);
 
     // A cell is enclosed at radius r when b2 <= r^2 < d2: inside the band of radius r but
     // not on it. Cells enclosed at some radius (b2 < d2) are the interior of closed
@@ -654,12 +669,12 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   const int rr = pass.radius * pass.radius;
 
   // Erode the fill back: keep the cells farther than r from the outside.
-  std::vector<std::uint8_t> outside(r.size());
+  std::vector<std::uint8_t>& outside = scratch.bytes;
   for (std::size_t c = 0; c < r.size(); ++c) outside[c] = b2[c] > rr;
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
   const int cap_out = int(std::min(far, double(1 << 30)));
   std::vector<int> nearest_out;
-  const std::vector<int> out2 = distance_transform(r, outside, cap_out, rmax + 2 - margin, nearest_out);
+  const std::vector<int> out2 = distance_transform(r, outside, cap_out, rmax + 2 - margin, nearest_out, scratch);
 
   // The closing's complement is about the union of the empty discs centred on outside
   // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside
@@ -672,7 +687,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     const Vec c(double(y % r.w), double(y / r.w));
     return float((c - mean[slot[s]]).norm());
   };
-  pass.g.assign(r.size(), 0.f);
+  pass.g = std::move(scratch.f);  // every cell written below
   for (std::size_t c = 0; c < r.size(); ++c) {
     const int y = nearest_out[c];
     pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
@@ -681,8 +696,9 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   // 8-connected components of the fill (out2 > r^2), labelled in raster order of their
   // first cell. `open` marks fill cells not labelled yet (one byte per cell: cheaper to
   // test than out2 and label).
-  pass.label.assign(r.size(), 0);
-  std::vector<std::uint8_t> open(r.size());
+  pass.label = std::move(scratch.ints);
+  std::fill(pass.label.begin(), pass.label.end(), 0);
+  std::vector<std::uint8_t>& open = scratch.bytes;
   for (std::size_t c = 0; c < r.size(); ++c) open[c] = out2[c] > rr;
   const std::ptrdiff_t W = r.w;
   const std::ptrdiff_t around[8] = {-W - 1, -W, -W + 1, -1, 1, W - 1, W, W + 1};
