@@ -330,7 +330,7 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   std::vector<double> z(n + 2);
   std::vector<float> out(n);
   std::vector<int> d(r.size());
-  nearest.assign(r.size(), -1);
+  nearest.resize(r.size());  // every cell written below
   for (int j = 0; j < h; ++j) {
     const float* row = f.data() + std::size_t(j) * w;
     distance_1d(row, w, big, base, out.data(), arg.data(), v, z);
@@ -339,10 +339,8 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
       // Squared distances are integers (exact in float below 2^24, and every float above
       // 2^23 is an integer): rounding is a truncation of x + 0.5.
       d[c] = out[i] >= float(cap) ? cap : int(out[i] + 0.5f);
-      if (out[i] < 1e19f) {
-        const int si = arg[i];
-        nearest[c] = row_of[std::size_t(j) * w + si] * w + si;
-      }
+      const int si = arg[i];
+      nearest[c] = out[i] < 1e19f ? row_of[std::size_t(j) * w + si] * w + si : -1;
     }
   }
   return d;
@@ -648,10 +646,13 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     // when the band pinches the profile elsewhere first.
     std::vector<long long> closing_at(rmax + 2, 0);
     long long ever = 0;
+    // b2 and d2 lie in [0, cap]: their ceil_sqrt from a table (one per interior cell).
+    std::vector<int> root(std::size_t(cap) + 1);
+    for (int x = 0; x <= cap; ++x) root[x] = ceil_sqrt(x);
     for (std::size_t c = 0; c < r.size(); ++c) {
       if (b2[c] >= d2[c]) continue;
-      const int a = std::max(1, ceil_sqrt(b2[c]));
-      if (a > rmax || a > ceil_sqrt(d2[c]) - 1) continue;  // never enclosed at an integer radius <= rmax
+      const int a = std::max(1, root[b2[c]]);
+      if (a > rmax || a > root[d2[c]] - 1) continue;  // never enclosed at an integer radius <= rmax
       ++closing_at[a];
       ++ever;
     }
@@ -863,17 +864,19 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
     gx[a] = std::exp(-tx * tx * inv);
     gy[a] = std::exp(-ty * ty * inv);
   }
+  // The window clipped to the raster (cells off it are left out).
+  const int a0 = std::max(0, -i0), a1 = std::min(n, r.w - i0);
+  const int b0 = std::max(0, -j0), b1 = std::min(n, r.h - j0);
   Vec g(0, 0);
-  for (int b = 0; b < n; ++b) {
+  for (int b = b0; b < b1; ++b) {
     const int j = j0 + b;
-    if (j < 0 || j >= r.h) continue;
-    for (int a = 0; a < n; ++a) {
+    const int* label = pass.label.data() + std::size_t(j) * r.w;
+    const float* dist = pass.g.data() + std::size_t(j) * r.w;
+    for (int a = a0; a < a1; ++a) {
       const int i = i0 + a;
-      if (i < 0 || i >= r.w) continue;
-      const std::size_t cell = std::size_t(j) * r.w + i;
-      const int l = pass.label[cell];
+      const int l = label[i];
       if (l != label_id && l != 0) continue;
-      const double cover = std::clamp(0.5 + double(pass.g[cell]), 0.0, 1.0);
+      const double cover = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
       if (cover == 0) continue;
       const double wgt = cover * gx[a] * gy[b];
       g += wgt * Vec(c.x() - i, c.y() - j);
