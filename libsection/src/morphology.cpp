@@ -1101,6 +1101,11 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
   result.cell = h;
   std::vector<Pass> passes;
   std::vector<Found> found;
+  // The points of the last grid built in the loop below (ascending, as `subset`) and their
+  // feet on it: that grid is built over `found` as the loop leaves it, so they are reused
+  // when sorting by area leaves that order as it is.
+  std::vector<std::size_t> footed;
+  std::vector<Foot> feet;
   while (subset.size() >= min_points && int(found.size()) < opt.max_loops) {
     Pass pass;
     if (!run_pass(points, subset, h, opt, pass)) break;
@@ -1123,9 +1128,13 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
     std::vector<const Points*> bounds;
     for (const Found& f : found) bounds.push_back(&f.boundary);
     const SegmentGrid segs(bounds, outlier);
+    footed = subset;
+    feet.clear();
     std::vector<std::size_t> left;
-    for (std::size_t k : subset)
-      if (segs.nearest(points[k]).loop < 0) left.push_back(k);
+    for (std::size_t k : subset) {
+      feet.push_back(segs.nearest(points[k]));
+      if (feet.back().loop < 0) left.push_back(k);
+    }
     if (left.size() == subset.size()) break;
     subset.swap(left);
   }
@@ -1136,7 +1145,11 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
                 " mm); the section may be open or too sparse: try a larger cell or max_dilation");
 
   // Largest area first.
-  std::stable_sort(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.area > b.area; });
+  const auto larger = [](const Found& a, const Found& b) { return a.area > b.area; };
+  if (!std::is_sorted(found.begin(), found.end(), larger)) {
+    std::stable_sort(found.begin(), found.end(), larger);
+    footed.clear();
+  }
   std::vector<const Points*> bounds;
   for (const Found& f : found) bounds.push_back(&f.boundary);
   const SegmentGrid segs(bounds, outlier);
@@ -1145,8 +1158,9 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
   std::vector<std::vector<std::pair<double, std::size_t>>> members(found.size());
   std::vector<Vec> fallback(points.size());
   std::size_t dropped = 0;
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    const Foot foot = segs.nearest(points[k]);
+  for (std::size_t k = 0, next = 0; k < points.size(); ++k) {
+    const bool known = next < footed.size() && footed[next] == k;
+    const Foot foot = known ? feet[next++] : segs.nearest(points[k]);
     if (foot.loop < 0) {
       ++dropped;
       continue;
