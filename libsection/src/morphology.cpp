@@ -73,9 +73,9 @@ private:
     std::int64_t key = 0;
     std::uint32_t begin = 0, end = 0;  // end 0: a free slot (a cell's range is never empty)
   };
-  // Fibonacci hashing: the top bits of key * 2^64 / phi.
+  // Fibonacci hashing: the top shift_ (>= 4) bits of key * 2^64 / phi.
   std::size_t home(std::int64_t key) const {
-    return shift_ == 0 ? 0 : std::size_t((std::uint64_t(key) * 0x9E3779B97F4A7C15ULL) >> (64 - shift_));
+    return std::size_t((std::uint64_t(key) * 0x9E3779B97F4A7C15ULL) >> (64 - shift_));
   }
   std::vector<Slot> slots_;
   std::size_t mask_ = 0;
