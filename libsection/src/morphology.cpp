@@ -8,10 +8,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <queue>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 namespace section {
@@ -35,6 +35,53 @@ std::int64_t cell_key(std::int64_t i, std::int64_t j) {
   return static_cast<std::int64_t>((static_cast<std::uint64_t>(i) << 32) ^ (static_cast<std::uint64_t>(j) & 0xffffffffULL));
 }
 
+/// The [begin, end) ranges of the occupied cells of a grid in a list sorted by cell key:
+/// an open-addressing table, as grid queries look up several cells each (cheaper than
+/// std::unordered_map's modulo and node chase).
+class CellTable {
+public:
+  /// `keys` sorted; each run of equal keys is one cell.
+  explicit CellTable(const std::vector<std::int64_t>& keys) {
+    std::size_t cells = 0;
+    for (std::size_t a = 0; a < keys.size(); ++a) cells += a == 0 || keys[a] != keys[a - 1];
+    std::size_t size = 16;
+    while (size < 2 * cells) size *= 2;
+    mask_ = size - 1;
+    while ((std::size_t(1) << shift_) < size) ++shift_;
+    slots_.assign(size, Slot{});
+    for (std::size_t a = 0; a < keys.size();) {
+      std::size_t b = a;
+      while (b < keys.size() && keys[b] == keys[a]) ++b;
+      std::size_t i = home(keys[a]);
+      while (slots_[i].end != 0) i = (i + 1) & mask_;
+      slots_[i] = Slot{keys[a], std::uint32_t(a), std::uint32_t(b)};
+      a = b;
+    }
+  }
+
+  /// The range of cell `key`, empty when the cell holds nothing.
+  std::pair<std::uint32_t, std::uint32_t> find(std::int64_t key) const {
+    for (std::size_t i = home(key);; i = (i + 1) & mask_) {
+      const Slot& s = slots_[i];
+      if (s.end == 0) return {0, 0};
+      if (s.key == key) return {s.begin, s.end};
+    }
+  }
+
+private:
+  struct Slot {
+    std::int64_t key = 0;
+    std::uint32_t begin = 0, end = 0;  // end 0: a free slot (a cell's range is never empty)
+  };
+  // Fibonacci hashing: the top shift_ (>= 4) bits of key * 2^64 / phi.
+  std::size_t home(std::int64_t key) const {
+    return std::size_t((std::uint64_t(key) * 0x9E3779B97F4A7C15ULL) >> (64 - shift_));
+  }
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0;
+  int shift_ = 0;
+};
+
 class PointGrid {
 public:
   PointGrid(const Points& points, const std::vector<std::size_t>& subset, double cell)
@@ -43,15 +90,13 @@ public:
     keyed.reserve(subset.size());
     for (std::size_t k : subset) keyed.emplace_back(key_of(points[k]), std::uint32_t(k));
     std::sort(keyed.begin(), keyed.end());
+    std::vector<std::int64_t> keys(keyed.size());
     order_.resize(keyed.size());
-    ranges_.reserve(keyed.size() / 2 + 1);
-    for (std::size_t a = 0; a < keyed.size();) {
-      std::size_t b = a;
-      while (b < keyed.size() && keyed[b].first == keyed[a].first) ++b;
-      ranges_.emplace(keyed[a].first, std::make_pair(std::uint32_t(a), std::uint32_t(b)));
-      a = b;
+    for (std::size_t a = 0; a < keyed.size(); ++a) {
+      keys[a] = keyed[a].first;
+      order_[a] = keyed[a].second;
     }
-    for (std::size_t a = 0; a < keyed.size(); ++a) order_[a] = keyed[a].second;
+    cells_ = CellTable(keys);
   }
 
   std::int64_t ix(double x) const { return std::int64_t(std::floor(x / cell_)); }
@@ -59,9 +104,8 @@ public:
 
   /// Calls f(index) for the points of cell (i, j).
   template <class F> void visit(std::int64_t i, std::int64_t j, F&& f) const {
-    auto it = ranges_.find(cell_key(i, j));
-    if (it == ranges_.end()) return;
-    for (std::uint32_t a = it->second.first; a < it->second.second; ++a) f(order_[a]);
+    const auto [begin, end] = cells_.find(cell_key(i, j));
+    for (std::uint32_t a = begin; a < end; ++a) f(order_[a]);
   }
 
   /// Distance from point k to its nearest other point at a positive distance, searching
@@ -103,7 +147,7 @@ private:
   const Points& points_;
   double cell_;
   std::vector<std::uint32_t> order_;
-  std::unordered_map<std::int64_t, std::pair<std::uint32_t, std::uint32_t>> ranges_;
+  CellTable cells_{{}};
 };
 
 /// Bounding box of a subset cut at the given quantiles (robust to a few far outliers).
@@ -166,7 +210,7 @@ struct Raster {
 /// they never win, and the envelope of the others is the same. Positions are q + base, so
 /// that the rounding of the parabola intersections, which decides between equidistant
 /// seeds, does not depend on where the raster starts (its margin).
-void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
+void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
                  std::vector<double>& z) {
   const double inf = std::numeric_limits<double>::infinity();
   int k = -1;
@@ -208,19 +252,54 @@ void distance_1d(const float* f, int n, float big, int base, float* d, int* arg,
   }
 }
 
+/// envelope_1d of f split at its zero samples (seeds in the sample's own cell). A zero
+/// sample is its own nearest, and no parabola on one side of it wins on the other (their
+/// intersections with it lie at least half a cell away, far beyond rounding), so the
+/// envelope of a run between two zeros, zeros included, is the whole row's there, with the
+/// same arithmetic. Runs of seeds then cost nothing: most of a raster is outside.
+void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
+                 std::vector<double>& z) {
+  for (int a = 0; a < n;) {
+    if (f[a] == 0) {
+      d[a] = 0;
+      arg[a] = a;
+      ++a;
+      continue;
+    }
+    int b = a + 1;
+    while (b < n && f[b] != 0) ++b;
+    const int lo = a > 0 ? a - 1 : 0, hi = b < n ? b + 1 : n;
+    envelope_1d(f + lo, hi - lo, big, base + lo, d + lo, arg + lo, v, z);
+    for (int q = lo; q < hi; ++q)
+      if (arg[q] >= 0) arg[q] += lo;
+    a = b;
+  }
+}
+
+/// Raster-sized buffers handed from step to step of one pass: each fresh page costs a page
+/// fault (the kernel zeroes it), more than most steps' own work on it.
+struct Scratch {
+  std::vector<float> f;
+  std::vector<int> ints;
+  std::vector<std::uint8_t> bytes;
+};
+
 /// Exact squared Euclidean distance (in cells^2) of every cell to the nearest seed cell,
 /// clamped to `cap`, and that seed's cell index in `nearest` (-1 when there is no seed).
 /// `seed` is 1 at seeds. `base` is added to the cell indices in the parabola arithmetic
 /// (see distance_1d). Between equidistant seeds the one of lower index wins, as in
 /// the envelope of the columns.
+/// Uses scratch.f and scratch.ints (not scratch.bytes, which may hold `seed`).
 std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest) {
+                                    std::vector<int>& nearest, Scratch& scratch) {
   const float big = 1e20f;
   const int w = r.w, h = r.h;
   // Columns: with 0/1 seeds the 1D transform is the distance to the nearest seed above or
   // below, found by one sweep each way over whole rows (cache friendly).
-  std::vector<float> f(r.size());
-  std::vector<int> row_of(r.size());
+  std::vector<float>& f = scratch.f;
+  std::vector<int>& row_of = scratch.ints;
+  f.resize(r.size());  // both written in full by the sweeps below
+  row_of.resize(r.size());
   {
     std::vector<int> last(w, -1);
     for (int j = 0; j < h; ++j) {
@@ -251,7 +330,7 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   std::vector<double> z(n + 2);
   std::vector<float> out(n);
   std::vector<int> d(r.size());
-  nearest.assign(r.size(), -1);
+  nearest.resize(r.size());  // every cell written below
   for (int j = 0; j < h; ++j) {
     const float* row = f.data() + std::size_t(j) * w;
     distance_1d(row, w, big, base, out.data(), arg.data(), v, z);
@@ -260,10 +339,8 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
       // Squared distances are integers (exact in float below 2^24, and every float above
       // 2^23 is an integer): rounding is a truncation of x + 0.5.
       d[c] = out[i] >= float(cap) ? cap : int(out[i] + 0.5f);
-      if (out[i] < 1e19f) {
-        const int si = arg[i];
-        nearest[c] = row_of[std::size_t(j) * w + si] * w + si;
-      }
+      const int si = arg[i];
+      nearest[c] = out[i] < 1e19f ? row_of[std::size_t(j) * w + si] * w + si : -1;
     }
   }
   return d;
@@ -273,10 +350,12 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
 /// reaches it through cells with d2 >= t (the bottleneck of the widest path): the cell is
 /// outside the band of radius r exactly when b2 > r^2. Bucket queue over the (clamped,
 /// integer) keys: O(cells).
-std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap) {
+std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next) {
   std::vector<int> b2(r.size(), -1);
-  // Each bucket is a stack threaded through `next` (a cell enters one bucket, once).
-  std::vector<std::int32_t> head(std::size_t(cap) + 1, -1), next(r.size());
+  // Each bucket is a stack threaded through `next` (a cell enters one bucket, once; its
+  // entry is written before it is read).
+  std::vector<std::int32_t> head(std::size_t(cap) + 1, -1);
+  next.resize(r.size());
   const auto push = [&](std::size_t c) {
     next[c] = head[b2[c]];
     head[b2[c]] = std::int32_t(c);
@@ -517,6 +596,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   r.cell = h;
   std::vector<Vec> mean;
   std::vector<int> slot, nearest_seed, d2, b2;
+  Scratch scratch;
   int rc = 0;
   const auto substantial = [](long long cells) { return cells >= 16; };
   for (;;) {
@@ -533,7 +613,8 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
 
     // Seeds: cells holding points; each keeps the mean of its points so that distances to
     // the points are known to a small fraction of a cell (the raster alone gives half a cell).
-    std::vector<std::uint8_t> seed(r.size(), 0);
+    std::vector<std::uint8_t>& seed = scratch.bytes;
+    seed.assign(r.size(), 0);
     slot.assign(r.size(), -1);
     mean.clear();
     std::vector<int> count;
@@ -553,8 +634,8 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     }
     for (std::size_t m = 0; m < mean.size(); ++m) mean[m] /= count[m];
     const int cap = (rmax + 1) * (rmax + 1);
-    d2 = distance_transform(r, seed, cap, rmax + 2 - margin, nearest_seed);
-    b2 = bottleneck(r, d2, cap);
+    d2 = distance_transform(r, seed, cap, rmax + 2 - margin, nearest_seed, scratch);
+    b2 = bottleneck(r, d2, cap, scratch.ints);
 
     // A cell is enclosed at radius r when b2 <= r^2 < d2: inside the band of radius r but
     // not on it. Cells enclosed at some radius (b2 < d2) are the interior of closed
@@ -565,10 +646,13 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     // when the band pinches the profile elsewhere first.
     std::vector<long long> closing_at(rmax + 2, 0);
     long long ever = 0;
+    // b2 and d2 lie in [0, cap]: their ceil_sqrt from a table (one per interior cell).
+    std::vector<int> root(std::size_t(cap) + 1);
+    for (int x = 0; x <= cap; ++x) root[x] = ceil_sqrt(x);
     for (std::size_t c = 0; c < r.size(); ++c) {
       if (b2[c] >= d2[c]) continue;
-      const int a = std::max(1, ceil_sqrt(b2[c]));
-      if (a > rmax || a > ceil_sqrt(d2[c]) - 1) continue;  // never enclosed at an integer radius <= rmax
+      const int a = std::max(1, root[b2[c]]);
+      if (a > rmax || a > root[d2[c]] - 1) continue;  // never enclosed at an integer radius <= rmax
       ++closing_at[a];
       ++ever;
     }
@@ -586,12 +670,12 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   const int rr = pass.radius * pass.radius;
 
   // Erode the fill back: keep the cells farther than r from the outside.
-  std::vector<std::uint8_t> outside(r.size());
+  std::vector<std::uint8_t>& outside = scratch.bytes;
   for (std::size_t c = 0; c < r.size(); ++c) outside[c] = b2[c] > rr;
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
   const int cap_out = int(std::min(far, double(1 << 30)));
   std::vector<int> nearest_out;
-  const std::vector<int> out2 = distance_transform(r, outside, cap_out, rmax + 2 - margin, nearest_out);
+  const std::vector<int> out2 = distance_transform(r, outside, cap_out, rmax + 2 - margin, nearest_out, scratch);
 
   // The closing's complement is about the union of the empty discs centred on outside
   // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside
@@ -604,7 +688,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     const Vec c(double(y % r.w), double(y / r.w));
     return float((c - mean[slot[s]]).norm());
   };
-  pass.g.assign(r.size(), 0.f);
+  pass.g = std::move(scratch.f);  // every cell written below
   for (std::size_t c = 0; c < r.size(); ++c) {
     const int y = nearest_out[c];
     pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
@@ -613,8 +697,9 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   // 8-connected components of the fill (out2 > r^2), labelled in raster order of their
   // first cell. `open` marks fill cells not labelled yet (one byte per cell: cheaper to
   // test than out2 and label).
-  pass.label.assign(r.size(), 0);
-  std::vector<std::uint8_t> open(r.size());
+  pass.label = std::move(scratch.ints);
+  std::fill(pass.label.begin(), pass.label.end(), 0);
+  std::vector<std::uint8_t>& open = scratch.bytes;
   for (std::size_t c = 0; c < r.size(); ++c) open[c] = out2[c] > rr;
   const std::ptrdiff_t W = r.w;
   const std::ptrdiff_t around[8] = {-W - 1, -W, -W + 1, -1, 1, W - 1, W, W + 1};
@@ -712,14 +797,13 @@ public:
       }
     }
     std::sort(keyed.begin(), keyed.end());
+    std::vector<std::int64_t> keys(keyed.size());
     ids_.resize(keyed.size());
-    for (std::size_t a = 0; a < keyed.size();) {
-      std::size_t b = a;
-      while (b < keyed.size() && keyed[b].first == keyed[a].first) ++b;
-      ranges_.emplace(keyed[a].first, std::make_pair(a, b));
-      a = b;
+    for (std::size_t a = 0; a < keyed.size(); ++a) {
+      keys[a] = keyed[a].first;
+      ids_[a] = keyed[a].second;
     }
-    for (std::size_t a = 0; a < keyed.size(); ++a) ids_[a] = keyed[a].second;
+    cells_ = CellTable(keys);
   }
 
   double length(int loop) const { return cum_[loop].back(); }
@@ -731,9 +815,8 @@ public:
     const std::int64_t ci = ix(p.x()), cj = ix(p.y());
     for (std::int64_t j = cj - 1; j <= cj + 1; ++j)
       for (std::int64_t i = ci - 1; i <= ci + 1; ++i) {
-        auto it = ranges_.find(cell_key(i, j));
-        if (it == ranges_.end()) continue;
-        for (std::size_t a = it->second.first; a < it->second.second; ++a) {
+        const auto [begin, end] = cells_.find(cell_key(i, j));
+        for (std::size_t a = begin; a < end; ++a) {
           const int l = int(ids_[a] >> 32);
           const std::size_t k = std::size_t(ids_[a] & 0xffffffffu);
           const Points& q = *loops_[l];
@@ -761,7 +844,7 @@ private:
   double cell_;
   std::vector<std::vector<double>> cum_;
   std::vector<std::uint64_t> ids_;
-  std::unordered_map<std::int64_t, std::pair<std::size_t, std::size_t>> ranges_;
+  CellTable cells_{{}};
 };
 
 /// Outward normal at p from the gradient of the component's filled image blurred by a
@@ -781,22 +864,28 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
     gx[a] = std::exp(-tx * tx * inv);
     gy[a] = std::exp(-ty * ty * inv);
   }
-  Vec g(0, 0);
-  for (int b = 0; b < n; ++b) {
+  // The window clipped to the raster (cells off it are left out).
+  const int a0 = std::max(0, -i0), a1 = std::min(n, r.w - i0);
+  const int b0 = std::max(0, -j0), b1 = std::min(n, r.h - j0);
+  // Summed per coordinate: a Vec built per cell went through the stack, and its packed
+  // reload waited on the two stores (the same sums, several times slower).
+  double gx_sum = 0, gy_sum = 0;
+  for (int b = b0; b < b1; ++b) {
     const int j = j0 + b;
-    if (j < 0 || j >= r.h) continue;
-    for (int a = 0; a < n; ++a) {
+    const int* label = pass.label.data() + std::size_t(j) * r.w;
+    const float* dist = pass.g.data() + std::size_t(j) * r.w;
+    for (int a = a0; a < a1; ++a) {
       const int i = i0 + a;
-      if (i < 0 || i >= r.w) continue;
-      const std::size_t cell = std::size_t(j) * r.w + i;
-      const int l = pass.label[cell];
+      const int l = label[i];
       if (l != label_id && l != 0) continue;
-      const double cover = std::clamp(0.5 + double(pass.g[cell]), 0.0, 1.0);
+      const double cover = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
       if (cover == 0) continue;
       const double wgt = cover * gx[a] * gy[b];
-      g += wgt * Vec(c.x() - i, c.y() - j);
+      gx_sum += wgt * (c.x() - i);
+      gy_sum += wgt * (c.y() - j);
     }
   }
+  const Vec g(gx_sum, gy_sum);
   const double l = g.norm();
   return l > 1e-12 ? Vec(g / l) : Vec(0, 0);
 }
@@ -826,8 +915,10 @@ void skeleton_of(const Pass& pass, const Component& comp, MorphologyResult& resu
   for (std::size_t c = 0; c < img.size(); ++c)
     if (img[c]) cells.push_back(std::uint32_t(c));
   if (cells.empty()) return;
-  std::vector<double> dist(img.size());
-  std::vector<std::int64_t> prev(img.size());
+  // Read and written at skeleton cells only (set by each search): left uninitialised, the
+  // pages of the other cells are never touched.
+  const std::unique_ptr<double[]> dist(new double[img.size()]);
+  const std::unique_ptr<std::int64_t[]> prev(new std::int64_t[img.size()]);
   const auto search = [&](std::uint32_t from) {
     for (std::uint32_t c : cells) {
       dist[c] = std::numeric_limits<double>::infinity();
@@ -1010,6 +1101,11 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
   result.cell = h;
   std::vector<Pass> passes;
   std::vector<Found> found;
+  // The points of the last grid built in the loop below (ascending, as `subset`) and their
+  // feet on it: that grid is built over `found` as the loop leaves it, so they are reused
+  // when sorting by area leaves that order as it is.
+  std::vector<std::size_t> footed;
+  std::vector<Foot> feet;
   while (subset.size() >= min_points && int(found.size()) < opt.max_loops) {
     Pass pass;
     if (!run_pass(points, subset, h, opt, pass)) break;
@@ -1032,9 +1128,13 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
     std::vector<const Points*> bounds;
     for (const Found& f : found) bounds.push_back(&f.boundary);
     const SegmentGrid segs(bounds, outlier);
+    footed = subset;
+    feet.clear();
     std::vector<std::size_t> left;
-    for (std::size_t k : subset)
-      if (segs.nearest(points[k]).loop < 0) left.push_back(k);
+    for (std::size_t k : subset) {
+      feet.push_back(segs.nearest(points[k]));
+      if (feet.back().loop < 0) left.push_back(k);
+    }
     if (left.size() == subset.size()) break;
     subset.swap(left);
   }
@@ -1045,7 +1145,11 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
                 " mm); the section may be open or too sparse: try a larger cell or max_dilation");
 
   // Largest area first.
-  std::stable_sort(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.area > b.area; });
+  const auto larger = [](const Found& a, const Found& b) { return a.area > b.area; };
+  if (!std::is_sorted(found.begin(), found.end(), larger)) {
+    std::stable_sort(found.begin(), found.end(), larger);
+    footed.clear();
+  }
   std::vector<const Points*> bounds;
   for (const Found& f : found) bounds.push_back(&f.boundary);
   const SegmentGrid segs(bounds, outlier);
@@ -1054,8 +1158,9 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points,
   std::vector<std::vector<std::pair<double, std::size_t>>> members(found.size());
   std::vector<Vec> fallback(points.size());
   std::size_t dropped = 0;
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    const Foot foot = segs.nearest(points[k]);
+  for (std::size_t k = 0, next = 0; k < points.size(); ++k) {
+    const bool known = next < footed.size() && footed[next] == k;
+    const Foot foot = known ? feet[next++] : segs.nearest(points[k]);
     if (foot.loop < 0) {
       ++dropped;
       continue;
