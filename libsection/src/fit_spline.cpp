@@ -53,6 +53,39 @@ struct Feet {
   std::vector<std::size_t> order;       // point indices sorted by t
 };
 
+// Sorts `order` by t[order[i]], fast when it is nearly sorted already (the feet on the
+// previous curve: a few points moved a little, a few crossed the start of the period):
+// ascending runs merged pairwise, O(n log runs). Returns false, `order` sorted or not, if
+// two parameters are equal (or NaN), as the result would then depend on the method.
+bool sort_runs(std::vector<std::size_t>& order, const std::vector<double>& t) {
+  const std::size_t n = order.size();
+  std::vector<std::size_t> starts{0};
+  for (std::size_t i = 1; i < n; ++i)
+    if (!(t[order[i - 1]] < t[order[i]])) {
+      if (!(t[order[i]] < t[order[i - 1]])) return false;
+      starts.push_back(i);
+    }
+  starts.push_back(n);
+  if (starts.size() == 2) return true;
+  auto before = [&](std::size_t x, std::size_t y) { return t[x] < t[y]; };
+  std::vector<std::size_t> merged(n);
+  while (starts.size() > 2) {
+    std::vector<std::size_t> next;
+    for (std::size_t r = 0; r + 1 < starts.size(); r += 2) {
+      next.push_back(starts[r]);
+      const std::size_t mid = starts[r + 1], end = r + 2 < starts.size() ? starts[r + 2] : mid;
+      std::merge(order.begin() + starts[r], order.begin() + mid, order.begin() + mid, order.begin() + end,
+                 merged.begin() + starts[r], before);
+    }
+    next.push_back(n);
+    order.swap(merged);
+    starts.swap(next);
+  }
+  for (std::size_t i = 1; i < n; ++i)
+    if (!(t[order[i - 1]] < t[order[i]])) return false;
+  return true;
+}
+
 // With `previous` (the feet on a curve that moved a little since), each foot is tracked
 // by Newton from its old parameter; a point whose Newton leaves the old foot's
 // neighbourhood or meets a non-convex stretch gets the full search.
@@ -114,17 +147,27 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
     }
   }
   auto before = [&](std::size_t x, std::size_t y) { return f.t[x] < f.t[y]; };
+  // Points start in the previous order or in input order, both nearly sorted. Two feet on
+  // one parameter keep the order between them that the sorts below give.
+  auto start = [&] {
+    if (previous) {
+      f.order = previous->order;
+    } else {
+      f.order.resize(q.size());
+      std::iota(f.order.begin(), f.order.end(), 0);
+    }
+  };
+  start();
+  if (sort_runs(f.order, f.t)) return f;
+  start();
   if (previous) {
     // The previous order is nearly right: insertion sort, unless it moves too much.
-    f.order = previous->order;
     std::size_t moves = 0;
     for (std::size_t i = 1; i < f.order.size() && moves <= 8 * f.order.size(); ++i)
       for (std::size_t j = i; j > 0 && before(f.order[j], f.order[j - 1]); --j, ++moves)
         std::swap(f.order[j], f.order[j - 1]);
     if (moves > 8 * f.order.size()) std::sort(f.order.begin(), f.order.end(), before);
   } else {
-    f.order.resize(q.size());
-    std::iota(f.order.begin(), f.order.end(), 0);
     std::sort(f.order.begin(), f.order.end(), before);
   }
   return f;
