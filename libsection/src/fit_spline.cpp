@@ -99,6 +99,7 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
   const double step = period / (8.0 * static_cast<double>(c.control.size()));
   const double converged = 1e-12 * period;  // parameter step (about a length) that ends Newton
   std::vector<std::size_t> lost;
+  detail::PiecewiseCurve::Local at{0, 0};  // the last span located: consecutive points are close
   for (std::size_t k = 0; k < q.size(); ++k) {
     if (!previous) {
       lost.push_back(k);
@@ -107,7 +108,8 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
     double t = previous->t[k];
     bool ok = false;
     for (int it = 0; it < 8; ++it) {
-      const detail::CurveJet j = pc.jet(t);
+      at = pc.locate(t, at.span);
+      const detail::CurveJet j = pc.jet(at);
       const detail::SquaredDistance g = detail::squared_distance(j, q[k]);
       if (!(g.ddg > 0)) break;
       const double dt = -g.dg / g.ddg;
@@ -129,7 +131,7 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
     const std::vector<double> ts = span_samples(c, 8);
     const std::size_t m = ts.size();
     Points pts(m);
-    for (std::size_t i = 0; i < m; ++i) pts[i] = pc.point(ts[i]);
+    for (std::size_t i = 0; i < m; ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
     const detail::NearestPoints tree(pts);
     Points lost_points(lost.size());
     for (std::size_t l = 0; l < lost.size(); ++l) lost_points[l] = q[lost[l]];
@@ -140,8 +142,8 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
       const double a = i > 0 ? ts[i - 1] : ts[m - 1] - period;
       const double b = i + 1 < m ? ts[i + 1] : c.t_max();
       f.t[k] = wrap(detail::minimise_bracket(
-          [&](double x) { return detail::squared_distance(pc.jet(x), q[k]); }, a, b, ts[i]));
-      const detail::CurveJet j = pc.jet(f.t[k]);
+          [&](double x) { return detail::squared_distance(pc.jet(at = pc.locate(x, at.span)), q[k]); }, a, b, ts[i]));
+      const detail::CurveJet j = pc.jet(at = pc.locate(f.t[k], at.span));
       const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
       f.signed_distance[k] = (q[k] - j.point).dot(normal);
     }
@@ -236,12 +238,13 @@ BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::ve
   double val[8];
   int idx[8];
   double trace = 0;
+  detail::PiecewiseCurve::Local at{0, 0};  // the last span located: consecutive points are close
   for (std::size_t k = 0; k < q.size(); ++k) {
     if (w[k] <= 0) continue;
-    const double t = f.t[k];
-    const int first = pc.basis(t, val);
-    for (int a = 0; a <= p; ++a) idx[a] = (first + a) % n;
-    const detail::CurveJet jet = pc.jet(t);
+    at = pc.locate(f.t[k], at.span);
+    const int first = pc.basis(at, val);
+    for (int a = 0; a <= p; ++a) idx[a] = first + a < n ? first + a : first + a - n;
+    const detail::CurveJet jet = pc.jet(at);
     const Eigen::Vector2d tangent = jet.d1.normalized();
     const Eigen::Vector2d normal(tangent.y(), -tangent.x());
     const double d = f.signed_distance[k];
@@ -283,13 +286,14 @@ BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::ve
       // C''' is constant on a cubic span: the third difference of the basis values at
       // four equally spaced parameters.
       int first = 0;
-      for (int g = 0; g < 4; ++g) first = pc.basis(a + (g + 0.5) * h, v[g]);
+      detail::PiecewiseCurve::Local l[4];
+      for (int g = 0; g < 4; ++g) first = pc.basis(l[g] = pc.locate(a + (g + 0.5) * h, j), v[g]);  // span j unless knots repeat
       for (int b = 0; b <= p; ++b) {
-        idx[b] = (first + b) % n;
+        idx[b] = first + b < n ? first + b : first + b - n;
         jerk[b] = (v[3][b] - 3 * v[2][b] + 3 * v[1][b] - v[0][b]) / (h * h * h);
       }
       for (int g = 0; g < 4; ++g) {
-        const Eigen::Vector2d d1 = pc.jet(a + (g + 0.5) * h).d1;
+        const Eigen::Vector2d d1 = pc.jet(l[g]).d1;
         const double speed = d1.norm();
         if (!(speed > 0)) continue;
         const Eigen::Vector2d normal(d1.y() / speed, -d1.x() / speed);
@@ -361,7 +365,8 @@ BSpline reknot(const BSpline& c, const std::vector<double>& knots) {
   std::vector<double> ts = span_samples(shape, 12);
   Points pts(ts.size());
   const detail::PiecewiseCurve pc(c);
-  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = pc.point(ts[i]);
+  detail::PiecewiseCurve::Local at{0, 0};
+  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
   return fit_control_points(pts, ts, shape, 1e-12);
 }
 
@@ -383,7 +388,8 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   const std::size_t m = ts.size();
   const detail::PiecewiseCurve pc(c);
   std::vector<detail::CurveJet> jets(m);
-  for (std::size_t i = 0; i < m; ++i) jets[i] = pc.jet(ts[i]);
+  detail::PiecewiseCurve::Local at{0, 0};
+  for (std::size_t i = 0; i < m; ++i) jets[i] = pc.jet(at = pc.locate(ts[i], at.span));
   std::vector<double> density(m), ds(m);
   const double tol = std::max(o.tolerance, 0.5 * sigma);
   // Measured points per unit length around each sample, over a window of +-window.
