@@ -180,6 +180,7 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
 double noise_sigma(const Feet& f, const std::vector<double>& w) {
   const std::vector<std::size_t>& order = f.order;
   std::vector<double> diffs;
+  diffs.reserve(order.size());
   std::size_t prev = order.size();
   for (std::size_t i : order) {
     if (w[i] <= 0) continue;
@@ -187,7 +188,7 @@ double noise_sigma(const Feet& f, const std::vector<double>& w) {
       diffs.push_back(std::abs(f.signed_distance[i] - f.signed_distance[prev]));
     prev = i;
   }
-  return 1.4826 * median(diffs) / std::sqrt(2.0);
+  return 1.4826 * median(std::move(diffs)) / std::sqrt(2.0);
 }
 
 // Ignores isolated points far from the curve; runs of far points on one side are kept,
@@ -455,34 +456,38 @@ struct Refinement {
 // `start`: feet on a curve of nearly the same shape and parameter (the curve before a
 // change of knots), tracked instead of searched afresh.
 Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const Feet* start = nullptr) {
-  Refinement best;
-  Feet f = foot_points(c, q, start);
+  const std::vector<double> all(q.size(), 1.0);
   auto weights_for = [&](const Feet& ft) {
     double threshold = o.outlier_distance;
-    if (threshold <= 0)
-      threshold = std::max(6 * noise_sigma(ft, std::vector<double>(q.size(), 1.0)), o.outlier_floor);
+    if (threshold <= 0) threshold = std::max(6 * noise_sigma(ft, all), o.outlier_floor);
     return outlier_weights(ft, q, threshold);
   };
-  std::vector<double> w = weights_for(f);
-  double rms = weighted_rms(f, w);
-  best = {c, f, w, rms, 0};
+  Refinement now;
+  now.feet = foot_points(c, q, start);
+  now.weights = weights_for(now.feet);
+  now.rms = weighted_rms(now.feet, now.weights);
+  now.curve = std::move(c);
+  // The best state is set aside only when a worse one replaces it (states are moved, not copied).
+  Refinement best;
+  bool now_best = true;
+  double best_rms = now.rms;
   int it = 0;
   for (; it < o.max_iterations; ++it) {
-    const BSpline next = sdm_step(c, q, f, w, o.fairness, o.smoothing_length);
-    const Feet nf = foot_points(next, q, &f);
-    const std::vector<double> nw = weights_for(nf);
+    BSpline next = sdm_step(now.curve, q, now.feet, now.weights, o.fairness, o.smoothing_length);
+    Feet nf = foot_points(next, q, &now.feet);
+    std::vector<double> nw = weights_for(nf);
     const double nrms = weighted_rms(nf, nw);
-    c = next;
-    f = nf;
-    w = nw;
-    const double change = std::abs(rms - nrms);
-    rms = nrms;
-    if (nrms <= best.rms) best = {c, f, w, rms, 0};
+    const double change = std::abs(now.rms - nrms);
+    if (now_best) best = std::move(now);
+    now = {std::move(next), std::move(nf), std::move(nw), nrms, 0};
+    now_best = nrms <= best_rms;
+    if (now_best) best_rms = nrms;
     if (change <= o.convergence * nrms + 1e-3 * o.tolerance) {
       ++it;
       break;
     }
   }
+  if (now_best) best = std::move(now);
   best.iterations = it;
   return best;
 }
