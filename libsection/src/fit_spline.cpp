@@ -405,9 +405,13 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   const double window = 0.5 * o.initial_span;
   for (std::size_t i = 0; i < m; ++i) {
     double count = hits[i], length = ds[i];
+    // Samples i + k and i - k, wrapped (without a division per step).
+    std::size_t up = i, down = i;
     for (std::size_t k = 1; k < m / 2 && length < 2 * window; ++k) {
-      count += hits[(i + k) % m] + hits[(i + m - k) % m];
-      length += ds[(i + k) % m] + ds[(i + m - k) % m];
+      up = up + 1 == m ? 0 : up + 1;
+      down = down == 0 ? m - 1 : down - 1;
+      count += hits[up] + hits[down];
+      length += ds[up] + ds[down];
     }
     point_density[i] = length > 0 ? count / length : 0;
   }
@@ -423,7 +427,10 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   const int reach = 16;
   for (std::size_t i = 0; i < m; ++i) {
     double d = 0;
-    for (int k = -reach; k <= reach; ++k) d = std::max(d, density[(i + m + k) % m]);
+    for (int k = -reach; k <= reach; ++k) {
+      const std::size_t j = i + m + k;  // in [m - reach, 2 m + reach): one wrap at most, m > reach
+      d = std::max(d, density[j >= 2 * m ? j - 2 * m : (j >= m ? j - m : j)]);
+    }
     widened[i] = d;
   }
   std::vector<double> cum(m + 1, 0);
