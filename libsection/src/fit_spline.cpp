@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -26,6 +28,43 @@ double median(std::vector<double> v) {
   const std::size_t mid = v.size() / 2;
   std::nth_element(v.begin(), v.begin() + mid, v.end());
   return v[mid];
+}
+
+// The same value as `median`, for non-negative numbers, in a few linear passes instead of a
+// selection over all of them: non-negative doubles order as their bit patterns, so a count
+// by the leading bits that vary finds the median's bucket, and a selection among its few
+// members the value. Anything else (a NaN, a -0) goes to `median`.
+double median_nonnegative(std::vector<double> v) {
+  if (v.empty()) return 0;
+  auto bits = [](double x) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  const std::uint64_t infinity = 0x7ff0000000000000u;
+  std::uint64_t lo = infinity, hi = 0;
+  for (double x : v) {
+    const std::uint64_t b = bits(x);
+    lo = std::min(lo, b);
+    hi = std::max(hi, b);
+  }
+  if (hi > infinity) return median(std::move(v));
+  if (lo == hi) return v.front();
+  int top = 63;  // highest bit that varies
+  while (!(((lo ^ hi) >> top) & 1)) --top;
+  const int digits = 11, shift = std::max(top + 1 - digits, 0);
+  auto bucket = [&](double x) { return static_cast<std::size_t>((bits(x) >> shift) & ((1u << digits) - 1)); };
+  std::vector<std::size_t> count(std::size_t(1) << digits, 0);
+  for (double x : v) ++count[bucket(x)];
+  const std::size_t mid = v.size() / 2;
+  std::size_t b = 0, below = 0;
+  while (below + count[b] <= mid) below += count[b++];
+  std::size_t kept = 0;
+  for (double x : v)
+    if (bucket(x) == b) v[kept++] = x;
+  v.resize(kept);
+  std::nth_element(v.begin(), v.begin() + (mid - below), v.end());
+  return v[mid - below];
 }
 
 double polygon_area(const Points& p) {
@@ -188,7 +227,7 @@ double noise_sigma(const Feet& f, const std::vector<double>& w) {
       diffs.push_back(std::abs(f.signed_distance[i] - f.signed_distance[prev]));
     prev = i;
   }
-  return 1.4826 * median(std::move(diffs)) / std::sqrt(2.0);
+  return 1.4826 * median_nonnegative(std::move(diffs)) / std::sqrt(2.0);
 }
 
 // Ignores isolated points far from the curve; runs of far points on one side are kept,
