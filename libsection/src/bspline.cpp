@@ -51,7 +51,7 @@ long floor_div(long a, long b) {
 double knot(const BSpline& c, long i) {
   if (!c.closed) return c.knots[static_cast<std::size_t>(i)];
   const long n = control_count(c);
-  const long k = floor_div(i, n);
+  const long k = i >= 0 && i < n ? 0 : floor_div(i, n);  // no division in the first period
   return c.knots[static_cast<std::size_t>(i - k * n)] + static_cast<double>(k) * period(c);
 }
 
@@ -143,6 +143,7 @@ void basis_derivatives(const BSpline& c, long j, double t, int nd,
 int control_index(const BSpline& c, long i) {
   if (!c.closed) return static_cast<int>(i);
   const long n = control_count(c);
+  if (i >= 0 && i < n) return static_cast<int>(i);  // no division in the first period
   return static_cast<int>(((i % n) + n) % n);
 }
 
