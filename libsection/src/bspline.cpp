@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -324,8 +325,15 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points,
   if (static_cast<int>(parameters.size()) < m)
     throw Error("fit_curve: " + std::to_string(m) + " points but only " +
                 std::to_string(parameters.size()) + " parameters");
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(m) * (shape.degree + 1));
+  // The data term summed per matrix entry in point order, first term first: the sums that
+  // setFromTriplets would form from one triplet per point and entry, without the triplets.
+  // A row meets the 2 p + 1 columns within p of it at most.
+  struct Entry {
+    int column;
+    double value;
+  };
+  std::vector<std::array<Entry, 2 * max_degree + 1>> entries(n);
+  std::vector<int> used(n, 0);
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
   std::vector<int> idx;
   std::vector<double> val;
@@ -336,11 +344,26 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points,
     shape.basis(parameters[i], idx, val);
     for (std::size_t a = 0; a < idx.size(); ++a) {
       rhs.row(idx[a]) += w * val[a] * points[i].transpose();
-      for (std::size_t b = 0; b < idx.size(); ++b)
-        trip.emplace_back(idx[a], idx[b], w * val[a] * val[b]);
+      auto& row = entries[idx[a]];
+      int& count = used[idx[a]];
+      for (std::size_t b = 0; b < idx.size(); ++b) {
+        const double v = w * val[a] * val[b];
+        int e = 0;
+        while (e < count && row[e].column != idx[b]) ++e;
+        if (e < count) {
+          row[e].value += v;
+        } else {
+          assert(count < static_cast<int>(row.size()) && "fit_control_points: basis indices are p + 1 consecutive");
+          row[count++] = {idx[b], v};
+        }
+      }
       trace += w * val[a] * val[a];
     }
   }
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(n) * (2 * shape.degree + 1 + 9));
+  for (int r = 0; r < n; ++r)
+    for (int e = 0; e < used[r]; ++e) trip.emplace_back(r, entries[r][e].column, entries[r][e].value);
   // Second differences of the control polygon keep the system regular where spans hold
   // no data; the weight is relative to the mean diagonal of the data term.
   const double lambda = std::max(fairness, 1e-12) * std::max(trace / n, 1e-12);
