@@ -128,10 +128,10 @@ bool sort_runs(std::vector<std::size_t>& order, const std::vector<double>& t) {
 // With `previous` (the feet on a curve that moved a little since), each foot is tracked
 // by Newton from its old parameter; a point whose Newton leaves the old foot's
 // neighbourhood or meets a non-convex stretch gets the full search.
-Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullptr) {
-  const detail::PiecewiseCurve pc(c);
-  const double period = c.t_max() - c.t_min();
-  auto wrap = [&](double t) { return t < c.t_min() ? t + period : (t >= c.t_max() ? t - period : t); };
+// `pc`: the curve c as polynomials.
+Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet* previous = nullptr) {
+  const double t_min = c.t_min(), t_max = c.t_max(), period = t_max - t_min;
+  auto wrap = [&](double t) { return t < t_min ? t + period : (t >= t_max ? t - period : t); };
   Feet f;
   f.t.assign(q.size(), std::numeric_limits<double>::quiet_NaN());
   f.signed_distance.resize(q.size());
@@ -265,11 +265,11 @@ std::vector<double> outlier_weights(const Feet& f, const Points& q, double thres
 // alpha = |d| / (|d| + rho) on the convex side and 0 (tangent distance) on the concave side
 // within the radius of curvature rho (Wang, Pottmann and Liu 2006, eq. 9), kept above a
 // small floor so that sliding along the curve stays bounded.
-BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::vector<double>& w,
-                 double fairness, double smoothing_length) {
+// `pc`: the curve c as polynomials.
+BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
+                 const std::vector<double>& w, double fairness, double smoothing_length) {
   const int n = static_cast<int>(c.control.size());
   const int p = c.degree;
-  const detail::PiecewiseCurve pc(c);
   // Each point couples p + 1 consecutive control points: accumulate the 2x2 blocks of
   // the normal equations in a band (row i, offset 0..p), then hand them over as triplets.
   std::vector<Eigen::Matrix2d> band(static_cast<std::size_t>(n) * (p + 1), Eigen::Matrix2d::Zero());
@@ -508,7 +508,9 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
     return outlier_weights(ft, q, threshold);
   };
   Refinement now;
-  now.feet = foot_points(c, q, start);
+  // Both the feet and the next step evaluate the current curve: converted once.
+  detail::PiecewiseCurve pc(c);
+  now.feet = foot_points(c, pc, q, start);
   now.weights = weights_for(now.feet);
   now.rms = weighted_rms(now.feet, now.weights);
   now.curve = std::move(c);
@@ -518,8 +520,9 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   double best_rms = now.rms;
   int it = 0;
   for (; it < o.max_iterations; ++it) {
-    BSpline next = sdm_step(now.curve, q, now.feet, now.weights, o.fairness, o.smoothing_length);
-    Feet nf = foot_points(next, q, &now.feet);
+    BSpline next = sdm_step(now.curve, pc, q, now.feet, now.weights, o.fairness, o.smoothing_length);
+    pc = detail::PiecewiseCurve(next);
+    Feet nf = foot_points(next, pc, q, &now.feet);
     std::vector<double> nw = weights_for(nf);
     const double nrms = weighted_rms(nf, nw);
     const double change = std::abs(now.rms - nrms);
@@ -610,8 +613,10 @@ bool self_intersects(const BSpline& curve) {
   double speed_max = 0;
   std::vector<double> speed(m);
   for (std::size_t i = 0; i < m; ++i) {
-    p[i] = curve.point(ts[i]);
-    speed[i] = curve.derivative(ts[i], 1).norm();
+    Eigen::Vector2d d[2];  // the same point and derivative as point() and derivative(), one evaluation
+    curve.derivatives(ts[i], 1, d);
+    p[i] = d[0];
+    speed[i] = d[1].norm();
     speed_max = std::max(speed_max, speed[i]);
   }
   for (double s : speed)
