@@ -878,9 +878,11 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
     double ss = 0;
     for (double x : d) ss += x * x;
     result.rms = std::sqrt(ss / d.size());
-    std::sort(d.begin(), d.end());
-    result.max = d.back();
-    result.p95 = d[std::min(d.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * d.size())) - 1)];
+    // Two order statistics of finite numbers: selected, not sorted.
+    const auto p95 = d.begin() + std::min(d.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * d.size())) - 1);
+    std::nth_element(d.begin(), p95, d.end());
+    result.p95 = *p95;
+    result.max = *std::max_element(p95, d.end());
   }
   result.control_points = static_cast<int>(result.spline.control.size());
   const Along along = along_curve(r);
