@@ -265,9 +265,16 @@ std::vector<double> outlier_weights(const Feet& f, const Points& q, double thres
 // alpha = |d| / (|d| + rho) on the convex side and 0 (tangent distance) on the concave side
 // within the radius of curvature rho (Wang, Pottmann and Liu 2006, eq. 9), kept above a
 // small floor so that sliding along the curve stays bounded.
+// The factorisation of the previous step's system, whose fill-reducing ordering a step
+// with the same matrix pattern (the same knots, mostly) takes over.
+struct StepSolver {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  std::vector<int> outer, inner;  // the pattern it was analysed for
+};
+
 // `pc`: the curve c as polynomials.
 BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
-                 const std::vector<double>& w, double fairness, double smoothing_length) {
+                 const std::vector<double>& w, double fairness, double smoothing_length, StepSolver& solver) {
   const int n = static_cast<int>(c.control.size());
   const int p = c.degree;
   // Each point couples p + 1 consecutive control points: accumulate the 2x2 blocks of
@@ -373,11 +380,20 @@ BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
   }
   Eigen::SparseMatrix<double> H(2 * n, 2 * n);
   H.setFromTriplets(trip.begin(), trip.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(H);
-  if (solver.info() != Eigen::Success)
+  // The ordering depends on the pattern only: kept while the pattern is the same.
+  const int *outer = H.outerIndexPtr(), *inner = H.innerIndexPtr();
+  const std::size_t outers = static_cast<std::size_t>(H.outerSize()) + 1, nnz = static_cast<std::size_t>(H.nonZeros());
+  if (solver.outer.size() != outers || !std::equal(outer, outer + outers, solver.outer.begin()) ||
+      solver.inner.size() != nnz || !std::equal(inner, inner + nnz, solver.inner.begin())) {
+    solver.ldlt.analyzePattern(H);
+    solver.outer.assign(outer, outer + outers);
+    solver.inner.assign(inner, inner + nnz);
+  }
+  solver.ldlt.factorize(H);
+  if (solver.ldlt.info() != Eigen::Success)
     throw Error("fit_spline: the distance-minimisation system is singular");
-  const Eigen::VectorXd x = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !x.allFinite())
+  const Eigen::VectorXd x = solver.ldlt.solve(rhs);
+  if (solver.ldlt.info() != Eigen::Success || !x.allFinite())
     throw Error("fit_spline: the distance-minimisation system is singular");
   BSpline out = c;
   for (int i = 0; i < n; ++i) out.control[i] = Eigen::Vector2d(x(2 * i), x(2 * i + 1));
@@ -510,6 +526,7 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   Refinement now;
   // Both the feet and the next step evaluate the current curve: converted once.
   detail::PiecewiseCurve pc(c);
+  StepSolver solver;
   now.feet = foot_points(c, pc, q, start);
   now.weights = weights_for(now.feet);
   now.rms = weighted_rms(now.feet, now.weights);
@@ -520,7 +537,7 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   double best_rms = now.rms;
   int it = 0;
   for (; it < o.max_iterations; ++it) {
-    BSpline next = sdm_step(now.curve, pc, q, now.feet, now.weights, o.fairness, o.smoothing_length);
+    BSpline next = sdm_step(now.curve, pc, q, now.feet, now.weights, o.fairness, o.smoothing_length, solver);
     pc = detail::PiecewiseCurve(next);
     Feet nf = foot_points(next, pc, q, &now.feet);
     std::vector<double> nw = weights_for(nf);
