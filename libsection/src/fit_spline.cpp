@@ -448,10 +448,12 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   std::vector<double> density(m), ds(m);
   const double tol = std::max(o.tolerance, 0.5 * sigma);
   // Measured points per unit length around each sample, over a window of +-window.
+  // The feet in order along the curve meet the samples in order: one walk, not a search each.
   std::vector<double> hits(m, 0);
-  for (double t : feet.t) {
-    auto it = std::upper_bound(ts.begin(), ts.end(), t);
-    hits[std::max<std::ptrdiff_t>(it - ts.begin() - 1, 0)] += 1;
+  std::size_t next = 0;  // first sample after the foot (std::upper_bound)
+  for (std::size_t k : feet.order) {
+    while (next < m && !(feet.t[k] < ts[next])) ++next;
+    hits[next > 0 ? next - 1 : 0] += 1;
   }
   for (std::size_t i = 0; i < m; ++i)
     ds[i] = jets[i].d1.norm() * ((i + 1 < m ? ts[i + 1] : c.t_max()) - ts[i]);
