@@ -60,7 +60,8 @@ double knot(const BSpline& c, long i) {
 double normalise(const BSpline& c, double t) {
   if (c.closed) {
     const double p = period(c);
-    double r = std::fmod(t - c.knots.front(), p);
+    double r = t - c.knots.front();
+    if (!(r >= 0 && r < p)) r = std::fmod(r, p);  // fmod returns r itself inside the period
     if (r < 0) r += p;
     if (r >= p) r = 0;
     return c.knots.front() + r;

@@ -685,9 +685,10 @@ Along along_curve(const Refinement& r) {
   if (a.ts.empty()) return a;
   const detail::PiecewiseCurve pc(r.curve);
   a.chords.resize(a.ts.size());
-  Eigen::Vector2d previous = pc.point(a.ts[0]);
+  detail::PiecewiseCurve::Local at = pc.locate(a.ts[0]);
+  Eigen::Vector2d previous = pc.point(at);
   for (std::size_t i = 0; i < a.ts.size(); ++i) {
-    const Eigen::Vector2d next = pc.point(i + 1 < a.ts.size() ? a.ts[i + 1] : a.ts[0]);
+    const Eigen::Vector2d next = pc.point(at = pc.locate(i + 1 < a.ts.size() ? a.ts[i + 1] : a.ts[0], at.span));
     a.chords[i] = (next - previous).norm();
     previous = next;
   }
@@ -702,7 +703,7 @@ void measure_gaps(const Refinement& r, const Along& along, double gap_factor, Fi
   if (ts.size() < 2) return;
   const BSpline& c = r.curve;
   const double period = c.t_max() - c.t_min();
-  result.spacing = median(lengths);
+  result.spacing = median_nonnegative(lengths);
   for (std::size_t i = 0; i < ts.size(); ++i) {
     if (!(lengths[i] > gap_factor * result.spacing)) continue;
     const double end = i + 1 < ts.size() ? ts[i + 1] : ts[0] + period;
