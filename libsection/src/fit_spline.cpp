@@ -90,6 +90,7 @@ struct Feet {
   std::vector<double> t;       // curve parameter of the foot
   std::vector<double> signed_distance;  // positive on the outer side (tangent turned clockwise)
   std::vector<std::size_t> order;       // point indices sorted by t
+  double noise_all = std::numeric_limits<double>::quiet_NaN();  // noise_sigma of all the points, once known
 };
 
 // Sorts `order` by t[order[i]], fast when it is nearly sorted already (the feet on the
@@ -217,6 +218,9 @@ Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
 // Robust noise sigma: from differences of residuals consecutive along the curve, which
 // cancel the smooth (model) part of the residual and keep the noise.
 double noise_sigma(const Feet& f, const std::vector<double>& w) {
+  // With no point left out it is the one of all the points, asked for again and again.
+  if (!std::isnan(f.noise_all) && std::all_of(w.begin(), w.end(), [](double x) { return x > 0; }))
+    return f.noise_all;
   const std::vector<std::size_t>& order = f.order;
   std::vector<double> diffs(order.size());
   std::size_t count = 0, prev = order.size();
@@ -520,9 +524,9 @@ struct Refinement {
 // change of knots), tracked instead of searched afresh.
 Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const Feet* start = nullptr) {
   const std::vector<double> all(q.size(), 1.0);
-  auto weights_for = [&](const Feet& ft) {
+  auto weights_for = [&](Feet& ft) {
     double threshold = o.outlier_distance;
-    if (threshold <= 0) threshold = std::max(6 * noise_sigma(ft, all), o.outlier_floor);
+    if (threshold <= 0) threshold = std::max(6 * (ft.noise_all = noise_sigma(ft, all)), o.outlier_floor);
     return outlier_weights(ft, q, threshold);
   };
   Refinement now;
