@@ -93,8 +93,9 @@ long find_span(const BSpline& c, double t) {
 void basis_derivatives(const BSpline& c, long j, double t, int nd,
                        std::array<std::array<double, max_degree + 1>, max_degree + 1>& ders) {
   const int p = c.degree;
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ndu{};
-  std::array<double, max_degree + 1> left{}, right{};
+  // Not zeroed (that took most of the time at degree 3): every entry read is written first.
+  std::array<std::array<double, max_degree + 1>, max_degree + 1> ndu;
+  std::array<double, max_degree + 1> left, right;
   ndu[0][0] = 1.0;
   for (int r = 1; r <= p; ++r) {
     left[r] = t - knot(c, j + 1 - r);
@@ -156,7 +157,7 @@ void evaluate(const BSpline& c, double t, int nd, Eigen::Vector2d* out) {
   const long j = find_span(c, tn);
   const int p = c.degree;
   const int nk = std::min(nd, p);
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders{};
+  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders;  // rows 0..nk written, only those read
   basis_derivatives(c, j, tn, nk, ders);
   for (int k = 0; k <= nd; ++k) {
     out[k].setZero();
