@@ -355,7 +355,8 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points,
         if (e < count) {
           row[e].value += v;
         } else {
-          assert(count < static_cast<int>(row.size()) && "fit_control_points: basis indices are p + 1 consecutive");
+          assert(count < static_cast<int>(row.size()) &&
+                 "fit_control_points: the basis indices are p + 1 consecutive ones");
           row[count++] = {idx[b], v};
         }
       }

@@ -53,7 +53,9 @@ double median_nonnegative(std::vector<double> v) {
   int top = 63;  // highest bit that varies
   while (!(((lo ^ hi) >> top) & 1)) --top;
   const int digits = 11, shift = std::max(top + 1 - digits, 0);
-  auto bucket = [&](double x) { return static_cast<std::size_t>((bits(x) >> shift) & ((1u << digits) - 1)); };
+  auto bucket = [&](double x) {
+    return static_cast<std::size_t>((bits(x) >> shift) & ((1u << digits) - 1));
+  };
   std::vector<std::size_t> count(std::size_t(1) << digits, 0);
   for (double x : v) ++count[bucket(x)];
   const std::size_t mid = v.size() / 2;
@@ -130,7 +132,8 @@ bool sort_runs(std::vector<std::size_t>& order, const std::vector<double>& t) {
 // by Newton from its old parameter; a point whose Newton leaves the old foot's
 // neighbourhood or meets a non-convex stretch gets the full search.
 // `pc`: the curve c as polynomials.
-Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet* previous = nullptr) {
+Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
+                 const Feet* previous = nullptr) {
   const double t_min = c.t_min(), t_max = c.t_max(), period = t_max - t_min;
   auto wrap = [&](double t) { return t < t_min ? t + period : (t >= t_max ? t - period : t); };
   Feet f;
@@ -181,8 +184,8 @@ Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
       const std::size_t i = static_cast<std::size_t>(idx[l]);
       const double a = i > 0 ? ts[i - 1] : ts[m - 1] - period;
       const double b = i + 1 < m ? ts[i + 1] : c.t_max();
-      f.t[k] = wrap(detail::minimise_bracket(
-          [&](double x) { return detail::squared_distance(pc.jet(at = pc.locate(x, at.span)), q[k]); }, a, b, ts[i]));
+      auto distance = [&](double x) { return detail::squared_distance(pc.jet(at = pc.locate(x, at.span)), q[k]); };
+      f.t[k] = wrap(detail::minimise_bracket(distance, a, b, ts[i]));
       const detail::CurveJet j = pc.jet(at = pc.locate(f.t[k], at.span));
       const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
       f.signed_distance[k] = (q[k] - j.point).dot(normal);
@@ -278,7 +281,8 @@ struct StepSolver {
 
 // `pc`: the curve c as polynomials.
 BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
-                 const std::vector<double>& w, double fairness, double smoothing_length, StepSolver& solver) {
+                 const std::vector<double>& w, double fairness, double smoothing_length,
+                 StepSolver& solver) {
   const int n = static_cast<int>(c.control.size());
   const int p = c.degree;
   // Each point couples p + 1 consecutive control points: accumulate the 2x2 blocks of
@@ -336,8 +340,8 @@ BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
       // C''' is constant on a cubic span: the third difference of the basis values at
       // four equally spaced parameters.
       int first = 0;
-      detail::PiecewiseCurve::Local l[4];
-      for (int g = 0; g < 4; ++g) first = pc.basis(l[g] = pc.locate(a + (g + 0.5) * h, j), v[g]);  // span j unless knots repeat
+      detail::PiecewiseCurve::Local l[4];  // span j, unless knots repeat
+      for (int g = 0; g < 4; ++g) first = pc.basis(l[g] = pc.locate(a + (g + 0.5) * h, j), v[g]);
       for (int b = 0; b <= p; ++b) {
         idx[b] = first + b < n ? first + b : first + b - n;
         jerk[b] = (v[3][b] - 3 * v[2][b] + 3 * v[1][b] - v[0][b]) / (h * h * h);
@@ -386,7 +390,8 @@ BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
   H.setFromTriplets(trip.begin(), trip.end());
   // The ordering depends on the pattern only: kept while the pattern is the same.
   const int *outer = H.outerIndexPtr(), *inner = H.innerIndexPtr();
-  const std::size_t outers = static_cast<std::size_t>(H.outerSize()) + 1, nnz = static_cast<std::size_t>(H.nonZeros());
+  const std::size_t outers = static_cast<std::size_t>(H.outerSize()) + 1;
+  const std::size_t nnz = static_cast<std::size_t>(H.nonZeros());
   if (solver.outer.size() != outers || !std::equal(outer, outer + outers, solver.outer.begin()) ||
       solver.inner.size() != nnz || !std::equal(inner, inner + nnz, solver.inner.begin())) {
     solver.ldlt.analyzePattern(H);
@@ -692,7 +697,8 @@ Along along_curve(const Refinement& r) {
   detail::PiecewiseCurve::Local at = pc.locate(a.ts[0]);
   Eigen::Vector2d previous = pc.point(at);
   for (std::size_t i = 0; i < a.ts.size(); ++i) {
-    const Eigen::Vector2d next = pc.point(at = pc.locate(i + 1 < a.ts.size() ? a.ts[i + 1] : a.ts[0], at.span));
+    at = pc.locate(i + 1 < a.ts.size() ? a.ts[i + 1] : a.ts[0], at.span);
+    const Eigen::Vector2d next = pc.point(at);
     a.chords[i] = (next - previous).norm();
     previous = next;
   }
@@ -903,7 +909,8 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
     for (double x : d) ss += x * x;
     result.rms = std::sqrt(ss / d.size());
     // Two order statistics of finite numbers: selected, not sorted.
-    const auto p95 = d.begin() + std::min(d.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * d.size())) - 1);
+    const auto p95 =
+        d.begin() + std::min(d.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * d.size())) - 1);
     std::nth_element(d.begin(), p95, d.end());
     result.p95 = *p95;
     result.max = *std::max_element(p95, d.end());

@@ -89,7 +89,8 @@ public:
       t = std::clamp(t, t_min_, t_max_);
     }
     // Breaks increase strictly: a span that holds t is the one the search would find.
-    if (hint + 1 < breaks_.size() && breaks_[hint] <= t && t < breaks_[hint + 1]) return {hint, t - breaks_[hint]};
+    if (hint + 1 < breaks_.size() && breaks_[hint] <= t && t < breaks_[hint + 1])
+      return {hint, t - breaks_[hint]};
     const auto it = std::upper_bound(breaks_.begin(), breaks_.end(), t);
     const std::size_t span = std::min<std::size_t>(
         static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - breaks_.begin() - 1, 0)), breaks_.size() - 2);
