@@ -985,17 +985,28 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
   auto group = [](const Table& t, std::size_t cs, std::size_t cl, std::size_t ci, std::size_t cu,
                   std::size_t cv) {
     std::map<std::pair<int, int>, Rows> loops;
+    Rows* loop = nullptr;  // the last row's, which the next row mostly shares
+    std::pair<int, int> last;
     for (std::size_t r = 0; r < t.rows(); ++r) {
       const double s = t.at(r, cs), l = t.at(r, cl);
       if (!std::isfinite(s) || !std::isfinite(l))
         throw Error("fit_spline: row " + std::to_string(r + 1) + " of the " + t.name +
                     " table has a non-finite section or loop id");
-      loops[{static_cast<int>(s), static_cast<int>(l)}].push_back(
-          {t.at(r, ci), Eigen::Vector2d(t.at(r, cu), t.at(r, cv))});
+      const std::pair<int, int> key{static_cast<int>(s), static_cast<int>(l)};
+      if (!loop || key != last) {
+        loop = &loops[key];
+        last = key;
+      }
+      loop->push_back({t.at(r, ci), Eigen::Vector2d(t.at(r, cu), t.at(r, cv))});
     }
-    for (auto& [key, rows] : loops)
-      std::stable_sort(rows.begin(), rows.end(),
-                       [](const auto& x, const auto& y) { return x.first < y.first; });
+    auto before = [](const auto& x, const auto& y) { return x.first < y.first; };
+    for (auto& [key, rows] : loops) {
+      // Rows come in index order: left as they are when sorted (finite indices, so the
+      // stable sort would keep them too).
+      auto finite = [](const auto& x) { return std::isfinite(x.first); };
+      if (!std::all_of(rows.begin(), rows.end(), finite) || !std::is_sorted(rows.begin(), rows.end(), before))
+        std::stable_sort(rows.begin(), rows.end(), before);
+    }
     return loops;
   };
   auto measured = group(points, cs, cl, ci, cu, cv);
