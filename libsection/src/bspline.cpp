@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -51,7 +52,7 @@ long floor_div(long a, long b) {
 double knot(const BSpline& c, long i) {
   if (!c.closed) return c.knots[static_cast<std::size_t>(i)];
   const long n = control_count(c);
-  const long k = floor_div(i, n);
+  const long k = i >= 0 && i < n ? 0 : floor_div(i, n);  // no division in the first period
   return c.knots[static_cast<std::size_t>(i - k * n)] + static_cast<double>(k) * period(c);
 }
 
@@ -59,7 +60,8 @@ double knot(const BSpline& c, long i) {
 double normalise(const BSpline& c, double t) {
   if (c.closed) {
     const double p = period(c);
-    double r = std::fmod(t - c.knots.front(), p);
+    double r = t - c.knots.front();
+    if (!(r >= 0 && r < p)) r = std::fmod(r, p);  // fmod returns r itself inside the period
     if (r < 0) r += p;
     if (r >= p) r = 0;
     return c.knots.front() + r;
@@ -91,8 +93,9 @@ long find_span(const BSpline& c, double t) {
 void basis_derivatives(const BSpline& c, long j, double t, int nd,
                        std::array<std::array<double, max_degree + 1>, max_degree + 1>& ders) {
   const int p = c.degree;
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ndu{};
-  std::array<double, max_degree + 1> left{}, right{};
+  // Not zeroed (that took most of the time at degree 3): every entry read is written first.
+  std::array<std::array<double, max_degree + 1>, max_degree + 1> ndu;
+  std::array<double, max_degree + 1> left, right;
   ndu[0][0] = 1.0;
   for (int r = 1; r <= p; ++r) {
     left[r] = t - knot(c, j + 1 - r);
@@ -143,6 +146,7 @@ void basis_derivatives(const BSpline& c, long j, double t, int nd,
 int control_index(const BSpline& c, long i) {
   if (!c.closed) return static_cast<int>(i);
   const long n = control_count(c);
+  if (i >= 0 && i < n) return static_cast<int>(i);  // no division in the first period
   return static_cast<int>(((i % n) + n) % n);
 }
 
@@ -153,7 +157,7 @@ void evaluate(const BSpline& c, double t, int nd, Eigen::Vector2d* out) {
   const long j = find_span(c, tn);
   const int p = c.degree;
   const int nk = std::min(nd, p);
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders{};
+  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders;  // rows 0..nk written, only those read
   basis_derivatives(c, j, tn, nk, ders);
   for (int k = 0; k <= nd; ++k) {
     out[k].setZero();
@@ -323,8 +327,15 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points,
   if (static_cast<int>(parameters.size()) < m)
     throw Error("fit_curve: " + std::to_string(m) + " points but only " +
                 std::to_string(parameters.size()) + " parameters");
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(m) * (shape.degree + 1));
+  // The data term summed per matrix entry in point order, first term first: the sums that
+  // setFromTriplets would form from one triplet per point and entry, without the triplets.
+  // A row meets the 2 p + 1 columns within p of it at most.
+  struct Entry {
+    int column;
+    double value;
+  };
+  std::vector<std::array<Entry, 2 * max_degree + 1>> entries(n);
+  std::vector<int> used(n, 0);
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
   std::vector<int> idx;
   std::vector<double> val;
@@ -335,11 +346,27 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points,
     shape.basis(parameters[i], idx, val);
     for (std::size_t a = 0; a < idx.size(); ++a) {
       rhs.row(idx[a]) += w * val[a] * points[i].transpose();
-      for (std::size_t b = 0; b < idx.size(); ++b)
-        trip.emplace_back(idx[a], idx[b], w * val[a] * val[b]);
+      auto& row = entries[idx[a]];
+      int& count = used[idx[a]];
+      for (std::size_t b = 0; b < idx.size(); ++b) {
+        const double v = w * val[a] * val[b];
+        int e = 0;
+        while (e < count && row[e].column != idx[b]) ++e;
+        if (e < count) {
+          row[e].value += v;
+        } else {
+          assert(count < static_cast<int>(row.size()) &&
+                 "fit_control_points: the basis indices are p + 1 consecutive ones");
+          row[count++] = {idx[b], v};
+        }
+      }
       trace += w * val[a] * val[a];
     }
   }
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(n) * (2 * shape.degree + 1 + 9));
+  for (int r = 0; r < n; ++r)
+    for (int e = 0; e < used[r]; ++e) trip.emplace_back(r, entries[r][e].column, entries[r][e].value);
   // Second differences of the control polygon keep the system regular where spans hold
   // no data; the weight is relative to the mean diagonal of the data term.
   const double lambda = std::max(fairness, 1e-12) * std::max(trace / n, 1e-12);

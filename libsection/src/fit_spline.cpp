@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -26,6 +28,45 @@ double median(std::vector<double> v) {
   const std::size_t mid = v.size() / 2;
   std::nth_element(v.begin(), v.begin() + mid, v.end());
   return v[mid];
+}
+
+// The same value as `median`, for non-negative numbers, in a few linear passes instead of a
+// selection over all of them: non-negative doubles order as their bit patterns, so a count
+// by the leading bits that vary finds the median's bucket, and a selection among its few
+// members the value. Anything else (a NaN, a -0) goes to `median`.
+double median_nonnegative(std::vector<double> v) {
+  if (v.empty()) return 0;
+  auto bits = [](double x) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  const std::uint64_t infinity = 0x7ff0000000000000u;
+  std::uint64_t lo = infinity, hi = 0;
+  for (double x : v) {
+    const std::uint64_t b = bits(x);
+    lo = std::min(lo, b);
+    hi = std::max(hi, b);
+  }
+  if (hi > infinity) return median(std::move(v));
+  if (lo == hi) return v.front();
+  int top = 63;  // highest bit that varies
+  while (!(((lo ^ hi) >> top) & 1)) --top;
+  const int digits = 11, shift = std::max(top + 1 - digits, 0);
+  auto bucket = [&](double x) {
+    return static_cast<std::size_t>((bits(x) >> shift) & ((1u << digits) - 1));
+  };
+  std::vector<std::size_t> count(std::size_t(1) << digits, 0);
+  for (double x : v) ++count[bucket(x)];
+  const std::size_t mid = v.size() / 2;
+  std::size_t b = 0, below = 0;
+  while (below + count[b] <= mid) below += count[b++];
+  std::size_t kept = 0;
+  for (double x : v)
+    if (bucket(x) == b) v[kept++] = x;
+  v.resize(kept);
+  std::nth_element(v.begin(), v.begin() + (mid - below), v.end());
+  return v[mid - below];
 }
 
 double polygon_area(const Points& p) {
@@ -51,21 +92,57 @@ struct Feet {
   std::vector<double> t;       // curve parameter of the foot
   std::vector<double> signed_distance;  // positive on the outer side (tangent turned clockwise)
   std::vector<std::size_t> order;       // point indices sorted by t
+  double noise_all = std::numeric_limits<double>::quiet_NaN();  // noise_sigma of all the points, once known
 };
+
+// Sorts `order` by t[order[i]], fast when it is nearly sorted already (the feet on the
+// previous curve: a few points moved a little, a few crossed the start of the period):
+// ascending runs merged pairwise, O(n log runs). Returns false, `order` sorted or not, if
+// two parameters are equal (or NaN), as the result would then depend on the method.
+bool sort_runs(std::vector<std::size_t>& order, const std::vector<double>& t) {
+  const std::size_t n = order.size();
+  std::vector<std::size_t> starts{0};
+  for (std::size_t i = 1; i < n; ++i)
+    if (!(t[order[i - 1]] < t[order[i]])) {
+      if (!(t[order[i]] < t[order[i - 1]])) return false;
+      starts.push_back(i);
+    }
+  starts.push_back(n);
+  if (starts.size() == 2) return true;
+  auto before = [&](std::size_t x, std::size_t y) { return t[x] < t[y]; };
+  std::vector<std::size_t> merged(n);
+  while (starts.size() > 2) {
+    std::vector<std::size_t> next;
+    for (std::size_t r = 0; r + 1 < starts.size(); r += 2) {
+      next.push_back(starts[r]);
+      const std::size_t mid = starts[r + 1], end = r + 2 < starts.size() ? starts[r + 2] : mid;
+      std::merge(order.begin() + starts[r], order.begin() + mid, order.begin() + mid, order.begin() + end,
+                 merged.begin() + starts[r], before);
+    }
+    next.push_back(n);
+    order.swap(merged);
+    starts.swap(next);
+  }
+  for (std::size_t i = 1; i < n; ++i)
+    if (!(t[order[i - 1]] < t[order[i]])) return false;
+  return true;
+}
 
 // With `previous` (the feet on a curve that moved a little since), each foot is tracked
 // by Newton from its old parameter; a point whose Newton leaves the old foot's
 // neighbourhood or meets a non-convex stretch gets the full search.
-Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullptr) {
-  const detail::PiecewiseCurve pc(c);
-  const double period = c.t_max() - c.t_min();
-  auto wrap = [&](double t) { return t < c.t_min() ? t + period : (t >= c.t_max() ? t - period : t); };
+// `pc`: the curve c as polynomials.
+Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
+                 const Feet* previous = nullptr) {
+  const double t_min = c.t_min(), t_max = c.t_max(), period = t_max - t_min;
+  auto wrap = [&](double t) { return t < t_min ? t + period : (t >= t_max ? t - period : t); };
   Feet f;
   f.t.assign(q.size(), std::numeric_limits<double>::quiet_NaN());
   f.signed_distance.resize(q.size());
   const double step = period / (8.0 * static_cast<double>(c.control.size()));
   const double converged = 1e-12 * period;  // parameter step (about a length) that ends Newton
   std::vector<std::size_t> lost;
+  detail::PiecewiseCurve::Local at{0, 0};  // the last span located: consecutive points are close
   for (std::size_t k = 0; k < q.size(); ++k) {
     if (!previous) {
       lost.push_back(k);
@@ -74,7 +151,8 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
     double t = previous->t[k];
     bool ok = false;
     for (int it = 0; it < 8; ++it) {
-      const detail::CurveJet j = pc.jet(t);
+      at = pc.locate(t, at.span);
+      const detail::CurveJet j = pc.jet(at);
       const detail::SquaredDistance g = detail::squared_distance(j, q[k]);
       if (!(g.ddg > 0)) break;
       const double dt = -g.dg / g.ddg;
@@ -96,7 +174,7 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
     const std::vector<double> ts = span_samples(c, 8);
     const std::size_t m = ts.size();
     Points pts(m);
-    for (std::size_t i = 0; i < m; ++i) pts[i] = pc.point(ts[i]);
+    for (std::size_t i = 0; i < m; ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
     const detail::NearestPoints tree(pts);
     Points lost_points(lost.size());
     for (std::size_t l = 0; l < lost.size(); ++l) lost_points[l] = q[lost[l]];
@@ -106,25 +184,35 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
       const std::size_t i = static_cast<std::size_t>(idx[l]);
       const double a = i > 0 ? ts[i - 1] : ts[m - 1] - period;
       const double b = i + 1 < m ? ts[i + 1] : c.t_max();
-      f.t[k] = wrap(detail::minimise_bracket(
-          [&](double x) { return detail::squared_distance(pc.jet(x), q[k]); }, a, b, ts[i]));
-      const detail::CurveJet j = pc.jet(f.t[k]);
+      auto distance = [&](double x) { return detail::squared_distance(pc.jet(at = pc.locate(x, at.span)), q[k]); };
+      f.t[k] = wrap(detail::minimise_bracket(distance, a, b, ts[i]));
+      const detail::CurveJet j = pc.jet(at = pc.locate(f.t[k], at.span));
       const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
       f.signed_distance[k] = (q[k] - j.point).dot(normal);
     }
   }
   auto before = [&](std::size_t x, std::size_t y) { return f.t[x] < f.t[y]; };
+  // Points start in the previous order or in input order, both nearly sorted. Two feet on
+  // one parameter keep the order between them that the sorts below give.
+  auto start = [&] {
+    if (previous) {
+      f.order = previous->order;
+    } else {
+      f.order.resize(q.size());
+      std::iota(f.order.begin(), f.order.end(), 0);
+    }
+  };
+  start();
+  if (sort_runs(f.order, f.t)) return f;
+  start();
   if (previous) {
     // The previous order is nearly right: insertion sort, unless it moves too much.
-    f.order = previous->order;
     std::size_t moves = 0;
     for (std::size_t i = 1; i < f.order.size() && moves <= 8 * f.order.size(); ++i)
       for (std::size_t j = i; j > 0 && before(f.order[j], f.order[j - 1]); --j, ++moves)
         std::swap(f.order[j], f.order[j - 1]);
     if (moves > 8 * f.order.size()) std::sort(f.order.begin(), f.order.end(), before);
   } else {
-    f.order.resize(q.size());
-    std::iota(f.order.begin(), f.order.end(), 0);
     std::sort(f.order.begin(), f.order.end(), before);
   }
   return f;
@@ -133,16 +221,19 @@ Feet foot_points(const BSpline& c, const Points& q, const Feet* previous = nullp
 // Robust noise sigma: from differences of residuals consecutive along the curve, which
 // cancel the smooth (model) part of the residual and keep the noise.
 double noise_sigma(const Feet& f, const std::vector<double>& w) {
+  // With no point left out it is the one of all the points, asked for again and again.
+  if (!std::isnan(f.noise_all) && std::all_of(w.begin(), w.end(), [](double x) { return x > 0; }))
+    return f.noise_all;
   const std::vector<std::size_t>& order = f.order;
-  std::vector<double> diffs;
-  std::size_t prev = order.size();
+  std::vector<double> diffs(order.size());
+  std::size_t count = 0, prev = order.size();
   for (std::size_t i : order) {
     if (w[i] <= 0) continue;
-    if (prev != order.size())
-      diffs.push_back(std::abs(f.signed_distance[i] - f.signed_distance[prev]));
+    if (prev != order.size()) diffs[count++] = std::abs(f.signed_distance[i] - f.signed_distance[prev]);
     prev = i;
   }
-  return 1.4826 * median(diffs) / std::sqrt(2.0);
+  diffs.resize(count);
+  return 1.4826 * median_nonnegative(std::move(diffs)) / std::sqrt(2.0);
 }
 
 // Ignores isolated points far from the curve; runs of far points on one side are kept,
@@ -181,11 +272,19 @@ std::vector<double> outlier_weights(const Feet& f, const Points& q, double thres
 // alpha = |d| / (|d| + rho) on the convex side and 0 (tangent distance) on the concave side
 // within the radius of curvature rho (Wang, Pottmann and Liu 2006, eq. 9), kept above a
 // small floor so that sliding along the curve stays bounded.
-BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::vector<double>& w,
-                 double fairness, double smoothing_length) {
+// The factorisation of the previous step's system, whose fill-reducing ordering a step
+// with the same matrix pattern (the same knots, mostly) takes over.
+struct StepSolver {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  std::vector<int> outer, inner;  // the pattern it was analysed for
+};
+
+// `pc`: the curve c as polynomials.
+BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
+                 const std::vector<double>& w, double fairness, double smoothing_length,
+                 StepSolver& solver) {
   const int n = static_cast<int>(c.control.size());
   const int p = c.degree;
-  const detail::PiecewiseCurve pc(c);
   // Each point couples p + 1 consecutive control points: accumulate the 2x2 blocks of
   // the normal equations in a band (row i, offset 0..p), then hand them over as triplets.
   std::vector<Eigen::Matrix2d> band(static_cast<std::size_t>(n) * (p + 1), Eigen::Matrix2d::Zero());
@@ -193,12 +292,13 @@ BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::ve
   double val[8];
   int idx[8];
   double trace = 0;
+  detail::PiecewiseCurve::Local at{0, 0};  // the last span located: consecutive points are close
   for (std::size_t k = 0; k < q.size(); ++k) {
     if (w[k] <= 0) continue;
-    const double t = f.t[k];
-    const int first = pc.basis(t, val);
-    for (int a = 0; a <= p; ++a) idx[a] = (first + a) % n;
-    const detail::CurveJet jet = pc.jet(t);
+    at = pc.locate(f.t[k], at.span);
+    const int first = pc.basis(at, val);
+    for (int a = 0; a <= p; ++a) idx[a] = first + a < n ? first + a : first + a - n;
+    const detail::CurveJet jet = pc.jet(at);
     const Eigen::Vector2d tangent = jet.d1.normalized();
     const Eigen::Vector2d normal(tangent.y(), -tangent.x());
     const double d = f.signed_distance[k];
@@ -240,13 +340,14 @@ BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::ve
       // C''' is constant on a cubic span: the third difference of the basis values at
       // four equally spaced parameters.
       int first = 0;
-      for (int g = 0; g < 4; ++g) first = pc.basis(a + (g + 0.5) * h, v[g]);
+      detail::PiecewiseCurve::Local l[4];  // span j, unless knots repeat
+      for (int g = 0; g < 4; ++g) first = pc.basis(l[g] = pc.locate(a + (g + 0.5) * h, j), v[g]);
       for (int b = 0; b <= p; ++b) {
-        idx[b] = (first + b) % n;
+        idx[b] = first + b < n ? first + b : first + b - n;
         jerk[b] = (v[3][b] - 3 * v[2][b] + 3 * v[1][b] - v[0][b]) / (h * h * h);
       }
       for (int g = 0; g < 4; ++g) {
-        const Eigen::Vector2d d1 = pc.jet(a + (g + 0.5) * h).d1;
+        const Eigen::Vector2d d1 = pc.jet(l[g]).d1;
         const double speed = d1.norm();
         if (!(speed > 0)) continue;
         const Eigen::Vector2d normal(d1.y() / speed, -d1.x() / speed);
@@ -287,11 +388,21 @@ BSpline sdm_step(const BSpline& c, const Points& q, const Feet& f, const std::ve
   }
   Eigen::SparseMatrix<double> H(2 * n, 2 * n);
   H.setFromTriplets(trip.begin(), trip.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(H);
-  if (solver.info() != Eigen::Success)
+  // The ordering depends on the pattern only: kept while the pattern is the same.
+  const int *outer = H.outerIndexPtr(), *inner = H.innerIndexPtr();
+  const std::size_t outers = static_cast<std::size_t>(H.outerSize()) + 1;
+  const std::size_t nnz = static_cast<std::size_t>(H.nonZeros());
+  if (solver.outer.size() != outers || !std::equal(outer, outer + outers, solver.outer.begin()) ||
+      solver.inner.size() != nnz || !std::equal(inner, inner + nnz, solver.inner.begin())) {
+    solver.ldlt.analyzePattern(H);
+    solver.outer.assign(outer, outer + outers);
+    solver.inner.assign(inner, inner + nnz);
+  }
+  solver.ldlt.factorize(H);
+  if (solver.ldlt.info() != Eigen::Success)
     throw Error("fit_spline: the distance-minimisation system is singular");
-  const Eigen::VectorXd x = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !x.allFinite())
+  const Eigen::VectorXd x = solver.ldlt.solve(rhs);
+  if (solver.ldlt.info() != Eigen::Success || !x.allFinite())
     throw Error("fit_spline: the distance-minimisation system is singular");
   BSpline out = c;
   for (int i = 0; i < n; ++i) out.control[i] = Eigen::Vector2d(x(2 * i), x(2 * i + 1));
@@ -318,7 +429,8 @@ BSpline reknot(const BSpline& c, const std::vector<double>& knots) {
   std::vector<double> ts = span_samples(shape, 12);
   Points pts(ts.size());
   const detail::PiecewiseCurve pc(c);
-  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = pc.point(ts[i]);
+  detail::PiecewiseCurve::Local at{0, 0};
+  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
   return fit_control_points(pts, ts, shape, 1e-12);
 }
 
@@ -340,14 +452,17 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   const std::size_t m = ts.size();
   const detail::PiecewiseCurve pc(c);
   std::vector<detail::CurveJet> jets(m);
-  for (std::size_t i = 0; i < m; ++i) jets[i] = pc.jet(ts[i]);
+  detail::PiecewiseCurve::Local at{0, 0};
+  for (std::size_t i = 0; i < m; ++i) jets[i] = pc.jet(at = pc.locate(ts[i], at.span));
   std::vector<double> density(m), ds(m);
   const double tol = std::max(o.tolerance, 0.5 * sigma);
   // Measured points per unit length around each sample, over a window of +-window.
+  // The feet in order along the curve meet the samples in order: one walk, not a search each.
   std::vector<double> hits(m, 0);
-  for (double t : feet.t) {
-    auto it = std::upper_bound(ts.begin(), ts.end(), t);
-    hits[std::max<std::ptrdiff_t>(it - ts.begin() - 1, 0)] += 1;
+  std::size_t next = 0;  // first sample after the foot (std::upper_bound)
+  for (std::size_t k : feet.order) {
+    while (next < m && !(feet.t[k] < ts[next])) ++next;
+    hits[next > 0 ? next - 1 : 0] += 1;
   }
   for (std::size_t i = 0; i < m; ++i)
     ds[i] = jets[i].d1.norm() * ((i + 1 < m ? ts[i + 1] : c.t_max()) - ts[i]);
@@ -355,9 +470,13 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   const double window = 0.5 * o.initial_span;
   for (std::size_t i = 0; i < m; ++i) {
     double count = hits[i], length = ds[i];
+    // Samples i + k and i - k, wrapped (without a division per step).
+    std::size_t up = i, down = i;
     for (std::size_t k = 1; k < m / 2 && length < 2 * window; ++k) {
-      count += hits[(i + k) % m] + hits[(i + m - k) % m];
-      length += ds[(i + k) % m] + ds[(i + m - k) % m];
+      up = up + 1 == m ? 0 : up + 1;
+      down = down == 0 ? m - 1 : down - 1;
+      count += hits[up] + hits[down];
+      length += ds[up] + ds[down];
     }
     point_density[i] = length > 0 ? count / length : 0;
   }
@@ -373,7 +492,10 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   const int reach = 16;
   for (std::size_t i = 0; i < m; ++i) {
     double d = 0;
-    for (int k = -reach; k <= reach; ++k) d = std::max(d, density[(i + m + k) % m]);
+    for (int k = -reach; k <= reach; ++k) {
+      const std::size_t j = i + m + k;  // in [m - reach, 2 m + reach): one wrap at most, m > reach
+      d = std::max(d, density[j >= 2 * m ? j - 2 * m : (j >= m ? j - m : j)]);
+    }
     widened[i] = d;
   }
   std::vector<double> cum(m + 1, 0);
@@ -406,34 +528,42 @@ struct Refinement {
 // `start`: feet on a curve of nearly the same shape and parameter (the curve before a
 // change of knots), tracked instead of searched afresh.
 Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const Feet* start = nullptr) {
-  Refinement best;
-  Feet f = foot_points(c, q, start);
-  auto weights_for = [&](const Feet& ft) {
+  const std::vector<double> all(q.size(), 1.0);
+  auto weights_for = [&](Feet& ft) {
     double threshold = o.outlier_distance;
-    if (threshold <= 0)
-      threshold = std::max(6 * noise_sigma(ft, std::vector<double>(q.size(), 1.0)), o.outlier_floor);
+    if (threshold <= 0) threshold = std::max(6 * (ft.noise_all = noise_sigma(ft, all)), o.outlier_floor);
     return outlier_weights(ft, q, threshold);
   };
-  std::vector<double> w = weights_for(f);
-  double rms = weighted_rms(f, w);
-  best = {c, f, w, rms, 0};
+  Refinement now;
+  // Both the feet and the next step evaluate the current curve: converted once.
+  detail::PiecewiseCurve pc(c);
+  StepSolver solver;
+  now.feet = foot_points(c, pc, q, start);
+  now.weights = weights_for(now.feet);
+  now.rms = weighted_rms(now.feet, now.weights);
+  now.curve = std::move(c);
+  // The best state is set aside only when a worse one replaces it (states are moved, not copied).
+  Refinement best;
+  bool now_best = true;
+  double best_rms = now.rms;
   int it = 0;
   for (; it < o.max_iterations; ++it) {
-    const BSpline next = sdm_step(c, q, f, w, o.fairness, o.smoothing_length);
-    const Feet nf = foot_points(next, q, &f);
-    const std::vector<double> nw = weights_for(nf);
+    BSpline next = sdm_step(now.curve, pc, q, now.feet, now.weights, o.fairness, o.smoothing_length, solver);
+    pc = detail::PiecewiseCurve(next);
+    Feet nf = foot_points(next, pc, q, &now.feet);
+    std::vector<double> nw = weights_for(nf);
     const double nrms = weighted_rms(nf, nw);
-    c = next;
-    f = nf;
-    w = nw;
-    const double change = std::abs(rms - nrms);
-    rms = nrms;
-    if (nrms <= best.rms) best = {c, f, w, rms, 0};
+    const double change = std::abs(now.rms - nrms);
+    if (now_best) best = std::move(now);
+    now = {std::move(next), std::move(nf), std::move(nw), nrms, 0};
+    now_best = nrms <= best_rms;
+    if (now_best) best_rms = nrms;
     if (change <= o.convergence * nrms + 1e-3 * o.tolerance) {
       ++it;
       break;
     }
   }
+  if (now_best) best = std::move(now);
   best.iterations = it;
   return best;
 }
@@ -511,8 +641,10 @@ bool self_intersects(const BSpline& curve) {
   double speed_max = 0;
   std::vector<double> speed(m);
   for (std::size_t i = 0; i < m; ++i) {
-    p[i] = curve.point(ts[i]);
-    speed[i] = curve.derivative(ts[i], 1).norm();
+    Eigen::Vector2d d[2];  // the same point and derivative as point() and derivative(), one evaluation
+    curve.derivatives(ts[i], 1, d);
+    p[i] = d[0];
+    speed[i] = d[1].norm();
     speed_max = std::max(speed_max, speed[i]);
   }
   for (double s : speed)
@@ -562,9 +694,11 @@ Along along_curve(const Refinement& r) {
   if (a.ts.empty()) return a;
   const detail::PiecewiseCurve pc(r.curve);
   a.chords.resize(a.ts.size());
-  Eigen::Vector2d previous = pc.point(a.ts[0]);
+  detail::PiecewiseCurve::Local at = pc.locate(a.ts[0]);
+  Eigen::Vector2d previous = pc.point(at);
   for (std::size_t i = 0; i < a.ts.size(); ++i) {
-    const Eigen::Vector2d next = pc.point(i + 1 < a.ts.size() ? a.ts[i + 1] : a.ts[0]);
+    at = pc.locate(i + 1 < a.ts.size() ? a.ts[i + 1] : a.ts[0], at.span);
+    const Eigen::Vector2d next = pc.point(at);
     a.chords[i] = (next - previous).norm();
     previous = next;
   }
@@ -579,7 +713,7 @@ void measure_gaps(const Refinement& r, const Along& along, double gap_factor, Fi
   if (ts.size() < 2) return;
   const BSpline& c = r.curve;
   const double period = c.t_max() - c.t_min();
-  result.spacing = median(lengths);
+  result.spacing = median_nonnegative(lengths);
   for (std::size_t i = 0; i < ts.size(); ++i) {
     if (!(lengths[i] > gap_factor * result.spacing)) continue;
     const double end = i + 1 < ts.size() ? ts[i + 1] : ts[0] + period;
@@ -774,9 +908,12 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
     double ss = 0;
     for (double x : d) ss += x * x;
     result.rms = std::sqrt(ss / d.size());
-    std::sort(d.begin(), d.end());
-    result.max = d.back();
-    result.p95 = d[std::min(d.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * d.size())) - 1)];
+    // Two order statistics of finite numbers: selected, not sorted.
+    const auto p95 =
+        d.begin() + std::min(d.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * d.size())) - 1);
+    std::nth_element(d.begin(), p95, d.end());
+    result.p95 = *p95;
+    result.max = *std::max_element(p95, d.end());
   }
   result.control_points = static_cast<int>(result.spline.control.size());
   const Along along = along_curve(r);
@@ -848,17 +985,28 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
   auto group = [](const Table& t, std::size_t cs, std::size_t cl, std::size_t ci, std::size_t cu,
                   std::size_t cv) {
     std::map<std::pair<int, int>, Rows> loops;
+    Rows* loop = nullptr;  // the last row's, which the next row mostly shares
+    std::pair<int, int> last;
     for (std::size_t r = 0; r < t.rows(); ++r) {
       const double s = t.at(r, cs), l = t.at(r, cl);
       if (!std::isfinite(s) || !std::isfinite(l))
         throw Error("fit_spline: row " + std::to_string(r + 1) + " of the " + t.name +
                     " table has a non-finite section or loop id");
-      loops[{static_cast<int>(s), static_cast<int>(l)}].push_back(
-          {t.at(r, ci), Eigen::Vector2d(t.at(r, cu), t.at(r, cv))});
+      const std::pair<int, int> key{static_cast<int>(s), static_cast<int>(l)};
+      if (!loop || key != last) {
+        loop = &loops[key];
+        last = key;
+      }
+      loop->push_back({t.at(r, ci), Eigen::Vector2d(t.at(r, cu), t.at(r, cv))});
     }
-    for (auto& [key, rows] : loops)
-      std::stable_sort(rows.begin(), rows.end(),
-                       [](const auto& x, const auto& y) { return x.first < y.first; });
+    auto before = [](const auto& x, const auto& y) { return x.first < y.first; };
+    for (auto& [key, rows] : loops) {
+      // Rows come in index order: left as they are when sorted (finite indices, so the
+      // stable sort would keep them too).
+      auto finite = [](const auto& x) { return std::isfinite(x.first); };
+      if (!std::all_of(rows.begin(), rows.end(), finite) || !std::is_sorted(rows.begin(), rows.end(), before))
+        std::stable_sort(rows.begin(), rows.end(), before);
+    }
     return loops;
   };
   auto measured = group(points, cs, cl, ci, cu, cv);

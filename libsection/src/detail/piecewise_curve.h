@@ -69,9 +69,38 @@ public:
   double t_min() const { return t_min_; }
   double t_max() const { return t_max_; }
 
+  /// Where a parameter lies: its span and the parameter from the span's start.
+  struct Local {
+    std::size_t span;
+    double s;
+  };
+
+  /// The span of t (wrapped into one period when closed, clamped when open). `hint`: a
+  /// span to try first (the last one located, when the parameters come in order).
+  Local locate(double t, std::size_t hint = 0) const {
+    if (closed_) {
+      const double period = t_max_ - t_min_;
+      if (t < t_min_ || t >= t_max_) {
+        t = t_min_ + std::fmod(t - t_min_, period);
+        if (t < t_min_) t += period;
+        if (t >= t_max_) t = t_min_;
+      }
+    } else {
+      t = std::clamp(t, t_min_, t_max_);
+    }
+    // Breaks increase strictly: a span that holds t is the one the search would find.
+    if (hint + 1 < breaks_.size() && breaks_[hint] <= t && t < breaks_[hint + 1])
+      return {hint, t - breaks_[hint]};
+    const auto it = std::upper_bound(breaks_.begin(), breaks_.end(), t);
+    const std::size_t span = std::min<std::size_t>(
+        static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - breaks_.begin() - 1, 0)), breaks_.size() - 2);
+    return {span, t - breaks_[span]};
+  }
+
   /// Point and derivatives at t (wrapped into one period when closed, clamped when open).
-  CurveJet jet(double t) const {
-    const Local l = locate(t);
+  CurveJet jet(double t) const { return jet(locate(t)); }
+
+  CurveJet jet(const Local& l) const {
     const Eigen::Vector2d* c = &coef_[l.span * (degree_ + 1)];
     CurveJet out{c[degree_], Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
     for (int d = degree_ - 1; d >= 0; --d) {
@@ -84,8 +113,9 @@ public:
 
   /// The p + 1 basis functions non-zero at t: the first one's control index (the others
   /// follow consecutively, wrapping around when closed) and their values in `value`.
-  int basis(double t, double* value) const {
-    const Local l = locate(t);
+  int basis(double t, double* value) const { return basis(locate(t), value); }
+
+  int basis(const Local& l, double* value) const {
     const double* u = &local_knots_[l.span * 2 * degree_];  // knots j-p+1 .. j+p
     const double x = breaks_[l.span] + l.s;
     double left[8], right[8];
@@ -105,8 +135,9 @@ public:
     return first_control_[l.span];
   }
 
-  Eigen::Vector2d point(double t) const {
-    const Local l = locate(t);
+  Eigen::Vector2d point(double t) const { return point(locate(t)); }
+
+  Eigen::Vector2d point(const Local& l) const {
     const Eigen::Vector2d* c = &coef_[l.span * (degree_ + 1)];
     Eigen::Vector2d p = c[degree_];
     for (int d = degree_ - 1; d >= 0; --d) p = p * l.s + c[d];
@@ -114,28 +145,6 @@ public:
   }
 
 private:
-  struct Local {
-    std::size_t span;
-    double s;  // parameter from the span's start
-  };
-
-  Local locate(double t) const {
-    if (closed_) {
-      const double period = t_max_ - t_min_;
-      if (t < t_min_ || t >= t_max_) {
-        t = t_min_ + std::fmod(t - t_min_, period);
-        if (t < t_min_) t += period;
-        if (t >= t_max_) t = t_min_;
-      }
-    } else {
-      t = std::clamp(t, t_min_, t_max_);
-    }
-    const auto it = std::upper_bound(breaks_.begin(), breaks_.end(), t);
-    const std::size_t span = std::min<std::size_t>(
-        static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - breaks_.begin() - 1, 0)), breaks_.size() - 2);
-    return {span, t - breaks_[span]};
-  }
-
   int degree_;
   bool closed_;
   double t_min_, t_max_;
