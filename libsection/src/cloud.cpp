@@ -8,15 +8,18 @@
 #include <flann/flann.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <random>
 #include <string>
 #include <sys/stat.h>
@@ -856,6 +859,111 @@ std::size_t read_source(Source& src, const std::string& path, const PointChunkFn
 std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_chunk, const CloudReadOptions& options) {
   Source src(path);
   return read_source(src, path, on_chunk, options);
+}
+
+std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work, const IndexedChunkFn& merge,
+                                       const CloudReadOptions& options) {
+  const std::size_t chunk = std::max<std::size_t>(options.chunk_points, 1);
+  // Packed doubles in a regular file: pread anywhere, no conversion.
+  unsigned long long count = 0, start = 0;
+  int fd = -1;
+  std::unique_ptr<Source> src;
+  if (path != "-") {
+    src = std::make_unique<Source>(path);
+    fd = src->regular_fd();
+    if (fd >= 0 && src->fetch(1 << 16) > 0 &&
+        (options.format == CloudFormat::automatic ? format_of(path, src->bytes()) : options.format) == CloudFormat::ply) {
+      const PlyHeader h = parse_ply_header(*src);
+      const bool packed = h.format == PlyFormat::binary_le && host_little_endian() && !h.elements.empty() &&
+                          h.elements[0].name == "vertex" && h.elements[0].props.size() == 3;
+      if (packed) {
+        const auto& pr = h.elements[0].props;
+        bool xyz = true;
+        for (int c = 0; c < 3; ++c)
+          xyz = xyz && !pr[c].list && pr[c].kind == 'f' && pr[c].size == 8 && pr[c].name == std::string(1, char('x' + c));
+        const unsigned long long body = static_cast<unsigned long long>(src->size()) - h.header_bytes;
+        if (xyz && h.elements[0].count > 0 && h.elements[0].count <= options.max_points && body / 24 >= h.elements[0].count) {
+          count = h.elements[0].count;
+          start = h.header_bytes;
+        }
+      }
+    }
+  }
+  if (count == 0) {
+    // Anything else (its errors included) as read_cloud_chunks reads it.
+    std::size_t index = 0;
+    return read_cloud_chunks(
+        path,
+        [&](const Eigen::Vector3d* p, std::size_t n) {
+          work(index, p, n, options.threads);
+          merge(index, p, n);
+          ++index;
+        },
+        options);
+  }
+  const std::string name = src->name();
+  const std::size_t chunks = static_cast<std::size_t>((count + chunk - 1) / chunk);
+  const std::size_t workers = std::min<std::size_t>(
+      chunks, options.threads > 0 ? std::size_t(options.threads) : std::max(1u, std::thread::hardware_concurrency()));
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;
+  std::condition_variable merged_one;
+  std::size_t next_merge = 0;
+  std::size_t first_bad = chunks;  // lowest chunk that failed
+  std::exception_ptr error;        // its error
+  const auto run = [&] {
+    std::vector<Eigen::Vector3d> buf;
+    for (std::size_t k; (k = next++) < chunks;) {
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (k > first_bad) break;  // an earlier chunk failed: no use reading on
+      }
+      const unsigned long long first = static_cast<unsigned long long>(k) * chunk;
+      const std::size_t m = static_cast<std::size_t>(std::min<unsigned long long>(chunk, count - first));
+      try {
+        buf.resize(m);
+        char* p = reinterpret_cast<char*>(buf.data());
+        std::size_t want = 24 * m;
+        off_t at = static_cast<off_t>(start + 24 * first);
+        while (want > 0) {
+          const ssize_t got = ::pread(fd, p, want, at);
+          if (got < 0 && errno == EINTR) continue;
+          if (got <= 0)
+            throw Error("read_cloud: " + name + ": PLY file ends or cannot be read after at most " +
+                        std::to_string(first + (24 * m - want) / 24) + " of " + std::to_string(count) +
+                        " vertices (truncated file?)");
+          p += got;
+          want -= std::size_t(got);
+          at += got;
+        }
+        check_vertices(buf.data(), m, first, name);
+        work(k, buf.data(), m, 1);
+        // Merged in file order: wait for the chunks before.
+        std::unique_lock<std::mutex> lock(mutex);
+        merged_one.wait(lock, [&] { return next_merge == k || first_bad < k; });
+        if (first_bad < k) break;
+        lock.unlock();
+        merge(k, buf.data(), m);
+        lock.lock();
+        ++next_merge;
+        merged_one.notify_all();
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (k < first_bad) {
+          first_bad = k;
+          error = std::current_exception();
+        }
+        merged_one.notify_all();
+        break;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run);
+  run();
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  return static_cast<std::size_t>(count);
 }
 
 CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudReadOptions& options) {

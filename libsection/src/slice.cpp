@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cmath>
+#include <map>
 #include <mutex>
 #include <numeric>
 #include <random>
@@ -612,44 +613,70 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
       w *= std::exp(std::log(u01()) / reservoir_size);
     };
     skip();
-    total = read_cloud_chunks(
+    // Chunks are read and scanned side by side (work), and taken in file order (merge):
+    // the extent, the points kept around the guess, the reservoir.
+    struct Scanned {
+      double lo = INFINITY, hi = -INFINITY, big = 0;
+      std::vector<std::vector<Eigen::Vector3d>> kept;  // per guessed plane
+    };
+    std::mutex scanned_mutex;
+    std::map<std::size_t, Scanned> scanned;  // by chunk, from work to merge
+    total = read_cloud_chunks_parallel(
         path,
-        [&](const Eigen::Vector3d* p, std::size_t count) {
-          const std::size_t parts = parts_of(count, options.threads);
-          std::vector<double> plo(parts, INFINITY), phi(parts, -INFINITY), pbig(parts, 0);
-          std::vector<std::vector<std::vector<Eigen::Vector3d>>> kept(parts);
-          detail::parallel_for(parts, options.threads, [&](std::size_t t) {
-            double l = INFINITY, h = -INFINITY, big = 0;
+        [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count, int threads) {
+          const std::size_t parts = parts_of(count, threads);
+          std::vector<Scanned> part(parts);
+          detail::parallel_for(parts, threads, [&](std::size_t t) {
+            Scanned& r = part[t];
             const std::size_t a = count * t / parts, e = count * (t + 1) / parts;
             if (guess.active) {
-              kept[t].resize(guess.planes.size());
+              r.kept.resize(guess.planes.size());
               for (std::size_t i = a; i < e; ++i) {
                 const Eigen::Vector3d& q = p[i];
                 const double s = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
-                l = s < l ? s : l;
-                h = s > h ? s : h;
-                big = std::max({big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
-                guess.keep(q, kept[t]);
+                r.lo = s < r.lo ? s : r.lo;
+                r.hi = s > r.hi ? s : r.hi;
+                r.big = std::max({r.big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
+                guess.keep(q, r.kept);
               }
             } else {
               for (std::size_t i = a; i < e; ++i) {
                 const double s = n.x() * p[i].x() + n.y() * p[i].y() + n.z() * p[i].z();
-                l = s < l ? s : l;
-                h = s > h ? s : h;
+                r.lo = s < r.lo ? s : r.lo;
+                r.hi = s > r.hi ? s : r.hi;
               }
             }
-            plo[t] = l;
-            phi[t] = h;
-            pbig[t] = big;
           });
-          for (std::size_t t = 0; t < parts; ++t) {
-            lo = std::min(lo, plo[t]);
-            hi = std::max(hi, phi[t]);
-            largest = std::max(largest, pbig[t]);
-            if (guess.active)
-              for (std::size_t k = 0; k < guess.kept.size(); ++k)
-                if (!kept[t][k].empty()) guess.kept[k].push_back(std::move(kept[t][k]));
+          // The parts of a chunk as one, in order.
+          Scanned whole;
+          whole.kept.resize(guess.active ? guess.planes.size() : 0);
+          for (auto& r : part) {
+            whole.lo = std::min(whole.lo, r.lo);
+            whole.hi = std::max(whole.hi, r.hi);
+            whole.big = std::max(whole.big, r.big);
+            for (std::size_t k = 0; k < whole.kept.size(); ++k) {
+              if (whole.kept[k].empty())
+                whole.kept[k] = std::move(r.kept[k]);
+              else
+                whole.kept[k].insert(whole.kept[k].end(), r.kept[k].begin(), r.kept[k].end());
+            }
           }
+          std::lock_guard<std::mutex> lock(scanned_mutex);
+          scanned[chunk] = std::move(whole);
+        },
+        [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count) {
+          Scanned r;
+          {
+            std::lock_guard<std::mutex> lock(scanned_mutex);
+            auto at = scanned.find(chunk);
+            r = std::move(at->second);
+            scanned.erase(at);
+          }
+          lo = std::min(lo, r.lo);
+          hi = std::max(hi, r.hi);
+          largest = std::max(largest, r.big);
+          for (std::size_t k = 0; k < r.kept.size(); ++k)
+            if (!r.kept[k].empty()) guess.kept[k].push_back(std::move(r.kept[k]));
           if (slab != 0) return;
           for (std::size_t i = 0; i < count && reservoir.size() < reservoir_size; ++i) reservoir.push_back(p[i]);
           for (; next < total + count; skip())
@@ -708,14 +735,37 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
   const double reach = fill_reach(options, slab);
   const auto near_groups = reach > 0 ? group_planes(planes, 2 * reach) : std::vector<SlabGroup>{};
-  result.points = read_cloud_chunks(
+  // Chunks are tested side by side (work) and their points appended in file order (merge).
+  struct Found {
+    std::vector<std::vector<Eigen::Vector2d>> slabs;
+    std::vector<std::vector<Eigen::Vector3d>> near;
+  };
+  std::mutex found_mutex;
+  std::map<std::size_t, Found> found;  // by chunk, from work to merge
+  result.points = read_cloud_chunks_parallel(
       path,
-      [&](const Eigen::Vector3d* p, std::size_t count) {
+      [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count, int threads) {
+        Found f{std::vector<std::vector<Eigen::Vector2d>>(planes.size()),
+                std::vector<std::vector<Eigen::Vector3d>>(planes.size())};
         if (reach > 0)
-          add_slab_and_near_points_parallel(p, count, groups, near_groups, frame, slab, reach, options.threads, slabs,
-                                            near);
+          add_slab_and_near_points_parallel(p, count, groups, near_groups, frame, slab, reach, threads, f.slabs, f.near);
         else
-          add_slab_points_parallel(p, count, groups, frame, slab, options.threads, slabs);
+          add_slab_points_parallel(p, count, groups, frame, slab, threads, f.slabs);
+        std::lock_guard<std::mutex> lock(found_mutex);
+        found[chunk] = std::move(f);
+      },
+      [&](std::size_t chunk, const Eigen::Vector3d*, std::size_t) {
+        Found f;
+        {
+          std::lock_guard<std::mutex> lock(found_mutex);
+          auto at = found.find(chunk);
+          f = std::move(at->second);
+          found.erase(at);
+        }
+        for (std::size_t k = 0; k < planes.size(); ++k) {
+          slabs[k].insert(slabs[k].end(), f.slabs[k].begin(), f.slabs[k].end());
+          near[k].insert(near[k].end(), f.near[k].begin(), f.near[k].end());
+        }
       },
       read_chunks);
   result.slab = slab;

@@ -43,6 +43,27 @@ using PointChunkFn = std::function<void(const Eigen::Vector3d* points, std::size
 std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_chunk,
                               const CloudReadOptions& options = {});
 
+/// Receives chunk `index` (0, 1, ... in file order) of a cloud read by
+/// read_cloud_chunks_parallel.
+using IndexedChunkFn = std::function<void(std::size_t index, const Eigen::Vector3d* points, std::size_t count)>;
+/// Works on chunk `index` for read_cloud_chunks_parallel, with up to `threads` threads of
+/// its own (1 when the chunks are read side by side).
+using ChunkWorkFn =
+    std::function<void(std::size_t index, const Eigen::Vector3d* points, std::size_t count, int threads)>;
+
+/// Reads the points of `path` chunk by chunk, several chunks at a time when the file
+/// allows it (a binary PLY file of packed little-endian doubles x, y, z, what write_cloud
+/// writes): `work` runs on worker threads, each on a whole chunk (read, checked, then
+/// handed over), and `merge` runs after it for every chunk in file order, one chunk at a
+/// time. Other files are read by read_cloud_chunks, `work` then `merge` on each chunk in
+/// turn, `work` then told it may use options.threads threads. Chunks hold
+/// options.chunk_points points (the last fewer). Throws as
+/// read_cloud_chunks, for the first bad vertex in file order; `merge` is not called for
+/// a chunk at or after it.
+/// @return the number of points read
+std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work, const IndexedChunkFn& merge,
+                                       const CloudReadOptions& options = {});
+
 /// A first look at a cloud file (peek_cloud).
 struct CloudPeek {
   std::vector<Eigen::Vector3d> points;  ///< vertices spread over the file, in file order
