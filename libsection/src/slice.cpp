@@ -10,6 +10,7 @@
 #include <map>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <thread>
 
@@ -398,7 +399,11 @@ private:
   const SectionSink& sink_;
 };
 
-void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<std::vector<Eigen::Vector3d>>& near,
+// The points beside plane i (fill_reach) as (u, v, signed distance), asked for only when
+// a section has a band to build or a gap to fill.
+using NearFn = std::function<std::vector<Eigen::Vector3d>(std::size_t i)>;
+
+void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
                  const std::vector<Plane>& planes, double slab, const SliceOptions& options, SliceResult& result,
                  const SectionSink& sink = {}) {
   result.sections.resize(planes.size());
@@ -412,15 +417,20 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
       if (slabs[i].empty()) throw Error("no points in the slab (the plane misses the part?)");
       s.morphology = order_section(slabs[i], options.morphology);
       std::size_t first = slabs[i].size();
-      if (options.band_spacing > 0 && i < near.size() && !near[i].empty() && !s.morphology.loops.empty()) {
+      std::optional<std::vector<Eigen::Vector3d>> near_points;
+      const auto near = [&]() -> const std::vector<Eigen::Vector3d>& {
+        if (!near_points) near_points = near_of ? near_of(i) : std::vector<Eigen::Vector3d>{};
+        return *near_points;
+      };
+      if (options.band_spacing > 0 && !s.morphology.loops.empty()) {
         const Loop& profile = s.morphology.loops[0];
         const double half = band_half_width(profile.points.size(), profile.length, slab, options.band_spacing,
                                             options.band_max);
         // A band less than twice as wide as the slab is not worth a second ordering and
         // the later stages' time for its points (the slab is dense enough then).
-        if (half >= slab) {
+        if (half >= slab && !near().empty()) {
           std::vector<Eigen::Vector2d> band =
-              drift_band(s.morphology, near[i], slab, half, options.band_spacing, options.band_sparse_max * slab);
+              drift_band(s.morphology, near(), slab, half, options.band_spacing, options.band_sparse_max * slab);
           if (band.size() > slabs[i].size()) {
             // A band that cannot be ordered leaves the slab's ordering as it is.
             try {
@@ -433,8 +443,10 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
           }
         }
       }
-      if (options.fill_gaps && i < near.size() && !near[i].empty()) {
-        GapFillResult r = fill_gaps(s.morphology, near[i], slab, first, options.fill);
+      // The points beside the plane only for a profile with gaps (the look for gaps
+      // needs none of them, and fill_gaps finds none then).
+      if (options.fill_gaps && fill_gaps(s.morphology, {}, slab, first, options.fill).gaps > 0 && !near().empty()) {
+        GapFillResult r = fill_gaps(s.morphology, near(), slab, first, options.fill);
         s.morphology = std::move(r.filled);
         r.filled = MorphologyResult{};
         s.fill = std::move(r);
@@ -443,7 +455,6 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, std::vector<s
       s.error = e.what();
     }
     std::vector<Eigen::Vector2d>().swap(slabs[i]);
-    if (i < near.size()) std::vector<Eigen::Vector3d>().swap(near[i]);
     in_order.finished(i, result.sections);
   });
 }
@@ -465,11 +476,20 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
   }
   if (!(result.slab > 0) || !std::isfinite(result.slab)) throw Error("slice: the slab width must be positive and finite");
   auto slabs = slab_points(cloud.points, planes, result.slab);
+  const double reach = fill_reach(options, result.slab);
+  const auto near_groups = reach > 0 ? group_planes(planes, 2 * reach) : std::vector<SlabGroup>{};
+  const auto frame = frames_of(planes);
+  // Every plane's near points in one pass over the cloud, made when a section first asks.
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
-  if (const double reach = fill_reach(options, result.slab); reach > 0)
-    add_near_points_parallel(cloud.points.data(), cloud.points.size(), group_planes(planes, 2 * reach),
-                             frames_of(planes), reach, options.threads, near);
-  order_slabs(slabs, near, planes, result.slab, options, result);
+  std::once_flag near_made;
+  const NearFn near_of = [&](std::size_t i) {
+    std::call_once(near_made, [&] {
+      if (reach > 0)
+        add_near_points_parallel(cloud.points.data(), cloud.points.size(), near_groups, frame, reach, 1, near);
+    });
+    return std::move(near[i]);
+  };
+  order_slabs(slabs, near_of, planes, result.slab, options, result);
   return result;
 }
 
@@ -630,6 +650,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
             Scanned& r = part[t];
             const std::size_t a = count * t / parts, e = count * (t + 1) / parts;
             if (guess.active) {
+              // One pass over the points (a chunk does not stay in the cache for three).
               r.kept.resize(guess.planes.size());
               for (std::size_t i = a; i < e; ++i) {
                 const Eigen::Vector3d& q = p[i];
@@ -700,30 +721,31 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
       // Each plane's slab and near points from the points kept around its guess: the
       // same points, in the same order, as pass 2 would give.
       std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
-      std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
       const double reach = fill_reach(options, slab);
       detail::parallel_for(planes.size(), options.threads, [&](std::size_t k) {
         const std::vector<Plane> one{planes[k]};
         std::vector<std::vector<Eigen::Vector2d>> slab_k(1);
-        std::vector<std::vector<Eigen::Vector3d>> near_k(1);
         const auto slab_groups = group_planes(one, slab);
-        const auto near_groups = reach > 0 ? group_planes(one, 2 * reach) : std::vector<SlabGroup>{};
         const auto frame = frames_of(one);
-        for (auto& block : guess.kept[k]) {
-          if (reach > 0)
-            add_slab_and_near_points_parallel(block.data(), block.size(), slab_groups, near_groups, frame, slab, reach,
-                                              1, slab_k, near_k);
-          else
-            add_slab_points_parallel(block.data(), block.size(), slab_groups, frame, slab, 1, slab_k);
-          std::vector<Eigen::Vector3d>().swap(block);
-        }
+        for (const auto& block : guess.kept[k])
+          add_slab_points_parallel(block.data(), block.size(), slab_groups, frame, slab, 1, slab_k);
         slabs[k] = std::move(slab_k[0]);
-        near[k] = std::move(near_k[0]);
       });
+      // A plane's near points from those kept around its guess, when its section asks.
+      const NearFn near_of = [&](std::size_t k) {
+        std::vector<std::vector<Eigen::Vector3d>> near_k(1);
+        if (reach > 0) {
+          const std::vector<Plane> one{planes[k]};
+          const auto near_groups = group_planes(one, 2 * reach);
+          const auto frame = frames_of(one);
+          for (const auto& block : guess.kept[k]) add_near_points(block.data(), block.size(), near_groups, frame, reach, near_k);
+        }
+        return std::move(near_k[0]);
+      };
       result.points = total;
       result.slab = slab;
       result.file_passes = 1;
-      order_slabs(slabs, near, planes, slab, options, result, sink);
+      order_slabs(slabs, near_of, planes, slab, options, result, sink);
       return result;
     }
   }
@@ -770,7 +792,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
       read_chunks);
   result.slab = slab;
   result.file_passes = spec.count > 0 || options.slab == 0 ? 2 : 1;
-  order_slabs(slabs, near, planes, slab, options, result, sink);
+  order_slabs(slabs, [&](std::size_t i) { return std::move(near[i]); }, planes, slab, options, result, sink);
   return result;
 }
 
