@@ -5,20 +5,23 @@
 #include "detail/text.h"
 
 #include <algorithm>
-#include <exception>
-#include <thread>
-#include <mutex>
-#include <deque>
-#include <condition_variable>
 #include <charconv>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
-#include <vector>
 #include <cstring>
+#include <deque>
+#include <exception>
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <mutex>
 #include <sstream>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
 
 namespace section {
 
@@ -651,6 +654,12 @@ StreamWriter::StreamWriter(const std::string& path, const Stream& head) : path_(
   if (path == "-") {
     std::cout.flush();  // anything written through std::cout before goes first
     file_ = stdout;
+    // A pipe that holds a whole part: the next tool reads it in one go, and this one
+    // writes it without waiting (Linux; elsewhere, or when refused, the default stands).
+#ifdef F_SETPIPE_SZ
+    struct stat st {};
+    if (::fstat(fileno(stdout), &st) == 0 && S_ISFIFO(st.st_mode)) ::fcntl(fileno(stdout), F_SETPIPE_SZ, 1 << 20);
+#endif
   } else {
     temporary_ = path + ".partial";
     file_ = std::fopen(temporary_.c_str(), "wb");
