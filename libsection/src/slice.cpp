@@ -501,15 +501,18 @@ struct Guess {
   bool active = false;                             // false: no guess; pass 2 reads the file again
   std::vector<Plane> planes;                       // the guessed planes
   double half_width = 0;                           // points within this of a guessed plane are kept
+  double share = 0;                                // estimated share of the points kept
   std::vector<SlabGroup> groups;                   // the guessed planes with slabs 2 half_width wide
   // Per guessed plane, blocks of the points kept, in file order (blocks are moved in as
   // the threads collect them, not copied).
   std::vector<std::vector<std::vector<Eigen::Vector3d>>> kept;
 
-  // Appends q to the list in `out` of each guessed plane within half_width of it.
-  void keep(const Eigen::Vector3d& q, std::vector<std::vector<Eigen::Vector3d>>& out) const {
+  // Appends q to the list in `out` of each guessed plane within half_width of it; `s` is
+  // n . q for the one normal of the planes spread over the extent (NaN: not known).
+  void keep(const Eigen::Vector3d& q, double s_known, std::vector<std::vector<Eigen::Vector3d>>& out) const {
     for (const SlabGroup& g : groups) {
-      const double s = g.n.dot(q);
+      // The margins of covers() hold for either rounding of n . q.
+      const double s = groups.size() == 1 && s_known == s_known ? s_known : g.n.dot(q);
       if (!g.near.empty() && g.far_from_slabs(s)) continue;
       for (std::size_t k = g.first_at_least(s - half_width); k < g.offset.size() && g.offset[k] <= s + half_width; ++k)
         out[g.plane[k]].push_back(q);
@@ -578,6 +581,7 @@ Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOp
     share += hi > lo ? 2 * guess.half_width / (hi - lo) : 1;
   }
   if (!(share <= 0.5)) return guess;
+  guess.share = share;
   guess.groups = group_planes(guess.planes, 2 * guess.half_width);
   guess.kept.resize(guess.planes.size());
   guess.active = true;
@@ -603,9 +607,10 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
       for (const auto& s : result.sections) sink(s);
     return result;
   }
-  // Chunks of at most 256k points: each is still in the cache when the slab test reads it.
+  // Chunks of at most 64k points (1.5 MB): each stays in a core's cache from its read to its
+  // scan, and the workers end the file together.
   CloudReadOptions read_chunks = read;
-  read_chunks.chunk_points = std::min<std::size_t>(read.chunk_points, std::size_t(1) << 18);
+  read_chunks.chunk_points = std::min<std::size_t>(read.chunk_points, std::size_t(1) << 16);
   if (read_chunks.threads == 0) read_chunks.threads = options.threads;
   std::vector<Plane> planes = spec.planes;
   double slab = options.slab;
@@ -652,13 +657,15 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
             if (guess.active) {
               // One pass over the points (a chunk does not stay in the cache for three).
               r.kept.resize(guess.planes.size());
+              for (auto& list : r.kept) list.reserve(std::size_t(guess.share * double(e - a) / double(r.kept.size()) * 1.25) + 16);
+              const bool same_normal = spec.count > 0;
               for (std::size_t i = a; i < e; ++i) {
                 const Eigen::Vector3d& q = p[i];
                 const double s = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
                 r.lo = s < r.lo ? s : r.lo;
                 r.hi = s > r.hi ? s : r.hi;
                 r.big = std::max({r.big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
-                guess.keep(q, r.kept);
+                guess.keep(q, same_normal ? s : NAN, r.kept);
               }
             } else {
               for (std::size_t i = a; i < e; ++i) {
