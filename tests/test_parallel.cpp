@@ -163,12 +163,22 @@ TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a f
     for (const auto& s : r.sections) CHECK(s.error.empty());
     CHECK(section::format_stream(section::to_stream(r, "t")) ==
           section::format_stream(section::to_stream(section::slice(cloud, planes, held), "t")));
+    return r;
   };
   SECTION("planes spread over the extent: the first look finds it") {
     same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 1);
   }
   SECTION("explicit planes, the slab estimated") {
     same_as_held(scan.cloud, section::PlaneSpec{section::planes_at({0, 0, 1}, {15, 30, 45}), {0, 0, 1}, 0}, 1);
+  }
+  SECTION("holes in the scan: the points beside the planes, read again for the gaps") {
+    so.holes = 40;
+    so.spacing = 0.1;
+    const section::Scan holed = section::generate_scan(section::turbine_blade(), so);
+    const section::SliceResult r = same_as_held(holed.cloud, section::PlaneSpec{{}, {0, 0, 1}, 6}, 1);
+    int filled = 0;
+    for (const auto& sec : r.sections) filled += sec.fill.gaps_filled;
+    CHECK(filled > 0);
   }
   SECTION("a lone point far above the blade, which the first look misses: the file is read again") {
     auto& p = scan.cloud.points;

@@ -519,9 +519,10 @@ struct Guess {
     }
   }
 
-  // True when every point that the slab and near tests of `found` (slab width `slab`,
-  // near points within `reach`) can take was kept: each found plane lies close enough to
-  // its guess. `largest` bounds the points' coordinates (the exact tests' tolerance).
+  // True when every point within `reach` of a plane of `found` was kept, and every point
+  // its slab test can take when `reach` is half the slab: each found plane lies close
+  // enough to its guess. `largest` bounds the points' coordinates (the exact slab test's
+  // tolerance).
   bool covers(const std::vector<Plane>& found, double slab, double reach, double largest) const {
     if (found.size() != planes.size()) return false;
     const double tol = 1e-12 * (std::max(2 * largest, slab) + 1) * (1 + 1e-6);
@@ -535,6 +536,37 @@ struct Guess {
     return true;
   }
 };
+
+// The points within `reach` of each plane in the file, as (u, v, signed distance), in file
+// order (add_near_points), chunks read side by side.
+std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& path, const std::vector<Plane>& planes,
+                                                           double reach, const CloudReadOptions& read) {
+  const auto groups = group_planes(planes, 2 * reach);
+  const auto frame = frames_of(planes);
+  std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
+  std::mutex mutex;
+  std::map<std::size_t, std::vector<std::vector<Eigen::Vector3d>>> found;  // by chunk, from work to merge
+  read_cloud_chunks_parallel(
+      path,
+      [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count, int threads) {
+        std::vector<std::vector<Eigen::Vector3d>> f(planes.size());
+        add_near_points_parallel(p, count, groups, frame, reach, threads, f);
+        std::lock_guard<std::mutex> lock(mutex);
+        found[chunk] = std::move(f);
+      },
+      [&](std::size_t chunk, const Eigen::Vector3d*, std::size_t) {
+        std::vector<std::vector<Eigen::Vector3d>> f;
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          auto at = found.find(chunk);
+          f = std::move(at->second);
+          found.erase(at);
+        }
+        for (std::size_t k = 0; k < planes.size(); ++k) near[k].insert(near[k].end(), f[k].begin(), f[k].end());
+      },
+      read);
+  return near;
+}
 
 // The guess for slice_file: planes from the extent of 4096 points read here and there
 // (peek_cloud: binary PLY files only), the slab from their spacing scaled to the full
@@ -558,21 +590,23 @@ Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOp
     }
   };
   // Measured on generated blades: the peek's spacing is 3-18 % above the one pass 1
-  // finds, its extent within 0.02 mm of 60 mm. Planes spread over the extent move by up
-  // to the extent's error once it is known; explicit planes stay.
+  // finds, its extent within 0.025 mm of 60 mm. Planes spread over the extent move by up
+  // to the extent's error once it is known; explicit planes stay. Only the slabs are
+  // kept: the points beside a plane, which a section with a gap or a band needs, are
+  // read again for it (rare on dense scans, where the guess pays).
   double shift = 0;
   if (spec.count > 0) {
     double lo, hi;
     extent_along(spec.normal, lo, hi);
     if (!(hi > lo)) return guess;
-    shift = std::max(1e-3 * (hi - lo), 4 * slab);
+    shift = std::max(1e-3 * (hi - lo), 2 * slab);
     std::vector<double> offsets;
     for (int k = 0; k < spec.count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (spec.count + 1));
     guess.planes = planes_at(spec.normal, offsets);
   } else {
     guess.planes = spec.planes;
   }
-  guess.half_width = 1.3 * std::max(fill_reach(options, slab), 0.5 * slab) + shift;
+  guess.half_width = 1.5 * 0.5 * slab + shift;
   // Worth it while the kept points are at most half the cloud (else pass 2 is cheaper).
   double share = 0;
   for (const auto& p : guess.planes) {
@@ -724,7 +758,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
         throw Error("slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
     }
     if (!(slab > 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be positive and finite");
-    if (guess.active && guess.covers(planes, slab, fill_reach(options, slab), largest)) {
+    if (guess.active && guess.covers(planes, slab, 0, largest)) {
       // Each plane's slab and near points from the points kept around its guess: the
       // same points, in the same order, as pass 2 would give.
       std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
@@ -738,15 +772,23 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
           add_slab_points_parallel(block.data(), block.size(), slab_groups, frame, slab, 1, slab_k);
         slabs[k] = std::move(slab_k[0]);
       });
-      // A plane's near points from those kept around its guess, when its section asks.
+      // A plane's near points, when its section asks: from the points kept around its
+      // guess when they reach that far, else from a pass over the file for every plane
+      // (made once, when a section first asks).
+      const bool kept_near = guess.covers(planes, slab, reach, largest);
+      std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
+      std::once_flag near_read;
       const NearFn near_of = [&](std::size_t k) {
         std::vector<std::vector<Eigen::Vector3d>> near_k(1);
-        if (reach > 0) {
-          const std::vector<Plane> one{planes[k]};
-          const auto near_groups = group_planes(one, 2 * reach);
-          const auto frame = frames_of(one);
-          for (const auto& block : guess.kept[k]) add_near_points(block.data(), block.size(), near_groups, frame, reach, near_k);
+        if (!(reach > 0)) return std::vector<Eigen::Vector3d>{};
+        if (!kept_near) {
+          std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks); });
+          return std::move(near[k]);
         }
+        const std::vector<Plane> one{planes[k]};
+        const auto near_groups = group_planes(one, 2 * reach);
+        const auto frame = frames_of(one);
+        for (const auto& block : guess.kept[k]) add_near_points(block.data(), block.size(), near_groups, frame, reach, near_k);
         return std::move(near_k[0]);
       };
       result.points = total;
