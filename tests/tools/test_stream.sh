@@ -18,11 +18,16 @@ check "smooth closes with # end" -- test "$(tail -n 1 "$TMP/smoothed.csv")" = "#
 "$BIN/smooth" "$TMP/sliced.csv" --threads 1 > "$TMP/one_thread.csv" 2>/dev/null
 check "one thread, same bytes" -- cmp -s <(grep -v "^# history" "$TMP/smoothed.csv") <(grep -v "^# history" "$TMP/one_thread.csv")
 
-# Cut before '# end' (a tool that failed half way): every tool refuses it, naming the file.
-head -n -1 "$TMP/sliced.csv" > "$TMP/cut.csv"
+# Cut before '# end' (a tool that failed half way): every tool refuses its input cut so,
+# naming the file.
+"$BIN/fitspline" "$TMP/smoothed.csv" > "$TMP/fitted.csv" 2>/dev/null
+head -n -1 "$TMP/sliced.csv" > "$TMP/cut_smooth.csv"
+head -n -1 "$TMP/smoothed.csv" > "$TMP/cut_fitspline.csv"
+head -n -1 "$TMP/fitted.csv" > "$TMP/cut_camber.csv"
+head -n -1 "$TMP/fitted.csv" > "$TMP/cut_plot.csv"
 for tool in smooth fitspline camber plot; do
-  expect 1 "$tool refuses a cut stream" -- "$BIN/$tool" "$TMP/cut.csv"
-  check "$tool says why" -- grep -q "cut.csv.*lacks its closing '# end'" "$TMP/err"
+  expect 1 "$tool refuses a cut stream" -- "$BIN/$tool" "$TMP/cut_$tool.csv"
+  check "$tool says why" -- grep -q "cut_$tool.csv.*lacks its closing '# end'" "$TMP/err"
 done
 # A bad line in a later part: the error names its line; no '# end' is written.
 line=$(grep -n '^# part 1' "$TMP/sliced.csv" | cut -d: -f1)
