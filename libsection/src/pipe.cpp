@@ -722,7 +722,8 @@ public:
   // The next line with its '\n' (the last may lack it); false at the end.
   bool next(std::string_view& line) {
     while (true) {
-      const char* nl = static_cast<const char*>(std::memchr(buf_.data() + at_, '\n', end_ - at_));
+      const char* nl =
+          end_ > at_ ? static_cast<const char*>(std::memchr(buf_.data() + at_, '\n', end_ - at_)) : nullptr;
       if (nl) {
         const std::size_t n = std::size_t(nl - (buf_.data() + at_)) + 1;
         line = std::string_view(buf_.data() + at_, n);
