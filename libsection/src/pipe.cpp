@@ -661,8 +661,12 @@ StreamWriter::StreamWriter(const std::string& path, const Stream& head) : path_(
     if (::fstat(fileno(stdout), &st) == 0 && S_ISFIFO(st.st_mode)) ::fcntl(fileno(stdout), F_SETPIPE_SZ, 1 << 20);
 #endif
   } else {
-    temporary_ = path + ".partial";
-    file_ = std::fopen(temporary_.c_str(), "wb");
+    // A regular file (or a new one) is written under a temporary name and renamed when
+    // whole; anything else (/dev/null, a named pipe) is written as it is.
+    struct stat st {};
+    const bool special = ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+    if (!special) temporary_ = path + ".partial";
+    file_ = std::fopen(special ? path.c_str() : temporary_.c_str(), "wb");
     if (!file_) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
   }
   write(format_preamble(head));
@@ -671,7 +675,7 @@ StreamWriter::StreamWriter(const std::string& path, const Stream& head) : path_(
 StreamWriter::~StreamWriter() {
   if (file_ && file_ != stdout) {
     std::fclose(file_);
-    std::remove(temporary_.c_str());
+    if (!temporary_.empty()) std::remove(temporary_.c_str());
   }
 }
 
@@ -696,8 +700,8 @@ void StreamWriter::finish() {
   } else {
     const bool bad = std::fclose(file_) != 0;
     file_ = nullptr;
-    if (bad || std::rename(temporary_.c_str(), path_.c_str()) != 0) {
-      std::remove(temporary_.c_str());
+    if (bad || (!temporary_.empty() && std::rename(temporary_.c_str(), path_.c_str()) != 0)) {
+      if (!temporary_.empty()) std::remove(temporary_.c_str());
       throw Error(path_ + ": write error");
     }
   }

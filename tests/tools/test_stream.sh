@@ -42,6 +42,9 @@ check "the file is the stream" -- cmp -s <(grep -v "^# history" "$TMP/file.csv")
 check "no temporary file left" -- test ! -e "$TMP/file.csv.partial"
 expect 1 "smooth -o FILE on a bad stream" -- "$BIN/smooth" "$TMP/bad.csv" -o "$TMP/none.csv"
 check "no file written" -- test ! -e "$TMP/none.csv" -a ! -e "$TMP/none.csv.partial"
+# To /dev/null: written there, not replaced by a file.
+expect 0 "smooth -o /dev/null" -- "$BIN/smooth" "$TMP/sliced.csv" -o /dev/null
+check "/dev/null is still a device" -- test -c /dev/null
 # The whole pipe through pipes.
 "$BIN/slice" "$TMP/blade.ply" --at 15,20 2>/dev/null | "$BIN/smooth" | "$BIN/fitspline" 2>/dev/null |
   "$BIN/camber" --params "$TMP/params.csv" > "$TMP/camber.csv" 2>/dev/null

@@ -109,8 +109,9 @@ void write_stream(const std::string& path, const Stream& stream);
 /// (version, units, history, notes) at once, each part when given, and the closing
 /// `# end` at finish(), so that the next tool of a pipe can work on a part while this one
 /// makes the next. Standard output is written as it goes; a file is written under a
-/// temporary name and renamed at finish(), so that a failure leaves no file. A stream
-/// that is not finished lacks `# end`, and every reader refuses it.
+/// temporary name (`FILE.partial`) and renamed at finish(), so that a failure leaves no
+/// file; a path that is not a regular file (/dev/null, a named pipe) is written as it
+/// goes. A stream that is not finished lacks `# end`, and every reader refuses it.
 class StreamWriter {
 public:
   /// Opens `path` ("-" = standard output) and writes the preamble of `head` (its tables,
