@@ -667,6 +667,11 @@ StreamWriter::StreamWriter(const std::string& path, const Stream& head) : path_(
     const bool special = ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
     if (!special) temporary_ = path + ".partial";
     file_ = std::fopen(special ? path.c_str() : temporary_.c_str(), "wb");
+    if (!file_ && !special) {
+      // A directory that takes no new file may still let the file itself be written.
+      temporary_.clear();
+      file_ = std::fopen(path.c_str(), "wb");
+    }
     if (!file_) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
   }
   write(format_preamble(head));
