@@ -11,6 +11,20 @@
 
 using namespace section;
 
+namespace {
+
+// The message parse_stream refuses `text` with, or "no error".
+std::string parse_error(const std::string& text, const std::string& source = "s.csv") {
+  try {
+    parse_stream(text, source);
+  } catch (const Error& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
+
+}  // namespace
+
 TEST_CASE("pipe: a stream round-trips exactly, doubles included", "[pipe]") {
   Stream s;
   s.units = "mm";
@@ -37,14 +51,7 @@ TEST_CASE("pipe: a stream round-trips exactly, doubles included", "[pipe]") {
 
 TEST_CASE("pipe: malformed streams name the line", "[pipe]") {
   const std::string head = "# libsection-stream 1\n# table points\nsection,u,v\n";
-  const auto message = [](const std::string& text) {
-    try {
-      parse_stream(text, "s.csv");
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto message = [](const std::string& text) { return parse_error(text); };
   CHECK_THAT(message(""), Catch::Contains("empty"));
   CHECK_THAT(message("x,y\n1,2\n"), Catch::Contains("s.csv:1") && Catch::Contains("not a libsection stream"));
   CHECK_THAT(message("# libsection-stream 7\n"), Catch::Contains("version"));
@@ -78,14 +85,7 @@ TEST_CASE("pipe: large tables (parsed and formatted in pieces) round-trip and na
   for (std::size_t c = 0; c < 7; ++c) expected += (c ? "," : "") + format_number(t.values[c]);
   CHECK(row == expected);
   // A bad cell deep in the block: the message names its line as the serial parse does.
-  const auto message = [](const std::string& bad) {
-    try {
-      parse_stream(bad, "big.csv");
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto message = [](const std::string& bad) { return parse_error(bad, "big.csv"); };
   std::string bad = text;
   std::size_t at = 0;
   for (int line = 1; line < 45003; ++line) at = bad.find('\n', at) + 1;  // start of line 45003
@@ -202,14 +202,7 @@ TEST_CASE("pipe: a stream split into parts reads as the whole stream and must en
   CHECK(t.parted.substr(t.parted.size() - 6) == "# end\n");
   // Merged, the parts give the whole stream's tables and issues.
   CHECK(format_stream(parse_stream(t.parted, "parted")) == t.whole);
-  const auto message = [](const std::string& text) {
-    try {
-      parse_stream(text, "s.csv");
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto message = [](const std::string& text) { return parse_error(text); };
   // Cut before '# end' (a tool that failed half way): refused.
   CHECK_THAT(message(t.parted.substr(0, t.parted.size() - 6)), Catch::Contains("lacks its closing '# end'"));
   std::string bad = t.parted;

@@ -130,11 +130,12 @@ int main(int argc, char** argv) {
         options.edge = edge == "auto" ? section::EdgeModel::automatic : section::EdgeModel::round;
         options.edge_on_points = !edge_on_spline;
         section::Table params, thickness;
-        section::StageRun run;
-        run.input = common.input;
-        run.output = common.output;
-        run.history = section::tool::command_line(argc, argv);
-        run.threads = options.threads;
+        section::StageRun run =
+            section::tool::stage_run(common, argc, argv, options.threads, [&](section::Stream& part, int threads) {
+              section::CamberOptions o = options;
+              o.threads = threads;
+              section::camber_stream(part, o);
+            });
         run.other_input = [&](const std::string& text, const std::string& source) {
           const auto points = section::parse_profile(text, source);
           section::Stream stream;
@@ -143,11 +144,6 @@ int main(int argc, char** argv) {
             stream = section::profile_stream(fit.spline, fit.rms);
           });
           return stream;
-        };
-        run.stage = [&](section::Stream& part, int threads) {
-          section::CamberOptions o = options;
-          o.threads = threads;
-          section::tool::with_input(common.input, [&] { section::camber_stream(part, o); });
         };
         run.written = [&](const section::Stream& stream) {
           for (const auto& issue : stream.issues)

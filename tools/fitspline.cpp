@@ -73,16 +73,12 @@ int main(int argc, char** argv) {
       },
       [&] {
         std::size_t fitted = 0, measured = 0;
-        section::StageRun run;
-        run.input = common.input;
-        run.output = common.output;
-        run.history = section::tool::command_line(argc, argv);
-        run.threads = options.threads;
-        run.stage = [&](section::Stream& part, int threads) {
-          section::FitSplineOptions o = options;
-          o.threads = threads;
-          section::tool::with_input(common.input, [&] { section::fit_spline_stream(part, o); });
-        };
+        section::StageRun run =
+            section::tool::stage_run(common, argc, argv, options.threads, [&](section::Stream& part, int threads) {
+              section::FitSplineOptions o = options;
+              o.threads = threads;
+              section::fit_spline_stream(part, o);
+            });
         run.written = [&](const section::Stream& stream) {
           for (const auto& issue : stream.issues) {
             if (issue.stage != "fitspline") continue;

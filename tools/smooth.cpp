@@ -53,16 +53,12 @@ int main(int argc, char** argv) {
       [&] {
         options.solver = section::parse_smooth_solver(solver);
         section::Table stats;
-        section::StageRun run;
-        run.input = common.input;
-        run.output = common.output;
-        run.history = section::tool::command_line(argc, argv);
-        run.threads = options.threads;
-        run.stage = [&](section::Stream& part, int threads) {
-          section::SmoothOptions o = options;
-          o.threads = threads;
-          section::tool::with_input(common.input, [&] { section::smooth_stream(part, o); });
-        };
+        section::StageRun run =
+            section::tool::stage_run(common, argc, argv, options.threads, [&](section::Stream& part, int threads) {
+              section::SmoothOptions o = options;
+              o.threads = threads;
+              section::smooth_stream(part, o);
+            });
         run.written = [&](const section::Stream& part) {
           for (const auto& issue : part.issues)
             if (issue.stage == "smooth")

@@ -87,6 +87,19 @@ std::string command_line(int argc, char** argv) {
   return line;
 }
 
+section::StageRun stage_run(const Common& common, int argc, char** argv, int threads,
+                            const std::function<void(section::Stream&, int threads)>& stage) {
+  section::StageRun run;
+  run.input = common.input;
+  run.output = common.output;
+  run.history = command_line(argc, argv);
+  run.threads = threads;
+  run.stage = [stage, input = common.input](section::Stream& part, int part_threads) {
+    with_input(input, [&] { stage(part, part_threads); });
+  };
+  return run;
+}
+
 const CLI::Validator positive(
     [](std::string& text) -> std::string {
       // from_chars: the whole text, no locale, as the tools read their number lists.

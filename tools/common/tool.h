@@ -1,6 +1,8 @@
 #pragma once
 // Shared plumbing of the command-line tools: common flags, the single top-level catch,
 // exit codes (0 success or --help, 1 bad data, 2 bad usage).
+#include "section/pipe.h"
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -34,5 +36,11 @@ extern const CLI::Validator positive;
 
 /// The command line as one line, for the stream's history.
 std::string command_line(int argc, char** argv);
+
+/// A stage of the pipe as section::run_stage runs it, from the common flags: input,
+/// output, the command line as history, `threads` parts at a time, and `stage` run under
+/// with_input.
+section::StageRun stage_run(const Common& common, int argc, char** argv, int threads,
+                            const std::function<void(section::Stream&, int threads)>& stage);
 
 }  // namespace section::tool
