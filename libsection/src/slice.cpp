@@ -507,12 +507,10 @@ struct Guess {
   // the threads collect them, not copied).
   std::vector<std::vector<std::vector<Eigen::Vector3d>>> kept;
 
-  // Appends q to the list in `out` of each guessed plane within half_width of it; `s` is
-  // n . q for the one normal of the planes spread over the extent (NaN: not known).
-  void keep(const Eigen::Vector3d& q, double s_known, std::vector<std::vector<Eigen::Vector3d>>& out) const {
+  // Appends q to the list in `out` of each guessed plane within half_width of it.
+  void keep(const Eigen::Vector3d& q, std::vector<std::vector<Eigen::Vector3d>>& out) const {
     for (const SlabGroup& g : groups) {
-      // The margins of covers() hold for either rounding of n . q.
-      const double s = groups.size() == 1 && s_known == s_known ? s_known : g.n.dot(q);
+      const double s = g.n.dot(q);
       if (!g.near.empty() && g.far_from_slabs(s)) continue;
       for (std::size_t k = g.first_at_least(s - half_width); k < g.offset.size() && g.offset[k] <= s + half_width; ++k)
         out[g.plane[k]].push_back(q);
@@ -692,14 +690,13 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
               // One pass over the points (a chunk does not stay in the cache for three).
               r.kept.resize(guess.planes.size());
               for (auto& list : r.kept) list.reserve(std::size_t(guess.share * double(e - a) / double(r.kept.size()) * 1.25) + 16);
-              const bool same_normal = spec.count > 0;
               for (std::size_t i = a; i < e; ++i) {
                 const Eigen::Vector3d& q = p[i];
                 const double s = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
                 r.lo = s < r.lo ? s : r.lo;
                 r.hi = s > r.hi ? s : r.hi;
                 r.big = std::max({r.big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
-                guess.keep(q, same_normal ? s : NAN, r.kept);
+                guess.keep(q, r.kept);
               }
             } else {
               for (std::size_t i = a; i < e; ++i) {
