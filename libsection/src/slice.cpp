@@ -362,8 +362,6 @@ void check_planes(const std::vector<Plane>& planes) {
 
 namespace {
 
-// Orders the slab points of every plane into loops, sections in parallel, and fills the
-// profile's gaps from the near points; frees each section's points once done.
 // Hands finished sections to a callback in plane order, from one thread at a time,
 // without holding up the threads that finish sections meanwhile.
 class InOrder {
@@ -403,6 +401,9 @@ private:
 // a section has a band to build or a gap to fill.
 using NearFn = std::function<std::vector<Eigen::Vector3d>(std::size_t i)>;
 
+// Orders the slab points of every plane into loops, sections in parallel, and fills the
+// profile's gaps from the near points; frees each section's points once done and hands
+// it to `sink` in plane order.
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
                  const std::vector<Plane>& planes, double slab, const SliceOptions& options, SliceResult& result,
                  const SectionSink& sink = {}) {
@@ -517,14 +518,13 @@ struct Guess {
     }
   }
 
-  // True when every point within `reach` of a plane of `found` was kept, and every point
-  // its slab test can take when `reach` is half the slab: each found plane lies close
-  // enough to its guess. `largest` bounds the points' coordinates (the exact slab test's
-  // tolerance).
-  bool covers(const std::vector<Plane>& found, double slab, double reach, double largest) const {
+  // True when every point the slab test of `found` (slab width `slab`) can take was kept:
+  // each found plane lies close enough to its guess. `largest` bounds the points'
+  // coordinates (the exact slab test's tolerance).
+  bool covers(const std::vector<Plane>& found, double slab, double largest) const {
     if (found.size() != planes.size()) return false;
     const double tol = 1e-12 * (std::max(2 * largest, slab) + 1) * (1 + 1e-6);
-    const double need = std::max(0.5 * slab + tol, reach) + 2 * tol;
+    const double need = 0.5 * slab + 3 * tol;
     for (std::size_t k = 0; k < found.size(); ++k) {
       const Frame f = make_frame(found[k].origin, found[k].normal), g = make_frame(planes[k].origin, planes[k].normal);
       if (!(f.n == g.n)) return false;
@@ -535,6 +535,33 @@ struct Guess {
   }
 };
 
+// read_cloud_chunks_parallel with a result per chunk: `scan(points, count, threads)` makes
+// it on a worker thread, `take(result, points, count)` receives it in file order.
+template <class Scan, class Take>
+std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, const Scan& scan, const Take& take) {
+  using Result = decltype(scan(static_cast<const Eigen::Vector3d*>(nullptr), std::size_t(0), 1));
+  std::mutex mutex;
+  std::map<std::size_t, Result> made;  // by chunk, from scan to take
+  return read_cloud_chunks_parallel(
+      path,
+      [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count, int threads) {
+        Result r = scan(p, count, threads);
+        std::lock_guard<std::mutex> lock(mutex);
+        made[chunk] = std::move(r);
+      },
+      [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count) {
+        Result r;
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          auto at = made.find(chunk);
+          r = std::move(at->second);
+          made.erase(at);
+        }
+        take(r, p, count);
+      },
+      read);
+}
+
 // The points within `reach` of each plane in the file, as (u, v, signed distance), in file
 // order (add_near_points), chunks read side by side.
 std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& path, const std::vector<Plane>& planes,
@@ -542,27 +569,16 @@ std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& pa
   const auto groups = group_planes(planes, 2 * reach);
   const auto frame = frames_of(planes);
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
-  std::mutex mutex;
-  std::map<std::size_t, std::vector<std::vector<Eigen::Vector3d>>> found;  // by chunk, from work to merge
-  read_cloud_chunks_parallel(
-      path,
-      [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count, int threads) {
+  scan_chunks(
+      path, read,
+      [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
         std::vector<std::vector<Eigen::Vector3d>> f(planes.size());
         add_near_points_parallel(p, count, groups, frame, reach, threads, f);
-        std::lock_guard<std::mutex> lock(mutex);
-        found[chunk] = std::move(f);
+        return f;
       },
-      [&](std::size_t chunk, const Eigen::Vector3d*, std::size_t) {
-        std::vector<std::vector<Eigen::Vector3d>> f;
-        {
-          std::lock_guard<std::mutex> lock(mutex);
-          auto at = found.find(chunk);
-          f = std::move(at->second);
-          found.erase(at);
-        }
+      [&](std::vector<std::vector<Eigen::Vector3d>>& f, const Eigen::Vector3d*, std::size_t) {
         for (std::size_t k = 0; k < planes.size(); ++k) near[k].insert(near[k].end(), f[k].begin(), f[k].end());
-      },
-      read);
+      });
   return near;
 }
 
@@ -676,11 +692,9 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
       double lo = INFINITY, hi = -INFINITY, big = 0;
       std::vector<std::vector<Eigen::Vector3d>> kept;  // per guessed plane
     };
-    std::mutex scanned_mutex;
-    std::map<std::size_t, Scanned> scanned;  // by chunk, from work to merge
-    total = read_cloud_chunks_parallel(
-        path,
-        [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count, int threads) {
+    total = scan_chunks(
+        path, read_chunks,
+        [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
           const std::size_t parts = parts_of(count, threads);
           std::vector<Scanned> part(parts);
           detail::parallel_for(parts, threads, [&](std::size_t t) {
@@ -720,17 +734,9 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
                 whole.kept[k].insert(whole.kept[k].end(), r.kept[k].begin(), r.kept[k].end());
             }
           }
-          std::lock_guard<std::mutex> lock(scanned_mutex);
-          scanned[chunk] = std::move(whole);
+          return whole;
         },
-        [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count) {
-          Scanned r;
-          {
-            std::lock_guard<std::mutex> lock(scanned_mutex);
-            auto at = scanned.find(chunk);
-            r = std::move(at->second);
-            scanned.erase(at);
-          }
+        [&](Scanned& r, const Eigen::Vector3d* p, std::size_t count) {
           lo = std::min(lo, r.lo);
           hi = std::max(hi, r.hi);
           largest = std::max(largest, r.big);
@@ -741,8 +747,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
           for (; next < total + count; skip())
             reservoir[std::uniform_int_distribution<std::size_t>(0, reservoir_size - 1)(rng)] = p[next - total];
           total += count;
-        },
-        read_chunks);
+        });
     if (spec.count > 0) {
       std::vector<double> offsets;
       for (int k = 0; k < spec.count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (spec.count + 1));
@@ -755,9 +760,9 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
         throw Error("slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
     }
     if (!(slab > 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be positive and finite");
-    if (guess.active && guess.covers(planes, slab, 0, largest)) {
-      // Each plane's slab and near points from the points kept around its guess: the
-      // same points, in the same order, as pass 2 would give.
+    if (guess.active && guess.covers(planes, slab, largest)) {
+      // Each plane's slab points from the points kept around its guess: the same points,
+      // in the same order, as pass 2 would give.
       std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
       const double reach = fill_reach(options, slab);
       detail::parallel_for(planes.size(), options.threads, [&](std::size_t k) {
@@ -765,28 +770,18 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
         std::vector<std::vector<Eigen::Vector2d>> slab_k(1);
         const auto slab_groups = group_planes(one, slab);
         const auto frame = frames_of(one);
-        for (const auto& block : guess.kept[k])
-          add_slab_points_parallel(block.data(), block.size(), slab_groups, frame, slab, 1, slab_k);
+        for (const auto& block : guess.kept[k]) add_slab_points(block.data(), block.size(), slab_groups, frame, slab, slab_k);
         slabs[k] = std::move(slab_k[0]);
+        std::vector<std::vector<Eigen::Vector3d>>().swap(guess.kept[k]);
       });
-      // A plane's near points, when its section asks: from the points kept around its
-      // guess when they reach that far, else from a pass over the file for every plane
-      // (made once, when a section first asks).
-      const bool kept_near = guess.covers(planes, slab, reach, largest);
+      // A plane's near points, when its section asks: from a pass over the file for every
+      // plane, made once, when a section first asks.
       std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
       std::once_flag near_read;
       const NearFn near_of = [&](std::size_t k) {
-        std::vector<std::vector<Eigen::Vector3d>> near_k(1);
         if (!(reach > 0)) return std::vector<Eigen::Vector3d>{};
-        if (!kept_near) {
-          std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks); });
-          return std::move(near[k]);
-        }
-        const std::vector<Plane> one{planes[k]};
-        const auto near_groups = group_planes(one, 2 * reach);
-        const auto frame = frames_of(one);
-        for (const auto& block : guess.kept[k]) add_near_points(block.data(), block.size(), near_groups, frame, reach, near_k);
-        return std::move(near_k[0]);
+        std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks); });
+        return std::move(near[k]);
       };
       result.points = total;
       result.slab = slab;
@@ -803,39 +798,28 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
   const double reach = fill_reach(options, slab);
   const auto near_groups = reach > 0 ? group_planes(planes, 2 * reach) : std::vector<SlabGroup>{};
-  // Chunks are tested side by side (work) and their points appended in file order (merge).
+  // Chunks are tested side by side and their points appended in file order.
   struct Found {
     std::vector<std::vector<Eigen::Vector2d>> slabs;
     std::vector<std::vector<Eigen::Vector3d>> near;
   };
-  std::mutex found_mutex;
-  std::map<std::size_t, Found> found;  // by chunk, from work to merge
-  result.points = read_cloud_chunks_parallel(
-      path,
-      [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count, int threads) {
+  result.points = scan_chunks(
+      path, read_chunks,
+      [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
         Found f{std::vector<std::vector<Eigen::Vector2d>>(planes.size()),
                 std::vector<std::vector<Eigen::Vector3d>>(planes.size())};
         if (reach > 0)
           add_slab_and_near_points_parallel(p, count, groups, near_groups, frame, slab, reach, threads, f.slabs, f.near);
         else
           add_slab_points_parallel(p, count, groups, frame, slab, threads, f.slabs);
-        std::lock_guard<std::mutex> lock(found_mutex);
-        found[chunk] = std::move(f);
+        return f;
       },
-      [&](std::size_t chunk, const Eigen::Vector3d*, std::size_t) {
-        Found f;
-        {
-          std::lock_guard<std::mutex> lock(found_mutex);
-          auto at = found.find(chunk);
-          f = std::move(at->second);
-          found.erase(at);
-        }
+      [&](Found& f, const Eigen::Vector3d*, std::size_t) {
         for (std::size_t k = 0; k < planes.size(); ++k) {
           slabs[k].insert(slabs[k].end(), f.slabs[k].begin(), f.slabs[k].end());
           near[k].insert(near[k].end(), f.near[k].begin(), f.near[k].end());
         }
-      },
-      read_chunks);
+      });
   result.slab = slab;
   result.file_passes = spec.count > 0 || options.slab == 0 ? 2 : 1;
   order_slabs(slabs, [&](std::size_t i) { return std::move(near[i]); }, planes, slab, options, result, sink);
