@@ -20,6 +20,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <string>
 #include <sys/stat.h>
@@ -573,6 +574,20 @@ void check_vertices(const Eigen::Vector3d* v, std::size_t m, unsigned long long 
   }
 }
 
+// Reads up to `want` bytes at offset `at` (again after a signal); returns how many it got:
+// fewer at the end of the file or on an error.
+std::size_t pread_full(int fd, void* buf, std::size_t want, unsigned long long at) {
+  char* p = static_cast<char*>(buf);
+  std::size_t got_all = 0;
+  while (got_all < want) {
+    const ssize_t got = ::pread(fd, p + got_all, want - got_all, static_cast<off_t>(at + got_all));
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) break;
+    got_all += std::size_t(got);
+  }
+  return got_all;
+}
+
 // Packed little-endian doubles x, y, z in a regular file, from the source's offset on:
 // each chunk is read with pread straight into the (aligned) chunk, in parts that the
 // threads read and check side by side. The copy out of the page cache is most of a pass
@@ -591,19 +606,9 @@ std::size_t read_packed_file(Source& src, unsigned long long count, const CloudR
     std::vector<char> short_read(parts, 0), bad(parts, 0);
     detail::parallel_for(parts, opt.threads, [&](std::size_t t) {
       const std::size_t a = m * t / parts, b = m * (t + 1) / parts;
-      char* p = reinterpret_cast<char*>(dst + a);
-      std::size_t want = 24 * (b - a);
-      off_t at = static_cast<off_t>(start + 24 * (done + a));
-      while (want > 0) {
-        const ssize_t got = ::pread(fd, p, want, at);
-        if (got < 0 && errno == EINTR) continue;
-        if (got <= 0) {
-          short_read[t] = 1;
-          return;
-        }
-        p += got;
-        want -= std::size_t(got);
-        at += got;
+      if (pread_full(fd, dst + a, 24 * (b - a), start + 24 * (done + a)) < 24 * (b - a)) {
+        short_read[t] = 1;
+        return;
       }
       try {
         check_vertices(dst + a, b - a, done + a, src.name());
@@ -861,34 +866,73 @@ std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_ch
   return read_source(src, path, on_chunk, options);
 }
 
+namespace {
+
+// Where x, y and z lie in the vertex records of a binary PLY file whose vertices come
+// first and fill the file as its header says (what pread can read anywhere).
+struct BinaryVertices {
+  unsigned long long start = 0, count = 0;  // first vertex's file offset, vertices
+  std::size_t record = 0;                   // bytes per vertex
+  std::size_t offset[3] = {0, 0, 0};        // of x, y, z in a record
+  PlyProperty prop[3];                      // their types
+  bool swap = false;                        // byte order other than the host's
+  // Little-endian doubles x, y, z and nothing else: a record is an Eigen::Vector3d.
+  bool packed() const {
+    return !swap && record == 24 && offset[0] == 0 && offset[1] == 8 && offset[2] == 16 &&
+           std::all_of(prop, prop + 3, [](const PlyProperty& p) { return p.kind == 'f' && p.size == 8; });
+  }
+};
+
+// The layout of `src`'s vertices when it is a regular binary PLY file as above, else
+// nothing. A header that does not parse is nothing too: the reader proper reports it.
+std::optional<BinaryVertices> binary_vertices(Source& src, const std::string& path, const CloudReadOptions& options) {
+  try {
+    if (src.regular_fd() < 0 || src.fetch(1 << 16) == 0) return std::nullopt;
+    if ((options.format == CloudFormat::automatic ? format_of(path, src.bytes()) : options.format) != CloudFormat::ply)
+      return std::nullopt;
+    const PlyHeader h = parse_ply_header(src);
+    if (h.format == PlyFormat::ascii || h.elements.empty() || h.elements[0].name != "vertex") return std::nullopt;
+    const PlyElement& ve = h.elements[0];
+    BinaryVertices v;
+    bool found[3] = {false, false, false};
+    for (const auto& p : ve.props) {
+      if (p.list) return std::nullopt;
+      for (int c = 0; c < 3; ++c)
+        if (p.name.size() == 1 && p.name[0] == char('x' + c)) {
+          v.prop[c] = p;
+          v.offset[c] = v.record;
+          found[c] = true;
+        }
+      v.record += static_cast<std::size_t>(p.size);
+    }
+    const unsigned long long body = static_cast<unsigned long long>(src.size()) - h.header_bytes;
+    if (!found[0] || !found[1] || !found[2] || v.record == 0 || ve.count == 0 || ve.count > options.max_points ||
+        body / v.record < ve.count)
+      return std::nullopt;
+    v.start = h.header_bytes;
+    v.count = ve.count;
+    v.swap = (h.format == PlyFormat::binary_le) != host_little_endian();
+    return v;
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
 std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work, const IndexedChunkFn& merge,
                                        const CloudReadOptions& options) {
   const std::size_t chunk = std::max<std::size_t>(options.chunk_points, 1);
   // Packed doubles in a regular file: pread anywhere, no conversion.
-  unsigned long long count = 0, start = 0;
-  int fd = -1;
   std::unique_ptr<Source> src;
+  std::optional<BinaryVertices> layout;
   if (path != "-") {
     src = std::make_unique<Source>(path);
-    fd = src->regular_fd();
-    if (fd >= 0 && src->fetch(1 << 16) > 0 &&
-        (options.format == CloudFormat::automatic ? format_of(path, src->bytes()) : options.format) == CloudFormat::ply) {
-      const PlyHeader h = parse_ply_header(*src);
-      const bool packed = h.format == PlyFormat::binary_le && host_little_endian() && !h.elements.empty() &&
-                          h.elements[0].name == "vertex" && h.elements[0].props.size() == 3;
-      if (packed) {
-        const auto& pr = h.elements[0].props;
-        bool xyz = true;
-        for (int c = 0; c < 3; ++c)
-          xyz = xyz && !pr[c].list && pr[c].kind == 'f' && pr[c].size == 8 && pr[c].name == std::string(1, char('x' + c));
-        const unsigned long long body = static_cast<unsigned long long>(src->size()) - h.header_bytes;
-        if (xyz && h.elements[0].count > 0 && h.elements[0].count <= options.max_points && body / 24 >= h.elements[0].count) {
-          count = h.elements[0].count;
-          start = h.header_bytes;
-        }
-      }
-    }
+    layout = binary_vertices(*src, path, options);
   }
+  const bool packed = layout && layout->packed();
+  const unsigned long long count = packed ? layout->count : 0, start = packed ? layout->start : 0;
+  const int fd = packed ? src->regular_fd() : -1;
   if (count == 0) {
     // Anything else (its errors included) as read_cloud_chunks reads it.
     std::size_t index = 0;
@@ -922,20 +966,11 @@ std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkF
       const std::size_t m = static_cast<std::size_t>(std::min<unsigned long long>(chunk, count - first));
       try {
         buf.resize(m);
-        char* p = reinterpret_cast<char*>(buf.data());
-        std::size_t want = 24 * m;
-        off_t at = static_cast<off_t>(start + 24 * first);
-        while (want > 0) {
-          const ssize_t got = ::pread(fd, p, want, at);
-          if (got < 0 && errno == EINTR) continue;
-          if (got <= 0)
-            throw Error("read_cloud: " + name + ": PLY file ends or cannot be read after at most " +
-                        std::to_string(first + (24 * m - want) / 24) + " of " + std::to_string(count) +
-                        " vertices (truncated file?)");
-          p += got;
-          want -= std::size_t(got);
-          at += got;
-        }
+        const std::size_t got = pread_full(fd, buf.data(), 24 * m, start + 24 * first);
+        if (got < 24 * m)
+          throw Error("read_cloud: " + name + ": PLY file ends or cannot be read after at most " +
+                      std::to_string(first + got / 24) + " of " + std::to_string(count) +
+                      " vertices (truncated file?)");
         check_vertices(buf.data(), m, first, name);
         work(k, buf.data(), m, 1);
         // Merged in file order: wait for the chunks before.
@@ -971,43 +1006,24 @@ CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudRead
   if (path == "-" || count == 0) return out;
   try {
     Source src(path);
-    const int fd = src.regular_fd();
-    if (fd < 0 || src.fetch(1 << 16) == 0) return out;
-    const CloudFormat format = options.format == CloudFormat::automatic ? format_of(path, src.bytes()) : options.format;
-    if (format != CloudFormat::ply) return out;
-    const PlyHeader h = parse_ply_header(src);
-    if (h.format == PlyFormat::ascii || h.elements.empty() || h.elements[0].name != "vertex") return out;
-    const PlyElement& ve = h.elements[0];
-    std::size_t record = 0, off[3] = {0, 0, 0};
-    const PlyProperty* prop[3] = {nullptr, nullptr, nullptr};
-    for (const auto& p : ve.props) {
-      if (p.list) return out;
-      for (int c = 0; c < 3; ++c)
-        if (p.name.size() == 1 && p.name[0] == char('x' + c)) {
-          prop[c] = &p;
-          off[c] = record;
-        }
-      record += static_cast<std::size_t>(p.size);
-    }
-    if (!prop[0] || !prop[1] || !prop[2] || record == 0 || record > 4096) return out;
-    const unsigned long long body = static_cast<unsigned long long>(src.size()) - h.header_bytes;
-    if (ve.count == 0 || ve.count > options.max_points || body / record < ve.count) return out;
-    const bool swap = (h.format == PlyFormat::binary_le) != host_little_endian();
-    const unsigned long long m = std::min<unsigned long long>(count, ve.count);
+    const auto v = binary_vertices(src, path, options);
+    if (!v || v->record > 4096) return out;
+    const unsigned long long m = std::min<unsigned long long>(count, v->count);
     unsigned char rec[4096];
     out.points.reserve(static_cast<std::size_t>(m));
     for (unsigned long long i = 0; i < m; ++i) {
       // Vertex i of m evenly spaced ones, moved within its stride by a golden-ratio
       // sequence: no lattice from a regular scan order, and the same points every time.
       const double jitter = std::fmod(0.5 + 0.6180339887498949 * double(i), 1.0);
-      const unsigned long long v =
-          std::min<unsigned long long>(ve.count - 1, static_cast<unsigned long long>((double(i) + jitter) * double(ve.count) / double(m)));
-      if (::pread(fd, rec, record, static_cast<off_t>(h.header_bytes + v * record)) != static_cast<ssize_t>(record)) return {};
-      const Eigen::Vector3d p(read_scalar(rec + off[0], *prop[0], swap), read_scalar(rec + off[1], *prop[1], swap),
-                              read_scalar(rec + off[2], *prop[2], swap));
+      const unsigned long long k = std::min<unsigned long long>(
+          v->count - 1, static_cast<unsigned long long>((double(i) + jitter) * double(v->count) / double(m)));
+      if (pread_full(src.regular_fd(), rec, v->record, v->start + k * v->record) < v->record) return {};
+      const Eigen::Vector3d p(read_scalar(rec + v->offset[0], v->prop[0], v->swap),
+                              read_scalar(rec + v->offset[1], v->prop[1], v->swap),
+                              read_scalar(rec + v->offset[2], v->prop[2], v->swap));
       if (p.allFinite() && p.cwiseAbs().maxCoeff() <= detail::max_coordinate) out.points.push_back(p);
     }
-    out.total = ve.count;
+    out.total = v->count;
   } catch (const Error&) {
     return {};
   }
