@@ -197,12 +197,26 @@ bool parse_rows(std::string_view text, const std::vector<char>& id_column, std::
   return true;
 }
 
-}  // namespace
+// A `# key rest` line: its key ("table", "part", "history", ...) and the rest, trimmed
+// (line ends dropped).
+struct MetaLine {
+  std::string_view key, rest, body;  // body: all after '#', trimmed
+};
 
-namespace {
+MetaLine meta_line(std::string_view line) {
+  std::string_view body = trim(line.substr(1));
+  while (!body.empty() && (body.back() == '\n' || body.back() == '\r')) body.remove_suffix(1);
+  const std::size_t space = body.find(' ');
+  return {body.substr(0, space), space == std::string_view::npos ? std::string_view{} : trim(body.substr(space)),
+          body};
+}
 
-// parse_stream; the source rows of large tables are kept as parts of `owner` when it
-// holds `text`, else as copies.
+// The error for a stream split into parts that lacks its `# end`.
+Error truncated_parts(const std::string& source) {
+  return Error("pipe: " + source + ": the stream is split into parts but lacks its closing '# end' line (truncated "
+               "stream, or the tool that wrote it failed)");
+}
+
 // A part of a stream split into parts (run_stage) is parsed alone: no version line, its
 // lines numbered from `first_line`.
 struct PartText {
@@ -210,6 +224,8 @@ struct PartText {
   std::size_t first_line = 1;
 };
 
+// parse_stream; the source rows of large tables are kept as parts of `owner` when it
+// holds `text`, else as copies.
 Stream parse_stream_text(std::string_view text, const std::string& source,
                          const std::shared_ptr<const std::string>& owner, const PartText& part = {}) {
   Stream stream;
@@ -237,11 +253,7 @@ Stream parse_stream_text(std::string_view text, const std::string& source,
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (trim(line).empty()) continue;
     if (line[0] == '#') {
-      std::string_view body = trim(line.substr(1));
-      const std::size_t space = body.find(' ');
-      const std::string_view key = body.substr(0, space);
-      const std::string_view rest = space == std::string_view::npos ? std::string_view{}
-                                                                     : trim(body.substr(space));
+      const auto [key, rest, body] = meta_line(line);
       if (expect_header) fail(source, line_no, "table '" + current->name + "' has no header row");
       if (ended) fail(source, line_no, "a line after '# end'");
       if (!seen_version) {
@@ -399,9 +411,7 @@ Stream parse_stream_text(std::string_view text, const std::string& source,
   if (!seen_version) throw Error("pipe: " + source + ": the stream is empty");
   if (expect_header)
     throw Error("pipe: " + source + ": table '" + current->name + "' has no header row (truncated stream?)");
-  if (parts > 0 && !ended && !part.is_part)
-    throw Error("pipe: " + source + ": the stream is split into parts but lacks its closing '# end' line (truncated "
-                "stream, or the tool that wrote it failed)");
+  if (parts > 0 && !ended && !part.is_part) throw truncated_parts(source);
   return stream;
 }
 
@@ -463,10 +473,6 @@ std::string format_rows(const Table& t, std::size_t r0, std::size_t r1) {
   return out;
 }
 
-}  // namespace
-
-namespace {
-
 // True when `t` holds what its source text reads as (bit for bit: -0 is not 0).
 bool unchanged_since_read(const Table& t) {
   const TableText* src = t.source.get();
@@ -474,9 +480,6 @@ bool unchanged_since_read(const Table& t) {
          (t.values.empty() || std::memcmp(src->values.data(), t.values.data(), t.values.size() * sizeof(double)) == 0);
 }
 
-}  // namespace
-
-namespace {
 
 // The stream's text in order: formatted pieces and the source rows of unchanged tables.
 struct FormattedStream {
@@ -775,18 +778,7 @@ private:
 
 // The key of a `# key ...` line ("part", "end", "table", ...), or "" for any other line.
 std::string_view key_of(std::string_view line) {
-  if (line.empty() || line[0] != '#') return {};
-  std::string_view body = trim(line.substr(1));
-  while (!body.empty() && (body.back() == '\n' || body.back() == '\r')) body.remove_suffix(1);
-  return body.substr(0, body.find(' '));
-}
-
-// What follows the key of a `# key ...` line, trimmed.
-std::string rest_of(std::string_view line) {
-  std::string_view body = trim(line.substr(1));
-  while (!body.empty() && (body.back() == '\n' || body.back() == '\r')) body.remove_suffix(1);
-  const std::size_t space = body.find(' ');
-  return space == std::string_view::npos ? std::string() : std::string(trim(body.substr(space)));
+  return line.empty() || line[0] != '#' ? std::string_view{} : meta_line(line).key;
 }
 
 bool blank(std::string_view line) { return line.find_first_not_of(" \t\r\n") == std::string_view::npos; }
@@ -899,7 +891,7 @@ void run_stage(const StageRun& run) {
     }
   };
   try {
-    std::string label = rest_of(first), text = first;
+    std::string label = std::string(meta_line(first).rest), text = first;
     std::size_t first_line = line_no;
     bool ended = false;
     // Queues the part read so far; false once a part has failed (no use reading on).
@@ -924,7 +916,7 @@ void run_stage(const StageRun& run) {
         if (!submit()) break;
         text.clear();
         first_line = line_no;
-        label = rest_of(line);
+        label = std::string(meta_line(line).rest);
         if (key == "end") ended = true;
         if (key == "end" && !label.empty()) fail(source, line_no, "'# end' takes nothing after it");
         if (key == "end") continue;
@@ -936,9 +928,7 @@ void run_stage(const StageRun& run) {
       std::lock_guard<std::mutex> lock(mutex);
       failed = bool(error);
     }
-    if (!ended && !failed)
-      throw Error("pipe: " + source + ": the stream is split into parts but lacks its closing '# end' line (truncated "
-                  "stream, or the tool that wrote it failed)");
+    if (!ended && !failed) throw truncated_parts(source);
     write_done(false, true);
   } catch (...) {
     std::lock_guard<std::mutex> lock(mutex);
