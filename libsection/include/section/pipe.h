@@ -36,10 +36,10 @@ struct Table {
   std::string name;                  ///< e.g. "points"
   std::vector<std::string> columns;  ///< column names, in order
   std::vector<double> values;        ///< rows() * columns.size() numbers, row-major
-  /// Set by parse_stream on large tables: format_stream writes `rows` back as they came
-  /// while columns and values are still those read, so that a stage passing a table
-  /// through does not format it again (the same numbers, in less time). Null for tables
-  /// made in memory; a changed table is formatted from its values.
+  /// Set by parse_stream on tables of a few kB and up: format_stream writes `rows` back
+  /// as they came while columns and values are still those read, so that a stage passing
+  /// a table through does not format it again (the same numbers, in less time). Null for
+  /// tables made in memory; a changed table is formatted from its values.
   std::shared_ptr<const TableText> source;
 
   /// Number of rows.
