@@ -2,6 +2,7 @@
 // prints the point count, wall time and throughput (points per second). --threads sets the
 // text parser's worker threads (0 = all cores, the default).
 #include "section/cloud.h"
+#include "section/io/cloud_io.h"
 
 #include <chrono>
 #include <cstdio>

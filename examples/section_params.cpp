@@ -9,7 +9,8 @@
 #include <section/camber.h>
 #include <section/error.h>
 #include <section/fit_spline.h>
-#include <section/generate.h>
+#include <section/extras/generate.h>
+#include <section/io/mesh_io.h>
 #include <section/mesh.h>
 #include <section/params.h>
 #include <section/slice.h>

@@ -2,6 +2,7 @@
 // parse into finite points or throw section::Error; anything else is a finding.
 #include "section/cloud.h"
 #include "section/error.h"
+#include "section/io/cloud_io.h"
 
 #include <cmath>
 #include <cstddef>

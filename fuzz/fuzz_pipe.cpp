@@ -1,7 +1,8 @@
 // libFuzzer target: the pipe parser. Each input goes to parse_stream, parse_csv and
 // parse_profile; a stream that parses must format and parse back to the same tables.
 #include "section/error.h"
-#include "section/pipe.h"
+#include "section/io/stream.h"
+#include "section/io/csv.h"
 
 #include <cmath>
 #include <cstddef>

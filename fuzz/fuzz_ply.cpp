@@ -4,6 +4,7 @@
 #include "mesh_common.h"
 #include "section/cloud.h"
 #include "section/error.h"
+#include "section/io/cloud_io.h"
 
 #include <string_view>
 

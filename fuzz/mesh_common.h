@@ -3,6 +3,7 @@
 // extension), so each input goes through a per-process temporary file.
 #include "section/error.h"
 #include "section/mesh.h"
+#include "section/io/mesh_io.h"
 
 #include <cstddef>
 #include <cstdint>

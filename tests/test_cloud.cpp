@@ -1,6 +1,8 @@
 #include "section/cloud.h"
 #include "section/error.h"
 #include "section/mesh.h"
+#include "section/io/cloud_io.h"
+#include "section/io/mesh_io.h"
 
 #include <catch2/catch.hpp>
 

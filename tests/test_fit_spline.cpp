@@ -1,7 +1,8 @@
 #include "section/fit_spline.h"
 #include "section/error.h"
-#include "section/generate.h"
-#include "section/pipe.h"
+#include "section/extras/generate.h"
+#include "section/io/stream.h"
+#include "section/pipe/fit_spline_stream.h"
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
 #include "section/drift_band.h"
 #include "section/gap_fill.h"
-#include "section/generate.h"
+#include "section/extras/generate.h"
 #include "section/slice.h"
 
 #include <catch2/catch.hpp>

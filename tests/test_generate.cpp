@@ -1,7 +1,7 @@
 // Tests of the synthetic blade generator: the ground truth is self-consistent and the
 // scans and meshes agree with it.
 #include "section/error.h"
-#include "section/generate.h"
+#include "section/extras/generate.h"
 
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>

@@ -378,7 +378,7 @@ TEST_CASE("morphology: 1e5 dense points give one loop (time reported, not assert
 // ---------------------------------------------------------------------------------------
 // Sections of generated blade scans (section/generate.h), both presets, several seeds.
 
-#include "section/generate.h"
+#include "section/extras/generate.h"
 
 namespace {
 

@@ -1,5 +1,9 @@
 #include "section/error.h"
-#include "section/pipe.h"
+#include "section/io/stream.h"
+#include "section/io/csv.h"
+#include "section/io/file.h"
+#include "section/pipe/run_stage.h"
+#include "section/pipe/schema.h"
 
 #include <catch2/catch.hpp>
 

@@ -3,9 +3,11 @@
 #include "section/camber.h"
 #include "section/error.h"
 #include "section/fit_spline.h"
-#include "section/generate.h"
-#include "section/pipe.h"
-#include "section/plot.h"
+#include "section/extras/generate.h"
+#include "section/io/stream.h"
+#include "section/pipe/schema.h"
+#include "section/pipe/camber_stream.h"
+#include "section/extras/plot.h"
 
 #include <catch2/catch.hpp>
 

@@ -1,6 +1,6 @@
 // Tests of register_views: scanner views moved by known rigid motions are brought back.
 #include "section/error.h"
-#include "section/generate.h"
+#include "section/extras/generate.h"
 #include "section/register_views.h"
 
 #include <catch2/catch.hpp>

@@ -4,7 +4,10 @@
 #include "section/cloud.h"
 #include "section/error.h"
 #include "section/mesh.h"
-#include "section/pipe.h"
+#include "section/io/stream.h"
+#include "section/io/csv.h"
+#include "section/io/cloud_io.h"
+#include "section/io/mesh_io.h"
 
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,5 @@
 #include "section/error.h"
+#include "section/io/csv.h"
 #include "section/slice.h"
 
 #include <catch2/catch.hpp>
@@ -106,7 +107,7 @@ TEST_CASE("slice: bad planes are refused", "[slice]") {
   CHECK(planes[0].origin.z() == 5);
 }
 
-#include "section/generate.h"
+#include "section/extras/generate.h"
 
 #include <algorithm>
 

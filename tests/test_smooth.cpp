@@ -1,6 +1,7 @@
 #include "section/error.h"
-#include "section/generate.h"
-#include "section/pipe.h"
+#include "section/extras/generate.h"
+#include "section/io/stream.h"
+#include "section/pipe/smooth_stream.h"
 #include "section/smooth.h"
 
 #include <catch2/catch.hpp>

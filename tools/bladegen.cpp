@@ -3,8 +3,10 @@
 
 #include "section/cloud.h"
 #include "section/error.h"
-#include "section/generate.h"
+#include "section/extras/generate.h"
 #include "section/mesh.h"
+#include "section/io/cloud_io.h"
+#include "section/io/mesh_io.h"
 
 #include <charconv>
 #include <cstdio>

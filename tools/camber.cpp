@@ -4,7 +4,11 @@
 #include "section/camber.h"
 #include "section/error.h"
 #include "section/fit_spline.h"
-#include "section/pipe.h"
+#include "section/io/stream.h"
+#include "section/io/csv.h"
+#include "section/io/file.h"
+#include "section/pipe/run_stage.h"
+#include "section/pipe/camber_stream.h"
 
 #include <algorithm>
 #include <charconv>

@@ -3,7 +3,9 @@
 
 #include "section/error.h"
 #include "section/fit_spline.h"
-#include "section/pipe.h"
+#include "section/io/stream.h"
+#include "section/pipe/run_stage.h"
+#include "section/pipe/fit_spline_stream.h"
 
 #include <iomanip>
 #include <iostream>

@@ -2,8 +2,9 @@
 #include "common/tool.h"
 
 #include "section/error.h"
-#include "section/pipe.h"
-#include "section/plot.h"
+#include "section/io/stream.h"
+#include "section/io/file.h"
+#include "section/extras/plot.h"
 
 #include <filesystem>
 #include <iostream>

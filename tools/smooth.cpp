@@ -2,7 +2,11 @@
 #include "common/tool.h"
 
 #include "section/error.h"
-#include "section/pipe.h"
+#include "section/io/stream.h"
+#include "section/io/csv.h"
+#include "section/io/file.h"
+#include "section/pipe/run_stage.h"
+#include "section/pipe/smooth_stream.h"
 #include "section/smooth.h"
 
 #include <iostream>

@@ -490,4 +490,13 @@ double arc_length(const BSpline& curve, double a, double b) {
   return total;
 }
 
+std::vector<double> span_samples(const BSpline& c, int per_span) {
+  std::vector<double> ts;
+  ts.reserve(c.control.size() * per_span);
+  for (std::size_t j = 0; j + 1 < c.knots.size(); ++j)
+    for (int s = 0; s < per_span; ++s)
+      ts.push_back(c.knots[j] + (c.knots[j + 1] - c.knots[j]) * s / per_span);
+  return ts;
+}
+
 }  // namespace section

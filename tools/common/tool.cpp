@@ -1,6 +1,8 @@
 #include "common/tool.h"
 
 #include "section/error.h"
+#include "section/io/stream.h"
+#include "section/pipe/run_stage.h"
 
 #include <charconv>
 #include <cmath>

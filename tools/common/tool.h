@@ -1,7 +1,8 @@
 #pragma once
 // Shared plumbing of the command-line tools: common flags, the single top-level catch,
 // exit codes (0 success or --help, 1 bad data, 2 bad usage).
-#include "section/pipe.h"
+#include "section/io/stream.h"
+#include "section/pipe/run_stage.h"
 
 #include <CLI/CLI.hpp>
 

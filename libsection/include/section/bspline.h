@@ -82,4 +82,7 @@ std::vector<Eigen::Vector2d> sample(const BSpline& curve, int count);
 /// Arc length between parameters a < b (Gauss-Legendre per knot span).
 double arc_length(const BSpline& curve, double a, double b);
 
+/// Parameters of `per_span` samples evenly spaced in every knot span of `curve`.
+std::vector<double> span_samples(const BSpline& curve, int per_span);
+
 }  // namespace section

@@ -11,8 +11,6 @@
 
 namespace section {
 
-struct Stream;
-
 /// A circle inside the profile touching it on both sides.
 struct InscribedCircle {
   Eigen::Vector2d center{0, 0};    ///< camber point
@@ -158,16 +156,5 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options = 
 bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point,
                       const Eigen::Vector2d& normal, double t_left, double t_right,
                       InscribedCircle& circle);
-
-/// Stream stage: reads the closed splines (tables "splines", "spline_knots",
-/// "spline_ctrl"), processes loop 0 of every section and writes the tables "camber",
-/// "params", "thickness" and "sides" (docs/FORMAT.md). A section that fails, or has
-/// more than one loop, gets an issue and the others go on.
-void camber_stream(Stream& stream, const CamberOptions& options = {});
-
-/// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
-/// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain
-/// profile (an airfoil .dat file, a CMM section).
-Stream profile_stream(const BSpline& spline, double rms = 0);
 
 }  // namespace section

@@ -13,8 +13,6 @@
 
 namespace section {
 
-struct Stream;
-
 /// Options of fit_spline and fit_spline_stream (lengths in mm; scale them for other units).
 struct FitSplineOptions {
   int degree = 3;                 ///< spline degree
@@ -81,22 +79,7 @@ FitSplineResult fit_spline(const std::vector<Eigen::Vector2d>& profile,
 /// (a finger: two opposite hairpin turns close together), tested on a dense polyline.
 bool self_intersects(const BSpline& curve);
 
-/// Stream stage: fits every (section, loop) of the "points" table (first curve from the
-/// "smoothed" table when present) and writes the tables "splines", "spline_knots",
-/// "spline_ctrl" and, when samples are requested, "samples" (see docs/FORMAT.md). A loop
-/// that cannot be fitted is recorded in stream.issues (stage "fitspline"), the others go
-/// on. Throws section::Error when the "points" table is missing or lacks a column.
-void fit_spline_stream(Stream& stream, const FitSplineOptions& options = {});
-
-/// The holes of a stream written by fit_spline_stream (table "gaps"), by (section, loop),
-/// longest first; empty when the stream has no such table (written before it existed).
-std::map<std::pair<int, int>, std::vector<FitSplineResult::Gap>> gaps(const Stream& stream);
-
 /// True when curve parameter t lies in the gap (which may wrap past the curve's end).
 bool in_gap(const BSpline& curve, const FitSplineResult::Gap& gap, double t);
-
-/// The splines of a stream written by fit_spline_stream, by (section, loop). Throws
-/// section::Error when the tables are missing or inconsistent.
-std::map<std::pair<int, int>, BSpline> splines(const Stream& stream);
 
 }  // namespace section

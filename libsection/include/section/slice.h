@@ -9,11 +9,9 @@
 #include "section/gap_fill.h"
 #include "section/mesh.h"
 #include "section/morphology.h"
-#include "section/pipe.h"
 
 #include <Eigen/Core>
 #include <cstddef>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,10 +30,6 @@ std::vector<Plane> planes_at(const Eigen::Vector3d& normal, const std::vector<do
 /// offsets min + (max - min) * (k + 1) / (count + 1), k = 0..count-1.
 std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points,
                                  const Eigen::Vector3d& normal, int count);
-
-/// Planes from a CSV table with columns origin_x, origin_y, origin_z, normal_x, normal_y,
-/// normal_z (extra columns ignored). `source` names it in error messages.
-std::vector<Plane> parse_planes(std::string_view csv, const std::string& source);
 
 /// Options of slice (lengths in the cloud's units).
 struct SliceOptions {
@@ -82,34 +76,8 @@ std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::V
 /// Throws section::Error for bad options (no planes, a zero normal, a negative slab).
 SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options = {});
 
-/// Planes for slice_file: explicit, or spread over the cloud (known only once it is read).
-struct PlaneSpec {
-  std::vector<Plane> planes;                         ///< explicit planes, used when count is 0
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< normal of the spread planes (count > 0)
-  int count = 0;                                     ///< planes spread as planes_across; 0 = use `planes`
-};
-
-/// Receives each section of slice_file as soon as it and the sections before it are done.
-using SectionSink = std::function<void(const SectionSlice&)>;
-
-/// Slices the cloud of a file without holding it: reads it in chunks and keeps only the
-/// slab points of each plane. A file is read once when the planes and the slab width are
-/// given, twice otherwise (first for the extent along the normal and a random sample of
-/// 50000 points for the spacing); standard input ("-") is held in memory and sliced by
-/// slice(Cloud). Same results in meaning as slice(read_cloud(path), ...); the estimated
-/// slab width may differ slightly (another random sample). Throws as read_cloud and slice.
-/// `sink`, when set, receives each section in plane order as soon as it and those before
-/// it are done, from one thread at a time (the slice tool writes it to the pipe while the
-/// others are still being ordered); the result holds them all the same.
-SliceResult slice_file(const std::string& path, const PlaneSpec& planes, const SliceOptions& options = {},
-                       const CloudReadOptions& read = {}, const SectionSink& sink = {});
-
 /// Slices a mesh exactly (CGAL's polygon mesh slicer): each closed intersection polyline is
 /// a loop, oriented counterclockwise in (u, v), loop 0 the largest; its vertices are the points.
 SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options = {});
-
-/// The pipe stream of a slice: tables frames, loops, points, skeleton; failed sections as
-/// issues. `command` goes into the history.
-Stream to_stream(const SliceResult& result, const std::string& command, const std::string& units = "mm");
 
 }  // namespace section

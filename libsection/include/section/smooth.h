@@ -19,8 +19,6 @@
 
 namespace section {
 
-struct Stream;
-
 /// How each outer iteration solves its linear system.
 enum class SmoothSolver {
   cholmod,      ///< global sparse Cholesky (CHOLMOD), one factorisation per outer iteration
@@ -82,13 +80,5 @@ double smoothing_weight(double length, double spacing, double b = 1.0);
 
 /// The inverse: the half-amplitude wavelength of weight a at that spacing.
 double smoothing_length(double a, double spacing, double b = 1.0);
-
-/// Stream stage: smooths every (section, loop) of the "points" table (closed loops) and
-/// writes the tables "smoothed" (section, loop, index, u, v) and "smooth_stats" (section,
-/// loop, points, energy_before, energy_after, iterations, rms_move, max_move, repaired).
-/// Sections already failed at an earlier stage are skipped; a loop that cannot be smoothed
-/// is recorded in stream.issues (stage "smooth") and the others go on. Throws
-/// section::Error when the "points" table is missing or lacks a column.
-void smooth_stream(Stream& stream, const SmoothOptions& options = {});
 
 }  // namespace section

@@ -1,11 +1,13 @@
 // SVG and HTML drawings of the sections of a pipe stream (plot.h).
-#include "section/plot.h"
+#include "section/extras/plot.h"
 
 #include "section/bspline.h"
 #include "section/error.h"
 #include "section/fit_spline.h"
 #include "section/frame.h"
-#include "section/pipe.h"
+#include "section/io/stream.h"
+#include "section/pipe/schema.h"
+#include "section/pipe/fit_spline_stream.h"
 
 #include <Eigen/Dense>
 

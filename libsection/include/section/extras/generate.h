@@ -1,5 +1,5 @@
 #pragma once
-/// @file generate.h
+/// @file extras/generate.h
 /// Synthetic blades with exact ground truth, for tests, examples and benchmarks.
 ///
 /// A section is the envelope of circles of radius r(s) centred on a camber curve c(s),

@@ -1,9 +1,9 @@
 #pragma once
-/// @file pipe.h
+/// @file io/stream.h
 /// The pipe stream that `slice | smooth | fitspline | camber` pass along: named numeric
 /// tables plus metadata, written as CSV with `#` lines. docs/FORMAT.md is the reference.
 /// This module is the only place where the stream is parsed or formatted.
-#include "section/frame.h"
+#include <Eigen/Core>
 
 #include <cstddef>
 #include <cstdio>
@@ -134,66 +134,10 @@ private:
   bool finished_ = false;
 };
 
-/// A stage of the pipe (smooth, fitspline, camber) as run_stage runs it.
-struct StageRun {
-  std::string input = "-";   ///< stream to read ("-" = standard input)
-  std::string output = "-";  ///< stream to write ("-" = standard output)
-  std::string history;       ///< line added to the stream's history
-  int threads = 0;           ///< parts staged at a time, or threads of a whole stream; 0 = all cores
-  /// The stage: runs on each part (or the whole stream), from several threads at once,
-  /// told how many threads it may use itself (1 for a part, `threads` for a whole stream).
-  std::function<void(Stream&, int threads)> stage;
-  /// Sees each part (or the whole stream) as it is written, in order, from one thread.
-  std::function<void(const Stream&)> written;
-  /// Runs once all is staged, before `# end`; may throw to leave the output unfinished.
-  std::function<void()> before_end;
-  /// Turns an input that is not a stream into one (camber: a plain profile); unset, such
-  /// input is refused.
-  std::function<Stream(const std::string& text, const std::string& source)> other_input;
-};
-
-/// Runs a stage of the pipe:
-/// - a stream split into parts is read, staged and written part by part: up to
-///   `threads` parts at a time, each written with StreamWriter as soon as it and the parts
-///   before it are done, so that the tools of a pipe work side by side;
-/// - any other stream is read, staged and written whole (write_stream).
-/// Throws section::Error naming the input and its line on malformed input (a stream split
-/// into parts must end with `# end`), and whatever the callbacks throw; the output then
-/// lacks its `# end` line, or is not written.
-void run_stage(const StageRun& run);
-
 /// Appends the rows of `from` to `to`, taking its name and columns when `to` has none
 /// (to gather a table over the parts of a stream). Throws section::Error when the columns
 /// differ.
 void append_rows(Table& to, const Table& from);
-
-/// Parses a plain CSV table (not a stream): `#` lines and blank lines skipped, the first
-/// remaining line is the header of column names, then numeric rows with as many values,
-/// separated by commas or blanks. The table is named after `source`. Throws section::Error
-/// naming `source` and the line.
-Table parse_csv(std::string_view text, const std::string& source);
-
-/// Parses a plain ordered 2D profile: one point a line, x and y in the first two columns
-/// (comma or blank separated; further columns ignored); leading title lines and `#` lines
-/// are skipped, as in airfoil .dat files. Throws section::Error naming `source` and the line.
-std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::string& source);
-
-/// Formats one table as a plain CSV file (header row, then the rows; no `#` lines), for
-/// tools that also write a table on its own (camber --params, smooth --report).
-std::string format_csv(const Table& table);
-
-/// Section frames of a stream (table "frames"), by section id.
-std::map<int, Frame> frames(const Stream& stream);
-
-/// Adds or replaces the "frames" table from frames by section id.
-void put_frames(Stream& stream, const std::map<int, Frame>& frames);
-
-/// Reads a whole file ("-" = standard input) into memory; throws section::Error naming
-/// the file when it cannot be opened or read.
-std::string read_file(const std::string& path);
-
-/// Writes `bytes` to `path` ("-" = standard output); throws section::Error on failure.
-void write_file(const std::string& path, const std::string& bytes);
 
 /// Shortest round-trip decimal text of a double.
 std::string format_number(double value);

@@ -1,4 +1,4 @@
-#include "section/mesh.h"
+#include "section/io/mesh_io.h"
 
 #include "section/error.h"
 

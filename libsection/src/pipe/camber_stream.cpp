@@ -1,9 +1,13 @@
 // Stream stage of camber: splines in, camber line and section parameters out.
+#include "section/pipe/camber_stream.h"
+
 #include "section/camber.h"
 #include "section/error.h"
 #include "section/fit_spline.h"
 #include "section/params.h"
-#include "section/pipe.h"
+#include "section/io/stream.h"
+#include "section/pipe/schema.h"
+#include "section/pipe/fit_spline_stream.h"
 #include "detail/parallel.h"
 
 #include <algorithm>

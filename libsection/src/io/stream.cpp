@@ -1,4 +1,9 @@
-#include "section/pipe.h"
+#include "section/io/stream.h"
+
+#include "section/io/csv.h"
+#include "section/io/file.h"
+#include "section/pipe/run_stage.h"
+#include "section/pipe/schema.h"
 
 #include "section/error.h"
 #include "detail/parallel.h"
@@ -1081,6 +1086,26 @@ void put_frames(Stream& stream, const std::map<int, Frame>& frames) {
     t.add_row({double(id), f.origin.x(), f.origin.y(), f.origin.z(), f.u.x(), f.u.y(), f.u.z(),
                f.v.x(), f.v.y(), f.v.z(), f.n.x(), f.n.y(), f.n.z()});
   stream.put(std::move(t));
+}
+
+std::vector<Plane> parse_planes(std::string_view csv, const std::string& source) {
+  const Table t = parse_csv(csv, source);
+  const char* names[6] = {"origin_x", "origin_y", "origin_z", "normal_x", "normal_y", "normal_z"};
+  std::size_t c[6];
+  for (int k = 0; k < 6; ++k) {
+    const long col = t.find_column(names[k]);
+    if (col < 0) throw Error("slice: " + source + ": the planes file needs the column '" + names[k] + "'");
+    c[k] = static_cast<std::size_t>(col);
+  }
+  std::vector<Plane> planes;
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    Plane p{{t.at(r, c[0]), t.at(r, c[1]), t.at(r, c[2])}, {t.at(r, c[3]), t.at(r, c[4]), t.at(r, c[5])}};
+    if (!(p.normal.norm() > 0))
+      throw Error("slice: " + source + ": plane " + std::to_string(r) + " (data row " + std::to_string(r + 1) + ") has a zero normal");
+    planes.push_back(p);
+  }
+  if (planes.empty()) throw Error("slice: " + source + ": no planes");
+  return planes;
 }
 
 }  // namespace section

@@ -1,4 +1,4 @@
-#include "section/cloud.h"
+#include "section/io/cloud_io.h"
 
 #include "section/error.h"
 #include "detail/parallel.h"

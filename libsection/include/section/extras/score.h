@@ -1,11 +1,11 @@
 #pragma once
-/// @file score.h
+/// @file extras/score.h
 /// Errors of measured results against the exact truth of a generated section
 /// (generate.h): the scores of the accuracy tests, bench/evaluate_pipeline and
 /// docs/ACCURACY.md, computed in one place.
 #include "section/bspline.h"
-#include "section/generate.h"
-#include "section/pipe.h"
+#include "section/extras/generate.h"
+#include "section/io/stream.h"
 
 #include <Eigen/Core>
 

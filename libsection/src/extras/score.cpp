@@ -1,6 +1,7 @@
-#include "section/score.h"
+#include "section/extras/score.h"
 
 #include "section/error.h"
+#include "section/io/stream.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-/// @file plot.h
+/// @file extras/plot.h
 /// Drawings of the sections of a pipe stream, to scale: SVG per section, or one HTML page
 /// holding every section. Each drawing shows what the stream holds of the section: the
 /// measured points, the fitted curve, the mean-camber line, the inscribed circles at the

@@ -4,7 +4,7 @@
 // end circles' arcs. Everything is evaluated analytically (c, c', c'', r, r', r''), so
 // lengths, area and centroid come from Gauss-Legendre quadrature of exact derivatives and
 // profile points are placed at exact arc lengths by Newton inversion.
-#include "section/generate.h"
+#include "section/extras/generate.h"
 
 #include "section/error.h"
 

@@ -1,0 +1,32 @@
+#pragma once
+/// @file io/csv.h
+/// Plain text tables outside the stream: CSV tables, ordered 2D profiles, section planes.
+#include "section/io/stream.h"
+#include "section/slice.h"
+
+#include <Eigen/Core>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace section {
+
+/// Parses a plain CSV table (not a stream): `#` lines and blank lines skipped, the first
+/// remaining line is the header of column names, then numeric rows with as many values,
+/// separated by commas or blanks. The table is named after `source`. Throws section::Error
+/// naming `source` and the line.
+Table parse_csv(std::string_view text, const std::string& source);
+
+/// Parses a plain ordered 2D profile: one point a line, x and y in the first two columns
+/// (comma or blank separated; further columns ignored); leading title lines and `#` lines
+/// are skipped, as in airfoil .dat files. Throws section::Error naming `source` and the line.
+std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::string& source);
+
+/// Formats one table as a plain CSV file (header row, then the rows; no `#` lines), for
+/// tools that also write a table on its own (camber --params, smooth --report).
+std::string format_csv(const Table& table);
+/// Planes from a CSV table with columns origin_x, origin_y, origin_z, normal_x, normal_y,
+/// normal_z (extra columns ignored). `source` names it in error messages.
+std::vector<Plane> parse_planes(std::string_view csv, const std::string& source);
+
+}  // namespace section

@@ -1,0 +1,34 @@
+#pragma once
+/// @file io/slice_file.h
+/// Slicing a cloud file as it is read, without holding the whole cloud.
+#include "section/io/cloud_io.h"
+#include "section/slice.h"
+
+#include <functional>
+#include <string>
+
+namespace section {
+
+/// Planes for slice_file: explicit, or spread over the cloud (known only once it is read).
+struct PlaneSpec {
+  std::vector<Plane> planes;                         ///< explicit planes, used when count is 0
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< normal of the spread planes (count > 0)
+  int count = 0;                                     ///< planes spread as planes_across; 0 = use `planes`
+};
+
+/// Receives each section of slice_file as soon as it and the sections before it are done.
+using SectionSink = std::function<void(const SectionSlice&)>;
+
+/// Slices the cloud of a file without holding it: reads it in chunks and keeps only the
+/// slab points of each plane. A file is read once when the planes and the slab width are
+/// given, twice otherwise (first for the extent along the normal and a random sample of
+/// 50000 points for the spacing); standard input ("-") is held in memory and sliced by
+/// slice(Cloud). Same results in meaning as slice(read_cloud(path), ...); the estimated
+/// slab width may differ slightly (another random sample). Throws as read_cloud and slice.
+/// `sink`, when set, receives each section in plane order as soon as it and those before
+/// it are done, from one thread at a time (the slice tool writes it to the pipe while the
+/// others are still being ordered); the result holds them all the same.
+SliceResult slice_file(const std::string& path, const PlaneSpec& planes, const SliceOptions& options = {},
+                       const CloudReadOptions& read = {}, const SectionSink& sink = {});
+
+}  // namespace section

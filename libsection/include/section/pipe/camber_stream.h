@@ -1,0 +1,20 @@
+#pragma once
+/// @file pipe/camber_stream.h
+/// The camber stage on the stream: splines -> tables "camber", "params", "thickness", "sides".
+#include "section/camber.h"
+#include "section/io/stream.h"
+
+namespace section {
+
+/// Stream stage: reads the closed splines (tables "splines", "spline_knots",
+/// "spline_ctrl"), processes loop 0 of every section and writes the tables "camber",
+/// "params", "thickness" and "sides" (docs/FORMAT.md). A section that fails, or has
+/// more than one loop, gets an issue and the others go on.
+void camber_stream(Stream& stream, const CamberOptions& options = {});
+
+/// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
+/// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain
+/// profile (an airfoil .dat file, a CMM section).
+Stream profile_stream(const BSpline& spline, double rms = 0);
+
+}  // namespace section

@@ -1,0 +1,40 @@
+#pragma once
+/// @file pipe/run_stage.h
+/// The part scheduler: runs a stage of the pipe (smooth, fitspline, camber) over a stream
+/// read from a file or standard input, part by part when the stream is split into parts.
+#include "section/io/stream.h"
+
+#include <functional>
+#include <string>
+
+namespace section {
+
+/// A stage of the pipe (smooth, fitspline, camber) as run_stage runs it.
+struct StageRun {
+  std::string input = "-";   ///< stream to read ("-" = standard input)
+  std::string output = "-";  ///< stream to write ("-" = standard output)
+  std::string history;       ///< line added to the stream's history
+  int threads = 0;           ///< parts staged at a time, or threads of a whole stream; 0 = all cores
+  /// The stage: runs on each part (or the whole stream), from several threads at once,
+  /// told how many threads it may use itself (1 for a part, `threads` for a whole stream).
+  std::function<void(Stream&, int threads)> stage;
+  /// Sees each part (or the whole stream) as it is written, in order, from one thread.
+  std::function<void(const Stream&)> written;
+  /// Runs once all is staged, before `# end`; may throw to leave the output unfinished.
+  std::function<void()> before_end;
+  /// Turns an input that is not a stream into one (camber: a plain profile); unset, such
+  /// input is refused.
+  std::function<Stream(const std::string& text, const std::string& source)> other_input;
+};
+
+/// Runs a stage of the pipe:
+/// - a stream split into parts is read, staged and written part by part: up to
+///   `threads` parts at a time, each written with StreamWriter as soon as it and the parts
+///   before it are done, so that the tools of a pipe work side by side;
+/// - any other stream is read, staged and written whole (write_stream).
+/// Throws section::Error naming the input and its line on malformed input (a stream split
+/// into parts must end with `# end`), and whatever the callbacks throw; the output then
+/// lacks its `# end` line, or is not written.
+void run_stage(const StageRun& run);
+
+}  // namespace section

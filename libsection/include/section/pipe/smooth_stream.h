@@ -1,0 +1,17 @@
+#pragma once
+/// @file pipe/smooth_stream.h
+/// The smooth stage on the stream: tables "points" -> "smoothed", "smooth_stats".
+#include "section/io/stream.h"
+#include "section/smooth.h"
+
+namespace section {
+
+/// Stream stage: smooths every (section, loop) of the "points" table (closed loops) and
+/// writes the tables "smoothed" (section, loop, index, u, v) and "smooth_stats" (section,
+/// loop, points, energy_before, energy_after, iterations, rms_move, max_move, repaired).
+/// Sections already failed at an earlier stage are skipped; a loop that cannot be smoothed
+/// is recorded in stream.issues (stage "smooth") and the others go on. Throws
+/// section::Error when the "points" table is missing or lacks a column.
+void smooth_stream(Stream& stream, const SmoothOptions& options = {});
+
+}  // namespace section
