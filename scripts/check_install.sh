@@ -15,7 +15,7 @@ prefix="$tmp/prefix"
 fail() { echo "check_install: FAILED: $*" >&2; exit 1; }
 
 cmake --install "$BUILD_DIR" --prefix "$prefix" > /dev/null
-[ -f "$prefix/include/section/pipe.h" ] && [ -f "$prefix/lib/cmake/libsection/libsectionConfig.cmake" ] \
+[ -f "$prefix/include/section/io/stream.h" ] && [ -f "$prefix/include/section/extras/generate.h" ] && [ -f "$prefix/lib/cmake/libsection/libsectionConfig.cmake" ] \
   || fail "headers or CMake package not installed"
 
 # 1. The installed tools find the installed library.
