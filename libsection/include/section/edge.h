@@ -1,0 +1,47 @@
+#pragma once
+/// @file edge.h
+/// Leading and trailing edges of a blade section: their model, shapes and measures.
+#include <Eigen/Core>
+
+namespace section {
+
+/// Edge model: `round` fits a circle to every edge; `automatic` fits it only to edges
+/// detected as round and reports blunt and sharp edges with radius 0. A blunt edge with a
+/// flat face (Edge::face > 0) gets radius 0 in both models: a face is not a circle.
+enum class EdgeModel { round, automatic };
+/// Detected edge shape.
+enum class EdgeShape { round = 0, blunt = 1, sharp = 2 };
+
+/// Every edge shape with its name (the stream's params table writes the shape's number,
+/// words go to people): adding a shape is adding it here and to EdgeShape.
+struct EdgeShapeName {
+  EdgeShape shape;
+  const char* name;
+};
+inline constexpr EdgeShapeName edge_shape_names[] = {
+    {EdgeShape::round, "round"}, {EdgeShape::blunt, "blunt"}, {EdgeShape::sharp, "sharp"}};
+
+/// The name of an edge shape ("round", "blunt", "sharp").
+inline const char* edge_shape_name(EdgeShape shape) {
+  for (const auto& e : edge_shape_names)
+    if (e.shape == shape) return e.name;
+  return "unknown";
+}
+
+/// A leading or trailing edge.
+struct Edge {
+  Eigen::Vector2d point{0, 0};     ///< edge point: the camber line's end tangent meets the profile (the edge circle when `on_points` and the edge is round and circular)
+  double t = 0;                    ///< its profile parameter
+  Eigen::Vector2d center{0, 0};    ///< centre of the circle fitted to the edge arc
+  double radius = 0;               ///< radius of that circle (0 for a blunt or sharp edge in automatic mode)
+  double fit_rms = 0;              ///< rms distance of the edge arc from the fitted circle
+  double arc = 0;                  ///< degrees: angle the fitted edge arc subtends at the fitted centre
+  double arc_t0 = 0, arc_t1 = 0;   ///< profile parameter range of the edge arc
+  double curvature_radius = 0;     ///< 1 / profile curvature at the edge point (0 when flat or concave there)
+  EdgeShape shape = EdgeShape::round;  ///< detected shape
+  bool circular = true;            ///< false: the fitted circle leaves the edge arc by more than edge_circularity x the profile noise (the edge is not a circular arc; radius depends on the arc taken, the axis keeps its medial end)
+  double face = 0;                 ///< blunt edges with a flat face: the face's width (0 otherwise)
+  bool on_points = false;          ///< the circle was refitted to the measured points on the arc (CamberOptions::edge_on_points); a round, circular such edge has its point on that circle
+};
+
+}  // namespace section
