@@ -59,6 +59,25 @@ double extreme(const detail::PiecewiseCurve& f, double t, const Eigen::Vector2d&
   return t;
 }
 
+// The line touching the profile at ta and tb (a bitangent), by Newton from those
+// parameters: its two touching points.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> bitangent(const detail::PiecewiseCurve& f, double ta, double tb,
+                                                      double period) {
+  for (int it = 0; it < 40; ++it) {
+    const detail::CurveJet a = f.jet(ta), b = f.jet(tb);
+    const Eigen::Vector2d d = b.point - a.point;
+    const Eigen::Vector2d g(cross(d, a.d1), cross(d, b.d1));
+    Eigen::Matrix2d j;
+    j << cross(d, a.d2), cross(b.d1, a.d1), cross(-a.d1, b.d1), cross(d, b.d2);
+    const Eigen::Vector2d step = j.fullPivLu().solve(g);
+    if (!step.allFinite()) break;
+    ta -= step(0);
+    tb -= step(1);
+    if (step.norm() < 1e-14 * period) break;
+  }
+  return {f.jet(ta).point, f.jet(tb).point};
+}
+
 }  // namespace
 
 double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
@@ -88,26 +107,12 @@ double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
   return area;
 }
 
-SectionParams section_params(const BSpline& profile, const CamberResult& camber) {
-  SectionParams out;
-  out.le_point = camber.le.point;
-  out.te_point = camber.te.point;
-  out.chord = (out.te_point - out.le_point).norm();
-  out.camber_length = camber.length;
-  out.max_thickness = 2 * camber.thickest.radius;
-  out.max_thickness_pos = camber.length > 0 ? camber.thickest_s / camber.length : 0;
-  out.le_radius = camber.le.radius;
-  out.te_radius = camber.te.radius;
-  out.le_curvature_radius = camber.le.curvature_radius;
-  out.te_curvature_radius = camber.te.curvature_radius;
-  out.stagger = degrees(out.te_point - out.le_point);
-  out.inlet_angle = degrees(camber.le_tangent);
-  out.outlet_angle = degrees(camber.te_tangent);
-  out.camber_angle = wrap_degrees(out.inlet_angle - out.outlet_angle);
-  out.area = std::abs(enclosed_area(profile, &out.centroid));
+namespace {
 
-  // Caliper: the convex-hull edge bridging the pressure side is the line a caliper laid
-  // against that side touches at both ends; refined to the exact bitangent.
+// The caliper laid against the pressure side of `profile` (SectionParams::caliper_*):
+// the convex-hull edge bridging the pressure side is the line a caliper touches at both
+// ends, refined to the exact bitangent; the chord is the profile's extent along it.
+void caliper(const BSpline& profile, const CamberResult& camber, SectionParams& out) {
   const detail::PiecewiseCurve f(profile);
   const int n = 2000;
   const double t0 = profile.t_min(), period = profile.t_max() - t0;
@@ -135,25 +140,12 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
   }
   Eigen::Vector2d e = (out.te_point - out.le_point).normalized();
   if (ha >= 0 && ha != hb) {
-    double ta = t0 + period * ha / n, tb = t0 + period * hb / n;
-    for (int it = 0; it < 40; ++it) {
-      const detail::CurveJet a = f.jet(ta), b = f.jet(tb);
-      const Eigen::Vector2d d = b.point - a.point;
-      const Eigen::Vector2d g(cross(d, a.d1), cross(d, b.d1));
-      Eigen::Matrix2d j;
-      j << cross(d, a.d2), cross(b.d1, a.d1), cross(-a.d1, b.d1), cross(d, b.d2);
-      const Eigen::Vector2d step = j.fullPivLu().solve(g);
-      if (!step.allFinite()) break;
-      ta -= step(0);
-      tb -= step(1);
-      if (step.norm() < 1e-14 * period) break;
-    }
-    const Eigen::Vector2d a = f.jet(ta).point, b = f.jet(tb).point;
-    if ((b - a).norm() > 0) {
-      e = (b - a).normalized();
+    const std::pair<Eigen::Vector2d, Eigen::Vector2d> ab = bitangent(f, t0 + period * ha / n, t0 + period * hb / n, period);
+    if ((ab.second - ab.first).norm() > 0) {
+      e = (ab.second - ab.first).normalized();
       out.caliper_found = true;
-      out.caliper_le = a;
-      out.caliper_te = b;
+      out.caliper_le = ab.first;
+      out.caliper_te = ab.second;
     }
   }
   if (e.dot(out.te_point - out.le_point) < 0) {
@@ -173,6 +165,28 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
   const double lo = f.jet(extreme(f, t0 + period * imin / n, e)).point.dot(e);
   out.caliper_chord = std::max(hi, s[imax].dot(e)) - std::min(lo, s[imin].dot(e));
   out.caliper_stagger = degrees(e);
+}
+
+}  // namespace
+
+SectionParams section_params(const BSpline& profile, const CamberResult& camber) {
+  SectionParams out;
+  out.le_point = camber.le.point;
+  out.te_point = camber.te.point;
+  out.chord = (out.te_point - out.le_point).norm();
+  out.camber_length = camber.length;
+  out.max_thickness = 2 * camber.thickest.radius;
+  out.max_thickness_pos = camber.length > 0 ? camber.thickest_s / camber.length : 0;
+  out.le_radius = camber.le.radius;
+  out.te_radius = camber.te.radius;
+  out.le_curvature_radius = camber.le.curvature_radius;
+  out.te_curvature_radius = camber.te.curvature_radius;
+  out.stagger = degrees(out.te_point - out.le_point);
+  out.inlet_angle = degrees(camber.le_tangent);
+  out.outlet_angle = degrees(camber.te_tangent);
+  out.camber_angle = wrap_degrees(out.inlet_angle - out.outlet_angle);
+  out.area = std::abs(enclosed_area(profile, &out.centroid));
+  caliper(profile, camber, out);
   return out;
 }
 
