@@ -1,6 +1,10 @@
 #include "section/params.h"
 
+#include "detail/axis_curve.h"
+#include "detail/camber_line.h"
+#include "detail/inscribed.h"
 #include "detail/piecewise_curve.h"
+#include "detail/sampled_profile.h"
 #include "section/error.h"
 
 #include <Eigen/Dense>
@@ -8,14 +12,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace section {
 
+using detail::cross;
+using detail::left_normal;
+using detail::pi;
+
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 double degrees(const Eigen::Vector2d& d) { return std::atan2(d.y(), d.x()) * 180 / pi; }
 double wrap_degrees(double a) {
   a = std::fmod(a, 360);
@@ -187,6 +193,53 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
   out.camber_angle = wrap_degrees(out.inlet_angle - out.outlet_angle);
   out.area = std::abs(enclosed_area(profile, &out.centroid));
   caliper(profile, camber, out);
+  return out;
+}
+
+std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const CamberResult& camber,
+                                                 const std::vector<double>& fractions) {
+  const detail::SampledProfile pr(profile, 1000);
+  const detail::AxisCurve ax(camber.medial.curve);
+  const auto& circles = camber.medial.circles;
+  const detail::ArcLengthTable table(ax.spline, 4 * static_cast<int>(circles.size()));
+  std::vector<ThicknessStation> out;
+  for (double f : fractions) {
+    if (!(f >= 0 && f <= 1)) throw Error("params: thickness station " + std::to_string(f) + " is outside [0, 1]");
+    ThicknessStation st;
+    st.fraction = f;
+    st.s = f * camber.length;
+    InscribedCircle c;
+    bool solved = false;
+    if (st.s > camber.ext_le && st.s < camber.length - camber.ext_te) {
+      const detail::AxisSample a = detail::axis_sample(ax, table, camber.ext_le, st.s);
+      // Guess from the nearest medial circle (the fitted edge centres carry no contacts).
+      std::size_t g = 0;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < circles.size(); ++k)
+        if (circles[k].t_left != circles[k].t_right && (circles[k].center - a.point).norm() < best)
+          best = (circles[k].center - a.point).norm(), g = k;
+      solved = detail::snap_to_axis(pr, a.point, a.normal, circles[g], c);
+      if (!solved) c.center = a.point;
+    } else {
+      c.center = detail::extension_point(camber, st.s);
+    }
+    if (solved) {
+      st.thickness = 2 * c.radius;
+    } else {
+      // On an extension (or where no circle fits): the width across the camber normal.
+      const Eigen::Vector2d d = st.s <= camber.ext_le ? camber.le_tangent : camber.te_tangent;
+      double tl = 0, tr = 0;
+      if (!detail::ray_hit(pr, c.center, left_normal(d), tl) || !detail::ray_hit(pr, c.center, -left_normal(d), tr))
+        throw Error("params: the camber normal at station " + std::to_string(f) + " misses the profile");
+      c.left = pr.fast.jet(tl).point;
+      c.right = pr.fast.jet(tr).point;
+      st.thickness = (c.left - c.right).norm();
+    }
+    st.point = c.center;
+    st.pressure = camber.pressure_side > 0 ? c.left : c.right;
+    st.suction = camber.pressure_side > 0 ? c.right : c.left;
+    out.push_back(st);
+  }
   return out;
 }
 
