@@ -43,7 +43,7 @@ struct ThicknessStation {
   double fraction = 0;           ///< station: arc length from the LE point / camber length
   double s = 0;                  ///< arc length from the LE point
   Eigen::Vector2d point{0, 0};   ///< camber point (the inscribed circle's centre)
-  double thickness = 0;          ///< inscribed diameter there (on an extension: width across the camber normal)
+  double thickness = 0;          ///< inscribed diameter (on an extension: width across the camber normal)
   Eigen::Vector2d pressure{0, 0}, suction{0, 0};  ///< contact points on each side
 };
 
