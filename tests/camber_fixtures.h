@@ -45,10 +45,14 @@ inline std::vector<Vector2d> noisy_profile(const SectionTruth& truth, double spa
   return pts;
 }
 
-inline double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+inline double relative(double a, double b) {
+  return std::abs(a - b) / std::max(std::abs(b), 1e-300);
+}
 
 // Thick and thin, high and low turning, large and small edge radii.
-inline std::vector<SectionDesign> designs() { return section::design_family(); }
+inline std::vector<SectionDesign> designs() {
+  return section::design_family();
+}
 
 // f(design index, seed, truth, points, spline) for each design but the turbine (the
 // slowest to fit; the others cover it) and each seed: noisy_profile points every
@@ -70,8 +74,8 @@ void for_noisy_fits(double spacing, std::initializer_list<unsigned> seeds, F&& f
 
 // The camber of a noisy fit with its edge circles refitted to the measured points (at
 // 5 um of profile noise), and the same with the circles on the spline alone.
-inline std::pair<section::CamberResult, section::CamberResult> on_points_and_spline(const BSpline& spline,
-                                                                               const std::vector<Vector2d>& pts) {
+inline std::pair<section::CamberResult, section::CamberResult> on_points_and_spline(
+    const BSpline& spline, const std::vector<Vector2d>& pts) {
   section::CamberOptions o;
   o.profile_noise = 0.005;
   section::CamberResult on_points = section::camber_line(spline, o, pts);
@@ -83,7 +87,8 @@ inline std::pair<section::CamberResult, section::CamberResult> on_points_and_spl
 // mm) before the TE centre: a blunt trailing edge whose flat face (sampled at the
 // profile's spacing) joins the sides at two corners. `cut` and `width` get the camber
 // point on the line and the face width.
-inline std::vector<Vector2d> cut_trailing_edge(const SectionTruth& truth, double back, Vector2d& cut, double& width) {
+inline std::vector<Vector2d> cut_trailing_edge(const SectionTruth& truth, double back, Vector2d& cut,
+                                               double& width) {
   const double s_end = truth.camber_s[truth.camber_end - 1] - back;
   std::size_t k = truth.camber_begin;
   while (k + 1 < truth.camber_end && truth.camber_s[k + 1] < s_end) ++k;
@@ -118,7 +123,8 @@ inline Vector2d direction(double degrees) {
 // ~16 deg. Its nose is not a circular arc: the curvature radius grows from the tip.
 inline std::vector<Vector2d> naca0012() {
   auto half = [](double x) {
-    return 0.6 * (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x - 0.1036 * x * x * x * x);
+    return 0.6 * (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x -
+                  0.1036 * x * x * x * x);
   };
   std::vector<Vector2d> pts;
   const int m = 2000;

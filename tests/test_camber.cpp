@@ -53,7 +53,8 @@ TEST_CASE("camber: envelope-of-circles sections give the true camber line and pa
     // Angles: 1e-4 relative of the larger of the angle and 45 degrees (the outlet angle of a
     // thin trailing edge carries ~0.005 deg from the spline fit of the edge junction).
     CHECK(std::abs(p.inlet_angle - truth.inlet_angle) < 1e-4 * std::max(std::abs(truth.inlet_angle), 45.0));
-    CHECK(std::abs(p.outlet_angle - truth.outlet_angle) < 1e-4 * std::max(std::abs(truth.outlet_angle), 45.0));
+    CHECK(std::abs(p.outlet_angle - truth.outlet_angle) <
+          1e-4 * std::max(std::abs(truth.outlet_angle), 45.0));
     CHECK(std::abs(p.camber_angle - (truth.inlet_angle - truth.outlet_angle)) < 1e-2);
     // The curvature radius at the edge point carries the spline's O(h^2) curvature error.
     CHECK(relative(p.le_curvature_radius, truth.le_radius) < 3e-3);
@@ -152,7 +153,8 @@ TEST_CASE("camber: stream stage writes the tables and flags a two-loop section",
   }
   const BSpline piece = dense_spline(blob, 40);
   cut.find("splines")->add_row({0, 1, 3, 1, double(piece.control.size()), 0, 0, 0, 0});
-  for (std::size_t i = 0; i < piece.knots.size(); ++i) cut.find("spline_knots")->add_row({0, 1, double(i), piece.knots[i]});
+  for (std::size_t i = 0; i < piece.knots.size(); ++i)
+    cut.find("spline_knots")->add_row({0, 1, double(i), piece.knots[i]});
   for (std::size_t i = 0; i < piece.control.size(); ++i)
     cut.find("spline_ctrl")->add_row({0, 1, double(i), piece.control[i].x(), piece.control[i].y()});
   section::camber_stream(cut, o);
@@ -169,12 +171,13 @@ TEST_CASE("camber: a 3D leading-edge direction is projected onto each section's 
   // direction in (u, v) is a 3D direction there.
   const Vector2d along = truth.le_point - truth.te_point;
   const Eigen::Vector3d u(0, 0, 1), v(1, 0, 0);
-  const Eigen::Vector3d upstream = along.x() * u + along.y() * v + Eigen::Vector3d(0, 5, 0);  // plus a normal part
+  const Eigen::Vector3d upstream =
+      along.x() * u + along.y() * v + Eigen::Vector3d(0, 5, 0);  // plus a normal part
   for (const double sign : {1.0, -1.0}) {
     section::Stream stream = section::profile_stream(profile);
     stream.put(section::Table{"frames",
-                              {"section", "origin_x", "origin_y", "origin_z", "u_x", "u_y", "u_z", "v_x", "v_y", "v_z",
-                               "n_x", "n_y", "n_z"},
+                              {"section", "origin_x", "origin_y", "origin_z", "u_x", "u_y", "u_z", "v_x",
+                               "v_y", "v_z", "n_x", "n_y", "n_z"},
                               {0, 0, 0, 0, u.x(), u.y(), u.z(), v.x(), v.y(), v.z(), 0, 1, 0}});
     section::CamberOptions options;
     options.le_direction_3d = sign * upstream;
@@ -224,14 +227,16 @@ TEST_CASE("camber: a medial branch that stops short of an edge centre is bridged
   // no issue is raised.
   section::Stream s = section::read_stream(std::string(SECTION_TEST_DATA) + "/camber_short_branch.csv");
   section::camber_stream(s);
-  for (const auto& issue : s.issues) CHECK(issue.message.find("strays from the medial axis") == std::string::npos);
+  for (const auto& issue : s.issues)
+    CHECK(issue.message.find("strays from the medial axis") == std::string::npos);
   const section::Table& t = s.get("camber", "test");
   const std::size_t cu = t.column("u"), cv = t.column("v");
   std::vector<Vector2d> p;
   for (std::size_t r = 0; r < t.rows(); ++r) p.emplace_back(t.at(r, cu), t.at(r, cv));
   REQUIRE(p.size() > 100);
   double kink = 0;
-  for (std::size_t k = 1; k + 1 < p.size(); ++k) kink = std::max(kink, (p[k + 1] - 2 * p[k] + p[k - 1]).norm());
+  for (std::size_t k = 1; k + 1 < p.size(); ++k)
+    kink = std::max(kink, (p[k + 1] - 2 * p[k] + p[k - 1]).norm());
   INFO("largest second difference " << kink * 1e3 << " um");
   CHECK(kink < 0.02);
 }

@@ -77,16 +77,17 @@ TEST_CASE("edge: edge radii on noisy profiles (sigma 5 um) stay within 3 % (LE) 
   // Exact profile points every 40 um, moved by Gaussian noise (sigma 5 um) along the exact
   // normal, fitted with fit_spline: the edge arc is chosen geometrically on the noisy
   // curve (grown while the profile stays at noise level from the fitted circle).
-  for_noisy_fits(0.04, {1u, 2u}, [](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>&,
-                                     const BSpline& spline) {
-    const section::CamberResult c = section::camber_line(spline);
-    INFO("design " << k << " seed " << seed << " LE " << c.le.radius << " / " << truth.le_radius << " TE "
-                   << c.te.radius << " / " << truth.te_radius);
-    CHECK(relative(c.le.radius, truth.le_radius) < 0.03);
-    CHECK(relative(c.te.radius, truth.te_radius) < 0.10);
-    // The fitted centre ends the camber line: it lies within a few noise sigmas of the truth.
-    CHECK((c.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
-  });
+  for_noisy_fits(0.04, {1u, 2u},
+                 [](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>&,
+                    const BSpline& spline) {
+                   const section::CamberResult c = section::camber_line(spline);
+                   INFO("design " << k << " seed " << seed << " LE " << c.le.radius << " / "
+                                  << truth.le_radius << " TE " << c.te.radius << " / " << truth.te_radius);
+                   CHECK(relative(c.le.radius, truth.le_radius) < 0.03);
+                   CHECK(relative(c.te.radius, truth.te_radius) < 0.10);
+                   // The fitted centre ends the camber line: it lies within a few noise sigmas of the truth.
+                   CHECK((c.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
+                 });
 }
 
 TEST_CASE("edge: edge circles refitted to the measured points lose the spline's shape error", "[edge]") {
@@ -96,29 +97,33 @@ TEST_CASE("edge: edge circles refitted to the measured points lose the spline's 
   // the circle does not. Where the points cannot fix the radius to 5 % (a sparse edge) or
   // the arc lies in a hole, the spline's circle stands.
   double worst_le = 0, worst_te = 0, error_points = 0, error_spline = 0;
-  for_noisy_fits(0.02, {3u, 4u}, [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
-                                     const BSpline& spline) {
-    const auto [on_points, on_spline] = on_points_and_spline(spline, pts);
-    INFO("design " << k << " seed " << seed << ": LE " << on_points.le.radius << ", spline's "
-                   << on_spline.le.radius << ", true " << truth.le_radius << "; TE " << on_points.te.radius
-                   << ", spline's " << on_spline.te.radius << ", true " << truth.te_radius);
-    const double le = relative(on_points.le.radius, truth.le_radius), te = relative(on_points.te.radius, truth.te_radius);
-    worst_le = std::max(worst_le, le);
-    worst_te = std::max(worst_te, te);
-    error_points += le + te;
-    error_spline += relative(on_spline.le.radius, truth.le_radius) + relative(on_spline.te.radius, truth.te_radius);
-    CHECK((on_points.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
-    CHECK((on_points.te.center - truth.te_center).norm() < 0.03 * truth.te_radius + 0.005);
+  for_noisy_fits(0.02, {3u, 4u},
+                 [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
+                     const BSpline& spline) {
+                   const auto [on_points, on_spline] = on_points_and_spline(spline, pts);
+                   INFO("design " << k << " seed " << seed << ": LE " << on_points.le.radius << ", spline's "
+                                  << on_spline.le.radius << ", true " << truth.le_radius << "; TE "
+                                  << on_points.te.radius << ", spline's " << on_spline.te.radius << ", true "
+                                  << truth.te_radius);
+                   const double le = relative(on_points.le.radius, truth.le_radius),
+                                te = relative(on_points.te.radius, truth.te_radius);
+                   worst_le = std::max(worst_le, le);
+                   worst_te = std::max(worst_te, te);
+                   error_points += le + te;
+                   error_spline += relative(on_spline.le.radius, truth.le_radius) +
+                                   relative(on_spline.te.radius, truth.te_radius);
+                   CHECK((on_points.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
+                   CHECK((on_points.te.center - truth.te_center).norm() < 0.03 * truth.te_radius + 0.005);
 
-    // A hole over the LE arc: no measured point within 1.2 radii of the LE point.
-    std::vector<Vector2d> holed;
-    for (const auto& p : pts)
-      if ((p - truth.le_point).norm() > 1.2 * truth.le_radius) holed.push_back(p);
-    section::CamberOptions o;
-    o.profile_noise = 0.005;
-    const section::CamberResult with_hole = section::camber_line(spline, o, holed);
-    CHECK(with_hole.le.radius == Approx(on_spline.le.radius).epsilon(1e-12));
-  });
+                   // A hole over the LE arc: no measured point within 1.2 radii of the LE point.
+                   std::vector<Vector2d> holed;
+                   for (const auto& p : pts)
+                     if ((p - truth.le_point).norm() > 1.2 * truth.le_radius) holed.push_back(p);
+                   section::CamberOptions o;
+                   o.profile_noise = 0.005;
+                   const section::CamberResult with_hole = section::camber_line(spline, o, holed);
+                   CHECK(with_hole.le.radius == Approx(on_spline.le.radius).epsilon(1e-12));
+                 });
   INFO("worst LE " << worst_le * 100 << " %, worst TE " << worst_te * 100 << " %; summed relative errors "
                    << error_points << " on the points, " << error_spline << " on the spline");
   CHECK(worst_le < 0.015);
@@ -131,22 +136,26 @@ TEST_CASE("edge: a round edge's point lies on the circle through the measured po
   // of the edge (the compressor preset's chords came out 1.9 um short at the mean, up to
   // 10.8 um). Where the circle was refitted to the measured points, the point is on it.
   double chord_points = 0, chord_spline = 0, point_points = 0, point_spline = 0;
-  for_noisy_fits(0.02, {3u, 4u, 5u, 6u}, [&](int k, unsigned seed, const SectionTruth& truth,
-                                             const std::vector<Vector2d>& pts, const BSpline& spline) {
-    const auto [on_points, on_spline] = on_points_and_spline(spline, pts);
-    auto chord = [](const section::CamberResult& c) { return (c.te.point - c.le.point).norm(); };
-    INFO("design " << k << " seed " << seed << ": chord error " << (chord(on_points) - truth.chord) * 1e3
-                   << " um, on the spline " << (chord(on_spline) - truth.chord) * 1e3 << " um");
-    REQUIRE(on_points.le.on_points);
-    REQUIRE(on_points.te.on_points);
-    CHECK_FALSE(on_spline.le.on_points);
-    for (const section::Edge* e : {&on_points.le, &on_points.te})
-      CHECK(std::abs((e->point - e->center).norm() - e->radius) < 1e-9);
-    chord_points += std::abs(chord(on_points) - truth.chord);
-    chord_spline += std::abs(chord(on_spline) - truth.chord);
-    point_points += (on_points.le.point - truth.le_point).norm() + (on_points.te.point - truth.te_point).norm();
-    point_spline += (on_spline.le.point - truth.le_point).norm() + (on_spline.te.point - truth.te_point).norm();
-  });
+  for_noisy_fits(
+      0.02, {3u, 4u, 5u, 6u},
+      [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
+          const BSpline& spline) {
+        const auto [on_points, on_spline] = on_points_and_spline(spline, pts);
+        auto chord = [](const section::CamberResult& c) { return (c.te.point - c.le.point).norm(); };
+        INFO("design " << k << " seed " << seed << ": chord error " << (chord(on_points) - truth.chord) * 1e3
+                       << " um, on the spline " << (chord(on_spline) - truth.chord) * 1e3 << " um");
+        REQUIRE(on_points.le.on_points);
+        REQUIRE(on_points.te.on_points);
+        CHECK_FALSE(on_spline.le.on_points);
+        for (const section::Edge* e : {&on_points.le, &on_points.te})
+          CHECK(std::abs((e->point - e->center).norm() - e->radius) < 1e-9);
+        chord_points += std::abs(chord(on_points) - truth.chord);
+        chord_spline += std::abs(chord(on_spline) - truth.chord);
+        point_points +=
+            (on_points.le.point - truth.le_point).norm() + (on_points.te.point - truth.te_point).norm();
+        point_spline +=
+            (on_spline.le.point - truth.le_point).norm() + (on_spline.te.point - truth.te_point).norm();
+      });
   INFO("summed chord errors " << chord_points * 1e3 << " um on the circles, " << chord_spline * 1e3
                               << " um on the spline; edge points " << point_points * 1e3 << " / "
                               << point_spline * 1e3 << " um");
@@ -170,13 +179,13 @@ TEST_CASE("edge: a cut-off trailing edge is reported blunt with its face width",
         section::CamberOptions o;
         o.edge = model;
         const section::CamberResult c = section::camber_line(spline, o);
-        INFO("design " << k << " cut " << back << " mm back: face " << c.te.face << " / " << width << ", TE point "
-                       << (c.te.point - cut).norm() << " from the cut");
+        INFO("design " << k << " cut " << back << " mm back: face " << c.te.face << " / " << width
+                       << ", TE point " << (c.te.point - cut).norm() << " from the cut");
         CHECK(c.te.shape == section::EdgeShape::blunt);
-        CHECK(c.te.radius == 0);                             // not forced into a circle
-        CHECK(relative(c.te.face, width) < 0.03);            // the corners' rounding by the spline
-        CHECK((c.te.point - cut).norm() < 0.025);            // the camber line ends mid-face
-        CHECK(c.le.shape == section::EdgeShape::round);      // the LE is untouched
+        CHECK(c.te.radius == 0);                         // not forced into a circle
+        CHECK(relative(c.te.face, width) < 0.03);        // the corners' rounding by the spline
+        CHECK((c.te.point - cut).norm() < 0.025);        // the camber line ends mid-face
+        CHECK(c.le.shape == section::EdgeShape::round);  // the LE is untouched
         CHECK(relative(c.le.radius, truth.le_radius) < 1e-4);
         CHECK(c.le.face == 0);
       }
@@ -203,8 +212,8 @@ TEST_CASE("edge: a cut-off trailing edge with 5 um noise is still blunt", "[edge
       pts.push_back(exact[i] + noise(rng) * Vector2d(-t.y(), t.x()));
     }
     const section::CamberResult c = section::camber_line(section::fit_spline(pts, pts).spline);
-    INFO("design " << k << ": face " << c.te.face << " / " << width << ", TE point " << (c.te.point - cut).norm()
-                   << " from the cut");
+    INFO("design " << k << ": face " << c.te.face << " / " << width << ", TE point "
+                   << (c.te.point - cut).norm() << " from the cut");
     CHECK(c.te.shape == section::EdgeShape::blunt);
     CHECK(relative(c.te.face, width) < 0.03);
     CHECK((c.te.point - cut).norm() < 0.025);
@@ -221,7 +230,8 @@ TEST_CASE("edge: an edge inside a hole of the measured points is flagged as not 
     section::Table points{"points", {"section", "loop", "index", "u", "v"}, {}};
     const double hole = 1.5 * truth.te_radius;
     std::size_t kept = 0;
-    const std::size_t step = std::max<std::size_t>(1, static_cast<std::size_t>(0.1 / (truth.perimeter / truth.profile.size())));
+    const std::size_t step =
+        std::max<std::size_t>(1, static_cast<std::size_t>(0.1 / (truth.perimeter / truth.profile.size())));
     for (std::size_t i = 0; i < truth.profile.size(); i += step)
       if ((truth.profile[i] - truth.te_point).norm() > hole)
         points.add_row({0, 0, double(kept++), truth.profile[i].x(), truth.profile[i].y()});
@@ -230,7 +240,8 @@ TEST_CASE("edge: an edge inside a hole of the measured points is flagged as not 
     section::camber_stream(stream, {});
     const section::Table& params = *stream.find("params");
     REQUIRE(params.rows() == 1);
-    INFO("te_unmeasured " << params.at(0, params.column("te_unmeasured")) << " te radius " << truth.te_radius);
+    INFO("te_unmeasured " << params.at(0, params.column("te_unmeasured")) << " te radius "
+                          << truth.te_radius);
     // Points within 1.5 R of the tip lie within +-97 degrees of it on the edge circle: the
     // hole is about 3.4 R of arc on a full circle (more where the sides leave it), plus up
     // to a spacing.
@@ -258,7 +269,8 @@ TEST_CASE("edge: a hole beside an edge point is flagged as partly not measured",
     // point along the profile: beside it (within its arc) or well away from it.
     for (const auto& [from, to, flagged] : {std::tuple{0.3, 1.8, true}, std::tuple{3.0, 4.5, false}}) {
       section::Table points{"points", {"section", "loop", "index", "u", "v"}, {}};
-      const std::size_t step = std::max<std::size_t>(1, static_cast<std::size_t>(0.25 * r / (truth.perimeter / n)));
+      const std::size_t step =
+          std::max<std::size_t>(1, static_cast<std::size_t>(0.25 * r / (truth.perimeter / n)));
       std::size_t kept = 0;
       for (std::size_t i = 0; i < n; i += step) {
         const double along = s[i] - s[te];

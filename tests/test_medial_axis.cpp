@@ -13,7 +13,8 @@
 
 using namespace camber_test;
 
-TEST_CASE("medial_axis: an ellipse's medial axis is the segment between its vertex curvature centres", "[medial_axis]") {
+TEST_CASE("medial_axis: an ellipse's medial axis is the segment between its vertex curvature centres",
+          "[medial_axis]") {
   for (const auto& [a, b] : {std::pair{10.0, 4.0}, std::pair{6.0, 1.5}}) {
     CAPTURE(a, b);
     std::vector<Vector2d> pts;
@@ -31,7 +32,8 @@ TEST_CASE("medial_axis: an ellipse's medial axis is the segment between its vert
       hi = std::max(hi, c.center.x());
       off = std::max(off, std::abs(c.center.y()));
       // Inscribed radius at (x, 0): distance to the ellipse, b sqrt(1 - x^2 / (a^2 - b^2)).
-      CHECK(std::abs(c.radius - b * std::sqrt(std::max(0.0, 1 - c.center.x() * c.center.x() / (a * a - b * b)))) < 1e-5);
+      CHECK(std::abs(c.radius -
+                     b * std::sqrt(std::max(0.0, 1 - c.center.x() * c.center.x() / (a * a - b * b)))) < 1e-5);
     }
     CHECK(off < 1e-9);
     // The ends are the vertices' centres of curvature, up to the spline's curvature error.
@@ -40,7 +42,8 @@ TEST_CASE("medial_axis: an ellipse's medial axis is the segment between its vert
   }
 }
 
-TEST_CASE("medial_axis: an inscribed circle on an ellipse's major axis has the true radius", "[medial_axis]") {
+TEST_CASE("medial_axis: an inscribed circle on an ellipse's major axis has the true radius",
+          "[medial_axis]") {
   // Ellipse 10 x 4: the circle centred on the line x = 3 touching both sides is centred on
   // the major axis, its radius b sqrt(1 - x^2 / (a^2 - b^2)).
   const double a = 10, b = 4;

@@ -160,8 +160,8 @@ void trim_at_face(std::vector<InscribedCircle>& circles, const Face& face, bool 
 // from it toward the centre of edge e (outward along d), each from the last one's
 // contacts, else (a contact that jumps past a bump ends the branch there) from the
 // profile's nearest samples on either side. In order from `from` outward.
-std::vector<InscribedCircle> bridge_to_centre(const SampledProfile& pr, const InscribedCircle& from, const Edge& e,
-                                              const Eigen::Vector2d& d, bool front) {
+std::vector<InscribedCircle> bridge_to_centre(const SampledProfile& pr, const InscribedCircle& from,
+                                              const Edge& e, const Eigen::Vector2d& d, bool front) {
   std::vector<InscribedCircle> bridge;
   const Eigen::Vector2d to = e.center - 0.3 * e.radius * d;
   const double gap = (to - from.center).norm();
@@ -185,7 +185,8 @@ std::vector<InscribedCircle> bridge_to_centre(const SampledProfile& pr, const In
 // Replaces a medial end (`end`, outward along d) by the fitted centre of edge e when the
 // edge is round and the centre consistent with the axis (inside the end circle's reach).
 void end_at_centre(const SampledProfile& pr, std::vector<InscribedCircle>& circles, const Edge& e,
-                   const InscribedCircle& end, const Eigen::Vector2d& d, bool front, const CamberOptions& options) {
+                   const InscribedCircle& end, const Eigen::Vector2d& d, bool front,
+                   const CamberOptions& options) {
   if (e.shape == EdgeShape::blunt && e.face > 0) return;  // a face, not a circle: see trim_at_face
   const bool round = e.shape == EdgeShape::round || options.edge == EdgeModel::round;
   // A circle much larger than the end's inscribed circle fits a flank, not the edge; on
@@ -205,7 +206,8 @@ void end_at_centre(const SampledProfile& pr, std::vector<InscribedCircle>& circl
   tip.radius = e.radius;
   tip.left = tip.right = e.point;
   tip.t_left = tip.t_right = e.t;
-  const std::vector<InscribedCircle> bridge = bridge_to_centre(pr, front ? kept.front() : kept.back(), e, d, front);
+  const std::vector<InscribedCircle> bridge =
+      bridge_to_centre(pr, front ? kept.front() : kept.back(), e, d, front);
   if (front) {
     kept.insert(kept.begin(), bridge.rbegin(), bridge.rend());
     kept.insert(kept.begin(), tip);
@@ -239,7 +241,8 @@ Ends settle_edges(const SampledProfile& pr, const std::vector<InscribedCircle>& 
       face_le = detail::blunt_face(pr, medial, d_le, options);
       face_te = detail::blunt_face(pr, medial_rev, d_te, options);
     }
-    ends.le = detail::detect_edge(pr, ends.circles.front(), d_le, face_le, 2 * size.widest, options, measured);
+    ends.le =
+        detail::detect_edge(pr, ends.circles.front(), d_le, face_le, 2 * size.widest, options, measured);
     ends.te = detail::detect_edge(pr, ends.circles.back(), d_te, face_te, 2 * size.widest, options, measured);
     ends.circles = medial;
     trim_at_face(ends.circles, face_le, true);
@@ -255,7 +258,8 @@ Ends settle_edges(const SampledProfile& pr, const std::vector<InscribedCircle>& 
 // d) meets the profile. On a round, circular edge whose circle was fitted to the measured
 // points, where it meets that circle instead: a spline cuts a tight edge a few micrometres
 // inside its points, the circle through them does not (docs/CAMBER.md).
-void final_edge_point(const SampledProfile& pr, const InscribedCircle& end, const Eigen::Vector2d& d, Edge& e) {
+void final_edge_point(const SampledProfile& pr, const InscribedCircle& end, const Eigen::Vector2d& d,
+                      Edge& e) {
   double t = 0;
   if (detail::ray_hit(pr, end.center, d, t))
     e.point = pr.fast.jet(t).point, e.t = t;
@@ -390,7 +394,8 @@ void thickest_circle(const SampledProfile& pr, const AxisCurve& ax, const ArcLen
     return -1.0;
   });
   res.thickest = best;
-  res.thickest_s = res.ext_le + table.arc(foot_on_axis(ax, nearest_param(ax, table, best.center), best.center));
+  res.thickest_s =
+      res.ext_le + table.arc(foot_on_axis(ax, nearest_param(ax, table, best.center), best.center));
 }
 
 // +1 when the pressure side lies left of the LE-to-TE direction, -1 right: the pressure

@@ -65,7 +65,8 @@ double arc_end(const SampledProfile& pr, double t_tip, const Eigen::Vector2d& d,
   };
   const double h = pr.period / static_cast<double>(pr.samples.size());
   bool found = false;
-  const auto [a, b] = walk_until(pr, t_tip, direction, h, [&](double t) { return turn(t) >= angle; }, found);
+  const auto [a, b] = walk_until(
+      pr, t_tip, direction, h, [&](double t) { return turn(t) >= angle; }, found);
   return found ? 0.5 * (a + b) : a;
 }
 
@@ -213,8 +214,8 @@ std::pair<double, double> grown_arc(const SampledProfile& pr, double t_tip, cons
                                     CircleFit& fit) {
   std::pair<double, double> range = core_arc(pr, t_tip, d, c0, r0, options, fit);
   // The noise floor keeps the arc from shrinking pass by pass onto a few quiet degrees.
-  const double tau = std::max(
-      {options.edge_residual * fit.rms, options.edge_noise_residual * options.profile_noise, 1e-6 * pr.scale});
+  const double tau = std::max({options.edge_residual * fit.rms,
+                               options.edge_noise_residual * options.profile_noise, 1e-6 * pr.scale});
   const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
   const double cap = options.edge_max_arc * 0.5 * pi / 180;
   const std::pair<double, double> core_range = range;
@@ -278,7 +279,8 @@ bool refit_on_measured(const SampledProfile& pr, const Edge& e, const Eigen::Vec
     const CircleFit next = fit_circle(on_arc);
     if (!(next.radius > 0) || !std::isfinite(next.radius) ||
         !(next.radius_sigma <= options.edge_point_sigma * next.radius) ||
-        std::abs(next.radius - fit.radius) > 0.2 * fit.radius || (next.center - fit.center).norm() > 0.2 * fit.radius)
+        std::abs(next.radius - fit.radius) > 0.2 * fit.radius ||
+        (next.center - fit.center).norm() > 0.2 * fit.radius)
       return false;
     current = next;
   }
@@ -291,7 +293,8 @@ Edge measure_edge(const SampledProfile& pr, const InscribedCircle& end_circle, c
                   const CamberOptions& options, const std::vector<Eigen::Vector2d>& measured) {
   const Eigen::Vector2d& end = end_circle.center;
   Edge e;
-  if (!detail::ray_hit(pr, end, d, e.t)) throw Error("camber: the camber line's end tangent does not meet the profile");
+  if (!detail::ray_hit(pr, end, d, e.t))
+    throw Error("camber: the camber line's end tangent does not meet the profile");
   e.point = pr.fast.jet(e.t).point;
   CircleFit fit;
   if (options.edge_arc > 0) {
@@ -312,8 +315,10 @@ Edge measure_edge(const SampledProfile& pr, const InscribedCircle& end_circle, c
     e.on_points = true;
   }
   // Arc: the angle the edge arc subtends at the fitted centre.
-  const Eigen::Vector2d q0 = pr.fast.jet(e.arc_t0).point - fit.center, q1 = pr.fast.jet(e.arc_t1).point - fit.center;
-  e.arc = (std::abs(std::atan2(cross(d, q0), d.dot(q0))) + std::abs(std::atan2(cross(d, q1), d.dot(q1)))) * 180 / pi;
+  const Eigen::Vector2d q0 = pr.fast.jet(e.arc_t0).point - fit.center,
+                        q1 = pr.fast.jet(e.arc_t1).point - fit.center;
+  e.arc = (std::abs(std::atan2(cross(d, q0), d.dot(q0))) + std::abs(std::atan2(cross(d, q1), d.dot(q1)))) *
+          180 / pi;
   e.center = fit.center;
   e.radius = fit.radius;
   e.fit_rms = fit.rms;
@@ -347,7 +352,8 @@ Eigen::Vector2d behind_fork(const std::vector<InscribedCircle>& from_end, std::s
 
 // The profile near `end`, densely resampled (601 points): the samples within `reach` of
 // it, contiguous around the nearest one.
-std::vector<Eigen::Vector2d> profile_near(const SampledProfile& pr, const Eigen::Vector2d& end, double reach) {
+std::vector<Eigen::Vector2d> profile_near(const SampledProfile& pr, const Eigen::Vector2d& end,
+                                          double reach) {
   const int n = static_cast<int>(pr.samples.size());
   const int near = pr.nearest(end);
   int lo = 0, hi = 0;
@@ -403,7 +409,8 @@ void line_fit(const std::vector<Eigen::Vector2d>& q, Cap& cap) {
 // The straightest cap of `p` among the directions within 40 degrees of d (a face need not
 // be square to the end tangent; the widest cap would be square to a flank, running along
 // it and round the corner). False when no direction gives a cap.
-bool straightest_cap(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& d, double depth, Cap& best) {
+bool straightest_cap(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& d, double depth,
+                     Cap& best) {
   bool found = false;
   std::vector<Eigen::Vector2d> trial;
   for (int k = -40; k <= 40; ++k) {

@@ -20,7 +20,8 @@ namespace {
 // The station at axis parameter u.
 bool station(const SampledProfile& pr, const AxisCurve& ax, double u, const InscribedCircle* guess,
              InscribedCircle& out, bool fresh = true, int end = -1) {
-  return detail::circle_on_normal(pr, ax.point(u), detail::left_normal(ax.tangent(u)), guess, out, fresh, end);
+  return detail::circle_on_normal(pr, ax.point(u), detail::left_normal(ax.tangent(u)), guess, out, fresh,
+                                  end);
 }
 
 // From the last valid station outward (direction +1 or -1 in u): march until a station
@@ -56,7 +57,8 @@ std::vector<Eigen::Vector2d> seed_branch(const SampledProfile& pr, const MedialA
   std::vector<Eigen::Vector2d> seed = options.seed;
   if (seed.empty()) {
     seed = detail::medial_axis_seed(pr.samples).points;
-    if (seed.size() < 2) throw Error("camber: the profile has no inside triangles (is it self-intersecting?)");
+    if (seed.size() < 2)
+      throw Error("camber: the profile has no inside triangles (is it self-intersecting?)");
   }
   return seed;
 }

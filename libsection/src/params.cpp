@@ -22,7 +22,9 @@ using detail::pi;
 
 namespace {
 
-double degrees(const Eigen::Vector2d& d) { return std::atan2(d.y(), d.x()) * 180 / pi; }
+double degrees(const Eigen::Vector2d& d) {
+  return std::atan2(d.y(), d.x()) * 180 / pi;
+}
 double wrap_degrees(double a) {
   a = std::fmod(a, 360);
   if (a > 180) a -= 360;
@@ -92,8 +94,8 @@ double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
   // 5-point Gauss-Legendre is exact for the degree-8 integrands of a cubic per span.
   static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                               0.9061798459386640};
-  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                              0.4786286704993665, 0.2369268850561891};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                              0.2369268850561891};
   double area = 0, mx = 0, my = 0;
   const int sub = std::max(1, curve.degree / 3);  // higher degrees: split each span
   for (std::size_t k = 0; k + 1 < curve.knots.size(); ++k)
@@ -146,7 +148,8 @@ void caliper(const BSpline& profile, const CamberResult& camber, SectionParams& 
   }
   Eigen::Vector2d e = (out.te_point - out.le_point).normalized();
   if (ha >= 0 && ha != hb) {
-    const std::pair<Eigen::Vector2d, Eigen::Vector2d> ab = bitangent(f, t0 + period * ha / n, t0 + period * hb / n, period);
+    const std::pair<Eigen::Vector2d, Eigen::Vector2d> ab =
+        bitangent(f, t0 + period * ha / n, t0 + period * hb / n, period);
     if ((ab.second - ab.first).norm() > 0) {
       e = (ab.second - ab.first).normalized();
       out.caliper_found = true;
@@ -204,7 +207,8 @@ std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const C
   const detail::ArcLengthTable table(ax.spline, 4 * static_cast<int>(circles.size()));
   std::vector<ThicknessStation> out;
   for (double f : fractions) {
-    if (!(f >= 0 && f <= 1)) throw Error("params: thickness station " + std::to_string(f) + " is outside [0, 1]");
+    if (!(f >= 0 && f <= 1))
+      throw Error("params: thickness station " + std::to_string(f) + " is outside [0, 1]");
     ThicknessStation st;
     st.fraction = f;
     st.s = f * camber.length;
@@ -229,7 +233,8 @@ std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const C
       // On an extension (or where no circle fits): the width across the camber normal.
       const Eigen::Vector2d d = st.s <= camber.ext_le ? camber.le_tangent : camber.te_tangent;
       double tl = 0, tr = 0;
-      if (!detail::ray_hit(pr, c.center, left_normal(d), tl) || !detail::ray_hit(pr, c.center, -left_normal(d), tr))
+      if (!detail::ray_hit(pr, c.center, left_normal(d), tl) ||
+          !detail::ray_hit(pr, c.center, -left_normal(d), tr))
         throw Error("params: the camber normal at station " + std::to_string(f) + " misses the profile");
       c.left = pr.fast.jet(tl).point;
       c.right = pr.fast.jet(tr).point;

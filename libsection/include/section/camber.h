@@ -63,9 +63,9 @@ struct CamberResult {
   std::vector<double> radius;           ///< inscribed radius at each point (the end circle's on extensions)
   double length = 0;                    ///< camber length, LE point to TE point
   Eigen::Vector2d le_tangent{1, 0}, te_tangent{1, 0};  ///< unit camber directions (toward the TE) at the ends
-  double ext_le = 0, ext_te = 0;  ///< lengths of the straight extensions at each end
-  InscribedCircle thickest;       ///< largest inscribed circle
-  double thickest_s = 0;          ///< its arc length from the LE point
+  double ext_le = 0, ext_te = 0;                       ///< lengths of the straight extensions at each end
+  InscribedCircle thickest;                            ///< largest inscribed circle
+  double thickest_s = 0;                               ///< its arc length from the LE point
   /// +1 when the pressure (concave) side lies left of the LE-to-TE direction, -1 right.
   int pressure_side = -1;
   bool le_by_direction = false;  ///< LE chosen by CamberOptions::le_direction (else by thickness)

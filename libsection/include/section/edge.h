@@ -32,14 +32,14 @@ inline const char* edge_shape_name(EdgeShape shape) {
 /// A leading or trailing edge. The edge point is where the camber line's end tangent meets
 /// the profile, or the edge circle when `on_points` and the edge is round and circular.
 struct Edge {
-  Eigen::Vector2d point{0, 0};   ///< edge point (see above)
-  double t = 0;                  ///< its profile parameter
-  Eigen::Vector2d center{0, 0};  ///< centre of the circle fitted to the edge arc
-  double radius = 0;             ///< radius of that circle (0 when blunt or sharp in automatic mode)
-  double fit_rms = 0;            ///< rms distance of the edge arc from the fitted circle
-  double arc = 0;                ///< degrees: angle the fitted edge arc subtends at the fitted centre
-  double arc_t0 = 0, arc_t1 = 0;  ///< profile parameter range of the edge arc
-  double curvature_radius = 0;    ///< 1 / profile curvature at the edge point (0: flat or concave)
+  Eigen::Vector2d point{0, 0};         ///< edge point (see above)
+  double t = 0;                        ///< its profile parameter
+  Eigen::Vector2d center{0, 0};        ///< centre of the circle fitted to the edge arc
+  double radius = 0;                   ///< radius of that circle (0 when blunt or sharp in automatic mode)
+  double fit_rms = 0;                  ///< rms distance of the edge arc from the fitted circle
+  double arc = 0;                      ///< degrees: angle the fitted edge arc subtends at the fitted centre
+  double arc_t0 = 0, arc_t1 = 0;       ///< profile parameter range of the edge arc
+  double curvature_radius = 0;         ///< 1 / profile curvature at the edge point (0: flat or concave)
   EdgeShape shape = EdgeShape::round;  ///< detected shape
   /// False when the circle leaves the edge arc by more than edge_circularity x the profile
   /// noise: the radius depends on the arc taken, and the camber line keeps its medial end.

@@ -51,8 +51,7 @@ MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options 
 /// The circle inscribed in `profile` whose centre lies on the line through `point` along
 /// `normal`, touching the profile near the parameters `t_left` and `t_right` (Newton on
 /// equal distance and both foot-point conditions). False when it does not converge.
-bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point,
-                      const Eigen::Vector2d& normal, double t_left, double t_right,
-                      InscribedCircle& circle);
+bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point, const Eigen::Vector2d& normal,
+                      double t_left, double t_right, InscribedCircle& circle);
 
 }  // namespace section

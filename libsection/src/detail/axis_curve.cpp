@@ -13,8 +13,8 @@ namespace {
 double piece_length(const PiecewiseCurve& f, double a, double b) {
   static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                               0.9061798459386640};
-  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                              0.4786286704993665, 0.2369268850561891};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                              0.2369268850561891};
   double sum = 0;
   for (int i = 0; i < 5; ++i) sum += w[i] * f.jet(0.5 * (a + b) + 0.5 * (b - a) * x[i]).d1.norm();
   return 0.5 * (b - a) * sum;
@@ -38,7 +38,9 @@ Eigen::Vector2d AxisCurve::point(double u) const {
   return f.jet(u).point;
 }
 
-Eigen::Vector2d AxisCurve::tangent(double u) const { return f.jet(std::clamp(u, a, b)).d1.normalized(); }
+Eigen::Vector2d AxisCurve::tangent(double u) const {
+  return f.jet(std::clamp(u, a, b)).d1.normalized();
+}
 
 AxisCurve make_axis(const std::vector<Eigen::Vector2d>& points, double fairness) {
   // Drop repeated points (Delaunay fans share circumcentres).

@@ -104,7 +104,8 @@ DualTree dual_tree(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
     Eigen::Vector2d p[3];
     for (int i = 0; i < 3; ++i) p[i] = {f->vertex(i)->point().x(), f->vertex(i)->point().y()};
     const Eigen::Vector2d centroid = (p[0] + p[1] + p[2]) / 3;
-    const K::Point_2 cc = CGAL::circumcenter(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+    const K::Point_2 cc =
+        CGAL::circumcenter(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
     Eigen::Vector2d c(cc.x(), cc.y());
     if (!std::isfinite(c.x()) || !std::isfinite(c.y()) || (c.array() < low.array()).any() ||
         (c.array() > high.array()).any())

@@ -14,8 +14,8 @@ namespace section::detail {
 /// A blunt (cut-off) edge: a flat face across the end of the blade.
 struct Face {
   bool found = false;
-  double width = 0;               ///< extent of the face
-  Eigen::Vector2d mid{0, 0};      ///< its middle
+  double width = 0;              ///< extent of the face
+  Eigen::Vector2d mid{0, 0};     ///< its middle
   Eigen::Vector2d normal{0, 0};  ///< outward unit normal
 };
 

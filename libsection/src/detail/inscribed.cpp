@@ -21,7 +21,7 @@ bool solve_circle(const PiecewiseCurve& curve, const Eigen::Vector2d& p, const E
                             0.5 * ((c - a).squaredNorm() - (c - b).squaredNorm()));
     Eigen::Matrix3d j;
     j << -a1.squaredNorm() + (c - a).dot(a2), 0, n.dot(a1),  //
-        0, -b1.squaredNorm() + (c - b).dot(b2), n.dot(b1),    //
+        0, -b1.squaredNorm() + (c - b).dot(b2), n.dot(b1),   //
         -f(0), f(1), (b - a).dot(n);
     Eigen::Vector3d dx = -j.fullPivLu().solve(f);
     if (!dx.allFinite()) return false;
@@ -89,7 +89,8 @@ bool circle_on_normal(const SampledProfile& pr, const Eigen::Vector2d& p, const 
   if (guess && fresh == false) return false;
   const int l = pr.nearest_on_side(p, n), r = pr.nearest_on_side(p, -n);
   if (l < 0 || r < 0) return false;
-  return solve_circle(pr.fast, p, n, pr.ts[l], pr.ts[r], pr.scale, out, k) && valid_circle(pr, n, out, k, end);
+  return solve_circle(pr.fast, p, n, pr.ts[l], pr.ts[r], pr.scale, out, k) &&
+         valid_circle(pr, n, out, k, end);
 }
 
 bool snap_to_axis(const SampledProfile& pr, const Eigen::Vector2d& p, const Eigen::Vector2d& n,

@@ -15,9 +15,13 @@ namespace section::detail {
 constexpr double pi = 3.14159265358979323846;
 
 /// The normal left of direction d (d turned a quarter counterclockwise).
-inline Eigen::Vector2d left_normal(const Eigen::Vector2d& d) { return {-d.y(), d.x()}; }
+inline Eigen::Vector2d left_normal(const Eigen::Vector2d& d) {
+  return {-d.y(), d.x()};
+}
 /// The z component of a x b.
-inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// A closed profile and `count` (at least 64) samples evenly in parameter.
 struct SampledProfile {
