@@ -1,6 +1,10 @@
 #include "section/params.h"
 
+#include "detail/axis_curve.h"
+#include "detail/camber_line.h"
+#include "detail/inscribed.h"
 #include "detail/piecewise_curve.h"
+#include "detail/sampled_profile.h"
 #include "section/error.h"
 
 #include <Eigen/Dense>
@@ -8,15 +12,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace section {
 
+using detail::cross;
+using detail::left_normal;
+using detail::pi;
+
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-double degrees(const Eigen::Vector2d& d) { return std::atan2(d.y(), d.x()) * 180 / pi; }
+double degrees(const Eigen::Vector2d& d) {
+  return std::atan2(d.y(), d.x()) * 180 / pi;
+}
 double wrap_degrees(double a) {
   a = std::fmod(a, 360);
   if (a > 180) a -= 360;
@@ -59,6 +67,25 @@ double extreme(const detail::PiecewiseCurve& f, double t, const Eigen::Vector2d&
   return t;
 }
 
+// The line touching the profile at ta and tb (a bitangent), by Newton from those
+// parameters: its two touching points.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> bitangent(const detail::PiecewiseCurve& f, double ta, double tb,
+                                                      double period) {
+  for (int it = 0; it < 40; ++it) {
+    const detail::CurveJet a = f.jet(ta), b = f.jet(tb);
+    const Eigen::Vector2d d = b.point - a.point;
+    const Eigen::Vector2d g(cross(d, a.d1), cross(d, b.d1));
+    Eigen::Matrix2d j;
+    j << cross(d, a.d2), cross(b.d1, a.d1), cross(-a.d1, b.d1), cross(d, b.d2);
+    const Eigen::Vector2d step = j.fullPivLu().solve(g);
+    if (!step.allFinite()) break;
+    ta -= step(0);
+    tb -= step(1);
+    if (step.norm() < 1e-14 * period) break;
+  }
+  return {f.jet(ta).point, f.jet(tb).point};
+}
+
 }  // namespace
 
 double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
@@ -67,8 +94,8 @@ double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
   // 5-point Gauss-Legendre is exact for the degree-8 integrands of a cubic per span.
   static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                               0.9061798459386640};
-  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                              0.4786286704993665, 0.2369268850561891};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                              0.2369268850561891};
   double area = 0, mx = 0, my = 0;
   const int sub = std::max(1, curve.degree / 3);  // higher degrees: split each span
   for (std::size_t k = 0; k + 1 < curve.knots.size(); ++k)
@@ -88,26 +115,12 @@ double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
   return area;
 }
 
-SectionParams section_params(const BSpline& profile, const CamberResult& camber) {
-  SectionParams out;
-  out.le_point = camber.le.point;
-  out.te_point = camber.te.point;
-  out.chord = (out.te_point - out.le_point).norm();
-  out.camber_length = camber.length;
-  out.max_thickness = 2 * camber.thickest.radius;
-  out.max_thickness_pos = camber.length > 0 ? camber.thickest_s / camber.length : 0;
-  out.le_radius = camber.le.radius;
-  out.te_radius = camber.te.radius;
-  out.le_curvature_radius = camber.le.curvature_radius;
-  out.te_curvature_radius = camber.te.curvature_radius;
-  out.stagger = degrees(out.te_point - out.le_point);
-  out.inlet_angle = degrees(camber.le_tangent);
-  out.outlet_angle = degrees(camber.te_tangent);
-  out.camber_angle = wrap_degrees(out.inlet_angle - out.outlet_angle);
-  out.area = std::abs(enclosed_area(profile, &out.centroid));
+namespace {
 
-  // Caliper: the convex-hull edge bridging the pressure side is the line a caliper laid
-  // against that side touches at both ends; refined to the exact bitangent.
+// The caliper laid against the pressure side of `profile` (SectionParams::caliper_*):
+// the convex-hull edge bridging the pressure side is the line a caliper touches at both
+// ends, refined to the exact bitangent; the chord is the profile's extent along it.
+void caliper(const BSpline& profile, const CamberResult& camber, SectionParams& out) {
   const detail::PiecewiseCurve f(profile);
   const int n = 2000;
   const double t0 = profile.t_min(), period = profile.t_max() - t0;
@@ -135,25 +148,13 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
   }
   Eigen::Vector2d e = (out.te_point - out.le_point).normalized();
   if (ha >= 0 && ha != hb) {
-    double ta = t0 + period * ha / n, tb = t0 + period * hb / n;
-    for (int it = 0; it < 40; ++it) {
-      const detail::CurveJet a = f.jet(ta), b = f.jet(tb);
-      const Eigen::Vector2d d = b.point - a.point;
-      const Eigen::Vector2d g(cross(d, a.d1), cross(d, b.d1));
-      Eigen::Matrix2d j;
-      j << cross(d, a.d2), cross(b.d1, a.d1), cross(-a.d1, b.d1), cross(d, b.d2);
-      const Eigen::Vector2d step = j.fullPivLu().solve(g);
-      if (!step.allFinite()) break;
-      ta -= step(0);
-      tb -= step(1);
-      if (step.norm() < 1e-14 * period) break;
-    }
-    const Eigen::Vector2d a = f.jet(ta).point, b = f.jet(tb).point;
-    if ((b - a).norm() > 0) {
-      e = (b - a).normalized();
+    const std::pair<Eigen::Vector2d, Eigen::Vector2d> ab =
+        bitangent(f, t0 + period * ha / n, t0 + period * hb / n, period);
+    if ((ab.second - ab.first).norm() > 0) {
+      e = (ab.second - ab.first).normalized();
       out.caliper_found = true;
-      out.caliper_le = a;
-      out.caliper_te = b;
+      out.caliper_le = ab.first;
+      out.caliper_te = ab.second;
     }
   }
   if (e.dot(out.te_point - out.le_point) < 0) {
@@ -173,6 +174,77 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
   const double lo = f.jet(extreme(f, t0 + period * imin / n, e)).point.dot(e);
   out.caliper_chord = std::max(hi, s[imax].dot(e)) - std::min(lo, s[imin].dot(e));
   out.caliper_stagger = degrees(e);
+}
+
+}  // namespace
+
+SectionParams section_params(const BSpline& profile, const CamberResult& camber) {
+  SectionParams out;
+  out.le_point = camber.le.point;
+  out.te_point = camber.te.point;
+  out.chord = (out.te_point - out.le_point).norm();
+  out.camber_length = camber.length;
+  out.max_thickness = 2 * camber.thickest.radius;
+  out.max_thickness_pos = camber.length > 0 ? camber.thickest_s / camber.length : 0;
+  out.le_radius = camber.le.radius;
+  out.te_radius = camber.te.radius;
+  out.le_curvature_radius = camber.le.curvature_radius;
+  out.te_curvature_radius = camber.te.curvature_radius;
+  out.stagger = degrees(out.te_point - out.le_point);
+  out.inlet_angle = degrees(camber.le_tangent);
+  out.outlet_angle = degrees(camber.te_tangent);
+  out.camber_angle = wrap_degrees(out.inlet_angle - out.outlet_angle);
+  out.area = std::abs(enclosed_area(profile, &out.centroid));
+  caliper(profile, camber, out);
+  return out;
+}
+
+std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const CamberResult& camber,
+                                                 const std::vector<double>& fractions) {
+  const detail::SampledProfile pr(profile, 1000);
+  const detail::AxisCurve ax(camber.medial.curve);
+  const auto& circles = camber.medial.circles;
+  const detail::ArcLengthTable table(ax.spline, 4 * static_cast<int>(circles.size()));
+  std::vector<ThicknessStation> out;
+  for (double f : fractions) {
+    if (!(f >= 0 && f <= 1))
+      throw Error("params: thickness station " + std::to_string(f) + " is outside [0, 1]");
+    ThicknessStation st;
+    st.fraction = f;
+    st.s = f * camber.length;
+    InscribedCircle c;
+    bool solved = false;
+    if (st.s > camber.ext_le && st.s < camber.length - camber.ext_te) {
+      const detail::AxisSample a = detail::axis_sample(ax, table, camber.ext_le, st.s);
+      // Guess from the nearest medial circle (the fitted edge centres carry no contacts).
+      std::size_t g = 0;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < circles.size(); ++k)
+        if (circles[k].t_left != circles[k].t_right && (circles[k].center - a.point).norm() < best)
+          best = (circles[k].center - a.point).norm(), g = k;
+      solved = detail::snap_to_axis(pr, a.point, a.normal, circles[g], c);
+      if (!solved) c.center = a.point;
+    } else {
+      c.center = detail::extension_point(camber, st.s);
+    }
+    if (solved) {
+      st.thickness = 2 * c.radius;
+    } else {
+      // On an extension (or where no circle fits): the width across the camber normal.
+      const Eigen::Vector2d d = st.s <= camber.ext_le ? camber.le_tangent : camber.te_tangent;
+      double tl = 0, tr = 0;
+      if (!detail::ray_hit(pr, c.center, left_normal(d), tl) ||
+          !detail::ray_hit(pr, c.center, -left_normal(d), tr))
+        throw Error("params: the camber normal at station " + std::to_string(f) + " misses the profile");
+      c.left = pr.fast.jet(tl).point;
+      c.right = pr.fast.jet(tr).point;
+      st.thickness = (c.left - c.right).norm();
+    }
+    st.point = c.center;
+    st.pressure = camber.pressure_side > 0 ? c.left : c.right;
+    st.suction = camber.pressure_side > 0 ? c.right : c.left;
+    out.push_back(st);
+  }
   return out;
 }
 

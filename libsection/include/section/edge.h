@@ -1,6 +1,7 @@
 #pragma once
 /// @file edge.h
-/// Leading and trailing edges of a blade section: their model, shapes and measures.
+/// Leading and trailing edges of a blade section: their model, shapes and measures
+/// (docs/CAMBER.md, method steps 4 and 4b). camber_line measures them.
 #include <Eigen/Core>
 
 namespace section {
@@ -28,20 +29,23 @@ inline const char* edge_shape_name(EdgeShape shape) {
   return "unknown";
 }
 
-/// A leading or trailing edge.
+/// A leading or trailing edge. The edge point is where the camber line's end tangent meets
+/// the profile, or the edge circle when `on_points` and the edge is round and circular.
 struct Edge {
-  Eigen::Vector2d point{0, 0};     ///< edge point: the camber line's end tangent meets the profile (the edge circle when `on_points` and the edge is round and circular)
-  double t = 0;                    ///< its profile parameter
-  Eigen::Vector2d center{0, 0};    ///< centre of the circle fitted to the edge arc
-  double radius = 0;               ///< radius of that circle (0 for a blunt or sharp edge in automatic mode)
-  double fit_rms = 0;              ///< rms distance of the edge arc from the fitted circle
-  double arc = 0;                  ///< degrees: angle the fitted edge arc subtends at the fitted centre
-  double arc_t0 = 0, arc_t1 = 0;   ///< profile parameter range of the edge arc
-  double curvature_radius = 0;     ///< 1 / profile curvature at the edge point (0 when flat or concave there)
+  Eigen::Vector2d point{0, 0};         ///< edge point (see above)
+  double t = 0;                        ///< its profile parameter
+  Eigen::Vector2d center{0, 0};        ///< centre of the circle fitted to the edge arc
+  double radius = 0;                   ///< radius of that circle (0 when blunt or sharp in automatic mode)
+  double fit_rms = 0;                  ///< rms distance of the edge arc from the fitted circle
+  double arc = 0;                      ///< degrees: angle the fitted edge arc subtends at the fitted centre
+  double arc_t0 = 0, arc_t1 = 0;       ///< profile parameter range of the edge arc
+  double curvature_radius = 0;         ///< 1 / profile curvature at the edge point (0: flat or concave)
   EdgeShape shape = EdgeShape::round;  ///< detected shape
-  bool circular = true;            ///< false: the fitted circle leaves the edge arc by more than edge_circularity x the profile noise (the edge is not a circular arc; radius depends on the arc taken, the axis keeps its medial end)
-  double face = 0;                 ///< blunt edges with a flat face: the face's width (0 otherwise)
-  bool on_points = false;          ///< the circle was refitted to the measured points on the arc (CamberOptions::edge_on_points); a round, circular such edge has its point on that circle
+  /// False when the circle leaves the edge arc by more than edge_circularity x the profile
+  /// noise: the radius depends on the arc taken, and the camber line keeps its medial end.
+  bool circular = true;
+  double face = 0;         ///< blunt edge with a flat face: the face's width (0 otherwise)
+  bool on_points = false;  ///< the circle was refitted to the measured points on the arc
 };
 
 }  // namespace section

@@ -14,25 +14,25 @@ namespace section {
 /// Parameters of one section. Lengths in the profile's units, angles in degrees measured
 /// counterclockwise from the +u axis, in (-180, 180].
 struct SectionParams {
-  double chord = 0;              ///< |TE point - LE point|
-  double camber_length = 0;      ///< camber line length, LE point to TE point
-  double max_thickness = 0;      ///< largest inscribed diameter
-  double max_thickness_pos = 0;  ///< its position along the camber line, 0 at LE, 1 at TE
+  double chord = 0;                     ///< |TE point - LE point|
+  double camber_length = 0;             ///< camber line length, LE point to TE point
+  double max_thickness = 0;             ///< largest inscribed diameter
+  double max_thickness_pos = 0;         ///< its position along the camber line, 0 at LE, 1 at TE
   double le_radius = 0, te_radius = 0;  ///< radii of the circles fitted to the edge arcs
   double le_curvature_radius = 0, te_curvature_radius = 0;  ///< 1 / curvature at the edge points
-  double stagger = 0;            ///< angle of the chord line, LE to TE
-  double inlet_angle = 0;        ///< camber tangent (toward the TE) at the LE
-  double outlet_angle = 0;       ///< camber tangent (toward the TE) at the TE
-  double camber_angle = 0;       ///< inlet_angle - outlet_angle (the turning), wrapped
-  double area = 0;               ///< enclosed area
-  Eigen::Vector2d centroid{0, 0};  ///< area centroid
+  double stagger = 0;                                       ///< angle of the chord line, LE to TE
+  double inlet_angle = 0;                                   ///< camber tangent (toward the TE) at the LE
+  double outlet_angle = 0;                                  ///< camber tangent (toward the TE) at the TE
+  double camber_angle = 0;                         ///< inlet_angle - outlet_angle (the turning), wrapped
+  double area = 0;                                 ///< enclosed area
+  Eigen::Vector2d centroid{0, 0};                  ///< area centroid
   Eigen::Vector2d le_point{0, 0}, te_point{0, 0};  ///< edge points
   /// Caliper laid against the pressure side: the line touching the profile at both ends
   /// of the concave side (its bitangent); the chord is the profile's extent along it.
   double caliper_chord = 0;
-  double caliper_stagger = 0;    ///< angle of that line, oriented LE to TE
+  double caliper_stagger = 0;                          ///< angle of that line, oriented LE to TE
   Eigen::Vector2d caliper_le{0, 0}, caliper_te{0, 0};  ///< its two touching points
-  bool caliper_found = false;    ///< false when the pressure side is not concave (caliper = chord line)
+  bool caliper_found = false;  ///< false when the pressure side is not concave (caliper = chord line)
 };
 
 /// Section parameters of `profile` from its camber line.
@@ -40,10 +40,10 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
 
 /// Thickness at one station of the camber line.
 struct ThicknessStation {
-  double fraction = 0;           ///< station: arc length from the LE point / camber length
-  double s = 0;                  ///< arc length from the LE point
-  Eigen::Vector2d point{0, 0};   ///< camber point (the inscribed circle's centre)
-  double thickness = 0;          ///< inscribed diameter there (on an extension: width across the camber normal)
+  double fraction = 0;          ///< station: arc length from the LE point / camber length
+  double s = 0;                 ///< arc length from the LE point
+  Eigen::Vector2d point{0, 0};  ///< camber point (the inscribed circle's centre)
+  double thickness = 0;         ///< inscribed diameter (on an extension: width across the camber normal)
   Eigen::Vector2d pressure{0, 0}, suction{0, 0};  ///< contact points on each side
 };
 

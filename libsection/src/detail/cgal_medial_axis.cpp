@@ -54,23 +54,16 @@ void mark_domains(Cdt& cdt) {
   }
 }
 
-}  // namespace
-
-MedialSeed medial_axis_seed(const std::vector<Eigen::Vector2d>& polygon) {
-  MedialSeed seed;
+// Points first (spatially sorted, fast), then the polygon edges as constraints: on a
+// dense sampling nearly all of them are Delaunay edges already and only get marked.
+void triangulate(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
   const int n = static_cast<int>(polygon.size());
-  if (n < 3) return seed;
-
-  // Points first (spatially sorted, fast), then the polygon edges as constraints: on a
-  // dense sampling nearly all of them are Delaunay edges already and only get marked.
   std::vector<std::pair<K::Point_2, int>> points;
   points.reserve(n);
   for (int i = 0; i < n; ++i) points.emplace_back(K::Point_2(polygon[i].x(), polygon[i].y()), i);
-  Cdt cdt;
   cdt.insert(points.begin(), points.end());
   std::vector<Cdt::Vertex_handle> vertex(n);
-  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
-    vertex[v->info()] = v;
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) vertex[v->info()] = v;
   for (int i = 0; i < n; ++i)  // duplicates share the vertex kept
     if (vertex[i] == Cdt::Vertex_handle()) vertex[i] = cdt.insert(points[i].first);
   for (int i = 0; i < n; ++i) {
@@ -86,49 +79,57 @@ MedialSeed medial_axis_seed(const std::vector<Eigen::Vector2d>& polygon) {
     }
   }
   mark_domains(cdt);
+}
 
-  // Dual nodes: the inside triangles, placed at their circumcentres. A near-degenerate
-  // triangle whose circumcentre leaves the polygon's bounding box is placed at its
-  // centroid instead so that it cannot stretch the longest path.
+// The dual tree of the inside triangles: a node per triangle at its circumcentre, with
+// its distance to the corners, joined across the unconstrained shared edges.
+struct DualTree {
+  std::vector<Eigen::Vector2d> node;
+  std::vector<double> radius;
+  std::vector<std::vector<int>> adjacent;
+};
+
+// A near-degenerate triangle whose circumcentre leaves the polygon's bounding box is
+// placed at its centroid instead so that it cannot stretch the longest path.
+DualTree dual_tree(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
   Eigen::Vector2d low = polygon[0], high = polygon[0];
   for (const auto& p : polygon) {
     low = low.cwiseMin(p);
     high = high.cwiseMax(p);
   }
+  DualTree tree;
   std::vector<Cdt::Face_handle> faces;
-  std::vector<Eigen::Vector2d> node;
-  std::vector<double> radius;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     if (f->info().nesting % 2 != 1) continue;
     Eigen::Vector2d p[3];
     for (int i = 0; i < 3; ++i) p[i] = {f->vertex(i)->point().x(), f->vertex(i)->point().y()};
     const Eigen::Vector2d centroid = (p[0] + p[1] + p[2]) / 3;
-    const K::Point_2 cc = CGAL::circumcenter(f->vertex(0)->point(), f->vertex(1)->point(),
-                                             f->vertex(2)->point());
+    const K::Point_2 cc =
+        CGAL::circumcenter(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
     Eigen::Vector2d c(cc.x(), cc.y());
     if (!std::isfinite(c.x()) || !std::isfinite(c.y()) || (c.array() < low.array()).any() ||
         (c.array() > high.array()).any())
       c = centroid;
     f->info().index = static_cast<int>(faces.size());
     faces.push_back(f);
-    node.push_back(c);
-    radius.push_back(std::min({(c - p[0]).norm(), (c - p[1]).norm(), (c - p[2]).norm()}));
+    tree.node.push_back(c);
+    tree.radius.push_back(std::min({(c - p[0]).norm(), (c - p[1]).norm(), (c - p[2]).norm()}));
   }
-  seed.triangles = static_cast<int>(faces.size());
-  if (faces.empty()) return seed;
-
-  std::vector<std::vector<int>> adjacent(faces.size());
+  tree.adjacent.resize(faces.size());
   for (std::size_t k = 0; k < faces.size(); ++k)
     for (int i = 0; i < 3; ++i) {
       const Cdt::Face_handle nb = faces[k]->neighbor(i);
       if (cdt.is_infinite(nb) || nb->info().nesting % 2 != 1) continue;
       if (cdt.is_constrained(Cdt::Edge(faces[k], i))) continue;
-      adjacent[k].push_back(nb->info().index);
+      tree.adjacent[k].push_back(nb->info().index);
     }
+  return tree;
+}
 
-  // Longest path of the dual tree: farthest node from the widest triangle, then the
-  // farthest node from that one (exact on a tree).
-  const int m = static_cast<int>(faces.size());
+// Longest path of the dual tree: farthest node from the widest triangle, then the
+// farthest node from that one (exact on a tree); its nodes from that end back.
+std::vector<int> longest_path(const DualTree& tree) {
+  const int m = static_cast<int>(tree.node.size());
   std::vector<double> distance(m);
   std::vector<int> parent(m);
   auto farthest = [&](int start) {
@@ -141,21 +142,36 @@ MedialSeed medial_axis_seed(const std::vector<Eigen::Vector2d>& polygon) {
       const int k = stack.back();
       stack.pop_back();
       if (distance[k] > distance[best]) best = k;
-      for (int j : adjacent[k])
+      for (int j : tree.adjacent[k])
         if (distance[j] < 0) {
-          distance[j] = distance[k] + (node[j] - node[k]).norm();
+          distance[j] = distance[k] + (tree.node[j] - tree.node[k]).norm();
           parent[j] = k;
           stack.push_back(j);
         }
     }
     return best;
   };
-  const int widest = static_cast<int>(std::max_element(radius.begin(), radius.end()) - radius.begin());
+  const int widest =
+      static_cast<int>(std::max_element(tree.radius.begin(), tree.radius.end()) - tree.radius.begin());
   const int a = farthest(widest);
-  const int b = farthest(a);
-  for (int k = b; k != -1; k = parent[k]) {
-    seed.points.push_back(node[k]);
-    seed.radius.push_back(radius[k]);
+  std::vector<int> path;
+  for (int k = farthest(a); k != -1; k = parent[k]) path.push_back(k);
+  return path;
+}
+
+}  // namespace
+
+MedialSeed medial_axis_seed(const std::vector<Eigen::Vector2d>& polygon) {
+  MedialSeed seed;
+  if (polygon.size() < 3) return seed;
+  Cdt cdt;
+  triangulate(polygon, cdt);
+  const DualTree tree = dual_tree(polygon, cdt);
+  seed.triangles = static_cast<int>(tree.node.size());
+  if (tree.node.empty()) return seed;
+  for (int k : longest_path(tree)) {
+    seed.points.push_back(tree.node[k]);
+    seed.radius.push_back(tree.radius[k]);
   }
   return seed;
 }

@@ -149,8 +149,8 @@ private:
   bool closed_;
   double t_min_, t_max_;
   std::vector<double> breaks_;
-  std::vector<int> first_control_;   // per span: control index of its first basis function
-  std::vector<double> local_knots_;  // per span: the 2 degree knots around it
+  std::vector<int> first_control_;     // per span: control index of its first basis function
+  std::vector<double> local_knots_;    // per span: the 2 degree knots around it
   std::vector<Eigen::Vector2d> coef_;  // (degree + 1) per span, constant term first
 };
 
@@ -177,7 +177,10 @@ double minimise_bracket(F&& f, double a, double b, double t0) {
     for (int it = 0; it < 60 && b - a > tol; ++it) {
       const SquaredDistance ft = f(t);
       if (ft.dg == 0) return t;
-      if (ft.dg < 0) a = t; else b = t;
+      if (ft.dg < 0)
+        a = t;
+      else
+        b = t;
       double next = ft.ddg > 0 ? t - ft.dg / ft.ddg : 0.5 * (a + b);
       if (!(next > a && next < b)) next = 0.5 * (a + b);
       if (std::abs(next - t) < tol) return next;
@@ -191,14 +194,25 @@ double minimise_bracket(F&& f, double a, double b, double t0) {
   double g1 = f(x1).g, g2 = f(x2).g;
   for (int it = 0; it < 100 && b - a > tol; ++it) {
     if (g1 < g2) {
-      b = x2; x2 = x1; g2 = g1; x1 = b - gr * (b - a); g1 = f(x1).g;
+      b = x2;
+      x2 = x1;
+      g2 = g1;
+      x1 = b - gr * (b - a);
+      g1 = f(x1).g;
     } else {
-      a = x1; x1 = x2; g1 = g2; x2 = a + gr * (b - a); g2 = f(x2).g;
+      a = x1;
+      x1 = x2;
+      g1 = g2;
+      x2 = a + gr * (b - a);
+      g2 = f(x2).g;
     }
   }
   double t = 0.5 * (a + b);
   double best = f(t).g;
-  if (fa.g < best) { t = a0; best = fa.g; }
+  if (fa.g < best) {
+    t = a0;
+    best = fa.g;
+  }
   if (fb.g < best) t = b0;
   return t;
 }

@@ -1,0 +1,84 @@
+#include "detail/axis_curve.h"
+
+#include "section/error.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace section::detail {
+
+namespace {
+
+// Arc length of a spline between a and b (5-point Gauss-Legendre; the pieces are short).
+double piece_length(const PiecewiseCurve& f, double a, double b) {
+  static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                              0.9061798459386640};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                              0.2369268850561891};
+  double sum = 0;
+  for (int i = 0; i < 5; ++i) sum += w[i] * f.jet(0.5 * (a + b) + 0.5 * (b - a) * x[i]).d1.norm();
+  return 0.5 * (b - a) * sum;
+}
+
+}  // namespace
+
+BSpline fit_open(const std::vector<Eigen::Vector2d>& points, int control_points, double fairness) {
+  CurveFitOptions fo;
+  fo.closed = false;
+  fo.control_points = control_points;
+  fo.fairness = fairness;
+  return fit_curve(points, fo);
+}
+
+AxisCurve::AxisCurve(BSpline s) : spline(std::move(s)), a(spline.t_min()), b(spline.t_max()), f(spline) {}
+
+Eigen::Vector2d AxisCurve::point(double u) const {
+  if (u < a) return f.jet(a).point + (u - a) * tangent(a);
+  if (u > b) return f.jet(b).point + (u - b) * tangent(b);
+  return f.jet(u).point;
+}
+
+Eigen::Vector2d AxisCurve::tangent(double u) const {
+  return f.jet(std::clamp(u, a, b)).d1.normalized();
+}
+
+AxisCurve make_axis(const std::vector<Eigen::Vector2d>& points, double fairness) {
+  // Drop repeated points (Delaunay fans share circumcentres).
+  std::vector<Eigen::Vector2d> p;
+  for (const auto& q : points)
+    if (p.empty() || (q - p.back()).norm() > 1e-12) p.push_back(q);
+  if (p.size() < 4) throw Error("camber: the medial axis has fewer than 4 distinct points");
+  return AxisCurve(fit_open(p, std::clamp(static_cast<int>(p.size()) / 2, 4, 200), fairness));
+}
+
+ArcLengthTable::ArcLengthTable(const BSpline& c, int pieces) : f(c) {
+  const double a = c.t_min(), b = c.t_max();
+  t.push_back(a);
+  s.push_back(0);
+  for (int i = 1; i <= pieces; ++i) {
+    t.push_back(a + (b - a) * i / pieces);
+    s.push_back(s.back() + piece_length(f, t[i - 1], t[i]));
+  }
+}
+
+double ArcLengthTable::param(double target) const {
+  target = std::clamp(target, 0.0, length());
+  const std::size_t i =
+      std::min<std::size_t>(std::upper_bound(s.begin(), s.end(), target) - s.begin(), s.size() - 1);
+  const std::size_t k = std::max<std::size_t>(i, 1);
+  double x = t[k - 1] + (t[k] - t[k - 1]) * (target - s[k - 1]) / std::max(s[k] - s[k - 1], 1e-300);
+  for (int it = 0; it < 3; ++it) {
+    const double err = s[k - 1] + piece_length(f, t[k - 1], x) - target;
+    x -= err / std::max(f.jet(x).d1.norm(), 1e-300);
+  }
+  return x;
+}
+
+double ArcLengthTable::arc(double param_t) const {
+  const std::size_t i =
+      std::min<std::size_t>(std::upper_bound(t.begin(), t.end(), param_t) - t.begin(), t.size() - 1);
+  const std::size_t k = std::max<std::size_t>(i, 1);
+  return s[k - 1] + piece_length(f, t[k - 1], param_t);
+}
+
+}  // namespace section::detail

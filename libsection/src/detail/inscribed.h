@@ -1,0 +1,45 @@
+#pragma once
+// The inscribed-circle solver of the camber stages: a circle centred on a given line that
+// touches the profile on both sides, solved on the exact spline, and its validity tests.
+#include "detail/piecewise_curve.h"
+#include "detail/sampled_profile.h"
+#include "section/medial_axis.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace section::detail {
+
+/// The centres of `circles`, in order.
+inline std::vector<Eigen::Vector2d> centers(const std::vector<InscribedCircle>& circles) {
+  std::vector<Eigen::Vector2d> c;
+  for (const auto& x : circles) c.push_back(x.center);
+  return c;
+}
+
+/// Newton on (t_a, t_b, lambda): centre c = p + lambda n, both contacts foot points of c
+/// and equally far from it, from the contact guesses ta and tb. `kappa` (optional) gets
+/// the signed curvatures at the two contacts. False when it does not converge.
+bool solve_circle(const PiecewiseCurve& curve, const Eigen::Vector2d& p, const Eigen::Vector2d& n, double ta,
+                  double tb, double scale, InscribedCircle& out, double* kappa = nullptr);
+
+/// True when a solved circle is an inscribed circle of the medial branch: its contacts lie
+/// on their sides (left of n, right of n) and are distinct, it does not cross the profile
+/// and does not exceed the osculating circle at either contact. `end` (0 or 1, toward
+/// that end of the branch; -1 none) adds the test that locates the branch's ends.
+bool valid_circle(const SampledProfile& pr, const Eigen::Vector2d& n, const InscribedCircle& c,
+                  const double* kappa, int end = -1);
+
+/// The valid inscribed circle centred on the line through p along n, solved from the
+/// contacts of `guess`; unless `fresh` is false, falls back to the profile's nearest
+/// samples on either side (also when there is no guess).
+bool circle_on_normal(const SampledProfile& pr, const Eigen::Vector2d& p, const Eigen::Vector2d& n,
+                      const InscribedCircle* guess, InscribedCircle& out, bool fresh = true, int end = -1);
+
+/// A point p of an axis snapped onto the exact medial axis: the valid circle on the axis
+/// normal n from the contacts of `guess`, centred within half its radius of p.
+bool snap_to_axis(const SampledProfile& pr, const Eigen::Vector2d& p, const Eigen::Vector2d& n,
+                  const InscribedCircle& guess, InscribedCircle& out);
+
+}  // namespace section::detail

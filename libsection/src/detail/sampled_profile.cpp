@@ -1,0 +1,98 @@
+#include "detail/sampled_profile.h"
+
+#include "section/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace section::detail {
+
+SampledProfile::SampledProfile(const BSpline& c, int count) : curve(c), fast(c) {
+  if (!c.closed) throw Error("camber: the profile spline is open, a closed curve is needed");
+  if (c.control.size() < 4) throw Error("camber: the profile spline has too few control points");
+  t0 = c.t_min();
+  period = c.t_max() - t0;
+  count = std::max(count, 64);
+  samples.reserve(count);
+  for (int i = 0; i < count; ++i) {
+    ts.push_back(t0 + period * i / count);
+    samples.push_back(fast.jet(ts.back()).point);
+  }
+  Eigen::Vector2d low = samples[0], high = samples[0];
+  double area = 0;
+  for (int i = 0; i < count; ++i) {
+    low = low.cwiseMin(samples[i]);
+    high = high.cwiseMax(samples[i]);
+    area += cross(samples[i], samples[(i + 1) % count]);
+  }
+  scale = (high - low).norm();
+  if (!(scale > 0) || !std::isfinite(scale)) throw Error("camber: the profile is degenerate");
+  sigma = area >= 0 ? 1 : -1;
+}
+
+int SampledProfile::nearest(const Eigen::Vector2d& q) const {
+  int best = 0;
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const double e = (samples[i] - q).squaredNorm();
+    if (e < d) d = e, best = static_cast<int>(i);
+  }
+  return best;
+}
+
+int SampledProfile::nearest_on_side(const Eigen::Vector2d& q, const Eigen::Vector2d& n) const {
+  int best = -1;
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Eigen::Vector2d e = samples[i] - q;
+    if (e.dot(n) <= 0) continue;
+    if (e.squaredNorm() < d) d = e.squaredNorm(), best = static_cast<int>(i);
+  }
+  return best;
+}
+
+double SampledProfile::sample_distance(const Eigen::Vector2d& q) const {
+  double d = std::numeric_limits<double>::infinity();
+  for (const auto& s : samples) d = std::min(d, (s - q).squaredNorm());
+  return std::sqrt(d);
+}
+
+bool ray_hit(const SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Vector2d& d, double& t_hit) {
+  const int n = static_cast<int>(pr.samples.size());
+  double best = std::numeric_limits<double>::infinity();
+  int seg = -1;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d p = pr.samples[i] - m, q = pr.samples[(i + 1) % n] - m;
+    const double gp = cross(d, p), gq = cross(d, q);
+    if ((gp > 0) == (gq > 0) && gp != 0 && gq != 0) continue;
+    const double w = gp == gq ? 0 : gp / (gp - gq);
+    const double along = (p + w * (q - p)).dot(d);
+    if (along > 0 && along < best) best = along, seg = i;
+  }
+  if (seg < 0) return false;
+  // Safeguarded secant on g(t) = d x (C(t) - m) inside the bracketing span.
+  double a = pr.ts[seg], b = a + pr.period / n;
+  auto g = [&](double t) { return cross(d, pr.fast.jet(t).point - m); };
+  double ga = g(a), gb = g(b);
+  for (int it = 0; it < 100 && std::abs(b - a) > 1e-15 * pr.period; ++it) {
+    double t = ga == gb ? 0.5 * (a + b) : a - ga * (b - a) / (gb - ga);
+    if (!(t > a && t < b)) t = 0.5 * (a + b);
+    const double gt = g(t);
+    if (gt == 0) {
+      a = b = t;
+      break;
+    }
+    if ((gt > 0) == (ga > 0)) {
+      a = t, ga = gt;
+      gb *= 0.5;  // Illinois step keeps both ends moving
+    } else {
+      b = t, gb = gt;
+      ga *= 0.5;
+    }
+  }
+  t_hit = pr.wrap(0.5 * (a + b));
+  return true;
+}
+
+}  // namespace section::detail

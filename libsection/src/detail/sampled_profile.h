@@ -1,0 +1,64 @@
+#pragma once
+// A closed blade profile with dense samples, shared by the camber stages (medial axis,
+// edges, camber line, thickness stations): the samples give initial guesses and global
+// checks, the piecewise form the exact evaluations.
+#include "detail/piecewise_curve.h"
+#include "section/bspline.h"
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <vector>
+
+namespace section::detail {
+
+constexpr double pi = 3.14159265358979323846;
+
+/// The normal left of direction d (d turned a quarter counterclockwise).
+inline Eigen::Vector2d left_normal(const Eigen::Vector2d& d) {
+  return {-d.y(), d.x()};
+}
+/// The z component of a x b.
+inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// A closed profile and `count` (at least 64) samples evenly in parameter.
+struct SampledProfile {
+  const BSpline& curve;
+  PiecewiseCurve fast;
+  double t0 = 0, period = 1;
+  double sigma = 1;  ///< +1 counterclockwise, -1 clockwise
+  double scale = 1;  ///< bounding-box diagonal of the samples
+  std::vector<Eigen::Vector2d> samples;
+  std::vector<double> ts;  ///< parameter of each sample
+
+  /// Throws section::Error `camber: ...` when `c` is open, too short or degenerate.
+  SampledProfile(const BSpline& c, int count);
+
+  double wrap(double t) const { return t0 + std::fmod(std::fmod(t - t0, period) + period, period); }
+  /// Parameter distance going forward (in the curve's direction) from a to b.
+  double forward(double a, double b) const { return std::fmod(std::fmod(b - a, period) + period, period); }
+  /// Index of the sample nearest q.
+  int nearest(const Eigen::Vector2d& q) const;
+  /// Nearest sample on the side of the line through q that `n` points to; -1 when none.
+  int nearest_on_side(const Eigen::Vector2d& q, const Eigen::Vector2d& n) const;
+  /// Distance from q to the nearest sample.
+  double sample_distance(const Eigen::Vector2d& q) const;
+  /// Outward unit normal at t.
+  Eigen::Vector2d outward(double t) const {
+    const Eigen::Vector2d d = fast.jet(t).d1.normalized();
+    return sigma * Eigen::Vector2d(d.y(), -d.x());
+  }
+  /// Curvature at t, positive where the profile is convex.
+  double convexity(double t) const {
+    const CurveJet j = fast.jet(t);
+    return sigma * cross(j.d1, j.d2) / std::pow(j.d1.norm(), 3);
+  }
+};
+
+/// First crossing of the ray m + lambda d (lambda > 0) with the profile: its parameter in
+/// `t_hit`. False when the ray misses.
+bool ray_hit(const SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Vector2d& d, double& t_hit);
+
+}  // namespace section::detail

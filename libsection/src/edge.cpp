@@ -1,0 +1,506 @@
+#include "section/edge.h"
+
+#include "detail/edge_fit.h"
+#include "detail/sampled_profile.h"
+#include "section/camber.h"
+#include "section/error.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <utility>
+
+namespace section {
+
+using detail::cross;
+using detail::Face;
+using detail::pi;
+using detail::SampledProfile;
+
+namespace {
+
+// Bisects [a, b] (30 steps) for where `past` turns true: false at a, true at b.
+template <class Past>
+void bisect(double& a, double& b, Past&& past) {
+  for (int it = 0; it < 30; ++it) {
+    const double mid = 0.5 * (a + b);
+    (past(mid) ? b : a) = mid;
+  }
+}
+
+// Walks from t in steps of h (direction +1 or -1) for at most half a period until `past`
+// holds, then bisects: {the last parameter before, the first past}. `found` is false when
+// the walk ran out (both are then where it stopped).
+template <class Past>
+std::pair<double, double> walk_until(const SampledProfile& pr, double t, int direction, double h, Past&& past,
+                                     bool& found) {
+  double a = t, b = t;
+  found = false;
+  for (double walked = 0; walked < 0.5 * pr.period; walked += h) {
+    b = a + direction * h;
+    if (past(b)) {
+      found = true;
+      break;
+    }
+    a = b;
+  }
+  if (!found) return {a, a};
+  bisect(a, b, past);
+  return {a, b};
+}
+
+// Parameter where the outward normal has turned by `angle` (radians) from direction d,
+// walking from t_tip in `direction` (+1 forward, -1 backward); stops after half a period.
+double arc_end(const SampledProfile& pr, double t_tip, const Eigen::Vector2d& d, double angle, int direction,
+               const Eigen::Vector2d& center, double reach) {
+  // Past the angle, or leaving the end circle's neighbourhood (a flank facing the same
+  // way as the edge, as on a highly staggered blade): the value is > angle.
+  auto turn = [&](double t) {
+    const Eigen::Vector2d nn = pr.outward(t);
+    if ((pr.fast.jet(t).point - center).norm() > reach) return 4.0;
+    return std::abs(std::atan2(cross(d, nn), d.dot(nn)));
+  };
+  const double h = pr.period / static_cast<double>(pr.samples.size());
+  bool found = false;
+  const auto [a, b] = walk_until(
+      pr, t_tip, direction, h, [&](double t) { return turn(t) >= angle; }, found);
+  return found ? 0.5 * (a + b) : a;
+}
+
+struct CircleFit {
+  Eigen::Vector2d center{0, 0};
+  double radius = 0, rms = 0;
+  double radius_sigma = 0;  // standard error of the radius, from the fit's covariance and rms
+};
+
+// Rms distance of the points from the circle.
+double rms_about(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& center, double radius) {
+  double sum = 0;
+  for (const auto& q : p) sum += std::pow((q - center).norm() - radius, 2);
+  return p.empty() ? 0.0 : std::sqrt(sum / p.size());
+}
+
+// Standard error of a fitted circle's radius from the Gauss-Newton covariance and its rms.
+double radius_sigma(const std::vector<Eigen::Vector2d>& p, const CircleFit& fit) {
+  const int n = static_cast<int>(p.size());
+  Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+  for (const auto& q : p) {
+    const Eigen::Vector2d r = q - fit.center;
+    const double dist = r.norm();
+    if (!(dist > 0)) continue;
+    const Eigen::Vector3d row(-r.x() / dist, -r.y() / dist, -1);
+    jtj += row * row.transpose();
+  }
+  const Eigen::Matrix3d cov = jtj.inverse();
+  return std::sqrt(std::max(cov(2, 2), 0.0) * fit.rms * fit.rms * n / (n - 3));
+}
+
+// Geometric least-squares circle (Gauss-Newton from the algebraic fit). Normal equations
+// (3 x 3) on centred points: well conditioned, and this runs tens of times per edge.
+CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
+  const int n = static_cast<int>(p.size());
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& q : p) mean += q;
+  mean /= n;
+  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d q = p[i] - mean;
+    const Eigen::Vector3d row(q.x(), q.y(), 1);
+    ata += row * row.transpose();
+    atb += row * -q.squaredNorm();
+  }
+  const Eigen::Vector3d s = ata.ldlt().solve(atb);
+  Eigen::Vector3d x(-0.5 * s(0), -0.5 * s(1), 0);
+  x(2) = std::sqrt(std::max(x.head<2>().squaredNorm() - s(2), 0.0));
+  for (int it = 0; it < 30; ++it) {
+    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d jte = Eigen::Vector3d::Zero();
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector2d q = p[i] - mean - x.head<2>();
+      const double dist = q.norm();
+      if (!(dist > 0)) continue;
+      const Eigen::Vector3d row(-q.x() / dist, -q.y() / dist, -1);
+      jtj += row * row.transpose();
+      jte += row * (dist - x(2));
+    }
+    const Eigen::Vector3d dx = -jtj.ldlt().solve(jte);
+    if (!dx.allFinite()) break;
+    x += dx;
+    if (dx.norm() < 1e-13 * std::max(1.0, x(2))) break;
+  }
+  CircleFit fit;
+  fit.center = mean + x.head<2>();
+  fit.radius = std::abs(x(2));
+  fit.rms = rms_about(p, fit.center, fit.radius);
+  if (n > 3) fit.radius_sigma = radius_sigma(p, fit);
+  return fit;
+}
+
+// Arc of the profile around t_tip (walking both ways) seen from `c` within `half` radians of
+// direction d: the core of an edge, chosen by position (normals are the noisiest part of
+// a fitted profile).
+std::pair<double, double> angular_arc(const SampledProfile& pr, double t_tip, const Eigen::Vector2d& c,
+                                      const Eigen::Vector2d& d, double half) {
+  auto past = [&](double t) {
+    const Eigen::Vector2d q = pr.fast.jet(t).point - c;
+    return std::abs(std::atan2(cross(d, q), d.dot(q))) > half;
+  };
+  const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
+  bool found = false;
+  const double start = walk_until(pr, t_tip, -1, h, past, found).first;
+  return {start, walk_until(pr, t_tip, 1, h, past, found).first};
+}
+
+std::vector<Eigen::Vector2d> arc_points(const SampledProfile& pr, double t0, double t1, int count = 121) {
+  std::vector<Eigen::Vector2d> arc;
+  for (int i = 0; i < count; ++i) arc.push_back(pr.fast.jet(t0 + (t1 - t0) * i / (count - 1)).point);
+  return arc;
+}
+
+// The core circle of an edge: fitted to the profile within +-edge_core of d seen from the
+// medial end centre c0, then once more seen from the fitted centre (the medial end may sit
+// off the edge centre). A first fit that fails or is far too large falls back to c0, r0.
+std::pair<double, double> core_arc(const SampledProfile& pr, double t_tip, const Eigen::Vector2d& d,
+                                   const Eigen::Vector2d& c0, double r0, const CamberOptions& options,
+                                   CircleFit& fit) {
+  const double core = options.edge_core * pi / 180;
+  std::pair<double, double> range = angular_arc(pr, t_tip, c0, d, core);
+  fit = fit_circle(arc_points(pr, range.first, range.second));
+  if (!(fit.radius > 0) || !std::isfinite(fit.radius) || fit.radius > 50 * std::max(r0, 1e-9 * pr.scale)) {
+    fit.center = c0, fit.radius = r0;
+  }
+  range = angular_arc(pr, t_tip, fit.center, d, core);
+  fit = fit_circle(arc_points(pr, range.first, range.second));
+  return range;
+}
+
+// The walk of grown_arc from t_tip in `dir` about the circle `current`: the last point
+// within tau outside it before the profile leaves it for good (far outside, or past `cap`
+// radians from `mid_dir`; a noise bump inside the arc does not stop it), less the flank
+// overshoot sqrt(2 R tau), never inside the core's end `keep`.
+double grown_end(const SampledProfile& pr, double t_tip, int dir, double h, const CircleFit& current,
+                 const Eigen::Vector2d& mid_dir, double tau, double cap, double keep) {
+  auto residual = [&](double t) { return (pr.fast.jet(t).point - current.center).norm() - current.radius; };
+  double a = t_tip, last_in = t_tip;
+  for (double walked = 0; walked < 0.5 * pr.period; walked += h) {
+    const double b = a + dir * h;
+    const Eigen::Vector2d q = pr.fast.jet(b).point - current.center;
+    const double res = q.norm() - current.radius;
+    if (res > std::max(20 * tau, 0.2 * current.radius) ||
+        std::abs(std::atan2(cross(mid_dir, q), mid_dir.dot(q))) > cap)
+      break;
+    if (res <= tau) last_in = b;
+    a = b;
+  }
+  // Refine the crossing between last_in and the next step.
+  double lo = last_in, hi = last_in + dir * h;
+  if (residual(hi) > tau) bisect(lo, hi, [&](double t) { return residual(t) > tau; });
+  a = lo;
+  // Arc length converted with the local speed.
+  const double trim = std::sqrt(2 * current.radius * tau) / std::max(pr.fast.jet(a).d1.norm(), 1e-300);
+  return dir > 0 ? std::max(a - trim, std::min(keep, a)) : std::min(a + trim, std::max(keep, a));
+}
+
+// The edge arc grown geometrically (docs/CAMBER.md, step 4): from the core circle, each
+// end walks outward while the profile stays within tau outside the fitted circle, tau =
+// edge_residual x the core fit's rms, at least edge_noise_residual x the points' noise and
+// 1e-6 of the profile size; circle, arc and trim iterated. Returns the arc's range.
+std::pair<double, double> grown_arc(const SampledProfile& pr, double t_tip, const Eigen::Vector2d& d,
+                                    const Eigen::Vector2d& c0, double r0, const CamberOptions& options,
+                                    CircleFit& fit) {
+  std::pair<double, double> range = core_arc(pr, t_tip, d, c0, r0, options, fit);
+  // The noise floor keeps the arc from shrinking pass by pass onto a few quiet degrees.
+  const double tau = std::max({options.edge_residual * fit.rms,
+                               options.edge_noise_residual * options.profile_noise, 1e-6 * pr.scale});
+  const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
+  const double cap = options.edge_max_arc * 0.5 * pi / 180;
+  const std::pair<double, double> core_range = range;
+  // Start from a half circle about the core circle: a circle fitted to the core alone can
+  // be far off (a short noisy arc); from a longer arc the iteration shrinks onto the edge.
+  {
+    const std::pair<double, double> wide = angular_arc(pr, t_tip, fit.center, d, 0.5 * pi);
+    const CircleFit w = fit_circle(arc_points(pr, wide.first, wide.second));
+    if (w.radius > 0 && std::isfinite(w.radius)) fit = w, range = wide;
+  }
+  for (int pass = 0; pass < 4; ++pass) {
+    const CircleFit current = fit;
+    // The guard angle is measured from the middle of the current arc (the end tangent may
+    // be skewed on a noisy profile).
+    const Eigen::Vector2d mid_dir =
+        (pr.fast.jet(0.5 * (range.first + range.second)).point - current.center).normalized();
+    const double e0 = grown_end(pr, t_tip, -1, h, current, mid_dir, tau, cap, core_range.first);
+    const double e1 = grown_end(pr, t_tip, 1, h, current, mid_dir, tau, cap, core_range.second);
+    const CircleFit next = fit_circle(arc_points(pr, e0, e1));
+    if (!(next.radius > 0) || !std::isfinite(next.radius)) break;
+    fit = next;
+    range = {e0, e1};
+    if ((next.center - current.center).norm() < 1e-9 * pr.scale) break;
+  }
+  return range;
+}
+
+// The edge's circle refitted to the measured points on its arc (docs/CAMBER.md, step 4):
+// points within the arc's angles seen from the circle's centre and within a band about
+// it, twice, re-centred. True when the refit stands (`fit` replaced): the points cover the
+// arc without a large angular gap and fix the radius well, and the circle moved little.
+bool refit_on_measured(const SampledProfile& pr, const Edge& e, const Eigen::Vector2d& d,
+                       const std::vector<Eigen::Vector2d>& measured, const CamberOptions& options,
+                       CircleFit& fit) {
+  if (measured.size() < 8 || !(fit.radius > 0)) return false;
+  auto signed_angle = [&](const Eigen::Vector2d& c, const Eigen::Vector2d& q) {
+    const Eigen::Vector2d r = q - c;
+    return std::atan2(cross(d, r), d.dot(r));
+  };
+  CircleFit current = fit;
+  for (int pass = 0; pass < 2; ++pass) {
+    const double a0 = signed_angle(current.center, pr.fast.jet(e.arc_t0).point),
+                 a1 = signed_angle(current.center, pr.fast.jet(e.arc_t1).point);
+    const double lo = std::min(a0, a1), hi = std::max(a0, a1);
+    const double band = std::max({0.25 * current.radius, 6 * options.profile_noise, 3 * current.rms});
+    std::vector<Eigen::Vector2d> on_arc;
+    std::vector<double> angles;
+    for (const auto& q : measured) {
+      const double dist = (q - current.center).norm();
+      if (std::abs(dist - current.radius) > band) continue;
+      const double a = signed_angle(current.center, q);
+      if (a < lo || a > hi) continue;
+      on_arc.push_back(q);
+      angles.push_back(a);
+    }
+    if (on_arc.size() < 8) return false;
+    std::sort(angles.begin(), angles.end());
+    double gap = std::max(angles.front() - lo, hi - angles.back());
+    for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+    if (gap > options.edge_point_gap * (hi - lo)) return false;
+    const CircleFit next = fit_circle(on_arc);
+    if (!(next.radius > 0) || !std::isfinite(next.radius) ||
+        !(next.radius_sigma <= options.edge_point_sigma * next.radius) ||
+        std::abs(next.radius - fit.radius) > 0.2 * fit.radius ||
+        (next.center - fit.center).norm() > 0.2 * fit.radius)
+      return false;
+    current = next;
+  }
+  fit = current;
+  return true;
+}
+
+// Edge point, arc and fitted circle for the axis end `end_circle` pointing outward along d.
+Edge measure_edge(const SampledProfile& pr, const InscribedCircle& end_circle, const Eigen::Vector2d& d,
+                  const CamberOptions& options, const std::vector<Eigen::Vector2d>& measured) {
+  const Eigen::Vector2d& end = end_circle.center;
+  Edge e;
+  if (!detail::ray_hit(pr, end, d, e.t))
+    throw Error("camber: the camber line's end tangent does not meet the profile");
+  e.point = pr.fast.jet(e.t).point;
+  CircleFit fit;
+  if (options.edge_arc > 0) {
+    // Fixed arc: the profile around the edge point whose outward normal turns at most
+    // edge_arc / 2 either way.
+    const double half = 0.5 * options.edge_arc * pi / 180;
+    const double reach = 1.5 * std::max(end_circle.radius, (e.point - end).norm());
+    e.arc_t0 = arc_end(pr, e.t, d, half, -1, end, reach);
+    e.arc_t1 = arc_end(pr, e.t, d, half, +1, end, reach);
+    fit = fit_circle(arc_points(pr, e.arc_t0, e.arc_t1, 61));
+  } else {
+    std::tie(e.arc_t0, e.arc_t1) =
+        grown_arc(pr, e.t, d, end, std::max(end_circle.radius, (e.point - end).norm()), options, fit);
+  }
+  // The fit rms stays the spline arc's about the circle (the circularity test's measure).
+  if (options.edge_on_points && refit_on_measured(pr, e, d, measured, options, fit)) {
+    fit.rms = rms_about(arc_points(pr, e.arc_t0, e.arc_t1), fit.center, fit.radius);
+    e.on_points = true;
+  }
+  // Arc: the angle the edge arc subtends at the fitted centre.
+  const Eigen::Vector2d q0 = pr.fast.jet(e.arc_t0).point - fit.center,
+                        q1 = pr.fast.jet(e.arc_t1).point - fit.center;
+  e.arc = (std::abs(std::atan2(cross(d, q0), d.dot(q0))) + std::abs(std::atan2(cross(d, q1), d.dot(q1)))) *
+          180 / pi;
+  e.center = fit.center;
+  e.radius = fit.radius;
+  e.fit_rms = fit.rms;
+  const double k = pr.convexity(e.t);
+  e.curvature_radius = k > 0 ? 1 / k : 0;  // 0: the edge point is flat or concave
+  return e;
+}
+
+// Scale W of an end: the diameter of the first circle (from the end) more than 1.5 radii
+// back from it, and that circle's index in `iw`; 0 when there is none.
+double end_width(const std::vector<InscribedCircle>& from_end, std::size_t& iw) {
+  const Eigen::Vector2d end = from_end.front().center;
+  for (std::size_t i = 0; i < from_end.size(); ++i)
+    if ((from_end[i].center - end).norm() > 1.5 * from_end[i].radius) {
+      iw = i;
+      return 2 * from_end[i].radius;
+    }
+  return 0;
+}
+
+// Reference direction of a face: the axis behind the fork, from the circle `iw` outward
+// (the end tangent itself follows the corner branch and can be 40 degrees off the face
+// normal); d_end when the axis is too short.
+Eigen::Vector2d behind_fork(const std::vector<InscribedCircle>& from_end, std::size_t iw, double w,
+                            const Eigen::Vector2d& d_end) {
+  for (std::size_t j = iw + 1; j < from_end.size(); ++j)
+    if ((from_end[j].center - from_end[iw].center).norm() > w)
+      return (from_end[iw].center - from_end[j].center).normalized();
+  return d_end.normalized();
+}
+
+// The profile near `end`, densely resampled (601 points): the samples within `reach` of
+// it, contiguous around the nearest one.
+std::vector<Eigen::Vector2d> profile_near(const SampledProfile& pr, const Eigen::Vector2d& end,
+                                          double reach) {
+  const int n = static_cast<int>(pr.samples.size());
+  const int near = pr.nearest(end);
+  int lo = 0, hi = 0;
+  while (lo > -n / 2 && (pr.samples[((near + lo - 1) % n + n) % n] - end).norm() < reach) --lo;
+  while (hi < n / 2 && (pr.samples[(near + hi + 1) % n] - end).norm() < reach) ++hi;
+  const double ta = pr.ts[near] + pr.period * lo / n, tb = pr.ts[near] + pr.period * hi / n;
+  std::vector<Eigen::Vector2d> p;
+  const int m = 600;
+  for (int i = 0; i <= m; ++i) p.push_back(pr.fast.jet(ta + (tb - ta) * i / m).point);
+  return p;
+}
+
+// The cap of `p` within `depth` below its extreme point along f: its points into `out`
+// and its width across f; -1 when the cap runs out of `p` (not an edge).
+double cap_along(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f, double depth,
+                 std::vector<Eigen::Vector2d>& out) {
+  const int m = static_cast<int>(p.size()) - 1;
+  int top = 0;
+  for (int i = 1; i <= m; ++i)
+    if (p[i].dot(f) > p[top].dot(f)) top = i;
+  const double hmax = p[top].dot(f);
+  int a = top, b = top;
+  while (a > 0 && p[a - 1].dot(f) >= hmax - depth) --a;
+  while (b < m && p[b + 1].dot(f) >= hmax - depth) ++b;
+  if (a == 0 || b == m) return -1.0;
+  const Eigen::Vector2d u = detail::left_normal(f);
+  double lo_u = std::numeric_limits<double>::infinity(), hi_u = -lo_u;
+  for (int i = a; i <= b; ++i) lo_u = std::min(lo_u, p[i].dot(u)), hi_u = std::max(hi_u, p[i].dot(u));
+  out.assign(p.begin() + a, p.begin() + b + 1);
+  return hi_u - lo_u;
+}
+
+// A straight cap: its points and total-least-squares line (mean, direction, normal, rms).
+struct Cap {
+  std::vector<Eigen::Vector2d> points;
+  Eigen::Vector2d mean{0, 0}, along{1, 0}, normal{0, 1};
+  double rms = std::numeric_limits<double>::infinity();
+};
+
+// Straightness of the points q: their total-least-squares line into `cap`.
+void line_fit(const std::vector<Eigen::Vector2d>& q, Cap& cap) {
+  cap.mean.setZero();
+  for (const auto& x : q) cap.mean += x;
+  cap.mean /= static_cast<double>(q.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const auto& x : q) cov += (x - cap.mean) * (x - cap.mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  cap.along = eig.eigenvectors().col(1);
+  cap.normal = eig.eigenvectors().col(0);
+  cap.rms = std::sqrt(std::max(eig.eigenvalues()(0), 0.0) / q.size());
+}
+
+// The straightest cap of `p` among the directions within 40 degrees of d (a face need not
+// be square to the end tangent; the widest cap would be square to a flank, running along
+// it and round the corner). False when no direction gives a cap.
+bool straightest_cap(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& d, double depth,
+                     Cap& best) {
+  bool found = false;
+  std::vector<Eigen::Vector2d> trial;
+  for (int k = -40; k <= 40; ++k) {
+    const double a = k * pi / 180;
+    const Eigen::Vector2d g =
+        Eigen::Vector2d(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y())
+            .normalized();
+    const double width = cap_along(p, g, depth, trial);
+    if (width < 0 || trial.size() < 3) continue;
+    Cap cap;
+    line_fit(trial, cap);
+    if (cap.rms >= best.rms) continue;
+    cap.points = trial;
+    best = cap;
+    found = true;
+  }
+  return found;
+}
+
+void classify_edge(Edge& e, double max_diameter, const CamberOptions& options) {
+  if (e.radius < options.sharp_ratio * max_diameter)
+    e.shape = EdgeShape::sharp;
+  else if ((e.curvature_radius == 0 || e.curvature_radius > options.blunt_flatness * e.radius) &&
+           e.fit_rms > options.blunt_rms * e.radius)
+    e.shape = EdgeShape::blunt;
+  else
+    e.shape = EdgeShape::round;
+}
+
+}  // namespace
+
+namespace detail {
+
+// The cap of the profile within 0.1 W of its extreme point along a direction f is, at a
+// round edge, a circular segment 2 sqrt(2 R 0.1 W) <= 0.63 W wide and bowed; at a blunt
+// edge, with f the face normal, it is the face itself: as wide as the blade there (at
+// least `blunt_face` W) and straight (line-fit rms below 0.2 of the cap depth; a circular
+// segment gives 0.3).
+Face blunt_face(const SampledProfile& pr, const std::vector<InscribedCircle>& from_end,
+                const Eigen::Vector2d& d_end, const CamberOptions& options) {
+  Face face;
+  if (from_end.size() < 4) return face;
+  const Eigen::Vector2d end = from_end.front().center;
+  std::size_t iw = 0;
+  const double w = end_width(from_end, iw);
+  if (!(w > 1e-9 * pr.scale)) return face;
+  const Eigen::Vector2d d = behind_fork(from_end, iw, w, d_end);
+  const std::vector<Eigen::Vector2d> p =
+      profile_near(pr, end, 1.5 * w + 2 * pr.period / static_cast<int>(pr.samples.size()));
+  const double depth = 0.1 * w;
+  Cap cap;
+  if (!straightest_cap(p, d, depth, cap)) return face;
+  const Eigen::Vector2d f = cap.normal.dot(d) < 0 ? Eigen::Vector2d(-cap.normal) : cap.normal;
+  double smin = std::numeric_limits<double>::infinity(), smax = -smin;
+  for (const auto& q : cap.points) {
+    smin = std::min(smin, (q - cap.mean).dot(cap.along));
+    smax = std::max(smax, (q - cap.mean).dot(cap.along));
+  }
+  const double width = smax - smin;
+  if (width < options.blunt_face * w || cap.rms > 0.2 * depth) return face;
+  face.found = true;
+  face.width = width;
+  face.mid = cap.mean + 0.5 * (smin + smax) * cap.along;
+  face.normal = f;
+  return face;
+}
+
+Edge detect_edge(const SampledProfile& pr, const InscribedCircle& end, const Eigen::Vector2d& d,
+                 const Face& face, double max_diameter, const CamberOptions& options,
+                 const std::vector<Eigen::Vector2d>& measured) {
+  Edge e;
+  try {
+    e = measure_edge(pr, end, d, options, measured);
+  } catch (const Error&) {
+    if (!face.found) throw;
+    e.point = face.mid;
+    e.t = pr.ts[pr.nearest(face.mid)];
+  }
+  classify_edge(e, max_diameter, options);
+  if (options.profile_noise > 0 && e.radius > 0)
+    e.circular = e.fit_rms <= options.edge_circularity * std::max(options.profile_noise, 1e-4 * e.radius);
+  if (face.found) {  // a face, not a circle: no radius, whatever the edge model
+    e.shape = EdgeShape::blunt;
+    e.face = face.width;
+    e.radius = 0;
+    e.center = face.mid;
+  }
+  return e;
+}
+
+}  // namespace detail
+
+}  // namespace section

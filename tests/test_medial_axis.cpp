@@ -1,0 +1,65 @@
+// Tests of the medial axis (section/medial_axis.h) against exact ground truth: an
+// ellipse's medial axis and inscribed circles.
+#include "section/medial_axis.h"
+
+#include "camber_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+using namespace camber_test;
+
+TEST_CASE("medial_axis: an ellipse's medial axis is the segment between its vertex curvature centres",
+          "[medial_axis]") {
+  for (const auto& [a, b] : {std::pair{10.0, 4.0}, std::pair{6.0, 1.5}}) {
+    CAPTURE(a, b);
+    std::vector<Vector2d> pts;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      const double t = 2 * pi * i / n;
+      pts.push_back({a * std::cos(t), b * std::sin(t)});
+    }
+    const BSpline profile = dense_spline(pts);
+    const section::MedialAxis m = section::medial_axis(profile);
+    const double end = (a * a - b * b) / a;
+    double lo = 1e300, hi = -1e300, off = 0;
+    for (const auto& c : m.circles) {
+      lo = std::min(lo, c.center.x());
+      hi = std::max(hi, c.center.x());
+      off = std::max(off, std::abs(c.center.y()));
+      // Inscribed radius at (x, 0): distance to the ellipse, b sqrt(1 - x^2 / (a^2 - b^2)).
+      CHECK(std::abs(c.radius -
+                     b * std::sqrt(std::max(0.0, 1 - c.center.x() * c.center.x() / (a * a - b * b)))) < 1e-5);
+    }
+    CHECK(off < 1e-9);
+    // The ends are the vertices' centres of curvature, up to the spline's curvature error.
+    CHECK(std::abs(lo + end) < 2e-4 * a);
+    CHECK(std::abs(hi - end) < 2e-4 * a);
+  }
+}
+
+TEST_CASE("medial_axis: an inscribed circle on an ellipse's major axis has the true radius",
+          "[medial_axis]") {
+  // Ellipse 10 x 4: the circle centred on the line x = 3 touching both sides is centred on
+  // the major axis, its radius b sqrt(1 - x^2 / (a^2 - b^2)).
+  const double a = 10, b = 4;
+  std::vector<Vector2d> pts;
+  for (int i = 0; i < 20000; ++i) {
+    const double t = 2 * pi * i / 20000;
+    pts.push_back({a * std::cos(t), b * std::sin(t)});
+  }
+  const BSpline profile = dense_spline(pts);
+  const double t_left = section::closest_point(profile, {3, b}).t;
+  const double t_right = section::closest_point(profile, {3, -b}).t;
+  section::InscribedCircle c;
+  REQUIRE(section::inscribed_circle(profile, {3, 1}, {0, 2}, t_left, t_right, c));
+  CHECK((c.center - Vector2d(3, 0)).norm() < 1e-6);
+  CHECK(std::abs(c.radius - b * std::sqrt(1 - 9 / (a * a - b * b))) < 1e-6);
+  CHECK(c.left.y() > 0);
+  CHECK(c.right.y() < 0);
+  CHECK(std::abs((c.left - c.center).norm() - (c.right - c.center).norm()) < 1e-9);
+}
