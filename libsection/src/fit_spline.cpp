@@ -164,7 +164,7 @@ Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
     const std::size_t m = ts.size();
     Points pts(m);
     for (std::size_t i = 0; i < m; ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
-    const detail::NearestPoints tree(pts);
+    const detail::NearestPoints<2> tree(pts, 10);
     Points lost_points(lost.size());
     for (std::size_t l = 0; l < lost.size(); ++l) lost_points[l] = q[lost[l]];
     const std::vector<int> idx = tree.nearest(lost_points);
