@@ -172,6 +172,18 @@ Scan scan(const Curve& c, const ScanSpec& spec) {
   return out;
 }
 
+/// The points of scans of two curves (no outliers: topology only), the second's with seed
+/// `seed_b`, after the first's.
+Points two_scans(const Curve& a, const Curve& b, unsigned seed_b) {
+  ScanSpec spec;
+  spec.outliers = 0;
+  Points points = scan(a, spec).points;
+  spec.seed = seed_b;
+  const Scan sb = scan(b, spec);
+  points.insert(points.end(), sb.points.begin(), sb.points.end());
+  return points;
+}
+
 /// Facts about one loop against its true curve.
 struct LoopCheck {
   double near_fraction = 0;     // kept points within 30 um of the truth
@@ -218,12 +230,10 @@ std::size_t kept_far_outliers(const MorphologyResult& m, const Scan& sc, const C
 
 TEST_CASE("morphology: clean dense circle gives one ordered loop with radial normals", "[morphology]") {
   const Curve c = ellipse({3, -2}, 10, 10);
-  ScanSpec spec;
-  spec.noise = 0;
+  ScanSpec spec;  // exact: no noise, holes, density changes, misregistration or outliers
+  spec.noise = spec.misregistration = spec.outliers = 0;
   spec.holes = 0;
   spec.density_min = 1;
-  spec.misregistration = 0;
-  spec.outliers = 0;
   const Scan sc = scan(c, spec);
   const MorphologyResult m = order_section(sc.points);
   REQUIRE(m.loops.size() == 1);
@@ -279,13 +289,7 @@ TEST_CASE("morphology: noisy ellipses and thin airfoils are ordered like their t
 TEST_CASE("morphology: two separate blades give two loops, largest first", "[morphology]") {
   const Curve big = airfoil({0, 0}, 0.2, 0.2, 3.0, 2.0);
   const Curve small = ellipse({20, 20}, 6, 2.5);
-  ScanSpec spec;
-  spec.outliers = 0;  // topology only
-  Scan a = scan(big, spec);
-  spec.seed = 7;
-  const Scan b = scan(small, spec);
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  const MorphologyResult m = order_section(a.points);
+  const MorphologyResult m = order_section(two_scans(big, small, 7));
   REQUIRE(m.loops.size() == 2);
   CHECK(m.loops[0].area > m.loops[1].area);
   for (const Vec& p : m.loops[0].points) CHECK(big.locate(p).distance < 0.1);
@@ -297,13 +301,7 @@ TEST_CASE("morphology: two separate blades give two loops, largest first", "[mor
 TEST_CASE("morphology: an annulus (cooling channel) gives an outer and an inner loop", "[morphology]") {
   const Curve outer = ellipse({0, 0}, 12, 6);
   const Curve inner = ellipse({1, 0.5}, 3, 1.5);
-  ScanSpec spec;
-  spec.outliers = 0;  // topology only
-  Scan a = scan(outer, spec);
-  spec.seed = 3;
-  const Scan b = scan(inner, spec);
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  const MorphologyResult m = order_section(a.points);
+  const MorphologyResult m = order_section(two_scans(outer, inner, 3));
   REQUIRE(m.loops.size() == 2);
   const LoopCheck ro = check_loop(m.loops[0], outer);
   const LoopCheck ri = check_loop(m.loops[1], inner);

@@ -25,16 +25,21 @@
 
 namespace {
 
-// A thin band of a generated turbine scan (z in [11, 14] mm, 0.12 mm spacing, 5 um noise),
-// sliced by 3 planes; section 3 at z = 40 misses the band and must fail alone.
-section::Stream sliced(int threads) {
+// A band 3 mm high of a generated scan from z_min up (0.12 mm spacing, 5 um noise).
+section::Scan band_scan(const section::BladeDesign& blade, double z_min, unsigned seed) {
   section::ScanOptions so;
   so.spacing = 0.12;
   so.noise = 0.005;
-  so.z_min = 11;
-  so.z_max = 14;
-  so.seed = 7;
-  const section::Scan scan = section::generate_scan(section::turbine_blade(), so);
+  so.z_min = z_min;
+  so.z_max = z_min + 3;
+  so.seed = seed;
+  return section::generate_scan(blade, so);
+}
+
+// A thin band of a generated turbine scan (z in [11, 14] mm), sliced by 3 planes; section
+// 3 at z = 40 misses the band and must fail alone.
+section::Stream sliced(int threads) {
+  const section::Scan scan = band_scan(section::turbine_blade(), 11, 7);
   section::SliceOptions opt;
   opt.threads = threads;
   const auto planes = section::planes_at({0, 0, 1}, {11.5, 12.5, 13.5, 40});
@@ -201,13 +206,7 @@ TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a f
 }
 
 TEST_CASE("slice_file: streaming the file gives the same sections as slicing the held cloud", "[parallel][slice]") {
-  section::ScanOptions so;
-  so.spacing = 0.12;
-  so.noise = 0.005;
-  so.z_min = 20;
-  so.z_max = 23;
-  so.seed = 11;
-  const section::Scan scan = section::generate_scan(section::compressor_blade(), so);
+  const section::Scan scan = band_scan(section::compressor_blade(), 20, 11);
   const std::string path = "/tmp/libsection_test_slice_file_" + std::to_string(::getpid()) + ".ply";
   section::write_cloud(path, scan.cloud);
   section::CloudReadOptions small_chunks;

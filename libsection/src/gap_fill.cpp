@@ -1,5 +1,6 @@
 #include "section/gap_fill.h"
 
+#include "detail/segment.h"
 #include "drift_fit.h"
 #include "section/error.h"
 
@@ -91,10 +92,7 @@ std::size_t nearest_gap(const std::vector<Gap>& gaps, const Reference& ref, cons
   std::size_t best = 0;
   double bd = INFINITY;
   for (std::size_t q = 0; q < gaps.size(); ++q) {
-    const Vec a = ref.point[std::size_t(gaps[q].from)], b = ref.point[std::size_t(gaps[q].to)];
-    const Vec t = b - a;
-    const double u = std::clamp((p - a).dot(t) / t.squaredNorm(), 0.0, 1.0);
-    const double d = (a + u * t - p).squaredNorm();
+    const double d = detail::segment_foot(ref.point[std::size_t(gaps[q].from)], ref.point[std::size_t(gaps[q].to)], p).d2;
     if (d < bd) bd = d, best = q;
   }
   return best;

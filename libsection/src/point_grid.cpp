@@ -1,5 +1,7 @@
 #include "point_grid.h"
 
+#include "detail/segment.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
@@ -115,15 +117,14 @@ Foot SegmentGrid::nearest(const Vec& p) const {
         const Points& q = *loops_[l];
         const Vec& u = q[k];
         const Vec& v = q[(k + 1) % q.size()];
-        const Vec e = v - u;
-        const double e2 = e.squaredNorm();
-        const double t = e2 > 0 ? std::clamp((p - u).dot(e) / e2, 0.0, 1.0) : 0.0;
-        const double d2 = (u + t * e - p).squaredNorm();
-        if (d2 < best2) {
-          best2 = d2;
+        const detail::SegmentFoot f = detail::segment_foot(u, v, p);
+        if (f.d2 < best2) {
+          const Vec e = v - u;
+          const double e2 = e.squaredNorm();
+          best2 = f.d2;
           best.loop = l;
-          best.s = cum_[l][k] + t * std::sqrt(e2);
-          best.distance = std::sqrt(d2);
+          best.s = cum_[l][k] + f.t * std::sqrt(e2);
+          best.distance = std::sqrt(f.d2);
           best.normal = e2 > 0 ? Vec(e.y(), -e.x()) / std::sqrt(e2) : Vec(0, 0);
         }
       }
