@@ -151,9 +151,9 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
     i = j;
   }
   if (separations.empty()) return;
-  // Noise alone, where it runs high, also spreads a few windows: their "layers" come out
-  // 6-10 um apart at 5 um of noise (11 of 1458 clean generated sections); two views 15 um
-  // apart give 9-16 um. Below layer_separation noise sigmas nothing is reported.
+  // Noise alone, where it runs high, also spreads a few windows, into "layers" closer
+  // together than two views give (docs/FITSPLINE.md): below layer_separation noise sigmas
+  // nothing is reported.
   const double separation = median(separations);
   if (separation >= o.layer_separation * noise) result.layers = separation;
   else result.layers_length = 0;
