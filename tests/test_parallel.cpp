@@ -98,7 +98,8 @@ TEST_CASE("parallel: a failing loop is reported in order among good ones", "[par
     const double r = 2 + 0.5 * sec;
     for (int i = 0; i < n; ++i) {
       const double t = 2 * pi * i / n;
-      points.add_row({double(sec), 0.0, double(i), r * std::cos(t), r * std::sin(t), std::cos(t), std::sin(t)});
+      points.add_row(
+          {double(sec), 0.0, double(i), r * std::cos(t), r * std::sin(t), std::cos(t), std::sin(t)});
     }
   }
   for (int threads : {1, 2, 3}) {
@@ -153,7 +154,8 @@ TEST_CASE("parallel: XYZ text parsed by several threads keeps points and line nu
   }
 }
 
-TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a first look hold, two when not", "[parallel][slice]") {
+TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a first look hold, two when not",
+          "[parallel][slice]") {
   section::ScanOptions so;
   so.spacing = 0.2;
   so.noise = 0.005;
@@ -180,7 +182,8 @@ TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a f
     same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 1);
   }
   SECTION("explicit planes, the slab estimated") {
-    same_as_held(scan.cloud, section::PlaneSpec{section::planes_at({0, 0, 1}, {15, 30, 45}), {0, 0, 1}, 0}, 1);
+    same_as_held(scan.cloud, section::PlaneSpec{section::planes_at({0, 0, 1}, {15, 30, 45}), {0, 0, 1}, 0},
+                 1);
   }
   SECTION("holes in the scan: the points beside the planes, read again for the gaps") {
     so.holes = 40;
@@ -205,7 +208,8 @@ TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a f
   std::remove(path.c_str());
 }
 
-TEST_CASE("slice_file: streaming the file gives the same sections as slicing the held cloud", "[parallel][slice]") {
+TEST_CASE("slice_file: streaming the file gives the same sections as slicing the held cloud",
+          "[parallel][slice]") {
   const section::Scan scan = band_scan(section::compressor_blade(), 20, 11);
   const std::string path = "/tmp/libsection_test_slice_file_" + std::to_string(::getpid()) + ".ply";
   section::write_cloud(path, scan.cloud);
@@ -220,7 +224,8 @@ TEST_CASE("slice_file: streaming the file gives the same sections as slicing the
       section::slice_file(path, section::PlaneSpec{{}, {0, 0, 1}, 3}, opt, small_chunks), "t");
   CHECK(section::format_stream(held) == section::format_stream(streamed));
   // Explicit planes, one pass.
-  const auto one_pass = section::to_stream(section::slice_file(path, section::PlaneSpec{planes, {0, 0, 1}, 0}, opt), "t");
+  const auto one_pass =
+      section::to_stream(section::slice_file(path, section::PlaneSpec{planes, {0, 0, 1}, 0}, opt), "t");
   CHECK(section::format_stream(held) == section::format_stream(one_pass));
   // Default slab: estimated from a random sample, within 15% of the held cloud's estimate.
   opt.slab = 0;

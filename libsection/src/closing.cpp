@@ -14,8 +14,7 @@ void smooth_closed(Points& p, int passes) {
   if (n < 3) return;
   Points q(n);
   for (int k = 0; k < passes; ++k) {
-    for (std::size_t i = 0; i < n; ++i)
-      q[i] = 0.25 * p[(i + n - 1) % n] + 0.5 * p[i] + 0.25 * p[(i + 1) % n];
+    for (std::size_t i = 0; i < n; ++i) q[i] = 0.25 * p[(i + n - 1) % n] + 0.5 * p[i] + 0.25 * p[(i + 1) % n];
     p.swap(q);
   }
 }
@@ -28,7 +27,9 @@ Vec vertex_normal(const Points& p, std::size_t i) {
   return l > 0 ? Vec(t.y() / l, -t.x() / l) : Vec(0, 0);
 }
 
-bool substantial(long long cells) { return cells >= 16; }
+bool substantial(long long cells) {
+  return cells >= 16;
+}
 
 /// The cells of a subset's point means, by raster cell: `slot` of a cell indexes `mean`
 /// (-1: no point), the mean of its points in cell coordinates.
@@ -188,11 +189,12 @@ std::string num(double x) {
 
 Error raster_too_large(double wc, double hc, double h, std::size_t max_cells) {
   return Error("morphology: a raster of " + num(wc) + " x " + num(hc) + " cells (cell " + num(h) +
-               " mm) exceeds max_cells " + std::to_string(max_cells) + "; use a larger cell or raise max_cells");
+               " mm) exceeds max_cells " + std::to_string(max_cells) +
+               "; use a larger cell or raise max_cells");
 }
 
-bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h, const MorphologyOptions& opt,
-              Pass& pass) {
+bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,
+              const MorphologyOptions& opt, Pass& pass) {
   Vec lo = points[subset[0]], hi = lo;
   for (std::size_t k : subset) {
     lo = lo.cwiseMin(points[k]);

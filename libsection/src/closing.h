@@ -23,18 +23,18 @@ struct Component {
 /// What one pass made of a point subset.
 struct Pass {
   Raster raster;
-  int closing = 0;                   // r_c: radius at which the band closed
-  int radius = 0;                    // r: radius used (closing plus one step of margin)
-  std::vector<int> label;            // component of the eroded fill, 0 = none
-  std::vector<float> g;              // signed distance to the closing's boundary, cells, > 0 inside
-  std::vector<Component> components; // index = label - 1
+  int closing = 0;                    // r_c: radius at which the band closed
+  int radius = 0;                     // r: radius used (closing plus one step of margin)
+  std::vector<int> label;             // component of the eroded fill, 0 = none
+  std::vector<float> g;               // signed distance to the closing's boundary, cells, > 0 inside
+  std::vector<Component> components;  // index = label - 1
 };
 
 /// Builds the raster of `subset` (cell h), finds the closing radius and labels the
 /// closed fill. Returns false when the band never encloses a substantial interior.
 /// Throws section::Error when the raster would exceed opt.max_cells.
-bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h, const MorphologyOptions& opt,
-              Pass& pass);
+bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,
+              const MorphologyOptions& opt, Pass& pass);
 
 /// The boundary of one component in world coordinates, counterclockwise: the Moore trace
 /// smoothed a little, then each vertex moved along its normal onto the zero level of g.

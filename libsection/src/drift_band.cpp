@@ -35,8 +35,9 @@ struct QuadraticDrift {
   Vec at(const Vec& p) const { return w * basis(p); }
 };
 
-QuadraticDrift fit_profile_drift(const std::vector<Vec>& uv, const std::vector<double>& dz, const Reference& ref,
-                                 const Grid& ref_grid, double zmax, double slab, double gap_min, int min_support) {
+QuadraticDrift fit_profile_drift(const std::vector<Vec>& uv, const std::vector<double>& dz,
+                                 const Reference& ref, const Grid& ref_grid, double zmax, double slab,
+                                 double gap_min, int min_support) {
   constexpr int T = QuadraticDrift::terms;
   QuadraticDrift d;
   std::size_t n0 = 0;  // loop 0 comes first in the reference
@@ -59,7 +60,8 @@ QuadraticDrift fit_profile_drift(const std::vector<Vec>& uv, const std::vector<d
       const Vec raw = uv[i], c = raw - z * cur.at(raw);
       int k;
       Vec pk, n;
-      if (!drift::span_beside(ref, ref_grid, c, slab, gap_min, k, pk, n) || ref.loop[std::size_t(k)] != 0) continue;
+      if (!drift::span_beside(ref, ref_grid, c, slab, gap_min, k, pk, n) || ref.loop[std::size_t(k)] != 0)
+        continue;
       const Eigen::Matrix<double, T, 1> phi = d.basis(pk);
       Row r;
       for (int j = 0; j < T; ++j) {
@@ -74,7 +76,8 @@ QuadraticDrift fit_profile_drift(const std::vector<Vec>& uv, const std::vector<d
     Row sol;
     // The quadratic terms are held firmer: at the tips, where only a few points see them,
     // the constant and the x^2 term look alike, and their split would follow the noise.
-    if (!drift::trimmed_fit<2 * T + 1>(rows, rhs, 2 * T, slab, min_support, sol, 2 * QuadraticDrift::affine_terms, 0.05))
+    if (!drift::trimmed_fit<2 * T + 1>(rows, rhs, 2 * T, slab, min_support, sol,
+                                       2 * QuadraticDrift::affine_terms, 0.05))
       return d;
     if (std::abs(sol(2 * T)) > 0.25 * slab) return d;
     for (int j = 0; j < T; ++j) cur.w.col(j) = sol.segment<2>(2 * j);
@@ -105,8 +108,9 @@ std::vector<double> local_half_widths(const Reference& ref, double half_width, d
 
 }  // namespace
 
-std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby,
-                                        double slab, double half_width, double spacing, double sparse_half_width) {
+std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered,
+                                        const std::vector<Eigen::Vector3d>& nearby, double slab,
+                                        double half_width, double spacing, double sparse_half_width) {
   const Reference ref = drift::reference_of(ordered);
   if (ref.point.size() < 3 || !(slab > 0)) return {};
   const double gap_min = drift::gap_length(GapFillOptions{}, slab, drift::profile_length(ordered));
@@ -119,9 +123,9 @@ std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const s
   const Grid ref_grid(ref.point, 2 * slab);
   const QuadraticDrift drift = fit_profile_drift(uv, dz, ref, ref_grid, zfit, slab, gap_min, 64);
   if (!drift.ok) return {};
-  const std::vector<double> local =
-      widen ? local_half_widths(ref, half_width, slab, spacing, sparse_half_width)
-            : std::vector<double>(ref.point.size(), half_width);
+  const std::vector<double> local = widen
+                                        ? local_half_widths(ref, half_width, slab, spacing, sparse_half_width)
+                                        : std::vector<double>(ref.point.size(), half_width);
   std::vector<Eigen::Vector2d> out;
   for (std::size_t i = 0; i < uv.size(); ++i) {
     const double z = std::abs(dz[i]);
@@ -136,7 +140,8 @@ std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const s
   return out;
 }
 
-double band_half_width(std::size_t slab_points, double length, double slab, double spacing, double max_widths) {
+double band_half_width(std::size_t slab_points, double length, double slab, double spacing,
+                       double max_widths) {
   if (!(spacing > 0) || !(length > 0) || slab_points == 0) return 0.5 * slab;
   // Points per length grow with the band's width: slab_points / length in the slab.
   const double wanted = 0.5 * slab * (length / double(slab_points)) / spacing;

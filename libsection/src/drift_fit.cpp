@@ -18,13 +18,14 @@ Reference reference_of(const MorphologyResult& ordered) {
   return r;
 }
 
-bool span_beside(const Reference& ref, const Grid& ref_grid, const Vec& c, double slab, double gap_min, int& k,
-                 Vec& pk, Vec& n) {
+bool span_beside(const Reference& ref, const Grid& ref_grid, const Vec& c, double slab, double gap_min,
+                 int& k, Vec& pk, Vec& n) {
   k = ref_grid.nearest(c, 3 * slab);
   if (k < 0) return false;
   pk = ref.point[std::size_t(k)];
   const int a = ref.next[std::size_t(k)], b = ref.prev[std::size_t(k)];
-  const bool forward = (c - ref.point[std::size_t(a)]).squaredNorm() <= (c - ref.point[std::size_t(b)]).squaredNorm();
+  const bool forward =
+      (c - ref.point[std::size_t(a)]).squaredNorm() <= (c - ref.point[std::size_t(b)]).squaredNorm();
   int m = forward ? a : b;
   // Points that (nearly) coincide make no span: a band carries rows scanned at the same
   // places along the profile onto one another. Step on to the first that stands apart.

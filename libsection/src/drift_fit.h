@@ -26,7 +26,8 @@ public:
   // Calls f(i) for every point within r of c, in no particular order.
   template <class F>
   void for_each_within(const Vec& c, double r, F&& f) const {
-    const std::int64_t x0 = coord(c.x() - r), x1 = coord(c.x() + r), y0 = coord(c.y() - r), y1 = coord(c.y() + r);
+    const std::int64_t x0 = coord(c.x() - r), x1 = coord(c.x() + r), y0 = coord(c.y() - r),
+                       y1 = coord(c.y() + r);
     for (std::int64_t x = x0; x <= x1; ++x)
       for (std::int64_t y = y0; y <= y1; ++y) {
         const auto it = bins_.find(pack(x, y));
@@ -83,8 +84,8 @@ Reference reference_of(const MorphologyResult& ordered);
 // that point's neighbour on the side of c, when the span is no gap and c lies beside it
 // (a line carried on past a gap's end misses a curving edge); n its unit normal, turned
 // like the point's outward normal. False when there is none.
-bool span_beside(const Reference& ref, const Grid& ref_grid, const Vec& c, double slab, double gap_min, int& k,
-                 Vec& pk, Vec& n);
+bool span_beside(const Reference& ref, const Grid& ref_grid, const Vec& c, double slab, double gap_min,
+                 int& k, Vec& pk, Vec& n);
 
 // A step along the profile longer than this is a gap (the fill's threshold; the drift
 // fits pair no point with a span that long).
@@ -105,8 +106,9 @@ void near_plane(const std::vector<Eigen::Vector3d>& nearby, double limit, std::v
 // unknowns from `firm` on held firmer, by `firm_ridge` of that weight. False when the
 // solve fails or fewer than `min_support` rows are kept.
 template <int N>
-bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs, int ridged,
-                 double slab, int min_support, Eigen::Matrix<double, N, 1>& sol, int firm = N, double firm_ridge = 1e-3) {
+bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
+                 int ridged, double slab, int min_support, Eigen::Matrix<double, N, 1>& sol, int firm = N,
+                 double firm_ridge = 1e-3) {
   std::vector<char> use(rows.size(), 1);
   sol.setZero();
   for (int pass = 0; pass < 3; ++pass) {

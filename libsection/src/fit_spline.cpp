@@ -47,7 +47,8 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   double best_rms = now.rms;
   int it = 0;
   for (; it < o.max_iterations; ++it) {
-    BSpline next = fit::sdm_step(now.curve, pc, q, now.feet, now.weights, o.fairness, o.smoothing_length, solver);
+    BSpline next =
+        fit::sdm_step(now.curve, pc, q, now.feet, now.weights, o.fairness, o.smoothing_length, solver);
     pc = detail::PiecewiseCurve(next);
     Feet nf = fit::foot_points(next, pc, q, &now.feet);
     std::vector<double> nw = weights_for(nf);
@@ -75,9 +76,8 @@ void check_options(const FitSplineOptions& o) {
   if (o.degree < 1 || o.degree > 7)
     throw Error("fit_spline: degree " + std::to_string(o.degree) + " is not in 1..7");
   if (o.control_points != 0 && o.control_points < o.degree + 1)
-    throw Error("fit_spline: " + std::to_string(o.control_points) +
-                " control points are too few, at least " + std::to_string(o.degree + 1) +
-                " are needed");
+    throw Error("fit_spline: " + std::to_string(o.control_points) + " control points are too few, at least " +
+                std::to_string(o.degree + 1) + " are needed");
   if (!(o.tolerance > 0) || !(o.initial_span > 0) || !(o.min_span > 0))
     throw Error("fit_spline: tolerance, initial span and minimum span must be positive");
   if (!(o.smoothing_length >= 0) || !(o.outlier_floor >= 0))
@@ -115,7 +115,8 @@ BSpline first_curve(const Points& profile, const FitSplineOptions& o) {
 void adapt_knots(const Points& measured, const FitSplineOptions& o, bool stop_at_fold, Refinement& r,
                  FitSplineResult& result) {
   for (int pass = 0; pass < 3; ++pass) {
-    const std::vector<double> knots = fit::curvature_knots(r.curve, r.feet, fit::noise_sigma(r.feet, r.weights), o);
+    const std::vector<double> knots =
+        fit::curvature_knots(r.curve, r.feet, fit::noise_sigma(r.feet, r.weights), o);
     Refinement next = refine(fit::reknot(r.curve, knots), measured, o, &r.feet);
     result.iterations += next.iterations;
     if (stop_at_fold && self_intersects(next.curve)) break;
@@ -126,7 +127,8 @@ void adapt_knots(const Points& measured, const FitSplineOptions& o, bool stop_at
   for (int round = 0; round < o.max_rounds; ++round) {
     const double sigma = fit::noise_sigma(r.feet, r.weights);
     const std::vector<double> knots = fit::split_spans(r.curve, r.feet, r.weights, sigma, o);
-    if (knots.size() == r.curve.knots.size() || static_cast<int>(knots.size()) - 1 > o.max_control_points) break;
+    if (knots.size() == r.curve.knots.size() || static_cast<int>(knots.size()) - 1 > o.max_control_points)
+      break;
     Refinement next = refine(fit::reknot(r.curve, knots), measured, o, &r.feet);
     result.iterations += next.iterations;
     if (stop_at_fold && self_intersects(next.curve)) break;

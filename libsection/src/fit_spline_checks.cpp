@@ -84,7 +84,8 @@ void measure_gaps(const Refinement& r, const Along& along, double gap_factor, Fi
     result.gap_start = result.gaps.front().start;
     result.gap_end = result.gaps.front().end;
   } else {
-    const std::size_t worst = static_cast<std::size_t>(std::max_element(lengths.begin(), lengths.end()) - lengths.begin());
+    const std::size_t worst =
+        static_cast<std::size_t>(std::max_element(lengths.begin(), lengths.end()) - lengths.begin());
     const double end = worst + 1 < ts.size() ? ts[worst + 1] : ts[0] + period;
     result.max_gap = arc_length(c, ts[worst], end);
     result.gap_start = ts[worst];
@@ -102,7 +103,8 @@ void measure_gaps(const Refinement& r, const Along& along, double gap_factor, Fi
 // Delta apart have a standard deviation sqrt(noise^2 + Delta^2 / 4) (the MAD overstates
 // Delta by a third), median over those windows; reported from layer_separation noise
 // sigmas up.
-void measure_layers(const Refinement& r, const Along& along, const FitSplineOptions& o, FitSplineResult& result) {
+void measure_layers(const Refinement& r, const Along& along, const FitSplineOptions& o,
+                    FitSplineResult& result) {
   // On near-exact data the fit's own shape error (a fraction of a micrometre) is what
   // spreads: the noise counts as at least exact_noise.
   const double noise = std::max(result.noise, o.exact_noise);
@@ -123,7 +125,8 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
   const double noise2 = noise * noise;
   for (std::size_t b = 0; b + window <= s.size(); b += step) {
     double sa = 0, ss = 0, saa = 0, sas = 0;
-    for (std::size_t i = b; i < b + window; ++i) sa += arc[i], ss += s[i], saa += arc[i] * arc[i], sas += arc[i] * s[i];
+    for (std::size_t i = b; i < b + window; ++i)
+      sa += arc[i], ss += s[i], saa += arc[i] * arc[i], sas += arc[i] * s[i];
     const double n = double(window), det = n * saa - sa * sa;
     const double slope = det > 0 ? (n * sas - sa * ss) / det : 0, icpt = (ss - slope * sa) / n;
     for (std::size_t i = 0; i < window; ++i) res[i] = s[b + i] - (icpt + slope * arc[b + i]);
@@ -155,8 +158,10 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
   // together than two views give (docs/FITSPLINE.md): below layer_separation noise sigmas
   // nothing is reported.
   const double separation = median(separations);
-  if (separation >= o.layer_separation * noise) result.layers = separation;
-  else result.layers_length = 0;
+  if (separation >= o.layer_separation * noise)
+    result.layers = separation;
+  else
+    result.layers_length = 0;
 }
 
 }  // namespace fit
@@ -193,8 +198,7 @@ bool self_intersects(const BSpline& curve) {
       const std::size_t j = order[y];
       if (j == i || (i + 1) % m == j || (j + 1) % m == i) continue;  // neighbours share a point
       const Eigen::Vector2d &c = p[j], &d = p[(j + 1) % m];
-      if (std::max(a.y(), b.y()) < std::min(c.y(), d.y()) ||
-          std::max(c.y(), d.y()) < std::min(a.y(), b.y()))
+      if (std::max(a.y(), b.y()) < std::min(c.y(), d.y()) || std::max(c.y(), d.y()) < std::min(a.y(), b.y()))
         continue;
       const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
       if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))

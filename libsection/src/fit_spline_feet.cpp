@@ -40,9 +40,7 @@ double median_nonnegative(std::vector<double> v) {
   int top = 63;  // highest bit that varies
   while (!(((lo ^ hi) >> top) & 1)) --top;
   const int digits = 11, shift = std::max(top + 1 - digits, 0);
-  auto bucket = [&](double x) {
-    return static_cast<std::size_t>((bits(x) >> shift) & ((1u << digits) - 1));
-  };
+  auto bucket = [&](double x) { return static_cast<std::size_t>((bits(x) >> shift) & ((1u << digits) - 1)); };
   std::vector<std::size_t> count(std::size_t(1) << digits, 0);
   for (double x : v) ++count[bucket(x)];
   const std::size_t mid = v.size() / 2;
@@ -128,8 +126,10 @@ std::vector<std::size_t> track_feet(const BSpline& c, const detail::PiecewiseCur
         break;
       }
     }
-    if (ok) f.t[k] = wrap(c, t);
-    else lost.push_back(k);
+    if (ok)
+      f.t[k] = wrap(c, t);
+    else
+      lost.push_back(k);
   }
   return lost;
 }
@@ -153,7 +153,9 @@ void search_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
     const std::size_t i = static_cast<std::size_t>(idx[l]);
     const double a = i > 0 ? ts[i - 1] : ts[m - 1] - period;
     const double b = i + 1 < m ? ts[i + 1] : c.t_max();
-    auto distance = [&](double x) { return detail::squared_distance(pc.jet(at = pc.locate(x, at.span)), q[k]); };
+    auto distance = [&](double x) {
+      return detail::squared_distance(pc.jet(at = pc.locate(x, at.span)), q[k]);
+    };
     f.t[k] = wrap(c, detail::minimise_bracket(distance, a, b, ts[i]));
     const detail::CurveJet j = pc.jet(at = pc.locate(f.t[k], at.span));
     const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();

@@ -104,15 +104,15 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
 
 // Knots after splitting every span whose residuals hold more than noise: mean square
 // above sigma^2 (1 + 3 sqrt(2 / m)) + tolerance^2 with m points in the span.
-std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vector<double>& w,
-                                double sigma, const FitSplineOptions& o) {
+std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vector<double>& w, double sigma,
+                                const FitSplineOptions& o) {
   const std::size_t spans = c.knots.size() - 1;
   std::vector<double> sum(spans, 0), count(spans, 0);
   for (std::size_t k = 0; k < f.t.size(); ++k) {
     if (w[k] <= 0) continue;
     auto it = std::upper_bound(c.knots.begin(), c.knots.end(), f.t[k]);
-    const std::size_t j = std::min<std::size_t>(
-        std::max<std::ptrdiff_t>(it - c.knots.begin() - 1, 0), spans - 1);
+    const std::size_t j =
+        std::min<std::size_t>(std::max<std::ptrdiff_t>(it - c.knots.begin() - 1, 0), spans - 1);
     sum[j] += f.signed_distance[k] * f.signed_distance[k];
     count[j] += 1;
   }

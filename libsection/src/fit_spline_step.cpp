@@ -24,7 +24,9 @@ struct Normal {
   double trace = 0;  // sum of the data term's weights, for the relative weights below
 
   Normal(int n, int p)
-      : n(n), p(p), band(static_cast<std::size_t>(n) * (p + 1), Eigen::Matrix2d::Zero()),
+      : n(n),
+        p(p),
+        band(static_cast<std::size_t>(n) * (p + 1), Eigen::Matrix2d::Zero()),
         rhs(Eigen::VectorXd::Zero(2 * n)) {}
   Eigen::Matrix2d& at(int i, int offset) { return band[static_cast<std::size_t>(i) * (p + 1) + offset]; }
 };
@@ -131,7 +133,8 @@ Eigen::SparseMatrix<double> assemble(const BSpline& c, double fairness, Normal& 
     const double coef[3] = {1, -2, 1};
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
-        for (int r = 0; r < 2; ++r) trip.emplace_back(2 * ids[a] + r, 2 * ids[b] + r, lambda * coef[a] * coef[b]);
+        for (int r = 0; r < 2; ++r)
+          trip.emplace_back(2 * ids[a] + r, 2 * ids[b] + r, lambda * coef[a] * coef[b]);
     for (int r = 0; r < 2; ++r) {
       trip.emplace_back(2 * i + r, 2 * i + r, mu);
       eq.rhs(2 * i + r) += mu * c.control[i](r);
@@ -155,7 +158,8 @@ Eigen::VectorXd solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorX
     solver.inner.assign(inner, inner + nnz);
   }
   solver.ldlt.factorize(H);
-  if (solver.ldlt.info() != Eigen::Success) throw Error("fit_spline: the distance-minimisation system is singular");
+  if (solver.ldlt.info() != Eigen::Success)
+    throw Error("fit_spline: the distance-minimisation system is singular");
   Eigen::VectorXd x = solver.ldlt.solve(rhs);
   if (solver.ldlt.info() != Eigen::Success || !x.allFinite())
     throw Error("fit_spline: the distance-minimisation system is singular");

@@ -37,7 +37,8 @@ struct Feet {
 /// curve that moved a little since), each foot is tracked by Newton from its old
 /// parameter; a point whose Newton leaves the old foot's neighbourhood or meets a
 /// non-convex stretch gets the full search.
-Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet* previous = nullptr);
+Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
+                 const Feet* previous = nullptr);
 
 /// Robust noise sigma: from differences of residuals consecutive along the curve, which
 /// cancel the smooth (model) part of the residual and keep the noise. Points of weight 0
@@ -74,7 +75,8 @@ BSpline reknot(const BSpline& c, const std::vector<double>& knots);
 double points_per_span(const FitSplineOptions& o, double sigma);
 
 /// Knots spread by curvature and point density (fit_spline_knots.cpp).
-std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double sigma, const FitSplineOptions& o);
+std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double sigma,
+                                    const FitSplineOptions& o);
 
 /// Knots after splitting every span whose residuals hold more than noise.
 std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vector<double>& w, double sigma,
@@ -103,7 +105,8 @@ Along along_curve(const Refinement& r);
 void measure_gaps(const Refinement& r, const Along& along, double gap_factor, FitSplineResult& result);
 
 /// Two layers of points along the profile (result.layers, layers_length).
-void measure_layers(const Refinement& r, const Along& along, const FitSplineOptions& o, FitSplineResult& result);
+void measure_layers(const Refinement& r, const Along& along, const FitSplineOptions& o,
+                    FitSplineResult& result);
 
 /// True when the closed polyline p runs out and back alongside itself (a finger).
 bool doubles_back(const Points& p);

@@ -15,9 +15,9 @@ namespace {
 
 using drift::Grid;
 using drift::Reference;
-using drift::Vec;
 using drift::span_beside;
 using drift::trimmed_fit;
+using drift::Vec;
 
 struct Drift {
   bool ok = false;
@@ -92,7 +92,8 @@ std::size_t nearest_gap(const std::vector<Gap>& gaps, const Reference& ref, cons
   std::size_t best = 0;
   double bd = INFINITY;
   for (std::size_t q = 0; q < gaps.size(); ++q) {
-    const double d = detail::segment_foot(ref.point[std::size_t(gaps[q].from)], ref.point[std::size_t(gaps[q].to)], p).d2;
+    const double d =
+        detail::segment_foot(ref.point[std::size_t(gaps[q].from)], ref.point[std::size_t(gaps[q].to)], p).d2;
     if (d < bd) bd = d, best = q;
   }
   return best;
@@ -131,7 +132,8 @@ std::vector<std::pair<double, int>> candidates(const std::vector<Gap>& gaps, std
     const double zj = nb.dz[std::size_t(near[j])];
     int agree = 0;
     carried_grid.for_each_within(carried[j], 1.5 * s.slab, [&](int o) {
-      agree += std::abs(nb.dz[std::size_t(near[std::size_t(o)])] - zj) >= std::max(0.5 * std::abs(zj), s.slab);
+      agree +=
+          std::abs(nb.dz[std::size_t(near[std::size_t(o)])] - zj) >= std::max(0.5 * std::abs(zj), s.slab);
     });
     if (agree < 2) continue;
     out.emplace_back(std::abs(zj), int(j));
@@ -152,7 +154,8 @@ void fill_gap(std::vector<Gap>& gaps, std::size_t gi, const Slab& s, const Grid&
   // Beyond half the gap: an edge's arc can bulge out of the circle on the gap's chord.
   const double radius = 0.5 * g.length + std::max(g.length, 8 * s.slab);
   const std::vector<int> near = near_grid.within(mid, radius);
-  const Drift drift = fit_drift(near, nb.uv, nb.dz, s.ref, s.ref_grid, s.reach, s.slab, s.gap_min, s.min_support);
+  const Drift drift =
+      fit_drift(near, nb.uv, nb.dz, s.ref, s.ref_grid, s.reach, s.slab, s.gap_min, s.min_support);
   if (!drift.ok) return;
   std::vector<Vec> carried;
   carried.reserve(near.size());
@@ -182,8 +185,8 @@ void fill_gap(std::vector<Gap>& gaps, std::size_t gi, const Slab& s, const Grid&
 
 // Sorts each gap's fill by angle; a run a, fill..., b that crosses itself leaves its gap
 // open. Returns, per reference point, the gap that follows it (nullptr for none).
-std::vector<const Gap*> order_fills(std::vector<Gap>& gaps, const Reference& ref, const std::vector<Vec>& taken,
-                                    GapFillResult& result) {
+std::vector<const Gap*> order_fills(std::vector<Gap>& gaps, const Reference& ref,
+                                    const std::vector<Vec>& taken, GapFillResult& result) {
   std::vector<const Gap*> after(ref.point.size(), nullptr);
   const auto crosses = [](const Vec& p, const Vec& q, const Vec& r, const Vec& t) {
     const auto side = [](const Vec& a, const Vec& b, const Vec& c) {
@@ -199,7 +202,8 @@ std::vector<const Gap*> order_fills(std::vector<Gap>& gaps, const Reference& ref
     run.push_back(ref.point[std::size_t(g.to)]);
     bool ok = true;
     for (std::size_t x = 0; ok && x + 1 < run.size(); ++x)
-      for (std::size_t y = x + 2; ok && y + 1 < run.size(); ++y) ok = !crosses(run[x], run[x + 1], run[y], run[y + 1]);
+      for (std::size_t y = x + 2; ok && y + 1 < run.size(); ++y)
+        ok = !crosses(run[x], run[x + 1], run[y], run[y + 1]);
     if (!ok) {
       result.gaps_filled -= !g.fill.empty();
       g.fill.clear();
@@ -242,15 +246,18 @@ double gap_fill_reach(const GapFillOptions& options, double slab) {
 }
 
 void check_gap_fill_options(const GapFillOptions& options) {
-  if (!(options.reach >= 0) || !std::isfinite(options.reach)) throw Error("gap fill: reach must be >= 0 and finite");
-  if (!(options.min_gap > 0) || !std::isfinite(options.min_gap)) throw Error("gap fill: min_gap must be positive");
+  if (!(options.reach >= 0) || !std::isfinite(options.reach))
+    throw Error("gap fill: reach must be >= 0 and finite");
+  if (!(options.min_gap > 0) || !std::isfinite(options.min_gap))
+    throw Error("gap fill: min_gap must be positive");
   if (!(options.min_gap_fraction >= 0) || !(options.min_gap_fraction < 1))
     throw Error("gap fill: min_gap_fraction must be in [0, 1)");
 }
 
-GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby, double slab,
-                        std::size_t first_index, const GapFillOptions& options) {
-  if (!(slab > 0) || !std::isfinite(slab)) throw Error("gap fill: the slab width must be positive and finite");
+GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby,
+                        double slab, std::size_t first_index, const GapFillOptions& options) {
+  if (!(slab > 0) || !std::isfinite(slab))
+    throw Error("gap fill: the slab width must be positive and finite");
   check_gap_fill_options(options);
   GapFillResult result;
   result.filled = ordered;

@@ -26,9 +26,8 @@ using morph::Vec;
 /// through it and its distance to the boundary is small; a quadratic fitted to its
 /// neighbours along the loop (up to 3 each side within 12 cells, the point left out) shows
 /// its offset. Returns the number dropped.
-std::size_t drop_spikes(const Points& points, const std::vector<Vec>& normal_at,
-                        const Points& boundary, double h, double limit,
-                        std::vector<std::pair<double, std::size_t>>& mem) {
+std::size_t drop_spikes(const Points& points, const std::vector<Vec>& normal_at, const Points& boundary,
+                        double h, double limit, std::vector<std::pair<double, std::size_t>>& mem) {
   const std::size_t n = mem.size();
   if (n < 8) return 0;
   const double window = 12 * h;
@@ -96,7 +95,8 @@ std::size_t check_input(const std::vector<Eigen::Vector2d>& points, const Morpho
   if (opt.max_dilation < 1) throw Error("morphology: max_dilation must be >= 1");
   if (!(opt.outlier_distance >= 0) || !(opt.isolated_distance >= 0))
     throw Error("morphology: outlier_distance and isolated_distance must be >= 0");
-  if (!(opt.normal_sigma > 0) || opt.normal_sigma > 10) throw Error("morphology: normal_sigma must be in (0, 10] cells");
+  if (!(opt.normal_sigma > 0) || opt.normal_sigma > 10)
+    throw Error("morphology: normal_sigma must be in (0, 10] cells");
   const std::size_t min_points = std::max<std::size_t>(3, opt.min_points);
   if (points.size() < min_points)
     throw Error("morphology: " + std::to_string(points.size()) + " points, at least " +
@@ -263,8 +263,8 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points, const
   find_loops(points, std::move(subset), h, outlier, min_points, opt, s, result);
   if (s.found.empty())
     throw Error("morphology: the " + std::to_string(points.size()) +
-                " points do not close into a loop up to a dilation of " +
-                std::to_string(opt.max_dilation) + " cells (cell " + morph::num(h) +
+                " points do not close into a loop up to a dilation of " + std::to_string(opt.max_dilation) +
+                " cells (cell " + morph::num(h) +
                 " mm); the section may be open or too sparse: try a larger cell or max_dilation");
   // Largest area first.
   const auto larger = [](const Found& a, const Found& b) { return a.area > b.area; };

@@ -132,8 +132,7 @@ Foot SegmentGrid::nearest(const Vec& p) const {
   return best;
 }
 
-void robust_box(const Points& points, const std::vector<std::size_t>& subset, double q,
-                Vec& lo, Vec& hi) {
+void robust_box(const Points& points, const std::vector<std::size_t>& subset, double q, Vec& lo, Vec& hi) {
   std::vector<double> xs, ys;
   xs.reserve(subset.size());
   ys.reserve(subset.size());
@@ -150,8 +149,7 @@ void robust_box(const Points& points, const std::vector<std::size_t>& subset, do
   hi = {at(xs, 1 - q), at(ys, 1 - q)};
 }
 
-double median_spacing(const Points& points, const std::vector<std::size_t>& subset,
-                      std::size_t sample) {
+double median_spacing(const Points& points, const std::vector<std::size_t>& subset, std::size_t sample) {
   if (subset.size() < 2) return 0;
   Vec lo, hi;
   robust_box(points, subset, 0.005, lo, hi);

@@ -168,7 +168,8 @@ std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap
       head[level] = next[c];
       // Every border cell was seeded above, so a step that wraps to the other side of the
       // raster lands on a cell already set; only steps off its ends need a test.
-      const std::size_t nb[4] = {std::size_t(c) - 1, std::size_t(c) + 1, std::size_t(c) - r.w, std::size_t(c) + r.w};
+      const std::size_t nb[4] = {std::size_t(c) - 1, std::size_t(c) + 1, std::size_t(c) - r.w,
+                                 std::size_t(c) + r.w};
       for (int k = 0; k < 4; ++k) {
         if (nb[k] >= size || b2[nb[k]] >= 0) continue;
         b2[nb[k]] = std::min(level, d2[nb[k]]);
@@ -192,10 +193,8 @@ double bilinear(const Raster& r, const std::vector<float>& f, const Vec& c) {
   const int i = int(x), j = int(y);
   const double fx = x - i, fy = y - j;
   const std::size_t a = std::size_t(j) * r.w + i;
-  return (1 - fy) * ((1 - fx) * f[a] + fx * f[a + 1]) +
-         fy * ((1 - fx) * f[a + r.w] + fx * f[a + r.w + 1]);
+  return (1 - fy) * ((1 - fx) * f[a] + fx * f[a + 1]) + fy * ((1 - fx) * f[a + r.w] + fx * f[a + r.w + 1]);
 }
-
 
 Points trace(const Raster& r, const std::vector<int>& label, int label_id, std::size_t start) {
   static const int dx[8] = {1, 1, 0, -1, -1, -1, 0, 1};

@@ -18,7 +18,8 @@ namespace {
 
 // Every k-th point, k chosen so that at most `limit` are kept.
 std::vector<Eigen::Vector3d> evenly(const std::vector<Eigen::Vector3d>& points, std::size_t limit) {
-  const std::size_t stride = std::max<std::size_t>(1, (points.size() + limit - 1) / std::max<std::size_t>(limit, 1));
+  const std::size_t stride =
+      std::max<std::size_t>(1, (points.size() + limit - 1) / std::max<std::size_t>(limit, 1));
   std::vector<Eigen::Vector3d> out;
   out.reserve(points.size() / stride + 1);
   for (std::size_t i = 0; i < points.size(); i += stride) out.push_back(points[i]);
@@ -52,8 +53,10 @@ struct Patch {
 class Reference {
 public:
   Reference(std::vector<Eigen::Vector3d> points, int neighbours)
-      : points_(std::move(points)), neighbours_(std::min<int>(neighbours, static_cast<int>(points_.size()))),
-        index_(points_), slot_(points_.size(), -1) {}
+      : points_(std::move(points)),
+        neighbours_(std::min<int>(neighbours, static_cast<int>(points_.size()))),
+        index_(points_),
+        slot_(points_.size(), -1) {}
 
   // Nearest reference point of each query within `radius` (index, squared distance; -1
   // where none): a bounded search, as most of a view lies far from the other.
@@ -104,7 +107,8 @@ public:
     const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(ata);
     Eigen::Matrix<double, 6, 1> h = ldlt.solve(atb);
     // Neighbours nearly on a line (a scan row) do not fix the cross terms: a plane then.
-    if (ldlt.info() != Eigen::Success || !h.allFinite() || !(ldlt.vectorD().minCoeff() > 1e-6 * ldlt.vectorD().maxCoeff()))
+    if (ldlt.info() != Eigen::Success || !h.allFinite() ||
+        !(ldlt.vectorD().minCoeff() > 1e-6 * ldlt.vectorD().maxCoeff()))
       h.setZero();
     pa.h = h;
     pa.valid = true;
@@ -166,14 +170,16 @@ double rms(const std::vector<double>& r) {
 
 void check_views(const std::vector<Cloud>& views, const RegisterOptions& o) {
   if (views.empty()) throw Error("register_views: no views given");
-  if (!(o.reach >= 0) || !std::isfinite(o.reach) || !(o.tolerance > 0) || !(o.trim > 0) || o.neighbours < 10 ||
-      !(o.weak >= 0 && o.weak < 1) ||
-      o.max_iterations < 1 || o.reference_points < 1 || o.moving_points < 1)
-    throw Error("register_views: reach must be >= 0, tolerance and trim positive, weak in [0, 1), neighbours >= 10, "
-                "iterations and point counts >= 1");
+  if (!(o.reach >= 0) || !std::isfinite(o.reach) || !(o.tolerance > 0) || !(o.trim > 0) ||
+      o.neighbours < 10 || !(o.weak >= 0 && o.weak < 1) || o.max_iterations < 1 || o.reference_points < 1 ||
+      o.moving_points < 1)
+    throw Error(
+        "register_views: reach must be >= 0, tolerance and trim positive, weak in [0, 1), neighbours >= 10, "
+        "iterations and point counts >= 1");
   for (std::size_t v = 0; v < views.size(); ++v)
     for (const auto& p : views[v].points)
-      if (!p.allFinite()) throw Error("register_views: view " + std::to_string(v) + " has a point that is not finite");
+      if (!p.allFinite())
+        throw Error("register_views: view " + std::to_string(v) + " has a point that is not finite");
 }
 
 // Only points near the reference can pair: the rest of the view is left out of the
@@ -217,7 +223,8 @@ Eigen::Isometry3d icp_step(const Pairs& pairs, double weak, const std::string& w
     throw Error(who + ": the registration is degenerate (the shared surface is too simple)");
   Eigen::Matrix<double, 6, 1> x = Eigen::Matrix<double, 6, 1>::Zero();
   for (int k = 0; k < 6; ++k)
-    if (lambda(k) > weak * lambda(5)) x += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(atb) / lambda(k));
+    if (lambda(k) > weak * lambda(5))
+      x += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(atb) / lambda(k));
   const Eigen::Vector3d w = x.head<3>() / extent, t = x.tail<3>();
   Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
   if (w.norm() > 0) step.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
@@ -239,8 +246,8 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
     pairs = pair_up(ref, moved, reach, o.trim);
     if (pairs.r.size() < o.min_pairs)
       throw Error(who + " shares too little surface with view 0: " + std::to_string(pairs.r.size()) +
-                  " point pairs within " + std::to_string(reach) + " (at least " + std::to_string(o.min_pairs) +
-                  " are needed; are the views roughly aligned?)");
+                  " point pairs within " + std::to_string(reach) + " (at least " +
+                  std::to_string(o.min_pairs) + " are needed; are the views roughly aligned?)");
     if (it == 0) out.rms_before = rms(pairs.r);
     if (it == o.max_iterations) break;
     const Eigen::Isometry3d step = icp_step(pairs, o.weak, who);
@@ -249,7 +256,8 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
     // Converged when the step changes the pairs' plane distances by less than the
     // tolerance (rms); a direction the overlap hardly constrains may still creep.
     double change = 0;
-    for (std::size_t i = 0; i < pairs.p.size(); ++i) change += std::pow(pairs.n[i].dot(step * pairs.p[i] - pairs.p[i]), 2);
+    for (std::size_t i = 0; i < pairs.p.size(); ++i)
+      change += std::pow(pairs.n[i].dot(step * pairs.p[i] - pairs.p[i]), 2);
     if (std::sqrt(change / pairs.p.size()) < o.tolerance) break;
   }
   out.transform = T;
@@ -271,10 +279,12 @@ RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOpt
                 " points, too few to register onto");
   const double spacing = mean_spacing(ref_points);
   const double reach = o.reach > 0 ? o.reach : 3 * spacing;
-  if (!(reach > 0)) throw Error("register_views: the reference view's points coincide: no surface to register onto");
+  if (!(reach > 0))
+    throw Error("register_views: the reference view's points coincide: no surface to register onto");
   Reference ref(evenly(ref_points, o.reference_points), o.neighbours);
   for (std::size_t v = 1; v < views.size(); ++v)
-    result.views[v] = register_view(ref, views[v].points, reach, o, "register_views: view " + std::to_string(v));
+    result.views[v] =
+        register_view(ref, views[v].points, reach, o, "register_views: view " + std::to_string(v));
   return result;
 }
 
@@ -282,8 +292,10 @@ std::string describe(const ViewRegistration& r, const std::string& name) {
   const Eigen::Vector3d t = r.transform.translation();
   const double degrees = Eigen::AngleAxisd(r.transform.linear()).angle() * 180 / 3.14159265358979323846;
   char buf[512];
-  std::snprintf(buf, sizeof buf, " translation=%.6g,%.6g,%.6g rotation=%.6g pairs=%zu rms_before=%.6g rms_after=%.6g iterations=%d",
-                t.x(), t.y(), t.z(), degrees, r.pairs, r.rms_before, r.rms_after, r.iterations);
+  std::snprintf(
+      buf, sizeof buf,
+      " translation=%.6g,%.6g,%.6g rotation=%.6g pairs=%zu rms_before=%.6g rms_after=%.6g iterations=%d",
+      t.x(), t.y(), t.z(), degrees, r.pairs, r.rms_before, r.rms_after, r.iterations);
   return "register view=" + name + buf;
 }
 

@@ -43,7 +43,8 @@ void thin(std::vector<std::uint8_t>& img, int w, int h) {
   std::vector<std::uint32_t> cand;
   std::vector<std::uint8_t> mark(img.size(), 0);
   for (std::size_t c = 0; c < img.size(); ++c)
-    if (img[c] && (!img[c - 1] || !img[c + 1] || !img[c - W] || !img[c + W])) cand.push_back(std::uint32_t(c));
+    if (img[c] && (!img[c - 1] || !img[c + 1] || !img[c - W] || !img[c + W]))
+      cand.push_back(std::uint32_t(c));
   std::vector<std::uint32_t> del, keep;
   int idle = 0;
   for (int step = 0; idle < 2; step ^= 1) {
@@ -52,8 +53,8 @@ void thin(std::vector<std::uint8_t>& img, int w, int h) {
     for (std::uint32_t c : cand) {
       if (!img[c]) continue;
       const std::uint8_t* q = img.data() + c;
-      const int bits = q[-W] | q[1 - W] << 1 | q[1] << 2 | q[W + 1] << 3 | q[W] << 4 | q[W - 1] << 5 | q[-1] << 6 |
-                       q[-W - 1] << 7;
+      const int bits = q[-W] | q[1 - W] << 1 | q[1] << 2 | q[W + 1] << 3 | q[W] << 4 | q[W - 1] << 5 |
+                       q[-1] << 6 | q[-W - 1] << 7;
       if (table.remove[step][bits])
         del.push_back(c);
       else
@@ -106,7 +107,8 @@ Crop crop(const Pass& pass, const Component& comp) {
   c.img.assign(std::size_t(c.w) * c.h, 0);
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i)
-      c.img[std::size_t(j - j0 + 1) * c.w + (i - i0 + 1)] = pass.label[std::size_t(j) * r.w + i] == comp.label;
+      c.img[std::size_t(j - j0 + 1) * c.w + (i - i0 + 1)] =
+          pass.label[std::size_t(j) * r.w + i] == comp.label;
   return c;
 }
 

@@ -46,7 +46,8 @@ std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::V
                                                       const std::vector<Plane>& planes, double slab) {
   detail::check_slab(slab);
   std::vector<std::vector<Eigen::Vector2d>> out(planes.size());
-  detail::add_slab_points(points.data(), points.size(), detail::group_planes(planes, slab), detail::frames_of(planes), slab, out);
+  detail::add_slab_points(points.data(), points.size(), detail::group_planes(planes, slab),
+                          detail::frames_of(planes), slab, out);
   return out;
 }
 
@@ -60,14 +61,16 @@ void check_planes(const std::vector<Plane>& planes) {
 }
 
 void check_slab(double slab) {
-  if (!(slab >= 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be finite and not negative");
+  if (!(slab >= 0) || !std::isfinite(slab))
+    throw Error("slice: the slab width must be finite and not negative");
 }
 
 double fill_reach(const SliceOptions& options, double slab) {
   const double fill = options.fill_gaps ? gap_fill_reach(options.fill, slab) : 0;
-  const double band = options.band_spacing > 0
-                         ? std::max({2 * std::max(0.5, options.band_max), options.band_sparse_max, 3.0}) * slab
-                         : 0;
+  const double band =
+      options.band_spacing > 0
+          ? std::max({2 * std::max(0.5, options.band_max), options.band_sparse_max, 3.0}) * slab
+          : 0;
   return std::max(fill, band);
 }
 
@@ -120,8 +123,8 @@ private:
 }  // namespace
 
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
-                 const std::vector<Plane>& planes, double slab, const SliceOptions& options, SliceResult& result,
-                 const SectionFn& sink) {
+                 const std::vector<Plane>& planes, double slab, const SliceOptions& options,
+                 SliceResult& result, const SectionFn& sink) {
   result.sections.resize(planes.size());
   InOrder in_order(planes.size(), sink);
   detail::parallel_for(planes.size(), options.threads, [&](std::size_t i) {
@@ -145,8 +148,8 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         // A band less than twice as wide as the slab is not worth a second ordering and
         // the later stages' time for its points (the slab is dense enough then).
         if (half >= slab && !near().empty()) {
-          std::vector<Eigen::Vector2d> band =
-              drift_band(s.morphology, near(), slab, half, options.band_spacing, options.band_sparse_max * slab);
+          std::vector<Eigen::Vector2d> band = drift_band(
+              s.morphology, near(), slab, half, options.band_spacing, options.band_sparse_max * slab);
           if (band.size() > slabs[i].size()) {
             // A band that cannot be ordered leaves the slab's ordering as it is.
             try {
@@ -161,7 +164,8 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
       }
       // The points beside the plane only for a profile with gaps (the look for gaps
       // needs none of them, and fill_gaps finds none then).
-      if (options.fill_gaps && fill_gaps(s.morphology, {}, slab, first, options.fill).gaps > 0 && !near().empty()) {
+      if (options.fill_gaps && fill_gaps(s.morphology, {}, slab, first, options.fill).gaps > 0 &&
+          !near().empty()) {
         GapFillResult r = fill_gaps(s.morphology, near(), slab, first, options.fill);
         s.morphology = std::move(r.filled);
         r.filled = MorphologyResult{};
@@ -188,12 +192,15 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
   if (result.slab == 0) {
     result.slab = mean_spacing(cloud.points);
     if (!(result.slab > 0))
-      throw Error("slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
+      throw Error(
+          "slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
   }
-  if (!(result.slab > 0) || !std::isfinite(result.slab)) throw Error("slice: the slab width must be positive and finite");
+  if (!(result.slab > 0) || !std::isfinite(result.slab))
+    throw Error("slice: the slab width must be positive and finite");
   auto slabs = slab_points(cloud.points, planes, result.slab);
   const double reach = detail::fill_reach(options, result.slab);
-  const auto near_groups = reach > 0 ? detail::group_planes(planes, 2 * reach) : std::vector<detail::SlabGroup>{};
+  const auto near_groups =
+      reach > 0 ? detail::group_planes(planes, 2 * reach) : std::vector<detail::SlabGroup>{};
   const auto frame = detail::frames_of(planes);
   // Every plane's near points in one pass over the cloud, made when a section first asks.
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
@@ -201,7 +208,8 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
   const detail::NearFn near_of = [&](std::size_t i) {
     std::call_once(near_made, [&] {
       if (reach > 0)
-        detail::add_near_points_parallel(cloud.points.data(), cloud.points.size(), near_groups, frame, reach, 1, near);
+        detail::add_near_points_parallel(cloud.points.data(), cloud.points.size(), near_groups, frame, reach,
+                                         1, near);
     });
     return std::move(near[i]);
   };
@@ -259,10 +267,12 @@ SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const Slic
       loops.push_back(std::move(loop));
       s.slab_points += n;
     }
-    std::stable_sort(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) { return a.area > b.area; });
+    std::stable_sort(loops.begin(), loops.end(),
+                     [](const Loop& a, const Loop& b) { return a.area > b.area; });
     s.morphology.loops = std::move(loops);
     if (open > 0)
-      s.error = std::to_string(open) + " open intersection polyline(s): the mesh is not closed around this plane";
+      s.error =
+          std::to_string(open) + " open intersection polyline(s): the mesh is not closed around this plane";
     else if (s.morphology.loops.empty())
       s.error = "the plane does not cut the mesh";
   }

@@ -34,13 +34,11 @@ struct Topology {
 /// Segment lengths, floored so that a collapsed segment cannot divide by zero.
 std::vector<double> segment_lengths(const Points& q, const Topology& t, double floor) {
   std::vector<double> l(t.n, 0.0);
-  for (int k = t.first_segment(); k < t.n; ++k)
-    l[k] = std::max((q[k] - q[t.prev(k)]).norm(), floor);
+  for (int k = t.first_segment(); k < t.n; ++k) l[k] = std::max((q[k] - q[t.prev(k)]).norm(), floor);
   return l;
 }
 
-double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t,
-                 double floor) {
+double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t, double floor) {
   const auto l = segment_lengths(q, t, floor);
   double curvature = 0;
   for (int i = t.first_term(); i < t.end_term(); ++i) {
@@ -59,8 +57,7 @@ double energy_of(const Points& q, const Points& q0, double a, double b, const To
 /// row of term i, w_i = 1 / (l_i + l_{i+1}); A q = b q0 is grad E = 0 at frozen lengths.
 using Band = std::vector<std::array<double, 5>>;
 
-void assemble_band(const std::vector<double>& l, double a, double b, const Topology& t,
-                   Band& band) {
+void assemble_band(const std::vector<double>& l, double a, double b, const Topology& t, Band& band) {
   band.assign(t.n, {0, 0, 0, 0, 0});
   for (int i = 0; i < t.n; ++i) band[i][2] = b;
   for (int i = t.first_term(); i < t.end_term(); ++i) {
@@ -108,8 +105,8 @@ std::unique_ptr<detail::CholmodSolver> band_solver(const Topology& t) {
 
 /// The paper's point-by-point iteration on the same frozen-length system, warm-started
 /// from x; sweeps until the largest update is below `tol`. Returns the sweeps done.
-int gauss_seidel(const Band& band, const Eigen::MatrixX2d& rhs, const Topology& t, double tol,
-                 int max_sweeps, Eigen::MatrixX2d& x) {
+int gauss_seidel(const Band& band, const Eigen::MatrixX2d& rhs, const Topology& t, double tol, int max_sweeps,
+                 Eigen::MatrixX2d& x) {
   std::vector<std::array<int, 5>> cols(t.n);
   for (int i = 0; i < t.n; ++i)
     for (int o = -2; o <= 2; ++o) cols[i][2 + o] = band_column(i, o, t);
@@ -223,8 +220,7 @@ double smoothing_length(double a, double spacing, double b) {
   return two_pi * std::pow(a * spacing / (2 * b), 0.25);
 }
 
-double smooth_energy(const Points& points, const Points& reference, double a, double b,
-                     bool closed) {
+double smooth_energy(const Points& points, const Points& reference, double a, double b, bool closed) {
   if (points.size() != reference.size())
     throw Error("smooth: energy of " + std::to_string(points.size()) + " points against " +
                 std::to_string(reference.size()) + " reference points");
@@ -242,7 +238,7 @@ namespace {
 
 /// The frozen-length problem of one curve: the merged input and the weights.
 struct Problem {
-  Points q0;       // the input after merging
+  Points q0;  // the input after merging
   Topology topo;
   double a = 0, b = 0;
   double h = 0;      // mean spacing
@@ -253,8 +249,7 @@ struct Problem {
 Problem prepare(const Points& points, const SmoothOptions& options, SmoothResult& result) {
   constexpr int min_points = 5;
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (!points[i].allFinite())
-      throw Error("smooth: point " + std::to_string(i) + " is not finite");
+    if (!points[i].allFinite()) throw Error("smooth: point " + std::to_string(i) + " is not finite");
   if (points.size() < static_cast<std::size_t>(min_points))
     throw Error("smooth: " + std::to_string(points.size()) + " points, at least " +
                 std::to_string(min_points) + " are needed");
@@ -265,8 +260,8 @@ Problem prepare(const Points& points, const SmoothOptions& options, SmoothResult
   result.repaired = merge_duplicates(p.q0, options.closed, options.merge_distance * raw_spacing);
   if (p.q0.size() < static_cast<std::size_t>(min_points))
     throw Error("smooth: " + std::to_string(p.q0.size()) + " distinct points (after merging " +
-                std::to_string(result.repaired) + " duplicates), at least " +
-                std::to_string(min_points) + " are needed");
+                std::to_string(result.repaired) + " duplicates), at least " + std::to_string(min_points) +
+                " are needed");
   p.topo = Topology{static_cast<int>(p.q0.size()), options.closed};
   p.h = mean_spacing(p.q0, options.closed);
   result.spacing = p.h;

@@ -22,13 +22,14 @@ namespace section {
 /// max(2 half_width, 3 slab) of the plane. Points keep the order of `nearby`. Empty when
 /// the drift cannot be fitted (fewer than 64 points pair with the profile, or the fit is
 /// inconsistent). Deterministic for given inputs.
-std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby,
-                                        double slab, double half_width, double spacing = 0,
-                                        double sparse_half_width = 0);
+std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered,
+                                        const std::vector<Eigen::Vector3d>& nearby, double slab,
+                                        double half_width, double spacing = 0, double sparse_half_width = 0);
 
 /// The half width of the band for one section: wide enough for one point per `spacing`
 /// along the profile, given that the slab (width `slab`) holds `slab_points` points on a
 /// profile `length` long; at least slab / 2 (the slab itself), at most `max_widths` slabs.
-double band_half_width(std::size_t slab_points, double length, double slab, double spacing, double max_widths);
+double band_half_width(std::size_t slab_points, double length, double slab, double spacing,
+                       double max_widths);
 
 }  // namespace section

@@ -44,7 +44,7 @@ void check_gap_fill_options(const GapFillOptions& options);
 /// with input indices from `first_index` on (normals there: rough, from the gap's middle).
 /// A gap whose drift cannot be fitted (too few points beside it) stays as it is.
 /// Deterministic for given inputs.
-GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby, double slab,
-                        std::size_t first_index, const GapFillOptions& options = {});
+GapFillResult fill_gaps(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby,
+                        double slab, std::size_t first_index, const GapFillOptions& options = {});
 
 }  // namespace section

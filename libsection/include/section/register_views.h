@@ -31,10 +31,10 @@ struct RegisterOptions {
 /// How one view was moved.
 struct ViewRegistration {
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();  ///< maps the view onto the reference
-  std::size_t pairs = 0;    ///< pairs used in the last iteration
-  double rms_before = 0;    ///< rms distance of the pairs from the reference surface before
-  double rms_after = 0;     ///< ... and after
-  int iterations = 0;       ///< ICP iterations run
+  std::size_t pairs = 0;                                        ///< pairs used in the last iteration
+  double rms_before = 0;  ///< rms distance of the pairs from the reference surface before
+  double rms_after = 0;   ///< ... and after
+  int iterations = 0;     ///< ICP iterations run
 };
 
 /// Result of register_views: one entry per view, the first (the reference) the identity.

@@ -19,8 +19,8 @@ namespace section {
 
 /// A section plane: a point of it and its normal (any length but zero).
 struct Plane {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< a point of the plane
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< plane normal
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   ///< a point of the plane
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< plane normal
 };
 
 /// Planes with one normal at signed offsets along it: origin = offset * normal / |normal|.
@@ -28,8 +28,8 @@ std::vector<Plane> planes_at(const Eigen::Vector3d& normal, const std::vector<do
 
 /// `count` planes with one normal spread evenly over the extent of `points` along it:
 /// offsets min + (max - min) * (k + 1) / (count + 1), k = 0..count-1.
-std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points,
-                                 const Eigen::Vector3d& normal, int count);
+std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+                                 int count);
 
 /// Options of slice (lengths in the cloud's units; docs/MORPHOLOGY.md for the band and the fill).
 struct SliceOptions {
@@ -68,8 +68,7 @@ struct SliceResult {
 /// per distinct normal. Points on a slab boundary are decided by CGAL's exact orientation
 /// predicate against the boundary plane and belong to the slab (closed slab).
 std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::Vector3d>& points,
-                                                      const std::vector<Plane>& planes,
-                                                      double slab);
+                                                      const std::vector<Plane>& planes, double slab);
 
 /// Slices a cloud: slab points of every plane ordered into loops by morphology.
 /// Sections that fail (no points, no closed loop) carry their error; the others go on.

@@ -27,19 +27,19 @@ SmoothSolver parse_smooth_solver(const std::string& name);
 
 /// Options of smooth and smooth_stream (docs/SMOOTH.md: strength, stopping rules).
 struct SmoothOptions {
-  double smoothing_length = 0;    ///< curve units: a wiggle this long keeps half its amplitude; 0 = `a`
-  double a = 0;                   ///< length^3: weight of E_C when smoothing_length is 0; 0 = relative_length
-  double relative_length = 6;     ///< mean spacings: the smoothing length when smoothing_length and a are 0
-  double b = 1.0;                 ///< weight of the closeness energy E_S (paper: 1-1.2)
+  double smoothing_length = 0;  ///< curve units: a wiggle this long keeps half its amplitude; 0 = `a`
+  double a = 0;                 ///< length^3: weight of E_C when smoothing_length is 0; 0 = relative_length
+  double relative_length = 6;   ///< mean spacings: the smoothing length when smoothing_length and a are 0
+  double b = 1.0;               ///< weight of the closeness energy E_S (paper: 1-1.2)
   SmoothSolver solver = SmoothSolver::cholmod;  ///< linear solver of each outer iteration
-  int max_iterations = 20;        ///< cap on outer iterations (length updates)
-  double tolerance = 1e-9;        ///< stop when |E_k - E_{k-1}| <= tolerance * E_k
-  double move_tolerance = 1e-4;   ///< mean spacings: stop when no point moves farther across the curve
-  double merge_distance = 1e-3;   ///< mean spacings: closer consecutive points are merged
-  bool closed = true;             ///< the polyline is a closed loop (last point joins the first)
-  int max_sweeps = 1000000;       ///< gauss_seidel only: cap on sweeps per outer iteration
-  double sweep_tolerance = 1e-12; ///< gauss_seidel only: least update, times the curve's size
-  int threads = 0;                ///< stream stage: worker threads over the loops; 0 = all cores
+  int max_iterations = 20;                      ///< cap on outer iterations (length updates)
+  double tolerance = 1e-9;                      ///< stop when |E_k - E_{k-1}| <= tolerance * E_k
+  double move_tolerance = 1e-4;    ///< mean spacings: stop when no point moves farther across the curve
+  double merge_distance = 1e-3;    ///< mean spacings: closer consecutive points are merged
+  bool closed = true;              ///< the polyline is a closed loop (last point joins the first)
+  int max_sweeps = 1000000;        ///< gauss_seidel only: cap on sweeps per outer iteration
+  double sweep_tolerance = 1e-12;  ///< gauss_seidel only: least update, times the curve's size
+  int threads = 0;                 ///< stream stage: worker threads over the loops; 0 = all cores
 };
 
 /// What smooth returns: the smoothed points and the energy diagnostics.
@@ -68,8 +68,7 @@ SmoothResult smooth(const std::vector<Eigen::Vector2d>& points, const SmoothOpti
 /// The energy E = a E_C + b E_S of `points` against `reference` (same size), as defined
 /// above. A zero-length segment counts with a zero tangent (the result stays finite).
 double smooth_energy(const std::vector<Eigen::Vector2d>& points,
-                     const std::vector<Eigen::Vector2d>& reference, double a, double b,
-                     bool closed = true);
+                     const std::vector<Eigen::Vector2d>& reference, double a, double b, bool closed = true);
 
 /// The curvature weight a that gives a smoothing (half-amplitude) wavelength `length` at
 /// mean point spacing `spacing`: a = 2 b (length / 2 pi)^4 / spacing.

@@ -13,7 +13,8 @@ struct SegmentFoot {
   double d2 = 0;
 };
 
-inline SegmentFoot segment_foot(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
+inline SegmentFoot segment_foot(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                const Eigen::Vector2d& p) {
   const Eigen::Vector2d e = b - a;
   const double e2 = e.squaredNorm();
   const double t = e2 > 0 ? std::clamp((p - a).dot(e) / e2, 0.0, 1.0) : 0.0;

@@ -81,8 +81,9 @@ std::vector<Frame> frames_of(const std::vector<Plane>& planes) {
 namespace {
 
 // Appends q to the list of every plane of `g` whose slab contains it (s = g.n . q).
-inline void add_if_in_slab(const Eigen::Vector3d& q, double s, const SlabGroup& g, const std::vector<Frame>& frame,
-                           double slab, std::vector<std::vector<Eigen::Vector2d>>& out) {
+inline void add_if_in_slab(const Eigen::Vector3d& q, double s, const SlabGroup& g,
+                           const std::vector<Frame>& frame, double slab,
+                           std::vector<std::vector<Eigen::Vector2d>>& out) {
   const double half = 0.5 * slab;
   const std::size_t np = g.offset.size();
   // The first plane whose slab can contain q, then its neighbours while they can.
@@ -116,8 +117,9 @@ inline bool far_from_every_slab(const Eigen::Vector3d& q, double s, const SlabGr
 
 // Appends (u, v, signed distance from the plane) of q to the list of every plane of `g`
 // within `reach` of it (s = g.n . q; `g` built with a slab of 2 reach).
-inline void add_if_near(const Eigen::Vector3d& q, double s, const SlabGroup& g, const std::vector<Frame>& frame,
-                        double reach, std::vector<std::vector<Eigen::Vector3d>>& out) {
+inline void add_if_near(const Eigen::Vector3d& q, double s, const SlabGroup& g,
+                        const std::vector<Frame>& frame, double reach,
+                        std::vector<std::vector<Eigen::Vector3d>>& out) {
   if (!g.near.empty() && g.far_from_slabs(s)) return;
   const std::size_t np = g.offset.size();
   for (std::size_t k = g.first_at_least(s - reach); k < np && g.offset[k] <= s + reach; ++k) {
@@ -130,8 +132,8 @@ inline void add_if_near(const Eigen::Vector3d& q, double s, const SlabGroup& g, 
 // its own lists and the parts are appended in order, so the result does not depend on
 // the threads.
 template <class T, class Add>
-void add_parallel(const Eigen::Vector3d* points, std::size_t count, int threads, std::vector<std::vector<T>>& out,
-                  const Add& add) {
+void add_parallel(const Eigen::Vector3d* points, std::size_t count, int threads,
+                  std::vector<std::vector<T>>& out, const Add& add) {
   const std::size_t parts = parts_of(count, threads);
   if (parts == 1) return add(points, count, out);
   std::vector<std::vector<std::vector<T>>> local(parts, std::vector<std::vector<T>>(out.size()));
@@ -145,7 +147,8 @@ void add_parallel(const Eigen::Vector3d* points, std::size_t count, int threads,
 
 // add_near_points_parallel on one part; every point is kept (docs/MORPHOLOGY.md, gap filling).
 void add_near_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
-                     const std::vector<Frame>& frame, double reach, std::vector<std::vector<Eigen::Vector3d>>& out) {
+                     const std::vector<Frame>& frame, double reach,
+                     std::vector<std::vector<Eigen::Vector3d>>& out) {
   for (const SlabGroup& g : groups)
     for (std::size_t i = 0; i < count; ++i) add_if_near(points[i], g.n.dot(points[i]), g, frame, reach, out);
 }
@@ -153,7 +156,8 @@ void add_near_points(const Eigen::Vector3d* points, std::size_t count, const std
 }  // namespace
 
 void add_slab_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
-                     const std::vector<Frame>& frame, double slab, std::vector<std::vector<Eigen::Vector2d>>& out) {
+                     const std::vector<Frame>& frame, double slab,
+                     std::vector<std::vector<Eigen::Vector2d>>& out) {
   for (const SlabGroup& g : groups)
     for (std::size_t i = 0; i < count; ++i) {
       const double s = g.n.dot(points[i]);
@@ -162,34 +166,38 @@ void add_slab_points(const Eigen::Vector3d* points, std::size_t count, const std
 }
 
 std::size_t parts_of(std::size_t count, int threads) {
-  const std::size_t workers = threads > 0 ? std::size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t workers =
+      threads > 0 ? std::size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
   return std::max<std::size_t>(1, std::min(workers, count / 65536));
 }
 
-void add_slab_points_parallel(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
-                              const std::vector<Frame>& frame, double slab, int threads,
-                              std::vector<std::vector<Eigen::Vector2d>>& out) {
+void add_slab_points_parallel(const Eigen::Vector3d* points, std::size_t count,
+                              const std::vector<SlabGroup>& groups, const std::vector<Frame>& frame,
+                              double slab, int threads, std::vector<std::vector<Eigen::Vector2d>>& out) {
   add_parallel(points, count, threads, out, [&](const Eigen::Vector3d* p, std::size_t n, auto& o) {
     add_slab_points(p, n, groups, frame, slab, o);
   });
 }
 
-void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
-                              const std::vector<Frame>& frame, double reach, int threads,
-                              std::vector<std::vector<Eigen::Vector3d>>& out) {
+void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count,
+                              const std::vector<SlabGroup>& groups, const std::vector<Frame>& frame,
+                              double reach, int threads, std::vector<std::vector<Eigen::Vector3d>>& out) {
   add_parallel(points, count, threads, out, [&](const Eigen::Vector3d* p, std::size_t n, auto& o) {
     add_near_points(p, n, groups, frame, reach, o);
   });
 }
 
 void add_slab_and_near_points_parallel(const Eigen::Vector3d* points, std::size_t count,
-                                       const std::vector<SlabGroup>& groups, const std::vector<SlabGroup>& near_groups,
-                                       const std::vector<Frame>& frame, double slab, double reach, int threads,
-                                       std::vector<std::vector<Eigen::Vector2d>>& slabs,
+                                       const std::vector<SlabGroup>& groups,
+                                       const std::vector<SlabGroup>& near_groups,
+                                       const std::vector<Frame>& frame, double slab, double reach,
+                                       int threads, std::vector<std::vector<Eigen::Vector2d>>& slabs,
                                        std::vector<std::vector<Eigen::Vector3d>>& near) {
   const std::size_t parts = parts_of(count, threads);
-  std::vector<std::vector<std::vector<Eigen::Vector2d>>> local_slabs(parts, std::vector<std::vector<Eigen::Vector2d>>(slabs.size()));
-  std::vector<std::vector<std::vector<Eigen::Vector3d>>> local_near(parts, std::vector<std::vector<Eigen::Vector3d>>(near.size()));
+  std::vector<std::vector<std::vector<Eigen::Vector2d>>> local_slabs(
+      parts, std::vector<std::vector<Eigen::Vector2d>>(slabs.size()));
+  std::vector<std::vector<std::vector<Eigen::Vector3d>>> local_near(
+      parts, std::vector<std::vector<Eigen::Vector3d>>(near.size()));
   parallel_for(parts, threads, [&](std::size_t t) {
     const std::size_t a = count * t / parts, b = count * (t + 1) / parts;
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {

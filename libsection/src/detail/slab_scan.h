@@ -17,9 +17,9 @@ struct Boundary {
 
 /// The planes that share one normal, with their slabs.
 struct SlabGroup {
-  Eigen::Vector3d n;                 // unit normal shared by the group
-  std::vector<int> plane;            // plane ids, sorted by offset
-  std::vector<double> offset;        // n . origin, sorted
+  Eigen::Vector3d n;           // unit normal shared by the group
+  std::vector<int> plane;      // plane ids, sorted by offset
+  std::vector<double> offset;  // n . origin, sorted
   std::vector<Boundary> lower, upper;
   // Buckets over n . q: first[b] is near the first offset >= the bucket's keys, so that the
   // search for the first candidate plane starts next to it.
@@ -61,30 +61,32 @@ std::size_t parts_of(std::size_t count, int threads);
 /// Appends the slab points of points[0, count) to `out` (one list per plane), in order.
 /// Near a boundary CGAL's exact predicate decides (closed slab).
 void add_slab_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
-                     const std::vector<Frame>& frame, double slab, std::vector<std::vector<Eigen::Vector2d>>& out);
+                     const std::vector<Frame>& frame, double slab,
+                     std::vector<std::vector<Eigen::Vector2d>>& out);
 
 /// add_slab_points with the chunk split across `threads`; the parts are appended in
 /// order, so the result does not depend on the threads.
-void add_slab_points_parallel(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
-                              const std::vector<Frame>& frame, double slab, int threads,
-                              std::vector<std::vector<Eigen::Vector2d>>& out);
+void add_slab_points_parallel(const Eigen::Vector3d* points, std::size_t count,
+                              const std::vector<SlabGroup>& groups, const std::vector<Frame>& frame,
+                              double slab, int threads, std::vector<std::vector<Eigen::Vector2d>>& out);
 
 /// Appends to `out` the points of points[0, count) within `reach` of each plane of
 /// `groups` (built with a slab of 2 reach) as (u, v, signed distance from the plane), in
 /// order, the chunk split across `threads`. A plain double test: these points only fill
 /// gaps, no boundary needs to be exact.
-void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
-                              const std::vector<Frame>& frame, double reach, int threads,
-                              std::vector<std::vector<Eigen::Vector3d>>& out);
+void add_near_points_parallel(const Eigen::Vector3d* points, std::size_t count,
+                              const std::vector<SlabGroup>& groups, const std::vector<Frame>& frame,
+                              double reach, int threads, std::vector<std::vector<Eigen::Vector3d>>& out);
 
 /// The slab points (add_slab_points) and the points within `reach` (add_near_points_parallel)
 /// of points[0, count) in one pass, split across threads: n . q once per point, and the
 /// chunk read from memory once. `near_groups` are `groups` built with a slab of 2 reach
 /// (same normals, same planes, same order).
 void add_slab_and_near_points_parallel(const Eigen::Vector3d* points, std::size_t count,
-                                       const std::vector<SlabGroup>& groups, const std::vector<SlabGroup>& near_groups,
-                                       const std::vector<Frame>& frame, double slab, double reach, int threads,
-                                       std::vector<std::vector<Eigen::Vector2d>>& slabs,
+                                       const std::vector<SlabGroup>& groups,
+                                       const std::vector<SlabGroup>& near_groups,
+                                       const std::vector<Frame>& frame, double slab, double reach,
+                                       int threads, std::vector<std::vector<Eigen::Vector2d>>& slabs,
                                        std::vector<std::vector<Eigen::Vector3d>>& near);
 
 }  // namespace section::detail

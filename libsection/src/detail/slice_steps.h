@@ -28,7 +28,7 @@ using SectionFn = std::function<void(const SectionSlice&)>;
 /// profile's gaps from the near points; frees each section's points once done and hands
 /// it to `sink` in plane order.
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
-                 const std::vector<Plane>& planes, double slab, const SliceOptions& options, SliceResult& result,
-                 const SectionFn& sink = {});
+                 const std::vector<Plane>& planes, double slab, const SliceOptions& options,
+                 SliceResult& result, const SectionFn& sink = {});
 
 }  // namespace section::detail

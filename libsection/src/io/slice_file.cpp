@@ -25,11 +25,11 @@ std::vector<Plane> spread(const Eigen::Vector3d& normal, double lo, double hi, i
 // Planes (and slab) guessed from a first look at a cloud file (peek_cloud), and the points
 // kept around them while pass 1 of slice_file reads the file.
 struct Guess {
-  bool active = false;                             // false: no guess; pass 2 reads the file again
-  std::vector<Plane> planes;                       // the guessed planes
-  double half_width = 0;                           // points within this of a guessed plane are kept
-  double share = 0;                                // estimated share of the points kept
-  std::vector<detail::SlabGroup> groups;                 // the guessed planes with slabs 2 half_width wide
+  bool active = false;                    // false: no guess; pass 2 reads the file again
+  std::vector<Plane> planes;              // the guessed planes
+  double half_width = 0;                  // points within this of a guessed plane are kept
+  double share = 0;                       // estimated share of the points kept
+  std::vector<detail::SlabGroup> groups;  // the guessed planes with slabs 2 half_width wide
   // Per guessed plane, blocks of the points kept, in file order (blocks are moved in as
   // the threads collect them, not copied).
   std::vector<std::vector<std::vector<Eigen::Vector3d>>> kept;
@@ -39,7 +39,8 @@ struct Guess {
     for (const detail::SlabGroup& g : groups) {
       const double s = g.n.dot(q);
       if (!g.near.empty() && g.far_from_slabs(s)) continue;
-      for (std::size_t k = g.first_at_least(s - half_width); k < g.offset.size() && g.offset[k] <= s + half_width; ++k)
+      for (std::size_t k = g.first_at_least(s - half_width);
+           k < g.offset.size() && g.offset[k] <= s + half_width; ++k)
         out[g.plane[k]].push_back(q);
     }
   }
@@ -52,7 +53,8 @@ struct Guess {
     const double tol = 1e-12 * (std::max(2 * largest, slab) + 1) * (1 + 1e-6);
     const double need = 0.5 * slab + 3 * tol;
     for (std::size_t k = 0; k < found.size(); ++k) {
-      const Frame f = make_frame(found[k].origin, found[k].normal), g = make_frame(planes[k].origin, planes[k].normal);
+      const Frame f = make_frame(found[k].origin, found[k].normal),
+                  g = make_frame(planes[k].origin, planes[k].normal);
       if (!(f.n == g.n)) return false;
       const double shift = std::abs(f.n.dot(found[k].origin) - g.n.dot(planes[k].origin));
       if (!(shift + need <= half_width)) return false;
@@ -64,7 +66,8 @@ struct Guess {
 // read_cloud_chunks_parallel with a result per chunk: `scan(points, count, threads)` makes
 // it on a worker thread, `take(result, points, count)` receives it in file order.
 template <class Scan, class Take>
-std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, const Scan& scan, const Take& take) {
+std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, const Scan& scan,
+                        const Take& take) {
   using Result = decltype(scan(static_cast<const Eigen::Vector3d*>(nullptr), std::size_t(0), 1));
   std::mutex mutex;
   std::map<std::size_t, Result> made;  // by chunk, from scan to take
@@ -90,8 +93,9 @@ std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, c
 
 // The points within `reach` of each plane in the file, as (u, v, signed distance), in file
 // order (add_near_points), chunks read side by side.
-std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& path, const std::vector<Plane>& planes,
-                                                           double reach, const CloudReadOptions& read) {
+std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& path,
+                                                           const std::vector<Plane>& planes, double reach,
+                                                           const CloudReadOptions& read) {
   const auto groups = detail::group_planes(planes, 2 * reach);
   const auto frame = detail::frames_of(planes);
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
@@ -103,7 +107,8 @@ std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& pa
         return f;
       },
       [&](std::vector<std::vector<Eigen::Vector3d>>& f, const Eigen::Vector3d*, std::size_t) {
-        for (std::size_t k = 0; k < planes.size(); ++k) near[k].insert(near[k].end(), f[k].begin(), f[k].end());
+        for (std::size_t k = 0; k < planes.size(); ++k)
+          near[k].insert(near[k].end(), f[k].begin(), f[k].end());
       });
   return near;
 }
@@ -118,7 +123,8 @@ Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOp
   const CloudPeek peek = peek_cloud(path, 4096, read);
   if (peek.points.size() < 256) return guess;
   double slab = options.slab;
-  if (slab == 0) slab = mean_spacing(peek.points) * std::sqrt(double(peek.points.size()) / double(peek.total)) / 0.47;
+  if (slab == 0)
+    slab = mean_spacing(peek.points) * std::sqrt(double(peek.points.size()) / double(peek.total)) / 0.47;
   if (!(slab > 0) || !std::isfinite(slab)) return guess;
   const auto extent_along = [&](const Eigen::Vector3d& normal, double& lo, double& hi) {
     const Eigen::Vector3d n = normal.normalized();
@@ -200,12 +206,13 @@ struct Scanned {
 };
 
 // Scans points[a, e) into r.
-void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eigen::Vector3d& n, const Guess& guess,
-               Scanned& r) {
+void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eigen::Vector3d& n,
+               const Guess& guess, Scanned& r) {
   if (guess.active) {
     // One pass over the points (a chunk does not stay in the cache for three).
     r.kept.resize(guess.planes.size());
-    for (auto& list : r.kept) list.reserve(std::size_t(guess.share * double(e - a) / double(r.kept.size()) * 1.25) + 16);
+    for (auto& list : r.kept)
+      list.reserve(std::size_t(guess.share * double(e - a) / double(r.kept.size()) * 1.25) + 16);
     for (std::size_t i = a; i < e; ++i) {
       const Eigen::Vector3d& q = p[i];
       const double s = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
@@ -250,8 +257,8 @@ Scanned scan_chunk(const Eigen::Vector3d* p, std::size_t count, int threads, con
 // What pass 1 found in the whole file.
 struct FirstPass {
   double lo = INFINITY, hi = -INFINITY, largest = 0;  // extent along the normal, largest coordinate
-  std::size_t total = 0;                                // points
-  Reservoir sample;                                     // filled when `sampled`
+  std::size_t total = 0;                              // points
+  Reservoir sample;                                   // filled when `sampled`
 };
 
 // Pass 1: the extent along the normal and, when `sampled`, a uniform random sample for the
@@ -261,7 +268,9 @@ void first_pass(const std::string& path, const CloudReadOptions& read, const Eig
                 Guess& guess, FirstPass& pass) {
   pass.total = scan_chunks(
       path, read,
-      [&](const Eigen::Vector3d* p, std::size_t count, int threads) { return scan_chunk(p, count, threads, n, guess); },
+      [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
+        return scan_chunk(p, count, threads, n, guess);
+      },
       [&](Scanned& r, const Eigen::Vector3d* p, std::size_t count) {
         pass.lo = std::min(pass.lo, r.lo);
         pass.hi = std::max(pass.hi, r.hi);
@@ -310,13 +319,15 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
 // Pass 2: the slab points and the near points of every plane; chunks are tested side by
 // side and their points appended in file order.
 SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes, double slab, int passes,
-                       const SliceOptions& options, const CloudReadOptions& read_chunks, const SectionSink& sink) {
+                       const SliceOptions& options, const CloudReadOptions& read_chunks,
+                       const SectionSink& sink) {
   const auto groups = detail::group_planes(planes, slab);
   const auto frame = detail::frames_of(planes);
   std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
   const double reach = detail::fill_reach(options, slab);
-  const auto near_groups = reach > 0 ? detail::group_planes(planes, 2 * reach) : std::vector<detail::SlabGroup>{};
+  const auto near_groups =
+      reach > 0 ? detail::group_planes(planes, 2 * reach) : std::vector<detail::SlabGroup>{};
   struct Found {
     std::vector<std::vector<Eigen::Vector2d>> slabs;
     std::vector<std::vector<Eigen::Vector3d>> near;
@@ -328,8 +339,8 @@ SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes
         Found f{std::vector<std::vector<Eigen::Vector2d>>(planes.size()),
                 std::vector<std::vector<Eigen::Vector3d>>(planes.size())};
         if (reach > 0)
-          detail::add_slab_and_near_points_parallel(p, count, groups, near_groups, frame, slab, reach, threads,
-                                                    f.slabs, f.near);
+          detail::add_slab_and_near_points_parallel(p, count, groups, near_groups, frame, slab, reach,
+                                                    threads, f.slabs, f.near);
         else
           detail::add_slab_points_parallel(p, count, groups, frame, slab, threads, f.slabs);
         return f;
@@ -342,7 +353,8 @@ SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes
       });
   result.slab = slab;
   result.file_passes = passes;
-  detail::order_slabs(slabs, [&](std::size_t i) { return std::move(near[i]); }, planes, slab, options, result, sink);
+  detail::order_slabs(
+      slabs, [&](std::size_t i) { return std::move(near[i]); }, planes, slab, options, result, sink);
   return result;
 }
 
@@ -389,14 +401,16 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
       slab = mean_spacing(sample);
       if (sample.size() < first.total) slab *= std::sqrt(double(sample.size()) / double(first.total)) / 0.47;
       if (!(slab > 0))
-        throw Error("slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
+        throw Error(
+            "slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
     }
     check_slab_width(slab);
     if (guess.active && guess.covers(planes, slab, first.largest))
       return slice_kept(path, planes, slab, guess, first.total, options, read_chunks, sink);
   }
   check_slab_width(slab);
-  return slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options, read_chunks, sink);
+  return slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options, read_chunks,
+                    sink);
 }
 
 }  // namespace section

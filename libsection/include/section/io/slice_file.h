@@ -11,9 +11,9 @@ namespace section {
 
 /// Planes for slice_file: explicit, or spread over the cloud (known only once it is read).
 struct PlaneSpec {
-  std::vector<Plane> planes;                         ///< explicit planes, used when count is 0
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< normal of the spread planes (count > 0)
-  int count = 0;                                     ///< planes spread as planes_across; 0 = `planes`
+  std::vector<Plane> planes;                          ///< explicit planes, used when count is 0
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< normal of the spread planes (count > 0)
+  int count = 0;                                      ///< planes spread as planes_across; 0 = `planes`
 };
 
 /// Receives each section of slice_file as soon as it and the sections before it are done.
