@@ -12,7 +12,8 @@ namespace {
 
 const char* const description =
     "bench_smooth: time smooth() on noisy closed sections of 1e3, 1e4, 1e5 points\n"
-    "(0.08 mm spacing, 5 um noise; CPU seconds per section) with the CHOLMOD solve and with Gauss-Seidel run to the\n"
+    "(0.08 mm spacing, 5 um noise; CPU seconds per section) with the CHOLMOD solve and with Gauss-Seidel run "
+    "to the\n"
     "same energy (the loosest sweep tolerance whose final E is within --match of CHOLMOD's).\n\n"
     "Example: bench_smooth --sizes 1000,10000 --length 0.5";
 
@@ -57,8 +58,8 @@ int main(int argc, char** argv) {
             ->capture_default_str();
       },
       [&] {
-        std::printf("%8s %10s %6s %12s %12s %6s %10s %12s %8s\n", "points", "a", "iters",
-                    "cholmod_s", "gs_s", "gs_it", "gs_sweeps", "gs_rel_dE", "ratio");
+        std::printf("%8s %10s %6s %12s %12s %6s %10s %12s %8s\n", "points", "a", "iters", "cholmod_s", "gs_s",
+                    "gs_it", "gs_sweeps", "gs_rel_dE", "ratio");
         for (int n : sizes) {
           const auto p = section_of(n, 1);
           section::SmoothOptions o = options;
@@ -74,8 +75,8 @@ int main(int argc, char** argv) {
             rel = std::abs(g.energy_after - c.energy_after) / c.energy_after;
             if (rel <= match) break;
           }
-          std::printf("%8d %10.3g %6d %12.4g %12.4g %6d %10d %12.2g %8.1f\n", n, c.a, c.iterations,
-                      tc, tg, g.iterations, g.sweeps, rel, tg / tc);
+          std::printf("%8d %10.3g %6d %12.4g %12.4g %6d %10d %12.2g %8.1f\n", n, c.a, c.iterations, tc, tg,
+                      g.iterations, g.sweeps, rel, tg / tc);
           std::fflush(stdout);
         }
       });

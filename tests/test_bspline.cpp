@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-using section::BSpline;
 using Eigen::Vector2d;
+using section::BSpline;
 
 namespace {
 
@@ -110,16 +110,15 @@ TEST_CASE("bspline: ellipse fit error below 1 um", "[bspline]") {
 TEST_CASE("bspline: derivatives agree with finite differences, across the seam", "[bspline]") {
   const BSpline c = fit_circle(10, 300, 24);
   const double h = 1e-5;
-  for (double t : {c.t_min(), c.t_min() + 1e-9, 0.31 * c.t_max(), c.t_max() - 1e-9, c.knots[5],
-                   c.t_max() + 2.5}) {
+  for (double t :
+       {c.t_min(), c.t_min() + 1e-9, 0.31 * c.t_max(), c.t_max() - 1e-9, c.knots[5], c.t_max() + 2.5}) {
     const Vector2d d1 = (c.point(t + h) - c.point(t - h)) / (2 * h);
     const Vector2d d2 = (c.point(t + h) - 2 * c.point(t) + c.point(t - h)) / (h * h);
     const Vector2d d3 = (c.derivative(t + h, 2) - c.derivative(t - h, 2)) / (2 * h);
     REQUIRE((c.derivative(t, 1) - d1).norm() < 1e-6 * c.derivative(t, 1).norm());
     REQUIRE((c.derivative(t, 2) - d2).norm() < 1e-3 * c.derivative(t, 2).norm());
     // Third derivative jumps at knots: compare only inside a span.
-    if (std::abs(t - c.knots[5]) > 1e-3 && std::abs(t - c.t_min()) > 1e-3 &&
-        std::abs(t - c.t_max()) > 1e-3)
+    if (std::abs(t - c.knots[5]) > 1e-3 && std::abs(t - c.t_min()) > 1e-3 && std::abs(t - c.t_max()) > 1e-3)
       REQUIRE((c.derivative(t, 3) - d3).norm() < 1e-4 * c.derivative(t, 3).norm());
     REQUIRE(c.derivative(t, 4).norm() == 0);
   }

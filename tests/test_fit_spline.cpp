@@ -64,7 +64,8 @@ double ellipse_distance(Vector2d p, double a, double b) {
 
 }  // namespace
 
-TEST_CASE("fit_spline: a lone point off its neighbours' line is an outlier; one on it is kept", "[fit_spline]") {
+TEST_CASE("fit_spline: a lone point off its neighbours' line is an outlier; one on it is kept",
+          "[fit_spline]") {
   // A circle sampled every 0.08 mm with one point pushed 0.2 mm out: the line through its
   // neighbours passes 0.2 mm from it, so it is dropped and the curve stays on the circle.
   const Vector2d centre(0, 0);
@@ -86,8 +87,8 @@ TEST_CASE("fit_spline: exact circle points give a curve within 1 um", "[fit_spli
     const auto p = curve_points(f, static_cast<int>(2 * pi * r / 0.08), 0, 1);
     const auto res = section::fit_spline(p, p);
     const auto [worst, rms] = circle_error(res.spline, centre, r);
-    INFO("r " << r << " worst " << worst << " rms " << rms << " ctrl " << res.control_points
-              << " it " << res.iterations << " rounds " << res.rounds);
+    INFO("r " << r << " worst " << worst << " rms " << rms << " ctrl " << res.control_points << " it "
+              << res.iterations << " rounds " << res.rounds);
     REQUIRE(worst < 1e-3);
     REQUIRE(res.rms < 1e-3);
     REQUIRE(res.outliers == 0);
@@ -101,8 +102,8 @@ TEST_CASE("fit_spline: thin ellipse with 0.2 mm end radius within 1 um", "[fit_s
   const auto res = section::fit_spline(p, p);
   double worst = 0;
   for (const auto& s : section::sample(res.spline, 4000)) worst = std::max(worst, ellipse_distance(s, a, b));
-  INFO("worst " << worst << " ctrl " << res.control_points << " rounds " << res.rounds << " rms "
-                << res.rms << " max " << res.max);
+  INFO("worst " << worst << " ctrl " << res.control_points << " rounds " << res.rounds << " rms " << res.rms
+                << " max " << res.max);
   REQUIRE(worst < 1e-3);
   REQUIRE(res.max < 1e-3);
 }
@@ -146,8 +147,9 @@ TEST_CASE("fit_spline: two views merged with a misregistration are reported as t
     std::vector<Vector2d> p = view(-pi / 2 - 0.15, pi / 2 + 0.15, {0, 0}, noise, seed);
     const std::vector<Vector2d> left = view(pi / 2 - 0.15, 3 * pi / 2 + 0.15, {0, shift}, noise, seed + 100);
     p.insert(p.end(), left.begin(), left.end());
-    std::sort(p.begin(), p.end(),
-              [](const Vector2d& a, const Vector2d& b) { return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x()); });
+    std::sort(p.begin(), p.end(), [](const Vector2d& a, const Vector2d& b) {
+      return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x());
+    });
     return p;
   };
   for (const double noise : {0.005, 0.0}) {
@@ -212,8 +214,8 @@ struct GeneratedSection {
   section::SectionTruth truth;
 };
 
-GeneratedSection generated_section(const section::BladeDesign& blade, double z,
-                                   section::ScanOptions scan, double half_slab = 0.04) {
+GeneratedSection generated_section(const section::BladeDesign& blade, double z, section::ScanOptions scan,
+                                   double half_slab = 0.04) {
   scan.z_min = z - 0.5;
   scan.z_max = z + 0.5;
   const auto s = section::generate_scan(blade, scan);
@@ -261,7 +263,7 @@ TEST_CASE("fit_spline: exact blade sections give a curve within 1 um", "[fit_spl
       const auto res = section::fit_spline(p, p);
       const auto [rms, worst] = truth_error(res.spline, truth);
       INFO("z " << z << " rms " << rms << " worst " << worst << " ctrl " << res.control_points
-                 << " iterations " << res.iterations);
+                << " iterations " << res.iterations);
       REQUIRE(worst < 1e-3);
       REQUIRE(rms < 0.3e-3);
     }
@@ -284,8 +286,8 @@ TEST_CASE("fit_spline: noisy generated scans (sigma 5 um) stay within 3 um RMS o
       const auto g = generated_section(blade, 20 + 10 * seed, scan);
       const auto res = section::fit_spline(g.points, g.points);
       const auto [rms, worst] = truth_error(res.spline, g.truth);
-      INFO("case " << k << " rms " << rms << " worst " << worst << " ctrl " << res.control_points
-                   << " noise " << res.noise << " fit rms " << res.rms);
+      INFO("case " << k << " rms " << rms << " worst " << worst << " ctrl " << res.control_points << " noise "
+                   << res.noise << " fit rms " << res.rms);
       REQUIRE(rms < 0.003);
       REQUIRE(worst < (scan.holes ? 0.025 : 0.015));
       REQUIRE(res.noise == Approx(0.005).epsilon(0.25));
@@ -301,8 +303,8 @@ TEST_CASE("fit_spline: degenerate loops throw section::Error", "[fit_spline]") {
   for (int i = 0; i < 100; ++i) line.push_back({0.1 * i, 0.05 * i});
   REQUIRE_THROWS_AS(section::fit_spline(line, line), section::Error);
   // A figure eight: the ordering runs across itself.
-  auto eight = curve_points([](double a) { return Vector2d(10 * std::sin(a), 5 * std::sin(2 * a)); },
-                            600, 0, 1);
+  auto eight =
+      curve_points([](double a) { return Vector2d(10 * std::sin(a), 5 * std::sin(2 * a)); }, 600, 0, 1);
   try {
     section::fit_spline(eight, eight);
     FAIL("a self-crossing loop was accepted");
@@ -311,8 +313,7 @@ TEST_CASE("fit_spline: degenerate loops throw section::Error", "[fit_spline]") {
   }
 }
 
-TEST_CASE("fit_spline: stream stage writes splines that read back, failures become issues",
-          "[fit_spline]") {
+TEST_CASE("fit_spline: stream stage writes splines that read back, failures become issues", "[fit_spline]") {
   section::Stream s;
   section::Table pts{"points", {"section", "loop", "index", "u", "v", "nu", "nv"}, {}};
   for (int i = 0; i < 300; ++i) {
@@ -344,7 +345,9 @@ TEST_CASE("fit_spline: stream stage writes splines that read back, failures beco
   const auto holes = section::gaps(section::parse_stream(section::format_stream(s), "test"));
   REQUIRE(holes.at({0, 0}).size() == 1);
   CHECK(holes.at({0, 0})[0].length == Approx(31 * 2 * pi * 3 / 300).epsilon(0.01));
-  CHECK(section::in_gap(c, holes.at({0, 0})[0], section::closest_point(c, {3 * std::cos(2 * pi * 115 / 300), 3 * std::sin(2 * pi * 115 / 300)}).t));
+  CHECK(section::in_gap(
+      c, holes.at({0, 0})[0],
+      section::closest_point(c, {3 * std::cos(2 * pi * 115 / 300), 3 * std::sin(2 * pi * 115 / 300)}).t));
 }
 
 TEST_CASE("fit_spline: change-of-curvature penalty keeps arcs and lines, sparse noisy edges stay close",

@@ -65,7 +65,8 @@ TEST_CASE("gap fill: a drifting ellipse's gap is filled on the section of the pl
         worst = std::max(worst, distance(loop.points[k]));
       }
     }
-    INFO("fill " << fill << ": largest gap " << gap << " mm, carried " << carried << ", worst " << worst * 1e3 << " um");
+    INFO("fill " << fill << ": largest gap " << gap << " mm, carried " << carried << ", worst " << worst * 1e3
+                 << " um");
     if (!fill) {
       CHECK(gap > 1.0);  // the hole: about 0.5 rad of a 5 x 1.5 ellipse's flat side
       CHECK(carried == 0);
@@ -80,7 +81,8 @@ TEST_CASE("gap fill: a drifting ellipse's gap is filled on the section of the pl
   }
 }
 
-TEST_CASE("gap fill: holes and sparse edges of noisy blade scans are filled within the noise", "[gap_fill][generated]") {
+TEST_CASE("gap fill: holes and sparse edges of noisy blade scans are filled within the noise",
+          "[gap_fill][generated]") {
   struct Case {
     const char* name;
     BladeDesign blade;
@@ -125,8 +127,8 @@ TEST_CASE("gap fill: holes and sparse edges of noisy blade scans are filled with
         }
         CHECK(own == l0.index);
         const double g0 = largest_true_gap(l0, truth), g1 = largest_true_gap(l1, truth);
-        INFO("largest gap along the profile " << g0 << " -> " << g1 << " mm, " << carried << " carried, " << far
-                                              << " beyond 30 um");
+        INFO("largest gap along the profile " << g0 << " -> " << g1 << " mm, " << carried << " carried, "
+                                              << far << " beyond 30 um");
         CHECK(g1 <= g0 + 1e-9);
         CHECK(far == 0);  // noise sigma 5 um; outliers stay out
         if (!errors.empty()) {
@@ -211,7 +213,8 @@ TEST_CASE("drift band: a twisting, drifting ellipse's band lands on the section 
     const Loop& loop = s.morphology.loops.at(0);
     double worst = 0;
     for (std::size_t k = 0; k < loop.points.size(); k += 7) worst = std::max(worst, distance(loop.points[k]));
-    INFO("band spacing " << spacing << ": " << loop.points.size() << " points, worst " << worst * 1e3 << " um");
+    INFO("band spacing " << spacing << ": " << loop.points.size() << " points, worst " << worst * 1e3
+                         << " um");
     if (spacing == 0) {
       CHECK(s.band_points == 0);
       CHECK(loop.points.size() == s.slab_points);
@@ -224,8 +227,8 @@ TEST_CASE("drift band: a twisting, drifting ellipse's band lands on the section 
     CHECK(worst < 0.002);
   }
   // The half width: one point per spacing along the profile, within [slab / 2, max slabs].
-  CHECK(band_half_width(100, 10, 0.08, 0.02, 2) == Approx(0.16));  // wants 0.2: capped at 2 slabs
-  CHECK(band_half_width(400, 10, 0.08, 0.02, 2) == Approx(0.05));  // 0.05: 1.25 slabs wide
+  CHECK(band_half_width(100, 10, 0.08, 0.02, 2) == Approx(0.16));   // wants 0.2: capped at 2 slabs
+  CHECK(band_half_width(400, 10, 0.08, 0.02, 2) == Approx(0.05));   // 0.05: 1.25 slabs wide
   CHECK(band_half_width(2000, 10, 0.08, 0.02, 2) == Approx(0.04));  // dense enough: the slab
 }
 
@@ -276,8 +279,10 @@ TEST_CASE("drift band: beside a sparse stretch of the profile the band widens", 
       double t = std::atan2(p.y() / b, p.x() / a);
       if (t < 0) t += 2 * M_PI;
       worst = std::max(worst, distance(p));
-      if (sparse(t)) ++n.first;
-      else if (t > 0.85 * M_PI || t < 0.15 * M_PI) ++n.second;
+      if (sparse(t))
+        ++n.first;
+      else if (t > 0.85 * M_PI || t < 0.15 * M_PI)
+        ++n.second;
     }
     INFO("worst " << worst * 1e3 << " um");
     CHECK(worst < 0.003);
@@ -285,7 +290,8 @@ TEST_CASE("drift band: beside a sparse stretch of the profile the band widens", 
   };
   const auto [sparse_narrow, rest_narrow] = counts(narrow);
   const auto [sparse_wide, rest_wide] = counts(wide);
-  INFO("sparse quarter " << sparse_narrow << " -> " << sparse_wide << ", rest " << rest_narrow << " -> " << rest_wide);
+  INFO("sparse quarter " << sparse_narrow << " -> " << sparse_wide << ", rest " << rest_narrow << " -> "
+                         << rest_wide);
   CHECK(sparse_wide >= 2 * sparse_narrow);
   CHECK(rest_wide == rest_narrow);
 }

@@ -73,8 +73,8 @@ Curve ellipse(Vec c, double a, double b, int n = 4000) {
 /// A thin cambered airfoil: chord 40 mm along +x from `origin`, half thickness
 /// r0 + (r1 - r0) x / L + bump sin^2(pi x / L) around a circular-arc camber line, closed by
 /// round edges of radius r0 (leading) and r1 (trailing).
-Curve airfoil(Vec origin, double r0 = 0.2, double r1 = 0.2, double thickness = 3.0,
-              double camber = 2.0, int n = 2500) {
+Curve airfoil(Vec origin, double r0 = 0.2, double r1 = 0.2, double thickness = 3.0, double camber = 2.0,
+              int n = 2500) {
   const double L = 40;
   const auto centre = [&](double x) -> Vec { return origin + Vec(x, 4 * camber * x * (L - x) / (L * L)); };
   const auto normal = [&](double x) -> Vec {
@@ -114,12 +114,12 @@ Curve airfoil(Vec origin, double r0 = 0.2, double r1 = 0.2, double thickness = 3
 }
 
 struct ScanSpec {
-  double spacing = 0.08;          // mm, mean distance along the curve at full density
-  double noise = 0.005;           // mm, sigma along the normal
-  double density_min = 0.25;      // lowest relative density
-  int holes = 3;                  // gaps 0.5-2 mm long
-  double misregistration = 0.015; // mm, offset of the points whose normal has x > 0
-  double outliers = 0.0002;       // fraction of outlier points
+  double spacing = 0.08;           // mm, mean distance along the curve at full density
+  double noise = 0.005;            // mm, sigma along the normal
+  double density_min = 0.25;       // lowest relative density
+  int holes = 3;                   // gaps 0.5-2 mm long
+  double misregistration = 0.015;  // mm, offset of the points whose normal has x > 0
+  double outliers = 0.0002;        // fraction of outlier points
   unsigned seed = 1;
 };
 
@@ -152,8 +152,8 @@ Scan scan(const Curve& c, const ScanSpec& spec) {
       out.outlier.push_back(0);
     }
     // Density varies smoothly along the curve between density_min and 1.
-    const double dens = spec.density_min + (1 - spec.density_min) *
-                                               (0.5 + 0.5 * std::sin(2 * pi * 3 * t / c.perimeter + phase));
+    const double dens = spec.density_min +
+                        (1 - spec.density_min) * (0.5 + 0.5 * std::sin(2 * pi * 3 * t / c.perimeter + phase));
     t += spec.spacing / dens * (0.5 + u01(rng));
   }
   // Outliers anywhere in the box grown by 3 mm (at least one).
@@ -172,13 +172,25 @@ Scan scan(const Curve& c, const ScanSpec& spec) {
   return out;
 }
 
+/// The points of scans of two curves (no outliers: topology only), the second's with seed
+/// `seed_b`, after the first's.
+Points two_scans(const Curve& a, const Curve& b, unsigned seed_b) {
+  ScanSpec spec;
+  spec.outliers = 0;
+  Points points = scan(a, spec).points;
+  spec.seed = seed_b;
+  const Scan sb = scan(b, spec);
+  points.insert(points.end(), sb.points.begin(), sb.points.end());
+  return points;
+}
+
 /// Facts about one loop against its true curve.
 struct LoopCheck {
-  double near_fraction = 0;     // kept points within 30 um of the truth
-  double worst_backstep = 0;    // mm, largest step backwards in truth arc length
-  double winding = 0;           // sum of steps / perimeter (1 = once around, counterclockwise)
-  double normal_fraction = 0;   // normals with dot > 0.9 against the truth
-  std::size_t far_kept = 0;     // kept points farther than 0.2 mm from the truth
+  double near_fraction = 0;    // kept points within 30 um of the truth
+  double worst_backstep = 0;   // mm, largest step backwards in truth arc length
+  double winding = 0;          // sum of steps / perimeter (1 = once around, counterclockwise)
+  double normal_fraction = 0;  // normals with dot > 0.9 against the truth
+  std::size_t far_kept = 0;    // kept points farther than 0.2 mm from the truth
 };
 
 LoopCheck check_loop(const section::Loop& loop, const Curve& c) {
@@ -218,12 +230,10 @@ std::size_t kept_far_outliers(const MorphologyResult& m, const Scan& sc, const C
 
 TEST_CASE("morphology: clean dense circle gives one ordered loop with radial normals", "[morphology]") {
   const Curve c = ellipse({3, -2}, 10, 10);
-  ScanSpec spec;
-  spec.noise = 0;
+  ScanSpec spec;  // exact: no noise, holes, density changes, misregistration or outliers
+  spec.noise = spec.misregistration = spec.outliers = 0;
   spec.holes = 0;
   spec.density_min = 1;
-  spec.misregistration = 0;
-  spec.outliers = 0;
   const Scan sc = scan(c, spec);
   const MorphologyResult m = order_section(sc.points);
   REQUIRE(m.loops.size() == 1);
@@ -246,7 +256,8 @@ TEST_CASE("morphology: clean dense circle gives one ordered loop with radial nor
   }
 }
 
-TEST_CASE("morphology: noisy ellipses and thin airfoils are ordered like their true profile", "[morphology]") {
+TEST_CASE("morphology: noisy ellipses and thin airfoils are ordered like their true profile",
+          "[morphology]") {
   struct Case {
     const char* name;
     Curve curve;
@@ -279,13 +290,7 @@ TEST_CASE("morphology: noisy ellipses and thin airfoils are ordered like their t
 TEST_CASE("morphology: two separate blades give two loops, largest first", "[morphology]") {
   const Curve big = airfoil({0, 0}, 0.2, 0.2, 3.0, 2.0);
   const Curve small = ellipse({20, 20}, 6, 2.5);
-  ScanSpec spec;
-  spec.outliers = 0;  // topology only
-  Scan a = scan(big, spec);
-  spec.seed = 7;
-  const Scan b = scan(small, spec);
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  const MorphologyResult m = order_section(a.points);
+  const MorphologyResult m = order_section(two_scans(big, small, 7));
   REQUIRE(m.loops.size() == 2);
   CHECK(m.loops[0].area > m.loops[1].area);
   for (const Vec& p : m.loops[0].points) CHECK(big.locate(p).distance < 0.1);
@@ -297,13 +302,7 @@ TEST_CASE("morphology: two separate blades give two loops, largest first", "[mor
 TEST_CASE("morphology: an annulus (cooling channel) gives an outer and an inner loop", "[morphology]") {
   const Curve outer = ellipse({0, 0}, 12, 6);
   const Curve inner = ellipse({1, 0.5}, 3, 1.5);
-  ScanSpec spec;
-  spec.outliers = 0;  // topology only
-  Scan a = scan(outer, spec);
-  spec.seed = 3;
-  const Scan b = scan(inner, spec);
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  const MorphologyResult m = order_section(a.points);
+  const MorphologyResult m = order_section(two_scans(outer, inner, 3));
   REQUIRE(m.loops.size() == 2);
   const LoopCheck ro = check_loop(m.loops[0], outer);
   const LoopCheck ri = check_loop(m.loops[1], inner);
@@ -355,7 +354,7 @@ TEST_CASE("morphology: skeleton of a stadium lies on its axis with the true radi
     CHECK(std::abs(q.y()) < 2 * m.cell);
     CHECK(m.skeleton_radius[i] == Approx(2).margin(0.2));  // 10%: a seed for the camber stage
   }
-  CHECK(middle * m.cell > 10);  // covers the middle of the axis
+  CHECK(middle * m.cell > 10);                                           // covers the middle of the axis
   CHECK(std::abs(m.skeleton.front().x() - m.skeleton.back().x()) > 18);  // from cap to cap
 }
 
@@ -369,8 +368,8 @@ TEST_CASE("morphology: 1e5 dense points give one loop (time reported, not assert
   const auto t0 = std::chrono::steady_clock::now();
   const MorphologyResult m = order_section(sc.points);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  WARN("morphology: " << sc.points.size() << " points in " << seconds * 1e3 << " ms = "
-                      << sc.points.size() / seconds << " points/s (cell " << m.cell << " mm, "
+  WARN("morphology: " << sc.points.size() << " points in " << seconds * 1e3
+                      << " ms = " << sc.points.size() / seconds << " points/s (cell " << m.cell << " mm, "
                       << m.raster_cells << " cells)");
   REQUIRE(m.loops.size() == 1);
 }

@@ -25,16 +25,21 @@
 
 namespace {
 
-// A thin band of a generated turbine scan (z in [11, 14] mm, 0.12 mm spacing, 5 um noise),
-// sliced by 3 planes; section 3 at z = 40 misses the band and must fail alone.
-section::Stream sliced(int threads) {
+// A band 3 mm high of a generated scan from z_min up (0.12 mm spacing, 5 um noise).
+section::Scan band_scan(const section::BladeDesign& blade, double z_min, unsigned seed) {
   section::ScanOptions so;
   so.spacing = 0.12;
   so.noise = 0.005;
-  so.z_min = 11;
-  so.z_max = 14;
-  so.seed = 7;
-  const section::Scan scan = section::generate_scan(section::turbine_blade(), so);
+  so.z_min = z_min;
+  so.z_max = z_min + 3;
+  so.seed = seed;
+  return section::generate_scan(blade, so);
+}
+
+// A thin band of a generated turbine scan (z in [11, 14] mm), sliced by 3 planes; section
+// 3 at z = 40 misses the band and must fail alone.
+section::Stream sliced(int threads) {
+  const section::Scan scan = band_scan(section::turbine_blade(), 11, 7);
   section::SliceOptions opt;
   opt.threads = threads;
   const auto planes = section::planes_at({0, 0, 1}, {11.5, 12.5, 13.5, 40});
@@ -93,7 +98,8 @@ TEST_CASE("parallel: a failing loop is reported in order among good ones", "[par
     const double r = 2 + 0.5 * sec;
     for (int i = 0; i < n; ++i) {
       const double t = 2 * pi * i / n;
-      points.add_row({double(sec), 0.0, double(i), r * std::cos(t), r * std::sin(t), std::cos(t), std::sin(t)});
+      points.add_row(
+          {double(sec), 0.0, double(i), r * std::cos(t), r * std::sin(t), std::cos(t), std::sin(t)});
     }
   }
   for (int threads : {1, 2, 3}) {
@@ -148,7 +154,8 @@ TEST_CASE("parallel: XYZ text parsed by several threads keeps points and line nu
   }
 }
 
-TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a first look hold, two when not", "[parallel][slice]") {
+TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a first look hold, two when not",
+          "[parallel][slice]") {
   section::ScanOptions so;
   so.spacing = 0.2;
   so.noise = 0.005;
@@ -175,7 +182,8 @@ TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a f
     same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 1);
   }
   SECTION("explicit planes, the slab estimated") {
-    same_as_held(scan.cloud, section::PlaneSpec{section::planes_at({0, 0, 1}, {15, 30, 45}), {0, 0, 1}, 0}, 1);
+    same_as_held(scan.cloud, section::PlaneSpec{section::planes_at({0, 0, 1}, {15, 30, 45}), {0, 0, 1}, 0},
+                 1);
   }
   SECTION("holes in the scan: the points beside the planes, read again for the gaps") {
     so.holes = 40;
@@ -200,14 +208,9 @@ TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a f
   std::remove(path.c_str());
 }
 
-TEST_CASE("slice_file: streaming the file gives the same sections as slicing the held cloud", "[parallel][slice]") {
-  section::ScanOptions so;
-  so.spacing = 0.12;
-  so.noise = 0.005;
-  so.z_min = 20;
-  so.z_max = 23;
-  so.seed = 11;
-  const section::Scan scan = section::generate_scan(section::compressor_blade(), so);
+TEST_CASE("slice_file: streaming the file gives the same sections as slicing the held cloud",
+          "[parallel][slice]") {
+  const section::Scan scan = band_scan(section::compressor_blade(), 20, 11);
   const std::string path = "/tmp/libsection_test_slice_file_" + std::to_string(::getpid()) + ".ply";
   section::write_cloud(path, scan.cloud);
   section::CloudReadOptions small_chunks;
@@ -221,7 +224,8 @@ TEST_CASE("slice_file: streaming the file gives the same sections as slicing the
       section::slice_file(path, section::PlaneSpec{{}, {0, 0, 1}, 3}, opt, small_chunks), "t");
   CHECK(section::format_stream(held) == section::format_stream(streamed));
   // Explicit planes, one pass.
-  const auto one_pass = section::to_stream(section::slice_file(path, section::PlaneSpec{planes, {0, 0, 1}, 0}, opt), "t");
+  const auto one_pass =
+      section::to_stream(section::slice_file(path, section::PlaneSpec{planes, {0, 0, 1}, 0}, opt), "t");
   CHECK(section::format_stream(held) == section::format_stream(one_pass));
   // Default slab: estimated from a random sample, within 15% of the held cloud's estimate.
   opt.slab = 0;

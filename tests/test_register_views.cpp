@@ -36,8 +36,8 @@ TEST_CASE("register_views: a view moved in the plane and turned is brought back"
   // Moved by 15-40 um and turned by up to 0.005 degrees about the span (z) axis; the
   // registration composed with the move must leave every point of the view within 1 um
   // (in x, y) of where it was (0.5-0.8 um measured; 2-3 um when pairs were measured to
-  // their neighbour's tangent plane, which a tight edge curves away from). The spanwise slide is not constrained by a blade's surface
-  // and is not asked for.
+  // their neighbour's tangent plane, which a tight edge curves away from). The spanwise slide is not
+  // constrained by a blade's surface and is not asked for.
   int k = 0;
   for (const BladeDesign& blade : {turbine_blade(), compressor_blade()}) {
     for (const auto& [shift, degrees] : {std::pair<Eigen::Vector3d, double>{{0.012, -0.009, 0}, 0.0},

@@ -8,17 +8,18 @@
 
 using namespace section;
 
-TEST_CASE("slice: points exactly on a slab plane belong to the slab, the next double out does not", "[slice]") {
+TEST_CASE("slice: points exactly on a slab plane belong to the slab, the next double out does not",
+          "[slice]") {
   // Plane z = 1 with slab 0.5: boundaries z = 0.75 and z = 1.25, both exact in binary.
   const auto planes = planes_at({0, 0, 1}, {1.0, 3.0});
   std::vector<Eigen::Vector3d> pts = {
-      {0.3, 0.1, 0.75},                          // on the lower boundary: in
-      {0.3, 0.1, 1.25},                          // on the upper boundary: in
-      {0.3, 0.1, std::nextafter(0.75, 0.0)},     // just below: out
-      {0.3, 0.1, std::nextafter(1.25, 2.0)},     // just above: out
-      {-7.0, 1e6, 1.0},                          // far in the plane: in
-      {0.0, 0.0, 2.75},                          // second plane's lower boundary: in there only
-      {0.0, 0.0, 2.0},                           // between the slabs: nowhere
+      {0.3, 0.1, 0.75},                       // on the lower boundary: in
+      {0.3, 0.1, 1.25},                       // on the upper boundary: in
+      {0.3, 0.1, std::nextafter(0.75, 0.0)},  // just below: out
+      {0.3, 0.1, std::nextafter(1.25, 2.0)},  // just above: out
+      {-7.0, 1e6, 1.0},                       // far in the plane: in
+      {0.0, 0.0, 2.75},                       // second plane's lower boundary: in there only
+      {0.0, 0.0, 2.0},                        // between the slabs: nowhere
   };
   const auto slabs = slab_points(pts, planes, 0.5);
   REQUIRE(slabs.size() == 2);
@@ -74,7 +75,8 @@ Mesh octahedron() {
 
 TEST_CASE("slice: a mesh cut gives the analytic intersection within 1e-9", "[slice]") {
   const Mesh m = octahedron();
-  const std::vector<Plane> planes = {{{0, 0, 0.3}, {0, 0, 1}}, {{0.05, -0.1, 0.2}, {0.2, 0.1, 1}}, {{0, 0, 3}, {0, 0, 1}}};
+  const std::vector<Plane> planes = {
+      {{0, 0, 0.3}, {0, 0, 1}}, {{0.05, -0.1, 0.2}, {0.2, 0.1, 1}}, {{0, 0, 3}, {0, 0, 1}}};
   const SliceResult r = slice(m, planes);
   REQUIRE(r.sections.size() == 3);
   for (int s = 0; s < 2; ++s) {
@@ -85,9 +87,10 @@ TEST_CASE("slice: a mesh cut gives the analytic intersection within 1e-9", "[sli
     REQUIRE(loop.points.size() >= 4);
     for (std::size_t i = 0; i < loop.points.size(); ++i) {
       const Eigen::Vector3d p = sec.frame.to_world(loop.points[i]);
-      CHECK(std::abs(p.cwiseAbs().sum() - 1) < 1e-9);                          // on the octahedron
+      CHECK(std::abs(p.cwiseAbs().sum() - 1) < 1e-9);                                     // on the octahedron
       CHECK(std::abs((p - planes[s].origin).dot(planes[s].normal.normalized())) < 1e-9);  // on the plane
-      CHECK(loop.normals[i].dot(loop.points[i] - sec.frame.to_plane(Eigen::Vector3d::Zero())) > 0);  // outward
+      CHECK(loop.normals[i].dot(loop.points[i] - sec.frame.to_plane(Eigen::Vector3d::Zero())) >
+            0);  // outward
     }
   }
   // z = 0.3 cuts the square |x| + |y| = 0.7: area 2 * 0.7^2, counterclockwise.
@@ -102,7 +105,8 @@ TEST_CASE("slice: bad planes are refused", "[slice]") {
   CHECK_THROWS_AS(slice(c, {{{0, 0, 0}, {0, 0, 0}}}), Error);
   CHECK_THROWS_WITH(parse_planes("origin_x,origin_y,origin_z,normal_x,normal_y\n0,0,0,0,1\n", "p.csv"),
                     Catch::Contains("normal_z"));
-  const auto planes = parse_planes("origin_x,origin_y,origin_z,normal_x,normal_y,normal_z\n0,0,5,0,0,2\n", "p.csv");
+  const auto planes =
+      parse_planes("origin_x,origin_y,origin_z,normal_x,normal_y,normal_z\n0,0,5,0,0,2\n", "p.csv");
   REQUIRE(planes.size() == 1);
   CHECK(planes[0].origin.z() == 5);
 }
@@ -174,7 +178,8 @@ TEST_CASE("slice: a noisy blade scan gives one ordered closed loop per section",
         REQUIRE(m.loops.size() == 1);
         const SectionTruth truth = section_truth(c.blade.at(z0));
         const OrderCheck oc = check_loop(m.loops[0], truth);
-        INFO("within 30 um " << oc.within_30um << ", worst back-step " << oc.worst_backstep << " mm, slab " << r.slab);
+        INFO("within 30 um " << oc.within_30um << ", worst back-step " << oc.worst_backstep << " mm, slab "
+                             << r.slab);
         CHECK(oc.within_30um >= 0.995);
         CHECK(oc.worst_backstep <= 0.1);
         CHECK(oc.far_outliers_kept == 0);
@@ -193,6 +198,7 @@ TEST_CASE("slice: a generated blade mesh cuts to the true section", "[slice][gen
   REQUIRE(r.sections[0].morphology.loops.size() == 1);
   const SectionTruth truth = section_truth(blade.at(z0));
   double worst = 0;
-  for (const auto& p : r.sections[0].morphology.loops[0].points) worst = std::max(worst, locate(truth, p).distance);
+  for (const auto& p : r.sections[0].morphology.loops[0].points)
+    worst = std::max(worst, locate(truth, p).distance);
   CHECK(worst < 1e-6);
 }

@@ -90,21 +90,24 @@ struct Airfoil {
       }
     };
     const double rho1 = dr(1) / dc(1).norm(), beta1 = std::atan2(std::sqrt(1 - rho1 * rho1), -rho1);
-    arc(1, -beta1, beta1);                                                  // TE cap
-    for (int k = m; k > 0; --k) out.push_back(side(double(k) / m, +1));   // upper, TE to LE
+    arc(1, -beta1, beta1);                                               // TE cap
+    for (int k = m; k > 0; --k) out.push_back(side(double(k) / m, +1));  // upper, TE to LE
     const double rho0 = dr(0) / dc(0).norm(), alpha0 = std::atan2(std::sqrt(1 - rho0 * rho0), -rho0);
-    arc(0, alpha0, 2 * pi - alpha0);                                        // LE cap
+    arc(0, alpha0, 2 * pi - alpha0);  // LE cap
     return out;
   }
 };
 
-Airfoil turbine_like() { return {{0, 0}, {15, 12}, {35, -5}, 1.0, 0.3, 4.6}; }
-Airfoil compressor_like() { return {{0, 0}, {20, 5}, {40, 0}, 0.35, 0.2, 1.85}; }
+Airfoil turbine_like() {
+  return {{0, 0}, {15, 12}, {35, -5}, 1.0, 0.3, 4.6};
+}
+Airfoil compressor_like() {
+  return {{0, 0}, {20, 5}, {40, 0}, 0.35, 0.2, 1.85};
+}
 
 /// A scan of a dense closed polyline: points every `spacing` of arc length with Gaussian
 /// noise along the normal; `at` receives each point's arc-length position.
-Points scan(const Points& dense, double spacing, double sigma, std::uint64_t seed,
-            std::vector<double>& at) {
+Points scan(const Points& dense, double spacing, double sigma, std::uint64_t seed, std::vector<double>& at) {
   std::vector<double> s(dense.size() + 1, 0);
   for (std::size_t k = 0; k < dense.size(); ++k)
     s[k + 1] = s[k] + (dense[(k + 1) % dense.size()] - dense[k]).norm();
@@ -165,31 +168,31 @@ std::vector<SmoothOptions> strengths() {
 TEST_CASE("smooth: noisy circle moves toward the true circle", "[smooth]") {
   // R = 10 mm at 0.08 mm spacing.
   for (const SmoothOptions& o : strengths())
-  for (double sigma : {0.002, 0.005, 0.02})
-    for (std::uint64_t seed : {1u, 2u, 3u}) {
-      const Points p = noisy_circle(10, 785, sigma, seed);
-      const SmoothResult r = section::smooth(p, o);
-      std::vector<double> before, after;
-      for (const auto& x : p) before.push_back(x.norm() - 10);
-      for (const auto& x : r.points) after.push_back(x.norm() - 10);
-      INFO("sigma " << sigma << " seed " << seed << " rms " << rms(before) << " -> " << rms(after));
-      CHECK(rms(after) <= 0.5 * rms(before));
-      CHECK(r.points.size() == p.size());
-    }
+    for (double sigma : {0.002, 0.005, 0.02})
+      for (std::uint64_t seed : {1u, 2u, 3u}) {
+        const Points p = noisy_circle(10, 785, sigma, seed);
+        const SmoothResult r = section::smooth(p, o);
+        std::vector<double> before, after;
+        for (const auto& x : p) before.push_back(x.norm() - 10);
+        for (const auto& x : r.points) after.push_back(x.norm() - 10);
+        INFO("sigma " << sigma << " seed " << seed << " rms " << rms(before) << " -> " << rms(after));
+        CHECK(rms(after) <= 0.5 * rms(before));
+        CHECK(r.points.size() == p.size());
+      }
 }
 
 TEST_CASE("smooth: noisy ellipse moves toward the true ellipse", "[smooth]") {
   for (const SmoothOptions& o : strengths())
-  for (double sigma : {0.005, 0.01, 0.02})
-    for (std::uint64_t seed : {4u, 5u, 6u}) {
-      const Points p = noisy_ellipse(10, 5, 600, sigma, seed);
-      const SmoothResult r = section::smooth(p, o);
-      std::vector<double> before, after;
-      for (const auto& x : p) before.push_back(ellipse_distance(x, 10, 5));
-      for (const auto& x : r.points) after.push_back(ellipse_distance(x, 10, 5));
-      INFO("sigma " << sigma << " seed " << seed << " rms " << rms(before) << " -> " << rms(after));
-      CHECK(rms(after) <= 0.5 * rms(before));
-    }
+    for (double sigma : {0.005, 0.01, 0.02})
+      for (std::uint64_t seed : {4u, 5u, 6u}) {
+        const Points p = noisy_ellipse(10, 5, 600, sigma, seed);
+        const SmoothResult r = section::smooth(p, o);
+        std::vector<double> before, after;
+        for (const auto& x : p) before.push_back(ellipse_distance(x, 10, 5));
+        for (const auto& x : r.points) after.push_back(ellipse_distance(x, 10, 5));
+        INFO("sigma " << sigma << " seed " << seed << " rms " << rms(before) << " -> " << rms(after));
+        CHECK(rms(after) <= 0.5 * rms(before));
+      }
 }
 
 TEST_CASE("smooth: a clean circle keeps its radius", "[smooth]") {
@@ -312,8 +315,8 @@ TEST_CASE("smooth: airfoil sections come closer to the true profile", "[smooth]"
         after.push_back(polyline_distance(dense, cum, at[i], r.points[i], 1.0));
         if (before.back() <= 0.005) worst_move = std::max(worst_move, (r.points[i] - p[i]).norm());
       }
-      INFO("seed " << seed << " rms " << rms(before) << " -> " << rms(after) << " worst move "
-                   << worst_move << " iterations " << r.iterations);
+      INFO("seed " << seed << " rms " << rms(before) << " -> " << rms(after) << " worst move " << worst_move
+                   << " iterations " << r.iterations);
       CHECK(rms(after) <= 0.6 * rms(before));
       CHECK(worst_move <= 0.030);
     }
@@ -338,8 +341,8 @@ TEST_CASE("smooth: generated blade sections come closer to the true profile", "[
           after.push_back(section::locate(truth, r.points[i]).distance);
           if (before.back() <= 0.005) worst_move = std::max(worst_move, (r.points[i] - p[i]).norm());
         }
-        INFO("z " << f * blade.span << " seed " << seed << " rms " << rms(before) << " -> "
-                  << rms(after) << " worst move " << worst_move);
+        INFO("z " << f * blade.span << " seed " << seed << " rms " << rms(before) << " -> " << rms(after)
+                  << " worst move " << worst_move);
         CHECK(rms(after) <= 0.6 * rms(before));
         CHECK(worst_move <= 0.030);
       }

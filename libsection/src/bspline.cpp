@@ -19,7 +19,9 @@ namespace {
 
 constexpr int max_degree = 7;
 
-int control_count(const BSpline& c) { return static_cast<int>(c.control.size()); }
+int control_count(const BSpline& c) {
+  return static_cast<int>(c.control.size());
+}
 
 void check_curve(const BSpline& c) {
   const int n = control_count(c);
@@ -28,19 +30,20 @@ void check_curve(const BSpline& c) {
                 std::to_string(max_degree));
   if (c.closed) {
     if (n < c.degree + 1 || static_cast<int>(c.knots.size()) != n + 1)
-      throw Error("bspline: a closed curve of degree " + std::to_string(c.degree) +
-                  " needs at least " + std::to_string(c.degree + 1) +
-                  " control points and control points + 1 knots, it has " + std::to_string(n) +
-                  " and " + std::to_string(c.knots.size()));
+      throw Error("bspline: a closed curve of degree " + std::to_string(c.degree) + " needs at least " +
+                  std::to_string(c.degree + 1) + " control points and control points + 1 knots, it has " +
+                  std::to_string(n) + " and " + std::to_string(c.knots.size()));
   } else if (n < c.degree + 1 || static_cast<int>(c.knots.size()) != n + c.degree + 1) {
     throw Error("bspline: an open curve of degree " + std::to_string(c.degree) + " needs at least " +
                 std::to_string(c.degree + 1) +
-                " control points and control points + degree + 1 knots, it has " +
-                std::to_string(n) + " and " + std::to_string(c.knots.size()));
+                " control points and control points + degree + 1 knots, it has " + std::to_string(n) +
+                " and " + std::to_string(c.knots.size()));
   }
 }
 
-double period(const BSpline& c) { return c.knots.back() - c.knots.front(); }
+double period(const BSpline& c) {
+  return c.knots.back() - c.knots.front();
+}
 
 long floor_div(long a, long b) {
   long q = a / b;
@@ -124,8 +127,7 @@ void basis_derivatives(const BSpline& c, long j, double t, int nd,
       const int j1 = rk >= -1 ? 1 : -rk;
       const int j2 = (r - 1 <= pk) ? k - 1 : p - r;
       for (int jj = j1; jj <= j2; ++jj) {
-        a[s2][jj] = ndu[pk + 1][rk + jj] == 0 ? 0
-                                                : (a[s1][jj] - a[s1][jj - 1]) / ndu[pk + 1][rk + jj];
+        a[s2][jj] = ndu[pk + 1][rk + jj] == 0 ? 0 : (a[s1][jj] - a[s1][jj - 1]) / ndu[pk + 1][rk + jj];
         d += a[s2][jj] * ndu[rk + jj][pk];
       }
       if (r <= pk) {
@@ -221,11 +223,17 @@ ClosestPoint refine_samples(const BSpline& c, const Eigen::Vector2d& q, const st
 
 }  // namespace
 
-double BSpline::t_min() const { return closed ? knots.front() : knots[degree]; }
+double BSpline::t_min() const {
+  return closed ? knots.front() : knots[degree];
+}
 
-double BSpline::t_max() const { return closed ? knots.back() : knots[control.size()]; }
+double BSpline::t_max() const {
+  return closed ? knots.back() : knots[control.size()];
+}
 
-Eigen::Vector2d BSpline::point(double t) const { return derivative(t, 0); }
+Eigen::Vector2d BSpline::point(double t) const {
+  return derivative(t, 0);
+}
 
 Eigen::Vector2d BSpline::derivative(double t, int k) const {
   if (k < 0) throw Error("bspline: derivative order " + std::to_string(k) + " is negative");
@@ -307,8 +315,7 @@ ClosestPoint closest_point_near(const BSpline& curve, const Eigen::Vector2d& q, 
   return make_closest(curve, q, minimise_bracket(curve, q, lo, hi, ts[best]));
 }
 
-std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& points,
-                                            bool closed) {
+std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& points, bool closed) {
   std::vector<double> t;
   if (points.empty()) return t;
   t.reserve(points.size() + 1);
@@ -318,15 +325,14 @@ std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& 
   return t;
 }
 
-BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points,
-                             const std::vector<double>& parameters, const BSpline& shape,
-                             double fairness, const std::vector<double>& weights) {
+BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& parameters,
+                           const BSpline& shape, double fairness, const std::vector<double>& weights) {
   check_curve(shape);
   const int n = control_count(shape);
   const int m = static_cast<int>(points.size());
   if (static_cast<int>(parameters.size()) < m)
-    throw Error("fit_curve: " + std::to_string(m) + " points but only " +
-                std::to_string(parameters.size()) + " parameters");
+    throw Error("fit_curve: " + std::to_string(m) + " points but only " + std::to_string(parameters.size()) +
+                " parameters");
   // The data term summed per matrix entry in point order, first term first: the sums that
   // setFromTriplets would form from one triplet per point and entry, without the triplets.
   // A row meets the 2 p + 1 columns within p of it at most.
@@ -431,9 +437,12 @@ BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOpti
   } else {
     shape.knots.assign(n + p + 1, 0.0);
     for (int i = 0; i < n + p + 1; ++i) {
-      if (i <= p) shape.knots[i] = 0;
-      else if (i >= n) shape.knots[i] = length;
-      else shape.knots[i] = length * (i - p) / (n - p);
+      if (i <= p)
+        shape.knots[i] = 0;
+      else if (i >= n)
+        shape.knots[i] = length;
+      else
+        shape.knots[i] = length * (i - p) / (n - p);
     }
   }
   return fit_control_points(points, s, shape, options.fairness, {});
@@ -446,8 +455,8 @@ std::vector<Eigen::Vector2d> sample(const BSpline& curve, int count) {
   out.reserve(count);
   const double a = curve.t_min(), b = curve.t_max();
   for (int i = 0; i < count; ++i) {
-    const double t = curve.closed ? a + (b - a) * i / count
-                                  : (count == 1 ? a : a + (b - a) * i / (count - 1));
+    const double t =
+        curve.closed ? a + (b - a) * i / count : (count == 1 ? a : a + (b - a) * i / (count - 1));
     out.push_back(curve.point(t));
   }
   return out;
@@ -463,8 +472,8 @@ double arc_length(const BSpline& curve, double a, double b) {
   if (b <= a) return 0;
   static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                               0.9061798459386640};
-  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                              0.4786286704993665, 0.2369268850561891};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                              0.2369268850561891};
   // Breakpoints between a and b (extended periodically when closed).
   long j = find_span(curve, normalise(curve, a));
   if (curve.closed) {

@@ -1,8 +1,7 @@
 #include "section/register_views.h"
 
+#include "detail/flann_nearest.h"
 #include "section/error.h"
-
-#include <flann/flann.hpp>
 
 #include <Eigen/Dense>
 
@@ -19,7 +18,8 @@ namespace {
 
 // Every k-th point, k chosen so that at most `limit` are kept.
 std::vector<Eigen::Vector3d> evenly(const std::vector<Eigen::Vector3d>& points, std::size_t limit) {
-  const std::size_t stride = std::max<std::size_t>(1, (points.size() + limit - 1) / std::max<std::size_t>(limit, 1));
+  const std::size_t stride =
+      std::max<std::size_t>(1, (points.size() + limit - 1) / std::max<std::size_t>(limit, 1));
   std::vector<Eigen::Vector3d> out;
   out.reserve(points.size() / stride + 1);
   for (std::size_t i = 0; i < points.size(); i += stride) out.push_back(points[i]);
@@ -53,31 +53,16 @@ struct Patch {
 class Reference {
 public:
   Reference(std::vector<Eigen::Vector3d> points, int neighbours)
-      : points_(std::move(points)), neighbours_(std::min<int>(neighbours, static_cast<int>(points_.size()))),
-        data_(points_.size() * 3), slot_(points_.size(), -1) {
-    for (std::size_t i = 0; i < points_.size(); ++i)
-      for (int k = 0; k < 3; ++k) data_[3 * i + k] = points_[i][k];
-    index_ = std::make_unique<flann::Index<flann::L2<double>>>(
-        flann::Matrix<double>(data_.data(), points_.size(), 3), flann::KDTreeSingleIndexParams(12));
-    index_->buildIndex();
-  }
+      : points_(std::move(points)),
+        neighbours_(std::min<int>(neighbours, static_cast<int>(points_.size()))),
+        index_(points_),
+        slot_(points_.size(), -1) {}
 
   // Nearest reference point of each query within `radius` (index, squared distance; -1
   // where none): a bounded search, as most of a view lies far from the other.
   void nearest(const std::vector<Eigen::Vector3d>& queries, double radius, std::vector<int>& index,
                std::vector<double>& d2) const {
-    std::vector<double> q(queries.size() * 3);
-    for (std::size_t i = 0; i < queries.size(); ++i)
-      for (int k = 0; k < 3; ++k) q[3 * i + k] = queries[i][k];
-    index.assign(queries.size(), -1);
-    d2.assign(queries.size(), 0);
-    flann::Matrix<double> qm(q.data(), queries.size(), 3);
-    flann::Matrix<int> im(index.data(), queries.size(), 1);
-    flann::Matrix<double> dm(d2.data(), queries.size(), 1);
-    flann::SearchParams params(flann::FLANN_CHECKS_UNLIMITED);
-    params.cores = 0;
-    params.max_neighbors = 1;
-    index_->radiusSearch(qm, im, dm, static_cast<float>(radius * radius), params);
+    index_.nearest_within(queries, radius, index, d2);
   }
 
   // The patch around point i; invalid where the neighbourhood is not a surface (an edge
@@ -91,10 +76,7 @@ public:
     if (neighbours_ < 10) return pa;
     std::vector<int> idx(static_cast<std::size_t>(neighbours_));
     std::vector<double> d2(static_cast<std::size_t>(neighbours_));
-    flann::Matrix<double> qm(&data_[3 * s], 1, 3);
-    flann::Matrix<int> im(idx.data(), 1, static_cast<std::size_t>(neighbours_));
-    flann::Matrix<double> dm(d2.data(), 1, static_cast<std::size_t>(neighbours_));
-    index_->knnSearch(qm, im, dm, neighbours_, flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
+    index_.k_nearest(points_[s], neighbours_, idx.data(), d2.data());
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (int j : idx) mean += points_[static_cast<std::size_t>(j)];
     mean /= neighbours_;
@@ -125,7 +107,8 @@ public:
     const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(ata);
     Eigen::Matrix<double, 6, 1> h = ldlt.solve(atb);
     // Neighbours nearly on a line (a scan row) do not fix the cross terms: a plane then.
-    if (ldlt.info() != Eigen::Success || !h.allFinite() || !(ldlt.vectorD().minCoeff() > 1e-6 * ldlt.vectorD().maxCoeff()))
+    if (ldlt.info() != Eigen::Success || !h.allFinite() ||
+        !(ldlt.vectorD().minCoeff() > 1e-6 * ldlt.vectorD().maxCoeff()))
       h.setZero();
     pa.h = h;
     pa.valid = true;
@@ -135,8 +118,7 @@ public:
 private:
   std::vector<Eigen::Vector3d> points_;
   int neighbours_;
-  std::vector<double> data_;
-  std::unique_ptr<flann::Index<flann::L2<double>>> index_;
+  detail::NearestPoints<3> index_;
   std::vector<int> slot_;      // index into patches_, -1 = not fitted yet
   std::deque<Patch> patches_;  // only those pairs needed: a few percent of the reference
 };
@@ -186,18 +168,108 @@ double rms(const std::vector<double>& r) {
   return r.empty() ? 0 : std::sqrt(s / r.size());
 }
 
+void check_views(const std::vector<Cloud>& views, const RegisterOptions& o) {
+  if (views.empty()) throw Error("register_views: no views given");
+  if (!(o.reach >= 0) || !std::isfinite(o.reach) || !(o.tolerance > 0) || !(o.trim > 0) ||
+      o.neighbours < 10 || !(o.weak >= 0 && o.weak < 1) || o.max_iterations < 1 || o.reference_points < 1 ||
+      o.moving_points < 1)
+    throw Error(
+        "register_views: reach must be >= 0, tolerance and trim positive, weak in [0, 1), neighbours >= 10, "
+        "iterations and point counts >= 1");
+  for (std::size_t v = 0; v < views.size(); ++v)
+    for (const auto& p : views[v].points)
+      if (!p.allFinite())
+        throw Error("register_views: view " + std::to_string(v) + " has a point that is not finite");
+}
+
+// Only points near the reference can pair: the rest of the view is left out of the
+// iterations (the views are aligned to within the reach already).
+void keep_near(const Reference& ref, double reach, std::vector<Eigen::Vector3d>& moving) {
+  std::vector<int> index;
+  std::vector<double> d2;
+  ref.nearest(moving, 2 * reach, index, d2);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < moving.size(); ++i)
+    if (index[i] >= 0 && d2[i] <= 4 * reach * reach) moving[kept++] = moving[i];
+  moving.resize(kept);
+}
+
+// One ICP step: the rigid motion that lowers the pairs' residuals, linearised about their
+// centroid (r + n.(w x a) + n.t, a = p - c).
+Eigen::Isometry3d icp_step(const Pairs& pairs, double weak, const std::string& who) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& p : pairs.p) c += p;
+  c /= static_cast<double>(pairs.p.size());
+  Eigen::Matrix<double, 6, 6> ata = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> atb = Eigen::Matrix<double, 6, 1>::Zero();
+  // Rotations scaled by the pairs' rms extent, so that all six unknowns are lengths.
+  double extent = 0;
+  for (const auto& p : pairs.p) extent += (p - c).squaredNorm();
+  extent = std::sqrt(extent / pairs.p.size());
+  if (!(extent > 0)) throw Error(who + ": the registration is degenerate (all pairs at one point)");
+  for (std::size_t i = 0; i < pairs.p.size(); ++i) {
+    const Eigen::Vector3d a = (pairs.p[i] - c) / extent;
+    Eigen::Matrix<double, 6, 1> row;
+    row << a.cross(pairs.n[i]), pairs.n[i];
+    ata += row * row.transpose();
+    atb -= row * pairs.r[i];
+  }
+  // Directions the shared surface hardly constrains (sliding along the span of a blade
+  // whose surface is nearly parallel to it) are left alone rather than fitted to noise:
+  // the solve is truncated below `weak` of the strongest direction.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(ata);
+  const Eigen::Matrix<double, 6, 1> lambda = eig.eigenvalues();
+  if (!(lambda(5) > 0) || !lambda.allFinite())
+    throw Error(who + ": the registration is degenerate (the shared surface is too simple)");
+  Eigen::Matrix<double, 6, 1> x = Eigen::Matrix<double, 6, 1>::Zero();
+  for (int k = 0; k < 6; ++k)
+    if (lambda(k) > weak * lambda(5))
+      x += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(atb) / lambda(k));
+  const Eigen::Vector3d w = x.head<3>() / extent, t = x.tail<3>();
+  Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+  if (w.norm() > 0) step.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+  step.translation() = c + t - step.linear() * c;
+  return step;
+}
+
+// Moves one view onto the reference by ICP.
+ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d>& points, double reach,
+                               const RegisterOptions& o, const std::string& who) {
+  std::vector<Eigen::Vector3d> moving = evenly(points, o.moving_points);
+  keep_near(ref, reach, moving);
+  ViewRegistration out;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> moved(moving.size());
+  Pairs pairs;
+  for (int it = 0; it <= o.max_iterations; ++it) {
+    for (std::size_t i = 0; i < moving.size(); ++i) moved[i] = T * moving[i];
+    pairs = pair_up(ref, moved, reach, o.trim);
+    if (pairs.r.size() < o.min_pairs)
+      throw Error(who + " shares too little surface with view 0: " + std::to_string(pairs.r.size()) +
+                  " point pairs within " + std::to_string(reach) + " (at least " +
+                  std::to_string(o.min_pairs) + " are needed; are the views roughly aligned?)");
+    if (it == 0) out.rms_before = rms(pairs.r);
+    if (it == o.max_iterations) break;
+    const Eigen::Isometry3d step = icp_step(pairs, o.weak, who);
+    T = step * T;
+    out.iterations = it + 1;
+    // Converged when the step changes the pairs' plane distances by less than the
+    // tolerance (rms); a direction the overlap hardly constrains may still creep.
+    double change = 0;
+    for (std::size_t i = 0; i < pairs.p.size(); ++i)
+      change += std::pow(pairs.n[i].dot(step * pairs.p[i] - pairs.p[i]), 2);
+    if (std::sqrt(change / pairs.p.size()) < o.tolerance) break;
+  }
+  out.transform = T;
+  out.pairs = pairs.r.size();
+  out.rms_after = rms(pairs.r);
+  return out;
+}
+
 }  // namespace
 
 RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOptions& o) {
-  if (views.empty()) throw Error("register_views: no views given");
-  if (!(o.reach >= 0) || !std::isfinite(o.reach) || !(o.tolerance > 0) || !(o.trim > 0) || o.neighbours < 10 ||
-      !(o.weak >= 0 && o.weak < 1) ||
-      o.max_iterations < 1 || o.reference_points < 1 || o.moving_points < 1)
-    throw Error("register_views: reach must be >= 0, tolerance and trim positive, weak in [0, 1), neighbours >= 10, "
-                "iterations and point counts >= 1");
-  for (std::size_t v = 0; v < views.size(); ++v)
-    for (const auto& p : views[v].points)
-      if (!p.allFinite()) throw Error("register_views: view " + std::to_string(v) + " has a point that is not finite");
+  check_views(views, o);
   RegisterResult result;
   result.views.resize(views.size());
   if (views.size() == 1) return result;
@@ -207,80 +279,12 @@ RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOpt
                 " points, too few to register onto");
   const double spacing = mean_spacing(ref_points);
   const double reach = o.reach > 0 ? o.reach : 3 * spacing;
-  if (!(reach > 0)) throw Error("register_views: the reference view's points coincide: no surface to register onto");
+  if (!(reach > 0))
+    throw Error("register_views: the reference view's points coincide: no surface to register onto");
   Reference ref(evenly(ref_points, o.reference_points), o.neighbours);
-
-  for (std::size_t v = 1; v < views.size(); ++v) {
-    const std::string who = "register_views: view " + std::to_string(v);
-    std::vector<Eigen::Vector3d> moving = evenly(views[v].points, o.moving_points);
-    {
-      // Only points near the reference can pair: the rest of the view is left out of the
-      // iterations (the views are aligned to within the reach already).
-      std::vector<int> index;
-      std::vector<double> d2;
-      ref.nearest(moving, 2 * reach, index, d2);
-      std::size_t kept = 0;
-      for (std::size_t i = 0; i < moving.size(); ++i)
-        if (index[i] >= 0 && d2[i] <= 4 * reach * reach) moving[kept++] = moving[i];
-      moving.resize(kept);
-    }
-    ViewRegistration& out = result.views[v];
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    std::vector<Eigen::Vector3d> moved(moving.size());
-    Pairs pairs;
-    for (int it = 0; it <= o.max_iterations; ++it) {
-      for (std::size_t i = 0; i < moving.size(); ++i) moved[i] = T * moving[i];
-      pairs = pair_up(ref, moved, reach, o.trim);
-      if (pairs.r.size() < o.min_pairs)
-        throw Error(who + " shares too little surface with view 0: " + std::to_string(pairs.r.size()) +
-                    " point pairs within " + std::to_string(reach) + " (at least " + std::to_string(o.min_pairs) +
-                    " are needed; are the views roughly aligned?)");
-      if (it == 0) out.rms_before = rms(pairs.r);
-      if (it == o.max_iterations) break;
-      // Linearised about the pairs' centroid: r + n.(w x a) + n.t, a = p - c.
-      Eigen::Vector3d c = Eigen::Vector3d::Zero();
-      for (const auto& p : pairs.p) c += p;
-      c /= static_cast<double>(pairs.p.size());
-      Eigen::Matrix<double, 6, 6> ata = Eigen::Matrix<double, 6, 6>::Zero();
-      Eigen::Matrix<double, 6, 1> atb = Eigen::Matrix<double, 6, 1>::Zero();
-      // Rotations scaled by the pairs' rms extent, so that all six unknowns are lengths.
-      double extent = 0;
-      for (const auto& p : pairs.p) extent += (p - c).squaredNorm();
-      extent = std::sqrt(extent / pairs.p.size());
-      if (!(extent > 0)) throw Error(who + ": the registration is degenerate (all pairs at one point)");
-      for (std::size_t i = 0; i < pairs.p.size(); ++i) {
-        const Eigen::Vector3d a = (pairs.p[i] - c) / extent;
-        Eigen::Matrix<double, 6, 1> row;
-        row << a.cross(pairs.n[i]), pairs.n[i];
-        ata += row * row.transpose();
-        atb -= row * pairs.r[i];
-      }
-      // Directions the shared surface hardly constrains (sliding along the span of a blade
-      // whose surface is nearly parallel to it) are left alone rather than fitted to noise:
-      // the solve is truncated below `weak` of the strongest direction.
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(ata);
-      const Eigen::Matrix<double, 6, 1> lambda = eig.eigenvalues();
-      if (!(lambda(5) > 0) || !lambda.allFinite())
-        throw Error(who + ": the registration is degenerate (the shared surface is too simple)");
-      Eigen::Matrix<double, 6, 1> x = Eigen::Matrix<double, 6, 1>::Zero();
-      for (int k = 0; k < 6; ++k)
-        if (lambda(k) > o.weak * lambda(5)) x += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(atb) / lambda(k));
-      const Eigen::Vector3d w = x.head<3>() / extent, t = x.tail<3>();
-      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-      if (w.norm() > 0) step.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
-      step.translation() = c + t - step.linear() * c;
-      T = step * T;
-      out.iterations = it + 1;
-      // Converged when the step changes the pairs' plane distances by less than the
-      // tolerance (rms); a direction the overlap hardly constrains may still creep.
-      double change = 0;
-      for (std::size_t i = 0; i < pairs.p.size(); ++i) change += std::pow(pairs.n[i].dot(step * pairs.p[i] - pairs.p[i]), 2);
-      if (std::sqrt(change / pairs.p.size()) < o.tolerance) break;
-    }
-    out.transform = T;
-    out.pairs = pairs.r.size();
-    out.rms_after = rms(pairs.r);
-  }
+  for (std::size_t v = 1; v < views.size(); ++v)
+    result.views[v] =
+        register_view(ref, views[v].points, reach, o, "register_views: view " + std::to_string(v));
   return result;
 }
 
@@ -288,8 +292,10 @@ std::string describe(const ViewRegistration& r, const std::string& name) {
   const Eigen::Vector3d t = r.transform.translation();
   const double degrees = Eigen::AngleAxisd(r.transform.linear()).angle() * 180 / 3.14159265358979323846;
   char buf[512];
-  std::snprintf(buf, sizeof buf, " translation=%.6g,%.6g,%.6g rotation=%.6g pairs=%zu rms_before=%.6g rms_after=%.6g iterations=%d",
-                t.x(), t.y(), t.z(), degrees, r.pairs, r.rms_before, r.rms_after, r.iterations);
+  std::snprintf(
+      buf, sizeof buf,
+      " translation=%.6g,%.6g,%.6g rotation=%.6g pairs=%zu rms_before=%.6g rms_after=%.6g iterations=%d",
+      t.x(), t.y(), t.z(), degrees, r.pairs, r.rms_before, r.rms_after, r.iterations);
   return "register view=" + name + buf;
 }
 

@@ -1,9 +1,7 @@
 #include "section/smooth.h"
 
 #include "section/error.h"
-#include "detail/parallel.h"
-
-#include <cholmod.h>
+#include "detail/cholmod_solver.h"
 
 #include <algorithm>
 #include <array>
@@ -36,13 +34,11 @@ struct Topology {
 /// Segment lengths, floored so that a collapsed segment cannot divide by zero.
 std::vector<double> segment_lengths(const Points& q, const Topology& t, double floor) {
   std::vector<double> l(t.n, 0.0);
-  for (int k = t.first_segment(); k < t.n; ++k)
-    l[k] = std::max((q[k] - q[t.prev(k)]).norm(), floor);
+  for (int k = t.first_segment(); k < t.n; ++k) l[k] = std::max((q[k] - q[t.prev(k)]).norm(), floor);
   return l;
 }
 
-double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t,
-                 double floor) {
+double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t, double floor) {
   const auto l = segment_lengths(q, t, floor);
   double curvature = 0;
   for (int i = t.first_term(); i < t.end_term(); ++i) {
@@ -61,8 +57,7 @@ double energy_of(const Points& q, const Points& q0, double a, double b, const To
 /// row of term i, w_i = 1 / (l_i + l_{i+1}); A q = b q0 is grad E = 0 at frozen lengths.
 using Band = std::vector<std::array<double, 5>>;
 
-void assemble_band(const std::vector<double>& l, double a, double b, const Topology& t,
-                   Band& band) {
+void assemble_band(const std::vector<double>& l, double a, double b, const Topology& t, Band& band) {
   band.assign(t.n, {0, 0, 0, 0, 0});
   for (int i = 0; i < t.n; ++i) band[i][2] = b;
   for (int i = t.first_term(); i < t.end_term(); ++i) {
@@ -83,143 +78,35 @@ int band_column(int i, int o, const Topology& t) {
   return c < 0 ? c + t.n : c - t.n;
 }
 
-/// Global solve with CHOLMOD (simplicial LL'). The pattern is analysed once per curve. The
-/// factorisation of A with the fill-reducing permutation P first builds P A P' (a sparse
-/// transpose) at every call; here P A P' is built once, its values refilled in place per
-/// outer iteration, and factored with the natural ordering: CHOLMOD then does the same
-/// arithmetic on the same matrix, without the transpose and the allocations around it,
-/// so the points are bit for bit those of the permuting factorisation.
-class CholmodSolver {
-public:
-  explicit CholmodSolver(const Topology& t) : topo_(t) {
-    cholmod_start(&common_);
-    common_.final_asis = 0;
-    common_.supernodal = CHOLMOD_SIMPLICIAL;
-    common_.final_ll = 1;
-    try {
-      setup(t.n);
-    } catch (...) {
-      release();
-      throw;
+/// The global solver (CHOLMOD) for the band's pattern, analysed once per curve: A's entries
+/// are all band entries (both triangles, columns sorted), read from the band's rows.
+std::unique_ptr<detail::CholmodSolver> band_solver(const Topology& t) {
+  const int n = t.n;
+  std::vector<int> ap(n + 1, 0), ai, source;
+  for (int col = 0; col < n; ++col) {
+    std::vector<int> rows;
+    for (int o = -2; o <= 2; ++o) {
+      const int r = band_column(col, o, t);  // symmetric pattern: row r of column col
+      if (r >= 0) rows.push_back(r);
     }
-  }
-  CholmodSolver(const CholmodSolver&) = delete;
-  CholmodSolver& operator=(const CholmodSolver&) = delete;
-  ~CholmodSolver() { release(); }
-
-  void solve(const Band& band, const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d& x) {
-    double* px = static_cast<double*>(pap_->x);
-    static_assert(sizeof(Band::value_type) == 5 * sizeof(double), "band rows are packed");
-    const double* values = band.front().data();
-    for (std::size_t k = 0; k < from_.size(); ++k) px[k] = values[from_[k]];
-    double beta[2] = {0, 0};
-    cholmod_factorize_p(pap_, beta, nullptr, 0, factor_, &common_);
-    if (common_.status < CHOLMOD_OK || factor_->minor != factor_->n)
-      throw Error("smooth: CHOLMOD could not factor the system (not positive definite?)");
-    const int n = topo_.n;
-    double* b = static_cast<double*>(rhs_->x);
-    for (int k = 0; k < n; ++k) {
-      b[k] = rhs(perm_[k], 0);
-      b[n + k] = rhs(perm_[k], 1);
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+    for (int r : rows) {
+      ai.push_back(r);
+      int o = col - r;  // band entry (r, col) = band[r][2 + o]
+      if (o > 2) o -= n;
+      if (o < -2) o += n;
+      source.push_back(5 * r + 2 + o);
     }
-    if (!cholmod_solve2(CHOLMOD_A, factor_, rhs_, nullptr, &x_, nullptr, &y_, &e_, &common_))
-      throw Error("smooth: CHOLMOD solve failed");
-    const double* s = static_cast<const double*>(x_->x);
-    const std::size_t d = x_->d;
-    x.resize(n, 2);
-    for (int k = 0; k < n; ++k) {
-      x(perm_[k], 0) = s[k];
-      x(perm_[k], 1) = s[d + k];
-    }
+    ap[col + 1] = static_cast<int>(ai.size());
   }
-
-private:
-  void setup(int n) {
-    const Topology& t = topo_;
-    // A: all band entries (both triangles, columns sorted), read as its lower triangle.
-    std::vector<int> ap(n + 1, 0), ai;
-    for (int col = 0; col < n; ++col) {
-      std::vector<int> rows;
-      for (int o = -2; o <= 2; ++o) {
-        const int r = band_column(col, o, t);  // symmetric pattern: row r of column col
-        if (r >= 0) rows.push_back(r);
-      }
-      std::sort(rows.begin(), rows.end());
-      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-      for (int r : rows) {
-        ai.push_back(r);
-        int o = col - r;  // band entry (r, col) = band[r][2 + o]
-        if (o > 2) o -= n;
-        if (o < -2) o += n;
-        source_.push_back(5 * r + 2 + o);
-      }
-      ap[col + 1] = static_cast<int>(ai.size());
-    }
-    std::vector<double> ax(ai.size());
-    for (std::size_t k = 0; k < ax.size(); ++k) ax[k] = double(k);  // entry numbers, to follow them
-    cholmod_sparse a{};
-    a.nrow = a.ncol = n;
-    a.nzmax = ai.size();
-    a.p = ap.data();
-    a.i = ai.data();
-    a.x = ax.data();
-    a.stype = -1;
-    a.itype = CHOLMOD_INT;
-    a.xtype = CHOLMOD_REAL;
-    a.dtype = CHOLMOD_DOUBLE;
-    a.sorted = 1;
-    a.packed = 1;
-    // The fill-reducing ordering, as an analysis of A picks it.
-    cholmod_factor* ordered = cholmod_analyze(&a, &common_);
-    if (!ordered) throw Error("smooth: CHOLMOD could not analyse the system");
-    perm_.assign(static_cast<int*>(ordered->Perm), static_cast<int*>(ordered->Perm) + n);
-    // P A P' in upper form, as the permuting factorisation builds it; each of its entries
-    // carries the number of the entry of A it came from.
-    pap_ = cholmod_ptranspose(&a, 1, perm_.data(), nullptr, 0, &common_);
-    cholmod_free_factor(&ordered, &common_);
-    if (!pap_) throw Error("smooth: CHOLMOD could not permute the system");
-    const std::size_t nz = cholmod_nnz(pap_, &common_);
-    const double* px = static_cast<const double*>(pap_->x);
-    from_.resize(nz);
-    for (std::size_t k = 0; k < nz; ++k) from_[k] = source_[static_cast<std::size_t>(px[k])];
-    // Natural ordering of the permuted matrix, no postordering: P A P' is factored as given.
-    common_.nmethods = 1;
-    common_.method[0].ordering = CHOLMOD_NATURAL;
-    common_.postorder = 0;
-    factor_ = cholmod_analyze(pap_, &common_);
-    if (!factor_ || factor_->ordering != CHOLMOD_NATURAL)
-      throw Error("smooth: CHOLMOD could not analyse the permuted system");
-    const int* natural = static_cast<const int*>(factor_->Perm);
-    for (int k = 0; natural && k < n; ++k)
-      if (natural[k] != k) throw Error("smooth: CHOLMOD reordered the permuted system");
-    rhs_ = cholmod_allocate_dense(n, 2, n, CHOLMOD_REAL, &common_);
-    if (!rhs_) throw Error("smooth: CHOLMOD could not allocate the right-hand side");
-  }
-
-  void release() {
-    cholmod_free_dense(&x_, &common_);
-    cholmod_free_dense(&y_, &common_);
-    cholmod_free_dense(&e_, &common_);
-    cholmod_free_dense(&rhs_, &common_);
-    cholmod_free_factor(&factor_, &common_);
-    cholmod_free_sparse(&pap_, &common_);
-    cholmod_finish(&common_);
-  }
-
-  Topology topo_;
-  cholmod_common common_;
-  std::vector<int> source_;  // entry of A -> its value in the band, 5 * row + 2 + offset
-  std::vector<int> from_;    // entry of P A P' -> its value in the band
-  std::vector<int> perm_;
-  cholmod_sparse* pap_ = nullptr;
-  cholmod_factor* factor_ = nullptr;
-  cholmod_dense *rhs_ = nullptr, *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;
-};
+  return std::make_unique<detail::CholmodSolver>(n, ap, ai, std::move(source), "smooth");
+}
 
 /// The paper's point-by-point iteration on the same frozen-length system, warm-started
 /// from x; sweeps until the largest update is below `tol`. Returns the sweeps done.
-int gauss_seidel(const Band& band, const Eigen::MatrixX2d& rhs, const Topology& t, double tol,
-                 int max_sweeps, Eigen::MatrixX2d& x) {
+int gauss_seidel(const Band& band, const Eigen::MatrixX2d& rhs, const Topology& t, double tol, int max_sweeps,
+                 Eigen::MatrixX2d& x) {
   std::vector<std::array<int, 5>> cols(t.n);
   for (int i = 0; i < t.n; ++i)
     for (int o = -2; o <= 2; ++o) cols[i][2 + o] = band_column(i, o, t);
@@ -333,8 +220,7 @@ double smoothing_length(double a, double spacing, double b) {
   return two_pi * std::pow(a * spacing / (2 * b), 0.25);
 }
 
-double smooth_energy(const Points& points, const Points& reference, double a, double b,
-                     bool closed) {
+double smooth_energy(const Points& points, const Points& reference, double a, double b, bool closed) {
   if (points.size() != reference.size())
     throw Error("smooth: energy of " + std::to_string(points.size()) + " points against " +
                 std::to_string(reference.size()) + " reference points");
@@ -348,65 +234,74 @@ double smooth_energy(const Points& points, const Points& reference, double a, do
   return energy_of(points, reference, a, b, t, 1e-300);
 }
 
-SmoothResult smooth(const Points& points, const SmoothOptions& options) {
-  check_options(options);
+namespace {
+
+/// The frozen-length problem of one curve: the merged input and the weights.
+struct Problem {
+  Points q0;  // the input after merging
+  Topology topo;
+  double a = 0, b = 0;
+  double h = 0;      // mean spacing
+  double floor = 0;  // least segment length
+  double size = 0;   // diagonal of the bounding box
+};
+
+Problem prepare(const Points& points, const SmoothOptions& options, SmoothResult& result) {
   constexpr int min_points = 5;
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (!points[i].allFinite())
-      throw Error("smooth: point " + std::to_string(i) + " is not finite");
+    if (!points[i].allFinite()) throw Error("smooth: point " + std::to_string(i) + " is not finite");
   if (points.size() < static_cast<std::size_t>(min_points))
     throw Error("smooth: " + std::to_string(points.size()) + " points, at least " +
                 std::to_string(min_points) + " are needed");
-
-  SmoothResult result;
-  Points q0 = points;
-  const double raw_spacing = mean_spacing(q0, options.closed);
+  Problem p;
+  p.q0 = points;
+  const double raw_spacing = mean_spacing(p.q0, options.closed);
   if (!(raw_spacing > 0)) throw Error("smooth: all points coincide");
-  result.repaired = merge_duplicates(q0, options.closed, options.merge_distance * raw_spacing);
-  if (q0.size() < static_cast<std::size_t>(min_points))
-    throw Error("smooth: " + std::to_string(q0.size()) + " distinct points (after merging " +
-                std::to_string(result.repaired) + " duplicates), at least " +
-                std::to_string(min_points) + " are needed");
-
-  const Topology topo{static_cast<int>(q0.size()), options.closed};
-  const double h = mean_spacing(q0, options.closed);
-  result.spacing = h;
-  const double a = options.smoothing_length > 0 ? smoothing_weight(options.smoothing_length, h, options.b)
-                   : options.a > 0              ? options.a
-                                                : smoothing_weight(options.relative_length * h, h, options.b);
-  const double b = options.b;
-  result.a = a;
+  result.repaired = merge_duplicates(p.q0, options.closed, options.merge_distance * raw_spacing);
+  if (p.q0.size() < static_cast<std::size_t>(min_points))
+    throw Error("smooth: " + std::to_string(p.q0.size()) + " distinct points (after merging " +
+                std::to_string(result.repaired) + " duplicates), at least " + std::to_string(min_points) +
+                " are needed");
+  p.topo = Topology{static_cast<int>(p.q0.size()), options.closed};
+  p.h = mean_spacing(p.q0, options.closed);
+  result.spacing = p.h;
+  p.a = options.smoothing_length > 0 ? smoothing_weight(options.smoothing_length, p.h, options.b)
+        : options.a > 0              ? options.a
+                                     : smoothing_weight(options.relative_length * p.h, p.h, options.b);
+  p.b = options.b;
+  result.a = p.a;
   // Lengths never fall below this: merged input has none shorter than merge_distance * h.
-  const double floor = 1e-6 * h;
-
-  Eigen::Vector2d lo = q0[0], hi = q0[0];
-  for (const auto& p : q0) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+  p.floor = 1e-6 * p.h;
+  Eigen::Vector2d lo = p.q0[0], hi = p.q0[0];
+  for (const auto& x : p.q0) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
   }
-  const double size = (hi - lo).norm();
+  p.size = (hi - lo).norm();
+  return p;
+}
 
-  Points q = q0;
-  double energy = energy_of(q, q0, a, b, topo, floor);
+/// The outer iterations from q = q0: each freezes the lengths, solves, and takes the step
+/// (or a shorter one) when it lowers E. Returns the final E.
+double minimise(const Problem& p, const SmoothOptions& options, Points& q, SmoothResult& result) {
+  const Topology& topo = p.topo;
+  double energy = energy_of(q, p.q0, p.a, p.b, topo, p.floor);
   result.energy_before = energy;
   result.energy_history.push_back(energy);
-
   Eigen::MatrixX2d rhs(topo.n, 2), x(topo.n, 2);
-  for (int i = 0; i < topo.n; ++i) rhs.row(i) = b * q0[i].transpose();
-  std::unique_ptr<CholmodSolver> cholmod;
-  if (options.solver == SmoothSolver::cholmod && a > 0)
-    cholmod = std::make_unique<CholmodSolver>(topo);
+  for (int i = 0; i < topo.n; ++i) rhs.row(i) = p.b * p.q0[i].transpose();
+  std::unique_ptr<detail::CholmodSolver> cholmod;
+  if (options.solver == SmoothSolver::cholmod && p.a > 0) cholmod = band_solver(topo);
   Band band;
   Points next(topo.n);
-
-  for (int it = 1; a > 0 && it <= options.max_iterations; ++it) {
-    assemble_band(segment_lengths(q, topo, floor), a, b, topo, band);
+  static_assert(sizeof(Band::value_type) == 5 * sizeof(double), "band rows are packed");
+  for (int it = 1; p.a > 0 && it <= options.max_iterations; ++it) {
+    assemble_band(segment_lengths(q, topo, p.floor), p.a, p.b, topo, band);
     if (cholmod) {
-      cholmod->solve(band, rhs, x);
+      cholmod->solve(band.front().data(), rhs, x);
     } else {
       for (int i = 0; i < topo.n; ++i) x.row(i) = q[i].transpose();
-      result.sweeps += gauss_seidel(band, rhs, topo, options.sweep_tolerance * size,
-                                    options.max_sweeps, x);
+      result.sweeps += gauss_seidel(band, rhs, topo, options.sweep_tolerance * p.size, options.max_sweeps, x);
     }
     if (!x.allFinite()) throw Error("smooth: the solve produced non-finite points");
     // The frozen-length step minimises E with the lengths of the current points, not E
@@ -416,7 +311,7 @@ SmoothResult smooth(const Points& points, const SmoothOptions& options) {
     bool lowered = false;
     for (double t = 1; t >= 1.0 / 16 && !lowered; t /= 2) {
       for (int i = 0; i < topo.n; ++i) next[i] = q[i] + t * (x.row(i).transpose() - q[i]);
-      next_energy = energy_of(next, q0, a, b, topo, floor);
+      next_energy = energy_of(next, p.q0, p.a, p.b, topo, p.floor);
       lowered = next_energy < energy;
     }
     if (!lowered) {
@@ -429,21 +324,30 @@ SmoothResult smooth(const Points& points, const SmoothOptions& options) {
     energy = next_energy;
     result.energy_history.push_back(energy);
     result.iterations = it;
-    if (change <= options.tolerance * energy || moved <= options.move_tolerance * h) {
+    if (change <= options.tolerance * energy || moved <= options.move_tolerance * p.h) {
       result.converged = true;
       break;
     }
   }
-  if (a == 0) result.converged = true;
+  if (p.a == 0) result.converged = true;
+  return energy;
+}
 
-  result.energy_after = energy;
+}  // namespace
+
+SmoothResult smooth(const Points& points, const SmoothOptions& options) {
+  check_options(options);
+  SmoothResult result;
+  const Problem p = prepare(points, options, result);
+  Points q = p.q0;
+  result.energy_after = minimise(p, options, q, result);
   double sum = 0;
-  for (int i = 0; i < topo.n; ++i) {
-    const double d = (q[i] - q0[i]).norm();
+  for (int i = 0; i < p.topo.n; ++i) {
+    const double d = (q[i] - p.q0[i]).norm();
     sum += d * d;
     result.max_move = std::max(result.max_move, d);
   }
-  result.rms_move = std::sqrt(sum / topo.n);
+  result.rms_move = std::sqrt(sum / p.topo.n);
   result.points = std::move(q);
   return result;
 }

@@ -13,13 +13,13 @@ namespace section {
 /// n + 1 breakpoints t_0 < ... < t_n of one period (t_n - t_0 is the period), and the
 /// curve wraps around: control point i + n is control point i.
 struct BSpline {
-  int degree = 3;                          ///< polynomial degree
-  bool closed = false;                     ///< periodic curve
-  std::vector<double> knots;               ///< see above
-  std::vector<Eigen::Vector2d> control;    ///< control points
+  int degree = 3;                        ///< polynomial degree
+  bool closed = false;                   ///< periodic curve
+  std::vector<double> knots;             ///< see above
+  std::vector<Eigen::Vector2d> control;  ///< control points
 
-  double t_min() const;                    ///< first parameter of the curve
-  double t_max() const;                    ///< last parameter (one period later when closed)
+  double t_min() const;  ///< first parameter of the curve
+  double t_max() const;  ///< last parameter (one period later when closed)
   /// Point at parameter t (wrapped into one period when closed, clamped when open).
   Eigen::Vector2d point(double t) const;
   /// k-th derivative at t (k = 0 gives the point).
@@ -36,9 +36,9 @@ struct BSpline {
 
 /// Closest point of a curve to a query point.
 struct ClosestPoint {
-  double t = 0;                            ///< curve parameter of the foot point
-  Eigen::Vector2d point;                   ///< the foot point
-  double distance = 0;                     ///< distance from the query to the foot point
+  double t = 0;           ///< curve parameter of the foot point
+  Eigen::Vector2d point;  ///< the foot point
+  double distance = 0;    ///< distance from the query to the foot point
 };
 
 /// Closest point on `curve` to `q`: a global search over `samples` samples per knot span
@@ -51,15 +51,14 @@ ClosestPoint closest_point_near(const BSpline& curve, const Eigen::Vector2d& q, 
 
 /// Chord-length parameters of a polyline (closed: the last parameter is the full
 /// length, for the segment back to the first point), starting at 0.
-std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& points,
-                                            bool closed);
+std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& points, bool closed);
 
 /// Options of fit_curve (lengths in the points' units).
 struct CurveFitOptions {
-  int degree = 3;             ///< spline degree
-  int control_points = 0;     ///< number of control points; 0 = points/4, at least 8
-  double fairness = 1e-6;     ///< weight of the second-difference fairness term, relative
-  bool closed = true;         ///< fit a closed (periodic) curve
+  int degree = 3;          ///< spline degree
+  int control_points = 0;  ///< number of control points; 0 = points/4, at least 8
+  double fairness = 1e-6;  ///< weight of the second-difference fairness term, relative
+  bool closed = true;      ///< fit a closed (periodic) curve
 };
 
 /// Least-squares B-spline through ordered points with chord-length parameters and
@@ -71,9 +70,9 @@ BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOpti
 /// control points are ignored) through `points` at the given curve `parameters`, with
 /// optional per-point `weights` (empty = all 1) and the relative second-difference
 /// `fairness` weight of CurveFitOptions. Throws section::Error when the system is singular.
-BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points,
-                           const std::vector<double>& parameters, const BSpline& shape,
-                           double fairness = 1e-6, const std::vector<double>& weights = {});
+BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& parameters,
+                           const BSpline& shape, double fairness = 1e-6,
+                           const std::vector<double>& weights = {});
 
 /// `count` points spread evenly in parameter over the curve (closed: the end point is not
 /// repeated).

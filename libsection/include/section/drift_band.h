@@ -1,14 +1,10 @@
 #pragma once
 /// @file drift_band.h
-/// A band of scan points around a section plane, wider than the slab, each point carried
-/// onto the plane along the section's drift instead of projected straight. A slab of width
-/// d holds about one point per point spacing along the profile; a thin edge of 0.25 mm
-/// radius then has 5-10 points, too few to measure its radius to 3 % through 5 um of
-/// noise. The surface at height z above the plane lies z V from the plane's section (V the
-/// drift: lean, sweep, twist, taper), so a wider band projected straight would smear the
-/// profile by z V. Fitted as a quadratic field over the section (twist and taper, and a
-/// camber or thickness that changes with height) against the slab's ordered profile, the
-/// drift is taken out: each point p at height z goes to p - z V(p).
+/// A band of scan points around a section plane, wider than the slab, for more points on
+/// thin edges: each point is carried onto the plane along the section's drift with height
+/// (lean, sweep, twist, taper), fitted as a quadratic field V over the section against
+/// the slab's ordered profile, instead of projected straight (which would smear the
+/// profile by z V): p at height z goes to p - z V(p) (docs/MORPHOLOGY.md).
 #include "section/morphology.h"
 
 #include <Eigen/Core>
@@ -26,13 +22,14 @@ namespace section {
 /// max(2 half_width, 3 slab) of the plane. Points keep the order of `nearby`. Empty when
 /// the drift cannot be fitted (fewer than 64 points pair with the profile, or the fit is
 /// inconsistent). Deterministic for given inputs.
-std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered, const std::vector<Eigen::Vector3d>& nearby,
-                                        double slab, double half_width, double spacing = 0,
-                                        double sparse_half_width = 0);
+std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered,
+                                        const std::vector<Eigen::Vector3d>& nearby, double slab,
+                                        double half_width, double spacing = 0, double sparse_half_width = 0);
 
 /// The half width of the band for one section: wide enough for one point per `spacing`
 /// along the profile, given that the slab (width `slab`) holds `slab_points` points on a
 /// profile `length` long; at least slab / 2 (the slab itself), at most `max_widths` slabs.
-double band_half_width(std::size_t slab_points, double length, double slab, double spacing, double max_widths);
+double band_half_width(std::size_t slab_points, double length, double slab, double spacing,
+                       double max_widths);
 
 }  // namespace section

@@ -10,8 +10,8 @@ namespace section {
 
 /// An indexed triangle mesh; polygons are split into triangles on reading.
 struct Mesh {
-  std::vector<Eigen::Vector3d> vertices;       ///< vertex positions
-  std::vector<std::array<int, 3>> triangles;   ///< vertex indices, counterclockwise seen from outside
+  std::vector<Eigen::Vector3d> vertices;      ///< vertex positions
+  std::vector<std::array<int, 3>> triangles;  ///< vertex indices, counterclockwise seen from outside
 };
 
 }  // namespace section

@@ -15,31 +15,26 @@
 
 namespace section {
 
-/// Options of register_views (lengths in the clouds' units).
+/// Options of register_views (lengths in the clouds' units; docs/REGISTRATION.md).
 struct RegisterOptions {
-  /// Pairs are sought within this distance of the reference view; 0 = 3 x the reference
-  /// view's mean spacing. Views must be aligned to within about this already.
-  double reach = 0;
+  double reach = 0;                        ///< pairs within this of the reference view; 0 = 3 mean spacings
   std::size_t reference_points = 2000000;  ///< reference view points kept (evenly) in its kd-tree
   std::size_t moving_points = 200000;      ///< points of each moving view paired per iteration (evenly)
-  int neighbours = 20;                     ///< reference points a pair's surface patch (quadric, least squares) is fitted to
+  int neighbours = 20;                     ///< reference points each pair's quadric patch is fitted to
   int max_iterations = 50;                 ///< ICP iterations at most
-  double tolerance = 1e-5;                 ///< stop when a step changes the pairs' distances to their planes by less than this (rms)
-  std::size_t min_pairs = 100;             ///< fewer pairs than this: the views do not overlap enough (Error)
-  /// Directions of the motion (rotations scaled by the overlap's extent) constrained less
-  /// than this fraction of the best constrained one are not moved along: on a blade the
-  /// spanwise slide is nearly free and would only follow noise.
-  double weak = 0.05;
-  double trim = 3;                         ///< pairs farther than this many robust sigmas from their plane are left out
+  double tolerance = 1e-5;                 ///< stop when a step moves the pairs by less (rms, along normals)
+  std::size_t min_pairs = 100;             ///< fewer pairs: the views do not overlap enough (Error)
+  double weak = 0.05;                      ///< motions constrained under this share of the best: not made
+  double trim = 3;                         ///< pairs farther than this many robust sigmas are left out
 };
 
 /// How one view was moved.
 struct ViewRegistration {
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();  ///< maps the view onto the reference
-  std::size_t pairs = 0;          ///< pairs used in the last iteration
-  double rms_before = 0;          ///< rms distance of the pairs from the reference surface (local quadric patches) before
-  double rms_after = 0;           ///< ... and after
-  int iterations = 0;             ///< ICP iterations run
+  std::size_t pairs = 0;                                        ///< pairs used in the last iteration
+  double rms_before = 0;  ///< rms distance of the pairs from the reference surface before
+  double rms_after = 0;   ///< ... and after
+  int iterations = 0;     ///< ICP iterations run
 };
 
 /// Result of register_views: one entry per view, the first (the reference) the identity.

@@ -19,8 +19,8 @@ namespace section {
 
 /// A section plane: a point of it and its normal (any length but zero).
 struct Plane {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< a point of the plane
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< plane normal
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   ///< a point of the plane
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< plane normal
 };
 
 /// Planes with one normal at signed offsets along it: origin = offset * normal / |normal|.
@@ -28,39 +28,39 @@ std::vector<Plane> planes_at(const Eigen::Vector3d& normal, const std::vector<do
 
 /// `count` planes with one normal spread evenly over the extent of `points` along it:
 /// offsets min + (max - min) * (k + 1) / (count + 1), k = 0..count-1.
-std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points,
-                                 const Eigen::Vector3d& normal, int count);
+std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+                                 int count);
 
-/// Options of slice (lengths in the cloud's units).
+/// Options of slice (lengths in the cloud's units; docs/MORPHOLOGY.md for the band and the fill).
 struct SliceOptions {
-  double slab = 0;                    ///< slab width d (units of the cloud); 0 = the cloud's mean spacing
-  MorphologyOptions morphology;       ///< ordering of each section's points
-  double band_spacing = 0.02;         ///< widen the slab into a drift-corrected band (drift_band.h) until it holds about one point per this length along the profile (units of the cloud); 0 = the slab alone
-  double band_max = 2;                ///< slab widths: the band's largest half width
-  double band_sparse_max = 0;         ///< slab widths: widen the band beside a sparse stretch of the profile up to this half width (one point per band_spacing there too); 0 = off (docs/MORPHOLOGY.md: it costs blades whose camber changes fast with height)
-  bool fill_gaps = true;              ///< fill gaps of the slab from scan points beside the plane (gap_fill.h)
-  GapFillOptions fill;                ///< how (reach 0 = 12 slab widths)
-  int threads = 0;                    ///< worker threads for the sections; 0 = all cores
+  double slab = 0;               ///< slab width d; 0 = the cloud's mean spacing
+  MorphologyOptions morphology;  ///< ordering of each section's points
+  double band_spacing = 0.02;    ///< widen the slab into a band (drift_band.h) to one point per this; 0 = off
+  double band_max = 2;           ///< slab widths: the band's largest half width
+  double band_sparse_max = 0;    ///< slab widths: the band's half width beside sparse stretches; 0 = off
+  bool fill_gaps = true;         ///< fill gaps of the slab from scan points beside the plane (gap_fill.h)
+  GapFillOptions fill;           ///< how (reach 0 = 12 slab widths)
+  int threads = 0;               ///< worker threads for the sections; 0 = all cores
 };
 
 /// What one section plane gave.
 struct SectionSlice {
-  int id = 0;                         ///< index of the plane
-  Frame frame;                        ///< the plane's frame (u, v in-plane)
-  std::size_t slab_points = 0;        ///< points found in the slab
-  MorphologyResult morphology;        ///< ordered loops, normals, skeleton (empty on error)
-  std::size_t band_points = 0;        ///< points of the drift-corrected band that replaced the slab's (0: the slab alone)
-  double band_half_width = 0;         ///< its half width (0: the slab alone)
-  GapFillResult fill;                 ///< gaps found and filled (counts; the carried points are in the loops)
-  std::string error;                  ///< why the section failed; empty when it did not
+  int id = 0;                   ///< index of the plane
+  Frame frame;                  ///< the plane's frame (u, v in-plane)
+  std::size_t slab_points = 0;  ///< points found in the slab
+  MorphologyResult morphology;  ///< ordered loops, normals, skeleton (empty on error)
+  std::size_t band_points = 0;  ///< points of the band that replaced the slab's (0: the slab alone)
+  double band_half_width = 0;   ///< its half width (0: the slab alone)
+  GapFillResult fill;           ///< gaps found and filled (counts; the carried points are in the loops)
+  std::string error;            ///< why the section failed; empty when it did not
 };
 
 /// What slice returns: one SectionSlice per plane, and the slab used.
 struct SliceResult {
-  std::vector<SectionSlice> sections; ///< one per plane, in plane order
-  double slab = 0;                    ///< slab width used
-  std::size_t points = 0;             ///< points in the cloud (or mesh vertices)
-  int file_passes = 0;                ///< slice_file: times the file was read (1 when the planes and slab guessed from a first look at a binary PLY file held, 2 when they had to be found first); 0 for a cloud or mesh in memory
+  std::vector<SectionSlice> sections;  ///< one per plane, in plane order
+  double slab = 0;                     ///< slab width used
+  std::size_t points = 0;              ///< points in the cloud (or mesh vertices)
+  int file_passes = 0;                 ///< slice_file: times the file was read (1 or 2); 0 in memory
 };
 
 /// Points of `points` in the closed slab |(p - origin) . n| <= slab / 2 of each plane,
@@ -68,8 +68,7 @@ struct SliceResult {
 /// per distinct normal. Points on a slab boundary are decided by CGAL's exact orientation
 /// predicate against the boundary plane and belong to the slab (closed slab).
 std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::Vector3d>& points,
-                                                      const std::vector<Plane>& planes,
-                                                      double slab);
+                                                      const std::vector<Plane>& planes, double slab);
 
 /// Slices a cloud: slab points of every plane ordered into loops by morphology.
 /// Sections that fail (no points, no closed loop) carry their error; the others go on.

@@ -6,12 +6,9 @@
 ///   E_C = 1/2 sum_i kappa_i^2 (l_i + l_{i+1}) / 2,
 ///   kappa_i = 2 / (l_i + l_{i+1}) * |(q_{i+1} - q_i) / l_{i+1} - (q_i - q_{i-1}) / l_i|,
 ///   E_S = sum_i |q_i - q0_i|^2,            l_i = |q_i - q_{i-1}|.
-/// With the lengths l_i frozen, grad E = 0 is one linear system (cyclic pentadiagonal,
-/// symmetric positive definite, the same for u and v). Each outer iteration freezes the
-/// lengths at the current points, solves that system, and updates the lengths; it stops
-/// when the shape no longer moves, E no longer changes, or a step would raise E. E_C has
-/// units 1/length and E_S length^2, so `a` depends on the units and on the point spacing:
-/// `smoothing_length` gives a scale-free strength instead (docs/SMOOTH.md derives it).
+/// Each outer iteration freezes the lengths l_i, solves the linear system grad E = 0 (cyclic
+/// pentadiagonal, the same for u and v) and updates the lengths. `a` depends on the units
+/// and the spacing: `smoothing_length` sets it scale-free (docs/SMOOTH.md).
 #include <Eigen/Core>
 
 #include <string>
@@ -28,21 +25,21 @@ enum class SmoothSolver {
 /// Parses "cholmod" or "gauss-seidel" / "gauss_seidel"; throws section::Error otherwise.
 SmoothSolver parse_smooth_solver(const std::string& name);
 
-/// Options of smooth and smooth_stream.
+/// Options of smooth and smooth_stream (docs/SMOOTH.md: strength, stopping rules).
 struct SmoothOptions {
-  double smoothing_length = 0;    ///< curve units: sets a so that a sinusoidal wiggle of this wavelength keeps half its amplitude (a = 2 b (L / 2 pi)^4 / h, h = mean spacing); 0 = use a, or relative_length when a is 0 too
-  double a = 0;                   ///< length^3 (with b = 1): explicit weight of the curvature energy E_C, used when smoothing_length is 0 and a > 0 (the paper's 0.1-0.5 suit its units and spacing only: at 0.08 mm spacing in mm, 0.3 means L = 2.1 mm and distorts 0.3 mm edges by ~0.1 mm)
-  double relative_length = 6;     ///< mean spacings: the smoothing length when smoothing_length and a are both 0 (the default: about halves the RMS of white noise, whatever the units)
-  double b = 1.0;                 ///< 1: weight of the closeness energy E_S (paper: 1-1.2)
+  double smoothing_length = 0;  ///< curve units: a wiggle this long keeps half its amplitude; 0 = `a`
+  double a = 0;                 ///< length^3: weight of E_C when smoothing_length is 0; 0 = relative_length
+  double relative_length = 6;   ///< mean spacings: the smoothing length when smoothing_length and a are 0
+  double b = 1.0;               ///< weight of the closeness energy E_S (paper: 1-1.2)
   SmoothSolver solver = SmoothSolver::cholmod;  ///< linear solver of each outer iteration
-  int max_iterations = 20;        ///< cap on outer iterations (length updates)
-  double tolerance = 1e-9;        ///< stop when |E_k - E_{k-1}| <= tolerance * E_k
-  double move_tolerance = 1e-4;   ///< mean spacings: stop when no point moves farther than this across the curve in one outer iteration
-  double merge_distance = 1e-3;   ///< mean spacings: consecutive points closer than this are merged into their mean (counted in SmoothResult::repaired)
-  bool closed = true;             ///< the polyline is a closed loop (last point joins the first)
-  int max_sweeps = 1000000;       ///< gauss_seidel only: cap on sweeps per outer iteration
-  double sweep_tolerance = 1e-12; ///< gauss_seidel only: stop sweeping when the largest update is below this times the curve's size
-  int threads = 0;                ///< stream stage: worker threads over the loops (output identical for any count); 0 = all cores
+  int max_iterations = 20;                      ///< cap on outer iterations (length updates)
+  double tolerance = 1e-9;                      ///< stop when |E_k - E_{k-1}| <= tolerance * E_k
+  double move_tolerance = 1e-4;    ///< mean spacings: stop when no point moves farther across the curve
+  double merge_distance = 1e-3;    ///< mean spacings: closer consecutive points are merged
+  bool closed = true;              ///< the polyline is a closed loop (last point joins the first)
+  int max_sweeps = 1000000;        ///< gauss_seidel only: cap on sweeps per outer iteration
+  double sweep_tolerance = 1e-12;  ///< gauss_seidel only: least update, times the curve's size
+  int threads = 0;                 ///< stream stage: worker threads over the loops; 0 = all cores
 };
 
 /// What smooth returns: the smoothed points and the energy diagnostics.
@@ -53,12 +50,12 @@ struct SmoothResult {
   int iterations = 0;                   ///< outer iterations done
   int sweeps = 0;                       ///< gauss_seidel only: sweeps done over all outer iterations
   std::vector<double> energy_history;   ///< E after each outer iteration, energy_before first
-  double rms_move = 0;                  ///< root mean square distance between input (after merging) and smoothed points
+  double rms_move = 0;                  ///< RMS distance from input (after merging) to smoothed points
   double max_move = 0;                  ///< largest distance between an input and its smoothed point
   int repaired = 0;                     ///< input points merged away (duplicates, zero-length segments)
   double a = 0;                         ///< the curvature weight actually used
   double spacing = 0;                   ///< mean distance between consecutive input points (after merging)
-  bool converged = false;               ///< stopped before max_iterations: a tolerance was met or no step along the next solve lowers E
+  bool converged = false;               ///< a tolerance was met, or no step lowers E, before max_iterations
 };
 
 /// Smooths one ordered polyline (closed or open) by minimising E above; coordinates in any
@@ -71,8 +68,7 @@ SmoothResult smooth(const std::vector<Eigen::Vector2d>& points, const SmoothOpti
 /// The energy E = a E_C + b E_S of `points` against `reference` (same size), as defined
 /// above. A zero-length segment counts with a zero tangent (the result stays finite).
 double smooth_energy(const std::vector<Eigen::Vector2d>& points,
-                     const std::vector<Eigen::Vector2d>& reference, double a, double b,
-                     bool closed = true);
+                     const std::vector<Eigen::Vector2d>& reference, double a, double b, bool closed = true);
 
 /// The curvature weight a that gives a smoothing (half-amplitude) wavelength `length` at
 /// mean point spacing `spacing`: a = 2 b (length / 2 pi)^4 / spacing.

@@ -6,36 +6,44 @@
 
 namespace section::detail {
 
-struct NearestPoints::Impl {
+template <int Dim>
+struct NearestPoints<Dim>::Impl {
   std::vector<double> coords;  // row-major copy: FLANN keeps a pointer to it
   std::unique_ptr<flann::Index<flann::L2<double>>> index;
 };
 
-NearestPoints::NearestPoints(const std::vector<Eigen::Vector2d>& points) : impl_(new Impl) {
+namespace {
+
+template <int Dim>
+std::vector<double> row_major(const std::vector<Eigen::Matrix<double, Dim, 1>>& points) {
+  std::vector<double> out(points.size() * Dim);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int k = 0; k < Dim; ++k) out[Dim * i + k] = points[i][k];
+  return out;
+}
+
+}  // namespace
+
+template <int Dim>
+NearestPoints<Dim>::NearestPoints(const std::vector<Point>& points, int leaf_size) : impl_(new Impl) {
   if (points.empty()) throw Error("nearest: no points to search");
-  impl_->coords.resize(points.size() * 2);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    impl_->coords[2 * i] = points[i].x();
-    impl_->coords[2 * i + 1] = points[i].y();
-  }
-  flann::Matrix<double> data(impl_->coords.data(), points.size(), 2);
-  impl_->index = std::make_unique<flann::Index<flann::L2<double>>>(
-      data, flann::KDTreeSingleIndexParams(10));
+  impl_->coords = row_major<Dim>(points);
+  flann::Matrix<double> data(impl_->coords.data(), points.size(), Dim);
+  impl_->index =
+      std::make_unique<flann::Index<flann::L2<double>>>(data, flann::KDTreeSingleIndexParams(leaf_size));
   impl_->index->buildIndex();
 }
 
-NearestPoints::~NearestPoints() = default;
+template <int Dim>
+NearestPoints<Dim>::~NearestPoints() = default;
 
-std::vector<int> NearestPoints::nearest(const std::vector<Eigen::Vector2d>& queries) const {
+template <int Dim>
+std::vector<int> NearestPoints<Dim>::nearest(const std::vector<Point>& queries) const {
   std::vector<int> result(queries.size(), 0);
   if (queries.empty()) return result;
-  std::vector<double> q(queries.size() * 2);
-  for (std::size_t i = 0; i < queries.size(); ++i) {
-    q[2 * i] = queries[i].x();
-    q[2 * i + 1] = queries[i].y();
-  }
+  std::vector<double> q = row_major<Dim>(queries);
   std::vector<double> dist(queries.size());
-  flann::Matrix<double> qm(q.data(), queries.size(), 2);
+  flann::Matrix<double> qm(q.data(), queries.size(), Dim);
   flann::Matrix<int> im(result.data(), queries.size(), 1);
   flann::Matrix<double> dm(dist.data(), queries.size(), 1);
   flann::SearchParams params(flann::FLANN_CHECKS_UNLIMITED);
@@ -43,5 +51,33 @@ std::vector<int> NearestPoints::nearest(const std::vector<Eigen::Vector2d>& quer
   impl_->index->knnSearch(qm, im, dm, 1, params);
   return result;
 }
+
+template <int Dim>
+void NearestPoints<Dim>::nearest_within(const std::vector<Point>& queries, double radius,
+                                        std::vector<int>& index, std::vector<double>& d2) const {
+  std::vector<double> q = row_major<Dim>(queries);
+  index.assign(queries.size(), -1);
+  d2.assign(queries.size(), 0);
+  flann::Matrix<double> qm(q.data(), queries.size(), Dim);
+  flann::Matrix<int> im(index.data(), queries.size(), 1);
+  flann::Matrix<double> dm(d2.data(), queries.size(), 1);
+  flann::SearchParams params(flann::FLANN_CHECKS_UNLIMITED);
+  params.cores = 0;
+  params.max_neighbors = 1;
+  impl_->index->radiusSearch(qm, im, dm, static_cast<float>(radius * radius), params);
+}
+
+template <int Dim>
+void NearestPoints<Dim>::k_nearest(const Point& q, int k, int* index, double* d2) const {
+  double coords[Dim];
+  for (int i = 0; i < Dim; ++i) coords[i] = q[i];
+  flann::Matrix<double> qm(coords, 1, Dim);
+  flann::Matrix<int> im(index, 1, static_cast<std::size_t>(k));
+  flann::Matrix<double> dm(d2, 1, static_cast<std::size_t>(k));
+  impl_->index->knnSearch(qm, im, dm, k, flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
+}
+
+template class NearestPoints<2>;
+template class NearestPoints<3>;
 
 }  // namespace section::detail

@@ -13,7 +13,8 @@ namespace section::detail {
 
 template <class F>
 void parallel_for(std::size_t count, int threads, F&& body) {
-  std::size_t workers = threads > 0 ? std::size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
+  std::size_t workers =
+      threads > 0 ? std::size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
   workers = std::min(workers, count);
   if (workers <= 1) {
     for (std::size_t i = 0; i < count; ++i) body(i);

@@ -11,9 +11,9 @@ namespace section {
 
 /// Planes for slice_file: explicit, or spread over the cloud (known only once it is read).
 struct PlaneSpec {
-  std::vector<Plane> planes;                         ///< explicit planes, used when count is 0
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< normal of the spread planes (count > 0)
-  int count = 0;                                     ///< planes spread as planes_across; 0 = use `planes`
+  std::vector<Plane> planes;                          ///< explicit planes, used when count is 0
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< normal of the spread planes (count > 0)
+  int count = 0;                                      ///< planes spread as planes_across; 0 = `planes`
 };
 
 /// Receives each section of slice_file as soon as it and the sections before it are done.
@@ -21,8 +21,9 @@ using SectionSink = std::function<void(const SectionSlice&)>;
 
 /// Slices the cloud of a file without holding it: reads it in chunks and keeps only the
 /// slab points of each plane. A file is read once when the planes and the slab width are
-/// given, twice otherwise (first for the extent along the normal and a random sample of
-/// 50000 points for the spacing); standard input ("-") is held in memory and sliced by
+/// given, or when those guessed from a first look at a binary PLY file hold; twice
+/// otherwise (first for the extent along the normal and a random sample of 50000 points
+/// for the spacing). Standard input ("-") is held in memory and sliced by
 /// slice(Cloud). Same results in meaning as slice(read_cloud(path), ...); the estimated
 /// slab width may differ slightly (another random sample). Throws as read_cloud and slice.
 /// `sink`, when set, receives each section in plane order as soon as it and those before

@@ -1,0 +1,313 @@
+#include "closing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace section::morph {
+
+namespace {
+
+void smooth_closed(Points& p, int passes) {
+  const std::size_t n = p.size();
+  if (n < 3) return;
+  Points q(n);
+  for (int k = 0; k < passes; ++k) {
+    for (std::size_t i = 0; i < n; ++i) q[i] = 0.25 * p[(i + n - 1) % n] + 0.5 * p[i] + 0.25 * p[(i + 1) % n];
+    p.swap(q);
+  }
+}
+
+/// Outward normal of a counterclockwise closed polyline at vertex i.
+Vec vertex_normal(const Points& p, std::size_t i) {
+  const std::size_t n = p.size();
+  const Vec t = p[(i + 1) % n] - p[(i + n - 1) % n];
+  const double l = t.norm();
+  return l > 0 ? Vec(t.y() / l, -t.x() / l) : Vec(0, 0);
+}
+
+bool substantial(long long cells) {
+  return cells >= 16;
+}
+
+/// The cells of a subset's point means, by raster cell: `slot` of a cell indexes `mean`
+/// (-1: no point), the mean of its points in cell coordinates.
+struct Seeds {
+  std::vector<Vec> mean;
+  std::vector<int> slot;
+};
+
+// Places a raster over [lo, hi] with `margin` cells around.
+void place_raster(const Vec& lo, const Vec& hi, double h, int margin, std::size_t max_cells, Raster& r) {
+  const double wc = std::floor((hi.x() - lo.x()) / h) + 1 + 2.0 * margin;
+  const double hc = std::floor((hi.y() - lo.y()) / h) + 1 + 2.0 * margin;
+  if (wc * hc > double(max_cells) || wc > 2e9 || hc > 2e9) throw raster_too_large(wc, hc, h, max_cells);
+  r.w = int(wc);
+  r.h = int(hc);
+  r.x0 = lo.x() - margin * h;
+  r.y0 = lo.y() - margin * h;
+}
+
+// Seeds: cells holding points; each keeps the mean of its points so that distances to
+// the points are known to a small fraction of a cell (the raster alone gives half a cell).
+void seed_cells(const Points& points, const std::vector<std::size_t>& subset, const Raster& r,
+                std::vector<std::uint8_t>& seed, Seeds& seeds) {
+  seed.assign(r.size(), 0);
+  seeds.slot.assign(r.size(), -1);
+  seeds.mean.clear();
+  std::vector<int> count;
+  for (std::size_t k : subset) {
+    const Vec c = r.to_cell(points[k]);
+    const int i = std::clamp(int(std::lround(c.x())), 0, r.w - 1);
+    const int j = std::clamp(int(std::lround(c.y())), 0, r.h - 1);
+    const std::size_t cell = std::size_t(j) * r.w + i;
+    seed[cell] = 1;
+    if (seeds.slot[cell] < 0) {
+      seeds.slot[cell] = int(seeds.mean.size());
+      seeds.mean.emplace_back(0, 0);
+      count.push_back(0);
+    }
+    seeds.mean[seeds.slot[cell]] += c;
+    ++count[seeds.slot[cell]];
+  }
+  for (std::size_t m = 0; m < seeds.mean.size(); ++m) seeds.mean[m] /= count[m];
+}
+
+// The closing radius r_c (cells), 0 when no substantial interior is ever enclosed.
+// A cell is enclosed at radius r when b2 <= r^2 < d2: inside the band of radius r but
+// not on it. Cells enclosed at some radius (b2 < d2) are the interior of closed
+// profiles; each part of an interior closes at its own radius b (the half width of the
+// widest gap leading to it), so the closing radius r_c is the radius by which all of
+// them have closed. Taking the first radius at which some interior appears instead
+// leaves a part of a thin profile open behind a wide hole when the band pinches the
+// profile elsewhere first.
+int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int cap, int rmax) {
+  std::vector<long long> closing_at(rmax + 2, 0);
+  long long ever = 0;
+  // b2 and d2 lie in [0, cap]: their ceil_sqrt from a table (one per interior cell).
+  std::vector<int> root(std::size_t(cap) + 1);
+  for (int x = 0; x <= cap; ++x) root[x] = ceil_sqrt(x);
+  for (std::size_t c = 0; c < d2.size(); ++c) {
+    if (b2[c] >= d2[c]) continue;
+    const int a = std::max(1, root[b2[c]]);
+    if (a > rmax || a > root[d2[c]] - 1) continue;  // never enclosed at an integer radius <= rmax
+    ++closing_at[a];
+    ++ever;
+  }
+  if (!substantial(ever)) return 0;
+  int rc = 0;
+  for (long long sum = 0; rc < rmax && sum < ever;) sum += closing_at[++rc];
+  return rc;
+}
+
+// Erodes the fill back (keeps the cells farther than the radius from the outside) and sets
+// pass.g; returns the squared distance of each cell to the outside.
+std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector<int>& nearest_seed,
+                       const Seeds& seeds, int rmax, int base, Scratch& scratch) {
+  const Raster& r = pass.raster;
+  const int rr = pass.radius * pass.radius;
+  std::vector<std::uint8_t>& outside = scratch.bytes;
+  for (std::size_t c = 0; c < r.size(); ++c) outside[c] = b2[c] > rr;
+  const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
+  const int cap_out = int(std::min(far, double(1 << 30)));
+  std::vector<int> nearest_out;
+  std::vector<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch);
+
+  // The closing's complement is about the union of the empty discs centred on outside
+  // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside
+  // cell nearest to x, g(x) = |x - y*| - d(y*) is the signed distance of x to that union:
+  // its zero level is the boundary to a small fraction of a cell, and it passes through
+  // the outermost points.
+  const auto exact_d = [&](std::size_t y) {
+    const int s = nearest_seed[y];
+    if (s < 0) return float(rmax + 1);
+    const Vec c(double(y % r.w), double(y / r.w));
+    return float((c - seeds.mean[seeds.slot[s]]).norm());
+  };
+  pass.g = std::move(scratch.f);  // every cell written below
+  for (std::size_t c = 0; c < r.size(); ++c) {
+    const int y = nearest_out[c];
+    pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
+  }
+  return out2;
+}
+
+// 8-connected components of the fill (out2 > r^2), labelled in raster order of their
+// first cell. `open` marks fill cells not labelled yet (one byte per cell: cheaper to
+// test than out2 and label).
+void label_components(const std::vector<int>& out2, const std::vector<int>& b2, const std::vector<int>& d2,
+                      Scratch& scratch, Pass& pass) {
+  const Raster& r = pass.raster;
+  const int rr = pass.radius * pass.radius;
+  pass.label = std::move(scratch.ints);
+  std::fill(pass.label.begin(), pass.label.end(), 0);
+  std::vector<std::uint8_t>& open = scratch.bytes;
+  for (std::size_t c = 0; c < r.size(); ++c) open[c] = out2[c] > rr;
+  const std::ptrdiff_t W = r.w;
+  const std::ptrdiff_t around[8] = {-W - 1, -W, -W + 1, -1, 1, W - 1, W, W + 1};
+  std::vector<std::uint32_t> queue;
+  for (std::size_t c0 = 0; c0 < r.size(); ++c0) {
+    if (!open[c0]) continue;
+    Component comp;
+    comp.label = int(pass.components.size()) + 1;
+    comp.start = c0;
+    const auto take = [&](std::size_t e) {
+      if (!open[e]) return;
+      open[e] = 0;
+      pass.label[e] = comp.label;
+      queue.push_back(std::uint32_t(e));
+    };
+    pass.label[c0] = comp.label;
+    open[c0] = 0;
+    queue.assign(1, std::uint32_t(c0));
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const std::uint32_t c = queue[q];
+      ++comp.area;
+      if (b2[c] < d2[c]) ++comp.enclosed;
+      const int i = int(c % r.w), j = int(c / r.w);
+      if (i > 0 && j > 0 && i + 1 < r.w && j + 1 < r.h) {
+        for (const std::ptrdiff_t o : around) take(std::size_t(std::ptrdiff_t(c) + o));
+        continue;
+      }
+      for (int y = std::max(0, j - 1); y <= std::min(r.h - 1, j + 1); ++y)
+        for (int x = std::max(0, i - 1); x <= std::min(r.w - 1, i + 1); ++x) take(std::size_t(y) * r.w + x);
+    }
+    pass.components.push_back(comp);
+  }
+  for (auto& comp : pass.components)
+    if (!substantial(comp.enclosed)) comp.enclosed = 0;  // an open band or a fragment
+}
+
+}  // namespace
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+Error raster_too_large(double wc, double hc, double h, std::size_t max_cells) {
+  return Error("morphology: a raster of " + num(wc) + " x " + num(hc) + " cells (cell " + num(h) +
+               " mm) exceeds max_cells " + std::to_string(max_cells) +
+               "; use a larger cell or raise max_cells");
+}
+
+bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,
+              const MorphologyOptions& opt, Pass& pass) {
+  Vec lo = points[subset[0]], hi = lo;
+  for (std::size_t k : subset) {
+    lo = lo.cwiseMin(points[k]);
+    hi = hi.cwiseMax(points[k]);
+  }
+  const double span_cells = std::max(hi.x() - lo.x(), hi.y() - lo.y()) / h;
+  // A radius beyond half the extent cannot close anything a smaller one would not.
+  const int rmax = std::max(1, std::min(opt.max_dilation, int(span_cells / 2) + 2));
+  // The raster margin. The distance d2 and the bottleneck b2 are exact on any raster that
+  // holds the points: outward from a border cell the distance to every point grows, so a
+  // border cell's widest path from far away is its own d2. Hence the closing radius does
+  // not depend on the margin; the erosion needs the outside cells next to the band, i.e.
+  // radius + 2 cells. Start with a small margin and widen it only when the radius needs it:
+  // the result is that of a margin of rmax + 2, on a much smaller raster.
+  int margin = std::min(rmax, 8) + 2;
+  Raster& r = pass.raster;
+  r.cell = h;
+  Seeds seeds;
+  std::vector<int> nearest_seed, d2, b2;
+  Scratch scratch;
+  for (;;) {
+    place_raster(lo, hi, h, margin, opt.max_cells, r);
+    seed_cells(points, subset, r, scratch.bytes, seeds);
+    const int cap = (rmax + 1) * (rmax + 1);
+    d2 = distance_transform(r, scratch.bytes, cap, rmax + 2 - margin, nearest_seed, scratch);
+    b2 = bottleneck(r, d2, cap, scratch.ints);
+    const int rc = closing_radius(d2, b2, cap, rmax);
+    if (rc == 0) return false;
+    pass.closing = rc;
+    // Margin: twice the closing radius (at least 4 cells). A disc just able to bridge a gap
+    // dips into it by about its radius and may cut a thin trailing edge in two; a disc twice
+    // as large dips by a quarter of that.
+    pass.radius = std::min(std::max(2 * rc, 4), rmax);
+    if (pass.radius + 2 <= margin) break;
+    margin = pass.radius + 2;
+  }
+  const std::vector<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, scratch);
+  label_components(out2, b2, d2, scratch, pass);
+  return true;
+}
+
+/// The boundary of one component in world coordinates, counterclockwise: the Moore trace
+/// smoothed a little, then each vertex moved along its normal onto the zero level of g.
+Points component_boundary(const Pass& pass, const Component& comp) {
+  Points b = trace(pass.raster, pass.label, comp.label, comp.start);
+  if (b.size() < 3) return {};
+  if (signed_area(b) < 0) std::reverse(b.begin(), b.end());
+  smooth_closed(b, 2);
+  for (int it = 0; it < 3; ++it) {
+    Points moved = b;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const Vec n = vertex_normal(b, i);
+      const double shift = std::clamp(bilinear(pass.raster, pass.g, b[i]), -1.5, 1.5);
+      moved[i] = b[i] + shift * n;
+    }
+    b.swap(moved);
+  }
+  smooth_closed(b, 1);
+  for (Vec& p : b) p = pass.raster.to_world(p);
+  return b;
+}
+
+/// Outward normal at p from the gradient of the component's filled image blurred by a
+/// Gaussian of `sigma` cells: -grad (G * I)(p) is proportional to sum I(c) (p - c) G(p - c).
+/// I is the fill anti-aliased with g (coverage clamp(1/2 + g, 0, 1)), so that the
+/// direction is not that of the cell staircase.
+Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
+  const Raster& r = pass.raster;
+  const Vec c = r.to_cell(p);
+  const int k = int(std::ceil(3 * sigma));
+  const int i0 = int(std::floor(c.x())) - k + 1, j0 = int(std::floor(c.y())) - k + 1;
+  const int n = 2 * k;
+  double gx[64], gy[64];
+  const double inv = 1 / (2 * sigma * sigma);
+  for (int a = 0; a < n; ++a) {
+    const double tx = c.x() - (i0 + a), ty = c.y() - (j0 + a);
+    gx[a] = std::exp(-tx * tx * inv);
+    gy[a] = std::exp(-ty * ty * inv);
+  }
+  // The window clipped to the raster (cells off it are left out).
+  const int a0 = std::max(0, -i0), a1 = std::min(n, r.w - i0);
+  const int b0 = std::max(0, -j0), b1 = std::min(n, r.h - j0);
+  // Summed per coordinate: a Vec built per cell went through the stack, and its packed
+  // reload waited on the two stores (the same sums, several times slower).
+  double gx_sum = 0, gy_sum = 0;
+  for (int b = b0; b < b1; ++b) {
+    const int j = j0 + b;
+    const int* label = pass.label.data() + std::size_t(j) * r.w;
+    const float* dist = pass.g.data() + std::size_t(j) * r.w;
+    for (int a = a0; a < a1; ++a) {
+      const int i = i0 + a;
+      const int l = label[i];
+      if (l != label_id && l != 0) continue;
+      const double cover = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
+      if (cover == 0) continue;
+      const double wgt = cover * gx[a] * gy[b];
+      gx_sum += wgt * (c.x() - i);
+      gy_sum += wgt * (c.y() - j);
+    }
+  }
+  const Vec g(gx_sum, gy_sum);
+  const double l = g.norm();
+  return l > 1e-12 ? Vec(g / l) : Vec(0, 0);
+}
+
+double signed_area(const Points& p) {
+  double a = 0;
+  for (std::size_t i = 0, n = p.size(); i < n; ++i) {
+    const Vec& u = p[i];
+    const Vec& v = p[(i + 1) % n];
+    a += u.x() * v.y() - v.x() * u.y();
+  }
+  return a / 2;
+}
+
+}  // namespace section::morph

@@ -1,0 +1,61 @@
+#pragma once
+// One pass of the morphology step (src/morphology.cpp): the raster of a point subset, the
+// closing radius, the closed fill and its components; a component's boundary, normals
+// and skeleton.
+#include "raster.h"
+#include "section/error.h"
+#include "section/morphology.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace section::morph {
+
+/// A connected component of the closed fill.
+struct Component {
+  int label = 0;
+  std::size_t start = 0;     // first cell in raster order
+  std::size_t area = 0;      // cells
+  std::size_t enclosed = 0;  // cells enclosed by the band at the closing radius
+};
+
+/// What one pass made of a point subset.
+struct Pass {
+  Raster raster;
+  int closing = 0;                    // r_c: radius at which the band closed
+  int radius = 0;                     // r: radius used (closing plus one step of margin)
+  std::vector<int> label;             // component of the eroded fill, 0 = none
+  std::vector<float> g;               // signed distance to the closing's boundary, cells, > 0 inside
+  std::vector<Component> components;  // index = label - 1
+};
+
+/// Builds the raster of `subset` (cell h), finds the closing radius and labels the
+/// closed fill. Returns false when the band never encloses a substantial interior.
+/// Throws section::Error when the raster would exceed opt.max_cells.
+bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,
+              const MorphologyOptions& opt, Pass& pass);
+
+/// The boundary of one component in world coordinates, counterclockwise: the Moore trace
+/// smoothed a little, then each vertex moved along its normal onto the zero level of g.
+Points component_boundary(const Pass& pass, const Component& comp);
+
+/// Outward normal at p from the gradient of the component's filled image blurred by a
+/// Gaussian of `sigma` cells: -grad (G * I)(p) is proportional to sum I(c) (p - c) G(p - c).
+/// I is the fill anti-aliased with g (coverage clamp(1/2 + g, 0, 1)), so that the
+/// direction is not that of the cell staircase.
+Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma);
+
+/// Signed area of a closed polygon (positive counterclockwise).
+double signed_area(const Points& p);
+
+/// Skeleton of a component into result.skeleton and result.skeleton_radius (skeleton.cpp).
+void skeleton_of(const Pass& pass, const Component& comp, MorphologyResult& result);
+
+/// x as text for the error messages ("%.6g").
+std::string num(double x);
+
+/// The error for a raster of wc x hc cells of size h over `max_cells`.
+Error raster_too_large(double wc, double hc, double h, std::size_t max_cells);
+
+}  // namespace section::morph

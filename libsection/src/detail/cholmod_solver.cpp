@@ -1,0 +1,124 @@
+#include "detail/cholmod_solver.h"
+
+#include "section/error.h"
+
+#include <cholmod.h>
+
+namespace section::detail {
+
+/// The factorisation of A with the fill-reducing permutation P first builds P A P' (a sparse
+/// transpose) at every call; here P A P' is built once, its values refilled in place per
+/// solve, and factored with the natural ordering: CHOLMOD then does the same arithmetic on
+/// the same matrix, without the transpose and the allocations around it, so the solution
+/// is bit for bit that of the permuting factorisation.
+struct CholmodSolver::Impl {
+  explicit Impl(std::string who) : who(std::move(who)) {
+    cholmod_start(&common);
+    common.final_asis = 0;
+    common.supernodal = CHOLMOD_SIMPLICIAL;
+    common.final_ll = 1;
+  }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+  ~Impl() {
+    cholmod_free_dense(&x, &common);
+    cholmod_free_dense(&y, &common);
+    cholmod_free_dense(&e, &common);
+    cholmod_free_dense(&rhs, &common);
+    cholmod_free_factor(&factor, &common);
+    cholmod_free_sparse(&pap, &common);
+    cholmod_finish(&common);
+  }
+  void setup(int n, const std::vector<int>& col_start, const std::vector<int>& rows,
+             const std::vector<int>& source);
+
+  std::string who;
+  int n = 0;
+  cholmod_common common;
+  std::vector<int> from;  // entry of P A P' -> its value in the caller's array
+  std::vector<int> perm;
+  cholmod_sparse* pap = nullptr;
+  cholmod_factor* factor = nullptr;
+  cholmod_dense *rhs = nullptr, *x = nullptr, *y = nullptr, *e = nullptr;
+};
+
+void CholmodSolver::Impl::setup(int size, const std::vector<int>& col_start, const std::vector<int>& rows,
+                                const std::vector<int>& source) {
+  n = size;
+  // A with its entry numbers as values (to follow them), read as its lower triangle.
+  std::vector<int> ap = col_start, ai = rows;
+  std::vector<double> ax(ai.size());
+  for (std::size_t k = 0; k < ax.size(); ++k) ax[k] = double(k);
+  cholmod_sparse a{};
+  a.nrow = a.ncol = n;
+  a.nzmax = ai.size();
+  a.p = ap.data();
+  a.i = ai.data();
+  a.x = ax.data();
+  a.stype = -1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  // The fill-reducing ordering, as an analysis of A picks it.
+  cholmod_factor* ordered = cholmod_analyze(&a, &common);
+  if (!ordered) throw Error(who + ": CHOLMOD could not analyse the system");
+  perm.assign(static_cast<int*>(ordered->Perm), static_cast<int*>(ordered->Perm) + n);
+  // P A P' in upper form, as the permuting factorisation builds it; each of its entries
+  // carries the number of the entry of A it came from.
+  pap = cholmod_ptranspose(&a, 1, perm.data(), nullptr, 0, &common);
+  cholmod_free_factor(&ordered, &common);
+  if (!pap) throw Error(who + ": CHOLMOD could not permute the system");
+  const std::size_t nz = cholmod_nnz(pap, &common);
+  const double* px = static_cast<const double*>(pap->x);
+  from.resize(nz);
+  for (std::size_t k = 0; k < nz; ++k) from[k] = source[static_cast<std::size_t>(px[k])];
+  // Natural ordering of the permuted matrix, no postordering: P A P' is factored as given.
+  common.nmethods = 1;
+  common.method[0].ordering = CHOLMOD_NATURAL;
+  common.postorder = 0;
+  factor = cholmod_analyze(pap, &common);
+  if (!factor || factor->ordering != CHOLMOD_NATURAL)
+    throw Error(who + ": CHOLMOD could not analyse the permuted system");
+  const int* natural = static_cast<const int*>(factor->Perm);
+  for (int k = 0; natural && k < n; ++k)
+    if (natural[k] != k) throw Error(who + ": CHOLMOD reordered the permuted system");
+  rhs = cholmod_allocate_dense(n, 2, n, CHOLMOD_REAL, &common);
+  if (!rhs) throw Error(who + ": CHOLMOD could not allocate the right-hand side");
+}
+
+CholmodSolver::CholmodSolver(int n, const std::vector<int>& col_start, const std::vector<int>& rows,
+                             std::vector<int> source, const std::string& who)
+    : impl_(new Impl(who)) {
+  impl_->setup(n, col_start, rows, source);  // on a throw, ~Impl releases what was made
+}
+
+CholmodSolver::~CholmodSolver() = default;
+
+void CholmodSolver::solve(const double* values, const Eigen::MatrixX2d& b, Eigen::MatrixX2d& out) {
+  Impl& s = *impl_;
+  double* px = static_cast<double*>(s.pap->x);
+  for (std::size_t k = 0; k < s.from.size(); ++k) px[k] = values[s.from[k]];
+  double beta[2] = {0, 0};
+  cholmod_factorize_p(s.pap, beta, nullptr, 0, s.factor, &s.common);
+  if (s.common.status < CHOLMOD_OK || s.factor->minor != s.factor->n)
+    throw Error(s.who + ": CHOLMOD could not factor the system (not positive definite?)");
+  const int n = s.n;
+  double* r = static_cast<double*>(s.rhs->x);
+  for (int k = 0; k < n; ++k) {
+    r[k] = b(s.perm[k], 0);
+    r[n + k] = b(s.perm[k], 1);
+  }
+  if (!cholmod_solve2(CHOLMOD_A, s.factor, s.rhs, nullptr, &s.x, nullptr, &s.y, &s.e, &s.common))
+    throw Error(s.who + ": CHOLMOD solve failed");
+  const double* v = static_cast<const double*>(s.x->x);
+  const std::size_t d = s.x->d;
+  out.resize(n, 2);
+  for (int k = 0; k < n; ++k) {
+    out(s.perm[k], 0) = v[k];
+    out(s.perm[k], 1) = v[d + k];
+  }
+}
+
+}  // namespace section::detail

@@ -1,0 +1,138 @@
+#pragma once
+// What gap filling (src/gap_fill.cpp) and the drift-corrected band (src/drift_band.cpp)
+// share: a hash grid over 2D points, the slab's ordered points, the span of the slab's
+// curve beside a point, and the trimmed least squares of the drift fits.
+#include "section/gap_fill.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace section::drift {
+
+using Vec = Eigen::Vector2d;
+
+// Uniform hash grid over 2D points.
+class Grid {
+public:
+  Grid(const std::vector<Vec>& points, double cell) : points_(points), cell_(cell) {
+    for (std::size_t i = 0; i < points.size(); ++i) bins_[key(points[i])].push_back(int(i));
+  }
+  void add(int i) { bins_[key(points_[std::size_t(i)])].push_back(i); }
+  // Calls f(i) for every point within r of c, in no particular order.
+  template <class F>
+  void for_each_within(const Vec& c, double r, F&& f) const {
+    const std::int64_t x0 = coord(c.x() - r), x1 = coord(c.x() + r), y0 = coord(c.y() - r),
+                       y1 = coord(c.y() + r);
+    for (std::int64_t x = x0; x <= x1; ++x)
+      for (std::int64_t y = y0; y <= y1; ++y) {
+        const auto it = bins_.find(pack(x, y));
+        if (it == bins_.end()) continue;
+        for (int i : it->second)
+          if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) f(i);
+      }
+  }
+  // The points within r of c, in ascending order.
+  std::vector<int> within(const Vec& c, double r) const {
+    std::vector<int> out;
+    for_each_within(c, r, [&](int i) { out.push_back(i); });
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+  bool any_within(const Vec& c, double r) const {
+    bool any = false;
+    for_each_within(c, r, [&](int) { any = true; });
+    return any;
+  }
+  // Nearest point within r (ties: the lower index), or -1.
+  int nearest(const Vec& c, double r) const {
+    int best = -1;
+    double bd = 0;
+    for_each_within(c, r, [&](int i) {
+      const double d = (points_[std::size_t(i)] - c).squaredNorm();
+      if (best < 0 || d < bd || (d == bd && i < best)) best = i, bd = d;
+    });
+    return best;
+  }
+
+private:
+  // Clamped: a cell index must fit an int64 whatever the coordinates and cell.
+  std::int64_t coord(double v) const { return std::int64_t(std::clamp(std::floor(v / cell_), -1e15, 1e15)); }
+  static std::int64_t pack(std::int64_t x, std::int64_t y) {
+    return std::int64_t((std::uint64_t(x) << 32) ^ (std::uint64_t(y) & 0xffffffffULL));
+  }
+  std::int64_t key(const Vec& p) const { return pack(coord(p.x()), coord(p.y())); }
+  const std::vector<Vec>& points_;
+  double cell_;
+  std::unordered_map<std::int64_t, std::vector<int>> bins_;
+};
+
+// The slab's ordered points, all loops, with their place in their loop.
+struct Reference {
+  std::vector<Vec> point, normal;
+  std::vector<int> loop, next, prev;  // indices into `point` of the loop neighbours
+};
+
+/// The reference of the slab's ordered loops (loop 0 first).
+Reference reference_of(const MorphologyResult& ordered);
+
+// The slab's span beside c: its nearest ordered point within 3 slab widths (k, at pk) and
+// that point's neighbour on the side of c, when the span is no gap and c lies beside it
+// (a line carried on past a gap's end misses a curving edge); n its unit normal, turned
+// like the point's outward normal. False when there is none.
+bool span_beside(const Reference& ref, const Grid& ref_grid, const Vec& c, double slab, double gap_min,
+                 int& k, Vec& pk, Vec& n);
+
+// A step along the profile longer than this is a gap (the fill's threshold; the drift
+// fits pair no point with a span that long).
+double gap_length(const GapFillOptions& options, double slab, double profile_length);
+
+/// The profile's length (loop 0's), 0 when there is no loop.
+double profile_length(const MorphologyResult& ordered);
+
+/// The points of `nearby` (u, v, height) within `limit` of the plane: in-plane positions
+/// `uv` and heights `dz`, in order.
+void near_plane(const std::vector<Eigen::Vector3d>& nearby, double limit, std::vector<Vec>& uv,
+                std::vector<double>& dz);
+
+// Trimmed least squares for the drift fits: three passes, each on the rows within
+// 3 robust sigmas (plus 0.05 slab) of the last fit, with a ridge on the first `ridged`
+// unknowns (1e-3 of the first two's weight: a direction the pairs do not see, as V . t
+// along a straight side, stays near 0; one they see is shrunk by about 0.1 %), and the
+// unknowns from `firm` on held firmer, by `firm_ridge` of that weight. False when the
+// solve fails or fewer than `min_support` rows are kept.
+template <int N>
+bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
+                 int ridged, double slab, int min_support, Eigen::Matrix<double, N, 1>& sol, int firm = N,
+                 double firm_ridge = 1e-3) {
+  std::vector<char> use(rows.size(), 1);
+  sol.setZero();
+  for (int pass = 0; pass < 3; ++pass) {
+    Eigen::Matrix<double, N, N> A = Eigen::Matrix<double, N, N>::Zero();
+    Eigen::Matrix<double, N, 1> b = Eigen::Matrix<double, N, 1>::Zero();
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (use[r]) {
+        A += rows[r] * rows[r].transpose();
+        b += rows[r] * rhs[r];
+      }
+    const double weight = A(0, 0) + A(1, 1);
+    for (int j = 0; j < ridged; ++j) A(j, j) += (j < firm ? 1e-3 : firm_ridge) * weight + 1e-12;
+    sol = A.ldlt().solve(b);
+    if (!sol.allFinite()) return false;
+    std::vector<double> res;
+    for (std::size_t r = 0; r < rows.size(); ++r) res.push_back(std::abs(rhs[r] - rows[r].dot(sol)));
+    std::vector<double> sorted = res;
+    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+    const double cut = 3 * 1.4826 * sorted[sorted.size() / 2] + 0.05 * slab;
+    int kept = 0;
+    for (std::size_t r = 0; r < rows.size(); ++r) kept += (use[r] = res[r] <= cut);
+    if (kept < min_support) return false;
+  }
+  return true;
+}
+
+}  // namespace section::drift

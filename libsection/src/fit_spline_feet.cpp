@@ -1,0 +1,257 @@
+#include "fit_spline_steps.h"
+
+#include "detail/flann_nearest.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <numeric>
+
+namespace section::fit {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + mid, v.end());
+  return v[mid];
+}
+
+// In a few linear passes instead of a selection over all of them: non-negative doubles
+// order as their bit patterns, so a count by the leading bits that vary finds the
+// median's bucket, and a selection among its few members the value. Anything else (a
+// NaN, a -0) goes to `median`.
+double median_nonnegative(std::vector<double> v) {
+  if (v.empty()) return 0;
+  auto bits = [](double x) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  const std::uint64_t infinity = 0x7ff0000000000000u;
+  std::uint64_t lo = infinity, hi = 0;
+  for (double x : v) {
+    const std::uint64_t b = bits(x);
+    lo = std::min(lo, b);
+    hi = std::max(hi, b);
+  }
+  if (hi > infinity) return median(std::move(v));
+  if (lo == hi) return v.front();
+  int top = 63;  // highest bit that varies
+  while (!(((lo ^ hi) >> top) & 1)) --top;
+  const int digits = 11, shift = std::max(top + 1 - digits, 0);
+  auto bucket = [&](double x) { return static_cast<std::size_t>((bits(x) >> shift) & ((1u << digits) - 1)); };
+  std::vector<std::size_t> count(std::size_t(1) << digits, 0);
+  for (double x : v) ++count[bucket(x)];
+  const std::size_t mid = v.size() / 2;
+  std::size_t b = 0, below = 0;
+  while (below + count[b] <= mid) below += count[b++];
+  std::size_t kept = 0;
+  for (double x : v)
+    if (bucket(x) == b) v[kept++] = x;
+  v.resize(kept);
+  std::nth_element(v.begin(), v.begin() + (mid - below), v.end());
+  return v[mid - below];
+}
+
+namespace {
+
+// Sorts `order` by t[order[i]], fast when it is nearly sorted already (the feet on the
+// previous curve: a few points moved a little, a few crossed the start of the period):
+// ascending runs merged pairwise, O(n log runs). Returns false, `order` sorted or not, if
+// two parameters are equal (or NaN), as the result would then depend on the method.
+bool sort_runs(std::vector<std::size_t>& order, const std::vector<double>& t) {
+  const std::size_t n = order.size();
+  std::vector<std::size_t> starts{0};
+  for (std::size_t i = 1; i < n; ++i)
+    if (!(t[order[i - 1]] < t[order[i]])) {
+      if (!(t[order[i]] < t[order[i - 1]])) return false;
+      starts.push_back(i);
+    }
+  starts.push_back(n);
+  if (starts.size() == 2) return true;
+  auto before = [&](std::size_t x, std::size_t y) { return t[x] < t[y]; };
+  std::vector<std::size_t> merged(n);
+  while (starts.size() > 2) {
+    std::vector<std::size_t> next;
+    for (std::size_t r = 0; r + 1 < starts.size(); r += 2) {
+      next.push_back(starts[r]);
+      const std::size_t mid = starts[r + 1], end = r + 2 < starts.size() ? starts[r + 2] : mid;
+      std::merge(order.begin() + starts[r], order.begin() + mid, order.begin() + mid, order.begin() + end,
+                 merged.begin() + starts[r], before);
+    }
+    next.push_back(n);
+    order.swap(merged);
+    starts.swap(next);
+  }
+  for (std::size_t i = 1; i < n; ++i)
+    if (!(t[order[i - 1]] < t[order[i]])) return false;
+  return true;
+}
+
+// t wrapped into [t_min, t_max) by one period.
+double wrap(const BSpline& c, double t) {
+  const double t_min = c.t_min(), t_max = c.t_max(), period = t_max - t_min;
+  return t < t_min ? t + period : (t >= t_max ? t - period : t);
+}
+
+// Tracks each foot by Newton from previous->t (when given); returns the points lost.
+std::vector<std::size_t> track_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
+                                    const Feet* previous, Feet& f) {
+  const double period = c.t_max() - c.t_min();
+  const double step = period / (8.0 * static_cast<double>(c.control.size()));
+  const double converged = 1e-12 * period;  // parameter step (about a length) that ends Newton
+  std::vector<std::size_t> lost;
+  detail::PiecewiseCurve::Local at{0, 0};  // the last span located: consecutive points are close
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    if (!previous) {
+      lost.push_back(k);
+      continue;
+    }
+    double t = previous->t[k];
+    bool ok = false;
+    for (int it = 0; it < 8; ++it) {
+      at = pc.locate(t, at.span);
+      const detail::CurveJet j = pc.jet(at);
+      const detail::SquaredDistance g = detail::squared_distance(j, q[k]);
+      if (!(g.ddg > 0)) break;
+      const double dt = -g.dg / g.ddg;
+      t += dt;
+      if (std::abs(t - previous->t[k]) > step) break;
+      if (std::abs(dt) <= converged) {
+        // This jet is within `converged` of the foot: its distance is exact to far below a nm.
+        ok = true;
+        const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
+        f.signed_distance[k] = (q[k] - j.point).dot(normal);
+        break;
+      }
+    }
+    if (ok)
+      f.t[k] = wrap(c, t);
+    else
+      lost.push_back(k);
+  }
+  return lost;
+}
+
+// The full search for the points `lost`: the nearest dense sample from a kd-tree; the foot
+// lies between its neighbours.
+void search_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
+                 const std::vector<std::size_t>& lost, Feet& f) {
+  const double period = c.t_max() - c.t_min();
+  detail::PiecewiseCurve::Local at{0, 0};
+  const std::vector<double> ts = span_samples(c, 8);
+  const std::size_t m = ts.size();
+  Points pts(m);
+  for (std::size_t i = 0; i < m; ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
+  const detail::NearestPoints<2> tree(pts, 10);
+  Points lost_points(lost.size());
+  for (std::size_t l = 0; l < lost.size(); ++l) lost_points[l] = q[lost[l]];
+  const std::vector<int> idx = tree.nearest(lost_points);
+  for (std::size_t l = 0; l < lost.size(); ++l) {
+    const std::size_t k = lost[l];
+    const std::size_t i = static_cast<std::size_t>(idx[l]);
+    const double a = i > 0 ? ts[i - 1] : ts[m - 1] - period;
+    const double b = i + 1 < m ? ts[i + 1] : c.t_max();
+    auto distance = [&](double x) {
+      return detail::squared_distance(pc.jet(at = pc.locate(x, at.span)), q[k]);
+    };
+    f.t[k] = wrap(c, detail::minimise_bracket(distance, a, b, ts[i]));
+    const detail::CurveJet j = pc.jet(at = pc.locate(f.t[k], at.span));
+    const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
+    f.signed_distance[k] = (q[k] - j.point).dot(normal);
+  }
+}
+
+// f.order: the points sorted by f.t. They start in the previous order or in input order,
+// both nearly sorted. Two feet on one parameter keep the order between them that the
+// sorts below give.
+void order_feet(std::size_t count, const Feet* previous, Feet& f) {
+  auto before = [&](std::size_t x, std::size_t y) { return f.t[x] < f.t[y]; };
+  auto start = [&] {
+    if (previous) {
+      f.order = previous->order;
+    } else {
+      f.order.resize(count);
+      std::iota(f.order.begin(), f.order.end(), 0);
+    }
+  };
+  start();
+  if (sort_runs(f.order, f.t)) return;
+  start();
+  if (previous) {
+    // The previous order is nearly right: insertion sort, unless it moves too much.
+    std::size_t moves = 0;
+    for (std::size_t i = 1; i < f.order.size() && moves <= 8 * f.order.size(); ++i)
+      for (std::size_t j = i; j > 0 && before(f.order[j], f.order[j - 1]); --j, ++moves)
+        std::swap(f.order[j], f.order[j - 1]);
+    if (moves > 8 * f.order.size()) std::sort(f.order.begin(), f.order.end(), before);
+  } else {
+    std::sort(f.order.begin(), f.order.end(), before);
+  }
+}
+
+}  // namespace
+
+Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet* previous) {
+  Feet f;
+  f.t.assign(q.size(), std::numeric_limits<double>::quiet_NaN());
+  f.signed_distance.resize(q.size());
+  const std::vector<std::size_t> lost = track_feet(c, pc, q, previous, f);
+  if (!lost.empty()) search_feet(c, pc, q, lost, f);
+  order_feet(q.size(), previous, f);
+  return f;
+}
+
+double noise_sigma(const Feet& f, const std::vector<double>& w) {
+  // With no point left out it is the one of all the points, asked for again and again.
+  if (!std::isnan(f.noise_all) && std::all_of(w.begin(), w.end(), [](double x) { return x > 0; }))
+    return f.noise_all;
+  const std::vector<std::size_t>& order = f.order;
+  std::vector<double> diffs(order.size());
+  std::size_t count = 0, prev = order.size();
+  for (std::size_t i : order) {
+    if (w[i] <= 0) continue;
+    if (prev != order.size()) diffs[count++] = std::abs(f.signed_distance[i] - f.signed_distance[prev]);
+    prev = i;
+  }
+  diffs.resize(count);
+  return 1.4826 * median_nonnegative(std::move(diffs)) / std::sqrt(2.0);
+}
+
+std::vector<double> outlier_weights(const Feet& f, const Points& q, double threshold) {
+  const std::size_t m = f.t.size();
+  const std::vector<std::size_t>& order = f.order;
+  std::vector<double> w(m, 1.0);
+  for (std::size_t i = 0; i < m; ++i) {
+    const double s = f.signed_distance[order[i]];
+    if (std::abs(s) <= threshold) continue;
+    bool supported = false;
+    for (std::size_t d : {std::size_t(1), std::size_t(2), m - 1, m - 2}) {
+      if (m < 5) break;
+      const double o = f.signed_distance[order[(i + d) % m]];
+      if (std::abs(o) > 0.5 * threshold && o * s > 0) supported = true;
+    }
+    if (!supported && m >= 5) {
+      const Eigen::Vector2d& a = q[order[(i + m - 1) % m]];
+      const Eigen::Vector2d& b = q[order[(i + 1) % m]];
+      const Eigen::Vector2d ab = b - a, ap = q[order[i]] - a;
+      const double len = ab.norm();
+      supported = len > 0 && std::abs(ab.x() * ap.y() - ab.y() * ap.x()) / len <= threshold &&
+                  ap.dot(ab) > 0 && ap.dot(ab) < len * len;
+    }
+    if (!supported) w[order[i]] = 0;
+  }
+  return w;
+}
+
+double weighted_rms(const Feet& f, const std::vector<double>& w) {
+  double s = 0, sw = 0;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    s += w[k] * f.signed_distance[k] * f.signed_distance[k];
+    sw += w[k];
+  }
+  return sw > 0 ? std::sqrt(s / sw) : 0;
+}
+
+}  // namespace section::fit

@@ -1,0 +1,132 @@
+#include "fit_spline_steps.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace section::fit {
+
+// The curve on new knots: least squares on dense samples of the old curve, so that the
+// shape carries over to the refined knot vector (almost exactly: the old space nests in
+// the new one when knots were only inserted).
+BSpline reknot(const BSpline& c, const std::vector<double>& knots) {
+  BSpline shape = c;
+  shape.knots = knots;
+  shape.control.assign(knots.size() - 1, Eigen::Vector2d::Zero());
+  std::vector<double> ts = span_samples(shape, 12);
+  Points pts(ts.size());
+  const detail::PiecewiseCurve pc(c);
+  detail::PiecewiseCurve::Local at{0, 0};
+  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
+  return fit_control_points(pts, ts, shape, 1e-12);
+}
+
+// Fewest measured points per knot span: on near-exact data the change-of-curvature
+// penalty, scaled by the noise variance, no longer acts and a denser floor keeps the
+// curve from wiggling between points.
+double points_per_span(const FitSplineOptions& o, double sigma) {
+  return sigma < o.exact_noise ? std::max(o.min_span_points, o.exact_min_span_points) : o.min_span_points;
+}
+
+// Knots spread by the approximation error of a cubic on a circle: a span of length h on
+// curvature k deviates by about (5/384) h^4 k^3, so h = (76.8 tol / k^3)^(1/4), between
+// min_span and initial_span. Edges (small radii) get dense knots, flanks sparse ones.
+// Noise sets the useful tolerance (half a sigma: a shorter span fits the noise more than
+// it removes bias), and each span keeps at least min_span_points measured points.
+std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double sigma,
+                                    const FitSplineOptions& o) {
+  const std::vector<double> ts = span_samples(c, 32);
+  const std::size_t m = ts.size();
+  const detail::PiecewiseCurve pc(c);
+  std::vector<detail::CurveJet> jets(m);
+  detail::PiecewiseCurve::Local at{0, 0};
+  for (std::size_t i = 0; i < m; ++i) jets[i] = pc.jet(at = pc.locate(ts[i], at.span));
+  std::vector<double> density(m), ds(m);
+  const double tol = std::max(o.tolerance, 0.5 * sigma);
+  // Measured points per unit length around each sample, over a window of +-window.
+  // The feet in order along the curve meet the samples in order: one walk, not a search each.
+  std::vector<double> hits(m, 0);
+  std::size_t next = 0;  // first sample after the foot (std::upper_bound)
+  for (std::size_t k : feet.order) {
+    while (next < m && !(feet.t[k] < ts[next])) ++next;
+    hits[next > 0 ? next - 1 : 0] += 1;
+  }
+  for (std::size_t i = 0; i < m; ++i)
+    ds[i] = jets[i].d1.norm() * ((i + 1 < m ? ts[i + 1] : c.t_max()) - ts[i]);
+  std::vector<double> point_density(m);
+  const double window = 0.5 * o.initial_span;
+  for (std::size_t i = 0; i < m; ++i) {
+    double count = hits[i], length = ds[i];
+    // Samples i + k and i - k, wrapped (without a division per step).
+    std::size_t up = i, down = i;
+    for (std::size_t k = 1; k < m / 2 && length < 2 * window; ++k) {
+      up = up + 1 == m ? 0 : up + 1;
+      down = down == 0 ? m - 1 : down - 1;
+      count += hits[up] + hits[down];
+      length += ds[up] + ds[down];
+    }
+    point_density[i] = length > 0 ? count / length : 0;
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    const double k = std::abs(jets[i].curvature());
+    const double h = std::pow(76.8 * tol / std::max(k * k * k, 1e-300), 0.25);
+    const double supported = std::max(1 / o.initial_span, point_density[i] / points_per_span(o, sigma));
+    density[i] = std::min(1 / std::clamp(h, o.min_span, o.initial_span), supported);
+  }
+  // Widen the dense stretches a little: the curvature of a curve that still cuts an
+  // edge is lower than the true one and its peak narrower.
+  std::vector<double> widened(m);
+  const int reach = 16;
+  for (std::size_t i = 0; i < m; ++i) {
+    double d = 0;
+    for (int k = -reach; k <= reach; ++k) {
+      const std::size_t j = i + m + k;  // in [m - reach, 2 m + reach): one wrap at most, m > reach
+      d = std::max(d, density[j >= 2 * m ? j - 2 * m : (j >= m ? j - m : j)]);
+    }
+    widened[i] = d;
+  }
+  std::vector<double> cum(m + 1, 0);
+  for (std::size_t i = 0; i < m; ++i) cum[i + 1] = cum[i] + widened[i] * ds[i];
+  const int n = std::clamp(static_cast<int>(std::ceil(cum[m])), std::max(8, o.degree + 1),
+                           std::max(o.max_control_points, 8));
+  std::vector<double> knots(n + 1);
+  knots[0] = c.t_min();
+  knots[n] = c.t_max();
+  std::size_t i = 0;
+  for (int k = 1; k < n; ++k) {
+    const double target = cum[m] * k / n;
+    while (i + 1 < m && cum[i + 1] < target) ++i;
+    const double a = ts[i], b = i + 1 < m ? ts[i + 1] : c.t_max();
+    const double f = cum[i + 1] > cum[i] ? (target - cum[i]) / (cum[i + 1] - cum[i]) : 0;
+    knots[k] = a + f * (b - a);
+  }
+  return knots;
+}
+
+// Knots after splitting every span whose residuals hold more than noise: mean square
+// above sigma^2 (1 + 3 sqrt(2 / m)) + tolerance^2 with m points in the span.
+std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vector<double>& w, double sigma,
+                                const FitSplineOptions& o) {
+  const std::size_t spans = c.knots.size() - 1;
+  std::vector<double> sum(spans, 0), count(spans, 0);
+  for (std::size_t k = 0; k < f.t.size(); ++k) {
+    if (w[k] <= 0) continue;
+    auto it = std::upper_bound(c.knots.begin(), c.knots.end(), f.t[k]);
+    const std::size_t j =
+        std::min<std::size_t>(std::max<std::ptrdiff_t>(it - c.knots.begin() - 1, 0), spans - 1);
+    sum[j] += f.signed_distance[k] * f.signed_distance[k];
+    count[j] += 1;
+  }
+  std::vector<double> knots;
+  for (std::size_t j = 0; j < spans; ++j) {
+    knots.push_back(c.knots[j]);
+    if (count[j] < points_per_span(o, sigma)) continue;
+    const double ms = sum[j] / count[j];
+    const double limit = sigma * sigma * (1 + 3 * std::sqrt(2 / count[j])) + o.tolerance * o.tolerance;
+    const double a = c.knots[j], b = c.knots[j + 1];
+    if (ms > limit && arc_length(c, a, b) >= 2 * o.min_span) knots.push_back(0.5 * (a + b));
+  }
+  knots.push_back(c.knots.back());
+  return knots;
+}
+
+}  // namespace section::fit

@@ -1,0 +1,184 @@
+// One Gauss-Newton step of squared-distance minimisation: each measured point q_k with
+// foot C(t_k), unit tangent T and outward normal N contributes
+//   ((C(t_k) - q_k) . N)^2 + alpha ((C(t_k) - q_k) . T)^2,
+// alpha = |d| / (|d| + rho) on the convex side and 0 (tangent distance) on the concave side
+// within the radius of curvature rho (Wang, Pottmann and Liu 2006, eq. 9), kept above a
+// small floor so that sliding along the curve stays bounded.
+#include "fit_spline_steps.h"
+
+#include "section/error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace section::fit {
+
+namespace {
+
+// The normal equations of a step: each point couples p + 1 consecutive control points, so
+// their 2x2 blocks lie in a band (row i, offset 0..p).
+struct Normal {
+  int n = 0, p = 0;
+  std::vector<Eigen::Matrix2d> band;
+  Eigen::VectorXd rhs;
+  double trace = 0;  // sum of the data term's weights, for the relative weights below
+
+  Normal(int n, int p)
+      : n(n),
+        p(p),
+        band(static_cast<std::size_t>(n) * (p + 1), Eigen::Matrix2d::Zero()),
+        rhs(Eigen::VectorXd::Zero(2 * n)) {}
+  Eigen::Matrix2d& at(int i, int offset) { return band[static_cast<std::size_t>(i) * (p + 1) + offset]; }
+};
+
+// The data term of the measured points.
+void add_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
+                const std::vector<double>& w, Normal& eq) {
+  const int n = eq.n, p = eq.p;
+  double val[8];
+  int idx[8];
+  detail::PiecewiseCurve::Local at{0, 0};  // the last span located: consecutive points are close
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    if (w[k] <= 0) continue;
+    at = pc.locate(f.t[k], at.span);
+    const int first = pc.basis(at, val);
+    for (int a = 0; a <= p; ++a) idx[a] = first + a < n ? first + a : first + a - n;
+    const detail::CurveJet jet = pc.jet(at);
+    const Eigen::Vector2d tangent = jet.d1.normalized();
+    const Eigen::Vector2d normal(tangent.y(), -tangent.x());
+    const double d = f.signed_distance[k];
+    const double kappa = jet.curvature();
+    double alpha = 1;
+    if (kappa == 0) {
+      alpha = 0;
+    } else {
+      const double rho = 1 / std::abs(kappa);
+      const bool centre_side = d * kappa < 0;
+      alpha = centre_side ? (std::abs(d) < rho ? 0 : 1) : std::abs(d) / (std::abs(d) + rho);
+    }
+    alpha = std::max(alpha, 1e-3);
+    const Eigen::Matrix2d M = w[k] * (normal * normal.transpose() + alpha * tangent * tangent.transpose());
+    const Eigen::Vector2d Mq = M * q[k];
+    for (int a = 0; a <= p; ++a) {
+      eq.rhs.segment<2>(2 * idx[a]) += val[a] * Mq;
+      for (int b = a; b <= p; ++b) eq.at(idx[a], b - a) += val[a] * val[b] * M;
+      eq.trace += w[k] * val[a] * val[a];
+    }
+  }
+}
+
+// Change of curvature: the normal component of C''' (for a curve parameterised by arc
+// length, dk/ds), integrated over each span with the normal of the current curve, which
+// keeps the term quadratic. It is zero on lines and circular arcs (edges keep their
+// radius) and large on the wiggles a dense knot vector makes between sparse noisy points.
+// Weight: mean point density times length^6, so that it balances the data on wiggles
+// about 2 pi smoothing_length long where the data are of mean density (and on longer ones
+// where they are sparser), times (noise sigma / 5 um)^2: exact data need no smoothing (it
+// rounds the curvature jump where an edge meets a flank). Cubic curves only.
+void add_change_of_curvature(const BSpline& c, const detail::PiecewiseCurve& pc, const Feet& f,
+                             const std::vector<double>& w, double smoothing_length, Normal& eq) {
+  const int n = eq.n, p = eq.p;
+  double points = 0;
+  for (double x : w) points += std::max(x, 0.0);
+  const double noise = noise_sigma(f, w) / 0.005;
+  const double lambda3 = points / (c.t_max() - c.t_min()) * std::pow(smoothing_length, 6) * noise * noise;
+  double v[4][8], jerk[4];
+  int idx[8];
+  for (int j = 0; j < n; ++j) {
+    const double a = c.knots[j], h = (c.knots[j + 1] - a) / 4;
+    if (!(h > 0)) continue;
+    // C''' is constant on a cubic span: the third difference of the basis values at
+    // four equally spaced parameters.
+    int first = 0;
+    detail::PiecewiseCurve::Local l[4];  // span j, unless knots repeat
+    for (int g = 0; g < 4; ++g) first = pc.basis(l[g] = pc.locate(a + (g + 0.5) * h, j), v[g]);
+    for (int b = 0; b <= p; ++b) {
+      idx[b] = first + b < n ? first + b : first + b - n;
+      jerk[b] = (v[3][b] - 3 * v[2][b] + 3 * v[1][b] - v[0][b]) / (h * h * h);
+    }
+    for (int g = 0; g < 4; ++g) {
+      const Eigen::Vector2d d1 = pc.jet(l[g]).d1;
+      const double speed = d1.norm();
+      if (!(speed > 0)) continue;
+      const Eigen::Vector2d normal(d1.y() / speed, -d1.x() / speed);
+      const Eigen::Matrix2d M = lambda3 * h * normal * normal.transpose();
+      for (int a2 = 0; a2 <= p; ++a2)
+        for (int b = a2; b <= p; ++b) eq.at(idx[a2], b - a2) += jerk[a2] * jerk[b] * M;
+    }
+  }
+}
+
+// The system as a sparse matrix: the band (both triangles), then fairness (second
+// differences of the control polygon), which keeps spans without data determined, and a
+// tiny pull toward the current control points, which keeps the system definite.
+Eigen::SparseMatrix<double> assemble(const BSpline& c, double fairness, Normal& eq) {
+  const int n = eq.n, p = eq.p;
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(n) * (8 * (p + 1) + 40));
+  for (int i = 0; i < n; ++i)
+    for (int o = 0; o <= p; ++o) {
+      const Eigen::Matrix2d& B = eq.at(i, o);
+      if (o > 0 && B.isZero(0)) continue;
+      const int j = (i + o) % n;
+      for (int r = 0; r < 2; ++r)
+        for (int s = 0; s < 2; ++s) {
+          trip.emplace_back(2 * i + r, 2 * j + s, B(r, s));
+          if (o > 0) trip.emplace_back(2 * j + s, 2 * i + r, B(r, s));
+        }
+    }
+  const double lambda = fairness * std::max(eq.trace / n, 1e-12);
+  const double mu = 1e-9 * std::max(eq.trace / n, 1e-12);
+  for (int i = 0; i < n; ++i) {
+    const int ids[3] = {(i + n - 1) % n, i, (i + 1) % n};
+    const double coef[3] = {1, -2, 1};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        for (int r = 0; r < 2; ++r)
+          trip.emplace_back(2 * ids[a] + r, 2 * ids[b] + r, lambda * coef[a] * coef[b]);
+    for (int r = 0; r < 2; ++r) {
+      trip.emplace_back(2 * i + r, 2 * i + r, mu);
+      eq.rhs(2 * i + r) += mu * c.control[i](r);
+    }
+  }
+  Eigen::SparseMatrix<double> H(2 * n, 2 * n);
+  H.setFromTriplets(trip.begin(), trip.end());
+  return H;
+}
+
+// Solves H x = rhs, keeping the ordering while the pattern is the same (it depends on the
+// pattern only).
+Eigen::VectorXd solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs, StepSolver& solver) {
+  const int *outer = H.outerIndexPtr(), *inner = H.innerIndexPtr();
+  const std::size_t outers = static_cast<std::size_t>(H.outerSize()) + 1;
+  const std::size_t nnz = static_cast<std::size_t>(H.nonZeros());
+  if (solver.outer.size() != outers || !std::equal(outer, outer + outers, solver.outer.begin()) ||
+      solver.inner.size() != nnz || !std::equal(inner, inner + nnz, solver.inner.begin())) {
+    solver.ldlt.analyzePattern(H);
+    solver.outer.assign(outer, outer + outers);
+    solver.inner.assign(inner, inner + nnz);
+  }
+  solver.ldlt.factorize(H);
+  if (solver.ldlt.info() != Eigen::Success)
+    throw Error("fit_spline: the distance-minimisation system is singular");
+  Eigen::VectorXd x = solver.ldlt.solve(rhs);
+  if (solver.ldlt.info() != Eigen::Success || !x.allFinite())
+    throw Error("fit_spline: the distance-minimisation system is singular");
+  return x;
+}
+
+}  // namespace
+
+BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
+                 const std::vector<double>& w, double fairness, double smoothing_length, StepSolver& solver) {
+  const int n = static_cast<int>(c.control.size());
+  Normal eq(n, c.degree);
+  add_points(c, pc, q, f, w, eq);
+  if (smoothing_length > 0 && c.degree == 3) add_change_of_curvature(c, pc, f, w, smoothing_length, eq);
+  const Eigen::SparseMatrix<double> H = assemble(c, fairness, eq);
+  const Eigen::VectorXd x = solve(H, eq.rhs, solver);
+  BSpline out = c;
+  for (int i = 0; i < n; ++i) out.control[i] = Eigen::Vector2d(x(2 * i), x(2 * i + 1));
+  return out;
+}
+
+}  // namespace section::fit

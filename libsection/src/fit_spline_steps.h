@@ -1,0 +1,114 @@
+#pragma once
+// The steps of fit_spline (src/fit_spline.cpp): the feet of the measured points on the
+// curve (fit_spline_feet.cpp), one distance-minimisation step (fit_spline_step.cpp), knot
+// placement (fit_spline_knots.cpp) and the checks and measures of a fitted curve
+// (fit_spline_checks.cpp).
+#include "detail/piecewise_curve.h"
+#include "section/fit_spline.h"
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace section::fit {
+
+using Points = std::vector<Eigen::Vector2d>;
+
+/// The median of v (the upper one for an even count); 0 when empty.
+double median(std::vector<double> v);
+
+/// The same value as `median`, faster, for non-negative numbers.
+double median_nonnegative(std::vector<double> v);
+
+/// The feet of the measured points on a curve.
+struct Feet {
+  std::vector<double> t;                // curve parameter of the foot
+  std::vector<double> signed_distance;  // positive on the outer side (tangent turned clockwise)
+  std::vector<std::size_t> order;       // point indices sorted by t
+  double noise_all = std::numeric_limits<double>::quiet_NaN();  // noise_sigma of all the points, once known
+};
+
+/// Foot points of the measured points q on curve c (`pc`: c as polynomials): nearest dense
+/// curve sample from a kd-tree, then a local minimisation. With `previous` (the feet on a
+/// curve that moved a little since), each foot is tracked by Newton from its old
+/// parameter; a point whose Newton leaves the old foot's neighbourhood or meets a
+/// non-convex stretch gets the full search.
+Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
+                 const Feet* previous = nullptr);
+
+/// Robust noise sigma: from differences of residuals consecutive along the curve, which
+/// cancel the smooth (model) part of the residual and keep the noise. Points of weight 0
+/// are left out.
+double noise_sigma(const Feet& f, const std::vector<double>& w);
+
+/// Weights (1 or 0) that leave out isolated points farther than `threshold` from the
+/// curve; runs of far points on one side are kept, as they mean the curve is not there
+/// yet (a cut edge), not outliers. So is a lone far point on the line through its two
+/// neighbours (in the order along the curve): the data agree with it, the curve does not
+/// (a sharp edge's tip point).
+std::vector<double> outlier_weights(const Feet& f, const Points& q, double threshold);
+
+/// Weighted RMS of the signed distances.
+double weighted_rms(const Feet& f, const std::vector<double>& w);
+
+/// The factorisation of the previous step's system, whose fill-reducing ordering a step
+/// with the same matrix pattern (the same knots, mostly) takes over.
+struct StepSolver {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  std::vector<int> outer, inner;  // the pattern it was analysed for
+};
+
+/// One Gauss-Newton step of squared-distance minimisation (Wang, Pottmann and Liu 2006)
+/// from curve c (`pc`: c as polynomials) toward the points q with feet f and weights w;
+/// see fit_spline_step.cpp. Throws section::Error when the system is singular.
+BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
+                 const std::vector<double>& w, double fairness, double smoothing_length, StepSolver& solver);
+
+/// The curve on new knots: least squares on dense samples of the old curve.
+BSpline reknot(const BSpline& c, const std::vector<double>& knots);
+
+/// Fewest measured points per knot span at noise sigma.
+double points_per_span(const FitSplineOptions& o, double sigma);
+
+/// Knots spread by curvature and point density (fit_spline_knots.cpp).
+std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double sigma,
+                                    const FitSplineOptions& o);
+
+/// Knots after splitting every span whose residuals hold more than noise.
+std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vector<double>& w, double sigma,
+                                const FitSplineOptions& o);
+
+/// A curve with the feet and weights of the measured points on it.
+struct Refinement {
+  BSpline curve;
+  Feet feet;
+  std::vector<double> weights;
+  double rms = 0;
+  int iterations = 0;
+};
+
+/// The measured points (outliers left out) in the order of their feet along the curve:
+/// the foot parameters, and the chord from each foot to the next (the last to the first),
+/// close to the arc for all but the holes.
+struct Along {
+  std::vector<std::size_t> points;
+  std::vector<double> ts, chords;
+};
+
+Along along_curve(const Refinement& r);
+
+/// The holes (result.gaps, max_gap, gap_start, gap_end) and the median spacing.
+void measure_gaps(const Refinement& r, const Along& along, double gap_factor, FitSplineResult& result);
+
+/// Two layers of points along the profile (result.layers, layers_length).
+void measure_layers(const Refinement& r, const Along& along, const FitSplineOptions& o,
+                    FitSplineResult& result);
+
+/// True when the closed polyline p runs out and back alongside itself (a finger).
+bool doubles_back(const Points& p);
+
+}  // namespace section::fit

@@ -1,0 +1,416 @@
+#include "section/io/slice_file.h"
+
+#include "section/error.h"
+#include "detail/parallel.h"
+#include "detail/slab_scan.h"
+#include "detail/slice_steps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <random>
+
+namespace section {
+
+namespace {
+
+// `count` planes with `normal` spread evenly over [lo, hi] (as planes_across).
+std::vector<Plane> spread(const Eigen::Vector3d& normal, double lo, double hi, int count) {
+  std::vector<double> offsets;
+  for (int k = 0; k < count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (count + 1));
+  return planes_at(normal, offsets);
+}
+
+// Planes (and slab) guessed from a first look at a cloud file (peek_cloud), and the points
+// kept around them while pass 1 of slice_file reads the file.
+struct Guess {
+  bool active = false;                    // false: no guess; pass 2 reads the file again
+  std::vector<Plane> planes;              // the guessed planes
+  double half_width = 0;                  // points within this of a guessed plane are kept
+  double share = 0;                       // estimated share of the points kept
+  std::vector<detail::SlabGroup> groups;  // the guessed planes with slabs 2 half_width wide
+  // Per guessed plane, blocks of the points kept, in file order (blocks are moved in as
+  // the threads collect them, not copied).
+  std::vector<std::vector<std::vector<Eigen::Vector3d>>> kept;
+
+  // Appends q to the list in `out` of each guessed plane within half_width of it.
+  void keep(const Eigen::Vector3d& q, std::vector<std::vector<Eigen::Vector3d>>& out) const {
+    for (const detail::SlabGroup& g : groups) {
+      const double s = g.n.dot(q);
+      if (!g.near.empty() && g.far_from_slabs(s)) continue;
+      for (std::size_t k = g.first_at_least(s - half_width);
+           k < g.offset.size() && g.offset[k] <= s + half_width; ++k)
+        out[g.plane[k]].push_back(q);
+    }
+  }
+
+  // True when every point the slab test of `found` (slab width `slab`) can take was kept:
+  // each found plane lies close enough to its guess. `largest` bounds the points'
+  // coordinates (the exact slab test's tolerance).
+  bool covers(const std::vector<Plane>& found, double slab, double largest) const {
+    if (found.size() != planes.size()) return false;
+    const double tol = 1e-12 * (std::max(2 * largest, slab) + 1) * (1 + 1e-6);
+    const double need = 0.5 * slab + 3 * tol;
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      const Frame f = make_frame(found[k].origin, found[k].normal),
+                  g = make_frame(planes[k].origin, planes[k].normal);
+      if (!(f.n == g.n)) return false;
+      const double shift = std::abs(f.n.dot(found[k].origin) - g.n.dot(planes[k].origin));
+      if (!(shift + need <= half_width)) return false;
+    }
+    return true;
+  }
+};
+
+// read_cloud_chunks_parallel with a result per chunk: `scan(points, count, threads)` makes
+// it on a worker thread, `take(result, points, count)` receives it in file order.
+template <class Scan, class Take>
+std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, const Scan& scan,
+                        const Take& take) {
+  using Result = decltype(scan(static_cast<const Eigen::Vector3d*>(nullptr), std::size_t(0), 1));
+  std::mutex mutex;
+  std::map<std::size_t, Result> made;  // by chunk, from scan to take
+  return read_cloud_chunks_parallel(
+      path,
+      [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count, int threads) {
+        Result r = scan(p, count, threads);
+        std::lock_guard<std::mutex> lock(mutex);
+        made[chunk] = std::move(r);
+      },
+      [&](std::size_t chunk, const Eigen::Vector3d* p, std::size_t count) {
+        Result r;
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          auto at = made.find(chunk);
+          r = std::move(at->second);
+          made.erase(at);
+        }
+        take(r, p, count);
+      },
+      read);
+}
+
+// The points within `reach` of each plane in the file, as (u, v, signed distance), in file
+// order (add_near_points), chunks read side by side.
+std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& path,
+                                                           const std::vector<Plane>& planes, double reach,
+                                                           const CloudReadOptions& read) {
+  const auto groups = detail::group_planes(planes, 2 * reach);
+  const auto frame = detail::frames_of(planes);
+  std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
+  scan_chunks(
+      path, read,
+      [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
+        std::vector<std::vector<Eigen::Vector3d>> f(planes.size());
+        detail::add_near_points_parallel(p, count, groups, frame, reach, threads, f);
+        return f;
+      },
+      [&](std::vector<std::vector<Eigen::Vector3d>>& f, const Eigen::Vector3d*, std::size_t) {
+        for (std::size_t k = 0; k < planes.size(); ++k)
+          near[k].insert(near[k].end(), f[k].begin(), f[k].end());
+      });
+  return near;
+}
+
+// The guess for slice_file: planes from the extent of 4096 points read here and there
+// (peek_cloud: binary PLY files only), the slab from their spacing scaled to the full
+// density as pass 1 scales its sample's. Inactive when the points kept around the
+// guessed planes would be a large part of the cloud.
+Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
+                   const CloudReadOptions& read) {
+  Guess guess;
+  const CloudPeek peek = peek_cloud(path, 4096, read);
+  if (peek.points.size() < 256) return guess;
+  double slab = options.slab;
+  if (slab == 0)
+    slab = mean_spacing(peek.points) * std::sqrt(double(peek.points.size()) / double(peek.total)) / 0.47;
+  if (!(slab > 0) || !std::isfinite(slab)) return guess;
+  const auto extent_along = [&](const Eigen::Vector3d& normal, double& lo, double& hi) {
+    const Eigen::Vector3d n = normal.normalized();
+    lo = INFINITY;
+    hi = -INFINITY;
+    for (const auto& p : peek.points) {
+      lo = std::min(lo, n.dot(p));
+      hi = std::max(hi, n.dot(p));
+    }
+  };
+  // Measured on generated blades: the peek's spacing is 3-18 % above the one pass 1
+  // finds, its extent within 0.025 mm of 60 mm. Planes spread over the extent move by up
+  // to the extent's error once it is known; explicit planes stay. Only the slabs are
+  // kept: the points beside a plane, which a section with a gap or a band needs, are
+  // read again for it (rare on dense scans, where the guess pays).
+  double shift = 0;
+  if (spec.count > 0) {
+    double lo, hi;
+    extent_along(spec.normal, lo, hi);
+    if (!(hi > lo)) return guess;
+    shift = std::max(1e-3 * (hi - lo), 2 * slab);
+    guess.planes = spread(spec.normal, lo, hi, spec.count);
+  } else {
+    guess.planes = spec.planes;
+  }
+  guess.half_width = 1.5 * 0.5 * slab + shift;
+  // Worth it while the kept points are at most half the cloud (else pass 2 is cheaper).
+  double share = 0;
+  for (const auto& p : guess.planes) {
+    double lo, hi;
+    extent_along(p.normal, lo, hi);
+    share += hi > lo ? 2 * guess.half_width / (hi - lo) : 1;
+  }
+  if (!(share <= 0.5)) return guess;
+  guess.share = share;
+  guess.groups = detail::group_planes(guess.planes, 2 * guess.half_width);
+  guess.kept.resize(guess.planes.size());
+  guess.active = true;
+  return guess;
+}
+
+// A uniform random sample of the points read, 50000 at most (reservoir sampling by skips,
+// Li's algorithm L: random numbers only for the points taken, O(k log(n / k)) of them,
+// instead of one per point).
+class Reservoir {
+public:
+  static constexpr std::size_t size = 50000;
+  Reservoir() {
+    w_ = std::exp(std::log(u01()) / size);
+    skip();
+  }
+  // Offers the next `count` points of the file.
+  void take(const Eigen::Vector3d* p, std::size_t count) {
+    for (std::size_t i = 0; i < count && points.size() < size; ++i) points.push_back(p[i]);
+    for (; next_ < seen_ + count; skip())
+      points[std::uniform_int_distribution<std::size_t>(0, size - 1)(rng_)] = p[next_ - seen_];
+    seen_ += count;
+  }
+  std::vector<Eigen::Vector3d> points;
+
+private:
+  double u01() { return std::max(unit_(rng_), 1e-300); }
+  void skip() {
+    next_ += std::size_t(std::floor(std::log(u01()) / std::log1p(-w_))) + 1;
+    w_ *= std::exp(std::log(u01()) / size);
+  }
+  std::mt19937_64 rng_{12345};
+  std::uniform_real_distribution<double> unit_{0.0, 1.0};
+  double w_ = 0;
+  std::size_t next_ = size - 1;  // index of the next point to take once the sample is full
+  std::size_t seen_ = 0;
+};
+
+// What pass 1 finds in a chunk (or a part of one): the extent along the normal, the
+// largest coordinate and the points kept around the guess (per guessed plane).
+struct Scanned {
+  double lo = INFINITY, hi = -INFINITY, big = 0;
+  std::vector<std::vector<Eigen::Vector3d>> kept;
+};
+
+// Scans points[a, e) into r.
+void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eigen::Vector3d& n,
+               const Guess& guess, Scanned& r) {
+  if (guess.active) {
+    // One pass over the points (a chunk does not stay in the cache for three).
+    r.kept.resize(guess.planes.size());
+    for (auto& list : r.kept)
+      list.reserve(std::size_t(guess.share * double(e - a) / double(r.kept.size()) * 1.25) + 16);
+    for (std::size_t i = a; i < e; ++i) {
+      const Eigen::Vector3d& q = p[i];
+      const double s = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
+      r.lo = s < r.lo ? s : r.lo;
+      r.hi = s > r.hi ? s : r.hi;
+      r.big = std::max({r.big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
+      guess.keep(q, r.kept);
+    }
+  } else {
+    for (std::size_t i = a; i < e; ++i) {
+      const double s = n.x() * p[i].x() + n.y() * p[i].y() + n.z() * p[i].z();
+      r.lo = s < r.lo ? s : r.lo;
+      r.hi = s > r.hi ? s : r.hi;
+    }
+  }
+}
+
+// Scans one chunk, its parts side by side, and joins them in order.
+Scanned scan_chunk(const Eigen::Vector3d* p, std::size_t count, int threads, const Eigen::Vector3d& n,
+                   const Guess& guess) {
+  const std::size_t parts = detail::parts_of(count, threads);
+  std::vector<Scanned> part(parts);
+  detail::parallel_for(parts, threads, [&](std::size_t t) {
+    scan_part(p, count * t / parts, count * (t + 1) / parts, n, guess, part[t]);
+  });
+  Scanned whole;
+  whole.kept.resize(guess.active ? guess.planes.size() : 0);
+  for (auto& r : part) {
+    whole.lo = std::min(whole.lo, r.lo);
+    whole.hi = std::max(whole.hi, r.hi);
+    whole.big = std::max(whole.big, r.big);
+    for (std::size_t k = 0; k < whole.kept.size(); ++k) {
+      if (whole.kept[k].empty())
+        whole.kept[k] = std::move(r.kept[k]);
+      else
+        whole.kept[k].insert(whole.kept[k].end(), r.kept[k].begin(), r.kept[k].end());
+    }
+  }
+  return whole;
+}
+
+// What pass 1 found in the whole file.
+struct FirstPass {
+  double lo = INFINITY, hi = -INFINITY, largest = 0;  // extent along the normal, largest coordinate
+  std::size_t total = 0;                              // points
+  Reservoir sample;                                   // filled when `sampled`
+};
+
+// Pass 1: the extent along the normal and, when `sampled`, a uniform random sample for the
+// spacing; the points near the guessed planes are kept in `guess` on the way. Chunks are
+// read and scanned side by side, and taken in file order.
+void first_pass(const std::string& path, const CloudReadOptions& read, const Eigen::Vector3d& n, bool sampled,
+                Guess& guess, FirstPass& pass) {
+  pass.total = scan_chunks(
+      path, read,
+      [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
+        return scan_chunk(p, count, threads, n, guess);
+      },
+      [&](Scanned& r, const Eigen::Vector3d* p, std::size_t count) {
+        pass.lo = std::min(pass.lo, r.lo);
+        pass.hi = std::max(pass.hi, r.hi);
+        pass.largest = std::max(pass.largest, r.big);
+        for (std::size_t k = 0; k < r.kept.size(); ++k)
+          if (!r.kept[k].empty()) guess.kept[k].push_back(std::move(r.kept[k]));
+        if (!sampled) return;
+        pass.sample.take(p, count);
+      });
+}
+
+// The sections from the points kept around the guessed planes, when the planes found lie
+// near enough to them: the same slab points, in the same order, as pass 2 would give.
+SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes, double slab, Guess& guess,
+                       std::size_t total, const SliceOptions& options, const CloudReadOptions& read_chunks,
+                       const SectionSink& sink) {
+  std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
+  const double reach = detail::fill_reach(options, slab);
+  detail::parallel_for(planes.size(), options.threads, [&](std::size_t k) {
+    const std::vector<Plane> one{planes[k]};
+    std::vector<std::vector<Eigen::Vector2d>> slab_k(1);
+    const auto slab_groups = detail::group_planes(one, slab);
+    const auto frame = detail::frames_of(one);
+    for (const auto& block : guess.kept[k])
+      detail::add_slab_points(block.data(), block.size(), slab_groups, frame, slab, slab_k);
+    slabs[k] = std::move(slab_k[0]);
+    std::vector<std::vector<Eigen::Vector3d>>().swap(guess.kept[k]);
+  });
+  // A plane's near points, when its section asks: from a pass over the file for every
+  // plane, made once, when a section first asks.
+  std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
+  std::once_flag near_read;
+  const detail::NearFn near_of = [&](std::size_t k) {
+    if (!(reach > 0)) return std::vector<Eigen::Vector3d>{};
+    std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks); });
+    return std::move(near[k]);
+  };
+  SliceResult result;
+  result.points = total;
+  result.slab = slab;
+  result.file_passes = 1;
+  detail::order_slabs(slabs, near_of, planes, slab, options, result, sink);
+  return result;
+}
+
+// Pass 2: the slab points and the near points of every plane; chunks are tested side by
+// side and their points appended in file order.
+SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes, double slab, int passes,
+                       const SliceOptions& options, const CloudReadOptions& read_chunks,
+                       const SectionSink& sink) {
+  const auto groups = detail::group_planes(planes, slab);
+  const auto frame = detail::frames_of(planes);
+  std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
+  std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
+  const double reach = detail::fill_reach(options, slab);
+  const auto near_groups =
+      reach > 0 ? detail::group_planes(planes, 2 * reach) : std::vector<detail::SlabGroup>{};
+  struct Found {
+    std::vector<std::vector<Eigen::Vector2d>> slabs;
+    std::vector<std::vector<Eigen::Vector3d>> near;
+  };
+  SliceResult result;
+  result.points = scan_chunks(
+      path, read_chunks,
+      [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
+        Found f{std::vector<std::vector<Eigen::Vector2d>>(planes.size()),
+                std::vector<std::vector<Eigen::Vector3d>>(planes.size())};
+        if (reach > 0)
+          detail::add_slab_and_near_points_parallel(p, count, groups, near_groups, frame, slab, reach,
+                                                    threads, f.slabs, f.near);
+        else
+          detail::add_slab_points_parallel(p, count, groups, frame, slab, threads, f.slabs);
+        return f;
+      },
+      [&](Found& f, const Eigen::Vector3d*, std::size_t) {
+        for (std::size_t k = 0; k < planes.size(); ++k) {
+          slabs[k].insert(slabs[k].end(), f.slabs[k].begin(), f.slabs[k].end());
+          near[k].insert(near[k].end(), f.near[k].begin(), f.near[k].end());
+        }
+      });
+  result.slab = slab;
+  result.file_passes = passes;
+  detail::order_slabs(
+      slabs, [&](std::size_t i) { return std::move(near[i]); }, planes, slab, options, result, sink);
+  return result;
+}
+
+void check_slab_width(double slab) {
+  if (!(slab > 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be positive and finite");
+}
+
+}  // namespace
+
+SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
+                       const CloudReadOptions& read, const SectionSink& sink) {
+  detail::check_slab(options.slab);
+  if (options.fill_gaps) check_gap_fill_options(options.fill);
+  detail::check_band_options(options);
+  if (spec.count > 0 && (!spec.normal.allFinite() || !(spec.normal.norm() > 0)))
+    throw Error("slice: the plane normal must be finite and non-zero");
+  if (spec.count == 0) detail::check_planes(spec.planes);
+  if (path == "-") {
+    // A pipe cannot be read twice: hold the cloud.
+    const Cloud cloud = read_cloud(path, read);
+    const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
+    SliceResult result = slice(cloud, planes, options);
+    if (sink)
+      for (const auto& s : result.sections) sink(s);
+    return result;
+  }
+  // Chunks of at most 64k points (1.5 MB): each stays in a core's cache from its read to its
+  // scan, and the workers end the file together.
+  CloudReadOptions read_chunks = read;
+  read_chunks.chunk_points = std::min<std::size_t>(read.chunk_points, std::size_t(1) << 16);
+  if (read_chunks.threads == 0) read_chunks.threads = options.threads;
+  std::vector<Plane> planes = spec.planes;
+  double slab = options.slab;
+  if (spec.count > 0 || slab == 0) {
+    // Points near planes guessed from a first look at the file are kept on the way: when
+    // the planes and slab found are near enough to the guess, pass 2 is not needed.
+    Guess guess = guess_planes(path, spec, options, read);
+    FirstPass first;
+    first_pass(path, read_chunks, spec.normal.normalized(), slab == 0, guess, first);
+    if (spec.count > 0) planes = spread(spec.normal, first.lo, first.hi, spec.count);
+    if (slab == 0) {
+      // mean_spacing scales a subset's spacing back to the full density the same way.
+      const std::vector<Eigen::Vector3d>& sample = first.sample.points;
+      slab = mean_spacing(sample);
+      if (sample.size() < first.total) slab *= std::sqrt(double(sample.size()) / double(first.total)) / 0.47;
+      if (!(slab > 0))
+        throw Error(
+            "slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
+    }
+    check_slab_width(slab);
+    if (guess.active && guess.covers(planes, slab, first.largest))
+      return slice_kept(path, planes, slab, guess, first.total, options, read_chunks, sink);
+  }
+  check_slab_width(slab);
+  return slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options, read_chunks,
+                    sink);
+}
+
+}  // namespace section

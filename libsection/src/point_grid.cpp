@@ -1,0 +1,176 @@
+#include "point_grid.h"
+
+#include "detail/segment.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <limits>
+
+namespace section::morph {
+
+namespace {
+
+// Sorts (key, id) pairs by key; `ids` gets the ids in that order, the table their cells.
+template <class Id>
+CellTable sorted_cells(std::vector<std::pair<std::int64_t, Id>>& keyed, std::vector<Id>& ids) {
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::int64_t> keys(keyed.size());
+  ids.resize(keyed.size());
+  for (std::size_t a = 0; a < keyed.size(); ++a) {
+    keys[a] = keyed[a].first;
+    ids[a] = keyed[a].second;
+  }
+  return CellTable(keys);
+}
+
+}  // namespace
+
+CellTable::CellTable(const std::vector<std::int64_t>& keys) {
+  std::size_t cells = 0;
+  for (std::size_t a = 0; a < keys.size(); ++a) cells += a == 0 || keys[a] != keys[a - 1];
+  std::size_t size = 16;
+  while (size < 2 * cells) size *= 2;
+  mask_ = size - 1;
+  while ((std::size_t(1) << shift_) < size) ++shift_;
+  slots_.assign(size, Slot{});
+  for (std::size_t a = 0; a < keys.size();) {
+    std::size_t b = a;
+    while (b < keys.size() && keys[b] == keys[a]) ++b;
+    std::size_t i = home(keys[a]);
+    while (slots_[i].end != 0) i = (i + 1) & mask_;
+    slots_[i] = Slot{keys[a], std::uint32_t(a), std::uint32_t(b)};
+    a = b;
+  }
+}
+
+PointGrid::PointGrid(const Points& points, const std::vector<std::size_t>& subset, double cell)
+    : points_(points), cell_(cell) {
+  std::vector<std::pair<std::int64_t, std::uint32_t>> keyed;
+  keyed.reserve(subset.size());
+  for (std::size_t k : subset) keyed.emplace_back(key_of(points[k]), std::uint32_t(k));
+  cells_ = sorted_cells(keyed, order_);
+}
+
+double PointGrid::nearest(std::size_t k, int max_ring) const {
+  const Vec& p = points_[k];
+  const std::int64_t ci = ix(p.x()), cj = ix(p.y());
+  double best2 = std::numeric_limits<double>::infinity();
+  for (int ring = 0; ring <= max_ring; ++ring) {
+    for (std::int64_t j = cj - ring; j <= cj + ring; ++j)
+      for (std::int64_t i = ci - ring; i <= ci + ring; ++i) {
+        if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring) continue;
+        visit(i, j, [&](std::uint32_t q) {
+          const double d2 = (points_[q] - p).squaredNorm();
+          if (d2 > 0 && d2 < best2) best2 = d2;
+        });
+      }
+    // Every point of a farther ring is at least `ring` cells away.
+    if (best2 <= (ring * cell_) * (ring * cell_)) break;
+  }
+  return std::sqrt(best2);
+}
+
+bool PointGrid::has_neighbour(std::size_t k, double radius) const {
+  const Vec& p = points_[k];
+  const std::int64_t ci = ix(p.x()), cj = ix(p.y());
+  const double r2 = radius * radius;
+  bool found = false;
+  for (std::int64_t j = cj - 1; j <= cj + 1 && !found; ++j)
+    for (std::int64_t i = ci - 1; i <= ci + 1 && !found; ++i)
+      visit(i, j, [&](std::uint32_t q) {
+        if (q != k && (points_[q] - p).squaredNorm() <= r2) found = true;
+      });
+  return found;
+}
+
+SegmentGrid::SegmentGrid(const std::vector<const Points*>& loops, double cell) : loops_(loops), cell_(cell) {
+  cum_.resize(loops.size());
+  std::vector<std::pair<std::int64_t, std::uint64_t>> keyed;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const Points& p = *loops[l];
+    auto& cum = cum_[l];
+    cum.assign(p.size() + 1, 0.0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vec& a = p[i];
+      const Vec& b = p[(i + 1) % p.size()];
+      cum[i + 1] = cum[i] + (b - a).norm();
+      const std::int64_t i0 = ix(std::min(a.x(), b.x())), i1 = ix(std::max(a.x(), b.x()));
+      const std::int64_t j0 = ix(std::min(a.y(), b.y())), j1 = ix(std::max(a.y(), b.y()));
+      for (std::int64_t j = j0; j <= j1; ++j)
+        for (std::int64_t x = i0; x <= i1; ++x)
+          keyed.emplace_back(cell_key(x, j), (std::uint64_t(l) << 32) | i);
+    }
+  }
+  cells_ = sorted_cells(keyed, ids_);
+}
+
+Foot SegmentGrid::nearest(const Vec& p) const {
+  Foot best;
+  double best2 = cell_ * cell_;
+  const std::int64_t ci = ix(p.x()), cj = ix(p.y());
+  for (std::int64_t j = cj - 1; j <= cj + 1; ++j)
+    for (std::int64_t i = ci - 1; i <= ci + 1; ++i) {
+      const auto [begin, end] = cells_.find(cell_key(i, j));
+      for (std::size_t a = begin; a < end; ++a) {
+        const int l = int(ids_[a] >> 32);
+        const std::size_t k = std::size_t(ids_[a] & 0xffffffffu);
+        const Points& q = *loops_[l];
+        const Vec& u = q[k];
+        const Vec& v = q[(k + 1) % q.size()];
+        const detail::SegmentFoot f = detail::segment_foot(u, v, p);
+        if (f.d2 < best2) {
+          const Vec e = v - u;
+          const double e2 = e.squaredNorm();
+          best2 = f.d2;
+          best.loop = l;
+          best.s = cum_[l][k] + f.t * std::sqrt(e2);
+          best.distance = std::sqrt(f.d2);
+          best.normal = e2 > 0 ? Vec(e.y(), -e.x()) / std::sqrt(e2) : Vec(0, 0);
+        }
+      }
+    }
+  return best;
+}
+
+void robust_box(const Points& points, const std::vector<std::size_t>& subset, double q, Vec& lo, Vec& hi) {
+  std::vector<double> xs, ys;
+  xs.reserve(subset.size());
+  ys.reserve(subset.size());
+  for (std::size_t k : subset) {
+    xs.push_back(points[k].x());
+    ys.push_back(points[k].y());
+  }
+  const auto at = [](std::vector<double>& v, double f) {
+    const std::size_t i = std::min(v.size() - 1, std::size_t(f * double(v.size() - 1) + 0.5));
+    std::nth_element(v.begin(), v.begin() + i, v.end());
+    return v[i];
+  };
+  lo = {at(xs, q), at(ys, q)};
+  hi = {at(xs, 1 - q), at(ys, 1 - q)};
+}
+
+double median_spacing(const Points& points, const std::vector<std::size_t>& subset, std::size_t sample) {
+  if (subset.size() < 2) return 0;
+  Vec lo, hi;
+  robust_box(points, subset, 0.005, lo, hi);
+  const double diag = (hi - lo).norm();
+  if (!(diag > 0)) {
+    robust_box(points, subset, 0, lo, hi);
+    if (!((hi - lo).norm() > 0)) return 0;
+  }
+  // Section points lie along curves: about n / 2 cells along a curve of length ~2 diag
+  // would hold one point each; n^0.75 keeps a few points per cell on dense sections.
+  const double cell = std::max(diag, (hi - lo).norm()) / std::pow(double(subset.size()), 0.75);
+  const PointGrid grid(points, subset, cell);
+  const std::size_t step = std::max<std::size_t>(1, subset.size() / std::max<std::size_t>(1, sample));
+  std::vector<double> d;
+  for (std::size_t a = 0; a < subset.size(); a += step) {
+    const double x = grid.nearest(subset[a], 64);
+    if (std::isfinite(x)) d.push_back(x);
+  }
+  if (d.empty()) return 0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
+}  // namespace section::morph

@@ -1,0 +1,243 @@
+#include "raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace section::morph {
+
+namespace {
+
+/// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples) into d.
+/// Samples with f >= `big` (no seed in their column) are left out of the lower envelope:
+/// they never win, and the envelope of the others is the same. Positions are q + base, so
+/// that the rounding of the parabola intersections, which decides between equidistant
+/// seeds, does not depend on where the raster starts (its margin).
+void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
+                 std::vector<double>& z) {
+  const double inf = std::numeric_limits<double>::infinity();
+  int k = -1;
+  for (int q = 0; q < n; ++q) {
+    if (!(f[q] < big)) continue;
+    const double fq = double(f[q]) + double(q + base) * (q + base);
+    if (k < 0) {
+      k = 0;
+      v[0] = q;
+      z[0] = -inf;
+      z[1] = inf;
+      continue;
+    }
+    double s;
+    for (;;) {
+      const int p = v[k];
+      s = (fq - (double(f[p]) + double(p + base) * (p + base))) / (2.0 * (q - p));
+      if (s > z[k] || k == 0) break;  // z[0] = -inf: k never drops below 0
+      --k;
+    }
+    ++k;
+    v[k] = q;
+    z[k] = s;
+    z[k + 1] = inf;
+  }
+  if (k < 0) {
+    for (int q = 0; q < n; ++q) {
+      d[q] = big;
+      arg[q] = -1;
+    }
+    return;
+  }
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    while (z[k + 1] < q + base) ++k;
+    const double dq = double(q - v[k]);
+    d[q] = float(dq * dq + double(f[v[k]]));
+    arg[q] = v[k];
+  }
+}
+
+/// envelope_1d of f split at its zero samples (seeds in the sample's own cell). A zero
+/// sample is its own nearest, and no parabola on one side of it wins on the other (their
+/// intersections with it lie at least half a cell away, far beyond rounding), so the
+/// envelope of a run between two zeros, zeros included, is the whole row's there, with the
+/// same arithmetic. Runs of seeds then cost nothing: most of a raster is outside.
+void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
+                 std::vector<double>& z) {
+  for (int a = 0; a < n;) {
+    if (f[a] == 0) {
+      d[a] = 0;
+      arg[a] = a;
+      ++a;
+      continue;
+    }
+    int b = a + 1;
+    while (b < n && f[b] != 0) ++b;
+    const int lo = a > 0 ? a - 1 : 0, hi = b < n ? b + 1 : n;
+    envelope_1d(f + lo, hi - lo, big, base + lo, d + lo, arg + lo, v, z);
+    for (int q = lo; q < hi; ++q)
+      if (arg[q] >= 0) arg[q] += lo;
+    a = b;
+  }
+}
+
+}  // namespace
+
+std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
+                                    std::vector<int>& nearest, Scratch& scratch) {
+  const float big = 1e20f;
+  const int w = r.w, h = r.h;
+  // Columns: with 0/1 seeds the 1D transform is the distance to the nearest seed above or
+  // below, found by one sweep each way over whole rows (cache friendly).
+  std::vector<float>& f = scratch.f;
+  std::vector<int>& row_of = scratch.ints;
+  f.resize(r.size());  // both written in full by the sweeps below
+  row_of.resize(r.size());
+  {
+    std::vector<int> last(w, -1);
+    for (int j = 0; j < h; ++j) {
+      const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
+      int* arow = row_of.data() + std::size_t(j) * w;
+      for (int i = 0; i < w; ++i) {
+        if (srow[i]) last[i] = j;
+        arow[i] = last[i];
+      }
+    }
+    std::fill(last.begin(), last.end(), -1);
+    for (int j = h - 1; j >= 0; --j) {
+      const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
+      int* arow = row_of.data() + std::size_t(j) * w;
+      float* frow = f.data() + std::size_t(j) * w;
+      for (int i = 0; i < w; ++i) {
+        if (srow[i]) last[i] = j;
+        const int above = arow[i], below = last[i];
+        // The seed above wins a tie (the lower index).
+        const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
+        arow[i] = s;
+        frow[i] = s < 0 ? big : float(double(j - s) * double(j - s));
+      }
+    }
+  }
+  const int n = std::max(w, h);
+  std::vector<int> v(n + 1), arg(n);
+  std::vector<double> z(n + 2);
+  std::vector<float> out(n);
+  std::vector<int> d(r.size());
+  nearest.resize(r.size());  // every cell written below
+  for (int j = 0; j < h; ++j) {
+    const float* row = f.data() + std::size_t(j) * w;
+    distance_1d(row, w, big, base, out.data(), arg.data(), v, z);
+    for (int i = 0; i < w; ++i) {
+      const std::size_t c = std::size_t(j) * w + i;
+      // Squared distances are integers (exact in float below 2^24, and every float above
+      // 2^23 is an integer): rounding is a truncation of x + 0.5.
+      d[c] = out[i] >= float(cap) ? cap : int(out[i] + 0.5f);
+      const int si = arg[i];
+      nearest[c] = out[i] < 1e19f ? row_of[std::size_t(j) * w + si] * w + si : -1;
+    }
+  }
+  return d;
+}
+
+std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next) {
+  std::vector<int> b2(r.size(), -1);
+  // Each bucket is a stack threaded through `next` (a cell enters one bucket, once; its
+  // entry is written before it is read).
+  std::vector<std::int32_t> head(std::size_t(cap) + 1, -1);
+  next.resize(r.size());
+  const auto push = [&](std::size_t c) {
+    next[c] = head[b2[c]];
+    head[b2[c]] = std::int32_t(c);
+  };
+  const auto seed = [&](int i, int j) {
+    const std::size_t c = std::size_t(j) * r.w + i;
+    if (b2[c] >= 0) return;
+    b2[c] = d2[c];
+    push(c);
+  };
+  for (int i = 0; i < r.w; ++i) {
+    seed(i, 0);
+    seed(i, r.h - 1);
+  }
+  for (int j = 0; j < r.h; ++j) {
+    seed(0, j);
+    seed(r.w - 1, j);
+  }
+  const std::size_t size = r.size();
+  for (int level = cap; level >= 0; --level) {
+    while (head[level] >= 0) {
+      const std::uint32_t c = std::uint32_t(head[level]);
+      head[level] = next[c];
+      // Every border cell was seeded above, so a step that wraps to the other side of the
+      // raster lands on a cell already set; only steps off its ends need a test.
+      const std::size_t nb[4] = {std::size_t(c) - 1, std::size_t(c) + 1, std::size_t(c) - r.w,
+                                 std::size_t(c) + r.w};
+      for (int k = 0; k < 4; ++k) {
+        if (nb[k] >= size || b2[nb[k]] >= 0) continue;
+        b2[nb[k]] = std::min(level, d2[nb[k]]);
+        push(nb[k]);
+      }
+    }
+  }
+  return b2;
+}
+
+int ceil_sqrt(int x) {
+  int s = int(std::sqrt(double(x)));
+  while (s * s < x) ++s;
+  while (s > 0 && (s - 1) * (s - 1) >= x) --s;
+  return s;
+}
+
+double bilinear(const Raster& r, const std::vector<float>& f, const Vec& c) {
+  const double x = std::clamp(c.x(), 0.0, double(r.w - 1) - 1e-9);
+  const double y = std::clamp(c.y(), 0.0, double(r.h - 1) - 1e-9);
+  const int i = int(x), j = int(y);
+  const double fx = x - i, fy = y - j;
+  const std::size_t a = std::size_t(j) * r.w + i;
+  return (1 - fy) * ((1 - fx) * f[a] + fx * f[a + 1]) + fy * ((1 - fx) * f[a + r.w] + fx * f[a + r.w + 1]);
+}
+
+Points trace(const Raster& r, const std::vector<int>& label, int label_id, std::size_t start) {
+  static const int dx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+  static const int dy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+  const auto dir_of = [](int x, int y) {
+    for (int k = 0; k < 8; ++k)
+      if (dx[k] == x && dy[k] == y) return k;
+    return 0;
+  };
+  const auto fg = [&](int i, int j) {
+    return i >= 0 && j >= 0 && i < r.w && j < r.h && label[std::size_t(j) * r.w + i] == label_id;
+  };
+  const int si = int(start % r.w), sj = int(start / r.w);
+  Points out;
+  out.emplace_back(si, sj);
+  int pi = si, pj = sj, back = 4;  // the west neighbour of the first cell is background
+  int first_dir = -1;
+  const std::size_t limit = 8 * r.size() + 16;
+  for (std::size_t step = 0; step < limit; ++step) {
+    int found = -1;
+    for (int k = 1; k <= 8; ++k) {
+      const int d = (back - k + 16) % 8;
+      if (fg(pi + dx[d], pj + dy[d])) {
+        found = d;
+        break;
+      }
+    }
+    if (found < 0) break;  // a single cell
+    if (pi == si && pj == sj) {
+      if (first_dir < 0)
+        first_dir = found;
+      else if (found == first_dir)
+        break;
+    }
+    const int c = (found + 1) % 8;  // last background neighbour checked
+    const int qi = pi + dx[found], qj = pj + dy[found];
+    back = dir_of(pi + dx[c] - qi, pj + dy[c] - qj);
+    pi = qi;
+    pj = qj;
+    if (pi == si && pj == sj) continue;  // closing back at the start: not stored twice
+    out.emplace_back(pi, pj);
+  }
+  return out;
+}
+
+}  // namespace section::morph

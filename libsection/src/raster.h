@@ -1,0 +1,58 @@
+#pragma once
+// The raster of the morphology step (src/morphology.cpp) and the transforms on it: exact
+// Euclidean distance transform, bottleneck (widest path) from the border, boundary trace.
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace section::morph {
+
+using Vec = Eigen::Vector2d;
+using Points = std::vector<Vec>;
+
+/// Cell (i, j) has its centre at (x0 + i h, y0 + j h); index j * w + i.
+struct Raster {
+  int w = 0, h = 0;
+  double x0 = 0, y0 = 0, cell = 1;
+  std::size_t size() const { return std::size_t(w) * std::size_t(h); }
+  Vec to_cell(const Vec& p) const { return {(p.x() - x0) / cell, (p.y() - y0) / cell}; }
+  Vec to_world(const Vec& c) const { return {x0 + c.x() * cell, y0 + c.y() * cell}; }
+};
+
+/// Raster-sized buffers handed from step to step of one pass: each fresh page costs a page
+/// fault (the kernel zeroes it), more than most steps' own work on it.
+struct Scratch {
+  std::vector<float> f;
+  std::vector<int> ints;
+  std::vector<std::uint8_t> bytes;
+};
+
+/// Exact squared Euclidean distance (in cells^2) of every cell to the nearest seed cell,
+/// clamped to `cap`, and that seed's cell index in `nearest` (-1 when there is no seed).
+/// `seed` is 1 at seeds. `base` is added to the cell indices in the parabola arithmetic
+/// (see distance_1d). Between equidistant seeds the one of lower index wins, as in
+/// the envelope of the columns.
+/// Uses scratch.f and scratch.ints (not scratch.bytes, which may hold `seed`).
+std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
+                                    std::vector<int>& nearest, Scratch& scratch);
+
+/// For every cell, the largest t such that a 4-connected path from the raster border
+/// reaches it through cells with d2 >= t (the bottleneck of the widest path): the cell is
+/// outside the band of radius r exactly when b2 > r^2. Bucket queue over the (clamped,
+/// integer) keys: O(cells).
+std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next);
+
+/// Smallest r with r * r >= x.
+int ceil_sqrt(int x);
+
+/// f at cell coordinates c, bilinear between cell centres (clamped to the raster).
+double bilinear(const Raster& r, const std::vector<float>& f, const Vec& c);
+
+/// Moore-neighbour trace of the component labelled `label` starting at its first cell in
+/// raster order; stops when the first move repeats (Jacob's criterion), so one-cell-wide
+/// parts are walked on both sides. Returns cell coordinates.
+Points trace(const Raster& r, const std::vector<int>& label, int label_id, std::size_t start);
+
+}  // namespace section::morph
