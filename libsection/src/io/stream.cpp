@@ -6,7 +6,7 @@
 
 #include "section/error.h"
 #include "detail/parallel.h"
-#include "detail/text.h"
+#include "io/text.h"
 
 #include <algorithm>
 #include <charconv>
