@@ -18,6 +18,10 @@
 
 namespace section {
 
+namespace detail {
+class ByteSink;
+}
+
 /// The text a table's rows were read from, and what they read as (see Table::source).
 struct TableText {
   std::shared_ptr<const std::string> text;  ///< the text the rows lie in
@@ -128,9 +132,8 @@ public:
   void finish();
 
 private:
-  void write(std::string_view bytes);
   std::string path_, temporary_;
-  std::FILE* file_ = nullptr;
+  std::unique_ptr<detail::ByteSink> out_;
   bool finished_ = false;
 };
 
