@@ -4,6 +4,8 @@
 #include "section/io/cloud_io.h"
 #include "section/io/mesh_io.h"
 
+#include "thrown.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -20,12 +22,7 @@ using namespace section;
 namespace {
 
 std::string error_of(const std::string& text, const std::string& name, CloudReadOptions opt = {}) {
-  try {
-    parse_cloud(text, name, opt);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return thrown([&] { parse_cloud(text, name, opt); });
 }
 
 std::string temp_path(const std::string& ext) {
@@ -170,6 +167,53 @@ TEST_CASE("read_mesh: STL, OBJ, OFF round-trip and bad files are named", "[mesh]
   CHECK_THROWS_WITH(read_mesh(bad), Catch::Contains(bad));
   std::remove(bad.c_str());
   CHECK_THROWS_WITH(read_mesh("/nonexistent/m.stl"), Catch::Contains("/nonexistent/m.stl"));
+}
+
+TEST_CASE("formats: the extension picks the reader, the content when there is none", "[cloud][mesh]") {
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                          "property float z\nend_header\n1 2 3\n";
+  CHECK(parse_cloud(ply, "scan").points.at(0) == Eigen::Vector3d(1, 2, 3));      // no extension: by content
+  CHECK(parse_cloud("4 5 6\n", "scan").points.at(0) == Eigen::Vector3d(4, 5, 6));  // else XYZ
+  CHECK(parse_cloud("7,8,9\n", "SCAN.XYZN").points.at(0) == Eigen::Vector3d(7, 8, 9));
+  CHECK(error_of("1 2 3\n", "part.stl") == "read_cloud: part.stl: is a mesh, not a point cloud");
+  CHECK(error_of("1 2 3\n", "d.x/scan.las") ==
+        "read_cloud: d.x/scan.las: unknown point cloud extension '.las' (use .xyz .asc .txt .pts .csv .ply)");
+  CHECK(error_of("1 2 3\n", "d.x/scan") == "no error");  // a dot in a directory is no extension
+  // A PLY file is a mesh when its header declares faces.
+  const std::string mesh = temp_path(".ply"), cloud = temp_path(".ply");
+  std::ofstream(mesh) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                         "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  std::ofstream(cloud) << ply;
+  CHECK(is_mesh_file(mesh));
+  CHECK(read_mesh(mesh).triangles.size() == 1);
+  CHECK_FALSE(is_mesh_file(cloud));
+  CHECK_FALSE(is_mesh_file(temp_path(".xyz")));
+  CHECK_THROWS_WITH(read_mesh(cloud), Catch::Contains("the mesh has no faces"));
+  std::remove(mesh.c_str());
+  std::remove(cloud.c_str());
+  const std::string xyz = temp_path(".xyz");
+  std::ofstream(xyz) << "1 2 3\n";
+  CHECK_THROWS_WITH(read_mesh(xyz), Catch::Contains("unknown mesh extension (use .stl .obj .off .ply)"));
+  std::remove(xyz.c_str());
+}
+
+TEST_CASE("formats: the cloud and mesh readers decode a PLY header alike", "[cloud][mesh]") {
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n";
+  const auto both = [&](const std::string& rest) {
+    const std::string path = temp_path(".ply");
+    std::ofstream(path) << head + rest;
+    const std::string cloud = error_of(head + rest, "h.ply"), mesh = thrown([&] { read_mesh(path); });
+    std::remove(path.c_str());
+    // The same words, placed each in its reader's way: "h.ply:6: ..." and "FILE: line 6: ...".
+    const std::string what = cloud.substr(cloud.find(':', cloud.find("h.ply:") + 6) + 2);
+    CHECK_THAT(mesh, Catch::EndsWith(": line 6: " + what));
+    return what;
+  };
+  CHECK(both("property flot z\nend_header\n") == "unknown property type 'flot'");
+  CHECK(both("property float\nend_header\n") == "bad property line");
+  CHECK(both("properly float z\nend_header\n") == "unexpected PLY header line starting 'properly'");
+  CHECK(both("element face -1\nend_header\n") == "bad element count '-1'");
 }
 
 TEST_CASE("read_cloud: every row layout reads the same numbers, odd rows are refused with their line", "[cloud]") {

@@ -9,6 +9,8 @@
 #include "section/io/cloud_io.h"
 #include "section/io/mesh_io.h"
 
+#include "thrown.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -28,32 +30,17 @@ std::string cloud_error(const std::string& bytes, const std::string& name,
                         CloudFormat format = CloudFormat::automatic) {
   CloudReadOptions opt;
   opt.format = format;
-  try {
-    parse_cloud(bytes, name, opt);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return thrown([&] { parse_cloud(bytes, name, opt); });
 }
 
 std::string stream_error(const std::string& text) {
-  try {
-    parse_stream(text, "s.csv");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return thrown([&] { parse_stream(text, "s.csv"); });
 }
 
 std::string mesh_error(const std::string& bytes, const std::string& ext) {
   const std::string path = "/tmp/section_robust_" + std::to_string(::getpid()) + "." + ext;
   std::ofstream(path, std::ios::binary) << bytes;
-  std::string what = "no error";
-  try {
-    read_mesh(path);
-  } catch (const Error& e) {
-    what = e.what();
-  }
+  const std::string what = thrown([&] { read_mesh(path); });
   std::remove(path.c_str());
   return what;
 }
