@@ -21,7 +21,8 @@ inline int fuzz_parse_cloud(const std::uint8_t* data, std::size_t size, section:
   options.format = format;
   options.chunk_points = 7;
   try {
-    const section::Cloud cloud = section::parse_cloud({reinterpret_cast<const char*>(data), size}, name, options);
+    const section::Cloud cloud =
+        section::parse_cloud({reinterpret_cast<const char*>(data), size}, name, options);
     for (const auto& p : cloud.points)
       if (!p.allFinite()) std::abort();  // the reader promises finite coordinates
   } catch (const section::Error&) {

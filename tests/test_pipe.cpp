@@ -107,10 +107,11 @@ TEST_CASE("pipe: a table passed through is written back as it was read, a change
   // while the table is unchanged, shortest form once it changes.
   std::string rows;
   for (int i = 0; i < 30000; ++i) rows += std::to_string(i) + ",1.50,+2,3e0\n";
-  const std::string text = "# libsection-stream 1\n# units mm\n# table t\nindex,a,b,c\n" + rows +
-                           "# table small\nx\n0.250\n";
+  const std::string text =
+      "# libsection-stream 1\n# units mm\n# table t\nindex,a,b,c\n" + rows + "# table small\nx\n0.250\n";
   for (const bool shared : {false, true}) {
-    Stream s = shared ? parse_stream(std::make_shared<const std::string>(text), "in") : parse_stream(text, "in");
+    Stream s =
+        shared ? parse_stream(std::make_shared<const std::string>(text), "in") : parse_stream(text, "in");
     REQUIRE(s.get("t", "test").rows() == 30000);
     REQUIRE(s.get("t", "test").source);
     const std::string out = format_stream(s);
@@ -135,7 +136,8 @@ TEST_CASE("pipe: a table passed through is written back as it was read, a change
   }
   // The file written by write_stream is the text format_stream gives.
   const Stream s = parse_stream(text, "in");
-  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/libsection_passthrough_test.csv";
+  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                           "/libsection_passthrough_test.csv";
   write_stream(path, s);
   CHECK(read_file(path) == format_stream(s));
   std::remove(path.c_str());
@@ -179,8 +181,8 @@ ThreeSections three_sections() {
   all.put(frames);
   all.put(pts);
   t.whole = format_stream(all);
-  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/libsection_parts_" +
-                           std::to_string(std::rand()) + ".csv";
+  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                           "/libsection_parts_" + std::to_string(std::rand()) + ".csv";
   {
     StreamWriter w(path, head);
     for (int s = 0; s < 3; ++s) w.part(std::to_string(s), parts[s]);
@@ -268,7 +270,8 @@ TEST_CASE("pipe: PartReader hands out the parts as they come and refuses a cut s
 
 TEST_CASE("pipe: run_stage stages a stream part by part, the same whatever the threads", "[pipe]") {
   const ThreeSections t = three_sections();
-  const std::string in = temp_path("stage_in"), out1 = temp_path("stage_out1"), out2 = temp_path("stage_out2");
+  const std::string in = temp_path("stage_in"), out1 = temp_path("stage_out1"),
+                    out2 = temp_path("stage_out2");
   write_file(in, t.parted);
   // A stage that adds a table of its own; the part's tables are seen alone.
   const auto stage = [](Stream& s, int) {

@@ -37,11 +37,13 @@ ByteSource::~ByteSource() {
   if (owned_ && file_) std::fclose(file_);
 }
 
-int ByteSource::regular_fd() const { return owned_ && file_ && size_ > 0 ? fileno(file_) : -1; }
+int ByteSource::regular_fd() const {
+  return owned_ && file_ && size_ > 0 ? fileno(file_) : -1;
+}
 
 void ByteSource::read_error() const {
   throw Error(component_.empty() && file_ == stdin ? std::string("cannot read standard input")
-                                                    : component_ + name_ + ": read error");
+                                                   : component_ + name_ + ": read error");
 }
 
 std::size_t ByteSource::fetch(std::size_t n) {
@@ -128,7 +130,7 @@ ByteSink::~ByteSink() {
 
 void ByteSink::write_error() const {
   throw Error(component_.empty() && path_ == "-" ? std::string("cannot write standard output")
-                                                  : component_ + path_ + ": write error");
+                                                 : component_ + path_ + ": write error");
 }
 
 void ByteSink::write(std::string_view bytes) {

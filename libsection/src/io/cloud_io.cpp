@@ -65,7 +65,8 @@ std::size_t read_source(ByteSource& src, const std::string& path, const PointChu
   if (buf.empty()) throw Error("read_cloud: " + src.name() + ": empty file");
   const detail::InputFormat& format = detail::cloud_format(path, buf, options.format);
   if (format.text) {
-    if (const char* why = detail::text_encoding_problem(buf)) throw Error("read_cloud: " + src.name() + ": " + why);
+    if (const char* why = detail::text_encoding_problem(buf))
+      throw Error("read_cloud: " + src.name() + ": " + why);
     if (detail::skip_bom(buf)) src.consume(3);
   }
   std::size_t seen = 0;
@@ -87,10 +88,15 @@ std::size_t read_source(ByteSource& src, const std::string& path, const PointChu
 // in file order (read_cloud_chunks_parallel).
 class PackedChunks {
 public:
-  PackedChunks(int fd, const detail::BinaryVertices& v, const std::string& name, const CloudReadOptions& options)
-      : fd_(fd), start_(v.start), count_(v.count), name_(name),
+  PackedChunks(int fd, const detail::BinaryVertices& v, const std::string& name,
+               const CloudReadOptions& options)
+      : fd_(fd),
+        start_(v.start),
+        count_(v.count),
+        name_(name),
         chunk_(std::max<std::size_t>(options.chunk_points, 1)),
-        chunks_(static_cast<std::size_t>((count_ + chunk_ - 1) / chunk_)), first_bad_(chunks_) {}
+        chunks_(static_cast<std::size_t>((count_ + chunk_ - 1) / chunk_)),
+        first_bad_(chunks_) {}
 
   void run(const ChunkWorkFn& work, const IndexedChunkFn& merge, int threads) {
     const std::size_t workers = std::min<std::size_t>(chunks_, detail::worker_count(threads));
@@ -125,14 +131,16 @@ private:
 
   // Reads, checks and works on chunk k, then merges it after those before; false when an
   // earlier chunk failed.
-  bool one(std::size_t k, std::vector<Eigen::Vector3d>& buf, const ChunkWorkFn& work, const IndexedChunkFn& merge) {
+  bool one(std::size_t k, std::vector<Eigen::Vector3d>& buf, const ChunkWorkFn& work,
+           const IndexedChunkFn& merge) {
     const unsigned long long first = static_cast<unsigned long long>(k) * chunk_;
     const std::size_t m = static_cast<std::size_t>(std::min<unsigned long long>(chunk_, count_ - first));
     buf.resize(m);
     const std::size_t got = detail::pread_full(fd_, buf.data(), 24 * m, start_ + 24 * first);
     if (got < 24 * m)
       throw Error("read_cloud: " + name_ + ": PLY file ends or cannot be read after at most " +
-                  std::to_string(first + got / 24) + " of " + std::to_string(count_) + " vertices (truncated file?)");
+                  std::to_string(first + got / 24) + " of " + std::to_string(count_) +
+                  " vertices (truncated file?)");
     detail::check_vertices(buf.data(), m, first, name_);
     work(k, buf.data(), m, 1);
     // Merged in file order: wait for the chunks before.
@@ -155,19 +163,20 @@ private:
   std::mutex mutex_;
   std::condition_variable merged_one_;
   std::size_t next_merge_ = 0;
-  std::size_t first_bad_;        // lowest chunk that failed
-  std::exception_ptr error_;     // its error
+  std::size_t first_bad_;     // lowest chunk that failed
+  std::exception_ptr error_;  // its error
 };
 
 }  // namespace
 
-std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_chunk, const CloudReadOptions& options) {
+std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_chunk,
+                              const CloudReadOptions& options) {
   const auto src = open_cloud(path);
   return read_source(*src, path, on_chunk, options);
 }
 
-std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work, const IndexedChunkFn& merge,
-                                       const CloudReadOptions& options) {
+std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work,
+                                       const IndexedChunkFn& merge, const CloudReadOptions& options) {
   // Packed doubles in a regular file: pread anywhere, no conversion.
   std::unique_ptr<ByteSource> src;
   std::optional<detail::BinaryVertices> layout;
@@ -207,7 +216,8 @@ CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudRead
       const double jitter = std::fmod(0.5 + 0.6180339887498949 * double(i), 1.0);
       const unsigned long long k = std::min<unsigned long long>(
           v->count - 1, static_cast<unsigned long long>((double(i) + jitter) * double(v->count) / double(m)));
-      if (detail::pread_full(src->regular_fd(), rec, v->record, v->start + k * v->record) < v->record) return {};
+      if (detail::pread_full(src->regular_fd(), rec, v->record, v->start + k * v->record) < v->record)
+        return {};
       const Eigen::Vector3d p = v->point(rec);
       if (p.allFinite() && p.cwiseAbs().maxCoeff() <= detail::max_coordinate) out.points.push_back(p);
     }
@@ -221,7 +231,8 @@ CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudRead
 Cloud read_cloud(const std::string& path, const CloudReadOptions& options) {
   Cloud cloud;
   read_cloud_chunks(
-      path, [&](const Eigen::Vector3d* p, std::size_t n) { cloud.points.insert(cloud.points.end(), p, p + n); },
+      path,
+      [&](const Eigen::Vector3d* p, std::size_t n) { cloud.points.insert(cloud.points.end(), p, p + n); },
       options);
   return cloud;
 }
@@ -230,7 +241,8 @@ Cloud parse_cloud(std::string_view bytes, const std::string& name, const CloudRe
   ByteSource src(bytes, name);
   Cloud cloud;
   read_source(
-      src, name, [&](const Eigen::Vector3d* p, std::size_t n) { cloud.points.insert(cloud.points.end(), p, p + n); },
+      src, name,
+      [&](const Eigen::Vector3d* p, std::size_t n) { cloud.points.insert(cloud.points.end(), p, p + n); },
       options);
   return cloud;
 }
@@ -241,7 +253,8 @@ void write_cloud(const std::string& path, const Cloud& cloud) {
     out.write("ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(cloud.points.size()) +
               "\nproperty double x\nproperty double y\nproperty double z\nend_header\n");
     static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "packed Vector3d");
-    out.write({reinterpret_cast<const char*>(cloud.points.data()), sizeof(Eigen::Vector3d) * cloud.points.size()});
+    out.write(
+        {reinterpret_cast<const char*>(cloud.points.data()), sizeof(Eigen::Vector3d) * cloud.points.size()});
   } else {
     std::string text;
     char b[32];

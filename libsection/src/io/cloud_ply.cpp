@@ -26,8 +26,8 @@ const PlyMessages messages{"read_cloud: ", false};
 // The vertex element of a PLY cloud and where x, y and z lie in it.
 struct VertexLayout {
   const PlyElement* vertex = nullptr;
-  int ix = -1, iy = -1, iz = -1;  // properties of x, y, z
-  std::size_t record = 0;         // bytes per binary vertex
+  int ix = -1, iy = -1, iz = -1;    // properties of x, y, z
+  std::size_t record = 0;           // bytes per binary vertex
   std::vector<std::size_t> offset;  // of each property in a binary vertex
   // Little-endian doubles x, y, z and nothing else.
   bool packed(bool swap) const {
@@ -64,7 +64,8 @@ VertexLayout vertex_layout(const PlyHeader& h, const ByteSource& src, const Clou
     if (p.name == "y") l.iy = static_cast<int>(i);
     if (p.name == "z") l.iz = static_cast<int>(i);
   }
-  if (l.ix < 0 || l.iy < 0 || l.iz < 0) throw Error("read_cloud: " + name + ": PLY vertex element lacks x, y or z");
+  if (l.ix < 0 || l.iy < 0 || l.iz < 0)
+    throw Error("read_cloud: " + name + ": PLY vertex element lacks x, y or z");
   if (ve.count == 0) throw Error("read_cloud: " + name + ": no points (PLY header declares 0 vertices)");
   if (ve.count > opt.max_points)
     throw Error("read_cloud: " + name + ": PLY header declares " + std::to_string(ve.count) +
@@ -75,8 +76,8 @@ VertexLayout vertex_layout(const PlyHeader& h, const ByteSource& src, const Clou
     const unsigned long long min_bytes = ascii ? ve.count * 6ULL : ve.count * l.record;
     if (min_bytes > body)
       throw Error("read_cloud: " + name + ": PLY header declares " + std::to_string(ve.count) +
-                  " vertices but the file holds " + (ascii ? "far fewer" : "only " + std::to_string(body / l.record)) +
-                  " (truncated file?)");
+                  " vertices but the file holds " +
+                  (ascii ? "far fewer" : "only " + std::to_string(body / l.record)) + " (truncated file?)");
   }
   return l;
 }
@@ -127,10 +128,12 @@ void read_ascii(ByteSource& src, const PlyHeader& h, const VertexLayout& l, Chun
                   "expected " + std::to_string(vals.size()) + " vertex values, found " + std::to_string(k));
       if (!parse_double(line.substr(s, i - s), vals[k]))
         fail_line(name, line_no,
-                  "expected a number, found '" + std::string(line.substr(s, std::min<std::size_t>(i - s, 40))) + "'");
+                  "expected a number, found '" +
+                      std::string(line.substr(s, std::min<std::size_t>(i - s, 40))) + "'");
     }
     const double x = vals[l.ix], y = vals[l.iy], z = vals[l.iz];
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) fail_line(name, line_no, "non-finite coordinate");
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+      fail_line(name, line_no, "non-finite coordinate");
     out.add(x, y, z);
     ++done;
   }
@@ -167,8 +170,10 @@ void read_packed_file(ByteSource& src, unsigned long long count, const CloudRead
       const std::size_t a = m * t / parts, b = m * (t + 1) / parts;
       if (short_read[t])
         throw Error("read_cloud: " + src.name() + ": PLY file ends or cannot be read after at most " +
-                    std::to_string(done + a) + " of " + std::to_string(count) + " vertices (truncated file?)");
-      if (bad[t]) check_vertices(dst + a, b - a, done + a, src.name());  // throws the first bad vertex's message
+                    std::to_string(done + a) + " of " + std::to_string(count) +
+                    " vertices (truncated file?)");
+      if (bad[t])
+        check_vertices(dst + a, b - a, done + a, src.name());  // throws the first bad vertex's message
     }
     out.commit();
     done += m;
@@ -219,7 +224,8 @@ std::size_t read_packed(ByteSource& src, unsigned long long count, const CloudRe
 
 // n records at r into dst, with scalars of type T at offsets o.
 template <class T>
-void gather(const unsigned char* r, std::size_t n, std::size_t record, const std::size_t o[3], Eigen::Vector3d* dst) {
+void gather(const unsigned char* r, std::size_t n, std::size_t record, const std::size_t o[3],
+            Eigen::Vector3d* dst) {
   for (std::size_t k = 0; k < n; ++k, r += record) {
     T v[3];
     for (int c = 0; c < 3; ++c) std::memcpy(&v[c], r + o[c], sizeof(T));
@@ -265,7 +271,8 @@ void read_binary(ByteSource& src, const PlyHeader& h, const VertexLayout& l, Chu
     for (std::size_t k = 0; k < 3 * n; ++k) bad |= !(std::abs(d[k]) <= std::numeric_limits<double>::max());
     for (std::size_t k = 0; bad && k < n; ++k)
       if (!dst[k].allFinite())
-        throw Error("read_cloud: " + name + ": vertex " + std::to_string(done + k) + " has a non-finite coordinate");
+        throw Error("read_cloud: " + name + ": vertex " + std::to_string(done + k) +
+                    " has a non-finite coordinate");
     out.commit();
     done += n;
     src.consume(n * record);
@@ -289,13 +296,15 @@ std::size_t read_ply_cloud(ByteSource& src, const CloudReadOptions& opt, const P
   return out.total();
 }
 
-void check_vertices(const Eigen::Vector3d* v, std::size_t m, unsigned long long first, const std::string& name) {
+void check_vertices(const Eigen::Vector3d* v, std::size_t m, unsigned long long first,
+                    const std::string& name) {
   bool bad = false;
   const double* d = m ? v[0].data() : nullptr;
   for (std::size_t k = 0; k < 3 * m; ++k) bad |= !(std::abs(d[k]) <= detail::max_coordinate);
   for (std::size_t k = 0; bad && k < m; ++k) {
     if (!v[k].allFinite())
-      throw Error("read_cloud: " + name + ": vertex " + std::to_string(first + k) + " has a non-finite coordinate");
+      throw Error("read_cloud: " + name + ": vertex " + std::to_string(first + k) +
+                  " has a non-finite coordinate");
     if (v[k].cwiseAbs().maxCoeff() > detail::max_coordinate)
       throw Error("read_cloud: " + name + ": point " + std::to_string(first + k + 1) +
                   " has a coordinate beyond +-1e15 (corrupt file?)");
@@ -309,7 +318,8 @@ bool BinaryVertices::packed() const {
 }
 
 Eigen::Vector3d BinaryVertices::point(const unsigned char* r) const {
-  return {ply_scalar(r + offset[0], size[0], kind[0], swap), ply_scalar(r + offset[1], size[1], kind[1], swap),
+  return {ply_scalar(r + offset[0], size[0], kind[0], swap),
+          ply_scalar(r + offset[1], size[1], kind[1], swap),
           ply_scalar(r + offset[2], size[2], kind[2], swap)};
 }
 
@@ -319,7 +329,8 @@ std::optional<BinaryVertices> binary_vertices(ByteSource& src, const std::string
     if (src.regular_fd() < 0 || src.fetch(1 << 16) == 0) return std::nullopt;
     if (cloud_format(path, src.bytes(), options.format).cloud != CloudFormat::ply) return std::nullopt;
     const PlyHeader h = read_ply_header(src, messages);
-    if (h.format == PlyFormat::ascii || h.elements.empty() || h.elements[0].name != "vertex") return std::nullopt;
+    if (h.format == PlyFormat::ascii || h.elements.empty() || h.elements[0].name != "vertex")
+      return std::nullopt;
     const PlyElement& ve = h.elements[0];
     BinaryVertices v;
     bool found[3] = {false, false, false};
@@ -335,8 +346,8 @@ std::optional<BinaryVertices> binary_vertices(ByteSource& src, const std::string
       v.record += static_cast<std::size_t>(p.size);
     }
     const unsigned long long body = static_cast<unsigned long long>(src.size()) - h.bytes;
-    if (!found[0] || !found[1] || !found[2] || v.record == 0 || ve.count == 0 || ve.count > options.max_points ||
-        body / v.record < ve.count)
+    if (!found[0] || !found[1] || !found[2] || v.record == 0 || ve.count == 0 ||
+        ve.count > options.max_points || body / v.record < ve.count)
       return std::nullopt;
     v.start = h.bytes;
     v.count = ve.count;

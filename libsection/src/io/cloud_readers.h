@@ -61,7 +61,8 @@ std::size_t worker_count(int threads);
 
 /// Throws for the first vertex of v[0, m) (vertex `first` is v[0]) with a non-finite
 /// coordinate or one beyond +-1e15; returns when there is none.
-void check_vertices(const Eigen::Vector3d* v, std::size_t m, unsigned long long first, const std::string& name);
+void check_vertices(const Eigen::Vector3d* v, std::size_t m, unsigned long long first,
+                    const std::string& name);
 
 std::size_t read_xyz_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);

@@ -33,7 +33,8 @@ int split_row(std::string_view line, std::string_view* fields, int max_fields) {
 
 std::string unquote(std::string_view s) {
   s = trim(s);
-  if (s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front()) s = s.substr(1, s.size() - 2);
+  if (s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front())
+    s = s.substr(1, s.size() - 2);
   return lower(std::string(s));
 }
 
@@ -71,23 +72,27 @@ void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, 
       if (st.require_header)
         fail_line(name, line_no, "a CSV cloud needs a header row naming the x, y and z columns");
       if (n > 0 && !parse_double(trim(f[0]), tmp))
-        fail_line(name, line_no, "expected a number in column 1, found '" + std::string(trim(f[0]).substr(0, 40)) +
-                                     "' (a header row must name x, y and z columns)");
+        fail_line(name, line_no,
+                  "expected a number in column 1, found '" + std::string(trim(f[0]).substr(0, 40)) +
+                      "' (a header row must name x, y and z columns)");
     }
   }
   std::string_view f[64];
   const int n = split_row(line, f, std::min(64, st.needed));
   if (n < st.needed)
-    fail_line(name, line_no, "expected at least " + std::to_string(st.needed) + " columns, found " + std::to_string(n));
+    fail_line(name, line_no,
+              "expected at least " + std::to_string(st.needed) + " columns, found " + std::to_string(n));
   double v[3];
   const int cols[3] = {st.cx, st.cy, st.cz};
   for (int k = 0; k < 3; ++k) {
     const std::string_view cell = trim(f[cols[k]]);
     if (!parse_double(cell, v[k]))
-      fail_line(name, line_no, "expected a number in column " + std::to_string(cols[k] + 1) + ", found '" +
-                                   std::string(cell.substr(0, 40)) + "'");
+      fail_line(name, line_no,
+                "expected a number in column " + std::to_string(cols[k] + 1) + ", found '" +
+                    std::string(cell.substr(0, 40)) + "'");
     if (!std::isfinite(v[k]))
-      fail_line(name, line_no, "non-finite coordinate '" + std::string(cell) + "' in column " + std::to_string(cols[k] + 1));
+      fail_line(name, line_no,
+                "non-finite coordinate '" + std::string(cell) + "' in column " + std::to_string(cols[k] + 1));
   }
   out.add(v[0], v[1], v[2]);
 }
@@ -127,7 +132,8 @@ void parse_text_lines(std::string_view buf, std::size_t begin, std::size_t end, 
   while (p < stop) {
     const char* nl = static_cast<const char*>(std::memchr(p, '\n', std::size_t(stop - p)));
     ++line_no;
-    if (std::size_t(nl - p) > max_line) fail_line(name, line_no, "line longer than " + std::to_string(max_line) + " characters");
+    if (std::size_t(nl - p) > max_line)
+      fail_line(name, line_no, "line longer than " + std::to_string(max_line) + " characters");
     double v[3];
     if (plain && parse_xyz_fast(p, nl, v))
       out.add(v[0], v[1], v[2]);
@@ -208,10 +214,12 @@ std::size_t read_text(ByteSource& src, bool csv, const CloudReadOptions& opt, co
     // Line by line up to the first data line (it decides the header), then in parallel.
     while (first_data && (nl = b.find('\n', used)) != std::string_view::npos) {
       ++line_no;
-      if (nl - used > max_line) fail_line(src.name(), line_no, "line longer than " + std::to_string(max_line) + " characters");
+      if (nl - used > max_line)
+        fail_line(src.name(), line_no, "line longer than " + std::to_string(max_line) + " characters");
       parse_text_line(b.substr(used, nl - used), line_no, st, src.name(), out, first_data);
       if (out.total() > opt.max_points)
-        throw Error("read_cloud: " + src.name() + ": more than " + std::to_string(opt.max_points) + " points");
+        throw Error("read_cloud: " + src.name() + ": more than " + std::to_string(opt.max_points) +
+                    " points");
       used = nl + 1;
     }
     if (!first_data) {
@@ -242,11 +250,13 @@ std::size_t read_text(ByteSource& src, bool csv, const CloudReadOptions& opt, co
 
 }  // namespace
 
-std::size_t read_xyz_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn, const PointChunkFn&) {
+std::size_t read_xyz_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
+                           const PointChunkFn&) {
   return read_text(src, false, opt, fn);
 }
 
-std::size_t read_csv_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn, const PointChunkFn&) {
+std::size_t read_csv_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
+                           const PointChunkFn&) {
   return read_text(src, true, opt, fn);
 }
 

@@ -58,11 +58,15 @@ Table parse_csv(std::string_view text, const std::string& source) {
       return;
     }
     if (fields.size() != t.columns.size())
-      stream_fail(source, line_no, std::to_string(fields.size()) + " values for " + std::to_string(t.columns.size()) + " columns");
+      stream_fail(
+          source, line_no,
+          std::to_string(fields.size()) + " values for " + std::to_string(t.columns.size()) + " columns");
     for (std::size_t c = 0; c < fields.size(); ++c) {
       double v = 0;
       if (!parse_double(trim(fields[c]), v))
-        stream_fail(source, line_no, "column '" + t.columns[c] + "': expected a number, found '" + std::string(fields[c].substr(0, 40)) + "'");
+        stream_fail(source, line_no,
+                    "column '" + t.columns[c] + "': expected a number, found '" +
+                        std::string(fields[c].substr(0, 40)) + "'");
       if (!std::isfinite(v)) stream_fail(source, line_no, "column '" + t.columns[c] + "': non-finite value");
       t.values.push_back(v);
     }
@@ -79,10 +83,14 @@ std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::str
   for_each_line(text, [&](std::string_view line, std::size_t line_no) {
     const auto fields = fields_of(line);
     double x = 0, y = 0;
-    const bool numeric = fields.size() >= 2 && parse_double(trim(fields[0]), x) && parse_double(trim(fields[1]), y);
+    const bool numeric =
+        fields.size() >= 2 && parse_double(trim(fields[0]), x) && parse_double(trim(fields[1]), y);
     if (!numeric) {
       if (!data) return;  // a title line
-      stream_fail(source, line_no, fields.size() < 2 ? "expected x and y, found one value" : "expected two numbers x, y, found '" + std::string(line.substr(0, 40)) + "'");
+      stream_fail(source, line_no,
+                  fields.size() < 2
+                      ? "expected x and y, found one value"
+                      : "expected two numbers x, y, found '" + std::string(line.substr(0, 40)) + "'");
     }
     data = true;
     if (!std::isfinite(x) || !std::isfinite(y)) stream_fail(source, line_no, "non-finite coordinate");
@@ -93,7 +101,6 @@ std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::str
   if (points.empty()) throw Error("pipe: " + source + ": no profile points (expected lines of x y)");
   return points;
 }
-
 
 std::vector<Plane> parse_planes(std::string_view csv, const std::string& source) {
   const Table t = parse_csv(csv, source);
@@ -108,13 +115,13 @@ std::vector<Plane> parse_planes(std::string_view csv, const std::string& source)
   for (std::size_t r = 0; r < t.rows(); ++r) {
     Plane p{{t.at(r, c[0]), t.at(r, c[1]), t.at(r, c[2])}, {t.at(r, c[3]), t.at(r, c[4]), t.at(r, c[5])}};
     if (!(p.normal.norm() > 0))
-      throw Error("slice: " + source + ": plane " + std::to_string(r) + " (data row " + std::to_string(r + 1) + ") has a zero normal");
+      throw Error("slice: " + source + ": plane " + std::to_string(r) + " (data row " +
+                  std::to_string(r + 1) + ") has a zero normal");
     planes.push_back(p);
   }
   if (planes.empty()) throw Error("slice: " + source + ": no planes");
   return planes;
 }
-
 
 std::string format_csv(const Table& table) {
   std::string out;

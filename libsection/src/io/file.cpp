@@ -5,7 +5,9 @@
 
 namespace section {
 
-std::string read_file(const std::string& path) { return detail::ByteSource(path, "").read_all(); }
+std::string read_file(const std::string& path) {
+  return detail::ByteSource(path, "").read_all();
+}
 
 void write_file(const std::string& path, const std::string& bytes) {
   detail::ByteSink out(path, "");

@@ -15,17 +15,15 @@ const std::vector<InputFormat>& input_formats() {
   using C = CloudFormat;
   // Meshes first, then clouds: the order in which messages name the extensions. A PLY file
   // with faces is a mesh, else a cloud.
-  // clang-format off
+  // Each: extensions, further extensions, cloud format, cloud reader, text, magic, mesh reader, holds_mesh.
   static const std::vector<InputFormat> formats = {
-    // extensions                 also      cloud         read_cloud      text   magic    read_mesh      holds_mesh
-    {{"stl"},                     {},       C::automatic, nullptr,        false, nullptr, read_stl,      nullptr},
-    {{"obj"},                     {},       C::automatic, nullptr,        false, nullptr, read_obj,      nullptr},
-    {{"off"},                     {},       C::automatic, nullptr,        false, nullptr, read_off,      nullptr},
-    {{"xyz", "asc", "txt", "pts"}, {"xyzn"}, C::xyz,       read_xyz_cloud, true,  nullptr, nullptr,       nullptr},
-    {{"csv"},                     {},       C::csv,       read_csv_cloud, true,  nullptr, nullptr,       nullptr},
-    {{"ply"},                     {},       C::ply,       read_ply_cloud, false, "ply",   read_ply_mesh, ply_declares_faces},
+      {{"stl"}, {}, C::automatic, nullptr, false, nullptr, read_stl, nullptr},
+      {{"obj"}, {}, C::automatic, nullptr, false, nullptr, read_obj, nullptr},
+      {{"off"}, {}, C::automatic, nullptr, false, nullptr, read_off, nullptr},
+      {{"xyz", "asc", "txt", "pts"}, {"xyzn"}, C::xyz, read_xyz_cloud, true, nullptr, nullptr, nullptr},
+      {{"csv"}, {}, C::csv, read_csv_cloud, true, nullptr, nullptr, nullptr},
+      {{"ply"}, {}, C::ply, read_ply_cloud, false, "ply", read_ply_mesh, ply_declares_faces},
   };
-  // clang-format on
   return formats;
 }
 

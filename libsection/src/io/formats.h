@@ -14,19 +14,19 @@ namespace section::detail {
 /// Reads the points of a cloud from `src`: `checked` receives them checked against
 /// max_coordinate, `raw` unchecked (for a reader that checks while it reads). Returns the
 /// number of points.
-using CloudReader = std::size_t (*)(ByteSource& src, const CloudReadOptions& options, const PointChunkFn& checked,
-                                    const PointChunkFn& raw);
+using CloudReader = std::size_t (*)(ByteSource& src, const CloudReadOptions& options,
+                                    const PointChunkFn& checked, const PointChunkFn& raw);
 /// Reads a mesh from the whole content `text` of the file `path`.
 using MeshReader = Mesh (*)(const std::string& path, const std::string& text);
 
 /// An input format.
 struct InputFormat {
-  std::vector<std::string_view> extensions;  ///< lower case, without the dot; named in messages
-  std::vector<std::string_view> also;        ///< further extensions, read but not named in messages
+  std::vector<std::string_view> extensions;    ///< lower case, without the dot; named in messages
+  std::vector<std::string_view> also;          ///< further extensions, read but not named in messages
   CloudFormat cloud = CloudFormat::automatic;  ///< its name for CloudReadOptions; automatic: no clouds
   CloudReader read_cloud = nullptr;            ///< nullptr when it holds no clouds
-  bool text = false;             ///< a text format: its encoding is checked and a UTF-8 BOM skipped
-  const char* magic = nullptr;   ///< how its content starts, for input with no extension (stdin)
+  bool text = false;               ///< a text format: its encoding is checked and a UTF-8 BOM skipped
+  const char* magic = nullptr;     ///< how its content starts, for input with no extension (stdin)
   MeshReader read_mesh = nullptr;  ///< nullptr when it holds no meshes
   /// For a format of clouds and meshes: true when the file holds a mesh.
   bool (*holds_mesh)(ByteSource& src) = nullptr;

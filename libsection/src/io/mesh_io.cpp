@@ -30,7 +30,8 @@ Mesh read_mesh(const std::string& path) {
   if (text.empty()) throw Error("read_mesh: " + path + ": empty file");
   const detail::InputFormat* format = detail::format_of_extension(path);
   if (!format || !format->read_mesh)
-    throw Error("read_mesh: " + path + ": unknown mesh extension (use " + detail::named_extensions(true) + ")");
+    throw Error("read_mesh: " + path + ": unknown mesh extension (use " + detail::named_extensions(true) +
+                ")");
   Mesh mesh = format->read_mesh(path, text);
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const Eigen::Vector3d& p = mesh.vertices[i];

@@ -24,14 +24,16 @@ void check_header(const PlyHeader& h, std::size_t size, const std::string& where
   for (const PlyElement& e : h.elements)
     for (const PlyProperty& p : e.props)
       if (p.list() && p.count_kind == 'f')
-        throw Error(where + "line " + std::to_string(p.line) + ": unknown property type in " + quoted(p.count_type));
+        throw Error(where + "line " + std::to_string(p.line) + ": unknown property type in " +
+                    quoted(p.count_type));
   for (const PlyElement& e : h.elements) {
     unsigned long long least = 0;
     for (const PlyProperty& p : e.props)
       least += h.format == PlyFormat::ascii ? 2 : p.list() ? p.count_size : p.size;
     if (e.count > size / std::max(least, 1ULL))
       throw Error(where + "the header declares " + std::to_string(e.count) + " " + printable(e.name) +
-                  " elements but the file has only " + std::to_string(size) + " bytes (corrupt or truncated file?)");
+                  " elements but the file has only " + std::to_string(size) +
+                  " bytes (corrupt or truncated file?)");
   }
 }
 
@@ -45,8 +47,13 @@ std::string number(double d) {
 class PlyBody {
 public:
   PlyBody(const std::string& text, const PlyHeader& h, const std::string& where)
-      : text_(text), where_(where), ascii_(std::string_view(text).substr(h.bytes), false),
-        binary_(h.format != PlyFormat::ascii), swap_(h.swap()), header_lines_(h.lines), at_(h.bytes) {}
+      : text_(text),
+        where_(where),
+        ascii_(std::string_view(text).substr(h.bytes), false),
+        binary_(h.format != PlyFormat::ascii),
+        swap_(h.swap()),
+        header_lines_(h.lines),
+        at_(h.bytes) {}
 
   void element(const PlyElement& e, Mesh& mesh);
   long long vertices() const { return nv_; }
@@ -55,7 +62,8 @@ public:
 private:
   // "FILE: line N: face 3" in ascii, "FILE: face 3" in binary.
   std::string line_at() const {
-    return binary_ ? where_ + what_ : where_ + "line " + std::to_string(header_lines_ + ascii_.line_no()) + ": " + what_;
+    return binary_ ? where_ + what_
+                   : where_ + "line " + std::to_string(header_lines_ + ascii_.line_no()) + ": " + what_;
   }
   // One value of `size` bytes and `kind` (ascii: a token).
   double value(int size, char kind);
@@ -64,13 +72,13 @@ private:
 
   const std::string& text_;
   const std::string& where_;
-  Lines ascii_;            // ascii: the element's line
+  Lines ascii_;             // ascii: the element's line
   std::size_t tok_at_ = 0;  // ascii: its next token
   const bool binary_, swap_;
   const std::size_t header_lines_;
-  std::size_t at_;                   // binary: the next byte
-  std::string what_;                 // the element being read, for messages
-  long long nv_ = -1;                // vertices declared, -1 before the vertex element
+  std::size_t at_;                    // binary: the next byte
+  std::string what_;                  // the element being read, for messages
+  long long nv_ = -1;                 // vertices declared, -1 before the vertex element
   std::vector<long long> faces_raw_;  // face indices as read, checked against nv at the end
   std::vector<std::size_t> face_start_;
 };
@@ -81,10 +89,12 @@ double PlyBody::value(int size, char kind) {
     const std::string_view t = ascii_.tokens()[tok_at_++];
     double d = 0;
     if (!parse_double(t, d)) throw Error(line_at() + ": expected a number, found " + quoted(t));
-    if (kind != 'f' && d != std::floor(d)) throw Error(line_at() + ": expected an integer, found " + quoted(t));
+    if (kind != 'f' && d != std::floor(d))
+      throw Error(line_at() + ": expected an integer, found " + quoted(t));
     return d;
   }
-  if (text_.size() - at_ < static_cast<std::size_t>(size)) throw Error(where_ + "the file ends inside " + what_);
+  if (text_.size() - at_ < static_cast<std::size_t>(size))
+    throw Error(where_ + "the file ends inside " + what_);
   const double d = ply_scalar(reinterpret_cast<const unsigned char*>(text_.data() + at_), size, kind, swap_);
   at_ += static_cast<std::size_t>(size);
   return d;
@@ -99,7 +109,8 @@ void PlyBody::list(const PlyProperty& p, bool keep) {
   for (long long j = 0; j < static_cast<long long>(count); ++j) {
     const double d = value(p.size, p.kind);
     if (keep) {
-      if (d != std::floor(d) || std::abs(d) > 9e18) throw Error(line_at() + " has the vertex index " + number(d));
+      if (d != std::floor(d) || std::abs(d) > 9e18)
+        throw Error(line_at() + " has the vertex index " + number(d));
       faces_raw_.push_back(static_cast<long long>(d));
     }
   }
@@ -126,8 +137,8 @@ void PlyBody::element(const PlyElement& e, Mesh& mesh) {
     what_ = printable(e.name) + " " + std::to_string(n);
     if (!binary_) {
       if (!ascii_.next())
-        throw Error(where_ + "the file ends after " + std::to_string(n) + " of " + std::to_string(e.count) + " " +
-                    printable(e.name) + " elements");
+        throw Error(where_ + "the file ends after " + std::to_string(n) + " of " + std::to_string(e.count) +
+                    " " + printable(e.name) + " elements");
       tok_at_ = 0;
     }
     double c[3] = {0, 0, 0};
@@ -142,7 +153,8 @@ void PlyBody::element(const PlyElement& e, Mesh& mesh) {
       if (static_cast<int>(k) == iy) c[1] = d;
       if (static_cast<int>(k) == iz) c[2] = d;
     }
-    if (!binary_ && tok_at_ < ascii_.tokens().size()) throw Error(line_at() + ": more values than the header declares");
+    if (!binary_ && tok_at_ < ascii_.tokens().size())
+      throw Error(line_at() + ": more values than the header declares");
     if (is_vertex) mesh.vertices.emplace_back(c[0], c[1], c[2]);
   }
 }

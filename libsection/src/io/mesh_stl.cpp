@@ -155,7 +155,8 @@ Mesh read_stl(const std::string& path, const std::string& text) {
     std::string head(body.substr(first, 5));
     for (auto& c : head) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     // A binary file whose header starts with "solid" has NUL bytes: it is reported as binary.
-    if (head == "solid" && (text.size() < 84 || !text_encoding_problem(body))) return read_stl_ascii(where, body);
+    if (head == "solid" && (text.size() < 84 || !text_encoding_problem(body)))
+      return read_stl_ascii(where, body);
   }
   if (text.size() < 84)
     throw Error(where + "neither an ascii STL (no 'solid') nor a binary one (" + std::to_string(text.size()) +

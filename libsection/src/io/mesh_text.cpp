@@ -71,8 +71,8 @@ OffHeader read_off_header(Lines& lines, const std::string& where, std::size_t si
   long long dim = 3;
   if (has_dim && (!parse_integer(head[0], dim) || dim != 3))
     throw Error(where + "nOFF of dimension " + quoted(head[0]) + " (only 3 is supported)");
-  if (!parse_integer(head[need - 2], h.vertices) || !parse_integer(head[need - 1], h.faces) || h.vertices < 0 ||
-      h.faces < 0)
+  if (!parse_integer(head[need - 2], h.vertices) || !parse_integer(head[need - 1], h.faces) ||
+      h.vertices < 0 || h.faces < 0)
     malformed();
   // Counts are checked against the file size before anything is reserved: a vertex line takes
   // at least 6 bytes ("0 0 0\n"), a face line at least 2.
@@ -95,14 +95,15 @@ void read_off_faces(Lines& lines, const OffHeader& h, const std::string& where, 
   const long long nv = h.vertices, nf = h.faces;
   for (long long f = 0; f < nf; ++f) {
     const std::string face = "face " + std::to_string(f);
-    if (!lines.next()) fail("the file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
+    if (!lines.next())
+      fail("the file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
     const auto& tok = lines.tokens();
     long long n = 0;
     if (!parse_integer(tok[0], n)) fail(face + ": expected a vertex count, found " + quoted(tok[0]));
     if (n < 0) fail(face + " has a negative vertex count " + std::to_string(n));
     if (static_cast<unsigned long long>(n) > tok.size() - 1)
-      fail(face + " announces " + std::to_string(n) + " vertices but the line has " + std::to_string(tok.size() - 1) +
-           " more values");
+      fail(face + " announces " + std::to_string(n) + " vertices but the line has " +
+           std::to_string(tok.size() - 1) + " more values");
     idx.clear();
     for (long long k = 1; k <= n; ++k) {
       long long v = 0;
@@ -126,7 +127,8 @@ Mesh read_off(const std::string& path, const std::string& text) {
   std::string_view body(text);
   skip_bom(body);
   // UTF-16 shows in the first line; NUL bytes further on are reported as bad tokens.
-  if (const char* problem = text_encoding_problem(body.substr(0, body.find('\n')))) throw Error(where + problem);
+  if (const char* problem = text_encoding_problem(body.substr(0, body.find('\n'))))
+    throw Error(where + problem);
   Lines lines(body, true);
   const auto fail = [&](const std::string& what) {
     throw Error(where + "line " + std::to_string(lines.line_no()) + ": " + what);
@@ -141,7 +143,8 @@ Mesh read_off(const std::string& path, const std::string& text) {
       fail("the file ends after " + std::to_string(i) + " of " + std::to_string(h.vertices) + " vertices");
     const auto& tok = lines.tokens();
     if (tok.size() < ncoord)
-      fail(vertex + ": expected " + std::to_string(ncoord) + " coordinates, found " + std::to_string(tok.size()));
+      fail(vertex + ": expected " + std::to_string(ncoord) + " coordinates, found " +
+           std::to_string(tok.size()));
     double c[4] = {0, 0, 0, 1};
     for (std::size_t k = 0; k < ncoord; ++k)
       if (!parse_double(tok[k], c[k])) fail(vertex + ": expected a number, found " + quoted(tok[k]));
@@ -170,7 +173,8 @@ Mesh read_obj(const std::string& path, const std::string& text) {
   while (lines.next()) {
     const auto& tok = lines.tokens();
     if (tok[0] == "v") {
-      if (tok.size() < 4) fail("a vertex needs x, y and z, found " + std::to_string(tok.size() - 1) + " values");
+      if (tok.size() < 4)
+        fail("a vertex needs x, y and z, found " + std::to_string(tok.size() - 1) + " values");
       double c[3];
       for (int k = 0; k < 3; ++k) {
         if (!parse_double(tok[k + 1], c[k])) fail("expected a number, found " + quoted(tok[k + 1]));

@@ -68,15 +68,20 @@ public:
   Error file(const std::string& what) const { return Error(m_.component + name_ + ": " + what); }
 
   // One line past the first; false at end_header.
-  bool line(const std::vector<std::string_view>& w, std::size_t line_no, PlyHeader& h, bool& format_seen) const {
+  bool line(const std::vector<std::string_view>& w, std::size_t line_no, PlyHeader& h,
+            bool& format_seen) const {
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") return true;
     if (w[0] == "end_header") return false;
     if (w[0] == "format") {
       if (w.size() < 2) throw at(line_no, "bad format line");
-      if (w[1] == "ascii") h.format = PlyFormat::ascii;
-      else if (w[1] == "binary_little_endian") h.format = PlyFormat::binary_le;
-      else if (w[1] == "binary_big_endian") h.format = PlyFormat::binary_be;
-      else throw at(line_no, "unknown PLY format " + quoted(w[1]));
+      if (w[1] == "ascii")
+        h.format = PlyFormat::ascii;
+      else if (w[1] == "binary_little_endian")
+        h.format = PlyFormat::binary_le;
+      else if (w[1] == "binary_big_endian")
+        h.format = PlyFormat::binary_be;
+      else
+        throw at(line_no, "unknown PLY format " + quoted(w[1]));
       format_seen = true;
     } else if (w[0] == "element") {
       if (w.size() < 3) throw at(line_no, "bad element line");
@@ -99,7 +104,8 @@ private:
     PlyProperty p;
     const bool list = w.size() >= 2 && w[1] == "list";
     if (w.size() < (list ? 5u : 3u)) throw at(line_no, "bad property line");
-    if (list && !ply_type(w[2], p.count_size, p.count_kind)) throw at(line_no, "unknown property type " + quoted(w[2]));
+    if (list && !ply_type(w[2], p.count_size, p.count_kind))
+      throw at(line_no, "unknown property type " + quoted(w[2]));
     if (list) p.count_type = std::string(w[2]);
     const std::string_view type = w[list ? 3 : 1];
     if (!ply_type(type, p.size, p.kind)) throw at(line_no, "unknown property type " + quoted(type));
@@ -114,7 +120,9 @@ private:
 
 }  // namespace
 
-bool PlyHeader::swap() const { return (format == PlyFormat::binary_le) != host_little_endian(); }
+bool PlyHeader::swap() const {
+  return (format == PlyFormat::binary_le) != host_little_endian();
+}
 
 PlyHeader read_ply_header(ByteSource& src, const PlyMessages& messages) {
   const HeaderDecoder decode(src.name(), messages);

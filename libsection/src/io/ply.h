@@ -12,9 +12,9 @@ enum class PlyFormat { ascii, binary_le, binary_be };
 
 struct PlyProperty {
   std::string name;
-  int size = 0;         ///< bytes of a scalar (of a list's items)
-  char kind = 'f';      ///< 'f' floating, 'i' signed, 'u' unsigned
-  int count_size = 0;   ///< bytes of a list's count; 0 for a scalar
+  int size = 0;        ///< bytes of a scalar (of a list's items)
+  char kind = 'f';     ///< 'f' floating, 'i' signed, 'u' unsigned
+  int count_size = 0;  ///< bytes of a list's count; 0 for a scalar
   char count_kind = 'u';
   std::string count_type;  ///< a list's count type as written
   std::size_t line = 0;    ///< the header line declaring it

@@ -33,9 +33,13 @@ void append_row(Table& t, const Row& row) {
 
 }  // namespace
 
-void Table::add_row(std::initializer_list<double> row) { append_row(*this, row); }
+void Table::add_row(std::initializer_list<double> row) {
+  append_row(*this, row);
+}
 
-void Table::add_row(const std::vector<double>& row) { append_row(*this, row); }
+void Table::add_row(const std::vector<double>& row) {
+  append_row(*this, row);
+}
 
 const Table* Stream::find(const std::string& name) const {
   for (const auto& t : tables)
@@ -96,8 +100,8 @@ MetaLine meta_line(std::string_view line) {
   std::string_view body = trim(line.substr(1));
   while (!body.empty() && (body.back() == '\n' || body.back() == '\r')) body.remove_suffix(1);
   const std::size_t space = body.find(' ');
-  return {body.substr(0, space), space == std::string_view::npos ? std::string_view{} : trim(body.substr(space)),
-          body};
+  return {body.substr(0, space),
+          space == std::string_view::npos ? std::string_view{} : trim(body.substr(space)), body};
 }
 
 Error truncated_parts(const std::string& source) {

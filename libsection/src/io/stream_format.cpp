@@ -127,8 +127,8 @@ void format_table(const Table& t, Pieces& pieces) {
   const std::size_t rows = t.values.size() / cols;
   const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(64, rows * cols / 32768));
   std::vector<std::string> piece(parts);
-  detail::parallel_for(parts, 0,
-                       [&](std::size_t k) { piece[k] = format_rows(t, rows * k / parts, rows * (k + 1) / parts); });
+  detail::parallel_for(
+      parts, 0, [&](std::size_t k) { piece[k] = format_rows(t, rows * k / parts, rows * (k + 1) / parts); });
   pieces.add(piece);
   out = &pieces.text();
   char buf[32];
@@ -159,7 +159,8 @@ FormattedStream format_parts(const Stream& stream, const std::string& part_line)
   }
   for (const auto& i : stream.issues)
     out += "# issue section=" + std::to_string(i.section) + " loop=" + std::to_string(i.loop) +
-           " stage=" + one_line(i.stage.empty() ? "unknown" : i.stage) + " message=" + one_line(i.message) + "\n";
+           " stage=" + one_line(i.stage.empty() ? "unknown" : i.stage) + " message=" + one_line(i.message) +
+           "\n";
   for (const auto& t : stream.tables) format_table(t, pieces);
   return pieces.finish();
 }

@@ -76,7 +76,8 @@ bool parse_row(std::string_view line, const std::vector<char>& id_column, std::v
   std::size_t start = 0, col = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    const std::string_view cell = trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
+    const std::string_view cell =
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
     if (col == columns) return false;
     double value = 0;
     if (!small_integer(cell, value) &&
@@ -111,9 +112,13 @@ bool parse_rows(std::string_view text, const std::vector<char>& id_column, std::
 // many); the state of the parse is the table being read and what the lines before declared.
 class StreamParser {
 public:
-  StreamParser(std::string_view text, const std::string& source, const std::shared_ptr<const std::string>& owner,
-               const PartText& part)
-      : text_(text), source_(source), owner_(owner), part_(part), seen_version_(part.is_part),
+  StreamParser(std::string_view text, const std::string& source,
+               const std::shared_ptr<const std::string>& owner, const PartText& part)
+      : text_(text),
+        source_(source),
+        owner_(owner),
+        part_(part),
+        seen_version_(part.is_part),
         line_no_(part.first_line - 1) {}
 
   Stream parse();
@@ -174,7 +179,8 @@ Stream StreamParser::parse() {
   }
   if (!seen_version_) throw Error("pipe: " + source_ + ": the stream is empty");
   if (expect_header_)
-    throw Error("pipe: " + source_ + ": table '" + current_->name + "' has no header row (truncated stream?)");
+    throw Error("pipe: " + source_ + ": table '" + current_->name +
+                "' has no header row (truncated stream?)");
   if (parts_ > 0 && !ended_ && !part_.is_part) throw truncated_parts(source_);
   return std::move(stream_);
 }
@@ -184,7 +190,8 @@ void StreamParser::meta(std::string_view line) {
   if (expect_header_) fail("table '" + current_->name + "' has no header row");
   if (ended_) fail("a line after '# end'");
   if (!seen_version_) {
-    if (key != "libsection-stream") fail("not a libsection stream (the first line must be '# libsection-stream 1')");
+    if (key != "libsection-stream")
+      fail("not a libsection stream (the first line must be '# libsection-stream 1')");
     if (rest != std::to_string(stream_version))
       fail("stream version '" + std::string(rest) + "' is not supported (this build reads version " +
            std::to_string(stream_version) + ")");
@@ -217,7 +224,8 @@ void StreamParser::meta(std::string_view line) {
 void StreamParser::table(std::string_view rest) {
   if (rest.empty()) fail("'# table' without a name");
   const std::string name(rest);
-  if (std::find(in_part_.begin(), in_part_.end(), name) != in_part_.end() || (parts_ == 0 && stream_.find(name)))
+  if (std::find(in_part_.begin(), in_part_.end(), name) != in_part_.end() ||
+      (parts_ == 0 && stream_.find(name)))
     fail("table '" + name + "' appears twice" + (parts_ ? " in a part" : ""));
   in_part_.push_back(name);
   continued_columns_.clear();
@@ -252,7 +260,8 @@ void StreamParser::header(std::string_view line) {
 // appended in order. A piece that refuses a row leaves the block to the line-by-line parse,
 // whose error names the line.
 void StreamParser::block() {
-  const std::size_t block_start = std::min(pos_, text_.size());  // pos is past the end after a last line without '\n'
+  const std::size_t block_start =
+      std::min(pos_, text_.size());  // pos is past the end after a last line without '\n'
   std::size_t block_end = block_start;
   while (block_end < text_.size() && text_[block_end] != '#') {
     const std::size_t nl = text_.find('\n', block_end);
@@ -308,10 +317,12 @@ void StreamParser::row(std::string_view line) {
   const std::string& table = current_->name;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    const std::string_view cell = trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
+    const std::string_view cell =
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
     ++col;
     if (col > current_->columns.size())
-      fail("more values than the " + std::to_string(current_->columns.size()) + " columns of table '" + table + "'");
+      fail("more values than the " + std::to_string(current_->columns.size()) + " columns of table '" +
+           table + "'");
     const auto bad = [&](const std::string& what) {
       fail("column '" + current_->columns[col - 1] + "' of table '" + table + "': " + what);
     };

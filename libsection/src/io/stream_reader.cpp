@@ -14,7 +14,9 @@ std::string_view key_of(std::string_view line) {
   return line.empty() || line[0] != '#' ? std::string_view{} : detail::meta_line(line).key;
 }
 
-bool blank(std::string_view line) { return line.find_first_not_of(" \t\r\n") == std::string_view::npos; }
+bool blank(std::string_view line) {
+  return line.find_first_not_of(" \t\r\n") == std::string_view::npos;
+}
 
 }  // namespace
 

@@ -19,7 +19,8 @@ StreamWriter::StreamWriter(const std::string& path, const Stream& head) : path_(
     // writes it without waiting (Linux; elsewhere, or when refused, the default stands).
 #ifdef F_SETPIPE_SZ
     struct stat st {};
-    if (::fstat(fileno(stdout), &st) == 0 && S_ISFIFO(st.st_mode)) ::fcntl(fileno(stdout), F_SETPIPE_SZ, 1 << 20);
+    if (::fstat(fileno(stdout), &st) == 0 && S_ISFIFO(st.st_mode))
+      ::fcntl(fileno(stdout), F_SETPIPE_SZ, 1 << 20);
 #endif
   } else {
     // A regular file (or a new one) is written under a temporary name and renamed when

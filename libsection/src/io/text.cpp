@@ -39,7 +39,8 @@ std::string printable(std::string_view t) {
 }
 
 const char* text_encoding_problem(std::string_view head) {
-  if (head.size() >= 2 && ((head[0] == '\xFF' && head[1] == '\xFE') || (head[0] == '\xFE' && head[1] == '\xFF')))
+  if (head.size() >= 2 &&
+      ((head[0] == '\xFF' && head[1] == '\xFE') || (head[0] == '\xFE' && head[1] == '\xFF')))
     return "UTF-16 text (save it as UTF-8 or ASCII)";
   head = head.substr(0, 1 << 16);
   const auto nul = head.find('\0');

@@ -8,7 +8,9 @@
 
 namespace section::detail {
 
-inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+inline bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
 
 inline std::string_view trim(std::string_view s) {
   while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
@@ -66,7 +68,9 @@ void split_words(std::string_view line, std::vector<std::string_view>& words);
 /// so that the message stays one readable line whatever the file holds.
 std::string printable(std::string_view t);
 /// printable(t) in single quotes.
-inline std::string quoted(std::string_view t) { return "'" + printable(t) + "'"; }
+inline std::string quoted(std::string_view t) {
+  return "'" + printable(t) + "'";
+}
 
 /// Largest coordinate magnitude the readers accept (in the file's units): beyond it squared
 /// distances and 3x3 determinants overflow, so such a value is a corrupt file, not a part.

@@ -35,7 +35,10 @@ void run_whole(const StageRun& run, PartReader& reader) {
 class PartScheduler {
 public:
   PartScheduler(const StageRun& run, PartReader& reader, const Stream& head)
-      : run_(run), reader_(reader), units_(head.units), writer_(run.output, head),
+      : run_(run),
+        reader_(reader),
+        units_(head.units),
+        writer_(run.output, head),
         workers_(run.threads > 0 ? std::size_t(run.threads)
                                  : std::max<std::size_t>(1, std::thread::hardware_concurrency())) {}
 
@@ -73,7 +76,8 @@ private:
   void work() {
     std::unique_lock<std::mutex> lock(mutex_);
     while (true) {
-      changed_.wait(lock, [&] { return error_ || next_to_stage_ < first_job_ + jobs_.size() || input_done_; });
+      changed_.wait(lock,
+                    [&] { return error_ || next_to_stage_ < first_job_ + jobs_.size() || input_done_; });
       if (error_ || next_to_stage_ >= first_job_ + jobs_.size()) return;
       Job& job = jobs_[next_to_stage_++ - first_job_];
       lock.unlock();

@@ -23,8 +23,8 @@ enum class CloudFormat {
 
 /// Options of the cloud readers (read_cloud, read_cloud_chunks, parse_cloud).
 struct CloudReadOptions {
-  CloudFormat format = CloudFormat::automatic;  ///< reader to use; default: by extension
-  std::size_t chunk_points = 1 << 20;           ///< points handed to the callback at a time
+  CloudFormat format = CloudFormat::automatic;    ///< reader to use; default: by extension
+  std::size_t chunk_points = 1 << 20;             ///< points handed to the callback at a time
   std::size_t max_points = std::size_t(1) << 33;  ///< refuse files claiming more points than this
   /// Threads parsing text and reading binary PLY; 0 = all cores (the points do not depend on it).
   int threads = 0;
@@ -76,8 +76,7 @@ CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudRead
 Cloud read_cloud(const std::string& path, const CloudReadOptions& options = {});
 
 /// Parses a cloud held in memory; `name` is used in error messages.
-Cloud parse_cloud(std::string_view bytes, const std::string& name,
-                  const CloudReadOptions& options = {});
+Cloud parse_cloud(std::string_view bytes, const std::string& name, const CloudReadOptions& options = {});
 
 /// Writes a cloud as XYZ text (shortest round-trip digits) or binary little-endian PLY
 /// (double), chosen by the extension of `path` (.ply = PLY, anything else XYZ).

@@ -69,11 +69,11 @@ struct SectionIssue {
 
 /// The whole stream.
 struct Stream {
-  std::string units = "mm";                  ///< length unit of every coordinate
-  std::vector<std::string> history;          ///< one line per tool that wrote the stream
-  std::vector<std::string> notes;            ///< free `# key value` lines kept as they came
-  std::vector<SectionIssue> issues;          ///< per-section failures so far
-  std::vector<Table> tables;                 ///< tables in stream order
+  std::string units = "mm";          ///< length unit of every coordinate
+  std::vector<std::string> history;  ///< one line per tool that wrote the stream
+  std::vector<std::string> notes;    ///< free `# key value` lines kept as they came
+  std::vector<SectionIssue> issues;  ///< per-section failures so far
+  std::vector<Table> tables;         ///< tables in stream order
 
   /// The table named `name`, or nullptr.
   const Table* find(const std::string& name) const;
