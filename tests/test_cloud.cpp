@@ -30,6 +30,22 @@ std::string temp_path(const std::string& ext) {
   return "/tmp/section_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ext;
 }
 
+// The points of `path` read in chunks of `chunk_points`; `chunks` counts the chunks.
+std::vector<Eigen::Vector3d> read_in_chunks(const std::string& path, std::size_t chunk_points,
+                                            std::size_t& chunks) {
+  CloudReadOptions opt;
+  opt.chunk_points = chunk_points;
+  std::vector<Eigen::Vector3d> got;
+  read_cloud_chunks(
+      path,
+      [&](const Eigen::Vector3d* p, std::size_t n) {
+        ++chunks;
+        got.insert(got.end(), p, p + n);
+      },
+      opt);
+  return got;
+}
+
 template <class T>
 void put(std::string& out, T v, bool big) {
   unsigned char b[sizeof(T)];
@@ -137,17 +153,8 @@ TEST_CASE("read_cloud: files stream in chunks and write_cloud round-trips", "[cl
   for (const std::string ext : {".xyz", ".ply"}) {
     const std::string path = temp_path(ext);
     write_cloud(path, c);
-    CloudReadOptions opt;
-    opt.chunk_points = 777;
     std::size_t chunks = 0;
-    std::vector<Eigen::Vector3d> got;
-    read_cloud_chunks(
-        path,
-        [&](const Eigen::Vector3d* p, std::size_t n) {
-          ++chunks;
-          got.insert(got.end(), p, p + n);
-        },
-        opt);
+    const std::vector<Eigen::Vector3d> got = read_in_chunks(path, 777, chunks);
     std::remove(path.c_str());
     CHECK(chunks == (5000 + 776) / 777);
     REQUIRE(got == c.points);
@@ -313,17 +320,8 @@ TEST_CASE("read_cloud: packed double PLY, aligned or not, in chunks, with its er
     std::string body(reinterpret_cast<const char*>(pts.data()), pts.size() * 24);
     const std::string path = temp_path(".ply");
     std::ofstream(path, std::ios::binary) << header << body;
-    CloudReadOptions opt;
-    opt.chunk_points = 999;
-    std::vector<Eigen::Vector3d> got;
     std::size_t chunks = 0;
-    read_cloud_chunks(
-        path,
-        [&](const Eigen::Vector3d* p, std::size_t n) {
-          ++chunks;
-          got.insert(got.end(), p, p + n);
-        },
-        opt);
+    const std::vector<Eigen::Vector3d> got = read_in_chunks(path, 999, chunks);
     INFO("header of " << header.size() << " bytes");
     CHECK(chunks == (pts.size() + 998) / 999);
     CHECK(got == pts);
