@@ -1,5 +1,5 @@
 // libFuzzer target: OBJ and OFF meshes through read_mesh; the first byte picks the format.
-#include "mesh_common.h"
+#include "common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;

@@ -1,5 +1,5 @@
 // libFuzzer target: STL meshes (ascii and binary) through read_mesh.
-#include "mesh_common.h"
+#include "common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return fuzz_read_mesh(data, size, "stl");

@@ -1,24 +1,6 @@
-// libFuzzer target: the xyz point-cloud reader (parse_cloud). Any input must either
-// parse into finite points or throw section::Error; anything else is a finding.
-#include "section/cloud.h"
-#include "section/error.h"
-#include "section/io/cloud_io.h"
-
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <cstdlib>
+// libFuzzer target: the xyz point-cloud reader (parse_cloud).
+#include "common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  section::CloudReadOptions options;
-  options.format = section::CloudFormat::xyz;
-  options.chunk_points = 7;  // small chunks exercise the chunk boundaries
-  try {
-    const section::Cloud cloud =
-        section::parse_cloud({reinterpret_cast<const char*>(data), size}, "fuzz.xyz", options);
-    for (const auto& p : cloud.points)
-      if (!p.allFinite()) std::abort();  // the reader promises finite coordinates
-  } catch (const section::Error&) {
-  }
-  return 0;
+  return fuzz_parse_cloud(data, size, section::CloudFormat::xyz, "fuzz.xyz");
 }

@@ -2,11 +2,15 @@
 #include "section/io/stream.h"
 #include "section/io/csv.h"
 #include "section/io/file.h"
+#include "section/io/stream_reader.h"
 #include "section/pipe/run_stage.h"
 #include "section/pipe/schema.h"
 
+#include "thrown.h"
+
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,12 +23,7 @@ namespace {
 
 // The message parse_stream refuses `text` with, or "no error".
 std::string parse_error(const std::string& text, const std::string& source = "s.csv") {
-  try {
-    parse_stream(text, source);
-  } catch (const Error& e) {
-    return std::string(e.what());
-  }
-  return std::string("no error");
+  return thrown([&] { parse_stream(text, source); });
 }
 
 }  // namespace
@@ -108,10 +107,11 @@ TEST_CASE("pipe: a table passed through is written back as it was read, a change
   // while the table is unchanged, shortest form once it changes.
   std::string rows;
   for (int i = 0; i < 30000; ++i) rows += std::to_string(i) + ",1.50,+2,3e0\n";
-  const std::string text = "# libsection-stream 1\n# units mm\n# table t\nindex,a,b,c\n" + rows +
-                           "# table small\nx\n0.250\n";
+  const std::string text =
+      "# libsection-stream 1\n# units mm\n# table t\nindex,a,b,c\n" + rows + "# table small\nx\n0.250\n";
   for (const bool shared : {false, true}) {
-    Stream s = shared ? parse_stream(std::make_shared<const std::string>(text), "in") : parse_stream(text, "in");
+    Stream s =
+        shared ? parse_stream(std::make_shared<const std::string>(text), "in") : parse_stream(text, "in");
     REQUIRE(s.get("t", "test").rows() == 30000);
     REQUIRE(s.get("t", "test").source);
     const std::string out = format_stream(s);
@@ -136,7 +136,8 @@ TEST_CASE("pipe: a table passed through is written back as it was read, a change
   }
   // The file written by write_stream is the text format_stream gives.
   const Stream s = parse_stream(text, "in");
-  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/libsection_passthrough_test.csv";
+  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                           "/libsection_passthrough_test.csv";
   write_stream(path, s);
   CHECK(read_file(path) == format_stream(s));
   std::remove(path.c_str());
@@ -180,8 +181,8 @@ ThreeSections three_sections() {
   all.put(frames);
   all.put(pts);
   t.whole = format_stream(all);
-  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/libsection_parts_" +
-                           std::to_string(std::rand()) + ".csv";
+  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                           "/libsection_parts_" + std::to_string(std::rand()) + ".csv";
   {
     StreamWriter w(path, head);
     for (int s = 0; s < 3; ++s) w.part(std::to_string(s), parts[s]);
@@ -218,9 +219,59 @@ TEST_CASE("pipe: a stream split into parts reads as the whole stream and must en
   CHECK_THAT(message(t.parted + "0,0\n"), Catch::Contains("after '# end'"));
 }
 
+TEST_CASE("pipe: PartReader hands out the parts as they come and refuses a cut stream", "[pipe]") {
+  const ThreeSections t = three_sections();
+  const std::string in = temp_path("parts_in");
+  write_file(in, t.parted);
+  {
+    PartReader reader(in);
+    REQUIRE(reader.parted());
+    CHECK(reader.source() == in);
+    CHECK(reader.preamble().history == std::vector<std::string>{"slice --count 3 blade.ply"});
+    std::vector<std::string> labels;
+    Table points;
+    for (StreamPart part; reader.next(part);) {
+      labels.push_back(part.label);
+      CHECK(part.text->rfind("# part " + part.label + "\n", 0) == 0);
+      const Stream s = parse_stream_part(part, reader.source());
+      if (const Table* p = s.find("points")) append_rows(points, *p);
+    }
+    CHECK(labels == std::vector<std::string>{"0", "1", "2"});
+    CHECK(points.values == parse_stream(t.whole, "whole").get("points", "slice").values);
+  }
+  // Cut before '# end': the parts before come, then the error.
+  write_file(in, t.parted.substr(0, t.parted.size() - 6));
+  {
+    PartReader reader(in);
+    StreamPart part;
+    CHECK(reader.next(part));
+    CHECK(reader.next(part));
+    CHECK_THROWS_WITH(reader.next(part), Catch::Contains("lacks its closing '# end'"));
+  }
+  // Words after '# end', and a line after it: refused once the last part is out.
+  const std::string cut = t.parted.substr(0, t.parted.size() - 6);
+  const std::string end_line = std::to_string(std::count(cut.begin(), cut.end(), '\n') + 1);
+  for (const auto& [tail, what] :
+       {std::pair<std::string, std::string>{"# end x\n", ":" + end_line + ": '# end' takes nothing"},
+        {"# end\n1,2\n", ":" + std::to_string(std::stoi(end_line) + 1) + ": a line after '# end'"}}) {
+    write_file(in, cut + tail);
+    PartReader reader(in);
+    StreamPart part;
+    for (int k = 0; k < 3; ++k) CHECK(reader.next(part));
+    CHECK_THROWS_WITH(reader.next(part), Catch::Contains(in + what));
+  }
+  // A stream not split into parts comes whole.
+  write_file(in, t.whole);
+  PartReader whole(in);
+  CHECK_FALSE(whole.parted());
+  CHECK(whole.whole() == t.whole);
+  std::remove(in.c_str());
+}
+
 TEST_CASE("pipe: run_stage stages a stream part by part, the same whatever the threads", "[pipe]") {
   const ThreeSections t = three_sections();
-  const std::string in = temp_path("stage_in"), out1 = temp_path("stage_out1"), out2 = temp_path("stage_out2");
+  const std::string in = temp_path("stage_in"), out1 = temp_path("stage_out1"),
+                    out2 = temp_path("stage_out2");
   write_file(in, t.parted);
   // A stage that adds a table of its own; the part's tables are seen alone.
   const auto stage = [](Stream& s, int) {

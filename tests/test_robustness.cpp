@@ -9,6 +9,8 @@
 #include "section/io/cloud_io.h"
 #include "section/io/mesh_io.h"
 
+#include "thrown.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -28,32 +30,17 @@ std::string cloud_error(const std::string& bytes, const std::string& name,
                         CloudFormat format = CloudFormat::automatic) {
   CloudReadOptions opt;
   opt.format = format;
-  try {
-    parse_cloud(bytes, name, opt);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return thrown([&] { parse_cloud(bytes, name, opt); });
 }
 
 std::string stream_error(const std::string& text) {
-  try {
-    parse_stream(text, "s.csv");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return thrown([&] { parse_stream(text, "s.csv"); });
 }
 
 std::string mesh_error(const std::string& bytes, const std::string& ext) {
   const std::string path = "/tmp/section_robust_" + std::to_string(::getpid()) + "." + ext;
   std::ofstream(path, std::ios::binary) << bytes;
-  std::string what = "no error";
-  try {
-    read_mesh(path);
-  } catch (const Error& e) {
-    what = e.what();
-  }
+  const std::string what = thrown([&] { read_mesh(path); });
   std::remove(path.c_str());
   return what;
 }
@@ -112,7 +99,8 @@ TEST_CASE("robustness: mesh headers claiming billions of elements are refused be
              Catch::Contains("declares 4000000000 faces"));
   CHECK_THAT(mesh_error("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                         "property float z\nelement face 3000000000\nproperty list uchar int vertex_indices\n"
-                        "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "ply"),
+                        "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                        "ply"),
              Catch::Contains("declares 3000000000 face elements"));
   // Honest small files still read.
   const Mesh m = [] {
@@ -123,7 +111,8 @@ TEST_CASE("robustness: mesh headers claiming billions of elements are refused be
     return mesh;
   }();
   CHECK(m.triangles.size() == 1);
-  CHECK_THAT(mesh_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n", "obj"), Catch::Contains("line 4: the face refers to vertex 99"));
+  CHECK_THAT(mesh_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n", "obj"),
+             Catch::Contains("line 4: the face refers to vertex 99"));
   CHECK_THAT(mesh_error("OFF\n3 1 0\n1e20 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "off"), Catch::Contains("beyond"));
 }
 
@@ -194,10 +183,11 @@ TEST_CASE("read_mesh: OFF, OBJ and PLY in the forms other writers use", "[robust
   std::string obj = "mtllib x.mtl\no part\n";
   for (const char* v : square_and_triangle_vertices) obj += "v " + std::string(v) + "\n";
   obj += "vt 0 0\nvn 0 0 1\ng top\ns off\nf 1/1/1 2/1/1 3//1 4\nf -5 -4 -1\n";
-  std::string ply = "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement vertex 5\r\nproperty float x\r\n"
-                    "property float y\r\nproperty float z\r\nproperty float nx\r\nelement face 2\r\n"
-                    "property list uchar uint vertex_indices\r\nelement edge 1\r\nproperty int vertex1\r\n"
-                    "property int vertex2\r\nend_header\r\n";
+  std::string ply =
+      "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement vertex 5\r\nproperty float x\r\n"
+      "property float y\r\nproperty float z\r\nproperty float nx\r\nelement face 2\r\n"
+      "property list uchar uint vertex_indices\r\nelement edge 1\r\nproperty int vertex1\r\n"
+      "property int vertex2\r\nend_header\r\n";
   for (const char* v : square_and_triangle_vertices) ply += std::string(v) + " 0\r\n";
   ply += "4 0 1 2 3\r\n3 0 1 4\r\n0 1\r\n";
   for (const auto& [bytes, ext] : std::vector<std::pair<std::string, std::string>>{
@@ -216,28 +206,37 @@ TEST_CASE("read_mesh: OFF, OBJ and PLY in the forms other writers use", "[robust
 
 TEST_CASE("read_mesh: a garbled OFF, OBJ or PLY body is refused with its line", "[robustness][mesh]") {
   const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
-  CHECK_THAT(mesh_error("OFF\n2 1\n\x10 0 0\n", "off"), Catch::Contains("line 3: vertex 0: expected a number, found '\\x10'"));
+  CHECK_THAT(mesh_error("OFF\n2 1\n\x10 0 0\n", "off"),
+             Catch::Contains("line 3: vertex 0: expected a number, found '\\x10'"));
   CHECK_THAT(mesh_error("OFF\v2 1 \x10" + std::string(1, '\0') + "0\n", "off"),
              Catch::Contains("binary data in a text file"));  // the fuzzer's hang
-  CHECK_THAT(mesh_error(off + "-3 0 1 2\n", "off"), Catch::Contains("line 6: face 0 has a negative vertex count -3"));
+  CHECK_THAT(mesh_error(off + "-3 0 1 2\n", "off"),
+             Catch::Contains("line 6: face 0 has a negative vertex count -3"));
   CHECK_THAT(mesh_error(off + "4 0 1 2\n", "off"), Catch::Contains("line 6: face 0 announces 4 vertices"));
   CHECK_THAT(mesh_error(off + "3 0 1 3\n", "off"), Catch::Contains("line 6: face 0 has the vertex index 3"));
   CHECK_THAT(mesh_error(off + "3 0 1 x\x01\n", "off"), Catch::Contains("found 'x\\x01'"));
   CHECK_THAT(mesh_error(off, "off"), Catch::Contains("line 5: the file ends after 0 of 1 faces"));
-  CHECK_THAT(mesh_error("OFF\n3 1 0\n0 0 0\n1 zero 0\n", "off"), Catch::Contains("line 4: vertex 1: expected a number, found 'zero'"));
-  CHECK_THAT(mesh_error("OFF BINARY\n" + std::string(12, '\0'), "off"), Catch::Contains("binary OFF is not supported"));
+  CHECK_THAT(mesh_error("OFF\n3 1 0\n0 0 0\n1 zero 0\n", "off"),
+             Catch::Contains("line 4: vertex 1: expected a number, found 'zero'"));
+  CHECK_THAT(mesh_error("OFF BINARY\n" + std::string(12, '\0'), "off"),
+             Catch::Contains("binary OFF is not supported"));
   CHECK_THAT(mesh_error("nOFF 4 3 1 0\n", "off"), Catch::Contains("only 3 is supported"));
   CHECK_THAT(mesh_error("XOFF 3 1 0\n", "off"), Catch::Contains("malformed OFF header"));
 
-  CHECK_THAT(mesh_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 /2\n", "obj"), Catch::Contains("line 4: expected a vertex index, found '/2'"));
-  CHECK_THAT(mesh_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "obj"), Catch::Contains("line 4: the face refers to vertex 0"));
-  CHECK_THAT(mesh_error("v 0 0 0\nv 1 0 0\nf 1 2\n", "obj"), Catch::Contains("line 3: a face needs at least 3 vertices"));
+  CHECK_THAT(mesh_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 /2\n", "obj"),
+             Catch::Contains("line 4: expected a vertex index, found '/2'"));
+  CHECK_THAT(mesh_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "obj"),
+             Catch::Contains("line 4: the face refers to vertex 0"));
+  CHECK_THAT(mesh_error("v 0 0 0\nv 1 0 0\nf 1 2\n", "obj"),
+             Catch::Contains("line 3: a face needs at least 3 vertices"));
   CHECK_THAT(mesh_error("v 0 0\n", "obj"), Catch::Contains("line 1: a vertex needs x, y and z"));
   CHECK_THAT(mesh_error("v 0 0 nan\n", "obj"), Catch::Contains("line 1: non-finite coordinate 'nan'"));
 
-  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                          "element face 1\nproperty list uchar int vertex_indices\n";
-  CHECK_THAT(mesh_error(ply + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "ply"), Catch::Contains("line 9: unexpected PLY header line starting '0'"));  // OpenMesh hung
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\n";
+  CHECK_THAT(mesh_error(ply + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "ply"),
+             Catch::Contains("line 9: unexpected PLY header line starting '0'"));  // OpenMesh hung
   CHECK_THAT(mesh_error(ply + "end_header\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n", "ply"),
              Catch::Contains("line 11: vertex 1: fewer values than the header declares"));
   CHECK_THAT(mesh_error(ply + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 7\n", "ply"),
@@ -250,7 +249,8 @@ TEST_CASE("read_mesh: a garbled OFF, OBJ or PLY body is refused with its line", 
   CHECK_THAT(mesh_error(ply + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n", "ply"),
              Catch::Contains("line 13: face 0: expected an integer, found '1.5'"));
   std::string binary = binary_ply(false);
-  CHECK_THAT(mesh_error(binary.substr(0, binary.size() - 3), "ply"), Catch::Contains("the file ends inside face 1"));
+  CHECK_THAT(mesh_error(binary.substr(0, binary.size() - 3), "ply"),
+             Catch::Contains("the file ends inside face 1"));
   binary[binary.find("end_header\n") + 11 + 5 * 15] = '\xff';  // the first face's count: 255
   CHECK_THAT(mesh_error(binary, "ply"), Catch::Contains("the file ends inside face 0"));
 }
@@ -262,7 +262,8 @@ TEST_CASE("read_mesh: STL, ascii and binary, shares the corners of its triangles
   for (const auto& t : tri) {
     ascii += "  FACET NORMAL 0 0 1\r\n    outer loop\r\n";
     for (const auto& c : t)
-      ascii += "      vertex " + std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]) + "\r\n";
+      ascii += "      vertex " + std::to_string(c[0]) + " " + std::to_string(c[1]) + " " +
+               std::to_string(c[2]) + "\r\n";
     ascii += "    endloop\r\n  endfacet\r\nendsolid square\r\nsolid second\r\n";
   }
   ascii += "endsolid second\r\n";
@@ -282,7 +283,8 @@ TEST_CASE("read_mesh: STL, ascii and binary, shares the corners of its triangles
     CHECK(m.triangles.size() == 2);
     CHECK(area(m) == Approx(1.0).epsilon(1e-12));
   }
-  CHECK_THAT(mesh_error(binary.substr(0, 120), "stl"), Catch::Contains("declares 2 triangles (184 bytes) but the file has only 120"));
+  CHECK_THAT(mesh_error(binary.substr(0, 120), "stl"),
+             Catch::Contains("declares 2 triangles (184 bytes) but the file has only 120"));
   CHECK_THAT(mesh_error(ascii.substr(0, 72), "stl"), Catch::Contains("line 4: the file ends inside a facet"));
   CHECK_THAT(mesh_error("solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 zero 0\n", "stl"),
              Catch::Contains("line 4: expected a number, found 'zero'"));

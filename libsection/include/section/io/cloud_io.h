@@ -15,7 +15,7 @@ namespace section {
 
 /// Which reader a file goes to.
 enum class CloudFormat {
-  automatic,  ///< from the extension (.xyz .asc .txt .pts .csv .ply) or, on stdin, the content
+  automatic,  ///< by the extension (.xyz .asc .txt .pts .csv .ply); with none, PLY or XYZ by content
   xyz,        ///< text, one point a line, separated by space, tab or comma; extra columns ignored
   csv,        ///< text with a header row naming x, y and z columns
   ply         ///< PLY vertices (ascii or binary, float or double)
@@ -23,10 +23,11 @@ enum class CloudFormat {
 
 /// Options of the cloud readers (read_cloud, read_cloud_chunks, parse_cloud).
 struct CloudReadOptions {
-  CloudFormat format = CloudFormat::automatic;  ///< reader to use; default: by extension
-  std::size_t chunk_points = 1 << 20;           ///< points handed to the callback at a time
+  CloudFormat format = CloudFormat::automatic;    ///< reader to use; default: by extension
+  std::size_t chunk_points = 1 << 20;             ///< points handed to the callback at a time
   std::size_t max_points = std::size_t(1) << 33;  ///< refuse files claiming more points than this
-  int threads = 0;                              ///< worker threads parsing text (XYZ, CSV) and reading binary PLY files; 0 = all cores (the points and their order do not depend on it)
+  /// Threads parsing text and reading binary PLY; 0 = all cores (the points do not depend on it).
+  int threads = 0;
 };
 
 /// Receives the points of a cloud chunk by chunk, in file order.
@@ -41,24 +42,23 @@ std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_ch
 
 /// Receives chunk `index` (0, 1, ... in file order) of a cloud read by
 /// read_cloud_chunks_parallel.
-using IndexedChunkFn = std::function<void(std::size_t index, const Eigen::Vector3d* points, std::size_t count)>;
+using IndexedChunkFn =
+    std::function<void(std::size_t index, const Eigen::Vector3d* points, std::size_t count)>;
 /// Works on chunk `index` for read_cloud_chunks_parallel, with up to `threads` threads of
 /// its own (1 when the chunks are read side by side).
 using ChunkWorkFn =
     std::function<void(std::size_t index, const Eigen::Vector3d* points, std::size_t count, int threads)>;
 
-/// Reads the points of `path` chunk by chunk, several chunks at a time when the file
-/// allows it (a binary PLY file of packed little-endian doubles x, y, z, what write_cloud
-/// writes): `work` runs on worker threads, each on a whole chunk (read, checked, then
-/// handed over), and `merge` runs after it for every chunk in file order, one chunk at a
-/// time. Other files are read by read_cloud_chunks, `work` then `merge` on each chunk in
-/// turn, `work` then told it may use options.threads threads. Chunks hold
-/// options.chunk_points points (the last fewer). Throws as
-/// read_cloud_chunks, for the first bad vertex in file order; `merge` is not called for
-/// a chunk at or after it.
+/// Reads the points of `path` in chunks of options.chunk_points, several chunks at a time
+/// when the file allows it (a binary PLY file of packed little-endian doubles, as
+/// write_cloud writes): `work` runs on worker threads, each on a whole chunk, and `merge`
+/// after it for every chunk in file order, one at a time. Other files go through
+/// read_cloud_chunks, `work` (told it may use options.threads) then `merge` on each chunk.
+/// Throws as read_cloud_chunks, for the first bad vertex in file order; `merge` is not
+/// called for a chunk at or after it.
 /// @return the number of points read
-std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work, const IndexedChunkFn& merge,
-                                       const CloudReadOptions& options = {});
+std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work,
+                                       const IndexedChunkFn& merge, const CloudReadOptions& options = {});
 
 /// A first look at a cloud file (peek_cloud).
 struct CloudPeek {
@@ -66,19 +66,17 @@ struct CloudPeek {
   unsigned long long total = 0;         ///< vertices the file declares
 };
 
-/// About `count` vertices of a binary PLY file spread over it (evenly spaced with a
-/// deterministic jitter, each read on its own with pread), for estimates before the file
-/// is read: its extent and spacing. Empty when that is not possible (standard input,
-/// text formats, ASCII PLY, a file shorter than its header says); non-finite points are
-/// left out. Never throws for the file's content: the reader proper reports it.
+/// About `count` vertices spread over a binary PLY file (evenly, with a deterministic
+/// jitter, each read with pread), for estimates before the file is read: its extent and
+/// spacing. Empty when that is not possible (standard input, text, ASCII PLY, a file shorter
+/// than its header says); non-finite points are left out. Never throws for the content.
 CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudReadOptions& options = {});
 
 /// Reads the whole cloud of `path` ("-" = standard input). Throws as read_cloud_chunks.
 Cloud read_cloud(const std::string& path, const CloudReadOptions& options = {});
 
 /// Parses a cloud held in memory; `name` is used in error messages.
-Cloud parse_cloud(std::string_view bytes, const std::string& name,
-                  const CloudReadOptions& options = {});
+Cloud parse_cloud(std::string_view bytes, const std::string& name, const CloudReadOptions& options = {});
 
 /// Writes a cloud as XYZ text (shortest round-trip digits) or binary little-endian PLY
 /// (double), chosen by the extension of `path` (.ply = PLY, anything else XYZ).

@@ -18,6 +18,10 @@
 
 namespace section {
 
+namespace detail {
+class ByteSink;
+}
+
 /// The text a table's rows were read from, and what they read as (see Table::source).
 struct TableText {
   std::shared_ptr<const std::string> text;  ///< the text the rows lie in
@@ -65,11 +69,11 @@ struct SectionIssue {
 
 /// The whole stream.
 struct Stream {
-  std::string units = "mm";                  ///< length unit of every coordinate
-  std::vector<std::string> history;          ///< one line per tool that wrote the stream
-  std::vector<std::string> notes;            ///< free `# key value` lines kept as they came
-  std::vector<SectionIssue> issues;          ///< per-section failures so far
-  std::vector<Table> tables;                 ///< tables in stream order
+  std::string units = "mm";          ///< length unit of every coordinate
+  std::vector<std::string> history;  ///< one line per tool that wrote the stream
+  std::vector<std::string> notes;    ///< free `# key value` lines kept as they came
+  std::vector<SectionIssue> issues;  ///< per-section failures so far
+  std::vector<Table> tables;         ///< tables in stream order
 
   /// The table named `name`, or nullptr.
   const Table* find(const std::string& name) const;
@@ -128,9 +132,8 @@ public:
   void finish();
 
 private:
-  void write(std::string_view bytes);
   std::string path_, temporary_;
-  std::FILE* file_ = nullptr;
+  std::unique_ptr<detail::ByteSink> out_;
   bool finished_ = false;
 };
 

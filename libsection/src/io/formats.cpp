@@ -1,0 +1,78 @@
+#include "io/formats.h"
+
+#include "io/cloud_readers.h"
+#include "io/mesh_readers.h"
+#include "io/ply.h"
+#include "io/text.h"
+#include "section/error.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace section::detail {
+
+const std::vector<InputFormat>& input_formats() {
+  using C = CloudFormat;
+  // Meshes first, then clouds: the order in which messages name the extensions. A PLY file
+  // with faces is a mesh, else a cloud.
+  // Each: extensions, further extensions, cloud format, cloud reader, text, magic, mesh reader, holds_mesh.
+  static const std::vector<InputFormat> formats = {
+      {{"stl"}, {}, C::automatic, nullptr, false, nullptr, read_stl, nullptr},
+      {{"obj"}, {}, C::automatic, nullptr, false, nullptr, read_obj, nullptr},
+      {{"off"}, {}, C::automatic, nullptr, false, nullptr, read_off, nullptr},
+      {{"xyz", "asc", "txt", "pts"}, {"xyzn"}, C::xyz, read_xyz_cloud, true, nullptr, nullptr, nullptr},
+      {{"csv"}, {}, C::csv, read_csv_cloud, true, nullptr, nullptr, nullptr},
+      {{"ply"}, {}, C::ply, read_ply_cloud, false, "ply", read_ply_mesh, ply_declares_faces},
+  };
+  return formats;
+}
+
+std::string extension(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  const auto slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  return lower(path.substr(dot + 1));
+}
+
+const InputFormat* format_of_extension(const std::string& path) {
+  const std::string ext = extension(path);
+  const auto has = [&](const std::vector<std::string_view>& list) {
+    return std::find(list.begin(), list.end(), ext) != list.end();
+  };
+  if (ext.empty()) return nullptr;
+  for (const InputFormat& f : input_formats())
+    if (has(f.extensions) || has(f.also)) return &f;
+  return nullptr;
+}
+
+const InputFormat& cloud_format(const std::string& path, std::string_view head, CloudFormat forced) {
+  const auto& all = input_formats();
+  const auto named = [&](CloudFormat c) -> const InputFormat& {
+    for (const InputFormat& f : all)
+      if (f.cloud == c) return f;
+    throw Error("read_cloud: no reader for this cloud format");
+  };
+  if (forced != CloudFormat::automatic) return named(forced);
+  if (path != "-") {
+    if (const InputFormat* f = format_of_extension(path)) {
+      if (!f->read_cloud) throw Error("read_cloud: " + path + ": is a mesh, not a point cloud");
+      return *f;
+    }
+  }
+  for (const InputFormat& f : all)
+    if (f.read_cloud && f.magic && head.compare(0, std::strlen(f.magic), f.magic) == 0) return f;
+  if (path != "-" && !extension(path).empty())
+    throw Error("read_cloud: " + path + ": unknown point cloud extension '." + extension(path) + "' (use " +
+                named_extensions(false) + ")");
+  return named(CloudFormat::xyz);
+}
+
+std::string named_extensions(bool meshes) {
+  std::string out;
+  for (const InputFormat& f : input_formats())
+    if (meshes ? f.read_mesh != nullptr : f.read_cloud != nullptr)
+      for (const std::string_view e : f.extensions) out += (out.empty() ? "." : " .") + std::string(e);
+  return out;
+}
+
+}  // namespace section::detail

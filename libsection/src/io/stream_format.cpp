@@ -1,0 +1,187 @@
+// The stream formatter: numbers in their shortest round-trip form, tables passed through as
+// they were read, large tables formatted in pieces by all cores.
+#include "section/io/stream.h"
+
+#include "detail/parallel.h"
+#include "io/byte_source.h"
+#include "io/stream_text.h"
+#include "section/error.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+
+namespace section {
+
+namespace detail {
+
+namespace {
+
+// Writes v as std::to_chars(double) does (shortest round trip, fixed or scientific,
+// whichever is shorter, fixed on a tie). Integers below 100000 in magnitude (ids, counts)
+// print in fixed notation, digit by digit, much faster.
+inline char* put_number(char* p, double v) {
+  if (v > -100000 && v < 100000) {
+    const int k = int(v);
+    if (double(k) == v && !(k == 0 && std::signbit(v))) {
+      unsigned u = k < 0 ? unsigned(-k) : unsigned(k);
+      if (k < 0) *p++ = '-';
+      char digits[8];
+      int n = 0;
+      do {
+        digits[n++] = char('0' + u % 10);
+        u /= 10;
+      } while (u);
+      while (n) *p++ = digits[--n];
+      return p;
+    }
+  }
+  return std::to_chars(p, p + 32, v).ptr;
+}
+
+// Rows [r0, r1) of a table's values as text.
+std::string format_rows(const Table& t, std::size_t r0, std::size_t r1) {
+  const std::size_t cols = t.columns.size();
+  std::string out((r1 - r0) * cols * 25, '\0');  // a double takes at most 24 characters
+  char* p = out.data();
+  const double* v = t.values.data() + r0 * cols;
+  for (std::size_t r = r0; r < r1; ++r) {
+    for (std::size_t c = 0; c < cols; ++c) {
+      p = put_number(p, *v++);
+      *p++ = ',';
+    }
+    p[-1] = '\n';
+  }
+  out.resize(std::size_t(p - out.data()));
+  return out;
+}
+
+// True when `t` holds what its source text reads as (bit for bit: -0 is not 0).
+bool unchanged_since_read(const Table& t) {
+  const TableText* src = t.source.get();
+  return src && src->columns == t.columns && src->values.size() == t.values.size() &&
+         (t.values.empty() ||
+          std::memcmp(src->values.data(), t.values.data(), t.values.size() * sizeof(double)) == 0);
+}
+
+// The pieces of a stream's text, collected first and viewed at the end (a growing vector
+// moves its strings).
+class Pieces {
+public:
+  /// The piece being written.
+  std::string& text() { return pieces_.back().text; }
+  /// Source rows, written as they are.
+  void keep(std::string_view rows) {
+    pieces_.push_back({{}, rows});
+    pieces_.emplace_back();
+  }
+  /// Pieces formatted elsewhere, in order.
+  void add(std::vector<std::string>& formatted) {
+    for (auto& s : formatted) pieces_.push_back({std::move(s), {}});
+    pieces_.emplace_back();
+  }
+  FormattedStream finish() {
+    FormattedStream f;
+    f.formatted.reserve(pieces_.size());
+    for (auto& p : pieces_) {
+      if (!p.kept.empty()) {
+        f.parts.push_back(p.kept);
+      } else if (!p.text.empty()) {
+        f.formatted.push_back(std::move(p.text));
+        f.parts.emplace_back(f.formatted.back());
+      }
+    }
+    return f;
+  }
+
+private:
+  struct Piece {
+    std::string text;
+    std::string_view kept;  // source rows, when not empty
+  };
+  std::vector<Piece> pieces_ = std::vector<Piece>(1);
+};
+
+// A table: its `# table` line and header, then its rows (kept or formatted).
+void format_table(const Table& t, Pieces& pieces) {
+  std::string* out = &pieces.text();
+  *out += "# table " + t.name + "\n";
+  for (std::size_t c = 0; c < t.columns.size(); ++c) {
+    if (c) *out += ',';
+    *out += t.columns[c];
+  }
+  *out += '\n';
+  const std::size_t cols = t.columns.size();
+  if (cols == 0) return;
+  if (unchanged_since_read(t)) {
+    const std::string_view rows = t.source->rows;
+    pieces.keep(rows);
+    if (!rows.empty() && rows.back() != '\n') pieces.text() += '\n';
+    return;
+  }
+  for (std::size_t i = 0; i < t.values.size(); ++i)
+    if (!std::isfinite(t.values[i]))
+      throw Error("pipe: refusing to write a non-finite value in table '" + t.name + "' row " +
+                  std::to_string(i / cols) + " column '" + t.columns[i % cols] + "'");
+  // Large tables are formatted in pieces of rows by all cores, kept in order.
+  const std::size_t rows = t.values.size() / cols;
+  const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(64, rows * cols / 32768));
+  std::vector<std::string> piece(parts);
+  detail::parallel_for(
+      parts, 0, [&](std::size_t k) { piece[k] = format_rows(t, rows * k / parts, rows * (k + 1) / parts); });
+  pieces.add(piece);
+  out = &pieces.text();
+  char buf[32];
+  for (std::size_t i = rows * cols; i < t.values.size(); ++i) {  // a partial last row (not made by add_row)
+    out->append(buf, put_number(buf, t.values[i]));
+    *out += (i % cols == cols - 1) ? '\n' : ',';
+  }
+}
+
+}  // namespace
+
+std::string format_preamble(const Stream& stream) {
+  std::string out = "# libsection-stream " + std::to_string(stream_version) + "\n";
+  out += "# units " + one_line(stream.units) + "\n";
+  for (const auto& h : stream.history) out += "# history " + one_line(h) + "\n";
+  for (const auto& n : stream.notes) out += "# " + one_line(n) + "\n";
+  return out;
+}
+
+FormattedStream format_parts(const Stream& stream, const std::string& part_line) {
+  Pieces pieces;
+  std::string& out = pieces.text();
+  if (part_line.empty()) {
+    out += format_preamble(stream);
+  } else {
+    out += part_line;
+    for (const auto& n : stream.notes) out += "# " + one_line(n) + "\n";
+  }
+  for (const auto& i : stream.issues)
+    out += "# issue section=" + std::to_string(i.section) + " loop=" + std::to_string(i.loop) +
+           " stage=" + one_line(i.stage.empty() ? "unknown" : i.stage) + " message=" + one_line(i.message) +
+           "\n";
+  for (const auto& t : stream.tables) format_table(t, pieces);
+  return pieces.finish();
+}
+
+}  // namespace detail
+
+std::string format_stream(const Stream& stream) {
+  const detail::FormattedStream f = detail::format_parts(stream);
+  std::string out;
+  out.reserve(f.size());
+  for (const auto& p : f.parts) out += p;
+  return out;
+}
+
+void write_stream(const std::string& path, const Stream& stream) {
+  // Formatted whole before the first byte is written; the parts are written as they are
+  // (no copy into one string).
+  const detail::FormattedStream f = detail::format_parts(stream);
+  detail::ByteSink out(path, "");
+  for (const auto& p : f.parts) out.write(p);
+  out.close();
+}
+
+}  // namespace section

@@ -1,0 +1,369 @@
+// The stream parser: `#` lines, table headers and numeric rows, with the line of any error.
+#include "section/io/stream.h"
+
+#include "detail/parallel.h"
+#include "io/stream_text.h"
+#include "io/text.h"
+#include "section/error.h"
+#include "section/io/file.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace section {
+
+namespace detail {
+
+namespace {
+
+std::vector<std::string> split_header(std::string_view line) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    out.emplace_back(trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+// `# issue section=S loop=L stage=NAME message=TEXT`
+SectionIssue parse_issue(std::string_view rest, const std::string& source, std::size_t line) {
+  SectionIssue issue;
+  const auto take = [&](std::string_view key) -> std::string_view {
+    const std::string needle = std::string(key) + "=";
+    const std::size_t at = rest.find(needle);
+    if (at == std::string_view::npos) stream_fail(source, line, "issue line without '" + needle + "'");
+    std::string_view value = rest.substr(at + needle.size());
+    if (key != "message") value = value.substr(0, value.find(' '));
+    return value;
+  };
+  const auto to_int = [&](std::string_view s) {
+    int v = 0;
+    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (r.ec != std::errc() || r.ptr != s.data() + s.size())
+      stream_fail(source, line, "issue line with a bad id '" + std::string(s) + "'");
+    return v;
+  };
+  issue.section = to_int(take("section"));
+  issue.loop = to_int(take("loop"));
+  issue.stage = std::string(take("stage"));
+  issue.message = std::string(take("message"));
+  return issue;
+}
+
+// A cell of 1 to 9 digits, optionally after '-' (ids, indices, counts): its value without
+// from_chars, the same double (such integers are exact).
+inline bool small_integer(std::string_view cell, double& value) {
+  const bool minus = !cell.empty() && cell.front() == '-';
+  if (minus) cell.remove_prefix(1);
+  if (cell.empty() || cell.size() > 9) return false;
+  int v = 0;
+  for (const char ch : cell) {
+    if (ch < '0' || ch > '9') return false;
+    v = 10 * v + (ch - '0');
+  }
+  value = minus ? -double(v) : double(v);
+  return true;
+}
+
+// One data row of `columns` cells appended to `out`; false on anything the line-by-line
+// parse refuses (it then finds and names the problem).
+bool parse_row(std::string_view line, const std::vector<char>& id_column, std::vector<double>& out) {
+  const std::size_t columns = id_column.size();
+  std::size_t start = 0, col = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    const std::string_view cell =
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
+    if (col == columns) return false;
+    double value = 0;
+    if (!small_integer(cell, value) &&
+        (!parse_double(cell, value) || !std::isfinite(value) || std::abs(value) > max_coordinate))
+      return false;
+    if (id_column[col] && (value != std::floor(value) || std::abs(value) > 2147483647.0)) return false;
+    out.push_back(value);
+    ++col;
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return col == columns;
+}
+
+// The data rows of `text` (whole lines, blank ones skipped) into `out`; false when any row
+// is refused.
+bool parse_rows(std::string_view text, const std::vector<char>& id_column, std::vector<double>& out) {
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (trim(line).empty()) continue;
+    if (!parse_row(line, id_column, out)) return false;
+  }
+  return true;
+}
+
+// Parses a stream's text line by line (a table's rows in pieces by all cores when they are
+// many); the state of the parse is the table being read and what the lines before declared.
+class StreamParser {
+public:
+  StreamParser(std::string_view text, const std::string& source,
+               const std::shared_ptr<const std::string>& owner, const PartText& part)
+      : text_(text),
+        source_(source),
+        owner_(owner),
+        part_(part),
+        seen_version_(part.is_part),
+        line_no_(part.first_line - 1) {}
+
+  Stream parse();
+
+private:
+  [[noreturn]] void fail(const std::string& what) const { stream_fail(source_, line_no_, what); }
+  void meta(std::string_view line);
+  void table(std::string_view rest);
+  void header(std::string_view line);
+  void block();
+  void keep_source(std::string_view block);
+  void row(std::string_view line);
+
+  std::string_view text_;
+  const std::string& source_;
+  const std::shared_ptr<const std::string>& owner_;
+  const PartText part_;
+  Stream stream_;
+  Table* current_ = nullptr;  // the table whose rows come
+  bool expect_header_ = false;
+  bool seen_version_;
+  std::size_t line_no_;
+  // Parts (docs/FORMAT.md): a table may come again in a later part, with the same header.
+  std::size_t parts_ = 0;
+  bool ended_ = false;
+  std::vector<std::string> in_part_;            // tables seen in the current part
+  std::vector<std::string> continued_columns_;  // header a continued table must repeat (empty: a new table)
+  std::size_t pos_ = 0;
+  std::vector<double> row_;
+  std::vector<char> id_column_;  // per column of the current table: holds integer ids
+};
+
+Stream StreamParser::parse() {
+  if (const char* why = text_encoding_problem(text_)) throw Error("pipe: " + source_ + ": " + why);
+  if (!part_.is_part) skip_bom(text_);
+  if (text_.empty()) throw Error("pipe: " + source_ + ": the stream is empty");
+  while (pos_ < text_.size()) {
+    std::size_t end = text_.find('\n', pos_);
+    if (end == std::string_view::npos) end = text_.size();
+    std::string_view line = text_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    ++line_no_;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (trim(line).empty()) continue;
+    if (line[0] == '#') {
+      meta(line);
+      continue;
+    }
+    if (!seen_version_) fail("not a libsection stream (the first line must be '# libsection-stream 1')");
+    if (ended_) fail("a line after '# end'");
+    if (!current_) fail("a data row outside any table (missing '# table NAME')");
+    if (expect_header_) {
+      header(line);
+      block();
+    } else {
+      row(line);
+    }
+  }
+  if (!seen_version_) throw Error("pipe: " + source_ + ": the stream is empty");
+  if (expect_header_)
+    throw Error("pipe: " + source_ + ": table '" + current_->name +
+                "' has no header row (truncated stream?)");
+  if (parts_ > 0 && !ended_ && !part_.is_part) throw truncated_parts(source_);
+  return std::move(stream_);
+}
+
+void StreamParser::meta(std::string_view line) {
+  const auto [key, rest, body] = meta_line(line);
+  if (expect_header_) fail("table '" + current_->name + "' has no header row");
+  if (ended_) fail("a line after '# end'");
+  if (!seen_version_) {
+    if (key != "libsection-stream")
+      fail("not a libsection stream (the first line must be '# libsection-stream 1')");
+    if (rest != std::to_string(stream_version))
+      fail("stream version '" + std::string(rest) + "' is not supported (this build reads version " +
+           std::to_string(stream_version) + ")");
+    seen_version_ = true;
+    return;
+  }
+  current_ = nullptr;
+  if (key == "table") {
+    table(rest);
+  } else if (key == "part") {
+    if (part_.is_part && parts_ > 0) fail("two parts in one");
+    ++parts_;
+    in_part_.clear();
+  } else if (key == "end") {
+    if (!rest.empty()) fail("'# end' takes nothing after it");
+    ended_ = true;
+  } else if (key == "units") {
+    if (rest.empty()) fail("'# units' without a unit");
+    stream_.units = std::string(rest);
+  } else if (key == "history") {
+    stream_.history.emplace_back(rest);
+  } else if (key == "issue") {
+    stream_.issues.push_back(parse_issue(rest, source_, line_no_));
+  } else {
+    stream_.notes.emplace_back(body);
+  }
+}
+
+// `# table NAME`: a new table, or the same table in a later part (its rows follow those before).
+void StreamParser::table(std::string_view rest) {
+  if (rest.empty()) fail("'# table' without a name");
+  const std::string name(rest);
+  if (std::find(in_part_.begin(), in_part_.end(), name) != in_part_.end() ||
+      (parts_ == 0 && stream_.find(name)))
+    fail("table '" + name + "' appears twice" + (parts_ ? " in a part" : ""));
+  in_part_.push_back(name);
+  continued_columns_.clear();
+  if (Table* earlier = stream_.find(name)) {
+    continued_columns_ = earlier->columns;
+    earlier->source = nullptr;  // its text is no longer one piece
+    current_ = earlier;
+  } else {
+    stream_.tables.push_back(Table{name, {}, {}});
+    current_ = &stream_.tables.back();
+  }
+  expect_header_ = true;
+}
+
+void StreamParser::header(std::string_view line) {
+  const std::vector<std::string> names = split_header(line);
+  if (!continued_columns_.empty() && names != continued_columns_)
+    fail("table '" + current_->name + "' has other columns than in the parts before");
+  current_->columns = names;
+  for (const auto& c : current_->columns)
+    if (c.empty()) fail("empty column name in the header of table '" + current_->name + "'");
+  id_column_.assign(current_->columns.size(), 0);
+  for (std::size_t c = 0; c < current_->columns.size(); ++c) {
+    const std::string& n = current_->columns[c];
+    id_column_[c] = n == "section" || n == "loop" || n == "index";
+  }
+  expect_header_ = false;
+}
+
+// The table's data rows run to the next line starting with '#': a block of a few kB and up
+// (a section's table in a stream split into parts) is parsed in pieces by all cores,
+// appended in order. A piece that refuses a row leaves the block to the line-by-line parse,
+// whose error names the line.
+void StreamParser::block() {
+  const std::size_t block_start =
+      std::min(pos_, text_.size());  // pos is past the end after a last line without '\n'
+  std::size_t block_end = block_start;
+  while (block_end < text_.size() && text_[block_end] != '#') {
+    const std::size_t nl = text_.find('\n', block_end);
+    block_end = nl == std::string_view::npos ? text_.size() : nl + 1;
+  }
+  const std::string_view block = text_.substr(block_start, block_end - block_start);
+  if (block.size() < (std::size_t(1) << 12)) return;
+  const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(64, block.size() >> 17));
+  std::vector<std::size_t> cut(parts + 1, 0);
+  cut[parts] = block.size();
+  for (std::size_t k = 1; k < parts; ++k) {
+    const std::size_t at = block.find('\n', std::max(cut[k - 1], block.size() * k / parts));
+    cut[k] = at == std::string_view::npos ? block.size() : at + 1;
+  }
+  std::vector<std::vector<double>> piece(parts);
+  std::vector<char> ok(parts, 0);
+  detail::parallel_for(parts, 0, [&](std::size_t k) {
+    piece[k].reserve((cut[k + 1] - cut[k]) / 8);
+    ok[k] = parse_rows(block.substr(cut[k], cut[k + 1] - cut[k]), id_column_, piece[k]);
+  });
+  if (!std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) return;
+  std::size_t total = 0;
+  for (const auto& v : piece) total += v.size();
+  current_->values.reserve(current_->values.size() + total);
+  for (const auto& v : piece) current_->values.insert(current_->values.end(), v.begin(), v.end());
+  keep_source(block);
+  line_no_ += std::count(block.begin(), block.end(), '\n');
+  if (!block.empty() && block.back() != '\n') ++line_no_;  // the last line has no newline
+  pos_ = block_end;
+}
+
+// The rows of a new table kept to be written back as they are (Table::source); not with
+// '\r' line ends, which the written stream does not use.
+void StreamParser::keep_source(std::string_view block) {
+  if (!continued_columns_.empty() || block.find('\r') != std::string_view::npos) return;
+  auto kept = std::make_shared<TableText>();
+  if (owner_) {
+    kept->text = owner_;
+    kept->rows = block;
+  } else {
+    kept->text = std::make_shared<const std::string>(block);
+    kept->rows = *kept->text;
+  }
+  kept->columns = current_->columns;
+  kept->values = current_->values;
+  current_->source = std::move(kept);
+}
+
+void StreamParser::row(std::string_view line) {
+  row_.clear();
+  std::size_t start = 0;
+  std::size_t col = 0;
+  const std::string& table = current_->name;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    const std::string_view cell =
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
+    ++col;
+    if (col > current_->columns.size())
+      fail("more values than the " + std::to_string(current_->columns.size()) + " columns of table '" +
+           table + "'");
+    const auto bad = [&](const std::string& what) {
+      fail("column '" + current_->columns[col - 1] + "' of table '" + table + "': " + what);
+    };
+    const auto text = [&] { return std::string(cell.substr(0, 40)); };
+    double value = 0;
+    if (!parse_double(cell, value)) bad("expected a number, found '" + text() + "'");
+    if (!std::isfinite(value)) bad("non-finite value '" + text() + "'");
+    if (std::abs(value) > max_coordinate) bad("value " + text() + " is beyond +-1e15 (corrupt stream?)");
+    // Ids become ints in every stage: a fraction or a value beyond int would be cast silently.
+    if (id_column_[col - 1] && (value != std::floor(value) || std::abs(value) > 2147483647.0))
+      bad("'" + text() + "' is not an integer id");
+    row_.push_back(value);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  if (row_.size() != current_->columns.size())
+    fail(std::to_string(row_.size()) + " values for the " + std::to_string(current_->columns.size()) +
+         " columns of table '" + table + "' (truncated line?)");
+  current_->values.insert(current_->values.end(), row_.begin(), row_.end());
+}
+
+}  // namespace
+
+Stream parse_stream_text(std::string_view text, const std::string& source,
+                         const std::shared_ptr<const std::string>& owner, const PartText& part) {
+  return StreamParser(text, source, owner, part).parse();
+}
+
+}  // namespace detail
+
+Stream parse_stream(std::string_view text, const std::string& source) {
+  return detail::parse_stream_text(text, source, nullptr);
+}
+
+Stream parse_stream(std::shared_ptr<const std::string> text, const std::string& source) {
+  if (!text) throw Error("pipe: " + source + ": no text");
+  return detail::parse_stream_text(*text, source, text);
+}
+
+Stream read_stream(const std::string& path) {
+  return parse_stream(std::make_shared<const std::string>(read_file(path)), path == "-" ? "<stdin>" : path);
+}
+
+}  // namespace section

@@ -1,0 +1,92 @@
+#pragma once
+// Number and token parsing shared by the readers and the stream parser (no locale, no streams).
+#include <charconv>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace section::detail {
+
+inline bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
+
+inline std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+/// `s` in lower case (ASCII).
+std::string lower(std::string s);
+
+/// Parses the whole of `s` as a double ("nan"/"inf" parse, callers check finiteness).
+/// A leading '+' is accepted. False when `s` is empty or has trailing characters.
+inline bool parse_double(std::string_view s, double& value) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (s.empty()) return false;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), value);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+/// Parses the whole of `s` as an integer; a leading '+' is accepted.
+template <class Integer>
+bool parse_integer(std::string_view s, Integer& value) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), value);
+  return !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+/// Calls `field(f)` for each field of a text row: commas separate, and so do runs of blanks;
+/// a trailing comma leaves an empty last field. Stops when `field` returns false.
+template <class F>
+void split_fields(std::string_view line, F&& field) {
+  std::size_t i = 0;
+  const std::size_t len = line.size();
+  const auto blank = [&](std::size_t k) { return line[k] == ' ' || line[k] == '\t'; };
+  while (i < len) {
+    while (i < len && blank(i)) ++i;
+    const std::size_t start = i;
+    while (i < len && line[i] != ',' && !blank(i)) ++i;
+    const std::size_t end = i;
+    while (i < len && blank(i)) ++i;
+    if (i < len && line[i] == ',') {
+      ++i;
+      if (!field(line.substr(start, end - start))) return;
+      if (i == len) field(std::string_view{});  // a trailing comma: an empty last field
+      continue;
+    }
+    if (end > start && !field(line.substr(start, end - start))) return;
+  }
+}
+
+/// The whitespace-separated words of `line` into `words` (cleared first).
+void split_words(std::string_view line, std::vector<std::string_view>& words);
+
+/// A token for an error message: at most 40 characters, control and non-ASCII bytes as \xHH,
+/// so that the message stays one readable line whatever the file holds.
+std::string printable(std::string_view t);
+/// printable(t) in single quotes.
+inline std::string quoted(std::string_view t) {
+  return "'" + printable(t) + "'";
+}
+
+/// Largest coordinate magnitude the readers accept (in the file's units): beyond it squared
+/// distances and 3x3 determinants overflow, so such a value is a corrupt file, not a part.
+constexpr double max_coordinate = 1e15;
+
+/// Drops a UTF-8 byte-order mark (some Windows editors write one); returns true if there was one.
+inline bool skip_bom(std::string_view& s) {
+  if (s.size() >= 3 && s.compare(0, 3, "\xEF\xBB\xBF") == 0) {
+    s.remove_prefix(3);
+    return true;
+  }
+  return false;
+}
+
+/// Why the start of a text file cannot be text we read, or nullptr: UTF-16 (by its byte-order
+/// mark or NUL bytes between ASCII characters) or other binary data (a NUL byte).
+const char* text_encoding_problem(std::string_view head);
+
+}  // namespace section::detail

@@ -1,0 +1,157 @@
+// The part scheduler: a stage of the pipe run over the parts of a stream as they are read,
+// several at a time, each written as soon as it and the parts before it are done.
+#include "section/pipe/run_stage.h"
+
+#include "section/error.h"
+#include "section/io/stream_reader.h"
+
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace section {
+
+namespace {
+
+// A stream not split into parts: read, staged and written whole.
+void run_whole(const StageRun& run, PartReader& reader) {
+  std::string text = reader.whole();
+  const std::size_t bom = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // parse_stream skips it
+  Stream stream = run.other_input && text.compare(bom, 19, "# libsection-stream") != 0
+                      ? run.other_input(text, reader.source())
+                      : parse_stream(std::make_shared<const std::string>(std::move(text)), reader.source());
+  run.stage(stream, run.threads);
+  stream.history.push_back(run.history);
+  if (run.written) run.written(stream);
+  if (run.before_end) run.before_end();
+  write_stream(run.output, stream);
+}
+
+// Parts are staged by the workers as they are read, and written in order by the thread that
+// reads them.
+class PartScheduler {
+public:
+  PartScheduler(const StageRun& run, PartReader& reader, const Stream& head)
+      : run_(run),
+        reader_(reader),
+        units_(head.units),
+        writer_(run.output, head),
+        workers_(run.threads > 0 ? std::size_t(run.threads)
+                                 : std::max<std::size_t>(1, std::thread::hardware_concurrency())) {}
+
+  void run() {
+    std::vector<std::thread> pool;
+    for (std::size_t w = 0; w < workers_; ++w) pool.emplace_back([this] { work(); });
+    try {
+      StreamPart part;
+      while (reader_.next(part))
+        if (!submit(std::move(part))) break;  // a part has failed: no use reading on
+      write_done(false, true);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+    }
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      input_done_ = true;
+    }
+    changed_.notify_all();
+    for (auto& t : pool) t.join();
+    if (error_) std::rethrow_exception(error_);
+    if (run_.before_end) run_.before_end();
+    writer_.finish();
+  }
+
+private:
+  struct Job {
+    StreamPart part;  // its text is kept by the tables passed through (Table::source)
+    Stream result;
+    bool done = false;
+  };
+
+  // A worker: stages the parts in turn until the input is done or a part has failed.
+  void work() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (true) {
+      changed_.wait(lock,
+                    [&] { return error_ || next_to_stage_ < first_job_ + jobs_.size() || input_done_; });
+      if (error_ || next_to_stage_ >= first_job_ + jobs_.size()) return;
+      Job& job = jobs_[next_to_stage_++ - first_job_];
+      lock.unlock();
+      try {
+        Stream part = parse_stream_part(job.part, reader_.source());
+        part.units = units_;
+        run_.stage(part, 1);
+        job.part.text = nullptr;
+        job.result = std::move(part);
+        lock.lock();
+        job.done = true;
+      } catch (...) {
+        lock.lock();
+        if (!error_) error_ = std::current_exception();
+      }
+      changed_.notify_all();
+    }
+  }
+
+  // Writes the finished parts at the front, in order. With `room`, until fewer than two
+  // parts per worker wait (the memory of a pipe stays that of a few sections); with `all`,
+  // until every part is written.
+  void write_done(bool room, bool all) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!error_) {
+      if (!jobs_.empty() && jobs_.front().done) {
+        Job job = std::move(jobs_.front());
+        jobs_.pop_front();
+        ++first_job_;
+        lock.unlock();
+        if (run_.written) run_.written(job.result);
+        writer_.part(job.part.label, job.result);
+        lock.lock();
+        continue;
+      }
+      if (all ? jobs_.empty() : !(room && jobs_.size() >= 2 * workers_)) return;
+      changed_.wait(lock, [&] { return error_ || (!jobs_.empty() && jobs_.front().done); });
+    }
+  }
+
+  // Queues a part read; false once a part has failed.
+  bool submit(StreamPart part) {
+    write_done(true, false);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (error_) return false;
+      jobs_.push_back(Job{std::move(part), {}, false});
+    }
+    changed_.notify_all();
+    return true;
+  }
+
+  const StageRun& run_;
+  PartReader& reader_;
+  const std::string units_;
+  StreamWriter writer_;
+  const std::size_t workers_;
+  std::deque<Job> jobs_;           // read and not yet written, in order (references stay valid)
+  std::size_t first_job_ = 0;      // index of jobs_.front()
+  std::size_t next_to_stage_ = 0;  // index of the next job a worker takes
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  bool input_done_ = false;
+  std::exception_ptr error_;
+};
+
+}  // namespace
+
+void run_stage(const StageRun& run) {
+  PartReader reader(run.input);
+  if (!reader.parted()) return run_whole(run, reader);
+  Stream head = reader.preamble();
+  head.history.push_back(run.history);
+  PartScheduler(run, reader, head).run();
+}
+
+}  // namespace section
