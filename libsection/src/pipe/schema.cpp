@@ -196,8 +196,8 @@ constexpr Column<ParamsRow> params_columns[] = {
     {"max_thickness", "length", "the largest inscribed diameter", [](const ParamsRow& r) { return r.params.max_thickness; }},
     {"max_thickness_pos", "1", "its place along the camber line, 0 at the LE, 1 at the TE",
      [](const ParamsRow& r) { return r.params.max_thickness_pos; }},
-    {"le_radius", "length", "radius of the circle fitted to the leading edge's arc (0 for an edge that is not round, "
-     "see le_shape)", [](const ParamsRow& r) { return r.params.le_radius; }},
+    {"le_radius", "length", "radius of the circle fitted to the leading edge's arc (0 for a flat face, and with --edge "
+     "auto for a blunt or sharp edge)", [](const ParamsRow& r) { return r.params.le_radius; }},
     {"te_radius", "length", "the same at the trailing edge", [](const ParamsRow& r) { return r.params.te_radius; }},
     {"le_curvature_radius", "length", "1 / the profile's curvature at the LE point (0 when flat)",
      [](const ParamsRow& r) { return r.params.le_curvature_radius; }},
