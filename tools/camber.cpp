@@ -16,12 +16,7 @@ using section::tool::CamberArgs;
 
 void run_camber(const CamberArgs& a, const std::string& history) {
   section::Table params, thickness;
-  section::StageRun run =
-      section::tool::stage_run(a.common, history, a.options.threads, [&](section::Stream& part, int threads) {
-        section::CamberOptions o = a.options;
-        o.threads = threads;
-        section::camber_stream(part, o);
-      });
+  section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::camber_stream);
   // A plain profile (x y per line): its spline is fitted to its points.
   run.other_input = [&](const std::string& text, const std::string& source) {
     const auto points = section::parse_profile(text, source);

@@ -33,12 +33,7 @@ void warn_layers(const section::Stream& stream, const section::Table& splines) {
 
 void run_fitspline(const FitsplineArgs& a, const std::string& history) {
   std::size_t fitted = 0, measured = 0;
-  section::StageRun run =
-      section::tool::stage_run(a.common, history, a.options.threads, [&](section::Stream& part, int threads) {
-        section::FitSplineOptions o = a.options;
-        o.threads = threads;
-        section::fit_spline_stream(part, o);
-      });
+  section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::fit_spline_stream);
   run.written = [&](const section::Stream& stream) {
     section::tool::warn_issues("fitspline", stream, true);
     if (const section::Table* splines = section::schema::splines.find(stream)) {

@@ -16,12 +16,7 @@ using section::tool::SmoothArgs;
 
 void run_smooth(const SmoothArgs& a, const std::string& history) {
   section::Table stats;
-  section::StageRun run =
-      section::tool::stage_run(a.common, history, a.options.threads, [&](section::Stream& part, int threads) {
-        section::SmoothOptions o = a.options;
-        o.threads = threads;
-        section::smooth_stream(part, o);
-      });
+  section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::smooth_stream);
   run.written = [&](const section::Stream& part) {
     section::tool::warn_issues("smooth", part, true);
     section::append_rows(stats, section::schema::smooth_stats.get(part));

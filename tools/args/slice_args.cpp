@@ -44,33 +44,21 @@ void declare_planes(CLI::App& app, SliceArgs& a) {
 
 // --slab, --cell and the band's and the gap fill's options.
 void declare_slab(CLI::App& app, SliceOptions& options) {
-  app.add_option("--slab", options.slab, "Slab width d; 0 = the estimated point spacing")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  app.add_option("--cell", options.morphology.cell, "Raster cell h; 0 = the estimated spacing in the section")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  app.add_option("--band-spacing", options.band_spacing,
+  add_checked(app, "--slab", options.slab, "Slab width d; 0 = the estimated point spacing", CLI::NonNegativeNumber);
+  add_checked(app, "--cell", options.morphology.cell, "Raster cell h; 0 = the estimated spacing in the section", CLI::NonNegativeNumber);
+  add_checked(app, "--band-spacing", options.band_spacing,
                  "Widen the slab into a drift-corrected band until the profile holds one point per this "
-                 "length; 0 = the slab alone")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  app.add_option("--band-max", options.band_max, "Largest half width of the band, in slab widths (>= 0.5)")
-      ->check(CLI::Range(0.5, 1e6))
-      ->capture_default_str();
-  app.add_option("--band-sparse-max", options.band_sparse_max,
+                 "length; 0 = the slab alone", CLI::NonNegativeNumber);
+  add_checked(app, "--band-max", options.band_max, "Largest half width of the band, in slab widths (>= 0.5)", CLI::Range(0.5, 1e6));
+  add_checked(app, "--band-sparse-max", options.band_sparse_max,
                  "Widen the band beside a sparse stretch of the profile up to this half width, in slab "
-                 "widths; 0 = off")
-      ->check(CLI::Range(0.0, 1e6))
-      ->capture_default_str();
+                 "widths; 0 = off", CLI::Range(0.0, 1e6));
   app.add_flag("--no-fill", [&options](std::int64_t) { options.fill_gaps = false; },
                "Do not fill the slab's gaps from points beside the plane");
   app.add_option("--fill-reach", options.fill.reach,
                  "Farthest distance from the plane of the points that fill gaps; 0 = 12 slab widths")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--fill-gap", options.fill.min_gap, "Fill gaps longer than this many slab widths")
-      ->check(positive)
-      ->capture_default_str();
+  add_checked(app, "--fill-gap", options.fill.min_gap, "Fill gaps longer than this many slab widths", positive);
 }
 
 }  // namespace
@@ -82,10 +70,8 @@ void SliceArgs::declare(CLI::App& app) {
   app.add_option("--view", views,
                  "Another view of the same part (a point cloud), registered onto the input "
                  "before slicing; repeat for more views");
-  app.add_option("--view-reach", register_options.reach,
-                 "Views: pairs are sought within this distance; 0 = 3 x the input's point spacing")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  add_checked(app, "--view-reach", register_options.reach,
+                 "Views: pairs are sought within this distance; 0 = 3 x the input's point spacing", CLI::NonNegativeNumber);
   app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
   app.add_option("--units", units, "Length unit recorded in the stream")->capture_default_str();
   app.callback([this] {

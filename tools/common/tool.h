@@ -54,6 +54,13 @@ int run(int argc, char** argv, const std::function<void(const Args&)>& body) {
 /// it, so that every error of a tool names the file it came from ("-" = `<stdin>`).
 void with_input(const std::string& input, const std::function<void()>& stage);
 
+/// Declares the option `flag` bound to `value`, checked by `check`, its default shown in --help.
+template <class T>
+CLI::Option* add_checked(CLI::App& app, const std::string& flag, T& value, const std::string& help,
+                         const CLI::Validator& check) {
+  return app.add_option(flag, value, help)->check(check)->capture_default_str();
+}
+
 /// Accepts a number above 0 ("must be a number above 0, got '0'"): CLI::PositiveNumber
 /// answers with the range 0 to 1.8e308 written out in full.
 extern const CLI::Validator positive;
@@ -66,6 +73,18 @@ std::string command_line(int argc, char** argv);
 /// and `stage` run under with_input.
 section::StageRun stage_run(const Common& common, const std::string& history, int threads,
                             const std::function<void(section::Stream&, int threads)>& stage);
+
+/// stage_run for a stream stage `stage(stream, options)` (smooth_stream, fit_spline_stream,
+/// camber_stream): each part staged with `options`, its threads as many as run_stage allows.
+template <class Options>
+section::StageRun stage_run(const Common& common, const std::string& history, const Options& options,
+                            void (*stage)(section::Stream&, const Options&)) {
+  return stage_run(common, history, options.threads, [&options, stage](section::Stream& part, int threads) {
+    Options o = options;
+    o.threads = threads;
+    stage(part, o);
+  });
+}
 
 /// Prints `STAGE: warning: section S[ loop L]: message` on stderr for each issue of `stream`
 /// that `stage` recorded (with the loop when `loops`).
