@@ -1,9 +1,10 @@
 #pragma once
 /// @file pipe/schema.h
 /// The stream's tables, each declared once (libsection/src/pipe/schema.cpp): its name, the
-/// tool that writes it and its columns as {name, unit, meaning, getter}. The header rows,
-/// the row writers, the readers' column lookups and docs/FORMAT.md's column tables all come
-/// from those lists (tests/test_schema.cpp holds FORMAT.md to them).
+/// tool that writes it and its columns as {name, unit, meaning, getter} (a 2D or 3D point is
+/// one entry over two or three columns). The header rows, the row writers, the readers'
+/// column lookups and docs/FORMAT.md's column tables all come from those lists
+/// (tests/test_schema.cpp holds FORMAT.md to them).
 #include "section/fit_spline.h"
 #include "section/frame.h"
 #include "section/io/stream.h"
@@ -14,7 +15,9 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <iterator>
 #include <map>
+#include <string>
 #include <vector>
 
 namespace section {
@@ -28,7 +31,7 @@ void put_frames(Stream& stream, const std::map<int, Frame>& frames);
 
 namespace schema {
 
-/// Names of the columns that readers look up (the column lists use them too).
+/// Names of the columns that readers look up (the lists use them; u and v are a point's).
 namespace col {
 inline constexpr const char* section = "section";
 inline constexpr const char* loop = "loop";
@@ -47,18 +50,41 @@ inline constexpr const char* t_end = "t_end";
 inline constexpr const char* length = "length";
 }  // namespace col
 
-/// One column: what docs/FORMAT.md lists of it, and its value in a row made from `Row`.
+/// Tags of a point spread over columns: NAME_u, NAME_v (`uv`) or NAME_x, NAME_y, NAME_z (`xyz`).
+struct Uv {};
+struct Xyz {};
+inline constexpr Uv uv{};
+inline constexpr Xyz xyz{};
+
+/// One column, or a point spread over two or three: what docs/FORMAT.md lists of it, and
+/// its value in a row made from `Row`.
 template <class Row>
 struct Column {
-  const char* name;     ///< header name
-  const char* unit;     ///< one of the units FORMAT.md lists ("id", "length", "degrees", ...)
-  const char* meaning;  ///< one line of FORMAT.md
-  double (*get)(const Row&);
+  constexpr Column() = default;
+  /// A column of one number.
+  constexpr Column(const char* column_name, const char* unit_name, const char* what, double (*getter)(const Row&))
+      : name(column_name), unit(unit_name), meaning(what), get(getter) {}
+  /// A 2D point: columns PREFIXu, PREFIXv ("le_" -> le_u, le_v; "" -> u, v).
+  constexpr Column(const char* prefix, Uv, const char* unit_name, const char* what,
+                   Eigen::Vector2d (*getter)(const Row&))
+      : name(prefix), axes("uv"), unit(unit_name), meaning(what), get2(getter) {}
+  /// A 3D point: columns PREFIXx, PREFIXy, PREFIXz.
+  constexpr Column(const char* prefix, Xyz, const char* unit_name, const char* what,
+                   Eigen::Vector3d (*getter)(const Row&))
+      : name(prefix), axes("xyz"), unit(unit_name), meaning(what), get3(getter) {}
+
+  const char* name = "";     ///< header name, or a point's prefix
+  const char* axes = "";     ///< "" for one number, "uv" or "xyz" for a point
+  const char* unit = "";     ///< one of the units FORMAT.md lists ("id", "length", "degrees", ...)
+  const char* meaning = "";  ///< one line of FORMAT.md
+  double (*get)(const Row&) = nullptr;
+  Eigen::Vector2d (*get2)(const Row&) = nullptr;
+  Eigen::Vector3d (*get3)(const Row&) = nullptr;
 };
 
-/// A column as docs/FORMAT.md lists it.
+/// A column (or a point's columns, "le_x, le_y, le_z") as docs/FORMAT.md lists it.
 struct ColumnDoc {
-  const char* name;
+  std::string name;
   const char* unit;
   const char* meaning;
 };
@@ -74,46 +100,30 @@ struct TableDoc {
 /// A stream table: its name, the tool that writes it, what a row is and its columns.
 template <class Row>
 struct TableSchema {
-  template <std::size_t N>
-  constexpr TableSchema(const char* table_name, const char* writer, const char* what,
-                        const Column<Row> (&list)[N])
-      : name(table_name), written_by(writer), meaning(what), columns(list), count(N) {}
+  template <class List>
+  constexpr TableSchema(const char* table_name, const char* writer, const char* what, const List& list)
+      : name(table_name), written_by(writer), meaning(what), columns(std::data(list)), count(std::size(list)) {}
 
   const char* name;        ///< e.g. "points"
   const char* written_by;  ///< the tool, for the error when the table is missing
   const char* meaning;     ///< one line of FORMAT.md
   const Column<Row>* columns;
-  std::size_t count;       ///< columns
+  std::size_t count;       ///< entries of `columns`
 
-  const Column<Row>* begin() const { return columns; }
-  const Column<Row>* end() const { return columns + count; }
-  /// An empty table with this name and header: every column, or those up to `last`.
-  Table table(const char* last = nullptr) const {
-    Table t(name, {});
-    for (const auto& c : *this) {
-      t.columns.emplace_back(c.name);
-      if (last && t.columns.back() == last) break;
-    }
-    return t;
-  }
+  /// The header: every column's name, or those up to `last`.
+  std::vector<std::string> names(const char* last = nullptr) const;
+  /// An empty table with this name and header (see names()).
+  Table table(const char* last = nullptr) const { return Table(name, names(last)); }
   /// Appends a row's values, one per column, to a table's values.
-  void append(std::vector<double>& values, const Row& row) const {
-    for (const auto& c : *this) values.push_back(c.get(row));
-  }
+  void append(std::vector<double>& values, const Row& row) const;
   /// Adds a row to `t`, made by table(): as many values as it has columns.
-  void add(Table& t, const Row& row) const {
-    for (std::size_t c = 0; c < t.columns.size(); ++c) t.values.push_back(columns[c].get(row));
-  }
+  void add(Table& t, const Row& row) const;
   /// The table in `stream`, or nullptr.
   const Table* find(const Stream& stream) const { return stream.find(name); }
   /// The table in `stream`; throws section::Error naming the tool that writes it when absent.
   const Table& get(const Stream& stream) const { return stream.get(name, written_by); }
   /// What FORMAT.md lists of the table.
-  TableDoc doc() const {
-    TableDoc d{name, written_by, meaning, {}};
-    for (const auto& c : *this) d.columns.push_back({c.name, c.unit, c.meaning});
-    return d;
-  }
+  TableDoc doc() const;
 };
 
 /// What each table's row is made from (the getters read these).
