@@ -73,6 +73,16 @@ std::string markdown(const section::schema::TableDoc& t) {
   return out;
 }
 
+// True when `d` documents `t` as the schema declares it.
+bool documents(const Documented& d, const section::schema::TableDoc& t) {
+  if (d.name != t.name || d.written_by != t.written_by || d.meaning != t.meaning || d.columns.size() != t.columns.size())
+    return false;
+  for (std::size_t c = 0; c < t.columns.size(); ++c)
+    if (d.columns[c] != std::vector<std::string>{t.columns[c].name, t.columns[c].unit, t.columns[c].meaning})
+      return false;
+  return true;
+}
+
 // The edge shapes as FORMAT.md lists them: "0 round, 1 blunt, 2 sharp."
 std::string edge_shape_list() {
   std::string out;
@@ -89,9 +99,12 @@ TEST_CASE("schema: docs/FORMAT.md lists every table and column as the schema dec
   const auto docs = documented(section::read_file(path), edge_shapes);
   const auto schema = section::schema::tables();
   // On a difference, the schema's text of the tables is left beside the test to copy from.
-  std::string expected;
-  for (const auto& t : schema) expected += markdown(t) + "\n";
-  std::ofstream("FORMAT.tables.md") << expected;
+  bool same = docs.size() == schema.size();
+  for (std::size_t k = 0; same && k < schema.size(); ++k) same = documents(docs[k], schema[k]);
+  if (!same) {
+    std::ofstream out("FORMAT.tables.md");
+    for (const auto& t : schema) out << markdown(t) << "\n";
+  }
   INFO("the schema's tables as FORMAT.md should list them: FORMAT.tables.md in the test's folder");
   REQUIRE(docs.size() == schema.size());
   for (std::size_t k = 0; k < schema.size(); ++k) {
