@@ -22,9 +22,11 @@ std::string join(std::string a, const std::string& b) { return a.empty() ? b : b
 std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
   if (e.shape == EdgeShape::round) return std::string();
   if (e.face > 0)
-    return std::string(which) + " is blunt: a flat face " + format_number(e.face) + " wide (radius reported as 0)";
+    return std::string(which) + " is " + edge_shape_name(EdgeShape::blunt) + ": a flat face " + format_number(e.face) +
+           " wide (radius reported as 0)";
   return std::string(which) + " looks " + edge_shape_name(e.shape) +
-         (model == EdgeModel::round ? " (fitted as round anyway)" : " (radius reported as 0)");
+         (model == EdgeModel::round ? std::string(" (fitted as ") + edge_shape_name(EdgeShape::round) + " anyway)"
+                                    : std::string(" (radius reported as 0)"));
 }
 
 // An edge whose point or arc lies over a hole in the measured points.

@@ -172,8 +172,8 @@ constexpr auto params_columns = by_section<ParamsRow>({
     {"max_thickness_pos", "1", "its place along the camber line, 0 at the LE, 1 at the TE",
      param<&Params::max_thickness_pos>},
     {"le_radius", "length",
-     "radius of the circle fitted to the leading edge's arc (0 for a flat face, and with --edge auto for a "
-     "blunt or sharp edge)",
+     "radius of the circle fitted to the leading edge's arc (0 for a flat face, and with --edge auto unless "
+     "le_shape is 0)",
      param<&Params::le_radius>},
     {"te_radius", "length", "the same at the trailing edge", param<&Params::te_radius>},
     {"le_curvature_radius", "length", "1 / the profile's curvature at the LE point (0 when flat)",
@@ -209,7 +209,7 @@ constexpr auto params_columns = by_section<ParamsRow>({
      [](auto& r) { return double(r.camber.pressure_side); }},
     {"le_by_direction", "flag", "1 when --le-direction set the LE, 0 when the maximum thickness did",
      [](auto& r) { return r.camber.le_by_direction ? 1.0 : 0.0; }},
-    {"le_face", "length", "width of a blunt leading edge's flat face (its radius is then 0), 0 for other edges",
+    {"le_face", "length", "width of the leading edge's flat face (its radius is then 0), 0 for an edge without one",
      [](auto& r) { return r.camber.le.face; }},
     {"te_face", "length", "the same at the trailing edge", [](auto& r) { return r.camber.te.face; }},
     {"le_unmeasured", "length", "length of profile around the LE point that no measured point covers, 0 when one "
