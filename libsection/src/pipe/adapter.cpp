@@ -1,6 +1,7 @@
 #include "pipe/adapter.h"
 
 #include "section/error.h"
+#include "section/pipe/schema.h"
 #include "detail/parallel.h"
 
 #include <algorithm>
@@ -9,8 +10,9 @@
 namespace section::pipe {
 
 std::map<std::pair<int, int>, LoopRows> loop_rows(const Table& t, const std::string& component) {
-  const std::size_t cs = t.column("section"), cl = t.column("loop"), ci = t.column("index"), cu = t.column("u"),
-                    cv = t.column("v");
+  namespace col = schema::col;
+  const std::size_t cs = t.column(col::section), cl = t.column(col::loop), ci = t.column(col::index),
+                    cu = t.column(col::u), cv = t.column(col::v);
   std::map<std::pair<int, int>, LoopRows> loops;
   LoopRows* loop = nullptr;  // the last row's, which the next row mostly shares
   std::pair<int, int> last;
