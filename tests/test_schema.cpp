@@ -69,13 +69,15 @@ std::vector<Documented> documented(const std::string& text, std::string& edge_sh
 std::string markdown(const section::schema::TableDoc& t) {
   std::string out = "### " + std::string(t.name) + "\n\nWritten by " + t.written_by + ": " + t.meaning +
                     ".\n\n| column | unit | meaning |\n|---|---|---|\n";
-  for (const auto& c : t.columns) out += "| " + std::string(c.name) + " | " + c.unit + " | " + c.meaning + " |\n";
+  for (const auto& c : t.columns)
+    out += "| " + std::string(c.name) + " | " + c.unit + " | " + c.meaning + " |\n";
   return out;
 }
 
 // True when `d` documents `t` as the schema declares it.
 bool documents(const Documented& d, const section::schema::TableDoc& t) {
-  if (d.name != t.name || d.written_by != t.written_by || d.meaning != t.meaning || d.columns.size() != t.columns.size())
+  if (d.name != t.name || d.written_by != t.written_by || d.meaning != t.meaning ||
+      d.columns.size() != t.columns.size())
     return false;
   for (std::size_t c = 0; c < t.columns.size(); ++c)
     if (d.columns[c] != std::vector<std::string>{t.columns[c].name, t.columns[c].unit, t.columns[c].meaning})
@@ -140,7 +142,8 @@ TEST_CASE("schema: the stages write each table with the schema's columns", "[sch
   fit.samples = 50;
   section::fit_spline_stream(stream, fit);
   section::camber_stream(stream);
-  INFO(stream.issues.size() << " issues, the first: " << (stream.issues.empty() ? "" : stream.issues[0].message));
+  INFO(stream.issues.size() << " issues, the first: "
+                            << (stream.issues.empty() ? "" : stream.issues[0].message));
   std::size_t found = 0;
   for (const auto& doc : schema::tables()) {
     const section::Table* t = stream.find(doc.name);

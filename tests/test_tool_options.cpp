@@ -42,8 +42,8 @@ Parsed<Args> parsed(std::vector<std::string> words) {
 }  // namespace
 
 TEST_CASE("tool options: slice reads its planes, slab and input", "[tools]") {
-  const auto p = parsed<SliceArgs>({"blade.ply", "--normal", "1,0,0", "--at", "2,4", "--slab", "0.1", "--no-fill",
-                                    "--band-spacing", "0", "--units", "in", "-o", "out.csv"});
+  const auto p = parsed<SliceArgs>({"blade.ply", "--normal", "1,0,0", "--at", "2,4", "--slab", "0.1",
+                                    "--no-fill", "--band-spacing", "0", "--units", "in", "-o", "out.csv"});
   REQUIRE(p.code == -1);
   CHECK(p.args.common.input == "blade.ply");
   CHECK(p.args.common.output == "out.csv");
@@ -73,7 +73,7 @@ TEST_CASE("tool options: bad usage is refused with exit code 2 and names the fla
   CHECK(parsed<CamberArgs>({"--le-direction", "0,0"}).code == 2);
   CHECK(parsed<CamberArgs>({"--edge", "square"}).code == 2);
   CHECK(parsed<PlotArgs>({"--section", "1", "--html"}).code == 2);
-  CHECK(parsed<BladegenArgs>({"--points"}).code == 2);  // no -o
+  CHECK(parsed<BladegenArgs>({"--points"}).code == 2);          // no -o
   CHECK(parsed<BladegenArgs>({"--truth", "t.csv"}).code == 2);  // no --at
 }
 
@@ -87,7 +87,8 @@ TEST_CASE("tool options: --help answers with exit code 0 without the required fl
 }
 
 TEST_CASE("tool options: smooth, fitspline and camber read their flags into the stage options", "[tools]") {
-  const auto smooth = parsed<SmoothArgs>({"--solver", "gauss-seidel", "--length", "0.5", "--report", "r.csv"});
+  const auto smooth =
+      parsed<SmoothArgs>({"--solver", "gauss-seidel", "--length", "0.5", "--report", "r.csv"});
   REQUIRE(smooth.code == -1);
   CHECK(smooth.args.options.solver == section::SmoothSolver::gauss_seidel);
   CHECK(smooth.args.options.smoothing_length == 0.5);
@@ -122,8 +123,8 @@ TEST_CASE("tool options: plot takes HTML from the output's name unless a section
 }
 
 TEST_CASE("tool options: bladegen reads the scanner and the truth heights", "[tools]") {
-  const auto p = parsed<BladegenArgs>(
-      {"--kind", "compressor", "--points", "--noise", "0.01", "-o", "b.ply", "--truth", "t.csv", "--at", "5,10"});
+  const auto p = parsed<BladegenArgs>({"--kind", "compressor", "--points", "--noise", "0.01", "-o", "b.ply",
+                                       "--truth", "t.csv", "--at", "5,10"});
   REQUIRE(p.code == -1);
   CHECK(p.args.kind == "compressor");
   CHECK(p.args.points);

@@ -24,13 +24,31 @@ void write_truth(const std::string& path, const section::BladeDesign& blade, con
       "area,centroid_x,centroid_y,perimeter\n";
   for (double z : at) {
     if (z < 0 || z > blade.span)
-      throw section::Error("bladegen: --at " + section::format_number(z) + " is outside the span [0, " + section::format_number(blade.span) + "]");
+      throw section::Error("bladegen: --at " + section::format_number(z) + " is outside the span [0, " +
+                           section::format_number(blade.span) + "]");
     const section::SectionTruth t = section::section_truth(blade.at(z));
-    const double v[] = {z, t.chord, t.stagger, t.inlet_angle, t.outlet_angle, t.camber_length,
-                        t.max_thickness, t.max_thickness_pos, t.le_radius, t.te_radius,
-                        t.le_point.x(), t.le_point.y(), t.te_point.x(), t.te_point.y(),
-                        t.le_center.x(), t.le_center.y(), t.te_center.x(), t.te_center.y(),
-                        t.area, t.centroid.x(), t.centroid.y(), t.perimeter};
+    const double v[] = {z,
+                        t.chord,
+                        t.stagger,
+                        t.inlet_angle,
+                        t.outlet_angle,
+                        t.camber_length,
+                        t.max_thickness,
+                        t.max_thickness_pos,
+                        t.le_radius,
+                        t.te_radius,
+                        t.le_point.x(),
+                        t.le_point.y(),
+                        t.te_point.x(),
+                        t.te_point.y(),
+                        t.le_center.x(),
+                        t.le_center.y(),
+                        t.te_center.x(),
+                        t.te_center.y(),
+                        t.area,
+                        t.centroid.x(),
+                        t.centroid.y(),
+                        t.perimeter};
     for (std::size_t i = 0; i < std::size(v); ++i) out += (i ? "," : "") + section::format_number(v[i]);
     out += '\n';
   }
@@ -41,8 +59,10 @@ void write_truth(const std::string& path, const section::BladeDesign& blade, con
 }
 
 void run_bladegen(const BladegenArgs& a) {
-  const section::BladeDesign blade = a.kind == "turbine" ? section::turbine_blade() : section::compressor_blade();
-  if (a.points && a.second_view.empty()) section::write_cloud(a.output, section::generate_scan(blade, a.scan).cloud);
+  const section::BladeDesign blade =
+      a.kind == "turbine" ? section::turbine_blade() : section::compressor_blade();
+  if (a.points && a.second_view.empty())
+    section::write_cloud(a.output, section::generate_scan(blade, a.scan).cloud);
   if (a.points && !a.second_view.empty()) {
     const std::vector<section::Cloud> views = section::views_of(section::generate_scan(blade, a.scan));
     section::write_cloud(a.output, views[0]);
@@ -54,4 +74,6 @@ void run_bladegen(const BladegenArgs& a) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return section::tool::run<BladegenArgs>(argc, argv, run_bladegen); }
+int main(int argc, char** argv) {
+  return section::tool::run<BladegenArgs>(argc, argv, run_bladegen);
+}

@@ -53,6 +53,7 @@ void run_fitspline(const FitsplineArgs& a, const std::string& history) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return section::tool::run<FitsplineArgs>(
-      argc, argv, [&](const FitsplineArgs& args) { run_fitspline(args, section::tool::command_line(argc, argv)); });
+  return section::tool::run<FitsplineArgs>(argc, argv, [&](const FitsplineArgs& args) {
+    run_fitspline(args, section::tool::command_line(argc, argv));
+  });
 }

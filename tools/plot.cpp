@@ -49,4 +49,6 @@ void run_plot(const PlotArgs& a) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return section::tool::run<PlotArgs>(argc, argv, run_plot); }
+int main(int argc, char** argv) {
+  return section::tool::run<PlotArgs>(argc, argv, run_plot);
+}

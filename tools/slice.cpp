@@ -89,7 +89,8 @@ section::Cloud merged_views(const SliceArgs& a, SectionWriter& out) {
         what += " (view " + std::to_string(k) + ": " + names[k] + ")";
     throw section::Error(what);
   }
-  for (std::size_t k = 1; k < names.size(); ++k) out.notes.push_back(section::describe(reg.views[k], names[k]));
+  for (std::size_t k = 1; k < names.size(); ++k)
+    out.notes.push_back(section::describe(reg.views[k], names[k]));
   return section::merge_views(clouds, reg);
 }
 

@@ -26,10 +26,14 @@ namespace {
 void declare_scan(CLI::App& app, ScanOptions& scan) {
   add_checked(app, "--spacing", scan.spacing, "Scan point spacing, mm", positive);
   add_checked(app, "--noise", scan.noise, "Noise sigma along the surface normal, mm", CLI::NonNegativeNumber);
-  add_checked(app, "--holes", scan.holes, "Number of unscanned patches (0.5-2 mm across)", CLI::NonNegativeNumber);
-  add_checked(app, "--density-min", scan.density_min, "Lowest relative local density, (0, 1]", CLI::Range(1e-6, 1.0));
-  add_checked(app, "--misregistration", scan.misregistration, "Offset of the second view, mm", CLI::NonNegativeNumber);
-  add_checked(app, "--outliers", scan.outlier_fraction, "Fraction of points replaced by outliers", CLI::Range(0.0, 0.999));
+  add_checked(app, "--holes", scan.holes, "Number of unscanned patches (0.5-2 mm across)",
+              CLI::NonNegativeNumber);
+  add_checked(app, "--density-min", scan.density_min, "Lowest relative local density, (0, 1]",
+              CLI::Range(1e-6, 1.0));
+  add_checked(app, "--misregistration", scan.misregistration, "Offset of the second view, mm",
+              CLI::NonNegativeNumber);
+  add_checked(app, "--outliers", scan.outlier_fraction, "Fraction of points replaced by outliers",
+              CLI::Range(0.0, 0.999));
   app.add_option("--seed", scan.seed, "Random seed")->capture_default_str();
   app.add_option("--z-min", scan.z_min, "Lowest scanned height, mm")->capture_default_str();
   app.add_option("--z-max", scan.z_max, "Highest scanned height, mm; below --z-min = the whole span")
@@ -43,15 +47,19 @@ void BladegenArgs::declare(CLI::App& app) {
   auto* o_points = app.add_flag("--points", points, "Write a scanned point cloud");
   auto* o_mesh = app.add_flag("--mesh", mesh, "Write a closed triangle mesh");
   o_points->excludes(o_mesh);
-  app.add_option("-o,--output", output, "Output file (.ply .xyz; .stl .obj .off .ply for --mesh), - = stdout (points)");
+  app.add_option("-o,--output", output,
+                 "Output file (.ply .xyz; .stl .obj .off .ply for --mesh), - = stdout (points)");
   declare_scan(app, scan);
-  add_checked(app, "--profile-points", profile_points, "Mesh: points per section ring", CLI::Range(16, 1000000));
+  add_checked(app, "--profile-points", profile_points, "Mesh: points per section ring",
+              CLI::Range(16, 1000000));
   add_checked(app, "--layers", layers, "Mesh: number of section rings along the span", CLI::Range(2, 100000));
   app.add_option("--second-view", second_view,
                  "Points: write the second view's points to this file and only the first view's to -o "
                  "(the views apart, as a scanner delivers them; slice --view registers them)");
   auto* o_truth = app.add_option("--truth", truth, "Write the true section parameters (CSV) to this file");
-  app.add_option("--at", at, "Heights of the --truth sections, comma-separated, mm")->delimiter(',')->needs(o_truth);
+  app.add_option("--at", at, "Heights of the --truth sections, comma-separated, mm")
+      ->delimiter(',')
+      ->needs(o_truth);
   app.callback([this] {
     if ((points || mesh) && output.empty()) throw CLI::RequiredError("-o/--output");
     if (!points && !mesh && truth.empty()) throw CLI::RequiredError("one of --points, --mesh or --truth");

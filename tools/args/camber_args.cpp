@@ -29,8 +29,10 @@ std::vector<double> numbers(const std::string& text, const std::string& flag) {
     if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
     double value = 0;
     const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (digits.empty() || r.ec != std::errc() || r.ptr != digits.data() + digits.size() || !std::isfinite(value))
-      throw CLI::ValidationError(flag, "expected numbers separated by commas, found '" + std::string(item) + "'");
+    if (digits.empty() || r.ec != std::errc() || r.ptr != digits.data() + digits.size() ||
+        !std::isfinite(value))
+      throw CLI::ValidationError(flag,
+                                 "expected numbers separated by commas, found '" + std::string(item) + "'");
     out.push_back(value);
     if (comma == std::string_view::npos) break;
     rest.remove_prefix(comma + 1);
@@ -69,25 +71,33 @@ std::string direction_ok(const std::vector<double>& v) {
 void declare_edges(CLI::App& app, CamberArgs& a) {
   CamberOptions& o = a.options;
   add_checked(app, "--edge", a.edge,
-                 "Edge model: round (circle fitted to every edge) or auto "
-                 "(blunt and sharp edges get radius 0)", CLI::IsMember({"round", "auto"}));
+              "Edge model: round (circle fitted to every edge) or auto "
+              "(blunt and sharp edges get radius 0)",
+              CLI::IsMember({"round", "auto"}));
   add_checked(app, "--edge-arc", o.edge_arc,
-                 "Degrees of a fixed edge arc the edge circle is fitted to (0 = grown geometrically)", CLI::Range(0.0, 270.0));
+              "Degrees of a fixed edge arc the edge circle is fitted to (0 = grown geometrically)",
+              CLI::Range(0.0, 270.0));
   add_checked(app, "--edge-core", o.edge_core,
-                 "Grown arc: half-angle in degrees of the core arc around the edge point that starts the growth", CLI::Range(5.0, 90.0));
+              "Grown arc: half-angle in degrees of the core arc around the edge point that starts the growth",
+              CLI::Range(5.0, 90.0));
   add_checked(app, "--edge-residual", o.edge_residual,
-                 "Grown arc: the arc grows while the profile stays within this many core-fit rms of the circle", CLI::Range(0.5, 100.0));
+              "Grown arc: the arc grows while the profile stays within this many core-fit rms of the circle",
+              CLI::Range(0.5, 100.0));
   add_checked(app, "--edge-noise-residual", o.edge_noise_residual,
-                 "Grown arc: that noise level is at least this many times the points' rms distance to the "
-                 "profile (the spline's noise ripples over the arc; 0 = off)", CLI::Range(0.0, 100.0));
+              "Grown arc: that noise level is at least this many times the points' rms distance to the "
+              "profile (the spline's noise ripples over the arc; 0 = off)",
+              CLI::Range(0.0, 100.0));
   add_checked(app, "--edge-hole", o.edge_hole,
-                 "Edge radii: a stretch without measured points this long, beginning within --edge-hole-reach "
-                 "radii of the edge point, makes the edge 'partly not measured' (an issue)", positive);
+              "Edge radii: a stretch without measured points this long, beginning within --edge-hole-reach "
+              "radii of the edge point, makes the edge 'partly not measured' (an issue)",
+              positive);
   add_checked(app, "--edge-hole-reach", o.edge_hole_reach,
-                 "Edge radii along the profile from the edge point within which such a stretch must begin", CLI::NonNegativeNumber);
-  app.add_flag("--edge-on-spline", a.edge_on_spline,
-               "Fit the edge circles to the spline's edge arcs alone (default: refitted to the measured points "
-               "on the arcs, when the stream has them)");
+              "Edge radii along the profile from the edge point within which such a stretch must begin",
+              CLI::NonNegativeNumber);
+  app.add_flag(
+      "--edge-on-spline", a.edge_on_spline,
+      "Fit the edge circles to the spline's edge arcs alone (default: refitted to the measured points "
+      "on the arcs, when the stream has them)");
 }
 
 }  // namespace
@@ -108,8 +118,10 @@ void CamberArgs::declare(CLI::App& app) {
       ->check(numbers_check("--le-direction", direction_ok));
   declare_edges(app, *this);
   add_checked(app, "--tangent-span", options.tangent_span,
-                 "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)", CLI::Range(0.0, 0.5));
-  app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
+              "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)",
+              CLI::Range(0.0, 0.5));
+  app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
+      ->check(CLI::NonNegativeNumber);
   app.callback([this] {
     if (!stations.empty()) options.stations = numbers(stations, "--stations");
     if (!le_direction.empty()) {

@@ -21,8 +21,10 @@ void PlotArgs::declare(CLI::App& app) {
   auto* section_flag = app.add_option("--section", only, "Draw only section N (SVG)");
   app.add_flag("--html", html, "Write one HTML page holding every section")->excludes("--section");
   add_checked(app, "--width", options.width, "Drawing width, px", CLI::Range(300.0, 20000.0));
-  add_checked(app, "--inset", options.inset_size, "Edge inset side, px (0 = no insets)", CLI::Range(0.0, 10000.0));
-  add_checked(app, "--inset-radii", options.inset_radii, "Inset half-width in edge radii", CLI::Range(1.05, 100.0));
+  add_checked(app, "--inset", options.inset_size, "Edge inset side, px (0 = no insets)",
+              CLI::Range(0.0, 10000.0));
+  add_checked(app, "--inset-radii", options.inset_radii, "Inset half-width in edge radii",
+              CLI::Range(1.05, 100.0));
   app.add_flag("--no-points", no_points, "Do not draw the measured points");
   app.add_flag("--no-stations", no_stations, "Do not draw the thickness-station circles");
   app.add_flag("--no-insets", no_insets, "Do not draw the edge insets");

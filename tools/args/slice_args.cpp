@@ -34,9 +34,10 @@ namespace {
 // --normal, --at, --count, --planes: the planes.
 void declare_planes(CLI::App& app, SliceArgs& a) {
   app.add_option("--normal", a.normal, "Plane normal x,y,z")->delimiter(',')->capture_default_str();
-  auto* o_at = app.add_option("--at", a.at, "Plane offsets along the normal, comma-separated")->delimiter(',');
-  auto* o_count =
-      app.add_option("--count", a.count, "Number of planes spread evenly over the part")->check(CLI::Range(1, 100000));
+  auto* o_at =
+      app.add_option("--at", a.at, "Plane offsets along the normal, comma-separated")->delimiter(',');
+  auto* o_count = app.add_option("--count", a.count, "Number of planes spread evenly over the part")
+                      ->check(CLI::Range(1, 100000));
   auto* o_planes = app.add_option("--planes", a.planes_file, "CSV file of planes (origin and normal)");
   o_at->excludes(o_count)->excludes(o_planes);
   o_count->excludes(o_planes);
@@ -44,21 +45,28 @@ void declare_planes(CLI::App& app, SliceArgs& a) {
 
 // --slab, --cell and the band's and the gap fill's options.
 void declare_slab(CLI::App& app, SliceOptions& options) {
-  add_checked(app, "--slab", options.slab, "Slab width d; 0 = the estimated point spacing", CLI::NonNegativeNumber);
-  add_checked(app, "--cell", options.morphology.cell, "Raster cell h; 0 = the estimated spacing in the section", CLI::NonNegativeNumber);
+  add_checked(app, "--slab", options.slab, "Slab width d; 0 = the estimated point spacing",
+              CLI::NonNegativeNumber);
+  add_checked(app, "--cell", options.morphology.cell,
+              "Raster cell h; 0 = the estimated spacing in the section", CLI::NonNegativeNumber);
   add_checked(app, "--band-spacing", options.band_spacing,
-                 "Widen the slab into a drift-corrected band until the profile holds one point per this "
-                 "length; 0 = the slab alone", CLI::NonNegativeNumber);
-  add_checked(app, "--band-max", options.band_max, "Largest half width of the band, in slab widths (>= 0.5)", CLI::Range(0.5, 1e6));
+              "Widen the slab into a drift-corrected band until the profile holds one point per this "
+              "length; 0 = the slab alone",
+              CLI::NonNegativeNumber);
+  add_checked(app, "--band-max", options.band_max, "Largest half width of the band, in slab widths (>= 0.5)",
+              CLI::Range(0.5, 1e6));
   add_checked(app, "--band-sparse-max", options.band_sparse_max,
-                 "Widen the band beside a sparse stretch of the profile up to this half width, in slab "
-                 "widths; 0 = off", CLI::Range(0.0, 1e6));
-  app.add_flag("--no-fill", [&options](std::int64_t) { options.fill_gaps = false; },
-               "Do not fill the slab's gaps from points beside the plane");
+              "Widen the band beside a sparse stretch of the profile up to this half width, in slab "
+              "widths; 0 = off",
+              CLI::Range(0.0, 1e6));
+  app.add_flag(
+      "--no-fill", [&options](std::int64_t) { options.fill_gaps = false; },
+      "Do not fill the slab's gaps from points beside the plane");
   app.add_option("--fill-reach", options.fill.reach,
                  "Farthest distance from the plane of the points that fill gaps; 0 = 12 slab widths")
       ->check(CLI::NonNegativeNumber);
-  add_checked(app, "--fill-gap", options.fill.min_gap, "Fill gaps longer than this many slab widths", positive);
+  add_checked(app, "--fill-gap", options.fill.min_gap, "Fill gaps longer than this many slab widths",
+              positive);
 }
 
 }  // namespace
@@ -71,12 +79,15 @@ void SliceArgs::declare(CLI::App& app) {
                  "Another view of the same part (a point cloud), registered onto the input "
                  "before slicing; repeat for more views");
   add_checked(app, "--view-reach", register_options.reach,
-                 "Views: pairs are sought within this distance; 0 = 3 x the input's point spacing", CLI::NonNegativeNumber);
-  app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
+              "Views: pairs are sought within this distance; 0 = 3 x the input's point spacing",
+              CLI::NonNegativeNumber);
+  app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--units", units, "Length unit recorded in the stream")->capture_default_str();
   app.callback([this] {
     if (normal.size() != 3) throw CLI::ValidationError("--normal takes three comma-separated numbers");
-    if (at.empty() && count == 0 && planes_file.empty()) throw CLI::RequiredError("one of --at, --count or --planes");
+    if (at.empty() && count == 0 && planes_file.empty())
+      throw CLI::RequiredError("one of --at, --count or --planes");
   });
 }
 

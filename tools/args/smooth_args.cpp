@@ -17,15 +17,21 @@ const char* const SmoothArgs::description =
 
 void SmoothArgs::declare(CLI::App& app) {
   add_common(app, common);
-  add_checked(app, "--length", options.smoothing_length, "Smoothing length L (stream units); 0 = from --a or --spacings", CLI::NonNegativeNumber);
+  add_checked(app, "--length", options.smoothing_length,
+              "Smoothing length L (stream units); 0 = from --a or --spacings", CLI::NonNegativeNumber);
   add_checked(app, "--spacings", options.relative_length,
-                 "Smoothing length in mean point spacings, used when --length and --a are 0", CLI::NonNegativeNumber);
-  add_checked(app, "--a", options.a, "Explicit curvature weight a (units^3 with b = 1); 0 = not used", CLI::NonNegativeNumber);
+              "Smoothing length in mean point spacings, used when --length and --a are 0",
+              CLI::NonNegativeNumber);
+  add_checked(app, "--a", options.a, "Explicit curvature weight a (units^3 with b = 1); 0 = not used",
+              CLI::NonNegativeNumber);
   add_checked(app, "--b", options.b, "Closeness weight b", positive);
-  add_checked(app, "--solver", solver, "Linear solver: cholmod or gauss-seidel", CLI::IsMember({"cholmod", "gauss-seidel", "gauss_seidel"}));
-  add_checked(app, "--max-iterations", options.max_iterations, "Cap on outer iterations", CLI::Range(1, 100000));
+  add_checked(app, "--solver", solver, "Linear solver: cholmod or gauss-seidel",
+              CLI::IsMember({"cholmod", "gauss-seidel", "gauss_seidel"}));
+  add_checked(app, "--max-iterations", options.max_iterations, "Cap on outer iterations",
+              CLI::Range(1, 100000));
   app.add_option("--report", report, "Write the per-loop statistics (CSV) to FILE");
-  app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
+      ->check(CLI::NonNegativeNumber);
   app.callback([this] { options.solver = parse_smooth_solver(solver); });
 }
 

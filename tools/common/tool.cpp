@@ -24,10 +24,8 @@ std::string basename_of(const std::string& path) {
 }  // namespace
 
 void add_common(CLI::App& app, Common& common) {
-  app.add_option("input,-i,--input", common.input, "Input file, - for standard input")
-      ->capture_default_str();
-  app.add_option("-o,--output", common.output, "Output file, - for standard output")
-      ->capture_default_str();
+  app.add_option("input,-i,--input", common.input, "Input file, - for standard input")->capture_default_str();
+  app.add_option("-o,--output", common.output, "Output file, - for standard output")->capture_default_str();
 }
 
 int parse_args(const std::string& name, const std::string& description, int argc, char** argv,
@@ -118,7 +116,9 @@ void warn_issues(const std::string& stage, const section::Stream& stream, bool l
   }
 }
 
-std::string input_name(const std::string& input) { return input == "-" ? "<stdin>" : input; }
+std::string input_name(const std::string& input) {
+  return input == "-" ? "<stdin>" : input;
+}
 
 bool ends_with(const std::string& text, const std::string& tail) {
   return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;

@@ -38,15 +38,17 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
 /// it without the binary.
 template <class Args>
 int parse(int argc, char** argv, Args& args, std::ostream& out, std::ostream& err) {
-  return parse_args(Args::name, Args::description, argc, argv, [&](CLI::App& app) { args.declare(app); }, out, err);
+  return parse_args(
+      Args::name, Args::description, argc, argv, [&](CLI::App& app) { args.declare(app); }, out, err);
 }
 
 /// The main of a tool: argv into `Args`, then `body` under run_tool's single catch.
 template <class Args>
 int run(int argc, char** argv, const std::function<void(const Args&)>& body) {
   Args args;
-  return run_tool(Args::name, Args::description, argc, argv, [&](CLI::App& app) { args.declare(app); },
-                  [&] { body(args); });
+  return run_tool(
+      Args::name, Args::description, argc, argv, [&](CLI::App& app) { args.declare(app); },
+      [&] { body(args); });
 }
 
 /// Calls `stage`; a section::Error it throws is rethrown with the input's name in front

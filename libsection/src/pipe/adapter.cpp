@@ -41,12 +41,14 @@ std::map<std::pair<int, int>, LoopRows> loop_rows(const Table& t, const std::str
 
 void clear_issues(Stream& stream, const std::string& stage) {
   auto& issues = stream.issues;
-  issues.erase(std::remove_if(issues.begin(), issues.end(), [&](const SectionIssue& i) { return i.stage == stage; }),
-               issues.end());
+  issues.erase(
+      std::remove_if(issues.begin(), issues.end(), [&](const SectionIssue& i) { return i.stage == stage; }),
+      issues.end());
 }
 
-void run_slots(std::size_t count, int threads, const std::vector<Table*>& tables, std::vector<SectionIssue>& issues,
-               const std::string& component, const std::function<void(std::size_t item, Slot& slot)>& make,
+void run_slots(std::size_t count, int threads, const std::vector<Table*>& tables,
+               std::vector<SectionIssue>& issues, const std::string& component,
+               const std::function<void(std::size_t item, Slot& slot)>& make,
                const std::function<SectionIssue(std::size_t item, const std::string& message)>& fail) {
   std::vector<Slot> slots(count);
   const std::string prefix = component + ": ";

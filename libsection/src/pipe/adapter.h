@@ -37,8 +37,9 @@ struct Slot {
 /// issue `fail(item, message)` makes, the message without the prefix `component: `. Then
 /// appends the slots' rows to `tables` and their issues to `issues`, in item order, so that
 /// the output is the same whatever the thread count.
-void run_slots(std::size_t count, int threads, const std::vector<Table*>& tables, std::vector<SectionIssue>& issues,
-               const std::string& component, const std::function<void(std::size_t item, Slot& slot)>& make,
+void run_slots(std::size_t count, int threads, const std::vector<Table*>& tables,
+               std::vector<SectionIssue>& issues, const std::string& component,
+               const std::function<void(std::size_t item, Slot& slot)>& make,
                const std::function<SectionIssue(std::size_t item, const std::string& message)>& fail);
 
 }  // namespace section::pipe

@@ -13,20 +13,25 @@ namespace section::pipe {
 namespace {
 
 // The edge's own scale: its radius, or a blunt edge's face width (0 for a sharp edge).
-double edge_size(const Edge& e) { return e.radius > 0 ? e.radius : e.face; }
+double edge_size(const Edge& e) {
+  return e.radius > 0 ? e.radius : e.face;
+}
 
-std::string join(std::string a, const std::string& b) { return a.empty() ? b : b.empty() ? a : a + ", " + b; }
+std::string join(std::string a, const std::string& b) {
+  return a.empty() ? b : b.empty() ? a : a + ", " + b;
+}
 
 // An edge that is not round: a flat face is reported with its width (never a circle);
 // other blunt and sharp edges as the edge model says.
 std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
   if (e.shape == EdgeShape::round) return std::string();
   if (e.face > 0)
-    return std::string(which) + " is " + edge_shape_name(EdgeShape::blunt) + ": a flat face " + format_number(e.face) +
-           " wide (radius reported as 0)";
+    return std::string(which) + " is " + edge_shape_name(EdgeShape::blunt) + ": a flat face " +
+           format_number(e.face) + " wide (radius reported as 0)";
   return std::string(which) + " looks " + edge_shape_name(e.shape) +
-         (model == EdgeModel::round ? std::string(" (fitted as ") + edge_shape_name(EdgeShape::round) + " anyway)"
-                                    : std::string(" (radius reported as 0)"));
+         (model == EdgeModel::round
+              ? std::string(" (fitted as ") + edge_shape_name(EdgeShape::round) + " anyway)"
+              : std::string(" (radius reported as 0)"));
 }
 
 // An edge whose point or arc lies over a hole in the measured points.
@@ -46,7 +51,8 @@ std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* whic
 
 // An edge covered only thanks to points the gap fill carried onto the plane: say so, with
 // how far they came from (their positions rest on the drift fitted beside the gap).
-std::string carried_note(const SectionFacts& f, const Edge& e, const std::string& hole_message, const char* which) {
+std::string carried_note(const SectionFacts& f, const Edge& e, const std::string& hole_message,
+                         const char* which) {
   const Measured& q = f.measured;
   if (q.carried.empty() || !hole_message.empty()) return std::string();
   const EdgeCoverage own = edge_coverage(f.curve, e, q.in_slab, f.options.edge_hole_reach);
@@ -68,10 +74,11 @@ std::string carried_note(const SectionFacts& f, const Edge& e, const std::string
 std::string circularity_note(const Edge& e, const char* which, double profile_noise) {
   if (e.circular || e.shape != EdgeShape::round) return std::string();
   char text[256];
-  std::snprintf(text, sizeof text,
-                "%s is not circular: the circle fitted to its %.0f-degree arc leaves it by %.3g rms, %.0f times "
-                "the points' rms distance to the profile; its radius and point depend on the arc taken",
-                which, e.arc, e.fit_rms, e.fit_rms / profile_noise);
+  std::snprintf(
+      text, sizeof text,
+      "%s is not circular: the circle fitted to its %.0f-degree arc leaves it by %.3g rms, %.0f times "
+      "the points' rms distance to the profile; its radius and point depend on the arc taken",
+      which, e.arc, e.fit_rms, e.fit_rms / profile_noise);
   return std::string(text);
 }
 
@@ -109,17 +116,19 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
     for (const auto& a : p)
       for (const auto& b : p0) gap = std::min(gap, (a - b).norm());
     char text[160];
-    std::snprintf(text, sizeof text, "%sloop %d: area %.3g against %.3g, %.3g from loop 0", out.empty() ? "" : "; ",
-                  key.second, area(p), area(p0), gap);
+    std::snprintf(text, sizeof text, "%sloop %d: area %.3g against %.3g, %.3g from loop 0",
+                  out.empty() ? "" : "; ", key.second, area(p), area(p0), gap);
     out += text;
     cut = cut || (area(p) < 0.2 * area(p0) && gap < 0.1 * (high - low).norm());
   }
   if (out.empty()) return "";
-  return " (" + out + ")" + (cut ? "; a small loop this close is often a piece of the profile cut off by a gap in the data" : "");
+  return " (" + out + ")" +
+         (cut ? "; a small loop this close is often a piece of the profile cut off by a gap in the data"
+              : "");
 }
 
-EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge, const std::vector<Eigen::Vector2d>& measured,
-                           double arc_reach) {
+EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
+                           const std::vector<Eigen::Vector2d>& measured, double arc_reach) {
   EdgeCoverage out;
   const double size = edge_size(edge);
   if (measured.empty() || !(size > 0)) return out;
@@ -144,14 +153,16 @@ EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge, const std::ve
   Eigen::Vector2d low = samples[half], high = samples[half];
   for (const auto& s : samples)
     if (s.allFinite()) low = low.cwiseMin(s), high = high.cwiseMax(s);
-  const int nx = static_cast<int>((high.x() - low.x()) / cell) + 1, ny = static_cast<int>((high.y() - low.y()) / cell) + 1;
+  const int nx = static_cast<int>((high.x() - low.x()) / cell) + 1,
+            ny = static_cast<int>((high.y() - low.y()) / cell) + 1;
   auto cell_of = [&](double v, double v0, int n) {
     return static_cast<int>(std::clamp(std::floor((v - v0) / cell), -1.0, double(n)));
   };
   std::vector<int> head(static_cast<std::size_t>(nx) * ny, -1), next(samples.size(), -1);
   for (int k = static_cast<int>(samples.size()) - 1; k >= 0; --k) {
     if (!samples[k].allFinite()) continue;
-    const std::size_t c = std::size_t(cell_of(samples[k].y(), low.y(), ny - 1)) * nx + cell_of(samples[k].x(), low.x(), nx - 1);
+    const std::size_t c =
+        std::size_t(cell_of(samples[k].y(), low.y(), ny - 1)) * nx + cell_of(samples[k].x(), low.x(), nx - 1);
     next[k] = head[c];
     head[c] = k;
   }
@@ -180,21 +191,23 @@ EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge, const std::ve
     }
     int e = k;
     while (e <= 2 * half && !covered[e]) ++e;
-    const double length = (e - k + 1) * h,
-                 distance = k > half ? (k - 1 - half) * h : e <= half ? (half - e) * h : 0.0;
+    const double length = (e - k + 1) * h, distance = k > half    ? (k - 1 - half) * h
+                                                      : e <= half ? (half - e) * h
+                                                                  : 0.0;
     if (distance <= arc_reach * size && length > out.hole) out.hole = length, out.hole_distance = distance;
     k = e;
   }
   return out;
 }
 
-
 void describe_issues(const SectionFacts& f, std::vector<SectionIssue>& issues) {
   const CamberResult& r = f.camber;
   const CamberOptions& opt = f.options;
-  const std::string le_msg = edge_note(f, r.le, f.le, "leading edge"), te_msg = edge_note(f, r.te, f.te, "trailing edge");
+  const std::string le_msg = edge_note(f, r.le, f.le, "leading edge"),
+                    te_msg = edge_note(f, r.te, f.te, "trailing edge");
   if (!le_msg.empty() || !te_msg.empty())
-    issues.push_back({f.section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
+    issues.push_back(
+        {f.section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
   // A camber line that strays from the medial axis (no inscribed circle solved there)
   // is not a measured one: say where and by how much.
   if (r.off_axis > 0) {

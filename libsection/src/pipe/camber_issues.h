@@ -38,8 +38,8 @@ struct EdgeCoverage {
 
 /// The coverage of `edge` of `curve` by the `measured` points; the hole must begin within
 /// `arc_reach` edge sizes (radius, or a blunt edge's face width) of the edge point.
-EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge, const std::vector<Eigen::Vector2d>& measured,
-                           double arc_reach);
+EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
+                           const std::vector<Eigen::Vector2d>& measured, double arc_reach);
 
 /// Where a section's other loops lie, for the message that refuses it ("" when it has none).
 std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section);

@@ -27,8 +27,8 @@ std::map<int, std::vector<Eigen::Vector2d>> skeletons(const Stream& stream) {
   std::map<int, std::vector<Eigen::Vector2d>> out;
   const Table* t = schema::skeleton.find(stream);
   if (!t) return out;
-  const long cs = t->find_column(col::section), cl = t->find_column(col::loop), ci = t->find_column(col::index),
-             cu = t->find_column(col::u), cv = t->find_column(col::v);
+  const long cs = t->find_column(col::section), cl = t->find_column(col::loop),
+             ci = t->find_column(col::index), cu = t->find_column(col::u), cv = t->find_column(col::v);
   if (cs < 0 || cu < 0 || cv < 0) return out;
   std::map<int, std::map<int, Eigen::Vector2d>> rows;
   for (std::size_t r = 0; r < t->rows(); ++r) {
@@ -99,14 +99,16 @@ CamberInput gather(const Stream& stream) {
 
 // A section's options: the leading-edge direction in its plane, its profile's noise, and
 // its skeleton as the medial axis's seed.
-CamberOptions section_options(const CamberOptions& options, const CamberInput& in, int section, const Frame& f) {
+CamberOptions section_options(const CamberOptions& options, const CamberInput& in, int section,
+                              const Frame& f) {
   CamberOptions opt = options;
   if (opt.le_direction.norm() == 0 && opt.le_direction_3d.norm() > 0) {
     const Eigen::Vector3d& d = opt.le_direction_3d;
     opt.le_direction = {d.dot(f.u), d.dot(f.v)};
     if (!(opt.le_direction.norm() > 1e-6 * d.norm()))
-      throw Error("camber: the leading-edge direction (" + format_number(d.x()) + ", " + format_number(d.y()) + ", " +
-                  format_number(d.z()) + ") is normal to the plane of section " + std::to_string(section) +
+      throw Error("camber: the leading-edge direction (" + format_number(d.x()) + ", " +
+                  format_number(d.y()) + ", " + format_number(d.z()) +
+                  ") is normal to the plane of section " + std::to_string(section) +
                   ": it cannot tell the edges apart there");
   }
   if (const auto n = in.noise.find(section); n != in.noise.end() && opt.profile_noise <= 0)
@@ -154,13 +156,15 @@ void add_rows(int section, const Frame& f, const SectionCamber& m, pipe::Slot& s
     schema::camber.append(slot.rows[camber_rows],
                           {section, i, r.s[i], r.points[i], f.to_world(r.points[i]), r.radius[i]});
   const SectionParams& p = m.params;
-  schema::params.append(slot.rows[params_rows], {section, p, r, f.to_world(p.le_point), f.to_world(p.te_point),
-                                                 f.to_world(p.centroid), m.le.around, m.te.around});
+  schema::params.append(slot.rows[params_rows],
+                        {section, p, r, f.to_world(p.le_point), f.to_world(p.te_point),
+                         f.to_world(p.centroid), m.le.around, m.te.around});
   for (std::size_t i = 0; i < m.stations.size(); ++i)
     schema::thickness.append(slot.rows[thickness_rows], {section, i, m.stations[i]});
   for (int side = 0; side < 2; ++side) {
     const auto& pts = side == 0 ? m.sides.pressure : m.sides.suction;
-    for (std::size_t i = 0; i < pts.size(); ++i) schema::sides.append(slot.rows[sides_rows], {section, side, i, pts[i]});
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      schema::sides.append(slot.rows[sides_rows], {section, side, i, pts[i]});
   }
 }
 
@@ -168,8 +172,9 @@ void add_rows(int section, const Frame& f, const SectionCamber& m, pipe::Slot& s
 void camber_section(int section, const BSpline& curve, const CamberInput& in, const CamberOptions& options,
                     pipe::Slot& slot) {
   if (in.loops.at(section) > 1)
-    throw Error("camber: section " + std::to_string(section) + " has " + std::to_string(in.loops.at(section)) +
-                " loops; camber measures single-profile sections" + pipe::other_loops(in.curves, section));
+    throw Error("camber: section " + std::to_string(section) + " has " +
+                std::to_string(in.loops.at(section)) + " loops; camber measures single-profile sections" +
+                pipe::other_loops(in.curves, section));
   const auto fit = in.frames.find(section);
   const Frame f = fit != in.frames.end() ? fit->second : Frame{};
   CamberOptions opt = section_options(options, in, section, f);
@@ -192,9 +197,11 @@ Stream profile_stream(const BSpline& spline, double rms) {
   Table head = schema::splines.table("iterations");
   schema::splines.add(head, {0, 0, fit});
   Table knots = schema::spline_knots.table();
-  for (std::size_t i = 0; i < spline.knots.size(); ++i) schema::spline_knots.add(knots, {0, 0, i, spline.knots[i]});
+  for (std::size_t i = 0; i < spline.knots.size(); ++i)
+    schema::spline_knots.add(knots, {0, 0, i, spline.knots[i]});
   Table ctrl = schema::spline_ctrl.table();
-  for (std::size_t i = 0; i < spline.control.size(); ++i) schema::spline_ctrl.add(ctrl, {0, 0, i, spline.control[i]});
+  for (std::size_t i = 0; i < spline.control.size(); ++i)
+    schema::spline_ctrl.add(ctrl, {0, 0, i, spline.control[i]});
   stream.put(head);
   stream.put(knots);
   stream.put(ctrl);
@@ -203,14 +210,16 @@ Stream profile_stream(const BSpline& spline, double rms) {
 
 void camber_stream(Stream& stream, const CamberOptions& options) {
   const CamberInput in = gather(stream);
-  Table camber = schema::camber.table(), params = schema::params.table(), thickness = schema::thickness.table(),
-        sides = schema::sides.table();
+  Table camber = schema::camber.table(), params = schema::params.table(),
+        thickness = schema::thickness.table(), sides = schema::sides.table();
   std::vector<std::pair<int, const BSpline*>> work;
   for (const auto& [key, curve] : in.curves)
     if (key.second == 0) work.push_back({key.first, &curve});
   pipe::run_slots(
       work.size(), options.threads, {&camber, &params, &thickness, &sides}, stream.issues, "camber",
-      [&](std::size_t w, pipe::Slot& slot) { camber_section(work[w].first, *work[w].second, in, options, slot); },
+      [&](std::size_t w, pipe::Slot& slot) {
+        camber_section(work[w].first, *work[w].second, in, options, slot);
+      },
       [&](std::size_t w, const std::string& message) {
         const int section = work[w].first;
         return SectionIssue{section, in.loops.at(section) > 1 ? -1 : 0, "camber", message};

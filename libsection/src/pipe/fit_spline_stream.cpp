@@ -31,7 +31,8 @@ void add_samples(int section, int loop, const BSpline& c, const Frame& frame, co
     cum[i + 1] = cum[i] + arc_length(c, ts[i], i + 1 < ts.size() ? ts[i + 1] : c.t_max());
   const double length = cum.back();
   int count = options.samples;
-  if (options.sample_spacing > 0) count = std::max(3, static_cast<int>(std::ceil(length / options.sample_spacing)));
+  if (options.sample_spacing > 0)
+    count = std::max(3, static_cast<int>(std::ceil(length / options.sample_spacing)));
   std::size_t seg = 0;
   for (int i = 0; i < count; ++i) {
     const double target = length * i / count;
@@ -56,7 +57,8 @@ struct FitInput {
 
 // Fits one loop into its slot: the first curve from its smoothed points when it has 8 or
 // more, else from the measured ones.
-void fit_loop(const std::pair<int, int>& key, const pipe::LoopRows& rows, const FitInput& in, pipe::Slot& slot) {
+void fit_loop(const std::pair<int, int>& key, const pipe::LoopRows& rows, const FitInput& in,
+              pipe::Slot& slot) {
   const auto [section, loop] = key;
   Points q;
   for (const auto& row : rows) q.push_back(row.second);
@@ -72,10 +74,12 @@ void fit_loop(const std::pair<int, int>& key, const pipe::LoopRows& rows, const 
     schema::spline_knots.append(slot.rows[knots_rows], {section, loop, i, c.knots[i]});
   for (std::size_t i = 0; i < c.control.size(); ++i)
     schema::spline_ctrl.append(slot.rows[ctrl_rows], {section, loop, i, c.control[i]});
-  for (std::size_t i = 0; i < r.gaps.size(); ++i) schema::gaps.append(slot.rows[gaps_rows], {section, loop, i, r.gaps[i]});
+  for (std::size_t i = 0; i < r.gaps.size(); ++i)
+    schema::gaps.append(slot.rows[gaps_rows], {section, loop, i, r.gaps[i]});
   if (in.samples) {
     const auto f = in.frames.find(section);
-    add_samples(section, loop, c, f == in.frames.end() ? Frame{} : f->second, in.options, slot.rows[samples_rows]);
+    add_samples(section, loop, c, f == in.frames.end() ? Frame{} : f->second, in.options,
+                slot.rows[samples_rows]);
   }
 }
 
@@ -89,8 +93,8 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
   in.options = options;
   in.samples = options.samples > 0 || options.sample_spacing > 0;
   pipe::clear_issues(stream, "fitspline");
-  std::vector<Table> tables = {schema::splines.table(), schema::spline_knots.table(), schema::spline_ctrl.table(),
-                               schema::gaps.table(), schema::samples.table()};
+  std::vector<Table> tables = {schema::splines.table(), schema::spline_knots.table(),
+                               schema::spline_ctrl.table(), schema::gaps.table(), schema::samples.table()};
   std::vector<std::pair<std::pair<int, int>, const pipe::LoopRows*>> work;
   for (const auto& [key, rows] : in.measured)
     if (!stream.failed(key.first, key.second)) work.push_back({key, &rows});
@@ -121,7 +125,8 @@ std::map<std::pair<int, int>, std::vector<FitSplineResult::Gap>> gaps(const Stre
     rows[{static_cast<int>(g->at(r, cs)), static_cast<int>(g->at(r, cl))}].push_back(
         {g->at(r, ci), {g->at(r, ca), g->at(r, cb), g->at(r, cn)}});
   for (auto& [key, list] : rows) {
-    std::stable_sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::stable_sort(list.begin(), list.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
     for (const auto& entry : list) out[key].push_back(entry.second);
   }
   return out;
@@ -163,8 +168,8 @@ std::map<std::pair<int, int>, BSpline> splines(const Stream& stream) {
     const std::size_t expect = b.closed ? b.control.size() + 1 : b.control.size() + b.degree + 1;
     if (b.control.size() < static_cast<std::size_t>(b.degree + 1) || b.knots.size() != expect)
       throw Error("fit_spline: the spline of section " + std::to_string(key.first) + " loop " +
-                  std::to_string(key.second) + " has " + std::to_string(b.control.size()) + " control points and " +
-                  std::to_string(b.knots.size()) + " knots, which do not match");
+                  std::to_string(key.second) + " has " + std::to_string(b.control.size()) +
+                  " control points and " + std::to_string(b.knots.size()) + " knots, which do not match");
   }
   return out;
 }

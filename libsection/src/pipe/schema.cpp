@@ -16,11 +16,13 @@ namespace {
 // Columns most tables share.
 template <class Row>
 constexpr Column<Row> section_id() {
-  return {col::section, "id", "the section id (the plane's index)", [](const Row& r) { return double(r.section); }};
+  return {col::section, "id", "the section id (the plane's index)",
+          [](const Row& r) { return double(r.section); }};
 }
 template <class Row>
 constexpr Column<Row> loop_id() {
-  return {col::loop, "id", "the loop id within the section, 0 the profile (the loop enclosing the largest area)",
+  return {col::loop, "id",
+          "the loop id within the section, 0 the profile (the loop enclosing the largest area)",
           [](const Row& r) { return double(r.loop); }};
 }
 template <class Row>
@@ -63,7 +65,9 @@ constexpr auto frame_columns = by_section<FrameRow>({
     {"n_", xyz, "1", "the plane's unit normal n = u x v", [](auto& r) { return r.frame.n; }},
 });
 
-const Loop& loop_of(const LoopRow& r) { return r.morphology.loops[r.loop]; }
+const Loop& loop_of(const LoopRow& r) {
+  return r.morphology.loops[r.loop];
+}
 constexpr auto loop_columns = by_loop<LoopRow>({
     {"points", "count", "points kept in the loop", [](auto& r) { return double(loop_of(r).points.size()); }},
     {"dropped", "count", "outliers dropped: the section's count on loop 0, 0 on the others",
@@ -107,21 +111,24 @@ constexpr auto smooth_stats_columns = by_loop<SmoothStatsRow>({
 
 constexpr auto spline_columns = by_loop<SplineRow>({
     {col::degree, "1", "the B-spline's degree", [](auto& r) { return double(r.fit.spline.degree); }},
-    {col::closed, "flag", "1 when closed (periodic)", [](auto& r) { return r.fit.spline.closed ? 1.0 : 0.0; }},
-    {"control_points", "count", "its control points", [](auto& r) { return double(r.fit.spline.control.size()); }},
+    {col::closed, "flag", "1 when closed (periodic)",
+     [](auto& r) { return r.fit.spline.closed ? 1.0 : 0.0; }},
+    {"control_points", "count", "its control points",
+     [](auto& r) { return double(r.fit.spline.control.size()); }},
     {col::rms, "length", "RMS distance of the measured points (outliers excluded) to the curve",
      fit<&Fit::rms>},
     {"max", "length", "the largest such distance", fit<&Fit::max>},
     {"p95", "length", "their 95th percentile", fit<&Fit::p95>},
-    {"iterations", "count", "distance-minimisation iterations done", [](auto& r) { return double(r.fit.iterations); }},
+    {"iterations", "count", "distance-minimisation iterations done",
+     [](auto& r) { return double(r.fit.iterations); }},
     {"spacing", "length", "median spacing of the measured points along the curve", fit<&Fit::spacing>},
-    {"max_gap", "length", "the longest stretch of the curve without a measured point",
-     fit<&Fit::max_gap>},
+    {"max_gap", "length", "the longest stretch of the curve without a measured point", fit<&Fit::max_gap>},
     {"gap_start", "parameter", "the curve parameter where it begins", fit<&Fit::gap_start>},
     {"gap_end", "parameter", "where it ends (below gap_start when it wraps past the curve's last parameter)",
      fit<&Fit::gap_end>},
     {col::layers, "length",
-     "distance between two layers of points found along the loop (views merged with a misregistration: the curve "
+     "distance between two layers of points found along the loop (views merged with a misregistration: the "
+     "curve "
      "runs between them), 0 when none (docs/FITSPLINE.md, step 5)",
      fit<&Fit::layers>},
     {col::layers_length, "length", "the profile length over which they were found, 0 when none",
@@ -140,7 +147,8 @@ constexpr auto ctrl_columns = by_loop<LoopPoint>({
 
 constexpr auto gap_columns = by_loop<GapRow>({
     index_of<GapRow>("0 the longest hole, then shorter ones"),
-    {col::t_start, "parameter", "the curve parameter where the hole begins", [](auto& r) { return r.gap.start; }},
+    {col::t_start, "parameter", "the curve parameter where the hole begins",
+     [](auto& r) { return r.gap.start; }},
     {col::t_end, "parameter", "where it ends", [](auto& r) { return r.gap.end; }},
     {col::length, "length", "its length along the curve", [](auto& r) { return r.gap.length; }},
 });
@@ -149,10 +157,13 @@ constexpr auto sample_columns = by_loop<SampleRow>({
     index_of<SampleRow>("order along the curve"),
     {"t", "parameter", "the curve parameter", [](auto& r) { return r.t; }},
     point_uv<SampleRow>("the curve point"),
-    {"", xyz, "length", "the point in 3D, through the section's frame (the identity when the stream has no frames)",
+    {"", xyz, "length",
+     "the point in 3D, through the section's frame (the identity when the stream has no frames)",
      [](auto& r) { return r.world; }},
-    {"n", uv, "1", "the outward unit normal (the tangent turned clockwise)", [](auto& r) { return r.normal; }},
-    {"curvature", "1/length", "signed curvature, positive turning counterclockwise", [](auto& r) { return r.curvature; }},
+    {"n", uv, "1", "the outward unit normal (the tangent turned clockwise)",
+     [](auto& r) { return r.normal; }},
+    {"curvature", "1/length", "signed curvature, positive turning counterclockwise",
+     [](auto& r) { return r.curvature; }},
 });
 
 constexpr auto camber_columns = by_section<CamberRow>({
@@ -160,7 +171,8 @@ constexpr auto camber_columns = by_section<CamberRow>({
     {"s", "length", "arc length from the LE point", [](auto& r) { return r.s; }},
     point_uv<CamberRow>("the camber point"),
     {"", xyz, "length", "the camber point in 3D", [](auto& r) { return r.world; }},
-    {"radius", "length", "the inscribed radius (the end circle's on the extensions)", [](auto& r) { return r.radius; }},
+    {"radius", "length", "the inscribed radius (the end circle's on the extensions)",
+     [](auto& r) { return r.radius; }},
 });
 
 // Adding a params column is adding its line here (docs/FORMAT.md then lists it: test_schema).
@@ -181,55 +193,68 @@ constexpr auto params_columns = by_section<ParamsRow>({
     {"te_curvature_radius", "length", "the same at the TE point", param<&Params::te_curvature_radius>},
     {"le_shape", "code", "the leading edge's shape (edge shapes below)",
      [](auto& r) { return double(static_cast<int>(r.camber.le.shape)); }},
-    {"te_shape", "code", "the trailing edge's shape", [](auto& r) { return double(static_cast<int>(r.camber.te.shape)); }},
-    {"le_arc", "degrees", "the arc of the leading edge its circle is fitted to", [](auto& r) { return r.camber.le.arc; }},
+    {"te_shape", "code", "the trailing edge's shape",
+     [](auto& r) { return double(static_cast<int>(r.camber.te.shape)); }},
+    {"le_arc", "degrees", "the arc of the leading edge its circle is fitted to",
+     [](auto& r) { return r.camber.le.arc; }},
     {"te_arc", "degrees", "the same at the trailing edge", [](auto& r) { return r.camber.te.arc; }},
-    {"le_fit_rms", "length", "rms distance of that arc from its circle", [](auto& r) { return r.camber.le.fit_rms; }},
+    {"le_fit_rms", "length", "rms distance of that arc from its circle",
+     [](auto& r) { return r.camber.le.fit_rms; }},
     {"te_fit_rms", "length", "the same at the trailing edge", [](auto& r) { return r.camber.te.fit_rms; }},
     {"stagger", "degrees", "angle of the chord line, LE to TE", param<&Params::stagger>},
-    {"inlet_angle", "degrees", "the camber tangent (toward the TE) at the LE",
-     param<&Params::inlet_angle>},
+    {"inlet_angle", "degrees", "the camber tangent (toward the TE) at the LE", param<&Params::inlet_angle>},
     {"outlet_angle", "degrees", "its tangent at the TE", param<&Params::outlet_angle>},
     {"camber_angle", "degrees", "inlet_angle - outlet_angle: the turning", param<&Params::camber_angle>},
     {"area", "area", "the area the profile encloses", param<&Params::area>},
     {"centroid_", uv, "length", "its centroid", param<&Params::centroid>},
     {"le_", uv, "length", "the LE point", param<&Params::le_point>},
     {"te_", uv, "length", "the TE point", param<&Params::te_point>},
-    {"le_center_", uv, "length", "centre of the leading edge's circle", [](auto& r) { return r.camber.le.center; }},
-    {"te_center_", uv, "length", "centre of the trailing edge's circle", [](auto& r) { return r.camber.te.center; }},
+    {"le_center_", uv, "length", "centre of the leading edge's circle",
+     [](auto& r) { return r.camber.le.center; }},
+    {"te_center_", uv, "length", "centre of the trailing edge's circle",
+     [](auto& r) { return r.camber.te.center; }},
     {"le_", xyz, "length", "the LE point in 3D", [](auto& r) { return r.le; }},
     {"te_", xyz, "length", "the TE point in 3D", [](auto& r) { return r.te; }},
     {"centroid_", xyz, "length", "the centroid in 3D", [](auto& r) { return r.centroid; }},
-    {"caliper_chord", "length", "the profile's extent along the caliper line (touching the pressure side at both ends)",
+    {"caliper_chord", "length",
+     "the profile's extent along the caliper line (touching the pressure side at both ends)",
      param<&Params::caliper_chord>},
     {"caliper_stagger", "degrees", "angle of the caliper line, LE to TE", param<&Params::caliper_stagger>},
     {"caliper_found", "flag", "0 when the pressure side is not concave (the chord line is used)",
      [](auto& r) { return r.params.caliper_found ? 1.0 : 0.0; }},
-    {"pressure_side", "code", "+1 when the pressure (concave) side lies left of the LE-to-TE direction, -1 right",
+    {"pressure_side", "code",
+     "+1 when the pressure (concave) side lies left of the LE-to-TE direction, -1 right",
      [](auto& r) { return double(r.camber.pressure_side); }},
     {"le_by_direction", "flag", "1 when --le-direction set the LE, 0 when the maximum thickness did",
      [](auto& r) { return r.camber.le_by_direction ? 1.0 : 0.0; }},
-    {"le_face", "length", "width of the leading edge's flat face (its radius is then 0), 0 for an edge without one",
+    {"le_face", "length",
+     "width of the leading edge's flat face (its radius is then 0), 0 for an edge without one",
      [](auto& r) { return r.camber.le.face; }},
     {"te_face", "length", "the same at the trailing edge", [](auto& r) { return r.camber.te.face; }},
-    {"le_unmeasured", "length", "length of profile around the LE point that no measured point covers, 0 when one "
-     "lies at it", [](auto& r) { return r.le_unmeasured; }},
+    {"le_unmeasured", "length",
+     "length of profile around the LE point that no measured point covers, 0 when one "
+     "lies at it",
+     [](auto& r) { return r.le_unmeasured; }},
     {"te_unmeasured", "length", "the same at the TE point", [](auto& r) { return r.te_unmeasured; }},
 });
 
 constexpr auto thickness_columns = by_section<ThicknessRow>({
     index_of<ThicknessRow>("order of the stations"),
-    {"fraction", "1", "the station: arc length from the LE point / camber length", [](auto& r) { return r.station.fraction; }},
+    {"fraction", "1", "the station: arc length from the LE point / camber length",
+     [](auto& r) { return r.station.fraction; }},
     {"s", "length", "arc length from the LE point", [](auto& r) { return r.station.s; }},
     {"", uv, "length", "the inscribed circle's centre", [](auto& r) { return r.station.point; }},
     {"thickness", "length", "its diameter (on an extension: the width across the camber normal)",
      [](auto& r) { return r.station.thickness; }},
-    {"pressure_", uv, "length", "its contact with the pressure side", [](auto& r) { return r.station.pressure; }},
-    {"suction_", uv, "length", "its contact with the suction side", [](auto& r) { return r.station.suction; }},
+    {"pressure_", uv, "length", "its contact with the pressure side",
+     [](auto& r) { return r.station.pressure; }},
+    {"suction_", uv, "length", "its contact with the suction side",
+     [](auto& r) { return r.station.suction; }},
 });
 
 constexpr auto side_columns = by_section<SideRow>({
-    {"side", "code", "0 the pressure (concave) side, 1 the suction side", [](auto& r) { return double(r.side); }},
+    {"side", "code", "0 the pressure (concave) side, 1 the suction side",
+     [](auto& r) { return double(r.side); }},
     index_of<SideRow>("order from the LE point to the TE point"),
     point_uv<SideRow>("the profile point"),
 });
@@ -319,10 +344,12 @@ const TableSchema<LoopPoint> smoothed{
 const TableSchema<SmoothStatsRow> smooth_stats{"smooth_stats", "smooth", "one row per smoothed loop",
                                                smooth_stats_columns};
 const TableSchema<SplineRow> splines{
-    "splines", "fitspline", "one row per fitted loop: the B-spline and how close it runs to the measured points",
-    spline_columns};
-const TableSchema<KnotRow> spline_knots{"spline_knots", "fitspline", "each spline's knot vector", knot_columns};
-const TableSchema<LoopPoint> spline_ctrl{"spline_ctrl", "fitspline", "each spline's control points", ctrl_columns};
+    "splines", "fitspline",
+    "one row per fitted loop: the B-spline and how close it runs to the measured points", spline_columns};
+const TableSchema<KnotRow> spline_knots{"spline_knots", "fitspline", "each spline's knot vector",
+                                        knot_columns};
+const TableSchema<LoopPoint> spline_ctrl{"spline_ctrl", "fitspline", "each spline's control points",
+                                         ctrl_columns};
 const TableSchema<GapRow> gaps{"gaps", "fitspline", "the holes in the data along each curve", gap_columns};
 const TableSchema<SampleRow> samples{
     "samples", "fitspline", "points of each curve at even arc-length steps (with --samples or --spacing)",
@@ -332,17 +359,18 @@ const TableSchema<CamberRow> camber{
     "the mean-camber line of each profile (loop 0) from the LE point to the TE point, straight extensions "
     "included, at even arc-length steps (docs/CAMBER.md)",
     camber_columns};
-const TableSchema<ParamsRow> params{"params", "camber", "one row per section: its parameters", params_columns};
-const TableSchema<ThicknessRow> thickness{"thickness", "camber", "the thickness at stations along the camber line",
-                                          thickness_columns};
+const TableSchema<ParamsRow> params{"params", "camber", "one row per section: its parameters",
+                                    params_columns};
+const TableSchema<ThicknessRow> thickness{
+    "thickness", "camber", "the thickness at stations along the camber line", thickness_columns};
 const TableSchema<SideRow> sides{
-    "sides", "camber", "the profile split at the LE and TE points, each side sampled evenly in curve parameter",
-    side_columns};
+    "sides", "camber",
+    "the profile split at the LE and TE points, each side sampled evenly in curve parameter", side_columns};
 
 std::vector<TableDoc> tables() {
-  return {frames.doc(),       loops.doc(),  points.doc(),      skeleton.doc(), smoothed.doc(),
+  return {frames.doc(),       loops.doc(),   points.doc(),       skeleton.doc(),    smoothed.doc(),
           smooth_stats.doc(), splines.doc(), spline_knots.doc(), spline_ctrl.doc(), gaps.doc(),
-          samples.doc(),      camber.doc(), params.doc(),      thickness.doc(), sides.doc()};
+          samples.doc(),      camber.doc(),  params.doc(),       thickness.doc(),   sides.doc()};
 }
 
 }  // namespace schema
@@ -354,7 +382,9 @@ std::map<int, Frame> frames(const Stream& stream) {
   std::map<int, Frame> out;
   for (std::size_t r = 0; r < t.rows(); ++r) {
     Frame f;
-    const auto v3 = [&](int k) { return Eigen::Vector3d(t.at(r, c[k]), t.at(r, c[k + 1]), t.at(r, c[k + 2])); };
+    const auto v3 = [&](int k) {
+      return Eigen::Vector3d(t.at(r, c[k]), t.at(r, c[k + 1]), t.at(r, c[k + 2]));
+    };
     f.origin = v3(1);
     f.u = v3(4);
     f.v = v3(7);

@@ -31,13 +31,14 @@ void add_notes(const SectionSlice& s, std::vector<std::string>& notes) {
   }
   if (s.fill.gaps > 0) {
     char buf[200];
-    std::snprintf(buf, sizeof buf, "fill section=%d gaps=%d filled=%d points=%zu largest_gap=%.6g max_offset=%.6g",
-                  s.id, s.fill.gaps, s.fill.gaps_filled, s.fill.points, s.fill.largest_gap, s.fill.max_offset);
+    std::snprintf(buf, sizeof buf,
+                  "fill section=%d gaps=%d filled=%d points=%zu largest_gap=%.6g max_offset=%.6g", s.id,
+                  s.fill.gaps, s.fill.gaps_filled, s.fill.points, s.fill.largest_gap, s.fill.max_offset);
     notes.push_back(buf);
   }
   if (s.morphology.loops.size() > 1)
-    notes.push_back("loops section=" + std::to_string(s.id) + " count=" + std::to_string(s.morphology.loops.size()) +
-                    " profile=0");
+    notes.push_back("loops section=" + std::to_string(s.id) +
+                    " count=" + std::to_string(s.morphology.loops.size()) + " profile=0");
 }
 
 // A section's rows of the tables loops, points and skeleton.

@@ -62,7 +62,8 @@ template <class Row>
 struct Column {
   constexpr Column() = default;
   /// A column of one number.
-  constexpr Column(const char* column_name, const char* unit_name, const char* what, double (*getter)(const Row&))
+  constexpr Column(const char* column_name, const char* unit_name, const char* what,
+                   double (*getter)(const Row&))
       : name(column_name), unit(unit_name), meaning(what), get(getter) {}
   /// A 2D point: columns PREFIXu, PREFIXv ("le_" -> le_u, le_v; "" -> u, v).
   constexpr Column(const char* prefix, Uv, const char* unit_name, const char* what,
@@ -102,13 +103,17 @@ template <class Row>
 struct TableSchema {
   template <class List>
   constexpr TableSchema(const char* table_name, const char* writer, const char* what, const List& list)
-      : name(table_name), written_by(writer), meaning(what), columns(std::data(list)), count(std::size(list)) {}
+      : name(table_name),
+        written_by(writer),
+        meaning(what),
+        columns(std::data(list)),
+        count(std::size(list)) {}
 
   const char* name;        ///< e.g. "points"
   const char* written_by;  ///< the tool, for the error when the table is missing
   const char* meaning;     ///< one line of FORMAT.md
   const Column<Row>* columns;
-  std::size_t count;       ///< entries of `columns`
+  std::size_t count;  ///< entries of `columns`
 
   /// The header: every column's name, or those up to `last`.
   std::vector<std::string> names(const char* last = nullptr) const;
