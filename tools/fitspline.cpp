@@ -1,113 +1,59 @@
 // fitspline: fit a closed cubic B-spline to every section loop of a pipe stream.
-#include "common/tool.h"
+#include "args/fitspline_args.h"
 
 #include "section/error.h"
-#include "section/fit_spline.h"
 #include "section/io/stream.h"
 #include "section/pipe/run_stage.h"
 #include "section/pipe/fit_spline_stream.h"
+#include "section/pipe/schema.h"
 
 #include <iomanip>
 #include <iostream>
 
 namespace {
 
-const char* const description =
-    "fitspline: fit a closed cubic B-spline to every loop of a section stream.\n\n"
-    "Reads the pipe stream (docs/FORMAT.md) written by slice (and optionally smooth): a first\n"
-    "curve is fitted by least squares to the 'smoothed' profile (or the ordered 'points'),\n"
-    "then refined by squared-distance minimisation against the measured 'points', with\n"
-    "knots inserted where the curve misses the data (blade edges). Writes the tables\n"
-    "'splines' (fit statistics), 'spline_knots', 'spline_ctrl' and, with --samples or\n"
-    "--spacing, 'samples' (points, normals and curvature along the curve, also in 3D).\n"
-    "A loop that cannot be fitted is reported as an issue; the other loops go on. Points\n"
-    "lying in two layers (views merged with a misregistration) are reported on stderr and\n"
-    "in the splines table (columns layers, layers_length).\n\n"
-    "Example: slice blade.ply --count 9 | smooth | fitspline --spacing 0.1 | camber";
+using section::tool::FitsplineArgs;
+
+// Points in two layers along a loop: views merged with a misregistration?
+void warn_layers(const section::Stream& stream, const section::Table& splines) {
+  namespace col = section::schema::col;
+  const std::size_t cs = splines.column(col::section), cl = splines.column(col::loop),
+                    cy = splines.column(col::layers), cyl = splines.column(col::layers_length);
+  for (std::size_t r = 0; r < splines.rows(); ++r) {
+    const double layers = splines.at(r, cy);
+    if (!(layers > 0)) continue;
+    std::cerr << "fitspline: warning: section " << splines.at(r, cs) << " loop " << splines.at(r, cl)
+              << std::setprecision(3) << ": the points lie in two layers about " << layers << " apart over "
+              << splines.at(r, cyl) << " of the profile (" << stream.units
+              << "), and the curve runs between them: views merged with a misregistration? (register "
+                 "them: slice --view, docs/REGISTRATION.md)\n"
+              << std::setprecision(6);
+  }
+}
+
+void run_fitspline(const FitsplineArgs& a, const std::string& history) {
+  std::size_t fitted = 0, measured = 0;
+  section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::fit_spline_stream);
+  run.written = [&](const section::Stream& stream) {
+    section::tool::warn_issues("fitspline", stream, true);
+    if (const section::Table* splines = section::schema::splines.find(stream)) {
+      warn_layers(stream, *splines);
+      fitted += splines->rows();
+    }
+    if (const section::Table* points = section::schema::points.find(stream)) measured += points->rows();
+  };
+  run.before_end = [&] {
+    if (fitted == 0 && measured > 0)
+      throw section::Error(section::tool::input_name(a.common.input) +
+                           ": no loop could be fitted (see the warnings above)");
+  };
+  section::run_stage(run);
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  section::tool::Common common;
-  section::FitSplineOptions options;
-  return section::tool::run_tool(
-      "fitspline", description, argc, argv,
-      [&](CLI::App& app) {
-        section::tool::add_common(app, common);
-        auto* ctrl = app.add_option("--control-points", options.control_points,
-                                    "Control points per loop (fixed); default: adaptive to --tolerance")
-                         ->check(CLI::Range(4, 100000));
-        auto* tol = app.add_option("--tolerance", options.tolerance,
-                                   "Systematic deviation allowed per knot span before a knot is inserted")
-                        ->check(section::tool::positive)->capture_default_str();
-        ctrl->excludes(tol);
-        auto* n = app.add_option("--samples", options.samples, "Write N curve samples per loop")
-                      ->check(CLI::Range(3, 10000000));
-        auto* d = app.add_option("--spacing", options.sample_spacing,
-                                 "Write curve samples every D length units along the curve")
-                      ->check(section::tool::positive);
-        n->excludes(d);
-        app.add_option("--max-iterations", options.max_iterations,
-                       "Distance-minimisation iterations per refinement round")
-            ->check(CLI::Range(1, 10000))->capture_default_str();
-        app.add_option("--max-control-points", options.max_control_points,
-                       "Cap on control points per loop in adaptive mode")
-            ->check(CLI::Range(8, 1000000))->capture_default_str();
-        app.add_option("--fairness", options.fairness, "Relative weight of the fairness term")
-            ->check(CLI::NonNegativeNumber)->capture_default_str();
-        app.add_option("--smoothing-length", options.smoothing_length,
-                       "mm: change-of-curvature penalty, zero on lines and circular arcs (0 = off; docs/FITSPLINE.md)")
-            ->check(CLI::NonNegativeNumber)->capture_default_str();
-        app.add_option("--min-span-points", options.min_span_points,
-                       "Adaptive knots: fewest measured points per knot span (on noisy data)")
-            ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
-        app.add_option("--outlier-distance", options.outlier_distance,
-                       "Ignore isolated points farther than this from the curve; 0 = automatic")
-            ->check(CLI::NonNegativeNumber)->capture_default_str();
-        app.add_option("--gap-factor", options.gap_factor,
-                       "List as a hole (table gaps) any stretch without measured points longer than this many median spacings")
-            ->check(section::tool::positive)->capture_default_str();
-        app.add_option("--layer-ratio", options.layer_ratio,
-                       "Report two layers of points where their spread about the curve exceeds this many noise "
-                       "sigmas over two overlapping windows of 48 points; 0 = off")
-            ->check(CLI::NonNegativeNumber)->capture_default_str();
-        app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
-      },
-      [&] {
-        std::size_t fitted = 0, measured = 0;
-        section::StageRun run =
-            section::tool::stage_run(common, argc, argv, options.threads, [&](section::Stream& part, int threads) {
-              section::FitSplineOptions o = options;
-              o.threads = threads;
-              section::fit_spline_stream(part, o);
-            });
-        run.written = [&](const section::Stream& stream) {
-          for (const auto& issue : stream.issues) {
-            if (issue.stage != "fitspline") continue;
-            std::cerr << "fitspline: warning: section " << issue.section << " loop " << issue.loop << ": "
-                      << issue.message << "\n";
-          }
-          if (const section::Table* splines = stream.find("splines")) {
-            const std::size_t cl = splines->column("layers"), cll = splines->column("layers_length");
-            for (std::size_t r = 0; r < splines->rows(); ++r) {
-              const double layers = splines->at(r, cl);
-              if (!(layers > 0)) continue;
-              std::cerr << "fitspline: warning: section " << splines->at(r, 0) << " loop " << splines->at(r, 1)
-                        << std::setprecision(3) << ": the points lie in two layers about " << layers << " apart over "
-                        << splines->at(r, cll) << " of the profile (" << stream.units
-                        << "), and the curve runs between them: views merged with a misregistration? (register "
-                           "them: slice --view, docs/REGISTRATION.md)\n"
-                        << std::setprecision(6);
-            }
-            fitted += splines->rows();
-          }
-          if (const section::Table* points = stream.find("points")) measured += points->rows();
-        };
-        run.before_end = [&] {
-          if (fitted == 0 && measured > 0)
-            throw section::Error((common.input == "-" ? std::string("<stdin>") : common.input) +
-                                 ": no loop could be fitted (see the warnings above)");
-        };
-        section::run_stage(run);
-      });
+  return section::tool::run<FitsplineArgs>(argc, argv, [&](const FitsplineArgs& args) {
+    run_fitspline(args, section::tool::command_line(argc, argv));
+  });
 }

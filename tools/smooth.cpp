@@ -1,76 +1,33 @@
 // smooth: energy-minimising smoothing of every section loop of a pipe stream.
-#include "common/tool.h"
+#include "args/smooth_args.h"
 
-#include "section/error.h"
 #include "section/io/stream.h"
 #include "section/io/csv.h"
 #include "section/io/file.h"
 #include "section/pipe/run_stage.h"
+#include "section/pipe/schema.h"
 #include "section/pipe/smooth_stream.h"
-#include "section/smooth.h"
 
 #include <iostream>
 
 namespace {
 
-const char* const description =
-    "smooth: smooth the ordered section points of a pipe stream (docs/SMOOTH.md).\n\n"
-    "Reads the stream written by slice (docs/FORMAT.md) and, for every section loop of the\n"
-    "'points' table, minimises E = a E_C + b E_S (curvature energy plus squared distance to\n"
-    "the measured points; Li et al. 2014). Writes the tables 'smoothed' (section, loop,\n"
-    "index, u, v) and 'smooth_stats' (per loop: energies, iterations, moves, merged\n"
-    "duplicates); loops that fail are recorded as issues and the others go on.\n\n"
-    "Strength: --length L (stream units) keeps half the amplitude of wiggles of wavelength L;\n"
-    "by default L = 6 mean point spacings (0.48 mm for a 0.08 mm scan), which about halves\n"
-    "the RMS of the scan noise. Curved parts of radius R shrink by about (L / 2 pi)^4 / R^3.\n"
-    "--a sets the paper's weight directly (it depends on the units and the spacing).\n\n"
-    "Example: slice blade.ply --count 9 | smooth | fitspline | camber";
+using section::tool::SmoothArgs;
+
+void run_smooth(const SmoothArgs& a, const std::string& history) {
+  section::Table stats;
+  section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::smooth_stream);
+  run.written = [&](const section::Stream& part) {
+    section::tool::warn_issues("smooth", part, true);
+    section::append_rows(stats, section::schema::smooth_stats.get(part));
+  };
+  section::run_stage(run);
+  if (!a.report.empty()) section::write_file(a.report, section::format_csv(stats));
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  section::tool::Common common;
-  section::SmoothOptions options;
-  std::string solver = "cholmod";
-  std::string report;
-  return section::tool::run_tool(
-      "smooth", description, argc, argv,
-      [&](CLI::App& app) {
-        section::tool::add_common(app, common);
-        app.add_option("--length", options.smoothing_length,
-                       "Smoothing length L (stream units); 0 = from --a or --spacings")
-            ->check(CLI::NonNegativeNumber)->capture_default_str();
-        app.add_option("--spacings", options.relative_length,
-                       "Smoothing length in mean point spacings, used when --length and --a are 0")
-            ->check(CLI::NonNegativeNumber)->capture_default_str();
-        app.add_option("--a", options.a, "Explicit curvature weight a (units^3 with b = 1); 0 = not used")
-            ->check(CLI::NonNegativeNumber)->capture_default_str();
-        app.add_option("--b", options.b, "Closeness weight b")
-            ->check(section::tool::positive)->capture_default_str();
-        app.add_option("--solver", solver, "Linear solver: cholmod or gauss-seidel")
-            ->check(CLI::IsMember({"cholmod", "gauss-seidel", "gauss_seidel"}))->capture_default_str();
-        app.add_option("--max-iterations", options.max_iterations, "Cap on outer iterations")
-            ->check(CLI::Range(1, 100000))->capture_default_str();
-        app.add_option("--report", report, "Write the per-loop statistics (CSV) to FILE");
-        app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")->check(CLI::NonNegativeNumber);
-      },
-      [&] {
-        options.solver = section::parse_smooth_solver(solver);
-        section::Table stats;
-        section::StageRun run =
-            section::tool::stage_run(common, argc, argv, options.threads, [&](section::Stream& part, int threads) {
-              section::SmoothOptions o = options;
-              o.threads = threads;
-              section::smooth_stream(part, o);
-            });
-        run.written = [&](const section::Stream& part) {
-          for (const auto& issue : part.issues)
-            if (issue.stage == "smooth")
-              std::cerr << "smooth: warning: section " << issue.section << " loop " << issue.loop << ": "
-                        << issue.message << "\n";
-          section::append_rows(stats, part.get("smooth_stats", "smooth"));
-        };
-        section::run_stage(run);
-        if (!report.empty()) section::write_file(report, section::format_csv(stats));
-      });
+  return section::tool::run<SmoothArgs>(
+      argc, argv, [&](const SmoothArgs& args) { run_smooth(args, section::tool::command_line(argc, argv)); });
 }

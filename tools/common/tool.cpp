@@ -24,10 +24,30 @@ std::string basename_of(const std::string& path) {
 }  // namespace
 
 void add_common(CLI::App& app, Common& common) {
-  app.add_option("input,-i,--input", common.input, "Input file, - for standard input")
-      ->capture_default_str();
-  app.add_option("-o,--output", common.output, "Output file, - for standard output")
-      ->capture_default_str();
+  app.add_option("input,-i,--input", common.input, "Input file, - for standard input")->capture_default_str();
+  app.add_option("-o,--output", common.output, "Output file, - for standard output")->capture_default_str();
+}
+
+int parse_args(const std::string& name, const std::string& description, int argc, char** argv,
+               const std::function<void(CLI::App&)>& declare, std::ostream& out, std::ostream& err) {
+  CLI::App app{description, name};
+  app.set_version_flag("--version", std::string(name) + " (libsection) " + SECTION_VERSION);
+  app.get_formatter()->column_width(34);
+  try {
+    declare(app);
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e, out, err);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e, out, err);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e, out, err);
+  } catch (const CLI::ParseError& e) {
+    err << name << ": usage error: " << e.what() << "\n"
+        << "Run '" << name << " --help' for the options.\n";
+    return 2;
+  }
+  return -1;
 }
 
 int run_tool(const std::string& name, const std::string& description, int argc, char** argv,
@@ -40,23 +60,8 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
   mallopt(M_TOP_PAD, 64 << 20);
 #endif
-  CLI::App app{description, name};
-  app.set_version_flag("--version", std::string(name) + " (libsection) " + SECTION_VERSION);
-  app.get_formatter()->column_width(34);
-  try {
-    declare(app);
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << name << ": usage error: " << e.what() << "\n"
-              << "Run '" << name << " --help' for the options.\n";
-    return 2;
-  }
+  const int code = parse_args(name, description, argc, argv, declare, std::cout, std::cerr);
+  if (code >= 0) return code;
   try {
     body();
     return 0;
@@ -72,7 +77,7 @@ void with_input(const std::string& input, const std::function<void()>& stage) {
   try {
     stage();
   } catch (const section::Error& e) {
-    const std::string name = input == "-" ? "<stdin>" : input;
+    const std::string name = input_name(input);
     const std::string what = e.what();
     if (what.find(name) != std::string::npos) throw;
     throw section::Error(name + ": " + what);
@@ -89,17 +94,34 @@ std::string command_line(int argc, char** argv) {
   return line;
 }
 
-section::StageRun stage_run(const Common& common, int argc, char** argv, int threads,
+section::StageRun stage_run(const Common& common, const std::string& history, int threads,
                             const std::function<void(section::Stream&, int threads)>& stage) {
   section::StageRun run;
   run.input = common.input;
   run.output = common.output;
-  run.history = command_line(argc, argv);
+  run.history = history;
   run.threads = threads;
   run.stage = [stage, input = common.input](section::Stream& part, int part_threads) {
     with_input(input, [&] { stage(part, part_threads); });
   };
   return run;
+}
+
+void warn_issues(const std::string& stage, const section::Stream& stream, bool loops) {
+  for (const auto& issue : stream.issues) {
+    if (issue.stage != stage) continue;
+    std::cerr << stage << ": warning: section " << issue.section;
+    if (loops) std::cerr << " loop " << issue.loop;
+    std::cerr << ": " << issue.message << "\n";
+  }
+}
+
+std::string input_name(const std::string& input) {
+  return input == "-" ? "<stdin>" : input;
+}
+
+bool ends_with(const std::string& text, const std::string& tail) {
+  return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
 }
 
 const CLI::Validator positive(

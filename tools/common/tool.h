@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <iosfwd>
 #include <string>
 
 namespace section::tool {
@@ -20,16 +21,47 @@ struct Common {
 /// Declares -i/--input (also as the first positional argument), -o/--output and --version.
 void add_common(CLI::App& app, Common& common);
 
-/// Parses argv into the options that `declare` bound, then runs `body`. Prints
-/// `NAME: error: message` on stderr and returns 1 on section::Error or any other
-/// exception, 2 on bad usage, 0 on success or --help/--version.
+/// Parses argv into the options that `declare` binds: -1 when the tool is to run, else its
+/// exit code: 0 after --help or --version (written to `out`), 2 on bad usage
+/// (`NAME: usage error: ...` to `err`).
+int parse_args(const std::string& name, const std::string& description, int argc, char** argv,
+               const std::function<void(CLI::App&)>& declare, std::ostream& out, std::ostream& err);
+
+/// Parses argv as parse_args does, then runs `body`. Prints `NAME: error: message` on
+/// stderr and returns 1 on section::Error or any other exception, 2 on bad usage, 0 on
+/// success or --help/--version.
 int run_tool(const std::string& name, const std::string& description, int argc, char** argv,
              const std::function<void(CLI::App&)>& declare, const std::function<void()>& body);
+
+/// A tool's command line read into its options struct `Args` (tools/args/): Args::name,
+/// Args::description and args.declare(app) bind them. Returns as parse_args does; tests call
+/// it without the binary.
+template <class Args>
+int parse(int argc, char** argv, Args& args, std::ostream& out, std::ostream& err) {
+  return parse_args(
+      Args::name, Args::description, argc, argv, [&](CLI::App& app) { args.declare(app); }, out, err);
+}
+
+/// The main of a tool: argv into `Args`, then `body` under run_tool's single catch.
+template <class Args>
+int run(int argc, char** argv, const std::function<void(const Args&)>& body) {
+  Args args;
+  return run_tool(
+      Args::name, Args::description, argc, argv, [&](CLI::App& app) { args.declare(app); },
+      [&] { body(args); });
+}
 
 /// Calls `stage`; a section::Error it throws is rethrown with the input's name in front
 /// (`blade.csv: pipe: table 'points' has no column 'v'`) unless the message already names
 /// it, so that every error of a tool names the file it came from ("-" = `<stdin>`).
 void with_input(const std::string& input, const std::function<void()>& stage);
+
+/// Declares the option `flag` bound to `value`, checked by `check`, its default shown in --help.
+template <class T>
+CLI::Option* add_checked(CLI::App& app, const std::string& flag, T& value, const std::string& help,
+                         const CLI::Validator& check) {
+  return app.add_option(flag, value, help)->check(check)->capture_default_str();
+}
 
 /// Accepts a number above 0 ("must be a number above 0, got '0'"): CLI::PositiveNumber
 /// answers with the range 0 to 1.8e308 written out in full.
@@ -39,9 +71,31 @@ extern const CLI::Validator positive;
 std::string command_line(int argc, char** argv);
 
 /// A stage of the pipe as section::run_stage runs it, from the common flags: input,
-/// output, the command line as history, `threads` parts at a time, and `stage` run under
-/// with_input.
-section::StageRun stage_run(const Common& common, int argc, char** argv, int threads,
+/// output, `history` (the command line) added to the stream's, `threads` parts at a time,
+/// and `stage` run under with_input.
+section::StageRun stage_run(const Common& common, const std::string& history, int threads,
                             const std::function<void(section::Stream&, int threads)>& stage);
+
+/// stage_run for a stream stage `stage(stream, options)` (smooth_stream, fit_spline_stream,
+/// camber_stream): each part staged with `options`, its threads as many as run_stage allows.
+template <class Options>
+section::StageRun stage_run(const Common& common, const std::string& history, const Options& options,
+                            void (*stage)(section::Stream&, const Options&)) {
+  return stage_run(common, history, options.threads, [&options, stage](section::Stream& part, int threads) {
+    Options o = options;
+    o.threads = threads;
+    stage(part, o);
+  });
+}
+
+/// Prints `STAGE: warning: section S[ loop L]: message` on stderr for each issue of `stream`
+/// that `stage` recorded (with the loop when `loops`).
+void warn_issues(const std::string& stage, const section::Stream& stream, bool loops);
+
+/// The name of an input in messages: the path, or `<stdin>` for "-".
+std::string input_name(const std::string& input);
+
+/// True when `text` ends with `tail`.
+bool ends_with(const std::string& text, const std::string& tail);
 
 }  // namespace section::tool

@@ -1,28 +1,390 @@
+// The stream's tables and their columns: the one place that names them (docs/FORMAT.md).
 #include "section/pipe/schema.h"
 
 #include "section/error.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
 
 namespace section {
+namespace schema {
 
 namespace {
-const std::vector<std::string> frame_columns = {"section", "origin_x", "origin_y", "origin_z",
-                                                "u_x",     "u_y",      "u_z",      "v_x",
-                                                "v_y",     "v_z",      "n_x",      "n_y",
-                                                "n_z"};
+
+// Columns most tables share.
+template <class Row>
+constexpr Column<Row> section_id() {
+  return {col::section, "id", "the section id (the plane's index)",
+          [](const Row& r) { return double(r.section); }};
+}
+template <class Row>
+constexpr Column<Row> loop_id() {
+  return {col::loop, "id",
+          "the loop id within the section, 0 the profile (the loop enclosing the largest area)",
+          [](const Row& r) { return double(r.loop); }};
+}
+template <class Row>
+constexpr Column<Row> index_of(const char* meaning) {
+  return {col::index, "id", meaning, [](const Row& r) { return double(r.index); }};
+}
+template <class Row>
+constexpr Column<Row> point_uv(const char* meaning) {
+  return {"", uv, "length", meaning, [](const Row& r) { return r.point; }};
 }
 
+// Getters of a field of SectionParams, FitSplineResult, SmoothResult.
+using Params = SectionParams;
+using Fit = FitSplineResult;
+template <auto F>
+constexpr auto param = [](const ParamsRow& r) { return r.params.*F; };
+template <auto F>
+constexpr auto fit = [](const SplineRow& r) { return r.fit.*F; };
+template <auto F>
+constexpr auto smoothing = [](const SmoothStatsRow& r) { return r.result.*F; };
+
+// A table's columns: section (and loop) first, then `more`.
+template <class Row, std::size_t N>
+constexpr std::array<Column<Row>, N + 1> by_section(const Column<Row> (&more)[N]) {
+  std::array<Column<Row>, N + 1> out{section_id<Row>()};
+  for (std::size_t k = 0; k < N; ++k) out[k + 1] = more[k];
+  return out;
+}
+template <class Row, std::size_t N>
+constexpr std::array<Column<Row>, N + 2> by_loop(const Column<Row> (&more)[N]) {
+  std::array<Column<Row>, N + 2> out{section_id<Row>(), loop_id<Row>()};
+  for (std::size_t k = 0; k < N; ++k) out[k + 2] = more[k];
+  return out;
+}
+
+constexpr auto frame_columns = by_section<FrameRow>({
+    {"origin_", xyz, "length", "the plane's origin, where u = v = 0", [](auto& r) { return r.frame.origin; }},
+    {"u_", xyz, "1", "the first in-plane axis u (a unit vector)", [](auto& r) { return r.frame.u; }},
+    {"v_", xyz, "1", "the second in-plane axis v (a unit vector)", [](auto& r) { return r.frame.v; }},
+    {"n_", xyz, "1", "the plane's unit normal n = u x v", [](auto& r) { return r.frame.n; }},
+});
+
+const Loop& loop_of(const LoopRow& r) {
+  return r.morphology.loops[r.loop];
+}
+constexpr auto loop_columns = by_loop<LoopRow>({
+    {"points", "count", "points kept in the loop", [](auto& r) { return double(loop_of(r).points.size()); }},
+    {"dropped", "count", "outliers dropped: the section's count on loop 0, 0 on the others",
+     [](auto& r) { return r.loop == 0 ? double(r.morphology.dropped) : 0.0; }},
+    {"area", "area", "area enclosed by the loop's traced boundary", [](auto& r) { return loop_of(r).area; }},
+    {"length", "length", "length of the traced boundary", [](auto& r) { return loop_of(r).length; }},
+    {"cell", "length", "raster cell used to order the section", [](auto& r) { return r.morphology.cell; }},
+});
+
+constexpr auto point_columns = by_loop<PointRow>({
+    index_of<PointRow>("order along the loop (counterclockwise)"),
+    point_uv<PointRow>("the point in the plane"),
+    {"n", uv, "1", "the outward unit normal from the image gradient", [](auto& r) { return r.normal; }},
+    {col::offset, "length",
+     "0 for a point of the slab; for a point the gap fill carried onto the plane, its signed distance "
+     "from the plane before (docs/MORPHOLOGY.md; a table without the column reads as all 0)",
+     [](auto& r) { return r.offset; }},
+});
+
+constexpr auto skeleton_columns = by_section<SkeletonRow>({
+    {col::loop, "id", "0: the skeleton is the profile's", [](auto&) { return 0.0; }},
+    index_of<SkeletonRow>("order along the main branch, from the blunter end"),
+    point_uv<SkeletonRow>("the skeleton point"),
+    {"radius", "length", "its distance to the profile's boundary", [](auto& r) { return r.radius; }},
+});
+
+constexpr auto smoothed_columns = by_loop<LoopPoint>({
+    index_of<LoopPoint>("order along the loop, from 0 (renumbered when duplicate points were merged)"),
+    point_uv<LoopPoint>("the smoothed point"),
+});
+
+constexpr auto smooth_stats_columns = by_loop<SmoothStatsRow>({
+    {"points", "count", "points kept", [](auto& r) { return double(r.result.points.size()); }},
+    {"energy_before", "length^2", "the energy E before smoothing", smoothing<&SmoothResult::energy_before>},
+    {"energy_after", "length^2", "E after smoothing", smoothing<&SmoothResult::energy_after>},
+    {"iterations", "count", "outer iterations done", [](auto& r) { return double(r.result.iterations); }},
+    {"rms_move", "length", "root mean square move of the points", smoothing<&SmoothResult::rms_move>},
+    {"max_move", "length", "largest move of a point", smoothing<&SmoothResult::max_move>},
+    {"repaired", "count", "duplicate points merged", [](auto& r) { return double(r.result.repaired); }},
+});
+
+constexpr auto spline_columns = by_loop<SplineRow>({
+    {col::degree, "1", "the B-spline's degree", [](auto& r) { return double(r.fit.spline.degree); }},
+    {col::closed, "flag", "1 when closed (periodic)",
+     [](auto& r) { return r.fit.spline.closed ? 1.0 : 0.0; }},
+    {"control_points", "count", "its control points",
+     [](auto& r) { return double(r.fit.spline.control.size()); }},
+    {col::rms, "length", "RMS distance of the measured points (outliers excluded) to the curve",
+     fit<&Fit::rms>},
+    {"max", "length", "the largest such distance", fit<&Fit::max>},
+    {"p95", "length", "their 95th percentile", fit<&Fit::p95>},
+    {"iterations", "count", "distance-minimisation iterations done",
+     [](auto& r) { return double(r.fit.iterations); }},
+    {"spacing", "length", "median spacing of the measured points along the curve", fit<&Fit::spacing>},
+    {"max_gap", "length", "the longest stretch of the curve without a measured point", fit<&Fit::max_gap>},
+    {"gap_start", "parameter", "the curve parameter where it begins", fit<&Fit::gap_start>},
+    {"gap_end", "parameter", "where it ends (below gap_start when it wraps past the curve's last parameter)",
+     fit<&Fit::gap_end>},
+    {col::layers, "length",
+     "distance between two layers of points found along the loop (views merged with a misregistration: the "
+     "curve "
+     "runs between them), 0 when none (docs/FITSPLINE.md, step 5)",
+     fit<&Fit::layers>},
+    {col::layers_length, "length", "the profile length over which they were found, 0 when none",
+     fit<&Fit::layers_length>},
+});
+
+constexpr auto knot_columns = by_loop<KnotRow>({
+    index_of<KnotRow>("order of the knots"),
+    {col::knot, "parameter", "the knot", [](auto& r) { return r.knot; }},
+});
+
+constexpr auto ctrl_columns = by_loop<LoopPoint>({
+    index_of<LoopPoint>("order of the control points"),
+    point_uv<LoopPoint>("the control point"),
+});
+
+constexpr auto gap_columns = by_loop<GapRow>({
+    index_of<GapRow>("0 the longest hole, then shorter ones"),
+    {col::t_start, "parameter", "the curve parameter where the hole begins",
+     [](auto& r) { return r.gap.start; }},
+    {col::t_end, "parameter", "where it ends", [](auto& r) { return r.gap.end; }},
+    {col::length, "length", "its length along the curve", [](auto& r) { return r.gap.length; }},
+});
+
+constexpr auto sample_columns = by_loop<SampleRow>({
+    index_of<SampleRow>("order along the curve"),
+    {"t", "parameter", "the curve parameter", [](auto& r) { return r.t; }},
+    point_uv<SampleRow>("the curve point"),
+    {"", xyz, "length",
+     "the point in 3D, through the section's frame (the identity when the stream has no frames)",
+     [](auto& r) { return r.world; }},
+    {"n", uv, "1", "the outward unit normal (the tangent turned clockwise)",
+     [](auto& r) { return r.normal; }},
+    {"curvature", "1/length", "signed curvature, positive turning counterclockwise",
+     [](auto& r) { return r.curvature; }},
+});
+
+constexpr auto camber_columns = by_section<CamberRow>({
+    index_of<CamberRow>("order from the LE point to the TE point"),
+    {"s", "length", "arc length from the LE point", [](auto& r) { return r.s; }},
+    point_uv<CamberRow>("the camber point"),
+    {"", xyz, "length", "the camber point in 3D", [](auto& r) { return r.world; }},
+    {"radius", "length", "the inscribed radius (the end circle's on the extensions)",
+     [](auto& r) { return r.radius; }},
+});
+
+// Adding a params column is adding its line here (docs/FORMAT.md then lists it: test_schema).
+constexpr auto params_columns = by_section<ParamsRow>({
+    {"chord", "length", "the distance between the edge points", param<&Params::chord>},
+    {"camber_length", "length", "length of the camber line, LE point to TE point",
+     param<&Params::camber_length>},
+    {"max_thickness", "length", "the largest inscribed diameter", param<&Params::max_thickness>},
+    {"max_thickness_pos", "1", "its place along the camber line, 0 at the LE, 1 at the TE",
+     param<&Params::max_thickness_pos>},
+    {"le_radius", "length",
+     "radius of the circle fitted to the leading edge's arc (0 for a flat face, and with --edge auto unless "
+     "le_shape is 0)",
+     param<&Params::le_radius>},
+    {"te_radius", "length", "the same at the trailing edge", param<&Params::te_radius>},
+    {"le_curvature_radius", "length", "1 / the profile's curvature at the LE point (0 when flat)",
+     param<&Params::le_curvature_radius>},
+    {"te_curvature_radius", "length", "the same at the TE point", param<&Params::te_curvature_radius>},
+    {"le_shape", "code", "the leading edge's shape (edge shapes below)",
+     [](auto& r) { return double(static_cast<int>(r.camber.le.shape)); }},
+    {"te_shape", "code", "the trailing edge's shape",
+     [](auto& r) { return double(static_cast<int>(r.camber.te.shape)); }},
+    {"le_arc", "degrees", "the arc of the leading edge its circle is fitted to",
+     [](auto& r) { return r.camber.le.arc; }},
+    {"te_arc", "degrees", "the same at the trailing edge", [](auto& r) { return r.camber.te.arc; }},
+    {"le_fit_rms", "length", "rms distance of that arc from its circle",
+     [](auto& r) { return r.camber.le.fit_rms; }},
+    {"te_fit_rms", "length", "the same at the trailing edge", [](auto& r) { return r.camber.te.fit_rms; }},
+    {"stagger", "degrees", "angle of the chord line, LE to TE", param<&Params::stagger>},
+    {"inlet_angle", "degrees", "the camber tangent (toward the TE) at the LE", param<&Params::inlet_angle>},
+    {"outlet_angle", "degrees", "its tangent at the TE", param<&Params::outlet_angle>},
+    {"camber_angle", "degrees", "inlet_angle - outlet_angle: the turning", param<&Params::camber_angle>},
+    {"area", "area", "the area the profile encloses", param<&Params::area>},
+    {"centroid_", uv, "length", "its centroid", param<&Params::centroid>},
+    {"le_", uv, "length", "the LE point", param<&Params::le_point>},
+    {"te_", uv, "length", "the TE point", param<&Params::te_point>},
+    {"le_center_", uv, "length", "centre of the leading edge's circle",
+     [](auto& r) { return r.camber.le.center; }},
+    {"te_center_", uv, "length", "centre of the trailing edge's circle",
+     [](auto& r) { return r.camber.te.center; }},
+    {"le_", xyz, "length", "the LE point in 3D", [](auto& r) { return r.le; }},
+    {"te_", xyz, "length", "the TE point in 3D", [](auto& r) { return r.te; }},
+    {"centroid_", xyz, "length", "the centroid in 3D", [](auto& r) { return r.centroid; }},
+    {"caliper_chord", "length",
+     "the profile's extent along the caliper line (touching the pressure side at both ends)",
+     param<&Params::caliper_chord>},
+    {"caliper_stagger", "degrees", "angle of the caliper line, LE to TE", param<&Params::caliper_stagger>},
+    {"caliper_found", "flag", "0 when the pressure side is not concave (the chord line is used)",
+     [](auto& r) { return r.params.caliper_found ? 1.0 : 0.0; }},
+    {"pressure_side", "code",
+     "+1 when the pressure (concave) side lies left of the LE-to-TE direction, -1 right",
+     [](auto& r) { return double(r.camber.pressure_side); }},
+    {"le_by_direction", "flag", "1 when --le-direction set the LE, 0 when the maximum thickness did",
+     [](auto& r) { return r.camber.le_by_direction ? 1.0 : 0.0; }},
+    {"le_face", "length",
+     "width of the leading edge's flat face (its radius is then 0), 0 for an edge without one",
+     [](auto& r) { return r.camber.le.face; }},
+    {"te_face", "length", "the same at the trailing edge", [](auto& r) { return r.camber.te.face; }},
+    {"le_unmeasured", "length",
+     "length of profile around the LE point that no measured point covers, 0 when one "
+     "lies at it",
+     [](auto& r) { return r.le_unmeasured; }},
+    {"te_unmeasured", "length", "the same at the TE point", [](auto& r) { return r.te_unmeasured; }},
+});
+
+constexpr auto thickness_columns = by_section<ThicknessRow>({
+    index_of<ThicknessRow>("order of the stations"),
+    {"fraction", "1", "the station: arc length from the LE point / camber length",
+     [](auto& r) { return r.station.fraction; }},
+    {"s", "length", "arc length from the LE point", [](auto& r) { return r.station.s; }},
+    {"", uv, "length", "the inscribed circle's centre", [](auto& r) { return r.station.point; }},
+    {"thickness", "length", "its diameter (on an extension: the width across the camber normal)",
+     [](auto& r) { return r.station.thickness; }},
+    {"pressure_", uv, "length", "its contact with the pressure side",
+     [](auto& r) { return r.station.pressure; }},
+    {"suction_", uv, "length", "its contact with the suction side",
+     [](auto& r) { return r.station.suction; }},
+});
+
+constexpr auto side_columns = by_section<SideRow>({
+    {"side", "code", "0 the pressure (concave) side, 1 the suction side",
+     [](auto& r) { return double(r.side); }},
+    index_of<SideRow>("order from the LE point to the TE point"),
+    point_uv<SideRow>("the profile point"),
+});
+
+// The names of a column: its own, or a point's prefix with each axis.
+template <class Row>
+std::vector<std::string> names_of(const Column<Row>& c) {
+  std::vector<std::string> out;
+  for (const char* a = c.axes; *a; ++a) out.push_back(c.name + std::string(1, *a));
+  if (out.empty()) out.emplace_back(c.name);
+  return out;
+}
+
+}  // namespace
+
+template <class Row>
+std::vector<std::string> TableSchema<Row>::names(const char* last) const {
+  std::vector<std::string> out;
+  for (std::size_t k = 0; k < count; ++k)
+    for (auto& n : names_of(columns[k])) {
+      out.push_back(std::move(n));
+      if (last && out.back() == last) return out;
+    }
+  return out;
+}
+
+template <class Row>
+void TableSchema<Row>::append(std::vector<double>& values, const Row& row) const {
+  for (std::size_t k = 0; k < count; ++k) {
+    const Column<Row>& c = columns[k];
+    if (c.get) {
+      values.push_back(c.get(row));
+    } else if (c.get2) {
+      const Eigen::Vector2d p = c.get2(row);
+      values.insert(values.end(), {p.x(), p.y()});
+    } else {
+      const Eigen::Vector3d p = c.get3(row);
+      values.insert(values.end(), {p.x(), p.y(), p.z()});
+    }
+  }
+}
+
+template <class Row>
+void TableSchema<Row>::add(Table& t, const Row& row) const {
+  const std::size_t before = t.values.size();
+  append(t.values, row);
+  t.values.resize(before + t.columns.size());  // a table of the first columns only (table(last))
+}
+
+template <class Row>
+TableDoc TableSchema<Row>::doc() const {
+  TableDoc d{name, written_by, meaning, {}};
+  for (std::size_t k = 0; k < count; ++k) {
+    std::string joined;
+    for (const auto& n : names_of(columns[k])) joined += (joined.empty() ? "" : ", ") + n;
+    d.columns.push_back({joined, columns[k].unit, columns[k].meaning});
+  }
+  return d;
+}
+
+template struct TableSchema<FrameRow>;
+template struct TableSchema<LoopRow>;
+template struct TableSchema<PointRow>;
+template struct TableSchema<SkeletonRow>;
+template struct TableSchema<LoopPoint>;
+template struct TableSchema<SmoothStatsRow>;
+template struct TableSchema<SplineRow>;
+template struct TableSchema<KnotRow>;
+template struct TableSchema<GapRow>;
+template struct TableSchema<SampleRow>;
+template struct TableSchema<CamberRow>;
+template struct TableSchema<ParamsRow>;
+template struct TableSchema<ThicknessRow>;
+template struct TableSchema<SideRow>;
+
+const TableSchema<FrameRow> frames{"frames", "slice", "the plane frame of each section", frame_columns};
+const TableSchema<LoopRow> loops{"loops", "slice", "one row per loop of each section", loop_columns};
+const TableSchema<PointRow> points{"points", "slice",
+                                   "the measured points projected onto the plane, ordered along their loop",
+                                   point_columns};
+const TableSchema<SkeletonRow> skeleton{
+    "skeleton", "slice", "the skeleton of the filled profile along its main branch (the camber seed)",
+    skeleton_columns};
+const TableSchema<LoopPoint> smoothed{
+    "smoothed", "smooth", "the points of each loop after energy-minimising smoothing (docs/SMOOTH.md)",
+    smoothed_columns};
+const TableSchema<SmoothStatsRow> smooth_stats{"smooth_stats", "smooth", "one row per smoothed loop",
+                                               smooth_stats_columns};
+const TableSchema<SplineRow> splines{
+    "splines", "fitspline",
+    "one row per fitted loop: the B-spline and how close it runs to the measured points", spline_columns};
+const TableSchema<KnotRow> spline_knots{"spline_knots", "fitspline", "each spline's knot vector",
+                                        knot_columns};
+const TableSchema<LoopPoint> spline_ctrl{"spline_ctrl", "fitspline", "each spline's control points",
+                                         ctrl_columns};
+const TableSchema<GapRow> gaps{"gaps", "fitspline", "the holes in the data along each curve", gap_columns};
+const TableSchema<SampleRow> samples{
+    "samples", "fitspline", "points of each curve at even arc-length steps (with --samples or --spacing)",
+    sample_columns};
+const TableSchema<CamberRow> camber{
+    "camber", "camber",
+    "the mean-camber line of each profile (loop 0) from the LE point to the TE point, straight extensions "
+    "included, at even arc-length steps (docs/CAMBER.md)",
+    camber_columns};
+const TableSchema<ParamsRow> params{"params", "camber", "one row per section: its parameters",
+                                    params_columns};
+const TableSchema<ThicknessRow> thickness{
+    "thickness", "camber", "the thickness at stations along the camber line", thickness_columns};
+const TableSchema<SideRow> sides{
+    "sides", "camber",
+    "the profile split at the LE and TE points, each side sampled evenly in curve parameter", side_columns};
+
+std::vector<TableDoc> tables() {
+  return {frames.doc(),       loops.doc(),   points.doc(),       skeleton.doc(),    smoothed.doc(),
+          smooth_stats.doc(), splines.doc(), spline_knots.doc(), spline_ctrl.doc(), gaps.doc(),
+          samples.doc(),      camber.doc(),  params.doc(),       thickness.doc(),   sides.doc()};
+}
+
+}  // namespace schema
+
 std::map<int, Frame> frames(const Stream& stream) {
-  const Table& t = stream.get("frames", "slice");
+  const Table& t = schema::frames.get(stream);
   std::vector<std::size_t> c;
-  for (const auto& name : frame_columns) c.push_back(t.column(name));
+  for (const auto& name : schema::frames.names()) c.push_back(t.column(name));
   std::map<int, Frame> out;
   for (std::size_t r = 0; r < t.rows(); ++r) {
     Frame f;
-    const auto v3 = [&](int k) { return Eigen::Vector3d(t.at(r, c[k]), t.at(r, c[k + 1]), t.at(r, c[k + 2])); };
+    const auto v3 = [&](int k) {
+      return Eigen::Vector3d(t.at(r, c[k]), t.at(r, c[k + 1]), t.at(r, c[k + 2]));
+    };
     f.origin = v3(1);
     f.u = v3(4);
     f.v = v3(7);
@@ -38,10 +400,8 @@ std::map<int, Frame> frames(const Stream& stream) {
 }
 
 void put_frames(Stream& stream, const std::map<int, Frame>& frames) {
-  Table t{"frames", frame_columns, {}};
-  for (const auto& [id, f] : frames)
-    t.add_row({double(id), f.origin.x(), f.origin.y(), f.origin.z(), f.u.x(), f.u.y(), f.u.z(),
-               f.v.x(), f.v.y(), f.v.z(), f.n.x(), f.n.y(), f.n.z()});
+  Table t = schema::frames.table();
+  for (const auto& [id, f] : frames) schema::frames.add(t, {id, f});
   stream.put(std::move(t));
 }
 

@@ -13,7 +13,7 @@ namespace section {
 
 /// Stream stage: fits every (section, loop) of the "points" table (first curve from the
 /// "smoothed" table when present) and writes the tables "splines", "spline_knots",
-/// "spline_ctrl" and, when samples are requested, "samples" (see docs/FORMAT.md). A loop
+/// "spline_ctrl", "gaps" and, when samples are requested, "samples" (docs/FORMAT.md). A loop
 /// that cannot be fitted is recorded in stream.issues (stage "fitspline"), the others go
 /// on. Throws section::Error when the "points" table is missing or lacks a column.
 void fit_spline_stream(Stream& stream, const FitSplineOptions& options = {});

@@ -1,17 +1,235 @@
 #pragma once
 /// @file pipe/schema.h
-/// The stream's tables and their columns (docs/FORMAT.md).
+/// The stream's tables, each declared once (libsection/src/pipe/schema.cpp): its name, the
+/// tool that writes it and its columns as {name, unit, meaning, getter} (a 2D or 3D point is
+/// one entry over two or three columns). The header rows, the row writers, the readers'
+/// column lookups and docs/FORMAT.md's column tables all come from those lists
+/// (tests/test_schema.cpp holds FORMAT.md to them).
+#include "section/fit_spline.h"
 #include "section/frame.h"
 #include "section/io/stream.h"
+#include "section/morphology.h"
+#include "section/params.h"
+#include "section/smooth.h"
 
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <iterator>
 #include <map>
+#include <string>
+#include <vector>
 
 namespace section {
 
-/// Section frames of a stream (table "frames"), by section id.
+/// Section frames of a stream (table "frames"), by section id. Throws section::Error when
+/// the table is missing or a frame is not right-handed orthonormal.
 std::map<int, Frame> frames(const Stream& stream);
 
 /// Adds or replaces the "frames" table from frames by section id.
 void put_frames(Stream& stream, const std::map<int, Frame>& frames);
 
+namespace schema {
+
+/// Names of the columns that readers look up (the lists use them; u and v are a point's).
+namespace col {
+inline constexpr const char* section = "section";
+inline constexpr const char* loop = "loop";
+inline constexpr const char* index = "index";
+inline constexpr const char* u = "u";
+inline constexpr const char* v = "v";
+inline constexpr const char* offset = "offset";
+inline constexpr const char* degree = "degree";
+inline constexpr const char* closed = "closed";
+inline constexpr const char* rms = "rms";
+inline constexpr const char* layers = "layers";
+inline constexpr const char* layers_length = "layers_length";
+inline constexpr const char* knot = "knot";
+inline constexpr const char* t_start = "t_start";
+inline constexpr const char* t_end = "t_end";
+inline constexpr const char* length = "length";
+}  // namespace col
+
+/// Tags of a point spread over columns: NAME_u, NAME_v (`uv`) or NAME_x, NAME_y, NAME_z (`xyz`).
+struct Uv {};
+struct Xyz {};
+inline constexpr Uv uv{};
+inline constexpr Xyz xyz{};
+
+/// One column, or a point spread over two or three: what docs/FORMAT.md lists of it, and
+/// its value in a row made from `Row`.
+template <class Row>
+struct Column {
+  constexpr Column() = default;
+  /// A column of one number.
+  constexpr Column(const char* column_name, const char* unit_name, const char* what,
+                   double (*getter)(const Row&))
+      : name(column_name), unit(unit_name), meaning(what), get(getter) {}
+  /// A 2D point: columns PREFIXu, PREFIXv ("le_" -> le_u, le_v; "" -> u, v).
+  constexpr Column(const char* prefix, Uv, const char* unit_name, const char* what,
+                   Eigen::Vector2d (*getter)(const Row&))
+      : name(prefix), axes("uv"), unit(unit_name), meaning(what), get2(getter) {}
+  /// A 3D point: columns PREFIXx, PREFIXy, PREFIXz.
+  constexpr Column(const char* prefix, Xyz, const char* unit_name, const char* what,
+                   Eigen::Vector3d (*getter)(const Row&))
+      : name(prefix), axes("xyz"), unit(unit_name), meaning(what), get3(getter) {}
+
+  const char* name = "";     ///< header name, or a point's prefix
+  const char* axes = "";     ///< "" for one number, "uv" or "xyz" for a point
+  const char* unit = "";     ///< one of the units FORMAT.md lists ("id", "length", "degrees", ...)
+  const char* meaning = "";  ///< one line of FORMAT.md
+  double (*get)(const Row&) = nullptr;
+  Eigen::Vector2d (*get2)(const Row&) = nullptr;
+  Eigen::Vector3d (*get3)(const Row&) = nullptr;
+};
+
+/// A column (or a point's columns, "le_x, le_y, le_z") as docs/FORMAT.md lists it.
+struct ColumnDoc {
+  std::string name;
+  const char* unit;
+  const char* meaning;
+};
+
+/// A table as docs/FORMAT.md lists it: name, writer, meaning, columns in order.
+struct TableDoc {
+  const char* name;
+  const char* written_by;
+  const char* meaning;
+  std::vector<ColumnDoc> columns;
+};
+
+/// A stream table: its name, the tool that writes it, what a row is and its columns.
+template <class Row>
+struct TableSchema {
+  template <class List>
+  constexpr TableSchema(const char* table_name, const char* writer, const char* what, const List& list)
+      : name(table_name),
+        written_by(writer),
+        meaning(what),
+        columns(std::data(list)),
+        count(std::size(list)) {}
+
+  const char* name;        ///< e.g. "points"
+  const char* written_by;  ///< the tool, for the error when the table is missing
+  const char* meaning;     ///< one line of FORMAT.md
+  const Column<Row>* columns;
+  std::size_t count;  ///< entries of `columns`
+
+  /// The header: every column's name, or those up to `last`.
+  std::vector<std::string> names(const char* last = nullptr) const;
+  /// An empty table with this name and header (see names()).
+  Table table(const char* last = nullptr) const { return Table(name, names(last)); }
+  /// Appends a row's values, one per column, to a table's values.
+  void append(std::vector<double>& values, const Row& row) const;
+  /// Adds a row to `t`, made by table(): as many values as it has columns.
+  void add(Table& t, const Row& row) const;
+  /// The table in `stream`, or nullptr.
+  const Table* find(const Stream& stream) const { return stream.find(name); }
+  /// The table in `stream`; throws section::Error naming the tool that writes it when absent.
+  const Table& get(const Stream& stream) const { return stream.get(name, written_by); }
+  /// What FORMAT.md lists of the table.
+  TableDoc doc() const;
+};
+
+/// What each table's row is made from (the getters read these).
+struct FrameRow {
+  int section;
+  const Frame& frame;
+};
+struct LoopRow {
+  int section;
+  std::size_t loop;  ///< index into morphology.loops
+  const MorphologyResult& morphology;
+};
+struct PointRow {
+  int section;
+  std::size_t loop, index;
+  Eigen::Vector2d point, normal;
+  double offset;  ///< signed distance from the plane before the gap fill carried it; 0 for the slab's
+};
+struct SkeletonRow {
+  int section;
+  std::size_t index;
+  Eigen::Vector2d point;
+  double radius;
+};
+/// A point of a loop in order: smoothed, spline_ctrl.
+struct LoopPoint {
+  int section, loop;
+  std::size_t index;
+  Eigen::Vector2d point;
+};
+struct SmoothStatsRow {
+  int section, loop;
+  const SmoothResult& result;
+};
+struct SplineRow {
+  int section, loop;
+  const FitSplineResult& fit;
+};
+struct KnotRow {
+  int section, loop;
+  std::size_t index;
+  double knot;
+};
+struct GapRow {
+  int section, loop;
+  std::size_t index;
+  const FitSplineResult::Gap& gap;
+};
+struct SampleRow {
+  int section, loop, index;
+  double t;
+  Eigen::Vector2d point;
+  Eigen::Vector3d world;
+  Eigen::Vector2d normal;
+  double curvature;
+};
+struct CamberRow {
+  int section;
+  std::size_t index;
+  double s;
+  Eigen::Vector2d point;
+  Eigen::Vector3d world;
+  double radius;
+};
+struct ParamsRow {
+  int section;
+  const SectionParams& params;
+  const CamberResult& camber;
+  Eigen::Vector3d le, te, centroid;  ///< the edge points and the centroid in 3D
+  double le_unmeasured, te_unmeasured;
+};
+struct ThicknessRow {
+  int section;
+  std::size_t index;
+  const ThicknessStation& station;
+};
+struct SideRow {
+  int section, side;  ///< side 0 pressure, 1 suction
+  std::size_t index;
+  Eigen::Vector2d point;
+};
+
+// The tables, in the order the tools write them.
+extern const TableSchema<FrameRow> frames;
+extern const TableSchema<LoopRow> loops;
+extern const TableSchema<PointRow> points;
+extern const TableSchema<SkeletonRow> skeleton;
+extern const TableSchema<LoopPoint> smoothed;
+extern const TableSchema<SmoothStatsRow> smooth_stats;
+extern const TableSchema<SplineRow> splines;
+extern const TableSchema<KnotRow> spline_knots;
+extern const TableSchema<LoopPoint> spline_ctrl;
+extern const TableSchema<GapRow> gaps;
+extern const TableSchema<SampleRow> samples;
+extern const TableSchema<CamberRow> camber;
+extern const TableSchema<ParamsRow> params;
+extern const TableSchema<ThicknessRow> thickness;
+extern const TableSchema<SideRow> sides;
+
+/// Every table above as docs/FORMAT.md lists it, in that order.
+std::vector<TableDoc> tables();
+
+}  // namespace schema
 }  // namespace section

@@ -7,8 +7,7 @@
 namespace section {
 
 /// Stream stage: smooths every (section, loop) of the "points" table (closed loops) and
-/// writes the tables "smoothed" (section, loop, index, u, v) and "smooth_stats" (section,
-/// loop, points, energy_before, energy_after, iterations, rms_move, max_move, repaired).
+/// writes the tables "smoothed" and "smooth_stats" (columns: pipe/schema.h, docs/FORMAT.md).
 /// Sections already failed at an earlier stage are skipped; a loop that cannot be smoothed
 /// is recorded in stream.issues (stage "smooth") and the others go on. Throws
 /// section::Error when the "points" table is missing or lacks a column.

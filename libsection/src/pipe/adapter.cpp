@@ -1,0 +1,74 @@
+#include "pipe/adapter.h"
+
+#include "section/error.h"
+#include "section/pipe/schema.h"
+#include "detail/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace section::pipe {
+
+std::map<std::pair<int, int>, LoopRows> loop_rows(const Table& t, const std::string& component) {
+  namespace col = schema::col;
+  const std::size_t cs = t.column(col::section), cl = t.column(col::loop), ci = t.column(col::index),
+                    cu = t.column(col::u), cv = t.column(col::v);
+  std::map<std::pair<int, int>, LoopRows> loops;
+  LoopRows* loop = nullptr;  // the last row's, which the next row mostly shares
+  std::pair<int, int> last;
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    const double s = t.at(r, cs), l = t.at(r, cl);
+    if (!std::isfinite(s) || !std::isfinite(l))
+      throw Error(component + ": row " + std::to_string(r + 1) + " of the " + t.name +
+                  " table has a non-finite section or loop id");
+    const std::pair<int, int> key{static_cast<int>(s), static_cast<int>(l)};
+    if (!loop || key != last) {
+      loop = &loops[key];
+      last = key;
+    }
+    loop->push_back({t.at(r, ci), Eigen::Vector2d(t.at(r, cu), t.at(r, cv))});
+  }
+  const auto before = [](const auto& x, const auto& y) { return x.first < y.first; };
+  const auto finite = [](const auto& x) { return std::isfinite(x.first); };
+  for (auto& [key, rows] : loops) {
+    // Rows come in index order: left as they are when sorted (finite indices, so the
+    // stable sort would keep them too).
+    if (!std::all_of(rows.begin(), rows.end(), finite) || !std::is_sorted(rows.begin(), rows.end(), before))
+      std::stable_sort(rows.begin(), rows.end(), before);
+  }
+  return loops;
+}
+
+void clear_issues(Stream& stream, const std::string& stage) {
+  auto& issues = stream.issues;
+  issues.erase(
+      std::remove_if(issues.begin(), issues.end(), [&](const SectionIssue& i) { return i.stage == stage; }),
+      issues.end());
+}
+
+void run_slots(std::size_t count, int threads, const std::vector<Table*>& tables,
+               std::vector<SectionIssue>& issues, const std::string& component,
+               const std::function<void(std::size_t item, Slot& slot)>& make,
+               const std::function<SectionIssue(std::size_t item, const std::string& message)>& fail) {
+  std::vector<Slot> slots(count);
+  const std::string prefix = component + ": ";
+  detail::parallel_for(count, threads, [&](std::size_t item) {
+    Slot& slot = slots[item];
+    slot.rows.assign(tables.size(), {});
+    try {
+      make(item, slot);
+    } catch (const Error& e) {
+      std::string message = e.what();
+      if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
+      slot = Slot{};
+      slot.issues.push_back(fail(item, message));
+    }
+  });
+  for (auto& slot : slots) {
+    for (std::size_t k = 0; k < slot.rows.size(); ++k)
+      tables[k]->values.insert(tables[k]->values.end(), slot.rows[k].begin(), slot.rows[k].end());
+    for (auto& i : slot.issues) issues.push_back(std::move(i));
+  }
+}
+
+}  // namespace section::pipe

@@ -1,0 +1,45 @@
+#pragma once
+// What the stream stages (smooth_stream, fit_spline_stream, camber_stream) share: a table's
+// rows by loop, a rerun's issues cleared, and items run in parallel into slots merged in order.
+#include "section/io/stream.h"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace section::pipe {
+
+/// The (index, point) rows of one loop.
+using LoopRows = std::vector<std::pair<double, Eigen::Vector2d>>;
+
+/// The rows of a table with the columns section, loop, index, u, v by (section, loop), each
+/// in index order. Throws section::Error `COMPONENT: row N of the TABLE table has a
+/// non-finite section or loop id`.
+std::map<std::pair<int, int>, LoopRows> loop_rows(const Table& t, const std::string& component);
+
+/// Removes the issues `stage` recorded before: a rerun replaces them along with its tables.
+void clear_issues(Stream& stream, const std::string& stage);
+
+/// What a stage made of one item (a loop, a section): its rows of each table it writes, and
+/// its issues.
+struct Slot {
+  std::vector<std::vector<double>> rows;  ///< one list of values per table, in the order given to run_slots
+  std::vector<SectionIssue> issues;
+};
+
+/// Runs `make(item, slot)` for items 0 .. count-1 on `threads` threads (0 = all cores), each
+/// into its own slot; a section::Error from it leaves the slot without rows and with the
+/// issue `fail(item, message)` makes, the message without the prefix `component: `. Then
+/// appends the slots' rows to `tables` and their issues to `issues`, in item order, so that
+/// the output is the same whatever the thread count.
+void run_slots(std::size_t count, int threads, const std::vector<Table*>& tables,
+               std::vector<SectionIssue>& issues, const std::string& component,
+               const std::function<void(std::size_t item, Slot& slot)>& make,
+               const std::function<SectionIssue(std::size_t item, const std::string& message)>& fail);
+
+}  // namespace section::pipe

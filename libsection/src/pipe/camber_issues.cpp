@@ -1,0 +1,237 @@
+// The issues camber_stream reports on a section, and the edge coverage they rest on.
+#include "pipe/camber_issues.h"
+
+#include "section/edge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace section::pipe {
+
+namespace {
+
+// The edge's own scale: its radius, or a blunt edge's face width (0 for a sharp edge).
+double edge_size(const Edge& e) {
+  return e.radius > 0 ? e.radius : e.face;
+}
+
+std::string join(std::string a, const std::string& b) {
+  return a.empty() ? b : b.empty() ? a : a + ", " + b;
+}
+
+// An edge that is not round: a flat face is reported with its width (never a circle);
+// other blunt and sharp edges as the edge model says.
+std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
+  if (e.shape == EdgeShape::round) return std::string();
+  if (e.face > 0)
+    return std::string(which) + " is " + edge_shape_name(EdgeShape::blunt) + ": a flat face " +
+           format_number(e.face) + " wide (radius reported as 0)";
+  return std::string(which) + " looks " + edge_shape_name(e.shape) +
+         (model == EdgeModel::round
+              ? std::string(" (fitted as ") + edge_shape_name(EdgeShape::round) + " anyway)"
+              : std::string(" (radius reported as 0)"));
+}
+
+// An edge whose point or arc lies over a hole in the measured points.
+std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* which, double edge_hole) {
+  const double size = edge_size(e), unmeasured = cover.around;
+  if (!(unmeasured > size)) {
+    if (!(cover.hole >= edge_hole * size)) return std::string();
+    return std::string(which) + " partly not measured: " + format_number(cover.hole) +
+           " of the profile without a measured point begins " + format_number(cover.hole_distance) +
+           " from the edge point (edge " + (e.radius > 0 ? "radius " : "face ") + format_number(size) +
+           "); its radius and point rest partly on the curve bridging that hole";
+  }
+  return std::string(which) + " not measured: " + format_number(unmeasured) +
+         " of the profile around it has no measured point (edge " + (e.radius > 0 ? "radius " : "face ") +
+         format_number(size) + "); its point and radius bridge a hole in the data";
+}
+
+// An edge covered only thanks to points the gap fill carried onto the plane: say so, with
+// how far they came from (their positions rest on the drift fitted beside the gap).
+std::string carried_note(const SectionFacts& f, const Edge& e, const std::string& hole_message,
+                         const char* which) {
+  const Measured& q = f.measured;
+  if (q.carried.empty() || !hole_message.empty()) return std::string();
+  const EdgeCoverage own = edge_coverage(f.curve, e, q.in_slab, f.options.edge_hole_reach);
+  if (hole_note(e, own, which, f.options.edge_hole).empty()) return std::string();
+  const double size = edge_size(e);
+  const Eigen::Vector2d at = f.curve.point(e.t);
+  double far = 0;
+  for (std::size_t i = 0; i < q.carried.size(); ++i)
+    if ((q.carried[i] - at).norm() <= 3 * size + own.around) far = std::max(far, q.carried_offset[i]);
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "%s measured with points carried onto the plane from up to %.3g off it (slice's gap fill: "
+                "the slab alone leaves %.3g of the profile there without a point)",
+                which, far, std::max(own.around, own.hole));
+  return std::string(text);
+}
+
+// A round edge whose circle leaves the profile by much more than the profile's noise.
+std::string circularity_note(const Edge& e, const char* which, double profile_noise) {
+  if (e.circular || e.shape != EdgeShape::round) return std::string();
+  char text[256];
+  std::snprintf(
+      text, sizeof text,
+      "%s is not circular: the circle fitted to its %.0f-degree arc leaves it by %.3g rms, %.0f times "
+      "the points' rms distance to the profile; its radius and point depend on the arc taken",
+      which, e.arc, e.fit_rms, e.fit_rms / profile_noise);
+  return std::string(text);
+}
+
+// Everything said of one edge, joined by commas.
+std::string edge_note(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover, const char* which) {
+  const std::string hole = hole_note(e, cover, which, f.options.edge_hole);
+  return join(join(join(shape_note(e, which, f.options.edge), hole), carried_note(f, e, hole, which)),
+              circularity_note(e, which, f.options.profile_noise));
+}
+
+}  // namespace
+
+// Where a section's other loops lie, for the message that refuses it: a small loop close
+// outside the profile is usually a piece of it cut off by a gap in the data.
+std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section) {
+  const auto main = curves.find({section, 0});
+  if (main == curves.end()) return "";
+  const std::vector<Eigen::Vector2d> p0 = sample(main->second, 400);
+  Eigen::Vector2d low = p0[0], high = p0[0];
+  for (const auto& q : p0) low = low.cwiseMin(q), high = high.cwiseMax(q);
+  auto area = [](const std::vector<Eigen::Vector2d>& p) {
+    double a = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Eigen::Vector2d& b = p[(i + 1) % p.size()];
+      a += p[i].x() * b.y() - p[i].y() * b.x();
+    }
+    return std::abs(0.5 * a);
+  };
+  std::string out;
+  bool cut = false;
+  for (const auto& [key, curve] : curves) {
+    if (key.first != section || key.second == 0) continue;
+    const std::vector<Eigen::Vector2d> p = sample(curve, 400);
+    double gap = std::numeric_limits<double>::infinity();
+    for (const auto& a : p)
+      for (const auto& b : p0) gap = std::min(gap, (a - b).norm());
+    char text[160];
+    std::snprintf(text, sizeof text, "%sloop %d: area %.3g against %.3g, %.3g from loop 0",
+                  out.empty() ? "" : "; ", key.second, area(p), area(p0), gap);
+    out += text;
+    cut = cut || (area(p) < 0.2 * area(p0) && gap < 0.1 * (high - low).norm());
+  }
+  if (out.empty()) return "";
+  return " (" + out + ")" +
+         (cut ? "; a small loop this close is often a piece of the profile cut off by a gap in the data"
+              : "");
+}
+
+EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
+                           const std::vector<Eigen::Vector2d>& measured, double arc_reach) {
+  EdgeCoverage out;
+  const double size = edge_size(edge);
+  if (measured.empty() || !(size > 0)) return out;
+  const int half = 200;
+  const double reach = 3 * 3.14159265358979 * size, h = reach / half;
+  // Samples every h along the curve, from -reach to +reach around the edge point.
+  std::vector<Eigen::Vector2d> samples(2 * half + 1);
+  samples[half] = curve.point(edge.t);
+  for (int dir : {-1, 1}) {
+    double t = edge.t;
+    for (int k = 1; k <= half; ++k) {
+      const double speed = curve.derivative(t, 1).norm();
+      if (!(speed > 0)) return out;
+      t += dir * h / speed;
+      samples[half + dir * k] = curve.point(t);
+    }
+  }
+  // A point covers its nearest sample if that lies within 2h. Samples are bucketed in
+  // cells wider than 2h, so the 3 x 3 cells around a point hold every sample that can
+  // count; ties go to the lowest index, as a scan of all samples would give.
+  const double cell = 2.5 * h;
+  Eigen::Vector2d low = samples[half], high = samples[half];
+  for (const auto& s : samples)
+    if (s.allFinite()) low = low.cwiseMin(s), high = high.cwiseMax(s);
+  const int nx = static_cast<int>((high.x() - low.x()) / cell) + 1,
+            ny = static_cast<int>((high.y() - low.y()) / cell) + 1;
+  auto cell_of = [&](double v, double v0, int n) {
+    return static_cast<int>(std::clamp(std::floor((v - v0) / cell), -1.0, double(n)));
+  };
+  std::vector<int> head(static_cast<std::size_t>(nx) * ny, -1), next(samples.size(), -1);
+  for (int k = static_cast<int>(samples.size()) - 1; k >= 0; --k) {
+    if (!samples[k].allFinite()) continue;
+    const std::size_t c =
+        std::size_t(cell_of(samples[k].y(), low.y(), ny - 1)) * nx + cell_of(samples[k].x(), low.x(), nx - 1);
+    next[k] = head[c];
+    head[c] = k;
+  }
+  std::vector<char> covered(samples.size(), 0);
+  for (const auto& q : measured) {
+    if ((q - samples[half]).norm() > reach + 2 * h) continue;
+    const int cx = cell_of(q.x(), low.x(), nx), cy = cell_of(q.y(), low.y(), ny);
+    int best = -1;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ny - 1); ++y)
+      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, nx - 1); ++x)
+        for (int k = head[std::size_t(y) * nx + x]; k >= 0; k = next[k]) {
+          const double d = (q - samples[k]).squaredNorm();
+          if (d < best_d || (d == best_d && k < best)) best_d = d, best = k;
+        }
+    if (best >= 0 && std::sqrt(best_d) <= 2 * h) covered[best] = 1;
+  }
+  int lo = half, hi = half;
+  while (lo > 0 && !covered[lo]) --lo;
+  while (hi < 2 * half && !covered[hi]) ++hi;
+  if (!covered[half]) out.around = (hi - lo) * h;
+  for (int k = 0; k <= 2 * half;) {
+    if (covered[k]) {
+      ++k;
+      continue;
+    }
+    int e = k;
+    while (e <= 2 * half && !covered[e]) ++e;
+    const double length = (e - k + 1) * h, distance = k > half    ? (k - 1 - half) * h
+                                                      : e <= half ? (half - e) * h
+                                                                  : 0.0;
+    if (distance <= arc_reach * size && length > out.hole) out.hole = length, out.hole_distance = distance;
+    k = e;
+  }
+  return out;
+}
+
+void describe_issues(const SectionFacts& f, std::vector<SectionIssue>& issues) {
+  const CamberResult& r = f.camber;
+  const CamberOptions& opt = f.options;
+  const std::string le_msg = edge_note(f, r.le, f.le, "leading edge"),
+                    te_msg = edge_note(f, r.te, f.te, "trailing edge");
+  if (!le_msg.empty() || !te_msg.empty())
+    issues.push_back(
+        {f.section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
+  // A camber line that strays from the medial axis (no inscribed circle solved there)
+  // is not a measured one: say where and by how much.
+  if (r.off_axis > 0) {
+    std::size_t k = 0;
+    while (k + 1 < r.s.size() && r.s[k] < r.off_axis_s) ++k;
+    if (k < r.radius.size() && r.off_axis > opt.off_axis * r.radius[k]) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "the camber line strays from the medial axis by up to %.3g at %.2f of its length (no "
+                    "inscribed circle could be solved there): its shape and the thickness stations there are "
+                    "interpolated",
+                    r.off_axis, r.off_axis_s / std::max(r.length, 1e-300));
+      issues.push_back({f.section, 0, "camber", text});
+    }
+  }
+  // The thickness rule is a near tie: say so rather than let the orientation pass as known.
+  if (!r.le_by_direction && std::abs(f.params.max_thickness_pos - 0.5) <= opt.le_thickness_margin) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "the leading edge was taken as the end nearer the maximum thickness, which lies at %.2f of "
+                  "the camber line: too near mid-chord to tell; give the leading-edge direction",
+                  f.params.max_thickness_pos);
+    issues.push_back({f.section, 0, "camber", text});
+  }
+}
+
+}  // namespace section::pipe

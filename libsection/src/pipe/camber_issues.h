@@ -1,0 +1,61 @@
+#pragma once
+// What camber_stream says of a section beside its rows: where the other loops of a refused
+// section lie, and the issues of a measured one (edges not round, not measured, measured
+// with carried points or not circular; a camber line off the medial axis; an LE chosen by a
+// near tie), with the edge coverage they rest on.
+#include "section/bspline.h"
+#include "section/camber.h"
+#include "section/io/stream.h"
+#include "section/params.h"
+
+#include <Eigen/Core>
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace section::pipe {
+
+/// A section's loop-0 measured points (table points): all, and apart those the slab held
+/// itself (offset 0: not carried onto the plane by the gap fill) and the carried ones with
+/// their |offset|.
+struct Measured {
+  std::vector<Eigen::Vector2d> all, in_slab, carried;
+  std::vector<double> carried_offset;
+};
+
+/// How well the measured points cover an edge (lengths along the profile).
+struct EdgeCoverage {
+  /// The stretch around the edge point that no measured point covers (a hole over the edge,
+  /// or an edge sampled more sparsely than its radius): there the edge point and radius
+  /// come from the fit bridging the hole, not from measurements.
+  double around = 0;
+  /// The longest stretch without measured points that begins within the edge arc, and its
+  /// distance from the edge point (0 when it holds it): part of the fitted arc is a bridge.
+  double hole = 0, hole_distance = 0;
+};
+
+/// The coverage of `edge` of `curve` by the `measured` points; the hole must begin within
+/// `arc_reach` edge sizes (radius, or a blunt edge's face width) of the edge point.
+EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
+                           const std::vector<Eigen::Vector2d>& measured, double arc_reach);
+
+/// Where a section's other loops lie, for the message that refuses it ("" when it has none).
+std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section);
+
+/// What a measured section's issues rest on.
+struct SectionFacts {
+  int section;
+  const BSpline& curve;
+  const CamberResult& camber;
+  const SectionParams& params;
+  EdgeCoverage le, te;
+  const Measured& measured;
+  const CamberOptions& options;  ///< as the section was measured with
+};
+
+/// Appends the issues of a measured section (stage "camber", loop 0) to `issues`.
+void describe_issues(const SectionFacts& facts, std::vector<SectionIssue>& issues);
+
+}  // namespace section::pipe

@@ -1,0 +1,134 @@
+// Tests of the tools' command lines without the binaries (tools/args/): a flag maps to its
+// option, a bad value is refused as bad usage (exit code 2), --help answers with exit 0.
+#if __has_include("args/slice_args.h")  // the tools are built (SECTION_BUILD_TOOLS)
+#include "args/bladegen_args.h"
+#include "args/camber_args.h"
+#include "args/fitspline_args.h"
+#include "args/plot_args.h"
+#include "args/slice_args.h"
+#include "args/smooth_args.h"
+
+#include <catch2/catch.hpp>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace section::tool;
+
+// A command line parsed into `Args`: the exit code (-1 = run) and what was printed.
+template <class Args>
+struct Parsed {
+  Args args;
+  int code = 0;
+  std::string out, err;
+};
+
+template <class Args>
+Parsed<Args> parsed(std::vector<std::string> words) {
+  words.insert(words.begin(), Args::name);
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  Parsed<Args> p;
+  std::ostringstream out, err;
+  p.code = parse(static_cast<int>(argv.size()), argv.data(), p.args, out, err);
+  p.out = out.str();
+  p.err = err.str();
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("tool options: slice reads its planes, slab and input", "[tools]") {
+  const auto p = parsed<SliceArgs>({"blade.ply", "--normal", "1,0,0", "--at", "2,4", "--slab", "0.1",
+                                    "--no-fill", "--band-spacing", "0", "--units", "in", "-o", "out.csv"});
+  REQUIRE(p.code == -1);
+  CHECK(p.args.common.input == "blade.ply");
+  CHECK(p.args.common.output == "out.csv");
+  CHECK(p.args.normal == std::vector<double>{1, 0, 0});
+  CHECK(p.args.at == std::vector<double>{2, 4});
+  CHECK(p.args.options.slab == 0.1);
+  CHECK(!p.args.options.fill_gaps);
+  CHECK(p.args.options.band_spacing == 0);
+  CHECK(p.args.units == "in");
+  CHECK(parsed<SliceArgs>({"blade.ply", "--count", "7", "--view", "b.ply"}).args.views ==
+        std::vector<std::string>{"b.ply"});
+}
+
+TEST_CASE("tool options: bad usage is refused with exit code 2 and names the flag", "[tools]") {
+  const auto no_planes = parsed<SliceArgs>({"blade.ply"});
+  CHECK(no_planes.code == 2);
+  CHECK(no_planes.err.find("one of --at, --count or --planes") != std::string::npos);
+  CHECK(parsed<SliceArgs>({"blade.ply", "--count", "0"}).code == 2);
+  CHECK(parsed<SliceArgs>({"blade.ply", "--at", "1", "--normal", "1,2"}).code == 2);
+  CHECK(parsed<SliceArgs>({"blade.ply", "--at", "1", "--count", "3"}).code == 2);
+  CHECK(parsed<SmoothArgs>({"--solver", "lu"}).code == 2);
+  CHECK(parsed<SmoothArgs>({"--b", "0"}).code == 2);
+  CHECK(parsed<FitsplineArgs>({"--samples", "10", "--spacing", "1"}).code == 2);
+  const auto stations = parsed<CamberArgs>({"--stations", "0.5,2"});
+  CHECK(stations.code == 2);
+  CHECK(stations.err.find("stations must lie in [0, 1]") != std::string::npos);
+  CHECK(parsed<CamberArgs>({"--le-direction", "0,0"}).code == 2);
+  CHECK(parsed<CamberArgs>({"--edge", "square"}).code == 2);
+  CHECK(parsed<PlotArgs>({"--section", "1", "--html"}).code == 2);
+  CHECK(parsed<BladegenArgs>({"--points"}).code == 2);          // no -o
+  CHECK(parsed<BladegenArgs>({"--truth", "t.csv"}).code == 2);  // no --at
+}
+
+TEST_CASE("tool options: --help answers with exit code 0 without the required flags", "[tools]") {
+  const auto help = parsed<SliceArgs>({"--help"});
+  CHECK(help.code == 0);
+  CHECK(help.out.find("--normal") != std::string::npos);
+  CHECK(help.out.rfind(SliceArgs::description, 0) == 0);
+  CHECK(parsed<BladegenArgs>({"--help"}).code == 0);
+  CHECK(parsed<CamberArgs>({"--version"}).out.find("camber (libsection)") == 0);
+}
+
+TEST_CASE("tool options: smooth, fitspline and camber read their flags into the stage options", "[tools]") {
+  const auto smooth =
+      parsed<SmoothArgs>({"--solver", "gauss-seidel", "--length", "0.5", "--report", "r.csv"});
+  REQUIRE(smooth.code == -1);
+  CHECK(smooth.args.options.solver == section::SmoothSolver::gauss_seidel);
+  CHECK(smooth.args.options.smoothing_length == 0.5);
+  CHECK(smooth.args.report == "r.csv");
+  CHECK(smooth.args.common.input == "-");
+
+  const auto fit = parsed<FitsplineArgs>({"in.csv", "--samples", "40", "--threads", "2"});
+  REQUIRE(fit.code == -1);
+  CHECK(fit.args.options.samples == 40);
+  CHECK(fit.args.options.threads == 2);
+
+  const auto camber = parsed<CamberArgs>(
+      {"--stations", "0.25, +0.5", "--le-direction", "0,0,-1", "--edge", "auto", "--edge-on-spline"});
+  REQUIRE(camber.code == -1);
+  CHECK(camber.args.options.stations == std::vector<double>{0.25, 0.5});
+  CHECK(camber.args.options.le_direction_3d == Eigen::Vector3d(0, 0, -1));
+  CHECK(camber.args.options.le_direction == Eigen::Vector2d(0, 0));
+  CHECK(camber.args.options.edge == section::EdgeModel::automatic);
+  CHECK(!camber.args.options.edge_on_points);
+  CHECK(parsed<CamberArgs>({"--le-direction", "1,0"}).args.options.le_direction == Eigen::Vector2d(1, 0));
+}
+
+TEST_CASE("tool options: plot takes HTML from the output's name unless a section is asked for", "[tools]") {
+  CHECK(parsed<PlotArgs>({"-o", "page.html"}).args.html);
+  const auto one = parsed<PlotArgs>({"-o", "page.html", "--section", "3", "--no-insets"});
+  REQUIRE(one.code == -1);
+  CHECK(!one.args.html);
+  CHECK(one.args.one);
+  CHECK(one.args.only == 3);
+  CHECK(one.args.options.inset_size == 0);
+  CHECK(!parsed<PlotArgs>({"-o", "dir"}).args.one);
+}
+
+TEST_CASE("tool options: bladegen reads the scanner and the truth heights", "[tools]") {
+  const auto p = parsed<BladegenArgs>({"--kind", "compressor", "--points", "--noise", "0.01", "-o", "b.ply",
+                                       "--truth", "t.csv", "--at", "5,10"});
+  REQUIRE(p.code == -1);
+  CHECK(p.args.kind == "compressor");
+  CHECK(p.args.points);
+  CHECK(p.args.scan.noise == 0.01);
+  CHECK(p.args.at == std::vector<double>{5, 10});
+}
+#endif

@@ -1,0 +1,139 @@
+#include "args/camber_args.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <string_view>
+
+namespace section::tool {
+
+const char* const CamberArgs::description =
+    "camber: mean-camber line and section parameters (docs/CAMBER.md).\n\n"
+    "Reads the stream written by fitspline (docs/FORMAT.md) or a plain ordered 2D profile\n"
+    "(x y per line, an airfoil .dat or CMM section; a title line is skipped), and for the\n"
+    "profile (loop 0) of every section computes the mean-camber line (the locus of the\n"
+    "inscribed circles' centres, extended along its end tangents to the LE and TE points)\n"
+    "and the section parameters. Adds the tables 'camber', 'params', 'thickness' and\n"
+    "'sides' to the stream; sections that fail are recorded as issues.\n\n"
+    "Example: slice blade.ply --count 9 | smooth | fitspline | camber --params params.csv";
+
+std::vector<double> numbers(const std::string& text, const std::string& flag) {
+  std::vector<double> out;
+  std::string_view rest = text;
+  for (;;) {
+    const std::size_t comma = rest.find(',');
+    std::string_view item = rest.substr(0, comma);
+    while (!item.empty() && (item.front() == ' ' || item.front() == '\t')) item.remove_prefix(1);
+    while (!item.empty() && (item.back() == ' ' || item.back() == '\t')) item.remove_suffix(1);
+    std::string_view digits = item;
+    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+    double value = 0;
+    const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (digits.empty() || r.ec != std::errc() || r.ptr != digits.data() + digits.size() ||
+        !std::isfinite(value))
+      throw CLI::ValidationError(flag,
+                                 "expected numbers separated by commas, found '" + std::string(item) + "'");
+    out.push_back(value);
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  return out;
+}
+
+namespace {
+
+// A check that `text` holds numbers (numbers()) and that `ok` accepts them: "" or why not.
+CLI::Validator numbers_check(const std::string& flag, std::string (*ok)(const std::vector<double>&)) {
+  return CLI::Validator(
+      [flag, ok](std::string& text) {
+        try {
+          return ok(numbers(text, flag));
+        } catch (const CLI::ValidationError& e) {
+          return std::string(e.what());
+        }
+      },
+      "");
+}
+
+std::string stations_ok(const std::vector<double>& v) {
+  for (double f : v)
+    if (!(f >= 0 && f <= 1)) return "stations must lie in [0, 1]";
+  return "";
+}
+
+std::string direction_ok(const std::vector<double>& v) {
+  if ((v.size() != 2 && v.size() != 3) || std::all_of(v.begin(), v.end(), [](double x) { return x == 0; }))
+    return "expected two numbers u,v or three x,y,z, not all 0";
+  return "";
+}
+
+// The edge model and the edge circles' fit.
+void declare_edges(CLI::App& app, CamberArgs& a) {
+  CamberOptions& o = a.options;
+  add_checked(app, "--edge", a.edge,
+              "Edge model: round (circle fitted to every edge) or auto "
+              "(blunt and sharp edges get radius 0)",
+              CLI::IsMember({"round", "auto"}));
+  add_checked(app, "--edge-arc", o.edge_arc,
+              "Degrees of a fixed edge arc the edge circle is fitted to (0 = grown geometrically)",
+              CLI::Range(0.0, 270.0));
+  add_checked(app, "--edge-core", o.edge_core,
+              "Grown arc: half-angle in degrees of the core arc around the edge point that starts the growth",
+              CLI::Range(5.0, 90.0));
+  add_checked(app, "--edge-residual", o.edge_residual,
+              "Grown arc: the arc grows while the profile stays within this many core-fit rms of the circle",
+              CLI::Range(0.5, 100.0));
+  add_checked(app, "--edge-noise-residual", o.edge_noise_residual,
+              "Grown arc: that noise level is at least this many times the points' rms distance to the "
+              "profile (the spline's noise ripples over the arc; 0 = off)",
+              CLI::Range(0.0, 100.0));
+  add_checked(app, "--edge-hole", o.edge_hole,
+              "Edge radii: a stretch without measured points this long, beginning within --edge-hole-reach "
+              "radii of the edge point, makes the edge 'partly not measured' (an issue)",
+              positive);
+  add_checked(app, "--edge-hole-reach", o.edge_hole_reach,
+              "Edge radii along the profile from the edge point within which such a stretch must begin",
+              CLI::NonNegativeNumber);
+  app.add_flag(
+      "--edge-on-spline", a.edge_on_spline,
+      "Fit the edge circles to the spline's edge arcs alone (default: refitted to the measured points "
+      "on the arcs, when the stream has them)");
+}
+
+}  // namespace
+
+void CamberArgs::declare(CLI::App& app) {
+  add_common(app, common);
+  app.add_option("--params", params_file, "Also write the 'params' table to FILE (CSV)");
+  app.add_option("--thickness", thickness_file, "Also write the 'thickness' table to FILE (CSV)");
+  app.add_option("--stations", stations,
+                 "Thickness stations, fractions of the camber length (default 0.05,0.1,...,0.95)")
+      ->check(numbers_check("--stations", stations_ok));
+  app.add_option("--le-direction", le_direction,
+                 "u,v (in each section's plane) or x,y,z (in 3D, e.g. upstream along the machine "
+                 "axis; projected onto each section's plane): the leading edge is the end lying "
+                 "farther along this direction (default: the end nearer the maximum thickness, which "
+                 "is wrong on blades thickest aft of mid-chord, e.g. transonic compressor rotors: "
+                 "give it when known)")
+      ->check(numbers_check("--le-direction", direction_ok));
+  declare_edges(app, *this);
+  add_checked(app, "--tangent-span", options.tangent_span,
+              "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)",
+              CLI::Range(0.0, 0.5));
+  app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
+      ->check(CLI::NonNegativeNumber);
+  app.callback([this] {
+    if (!stations.empty()) options.stations = numbers(stations, "--stations");
+    if (!le_direction.empty()) {
+      const auto v = numbers(le_direction, "--le-direction");
+      if (v.size() == 3)
+        options.le_direction_3d = {v[0], v[1], v[2]};
+      else
+        options.le_direction = {v[0], v[1]};
+    }
+    options.edge = edge == "auto" ? EdgeModel::automatic : EdgeModel::round;
+    options.edge_on_points = !edge_on_spline;
+  });
+}
+
+}  // namespace section::tool

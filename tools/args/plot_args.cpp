@@ -1,0 +1,40 @@
+#include "args/plot_args.h"
+
+namespace section::tool {
+
+const char* const PlotArgs::description =
+    "plot: draw the sections of a pipe stream to scale (SVG or HTML).\n\n"
+    "Reads a stream from any stage (docs/FORMAT.md) and draws, per section, what it holds:\n"
+    "measured points, fitted curve, mean-camber line, inscribed circles at the thickness\n"
+    "stations, LE and TE circles, chord line, parameter table, scale bar and a magnified\n"
+    "inset of each edge; v points up, both axes at one scale.\n\n"
+    "Output:\n"
+    "  --section N -o file.svg   one section as SVG (-o - = standard output)\n"
+    "  --html -o page.html       one HTML page with every section (implied by .html)\n"
+    "  -o file.svg               the SVG of the only section\n"
+    "  -o DIR                    DIR/section-N.svg for every section (DIR is created)\n"
+    "  (default)                 the SVG of the only section on standard output\n\n"
+    "Example: slice blade.ply --count 5 | smooth | fitspline | camber | plot --html -o blade.html";
+
+void PlotArgs::declare(CLI::App& app) {
+  add_common(app, common);
+  auto* section_flag = app.add_option("--section", only, "Draw only section N (SVG)");
+  app.add_flag("--html", html, "Write one HTML page holding every section")->excludes("--section");
+  add_checked(app, "--width", options.width, "Drawing width, px", CLI::Range(300.0, 20000.0));
+  add_checked(app, "--inset", options.inset_size, "Edge inset side, px (0 = no insets)",
+              CLI::Range(0.0, 10000.0));
+  add_checked(app, "--inset-radii", options.inset_radii, "Inset half-width in edge radii",
+              CLI::Range(1.05, 100.0));
+  app.add_flag("--no-points", no_points, "Do not draw the measured points");
+  app.add_flag("--no-stations", no_stations, "Do not draw the thickness-station circles");
+  app.add_flag("--no-insets", no_insets, "Do not draw the edge insets");
+  app.callback([this, section_flag] {
+    options.points = !no_points;
+    options.stations = !no_stations;
+    if (no_insets) options.inset_size = 0;
+    one = section_flag->count() > 0;
+    if (!one && ends_with(common.output, ".html")) html = true;
+  });
+}
+
+}  // namespace section::tool

@@ -1,0 +1,94 @@
+#include "args/slice_args.h"
+
+namespace section::tool {
+
+const char* const SliceArgs::description =
+    "slice: cut a blade scan by section planes into ordered section profiles.\n\n"
+    "Reads a point cloud (.xyz .asc .txt .csv .ply; '-' = stdin, XYZ or PLY) or a mesh\n"
+    "(.stl .obj .off, or .ply with faces) and writes the pipe stream (docs/FORMAT.md) with,\n"
+    "per section: the plane frame, the measured points of the slab projected onto the plane\n"
+    "and ordered along each closed loop with outward normals, and the skeleton of the\n"
+    "filled profile. Loop 0 is the profile (largest area).\n\n"
+    "Gaps: where the slab leaves a gap longer than --fill-gap slab widths (a hole, a sparse\n"
+    "thin edge), scan points up to --fill-reach from the plane are carried onto it along the\n"
+    "surface (the section's drift with height is fitted beside the gap) and fill it; the\n"
+    "stream notes how many per section ('# fill ...'). --no-fill keeps the slab points alone.\n"
+    "Band: where the slab is sparse, points up to --band-max slab widths from the plane join\n"
+    "it, each carried onto the plane along the section's drift (lean, sweep, twist, taper and\n"
+    "a camber or thickness changing with height, fitted over the section) rather than\n"
+    "projected straight, until the profile holds about one point per --band-spacing ('# band\n"
+    "...' in the stream); --band-sparse-max widens it beside sparse stretches of the profile.\n"
+    "--band-spacing 0 keeps the slab.\n"
+    "Meshes are cut exactly and need neither.\n\n"
+    "Views: a part scanned in several views, each in its own file: the input is the first,\n"
+    "--view adds each other one. Each is registered onto the first (rigid ICP to the surface\n"
+    "they share; the views must be aligned to within --view-reach already) before\n"
+    "slicing, and the stream notes how it moved ('# register ...'). A view misregistered by a\n"
+    "few micrometres otherwise shifts every section it alone covers by that much.\n\n"
+    "Planes: --normal with --at offsets or --count planes spread over the part, or --planes FILE\n"
+    "(CSV with origin_x,origin_y,origin_z,normal_x,normal_y,normal_z).\n\n"
+    "Example: slice blade.ply --normal 0,0,1 --at 12,20,28 | smooth | fitspline | camber";
+
+namespace {
+
+// --normal, --at, --count, --planes: the planes.
+void declare_planes(CLI::App& app, SliceArgs& a) {
+  app.add_option("--normal", a.normal, "Plane normal x,y,z")->delimiter(',')->capture_default_str();
+  auto* o_at =
+      app.add_option("--at", a.at, "Plane offsets along the normal, comma-separated")->delimiter(',');
+  auto* o_count = app.add_option("--count", a.count, "Number of planes spread evenly over the part")
+                      ->check(CLI::Range(1, 100000));
+  auto* o_planes = app.add_option("--planes", a.planes_file, "CSV file of planes (origin and normal)");
+  o_at->excludes(o_count)->excludes(o_planes);
+  o_count->excludes(o_planes);
+}
+
+// --slab, --cell and the band's and the gap fill's options.
+void declare_slab(CLI::App& app, SliceOptions& options) {
+  add_checked(app, "--slab", options.slab, "Slab width d; 0 = the estimated point spacing",
+              CLI::NonNegativeNumber);
+  add_checked(app, "--cell", options.morphology.cell,
+              "Raster cell h; 0 = the estimated spacing in the section", CLI::NonNegativeNumber);
+  add_checked(app, "--band-spacing", options.band_spacing,
+              "Widen the slab into a drift-corrected band until the profile holds one point per this "
+              "length; 0 = the slab alone",
+              CLI::NonNegativeNumber);
+  add_checked(app, "--band-max", options.band_max, "Largest half width of the band, in slab widths (>= 0.5)",
+              CLI::Range(0.5, 1e6));
+  add_checked(app, "--band-sparse-max", options.band_sparse_max,
+              "Widen the band beside a sparse stretch of the profile up to this half width, in slab "
+              "widths; 0 = off",
+              CLI::Range(0.0, 1e6));
+  app.add_flag(
+      "--no-fill", [&options](std::int64_t) { options.fill_gaps = false; },
+      "Do not fill the slab's gaps from points beside the plane");
+  app.add_option("--fill-reach", options.fill.reach,
+                 "Farthest distance from the plane of the points that fill gaps; 0 = 12 slab widths")
+      ->check(CLI::NonNegativeNumber);
+  add_checked(app, "--fill-gap", options.fill.min_gap, "Fill gaps longer than this many slab widths",
+              positive);
+}
+
+}  // namespace
+
+void SliceArgs::declare(CLI::App& app) {
+  add_common(app, common);
+  declare_planes(app, *this);
+  declare_slab(app, options);
+  app.add_option("--view", views,
+                 "Another view of the same part (a point cloud), registered onto the input "
+                 "before slicing; repeat for more views");
+  add_checked(app, "--view-reach", register_options.reach,
+              "Views: pairs are sought within this distance; 0 = 3 x the input's point spacing",
+              CLI::NonNegativeNumber);
+  app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--units", units, "Length unit recorded in the stream")->capture_default_str();
+  app.callback([this] {
+    if (normal.size() != 3) throw CLI::ValidationError("--normal takes three comma-separated numbers");
+    if (at.empty() && count == 0 && planes_file.empty())
+      throw CLI::RequiredError("one of --at, --count or --planes");
+  });
+}
+
+}  // namespace section::tool

@@ -1,0 +1,29 @@
+#pragma once
+// slice's command line: its options and help text (tools/slice.cpp runs them).
+#include "common/tool.h"
+
+#include "section/register_views.h"
+#include "section/slice.h"
+
+#include <string>
+#include <vector>
+
+namespace section::tool {
+
+struct SliceArgs {
+  static constexpr const char* name = "slice";
+  static const char* const description;
+  Common common;
+  std::vector<double> normal{0, 0, 1};  ///< --normal x,y,z
+  std::vector<double> at;               ///< --at: plane offsets along the normal
+  int count = 0;                        ///< --count: planes spread evenly over the part
+  std::string planes_file;              ///< --planes: CSV file of planes
+  std::vector<std::string> views;       ///< --view: other views of the part, registered onto the input
+  RegisterOptions register_options;     ///< --view-reach
+  SliceOptions options;                 ///< --slab, --cell, --band-*, --fill-*, --threads
+  std::string units = "mm";             ///< --units recorded in the stream
+  /// Declares the options on `app`, bound to these fields.
+  void declare(CLI::App& app);
+};
+
+}  // namespace section::tool

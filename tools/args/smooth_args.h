@@ -1,0 +1,22 @@
+#pragma once
+// smooth's command line: its options and help text (tools/smooth.cpp runs them).
+#include "common/tool.h"
+
+#include "section/smooth.h"
+
+#include <string>
+
+namespace section::tool {
+
+struct SmoothArgs {
+  static constexpr const char* name = "smooth";
+  static const char* const description;
+  Common common;
+  SmoothOptions options;           ///< --length, --spacings, --a, --b, --solver, --max-iterations, --threads
+  std::string solver = "cholmod";  ///< --solver as given (options.solver is set from it)
+  std::string report;              ///< --report: the per-loop statistics (CSV) to this file
+  /// Declares the options on `app`, bound to these fields.
+  void declare(CLI::App& app);
+};
+
+}  // namespace section::tool
