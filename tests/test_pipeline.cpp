@@ -49,19 +49,12 @@ struct SectionErrors {
 enum class Err { rms, max, cam_rms, cam_max, chord, tmax, rle, rte, in, out };
 
 double error(const SectionErrors& e, Err what) {
-  switch (what) {
-    case Err::rms: return e.rms();
-    case Err::max: return e.max();
-    case Err::cam_rms: return e.cam_rms();
-    case Err::cam_max: return e.cam_max();
-    case Err::chord: return e.chord();
-    case Err::tmax: return e.tmax();
-    case Err::rle: return e.rle();
-    case Err::rte: return e.rte();
-    case Err::in: return e.in();
-    case Err::out: return e.out();
-  }
-  return 0;
+  using Get = double (SectionErrors::*)() const;
+  static const Get get[] = {&SectionErrors::rms,   &SectionErrors::max, &SectionErrors::cam_rms,
+                            &SectionErrors::cam_max, &SectionErrors::chord, &SectionErrors::tmax,
+                            &SectionErrors::rle,   &SectionErrors::rte, &SectionErrors::in,
+                            &SectionErrors::out};
+  return (e.*get[static_cast<int>(what)])();
 }
 
 struct Bound {
