@@ -75,63 +75,65 @@ const char* const usage =
     "[--edge-noise-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] [--edge-prune DEG] "
     "[--tangent-span FRACTION] [--edge-on-spline] [--edge-point-gap F] [--edge-point-sigma F]\n";
 
-using Setter = void (*)(Options&, const char*);
-using Switch = void (*)(Options&);
+// The flags that set a number, by the options they set.
+const std::map<std::string, double Options::*> run_numbers = {
+    {"--misregistration", &Options::misregistration}, {"--noise", &Options::noise},
+    {"--density-min", &Options::density_min}, {"--slab", &Options::slab}, {"--twist", &Options::twist},
+    {"--band-spacing", &Options::band_spacing}, {"--band-max", &Options::band_max},
+    {"--band-sparse-max", &Options::band_sparse_max}};
+const std::map<std::string, double GapFillOptions::*> fill_numbers = {
+    {"--fill-gap", &GapFillOptions::min_gap}, {"--fill-reach", &GapFillOptions::reach},
+    {"--fill-fraction", &GapFillOptions::min_gap_fraction}};
+const std::map<std::string, double FitSplineOptions::*> fit_numbers = {
+    {"--min-span-points", &FitSplineOptions::min_span_points}, {"--fairness", &FitSplineOptions::fairness},
+    {"--smoothing-length", &FitSplineOptions::smoothing_length},
+    {"--outlier-floor", &FitSplineOptions::outlier_floor}, {"--min-span", &FitSplineOptions::min_span},
+    {"--tolerance", &FitSplineOptions::tolerance}};
+const std::map<std::string, double CamberOptions::*> camber_numbers = {
+    {"--edge-arc", &CamberOptions::edge_arc}, {"--edge-core", &CamberOptions::edge_core},
+    {"--edge-residual", &CamberOptions::edge_residual}, {"--edge-noise-residual", &CamberOptions::edge_noise_residual},
+    {"--edge-circularity", &CamberOptions::edge_circularity}, {"--edge-hole", &CamberOptions::edge_hole},
+    {"--edge-hole-reach", &CamberOptions::edge_hole_reach}, {"--edge-prune", &CamberOptions::edge_prune},
+    {"--tangent-span", &CamberOptions::tangent_span}, {"--edge-point-gap", &CamberOptions::edge_point_gap},
+    {"--edge-point-sigma", &CamberOptions::edge_point_sigma}};
 
-// The flags that take a value, and what each sets.
-const std::map<std::string, Setter>& valued_flags() {
-  static const std::map<std::string, Setter> flags = {
-      {"--seeds", [](Options& o, const char* v) { o.seeds = std::atoi(v); }},
-      {"--first-seed", [](Options& o, const char* v) { o.first_seed = std::atoi(v); }},
-      {"--misregistration", [](Options& o, const char* v) { o.misregistration = std::atof(v); }},
-      {"--noise", [](Options& o, const char* v) { o.noise = std::atof(v); }},
-      {"--holes", [](Options& o, const char* v) { o.holes = std::atoi(v); }},
-      {"--density-min", [](Options& o, const char* v) { o.density_min = std::atof(v); }},
-      {"--slab", [](Options& o, const char* v) { o.slab = std::atof(v); }},
-      {"--twist", [](Options& o, const char* v) { o.twist = std::atof(v); }},
-      {"--band-spacing", [](Options& o, const char* v) { o.band_spacing = std::atof(v); }},
-      {"--band-max", [](Options& o, const char* v) { o.band_max = std::atof(v); }},
-      {"--band-sparse-max", [](Options& o, const char* v) { o.band_sparse_max = std::atof(v); }},
-      {"--preset", [](Options& o, const char* v) { o.preset = v; }},
-      {"--fill-gap", [](Options& o, const char* v) { o.fill_options.min_gap = std::atof(v); }},
-      {"--fill-reach", [](Options& o, const char* v) { o.fill_options.reach = std::atof(v); }},
-      {"--fill-fraction", [](Options& o, const char* v) { o.fill_options.min_gap_fraction = std::atof(v); }},
-      {"--auto-cells", [](Options& o, const char* v) { o.auto_cells = std::size_t(std::atol(v)); }},
-      {"--export", [](Options& o, const char* v) { o.export_dir = v; }},
-      {"--min-span-points", [](Options& o, const char* v) { o.fit_options.min_span_points = std::atof(v); }},
-      {"--fairness", [](Options& o, const char* v) { o.fit_options.fairness = std::atof(v); }},
-      {"--smoothing-length", [](Options& o, const char* v) { o.fit_options.smoothing_length = std::atof(v); }},
-      {"--outlier-floor", [](Options& o, const char* v) { o.fit_options.outlier_floor = std::atof(v); }},
-      {"--min-span", [](Options& o, const char* v) { o.fit_options.min_span = std::atof(v); }},
-      {"--tolerance", [](Options& o, const char* v) { o.fit_options.tolerance = std::atof(v); }},
-      {"--edge-arc", [](Options& o, const char* v) { o.camber_options.edge_arc = std::atof(v); }},
-      {"--edge-core", [](Options& o, const char* v) { o.camber_options.edge_core = std::atof(v); }},
-      {"--edge-residual", [](Options& o, const char* v) { o.camber_options.edge_residual = std::atof(v); }},
-      {"--edge-noise-residual", [](Options& o, const char* v) { o.camber_options.edge_noise_residual = std::atof(v); }},
-      {"--edge-circularity", [](Options& o, const char* v) { o.camber_options.edge_circularity = std::atof(v); }},
-      {"--edge-hole", [](Options& o, const char* v) { o.camber_options.edge_hole = std::atof(v); }},
-      {"--edge-hole-reach", [](Options& o, const char* v) { o.camber_options.edge_hole_reach = std::atof(v); }},
-      {"--edge-prune", [](Options& o, const char* v) { o.camber_options.edge_prune = std::atof(v); }},
-      {"--tangent-span", [](Options& o, const char* v) { o.camber_options.tangent_span = std::atof(v); }},
-      {"--edge-point-gap", [](Options& o, const char* v) { o.camber_options.edge_point_gap = std::atof(v); }},
-      {"--edge-point-sigma", [](Options& o, const char* v) { o.camber_options.edge_point_sigma = std::atof(v); }},
-  };
-  return flags;
-}
+// The other flags that take a value.
+const std::map<std::string, void (*)(Options&, const char*)> other_values = {
+    {"--seeds", [](Options& o, const char* v) { o.seeds = std::atoi(v); }},
+    {"--first-seed", [](Options& o, const char* v) { o.first_seed = std::atoi(v); }},
+    {"--holes", [](Options& o, const char* v) { o.holes = std::atoi(v); }},
+    {"--auto-cells", [](Options& o, const char* v) { o.auto_cells = std::size_t(std::atol(v)); }},
+    {"--preset", [](Options& o, const char* v) { o.preset = v; }},
+    {"--export", [](Options& o, const char* v) { o.export_dir = v; }}};
 
 // The flags without a value.
-const std::map<std::string, Switch>& switches() {
-  static const std::map<std::string, Switch> flags = {
-      {"--rigid-twist", [](Options& o) { o.rigid_twist = true; }},
-      {"--no-band", [](Options& o) { o.band_spacing = 0; }},
-      {"--no-camber", [](Options& o) { o.with_camber = false; }},
-      {"--full-scan", [](Options& o) { o.full_scan = true; }},
-      {"--register", [](Options& o) { o.register_views_first = o.full_scan = true; }},
-      {"--no-fill", [](Options& o) { o.fill_gaps = false; }},
-      {"--edge-on-spline", [](Options& o) { o.camber_options.edge_on_points = false; }},
-      {"--quiet", [](Options& o) { o.quiet = true; }},
-  };
-  return flags;
+const std::map<std::string, void (*)(Options&)> switches = {
+    {"--rigid-twist", [](Options& o) { o.rigid_twist = true; }},
+    {"--no-band", [](Options& o) { o.band_spacing = 0; }},
+    {"--no-camber", [](Options& o) { o.with_camber = false; }},
+    {"--full-scan", [](Options& o) { o.full_scan = true; }},
+    {"--register", [](Options& o) { o.register_views_first = o.full_scan = true; }},
+    {"--no-fill", [](Options& o) { o.fill_gaps = false; }},
+    {"--edge-on-spline", [](Options& o) { o.camber_options.edge_on_points = false; }},
+    {"--quiet", [](Options& o) { o.quiet = true; }}};
+
+bool takes_value(const std::string& a) {
+  return run_numbers.count(a) || fill_numbers.count(a) || fit_numbers.count(a) || camber_numbers.count(a) ||
+         other_values.count(a);
+}
+
+// Sets `target`'s field of flag `a` when `flags` has it.
+template <class T>
+void set_number(const std::map<std::string, double T::*>& flags, const std::string& a, const char* v, T& target) {
+  if (const auto it = flags.find(a); it != flags.end()) target.*(it->second) = std::atof(v);
+}
+
+void set_value(Options& o, const std::string& a, const char* v) {
+  set_number(run_numbers, a, v, o);
+  set_number(fill_numbers, a, v, o.fill_options);
+  set_number(fit_numbers, a, v, o.fit_options);
+  set_number(camber_numbers, a, v, o.camber_options);
+  if (const auto it = other_values.find(a); it != other_values.end()) it->second(o, v);
 }
 
 // argv to options; an exit code when the program is done (--help: 0, a bad argument: 2).
@@ -139,13 +141,13 @@ std::optional<int> parse_args(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto digit = [&](std::size_t k) { return std::isdigit(static_cast<unsigned char>(a[k])) != 0; };
-    if (const auto it = valued_flags().find(a); it != valued_flags().end()) {
+    if (takes_value(a)) {
       if (i + 1 >= argc) {
         std::fprintf(stderr, "evaluate_pipeline: %s needs a value\n", a.c_str());
         return 2;
       }
-      it->second(o, argv[++i]);
-    } else if (const auto s = switches().find(a); s != switches().end()) {
+      set_value(o, a, argv[++i]);
+    } else if (const auto s = switches.find(a); s != switches.end()) {
       s->second(o);
     } else if (a == "--help" || a == "-h") {
       std::printf("%s", usage);
