@@ -90,8 +90,10 @@ std::string subtree(const std::string& svg, const std::string& id) {
   std::size_t pos = open;
   while ((pos = svg.find('<', pos)) != std::string::npos) {
     const std::size_t end = svg.find('>', pos);
-    if (svg[pos + 1] == '/') --depth;
-    else if (svg[end - 1] != '/') ++depth;
+    if (svg[pos + 1] == '/')
+      --depth;
+    else if (svg[end - 1] != '/')
+      ++depth;
     pos = end + 1;
     if (depth == 0) return svg.substr(open, pos - open);
   }
@@ -132,7 +134,9 @@ struct Mapping {
   Vector2d pixel(const Vector2d& w) const { return {s * w.x() + tx, -s * w.y() + ty}; }
 };
 
-Mapping mapping(const Element& group) { return {group.num("data-scale"), group.num("data-tx"), group.num("data-ty")}; }
+Mapping mapping(const Element& group) {
+  return {group.num("data-scale"), group.num("data-tx"), group.num("data-ty")};
+}
 
 const Element& by_id(const std::vector<Element>& es, const std::string& id) {
   for (const auto& e : es) {
@@ -179,8 +183,8 @@ bool all_numbers_finite(const std::string& svg) {
 void check_full_elements(const std::string& svg, const std::vector<Element>& es) {
   for (const std::string id : {"s0", "s0-main", "s0-le", "s0-te", "s0-params", "s0-main-scale", "s0-le-clip"})
     CHECK(svg.find("id=\"" + id + "\"") != std::string::npos);
-  for (const std::string c : {"points", "curve", "camber", "station", "chord", "le-circle", "te-circle", "le-point",
-                              "te-point", "scale-bar", "param-table", "inset-frame"})
+  for (const std::string c : {"points", "curve", "camber", "station", "chord", "le-circle", "te-circle",
+                              "le-point", "te-point", "scale-bar", "param-table", "inset-frame"})
     CHECK(!with_class(es, c).empty());
 }
 
@@ -217,7 +221,8 @@ void check_le_circle(const std::string& svg, const std::vector<Element>& main_es
   const auto frames = with_class(inset_es, "view-frame");
   REQUIRE(frames.size() == 1);
   const double fx = frames[0]->num("x"), fy = frames[0]->num("y"), fw = frames[0]->num("width");
-  const double cx = inset_circle[0]->num("cx"), cy = inset_circle[0]->num("cy"), r = inset_circle[0]->num("r");
+  const double cx = inset_circle[0]->num("cx"), cy = inset_circle[0]->num("cy"),
+               r = inset_circle[0]->num("r");
   CHECK(cx - r >= fx);
   CHECK(cx + r <= fx + fw);
   CHECK(cy - r >= fy);
@@ -375,11 +380,13 @@ TEST_CASE("plot: unknown sections and bad options are plot errors", "[plot]") {
   section::Table pts = table("points", {"section", "loop", "index", "u", "v"});
   for (int i = 0; i < 20; ++i) pts.add_row({2, 0, double(i), std::cos(i * 0.314), std::sin(i * 0.314)});
   stream.put(pts);
-  CHECK_THROWS_WITH(section::plot_svg(stream, 7), Catch::Contains("plot: section 7 is not in the stream (sections: 2)"));
+  CHECK_THROWS_WITH(section::plot_svg(stream, 7),
+                    Catch::Contains("plot: section 7 is not in the stream (sections: 2)"));
   section::PlotOptions o;
   o.width = 10;
   CHECK_THROWS_WITH(section::plot_svg(stream, 2, o), Catch::StartsWith("plot: width"));
-  CHECK_THROWS_WITH(section::plot_html(section::Stream{}), Catch::StartsWith("plot: the stream holds no section"));
+  CHECK_THROWS_WITH(section::plot_html(section::Stream{}),
+                    Catch::StartsWith("plot: the stream holds no section"));
   CHECK(section::plot_sections(stream) == std::vector<int>{2});
 }
 

@@ -36,8 +36,8 @@ SectionDesign BladeDesign::at(double z) const {
 namespace {
 
 // A design from its numbers, in the order of SectionDesign's fields (offset 0).
-SectionDesign design_of(double chord, double stagger, double inlet_angle, double outlet_angle, double le_radius,
-                        double te_radius, double max_thickness, double max_thickness_pos) {
+SectionDesign design_of(double chord, double stagger, double inlet_angle, double outlet_angle,
+                        double le_radius, double te_radius, double max_thickness, double max_thickness_pos) {
   SectionDesign d;
   d.chord = chord;
   d.stagger = stagger;
@@ -197,7 +197,8 @@ void sample_camber(const Geometry& g, const CamberEnds& ends, std::size_t nc, Se
   const CamberSpeed speed{g};
   constexpr int cpanels = 64;
   std::array<double, cpanels + 1> ccum{};
-  for (int k = 0; k < cpanels; ++k) ccum[k + 1] = ccum[k] + gauss(double(k) / cpanels, double(k + 1) / cpanels, speed);
+  for (int k = 0; k < cpanels; ++k)
+    ccum[k + 1] = ccum[k] + gauss(double(k) / cpanels, double(k + 1) / cpanels, speed);
   const double lbez = ccum.back();
   const int k_sm = std::min(cpanels - 1, int(g.sm * cpanels));
   const double l_sm = ccum[k_sm] + gauss(double(k_sm) / cpanels, g.sm, speed);  // camber length c(0) to c(sm)

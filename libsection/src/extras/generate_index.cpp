@@ -68,7 +68,9 @@ Nearest nearest(const std::vector<Vector2d>& pts, bool closed, const PolylineInd
   // Box distance, ties (query inside both boxes) broken by distance to the box centre.
   auto key = [&](int c) {
     const double d = box_d2(c);
-    return d > 0 ? d : -1.0 / (1.0 + (0.5 * (idx->lo[std::size_t(c)] + idx->hi[std::size_t(c)]) - q).squaredNorm());
+    return d > 0
+               ? d
+               : -1.0 / (1.0 + (0.5 * (idx->lo[std::size_t(c)] + idx->hi[std::size_t(c)]) - q).squaredNorm());
   };
   int stack[64];
   int top = 0;

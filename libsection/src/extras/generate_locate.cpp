@@ -20,9 +20,12 @@ std::size_t nearest_vertex(const std::vector<Vector2d>& pts, std::size_t segment
   std::size_t v = vd2(segment) <= vd2((segment + 1) % n) ? segment : (segment + 1) % n;
   for (std::size_t steps = 0; steps < n; ++steps) {
     const std::size_t l = (v + n - 1) % n, r = (v + 1) % n;
-    if (vd2(l) < vd2(v) && vd2(l) <= vd2(r)) v = l;
-    else if (vd2(r) < vd2(v)) v = r;
-    else break;
+    if (vd2(l) < vd2(v) && vd2(l) <= vd2(r))
+      v = l;
+    else if (vd2(r) < vd2(v))
+      v = r;
+    else
+      break;
   }
   return v;
 }

@@ -34,7 +34,9 @@ struct Rng {
   double uniform() { return double(engine() >> 11) * (1.0 / 9007199254740992.0); }  // [0, 1)
   double uniform(double a, double b) { return a + (b - a) * uniform(); }
   /// Box-Muller: a standard normal value from two uniforms in [0, 1).
-  static double normal(double u1, double u2) { return std::sqrt(-2 * std::log(1.0 - u1)) * std::cos(2 * pi * u2); }
+  static double normal(double u1, double u2) {
+    return std::sqrt(-2 * std::log(1.0 - u1)) * std::cos(2 * pi * u2);
+  }
 };
 
 /// Approximate arc-length table of a section: (piece, lambda) for any arc length.
@@ -79,7 +81,8 @@ std::vector<double> normal_z(const RowTable& table, const Section& lo, const Sec
     const std::size_t piece = std::min<std::size_t>(6, k / RowTable::per_piece);
     const double lam = double(k - piece * RowTable::per_piece) / RowTable::per_piece;
     const PieceEval e = piece_eval(table.sec, table.sec.pieces[piece], lam);
-    const Vector2d dpdz = (piece_eval(hi, hi.pieces[piece], lam).p - piece_eval(lo, lo.pieces[piece], lam).p) / dz;
+    const Vector2d dpdz =
+        (piece_eval(hi, hi.pieces[piece], lam).p - piece_eval(lo, lo.pieces[piece], lam).p) / dz;
     gz[k] = -e.normal.dot(dpdz);
   }
   return gz;
@@ -108,8 +111,8 @@ struct Field {  // smooth keep-probability in [density_min, 1]
   int m1 = 1, m2 = 2;
   double k1 = 0, k2 = 0, f1 = 0, f2 = 0;
   double operator()(double sigma, double z) const {
-    const double f =
-        0.5 + 0.25 * (std::cos(2 * pi * m1 * sigma + k1 * z + f1) + std::cos(2 * pi * m2 * sigma + k2 * z + f2));
+    const double f = 0.5 + 0.25 * (std::cos(2 * pi * m1 * sigma + k1 * z + f1) +
+                                   std::cos(2 * pi * m2 * sigma + k2 * z + f2));
     return dmin + (1 - dmin) * f;
   }
 };
@@ -132,14 +135,16 @@ struct ScanPlan {
 };
 
 // The scanned range [z_lo, z_hi], after checking the options and the designs in it.
-std::pair<double, double> checked_range(const BladeDesign& blade, const ScanOptions& o, const std::string& who) {
+std::pair<double, double> checked_range(const BladeDesign& blade, const ScanOptions& o,
+                                        const std::string& who) {
   if (!(o.spacing > 0) || !std::isfinite(o.spacing)) throw Error(who + ": spacing must be positive");
   if (!(o.noise >= 0) || !std::isfinite(o.noise)) throw Error(who + ": noise must be zero or positive");
   if (o.holes < 0) throw Error(who + ": holes must be zero or positive");
   if (!(o.density_min > 0 && o.density_min <= 1)) throw Error(who + ": density_min must be in (0, 1]");
   if (!(o.misregistration >= 0) || !std::isfinite(o.misregistration))
     throw Error(who + ": misregistration must be zero or positive");
-  if (!(o.outlier_fraction >= 0 && o.outlier_fraction < 1)) throw Error(who + ": outlier_fraction must be in [0, 1)");
+  if (!(o.outlier_fraction >= 0 && o.outlier_fraction < 1))
+    throw Error(who + ": outlier_fraction must be in [0, 1)");
   if (!(blade.span > 0)) throw Error(who + ": the blade span must be positive");
   double z_lo = 0, z_hi = blade.span;
   if (o.z_max >= o.z_min) {
@@ -147,8 +152,8 @@ std::pair<double, double> checked_range(const BladeDesign& blade, const ScanOpti
     z_hi = o.z_max;
   }
   if (z_lo < 0 || z_hi > blade.span + 1e-12 || z_hi <= z_lo)
-    throw Error(who + ": z range [" + num(z_lo) + ", " + num(z_hi) + "] must be a non-empty part of the span [0, " +
-                num(blade.span) + "]");
+    throw Error(who + ": z range [" + num(z_lo) + ", " + num(z_hi) +
+                "] must be a non-empty part of the span [0, " + num(blade.span) + "]");
   for (int i = 0; i <= 8; ++i) check_design(blade.at(z_lo + (z_hi - z_lo) * i / 8), who);
   return {z_lo, z_hi};
 }
@@ -193,7 +198,8 @@ ScanPlan plan_scan(const BladeDesign& blade, const ScanOptions& o) {
   const double mid_perimeter = RowTable(blade.at(0.5 * (plan.z_lo + plan.z_hi))).perimeter;
   const double estimate = 1.2 * plan.rows * mid_perimeter / o.spacing;
   if (estimate > 4e8)
-    throw Error(who + ": about " + num(estimate) + " points requested; increase the spacing or reduce the z range");
+    throw Error(who + ": about " + num(estimate) +
+                " points requested; increase the spacing or reduce the z range");
   draw_features(plan);
   outlier_box(plan);
   // View 1 moves towards the pressure (right, -N) side of the mid camber.
@@ -224,7 +230,8 @@ struct Row {
     // every point lies exactly on the blade at its height without rebuilding a section
     // per point (steps of dz/levels, far below the scanner's resolution).
     level_sec.reserve(levels);
-    for (int l = 0; l < levels; ++l) level_sec.push_back(make_section(blade.at(z0 + ((l + 0.5) / levels - 0.5) * plan.dz)));
+    for (int l = 0; l < levels; ++l)
+      level_sec.push_back(make_section(blade.at(z0 + ((l + 0.5) / levels - 0.5) * plan.dz)));
     for (const Hole& hl : plan.holes)
       if (std::abs(hl.z - z0) < hl.radius + plan.dz) near_holes.push_back(&hl);
   }
@@ -244,7 +251,8 @@ struct Row {
 // An outlier: uniform in the box, at least 0.2 mm (in-plane) from the section at its height.
 Vector3d outlier(const ScanPlan& plan, Rng& rout) {
   for (;;) {
-    const Vector3d q(rout.uniform(plan.box_lo.x(), plan.box_hi.x()), rout.uniform(plan.box_lo.y(), plan.box_hi.y()),
+    const Vector3d q(rout.uniform(plan.box_lo.x(), plan.box_hi.x()),
+                     rout.uniform(plan.box_lo.y(), plan.box_hi.y()),
                      rout.uniform(plan.box_lo.z(), plan.box_hi.z()));
     const Section sq = make_section(plan.blade.at(std::clamp(q.z(), 0.0, plan.blade.span)));
     // 0.21: the in-plane distance bounds the 3D one from below up to the surface slope.
@@ -254,7 +262,8 @@ Vector3d outlier(const ScanPlan& plan, Rng& rout) {
 
 // The surface point at arc length a of the row's level `level` (height z), moved by the
 // noise (Box-Muller of u1, u2) along the 3D normal, and by the view's shift.
-Vector3d surface_point(const ScanPlan& plan, const Row& row, double a, int level, double z, double u1, double u2) {
+Vector3d surface_point(const ScanPlan& plan, const Row& row, double a, int level, double z, double u1,
+                       double u2) {
   const RowTable::Where w = row.table.at(a);
   const Section& sec = row.level_sec[std::size_t(level)];
   const PieceEval e = piece_eval(sec, sec.pieces[std::size_t(w.piece)], w.lambda);

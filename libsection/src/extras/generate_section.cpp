@@ -57,8 +57,8 @@ Geometry make_geometry(const SectionDesign& d) {
   const Vector2d p0 = d.offset, p3 = d.offset + d.chord * dir(d.stagger);
   // Handle length of the cubic that best follows a circular arc turning by theta.
   const double theta = std::abs(d.inlet_angle - d.outlet_angle) * deg;
-  const double handle = theta > 1e-6 ? d.chord * (2.0 / 3.0) * std::tan(theta / 4) / std::sin(theta / 2)
-                                      : d.chord / 3;
+  const double handle =
+      theta > 1e-6 ? d.chord * (2.0 / 3.0) * std::tan(theta / 4) / std::sin(theta / 2) : d.chord / 3;
   g.b = {p0, p0 + handle * dir(d.inlet_angle), p3 - handle * dir(d.outlet_angle), p3};
   g.rl = d.le_radius;
   g.rt = d.te_radius;
@@ -127,8 +127,12 @@ Section make_section(const SectionDesign& d) {
   thickness(g, 1, 1, r, r1, r2);
   const double rho1 = std::clamp(r1 / e1.norm(), -1.0, 1.0);
   const double phi0 = std::atan2(d1.y(), d1.x()), phi1 = std::atan2(e1.y(), e1.x());
-  auto arc = [](Vector2d c, double rad, double a0, double a1) { return Piece{Piece::arc, a0, a1, 0, 0, c, rad}; };
-  auto side = [](int sign, int branch, double s0, double s1) { return Piece{Piece::side, s0, s1, sign, branch}; };
+  auto arc = [](Vector2d c, double rad, double a0, double a1) {
+    return Piece{Piece::arc, a0, a1, 0, 0, c, rad};
+  };
+  auto side = [](int sign, int branch, double s0, double s1) {
+    return Piece{Piece::side, s0, s1, sign, branch};
+  };
   const double a0 = std::acos(rho0), a1 = std::acos(-rho1);
   sec.pieces = {arc(c0, g.rl, phi0 + pi, phi0 + pi + a0),  // LE point -> right side
                 side(-1, 0, 0, g.sm),
@@ -144,13 +148,14 @@ namespace {
 
 // The design's numbers alone: finite, positive where they must be, within range.
 void check_numbers(const SectionDesign& d, const std::string& who) {
-  const double vals[] = {d.chord,         d.stagger,           d.inlet_angle, d.outlet_angle, d.le_radius,
-                         d.te_radius,     d.max_thickness,     d.max_thickness_pos, d.offset.x(), d.offset.y()};
+  const double vals[] = {d.chord,     d.stagger,       d.inlet_angle,       d.outlet_angle, d.le_radius,
+                         d.te_radius, d.max_thickness, d.max_thickness_pos, d.offset.x(),   d.offset.y()};
   for (double v : vals)
     if (!std::isfinite(v)) throw Error(who + ": the section design has a non-finite parameter");
   if (d.chord <= 0) throw Error(who + ": chord " + num(d.chord) + " must be positive");
   if (d.le_radius <= 0 || d.te_radius <= 0)
-    throw Error(who + ": edge radii must be positive (le " + num(d.le_radius) + ", te " + num(d.te_radius) + ")");
+    throw Error(who + ": edge radii must be positive (le " + num(d.le_radius) + ", te " + num(d.te_radius) +
+                ")");
   if (d.le_radius >= d.max_thickness / 2 || d.te_radius >= d.max_thickness / 2)
     throw Error(who + ": edge radii (le " + num(d.le_radius) + ", te " + num(d.te_radius) +
                 ") must be below max_thickness/2 = " + num(d.max_thickness / 2));
@@ -179,8 +184,8 @@ void check_design(const SectionDesign& d, const std::string& who) {
                       " (|r'| / |c'| = " + num(std::abs(e.rho)) + ", must be below 0.98)");
         // w > 0 is both regularity of the side and r < its radius of curvature.
         if (e.w <= 1e-3 * d1.norm())
-          throw Error(who + ": the " + std::string(sign > 0 ? "left" : "right") + " side folds at s = " + num(s) +
-                      ": the inscribed circle is wider than the side's curvature allows");
+          throw Error(who + ": the " + std::string(sign > 0 ? "left" : "right") + " side folds at s = " +
+                      num(s) + ": the inscribed circle is wider than the side's curvature allows");
       }
     }
 }

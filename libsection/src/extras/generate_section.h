@@ -20,9 +20,15 @@ using Eigen::Vector2d;
 constexpr double pi = 3.14159265358979323846;
 constexpr double deg = pi / 180;
 
-inline Vector2d dir(double degrees) { return {std::cos(degrees * deg), std::sin(degrees * deg)}; }
-inline Vector2d rot90(const Vector2d& v) { return {-v.y(), v.x()}; }
-inline double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline Vector2d dir(double degrees) {
+  return {std::cos(degrees * deg), std::sin(degrees * deg)};
+}
+inline Vector2d rot90(const Vector2d& v) {
+  return {-v.y(), v.x()};
+}
+inline double cross(const Vector2d& a, const Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// A number for messages: 6 significant digits.
 std::string num(double v);

@@ -16,12 +16,14 @@ namespace {
 
 void check(const PlotOptions& o) {
   auto bad = [](const std::string& what) { throw Error("plot: " + what); };
-  if (!(o.width >= 300 && o.width <= 20000)) bad("width must lie in [300, 20000] px, got " + trimmed(o.width, 3));
+  if (!(o.width >= 300 && o.width <= 20000))
+    bad("width must lie in [300, 20000] px, got " + trimmed(o.width, 3));
   if (!(o.max_main_height >= 50)) bad("max_main_height must be at least 50 px");
   if (!(o.inset_size == 0 || (o.inset_size >= 80 && o.inset_size <= o.width / 2 - 20)))
     bad("inset_size must be 0 or lie in [80, width/2 - 20] px, got " + trimmed(o.inset_size, 3));
   if (!(o.inset_radii > 1)) bad("inset_radii must exceed 1 so the edge circle fits its inset");
-  if (!(o.inset_min_fraction > 0 && o.inset_min_fraction < 0.5)) bad("inset_min_fraction must lie in (0, 0.5)");
+  if (!(o.inset_min_fraction > 0 && o.inset_min_fraction < 0.5))
+    bad("inset_min_fraction must lie in (0, 0.5)");
   if (!(o.point_radius >= 0 && o.point_radius <= 20)) bad("point_radius must lie in [0, 20] px");
   if (o.spline_samples < 16) bad("spline_samples must be at least 16");
 }
@@ -36,7 +38,8 @@ std::string html_head(const Stream& stream, std::size_t sections) {
   std::string h =
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>libsection: " +
       std::to_string(sections) + " section" + (sections == 1 ? "" : "s") +
-      "</title>\n<style>\nbody{font-family:'DejaVu Sans',Arial,sans-serif;margin:16px;background:#fff;color:#222}\n"
+      "</title>\n<style>\nbody{font-family:'DejaVu "
+      "Sans',Arial,sans-serif;margin:16px;background:#fff;color:#222}\n"
       "table.summary{border-collapse:collapse;margin:8px 0 16px}\n"
       "table.summary td,table.summary th{border:1px solid #ccc;padding:3px 8px;text-align:right}\n"
       "pre.history{background:#f4f4f4;padding:6px;font-size:12px}\n.issue{color:#c00}\n"
@@ -52,8 +55,9 @@ std::string html_head(const Stream& stream, std::size_t sections) {
 // The summary table: the main parameters of every section, linked to its drawing.
 std::string summary_table(const std::vector<SectionData>& data, const std::string& units) {
   const std::string u = escape(units);
-  std::string h = "<table class=\"summary\">\n<tr><th>section</th><th>chord (" + u + ")</th><th>max thickness (" +
-                  u + ")</th><th>LE radius (" + u + ")</th><th>TE radius (" + u +
+  std::string h = "<table class=\"summary\">\n<tr><th>section</th><th>chord (" + u +
+                  ")</th><th>max thickness (" + u + ")</th><th>LE radius (" + u + ")</th><th>TE radius (" +
+                  u +
                   ")</th><th>stagger (\xC2\xB0)</th><th>camber angle (\xC2\xB0)</th><th>issues</th></tr>\n";
   for (const auto& d : data) {
     auto cell = [&](const char* key, int decimals) {
@@ -107,7 +111,8 @@ std::string plot_html(const Stream& stream, const PlotOptions& options) {
     try {
       h += svg_of(d, options);
     } catch (const std::exception& e) {
-      h += "<p class=\"issue\">section " + std::to_string(d.id) + " could not be drawn: " + escape(e.what()) + "</p>\n";
+      h += "<p class=\"issue\">section " + std::to_string(d.id) + " could not be drawn: " + escape(e.what()) +
+           "</p>\n";
     }
     h += "</section>\n";
   }

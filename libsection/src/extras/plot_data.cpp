@@ -34,11 +34,20 @@ std::string escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -127,7 +136,8 @@ SectionData collect(const Stream& stream, int section, const Curves& curves) {
   }
   d.points = loops_of(stream, "points", section);
   for (const auto& row : rows_of(stream, "points", section, {"u", "v", "offset"}))
-    if (std::isfinite(row[2]) && row[2] != 0 && finite(V2(row[0], row[1]))) d.carried.emplace_back(row[0], row[1]);
+    if (std::isfinite(row[2]) && row[2] != 0 && finite(V2(row[0], row[1])))
+      d.carried.emplace_back(row[0], row[1]);
   for (const auto& [key, b] : curves.splines)
     if (key.first == section && b.control.size() >= static_cast<std::size_t>(b.degree + 1))
       d.splines[key.second] = b;
@@ -142,7 +152,8 @@ SectionData collect(const Stream& stream, int section, const Curves& curves) {
   }
   if (!curves.error.empty()) d.issues.push_back("plot: spline tables unreadable: " + curves.error);
   for (const auto& row : rows_of(stream, "skeleton", section, {"loop", "u", "v"}))
-    if ((!std::isfinite(row[0]) || row[0] == 0) && finite(V2(row[1], row[2]))) d.skeleton.emplace_back(row[1], row[2]);
+    if ((!std::isfinite(row[0]) || row[0] == 0) && finite(V2(row[1], row[2])))
+      d.skeleton.emplace_back(row[1], row[2]);
   for (const auto& row : rows_of(stream, "camber", section, {"u", "v"}))
     if (finite(V2(row[0], row[1]))) d.camber.emplace_back(row[0], row[1]);
   for (const auto& row : rows_of(stream, "thickness", section, {"fraction", "u", "v", "thickness"})) {
@@ -194,15 +205,20 @@ std::vector<Row> parameter_rows(const SectionData& d) {
   angle("inlet angle", "inlet_angle");
   angle("outlet angle", "outlet_angle");
   angle("camber angle", "camber_angle");
-  if (const double a = param(d, "area"); std::isfinite(a)) rows.push_back({"area", fixed(a, 3) + " " + u + "\xC2\xB2"});
+  if (const double a = param(d, "area"); std::isfinite(a))
+    rows.push_back({"area", fixed(a, 3) + " " + u + "\xC2\xB2"});
   length("caliper chord", "caliper_chord");
   if (!d.fit.empty()) {
-    const auto get = [&](const char* k) { const auto it = d.fit.find(k); return it == d.fit.end() ? nan : it->second; };
+    const auto get = [&](const char* k) {
+      const auto it = d.fit.find(k);
+      return it == d.fit.end() ? nan : it->second;
+    };
     const double rms = get("rms"), mx = get("max");
     if (std::isfinite(rms) && std::isfinite(mx)) {
       const bool um = u == "mm";
       rows.push_back({"fit rms / max", fixed(um ? rms * 1000 : rms, um ? 2 : 6) + " / " +
-                                           fixed(um ? mx * 1000 : mx, um ? 2 : 6) + (um ? " \xC2\xB5m" : " " + u)});
+                                           fixed(um ? mx * 1000 : mx, um ? 2 : 6) +
+                                           (um ? " \xC2\xB5m" : " " + u)});
     }
     if (const double cp = get("control_points"); std::isfinite(cp))
       rows.push_back({"control points", trimmed(cp, 0)});
@@ -210,9 +226,11 @@ std::vector<Row> parameter_rows(const SectionData& d) {
   std::size_t n = 0;
   for (const auto& [loop, pts] : d.points) n += pts.size();
   if (n)
-    rows.push_back({"measured points", std::to_string(n) +
-                                           (d.points.size() > 1 ? " in " + std::to_string(d.points.size()) + " loops" : "") +
-                                           (d.carried.empty() ? "" : ", " + std::to_string(d.carried.size()) + " carried onto the plane")});
+    rows.push_back(
+        {"measured points",
+         std::to_string(n) +
+             (d.points.size() > 1 ? " in " + std::to_string(d.points.size()) + " loops" : "") +
+             (d.carried.empty() ? "" : ", " + std::to_string(d.carried.size()) + " carried onto the plane")});
   if (!d.curve_source.empty()) rows.push_back({"curve from", d.curve_source});
   return rows;
 }

@@ -36,7 +36,10 @@ std::string path_data(const std::vector<V2>& pts, bool closed, const View& v, co
   if (whole) {
     bool pen = false;
     for (const auto& p : pts) {
-      if (!finite(p)) { pen = false; continue; }
+      if (!finite(p)) {
+        pen = false;
+        continue;
+      }
       d += (pen ? " L" : (d.empty() ? "M" : " M")) + px(v.x(p.x())) + " " + px(v.y(p.y()));
       pen = true;
     }

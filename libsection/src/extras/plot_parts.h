@@ -27,11 +27,15 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 std::string fixed(double value, int decimals);
 /// Fixed-point text with trailing zeros dropped: 12.500 -> 12.5, 3.000 -> 3.
 std::string trimmed(double value, int decimals);
-inline std::string px(double v) { return fixed(v, 2); }
+inline std::string px(double v) {
+  return fixed(v, 2);
+}
 /// Text for XML: & < > " escaped.
 std::string escape(const std::string& text);
 
-inline bool finite(const V2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
+inline bool finite(const V2& p) {
+  return std::isfinite(p.x()) && std::isfinite(p.y());
+}
 
 // ---------------------------------------------------------------- what the stream holds (plot_data.cpp)
 
@@ -46,17 +50,17 @@ struct SectionData {
   std::string units = "mm";
   bool has_frame = false;
   Frame frame;
-  std::map<int, std::vector<V2>> points;   // measured, by loop, in loop order
-  std::vector<V2> carried;                 // those the gap fill carried onto the plane (offset != 0)
-  std::map<int, BSpline> splines;          // fitted curves by loop (spline tables)
-  std::map<int, std::vector<V2>> polyline; // fitted curve by loop when there is no spline
-  std::string curve_source;                // "spline", "samples", "smoothed" or ""
+  std::map<int, std::vector<V2>> points;    // measured, by loop, in loop order
+  std::vector<V2> carried;                  // those the gap fill carried onto the plane (offset != 0)
+  std::map<int, BSpline> splines;           // fitted curves by loop (spline tables)
+  std::map<int, std::vector<V2>> polyline;  // fitted curve by loop when there is no spline
+  std::string curve_source;                 // "spline", "samples", "smoothed" or ""
   std::vector<V2> skeleton;
   std::vector<V2> camber;
   std::vector<Station> stations;
-  std::map<std::string, double> params;    // the section's params row
-  std::map<std::string, double> fit;       // loop 0's splines row
-  std::vector<std::string> issues;         // "stage: message" lines
+  std::map<std::string, double> params;  // the section's params row
+  std::map<std::string, double> fit;     // loop 0's splines row
+  std::vector<std::string> issues;       // "stage: message" lines
 };
 
 // The spline tables read once per stream; an unreadable set becomes a note, not an error.
@@ -88,10 +92,15 @@ struct Box {
   double u0 = std::numeric_limits<double>::infinity(), v0 = u0, u1 = -u0, v1 = -u0;
   void add(const V2& p) {
     if (!finite(p)) return;
-    u0 = std::min(u0, p.x()); v0 = std::min(v0, p.y());
-    u1 = std::max(u1, p.x()); v1 = std::max(v1, p.y());
+    u0 = std::min(u0, p.x());
+    v0 = std::min(v0, p.y());
+    u1 = std::max(u1, p.x());
+    v1 = std::max(v1, p.y());
   }
-  void add(const V2& c, double r) { add(c - V2(r, r)); add(c + V2(r, r)); }
+  void add(const V2& c, double r) {
+    add(c - V2(r, r));
+    add(c + V2(r, r));
+  }
   bool empty() const { return !(u1 >= u0 && v1 >= v0); }
   bool touches(const Box& b) const { return !(b.u0 > u1 || b.u1 < u0 || b.v0 > v1 || b.v1 < v0); }
   bool contains(const V2& p) const { return p.x() >= u0 && p.x() <= u1 && p.y() >= v0 && p.y() <= v1; }
@@ -141,7 +150,7 @@ struct EdgeInset {
   bool circle = false;  // a fitted edge circle exists
   V2 circle_center{0, 0};
   double radius = 0;
-  bool point = false;   // an edge point exists
+  bool point = false;  // an edge point exists
   V2 edge_point{0, 0};
 };
 

@@ -23,7 +23,8 @@ const char* const style =
     ".le-point{fill:#ff7f0e;stroke:#000;stroke-width:.6}.te-point{fill:#9467bd;stroke:#000;stroke-width:.6}"
     ".inset-frame{fill:none;stroke:#777;stroke-width:1;stroke-dasharray:3 2}"
     ".inset-label{font-weight:bold}"
-    ".scale-bar-back{fill:#fff;fill-opacity:.8}.scale-bar-line{stroke:#000;stroke-width:2.5}.scale-bar-tick{stroke:#000;stroke-width:1.5}"
+    ".scale-bar-back{fill:#fff;fill-opacity:.8}.scale-bar-line{stroke:#000;stroke-width:2.5}.scale-bar-tick{"
+    "stroke:#000;stroke-width:1.5}"
     ".param-name{fill:#444}.param-value{font-weight:bold;text-anchor:end}"
     ".param-head{font-weight:bold;font-size:14px}"
     ".issue{fill:#c00}.empty{fill:#888;font-style:italic}"
@@ -44,8 +45,8 @@ std::string length_label(double length, const std::string& units) {
 
 // A scale bar at the bottom left of the px rectangle (left, bottom), about a fifth of
 // `width` px long.
-void scale_bar(std::string& s, const std::string& id, const View& v, double left, double bottom,
-               double width, const std::string& units) {
+void scale_bar(std::string& s, const std::string& id, const View& v, double left, double bottom, double width,
+               const std::string& units) {
   const double length = nice_length(0.2 * width / v.scale);
   const double x0 = left + 12, x1 = x0 + length * v.scale, y = bottom - 12;
   s += "<g id=\"" + id + "\" class=\"scale-bar\" data-length=\"" + trimmed(length, 9) + "\">";
@@ -93,15 +94,16 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
       s += "<g class=\"carried\">";
       for (const auto& p : d.carried)
         if (near.contains(p))
-          s += "<circle cx=\"" + px(v.x(p.x())) + "\" cy=\"" + px(v.y(p.y())) + "\" r=\"" + px(2 * r) + "\"/>";
+          s +=
+              "<circle cx=\"" + px(v.x(p.x())) + "\" cy=\"" + px(v.y(p.y())) + "\" r=\"" + px(2 * r) + "\"/>";
       s += "</g>";
     }
   }
   for (int loop : curve_loops(d)) {
     const std::string data = path_data(curve_of(d, loop, o, density), closed_loop(d, loop), v, near, whole);
     if (!data.empty())
-      s += "<path class=\"curve\" data-loop=\"" + std::to_string(loop) + "\" data-source=\"" + d.curve_source +
-           "\" d=\"" + data + "\"/>";
+      s += "<path class=\"curve\" data-loop=\"" + std::to_string(loop) + "\" data-source=\"" +
+           d.curve_source + "\" d=\"" + data + "\"/>";
   }
   if (d.camber.size() >= 2) {
     const std::string data = path_data(d.camber, false, v, near, whole);
@@ -124,10 +126,10 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
 struct Page {
   const SectionData& d;
   const PlotOptions& o;
-  std::string id;       // "s<section>", the prefix of the element ids
-  double margin = 16;   // px
-  double W = 0;         // px, the drawing's width
-  double y = 0;         // px, the top of the next part
+  std::string id;      // "s<section>", the prefix of the element ids
+  double margin = 16;  // px
+  double W = 0;        // px, the drawing's width
+  double y = 0;        // px, the top of the next part
   std::string body;
 
   Page(const SectionData& data, const PlotOptions& options)
@@ -148,8 +150,8 @@ Box drawn_bounds(const SectionData& d, const PlotOptions& o) {
 
 void title(Page& p) {
   const SectionData& d = p.d;
-  p.body += "<text class=\"title\" x=\"" + px(p.margin) + "\" y=\"" + px(p.y) + "\">Section " + std::to_string(d.id) +
-            "</text>";
+  p.body += "<text class=\"title\" x=\"" + px(p.margin) + "\" y=\"" + px(p.y) + "\">Section " +
+            std::to_string(d.id) + "</text>";
   const std::string sub = frame_text(d);
   p.body += "<text class=\"subtitle\" x=\"" + px(p.margin + 110) + "\" y=\"" + px(p.y) + "\">" +
             escape(sub.empty() ? "units " + d.units : sub + "; units " + d.units) + "</text>";
@@ -213,11 +215,16 @@ void legend(Page& p, const std::vector<EdgeInset>& edges) {
   const PlotOptions& o = p.o;
   std::vector<std::pair<std::string, std::string>> items;  // class, label
   if (o.points && !d.points.empty()) items.push_back({"points", "measured points"});
-  if (o.points && !d.carried.empty()) items.push_back({"carried", "points carried onto the plane (gap fill)"});
-  if (d.curve_source == "smoothed") items.push_back({"curve", "smoothed points"});
-  else if (!d.curve_source.empty()) items.push_back({"curve", "fitted curve (" + d.curve_source + ")"});
-  if (d.camber.size() >= 2) items.push_back({"camber", "mean-camber line"});
-  else if (d.skeleton.size() >= 2) items.push_back({"skeleton", "skeleton"});
+  if (o.points && !d.carried.empty())
+    items.push_back({"carried", "points carried onto the plane (gap fill)"});
+  if (d.curve_source == "smoothed")
+    items.push_back({"curve", "smoothed points"});
+  else if (!d.curve_source.empty())
+    items.push_back({"curve", "fitted curve (" + d.curve_source + ")"});
+  if (d.camber.size() >= 2)
+    items.push_back({"camber", "mean-camber line"});
+  else if (d.skeleton.size() >= 2)
+    items.push_back({"skeleton", "skeleton"});
   if (o.stations && !d.stations.empty()) items.push_back({"station", "inscribed circles"});
   if (std::isfinite(param(d, "chord"))) items.push_back({"chord", "chord line"});
   for (const auto& e : edges)
@@ -227,7 +234,8 @@ void legend(Page& p, const std::vector<EdgeInset>& edges) {
   for (const auto& [cls, label] : items) {
     const double ly = p.y + 10;
     if (cls == "points" || cls == "carried")
-      p.body += "<g class=\"" + cls + "\"><circle cx=\"" + px(x + 10) + "\" cy=\"" + px(ly) + "\" r=\"3\"/></g>";
+      p.body +=
+          "<g class=\"" + cls + "\"><circle cx=\"" + px(x + 10) + "\" cy=\"" + px(ly) + "\" r=\"3\"/></g>";
     else
       p.body += "<line class=\"" + cls + "\" x1=\"" + px(x) + "\" y1=\"" + px(ly) + "\" x2=\"" + px(x + 22) +
                 "\" y2=\"" + px(ly) + "\"/>";
@@ -251,8 +259,8 @@ void inset(Page& p, const View& main, const EdgeInset& e, double x, double lower
           "\" data-tx=\"" + trimmed(v.tx, 4) + "\" data-ty=\"" + trimmed(v.ty, 4) + "\">";
   body += "<text class=\"inset-label\" x=\"" + px(x) + "\" y=\"" + px(lower + 13) + "\">" + escape(e.label) +
           " (\xC3\x97" + trimmed(magnification, 1) + ")</text>";
-  body += "<clipPath id=\"" + gid + "-clip\"><rect x=\"" + px(x) + "\" y=\"" + px(top) + "\" width=\"" + px(side) +
-          "\" height=\"" + px(side) + "\"/></clipPath>";
+  body += "<clipPath id=\"" + gid + "-clip\"><rect x=\"" + px(x) + "\" y=\"" + px(top) + "\" width=\"" +
+          px(side) + "\" height=\"" + px(side) + "\"/></clipPath>";
   body += "<rect class=\"view-frame\" x=\"" + px(x) + "\" y=\"" + px(top) + "\" width=\"" + px(side) +
           "\" height=\"" + px(side) + "\"/>";
   body += "<g clip-path=\"url(#" + gid + "-clip)\">";
@@ -308,12 +316,14 @@ double param_table(Page& p, const TablePlace& at) {
       ty += 18;
     }
     if (rows.empty()) {
-      body += "<text class=\"empty\" x=\"" + px(table_x) + "\" y=\"" + px(ty) + "\">no parameters in the stream</text>";
+      body += "<text class=\"empty\" x=\"" + px(table_x) + "\" y=\"" + px(ty) +
+              "\">no parameters in the stream</text>";
       ty += 18;
     }
   }
   for (const auto& issue : d.issues) {
-    body += "<text class=\"issue\" x=\"" + px(table_x) + "\" y=\"" + px(ty) + "\">" + escape(issue) + "</text>";
+    body +=
+        "<text class=\"issue\" x=\"" + px(table_x) + "\" y=\"" + px(ty) + "\">" + escape(issue) + "</text>";
     ty += 18;
   }
   body += "</g>";
@@ -332,9 +342,10 @@ std::string svg_of(const SectionData& d, const PlotOptions& o) {
   const TablePlace at = insets(p, main, edges);
   const double H = std::ceil(param_table(p, at) + p.margin);
   const double W = p.W;
-  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"" + p.id + "\" class=\"section-plot\" width=\"" +
-                  px(W) + "\" height=\"" + px(H) + "\" viewBox=\"0 0 " + px(W) + " " + px(H) + "\" data-section=\"" +
-                  std::to_string(d.id) + "\" data-units=\"" + escape(d.units) + "\">";
+  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"" + p.id +
+                  "\" class=\"section-plot\" width=\"" + px(W) + "\" height=\"" + px(H) +
+                  "\" viewBox=\"0 0 " + px(W) + " " + px(H) + "\" data-section=\"" + std::to_string(d.id) +
+                  "\" data-units=\"" + escape(d.units) + "\">";
   s += "<style>";
   s += style;
   s += "</style><rect x=\"0\" y=\"0\" width=\"" + px(W) + "\" height=\"" + px(H) + "\" fill=\"#fafafa\"/>";

@@ -57,9 +57,9 @@ struct SectionTruth {
   std::vector<double> profile_s;                ///< arc length along `profile` from its first point
   std::vector<Eigen::Vector2d> profile_normal;  ///< exact outward unit normal at each profile point
   double perimeter = 0;                         ///< length of the closed profile
-  std::vector<Eigen::Vector2d> camber;          ///< dense camber line, LE point to TE point, extensions included
-  std::vector<double> camber_radius;            ///< inscribed radius at each camber point (edge radius on extensions)
-  std::vector<double> camber_s;                 ///< arc length along `camber` from the LE point
+  std::vector<Eigen::Vector2d> camber;  ///< dense camber line, LE point to TE point, extensions included
+  std::vector<double> camber_radius;    ///< inscribed radius at each camber point (edge radius on extensions)
+  std::vector<double> camber_s;         ///< arc length along `camber` from the LE point
   std::size_t camber_begin = 0, camber_end = 0;  ///< camber[camber_begin, camber_end) lie on c(s)
   Eigen::Vector2d le_point, te_point;            ///< edge points on the profile
   Eigen::Vector2d le_center, te_center;          ///< edge circle centres c(0), c(1)

@@ -32,8 +32,8 @@ struct FitScore {
 };
 
 /// Scores `curve` against `truth`; `measured` are the section's measured points (in-plane).
-FitScore score_fit(const BSpline& curve, const std::vector<Eigen::Vector2d>& measured, const SectionTruth& truth,
-                   const FitScoreOptions& options = {});
+FitScore score_fit(const BSpline& curve, const std::vector<Eigen::Vector2d>& measured,
+                   const SectionTruth& truth, const FitScoreOptions& options = {});
 
 /// Errors of one section's camber results; signed ones are measured - true.
 struct CamberScore {
