@@ -78,39 +78,40 @@ const char* const usage =
     "DEG] "
     "[--tangent-span FRACTION] [--edge-on-spline] [--edge-point-gap F] [--edge-point-sigma F]\n";
 
-// The flags that set a number, by the options they set.
-const std::map<std::string, double Options::*> run_numbers = {
-    {"--misregistration", &Options::misregistration},
-    {"--noise", &Options::noise},
-    {"--density-min", &Options::density_min},
-    {"--slab", &Options::slab},
-    {"--twist", &Options::twist},
-    {"--band-spacing", &Options::band_spacing},
-    {"--band-max", &Options::band_max},
-    {"--band-sparse-max", &Options::band_sparse_max}};
-const std::map<std::string, double GapFillOptions::*> fill_numbers = {
-    {"--fill-gap", &GapFillOptions::min_gap},
-    {"--fill-reach", &GapFillOptions::reach},
-    {"--fill-fraction", &GapFillOptions::min_gap_fraction}};
-const std::map<std::string, double FitSplineOptions::*> fit_numbers = {
-    {"--min-span-points", &FitSplineOptions::min_span_points},
-    {"--fairness", &FitSplineOptions::fairness},
-    {"--smoothing-length", &FitSplineOptions::smoothing_length},
-    {"--outlier-floor", &FitSplineOptions::outlier_floor},
-    {"--min-span", &FitSplineOptions::min_span},
-    {"--tolerance", &FitSplineOptions::tolerance}};
-const std::map<std::string, double CamberOptions::*> camber_numbers = {
-    {"--edge-arc", &CamberOptions::edge_arc},
-    {"--edge-core", &CamberOptions::edge_core},
-    {"--edge-residual", &CamberOptions::edge_residual},
-    {"--edge-noise-residual", &CamberOptions::edge_noise_residual},
-    {"--edge-circularity", &CamberOptions::edge_circularity},
-    {"--edge-hole", &CamberOptions::edge_hole},
-    {"--edge-hole-reach", &CamberOptions::edge_hole_reach},
-    {"--edge-prune", &CamberOptions::edge_prune},
-    {"--tangent-span", &CamberOptions::tangent_span},
-    {"--edge-point-gap", &CamberOptions::edge_point_gap},
-    {"--edge-point-sigma", &CamberOptions::edge_point_sigma}};
+// The flags that set a number, each with the field of `o` it sets.
+std::map<std::string, double*> number_flags(Options& o) {
+  GapFillOptions& fill = o.fill_options;
+  FitSplineOptions& fit = o.fit_options;
+  CamberOptions& cam = o.camber_options;
+  return {{"--misregistration", &o.misregistration},
+          {"--noise", &o.noise},
+          {"--density-min", &o.density_min},
+          {"--slab", &o.slab},
+          {"--twist", &o.twist},
+          {"--band-spacing", &o.band_spacing},
+          {"--band-max", &o.band_max},
+          {"--band-sparse-max", &o.band_sparse_max},
+          {"--fill-gap", &fill.min_gap},
+          {"--fill-reach", &fill.reach},
+          {"--fill-fraction", &fill.min_gap_fraction},
+          {"--min-span-points", &fit.min_span_points},
+          {"--fairness", &fit.fairness},
+          {"--smoothing-length", &fit.smoothing_length},
+          {"--outlier-floor", &fit.outlier_floor},
+          {"--min-span", &fit.min_span},
+          {"--tolerance", &fit.tolerance},
+          {"--edge-arc", &cam.edge_arc},
+          {"--edge-core", &cam.edge_core},
+          {"--edge-residual", &cam.edge_residual},
+          {"--edge-noise-residual", &cam.edge_noise_residual},
+          {"--edge-circularity", &cam.edge_circularity},
+          {"--edge-hole", &cam.edge_hole},
+          {"--edge-hole-reach", &cam.edge_hole_reach},
+          {"--edge-prune", &cam.edge_prune},
+          {"--tangent-span", &cam.tangent_span},
+          {"--edge-point-gap", &cam.edge_point_gap},
+          {"--edge-point-sigma", &cam.edge_point_sigma}};
+}
 
 // The other flags that take a value.
 const std::map<std::string, void (*)(Options&, const char*)> other_values = {
@@ -132,37 +133,22 @@ const std::map<std::string, void (*)(Options&)> switches = {
     {"--edge-on-spline", [](Options& o) { o.camber_options.edge_on_points = false; }},
     {"--quiet", [](Options& o) { o.quiet = true; }}};
 
-bool takes_value(const std::string& a) {
-  return run_numbers.count(a) || fill_numbers.count(a) || fit_numbers.count(a) || camber_numbers.count(a) ||
-         other_values.count(a);
-}
-
-// Sets `target`'s field of flag `a` when `flags` has it.
-template <class T>
-void set_number(const std::map<std::string, double T::*>& flags, const std::string& a, const char* v,
-                T& target) {
-  if (const auto it = flags.find(a); it != flags.end()) target.*(it->second) = std::atof(v);
-}
-
-void set_value(Options& o, const std::string& a, const char* v) {
-  set_number(run_numbers, a, v, o);
-  set_number(fill_numbers, a, v, o.fill_options);
-  set_number(fit_numbers, a, v, o.fit_options);
-  set_number(camber_numbers, a, v, o.camber_options);
-  if (const auto it = other_values.find(a); it != other_values.end()) it->second(o, v);
-}
-
 // argv to options; an exit code when the program is done (--help: 0, a bad argument: 2).
 std::optional<int> parse_args(int argc, char** argv, Options& o) {
+  const std::map<std::string, double*> numbers = number_flags(o);
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto digit = [&](std::size_t k) { return std::isdigit(static_cast<unsigned char>(a[k])) != 0; };
-    if (takes_value(a)) {
+    if (numbers.count(a) || other_values.count(a)) {
       if (i + 1 >= argc) {
         std::fprintf(stderr, "evaluate_pipeline: %s needs a value\n", a.c_str());
         return 2;
       }
-      set_value(o, a, argv[++i]);
+      const char* v = argv[++i];
+      if (const auto n = numbers.find(a); n != numbers.end())
+        *n->second = std::atof(v);
+      else
+        other_values.at(a)(o, v);
     } else if (const auto s = switches.find(a); s != switches.end()) {
       s->second(o);
     } else if (a == "--help" || a == "-h") {
