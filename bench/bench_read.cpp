@@ -24,11 +24,15 @@ int main(int argc, char** argv) {
       }
       const auto t0 = std::chrono::steady_clock::now();
       double checksum = 0;
-      const std::size_t n = section::read_cloud_chunks(argv[i], [&](const Eigen::Vector3d* p, std::size_t count) {
-        for (std::size_t k = 0; k < count; ++k) checksum += p[k].z();
-      }, options);
+      const std::size_t n = section::read_cloud_chunks(
+          argv[i],
+          [&](const Eigen::Vector3d* p, std::size_t count) {
+            for (std::size_t k = 0; k < count; ++k) checksum += p[k].z();
+          },
+          options);
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::printf("%s: %zu points in %.3f s = %.1f million points/s (checksum %.6g)\n", argv[i], n, s, n / s / 1e6, checksum);
+      std::printf("%s: %zu points in %.3f s = %.1f million points/s (checksum %.6g)\n", argv[i], n, s,
+                  n / s / 1e6, checksum);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_read: error: %s\n", e.what());

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
     const bool synthetic = argc < 2;
     const section::BladeDesign blade = section::turbine_blade();
     // Rings 1 mm apart on the 60 mm span; the planes below fall between rings.
-    const section::Mesh mesh = synthetic ? section::generate_mesh(blade, 1000, 61) : section::read_mesh(argv[1]);
+    const section::Mesh mesh =
+        synthetic ? section::generate_mesh(blade, 1000, 61) : section::read_mesh(argv[1]);
 
     std::vector<double> z;
     for (int i = 2; i < argc; ++i) z.push_back(std::atof(argv[i]));
@@ -38,8 +39,8 @@ int main(int argc, char** argv) {
 
     // 1. Slice: one section per plane, its closed loops ordered counterclockwise.
     const section::SliceResult sliced = section::slice(mesh, section::planes_at({0, 0, 1}, z));
-    std::printf("%8s %10s %10s %10s %10s %9s %9s %9s\n", "z", "chord", "max_thick", "le_radius",
-                "te_radius", "stagger", "inlet", "outlet");
+    std::printf("%8s %10s %10s %10s %10s %9s %9s %9s\n", "z", "chord", "max_thick", "le_radius", "te_radius",
+                "stagger", "inlet", "outlet");
     int failed = 0;
     for (const auto& s : sliced.sections) {
       const double height = z[s.id];
@@ -55,8 +56,8 @@ int main(int argc, char** argv) {
         // 3. Camber line (inscribed circles) and 4. the parameters measured on it.
         const section::CamberResult camber = section::camber_line(fit.spline);
         const section::SectionParams p = section::section_params(fit.spline, camber);
-        std::printf("%8.3f %10.4f %10.4f %10.4f %10.4f %9.3f %9.3f %9.3f\n", height, p.chord,
-                    p.max_thickness, p.le_radius, p.te_radius, p.stagger, p.inlet_angle, p.outlet_angle);
+        std::printf("%8.3f %10.4f %10.4f %10.4f %10.4f %9.3f %9.3f %9.3f\n", height, p.chord, p.max_thickness,
+                    p.le_radius, p.te_radius, p.stagger, p.inlet_angle, p.outlet_angle);
         if (synthetic) {
           const section::SectionTruth t = section::section_truth(blade.at(height), 20000);
           std::printf("%8s %10.1f %10.1f %10.1f %10.1f %9.3f %9.3f %9.3f   (error, um and deg)\n", "",

@@ -37,7 +37,7 @@ shot "$OUT/plot/sections.html" 1100 1500 "$OUT/plot/sections.png"
 pngs+=("$OUT/plot/sections.png")
 
 # Decodes each PNG (8-bit RGB/RGBA, as Chromium writes) and counts the pixels near each
-# element's colour (plot.cpp's style).
+# element's colour (plot_svg.cpp's style).
 python3 - "${pngs[@]}" <<'EOF'
 import struct, sys, zlib
 

@@ -13,14 +13,16 @@
 #include <utility>
 #include <vector>
 
-using section::SectionDesign;
-using section::SectionTruth;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
+using section::SectionDesign;
+using section::SectionTruth;
 
 namespace {
 
-double cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross2(const Vector2d& a, const Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 double shoelace(const std::vector<Vector2d>& p) {
   double a = 0;
@@ -161,8 +163,8 @@ TEST_CASE("generate: camber is the medial axis: inscribed radius = distance to b
         worst_left = std::max(worst_left, std::abs(polyline_distance(t.profile, te, n, c) - r));
       }
     }
-    CHECK(worst < 1e-10);          // locate refines on the exact curve
-    CHECK(worst_right < 1e-6);     // polyline: sagitta of the 20000-point profile
+    CHECK(worst < 1e-10);       // locate refines on the exact curve
+    CHECK(worst_right < 1e-6);  // polyline: sagitta of the 20000-point profile
     CHECK(worst_left < 1e-6);
     // extension points: distance to the profile = edge radius - distance to the edge centre
     for (std::size_t j = 0; j < t.camber_begin; ++j)
@@ -429,8 +431,7 @@ TEST_CASE("generate: mesh is closed, outward and cuts to the true profile", "[ge
   CHECK(closed);
   // positive volume ~ mean area * span (outward normals)
   double vol = 0;
-  for (const auto& t : m.triangles)
-    vol += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6;
+  for (const auto& t : m.triangles) vol += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6;
   const double area_mid = section::section_truth(b.at(30)).area;
   CHECK(vol == Approx(area_mid * b.span).epsilon(0.1));
   // cut at a layer height (z = 20) and between layers (z = 21)

@@ -90,8 +90,10 @@ std::string subtree(const std::string& svg, const std::string& id) {
   std::size_t pos = open;
   while ((pos = svg.find('<', pos)) != std::string::npos) {
     const std::size_t end = svg.find('>', pos);
-    if (svg[pos + 1] == '/') --depth;
-    else if (svg[end - 1] != '/') ++depth;
+    if (svg[pos + 1] == '/')
+      --depth;
+    else if (svg[end - 1] != '/')
+      ++depth;
     pos = end + 1;
     if (depth == 0) return svg.substr(open, pos - open);
   }
@@ -132,7 +134,9 @@ struct Mapping {
   Vector2d pixel(const Vector2d& w) const { return {s * w.x() + tx, -s * w.y() + ty}; }
 };
 
-Mapping mapping(const Element& group) { return {group.num("data-scale"), group.num("data-tx"), group.num("data-ty")}; }
+Mapping mapping(const Element& group) {
+  return {group.num("data-scale"), group.num("data-tx"), group.num("data-ty")};
+}
 
 const Element& by_id(const std::vector<Element>& es, const std::string& id) {
   for (const auto& e : es) {
@@ -175,6 +179,79 @@ bool all_numbers_finite(const std::string& svg) {
          svg.find("NaN") == std::string::npos;
 }
 
+// Every element of a full stream is there, with its id or class.
+void check_full_elements(const std::string& svg, const std::vector<Element>& es) {
+  for (const std::string id : {"s0", "s0-main", "s0-le", "s0-te", "s0-params", "s0-main-scale", "s0-le-clip"})
+    CHECK(svg.find("id=\"" + id + "\"") != std::string::npos);
+  for (const std::string c : {"points", "curve", "camber", "station", "chord", "le-circle", "te-circle",
+                              "le-point", "te-point", "scale-bar", "param-table", "inset-frame"})
+    CHECK(!with_class(es, c).empty());
+}
+
+// Equal axes, v up: the chord line's px vector is scale * (du, -dv), its length the true
+// chord (camber stage accuracy, here ~1 um, plus 0.01 px rounding).
+void check_chord(const std::vector<Element>& main_es, const Mapping& m, const section::SectionTruth& truth) {
+  const auto chord = with_class(main_es, "chord");
+  REQUIRE(chord.size() == 1);
+  const Vector2d a(chord[0]->num("x1"), chord[0]->num("y1")), b(chord[0]->num("x2"), chord[0]->num("y2"));
+  const Vector2d le = m.world(a), te = m.world(b);
+  CHECK((le - truth.le_point).norm() < 0.01);
+  CHECK((te - truth.te_point).norm() < 0.01);
+  CHECK(std::abs((b - a).norm() / m.s - truth.chord) < 0.005);
+  CHECK((b - a).y() * (truth.te_point - truth.le_point).y() <= 0);  // v up = px y down
+}
+
+// The LE circle drawn at the true centre and radius, in the main view and in its inset,
+// and there wholly inside the inset's frame.
+void check_le_circle(const std::string& svg, const std::vector<Element>& main_es, const Mapping& m,
+                     const section::SectionTruth& truth) {
+  const auto le_circle = with_class(main_es, "le-circle");
+  REQUIRE(le_circle.size() == 1);
+  const Vector2d c = m.world({le_circle[0]->num("cx"), le_circle[0]->num("cy")});
+  CHECK((c - truth.le_center).norm() < 0.01);
+  CHECK(std::abs(le_circle[0]->num("r") / m.s - truth.le_radius) < 0.01);
+  bool inset_ok = false;
+  const auto inset_es = parse(subtree(svg, "s0-le"), &inset_ok);
+  REQUIRE(inset_ok);
+  const Mapping mi = mapping(by_id(inset_es, "s0-le"));
+  CHECK(mi.s > 1.3 * m.s);  // magnified
+  const auto inset_circle = with_class(inset_es, "le-circle");
+  REQUIRE(inset_circle.size() == 1);
+  CHECK(std::abs(inset_circle[0]->num("r") / mi.s - truth.le_radius) < 0.01);
+  const auto frames = with_class(inset_es, "view-frame");
+  REQUIRE(frames.size() == 1);
+  const double fx = frames[0]->num("x"), fy = frames[0]->num("y"), fw = frames[0]->num("width");
+  const double cx = inset_circle[0]->num("cx"), cy = inset_circle[0]->num("cy"),
+               r = inset_circle[0]->num("r");
+  CHECK(cx - r >= fx);
+  CHECK(cx + r <= fx + fw);
+  CHECK(cy - r >= fy);
+  CHECK(cy + r <= fy + fw);
+}
+
+// The drawn curve lies on the true profile (fit ~ 1 um, px rounding 0.005 px).
+void check_curve(const std::vector<Element>& main_es, const Mapping& m, const section::SectionTruth& truth) {
+  const auto curves = with_class(main_es, "curve");
+  REQUIRE(curves.size() == 1);
+  const auto px = vertices(curves[0]->attr.at("d"));
+  REQUIRE(px.size() >= 1000);
+  double worst = 0;
+  for (const auto& p : px) worst = std::max(worst, section::locate(truth, m.world(p)).distance);
+  CHECK(worst < 0.005 + 0.01 / m.s);
+}
+
+// The scale bar is as long as it says: data-length (1, 2 or 5 times a power of ten) * scale.
+void check_scale_bar(const std::string& svg, const Mapping& m) {
+  bool bar_ok = false;
+  const auto bar = parse(subtree(svg, "s0-main-scale"), &bar_ok);
+  const double length = bar.front().num("data-length");
+  const double mantissa = length / std::pow(10.0, std::floor(std::log10(length) + 1e-9));
+  CHECK((std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 || std::abs(mantissa - 5) < 1e-9));
+  const auto line = with_class(bar, "scale-bar-line");
+  REQUIRE(line.size() == 1);
+  CHECK(std::abs(line[0]->num("x2") - line[0]->num("x1") - length * m.s) < 0.02);
+}
+
 }  // namespace
 
 TEST_CASE("plot: a full section is drawn to scale with v up and the curve on the true profile", "[plot]") {
@@ -187,83 +264,23 @@ TEST_CASE("plot: a full section is drawn to scale with v up and the curve on the
     REQUIRE(balanced);
     REQUIRE(svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0) == 0);
     CHECK(all_numbers_finite(svg));
+    check_full_elements(svg, es);
 
-    // Every element of a full stream is there, with its id or class.
-    for (const std::string id : {"s0", "s0-main", "s0-le", "s0-te", "s0-params", "s0-main-scale", "s0-le-clip"})
-      CHECK(svg.find("id=\"" + id + "\"") != std::string::npos);
-    for (const std::string c : {"points", "curve", "camber", "station", "chord", "le-circle", "te-circle",
-                                "le-point", "te-point", "scale-bar", "param-table", "inset-frame"})
-      CHECK(!with_class(es, c).empty());
-
-    const Element& main_group = by_id(es, "s0-main");
-    const Mapping m = mapping(main_group);
+    const Mapping m = mapping(by_id(es, "s0-main"));
     bool inner = false;
     const auto main_es = parse(subtree(svg, "s0-main"), &inner);
     REQUIRE(inner);
-
     // The main view shows every thickness station and every measured point once.
     CHECK(with_class(main_es, "station").size() == stream.find("thickness")->rows());
     std::size_t dots = 0;
     for (const auto& e : main_es) dots += e.tag == "circle" && !e.attr.count("class");
     CHECK(dots == stream.find("points")->rows());
 
-    // Equal axes, v up: the chord line's px vector is scale * (du, -dv), its length the
-    // true chord (camber stage accuracy, here ~1 um, plus 0.01 px rounding).
-    const auto chord = with_class(main_es, "chord");
-    REQUIRE(chord.size() == 1);
-    const Vector2d a(chord[0]->num("x1"), chord[0]->num("y1")), b(chord[0]->num("x2"), chord[0]->num("y2"));
-    const Vector2d le = m.world(a), te = m.world(b);
-    CHECK((le - truth.le_point).norm() < 0.01);
-    CHECK((te - truth.te_point).norm() < 0.01);
-    CHECK(std::abs((b - a).norm() / m.s - truth.chord) < 0.005);
-    CHECK((b - a).y() * (truth.te_point - truth.le_point).y() <= 0);  // v up = px y down
-
-    // The LE circle drawn at the true centre and radius, in the main view and in its inset.
-    const auto le_circle = with_class(main_es, "le-circle");
-    REQUIRE(le_circle.size() == 1);
-    const Vector2d c = m.world({le_circle[0]->num("cx"), le_circle[0]->num("cy")});
-    CHECK((c - truth.le_center).norm() < 0.01);
-    CHECK(std::abs(le_circle[0]->num("r") / m.s - truth.le_radius) < 0.01);
-    bool inset_ok = false;
-    const std::string le_inset = subtree(svg, "s0-le");
-    const auto inset_es = parse(le_inset, &inset_ok);
-    REQUIRE(inset_ok);
-    const Mapping mi = mapping(by_id(inset_es, "s0-le"));
-    CHECK(mi.s > 1.3 * m.s);  // magnified
-    const auto inset_circle = with_class(inset_es, "le-circle");
-    REQUIRE(inset_circle.size() == 1);
-    CHECK(std::abs(inset_circle[0]->num("r") / mi.s - truth.le_radius) < 0.01);
-    // ... and wholly inside the inset's frame.
-    const auto frames = with_class(inset_es, "view-frame");
-    REQUIRE(frames.size() == 1);
-    const double fx = frames[0]->num("x"), fy = frames[0]->num("y"), fw = frames[0]->num("width");
-    const double cx = inset_circle[0]->num("cx"), cy = inset_circle[0]->num("cy"), r = inset_circle[0]->num("r");
-    CHECK(cx - r >= fx);
-    CHECK(cx + r <= fx + fw);
-    CHECK(cy - r >= fy);
-    CHECK(cy + r <= fy + fw);
-
-    // The drawn curve lies on the true profile (fit ~ 1 um, px rounding 0.005 px).
-    const auto curves = with_class(main_es, "curve");
-    REQUIRE(curves.size() == 1);
-    const auto px = vertices(curves[0]->attr.at("d"));
-    REQUIRE(px.size() >= 1000);
-    double worst = 0;
-    for (const auto& p : px) worst = std::max(worst, section::locate(truth, m.world(p)).distance);
-    CHECK(worst < 0.005 + 0.01 / m.s);
-
-    // The scale bar is as long as it says: data-length (1, 2 or 5 times a power of ten) * scale.
-    bool bar_ok = false;
-    const auto bar = parse(subtree(svg, "s0-main-scale"), &bar_ok);
-    const double length = bar.front().num("data-length");
-    const double mantissa = length / std::pow(10.0, std::floor(std::log10(length) + 1e-9));
-    CHECK((std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 || std::abs(mantissa - 5) < 1e-9));
-    const auto line = with_class(bar, "scale-bar-line");
-    REQUIRE(line.size() == 1);
-    CHECK(std::abs(line[0]->num("x2") - line[0]->num("x1") - length * m.s) < 0.02);
-
-    // The parameter table prints the chord.
-    CHECK(svg.find(">chord<") != std::string::npos);
+    check_chord(main_es, m, truth);
+    check_le_circle(svg, main_es, m, truth);
+    check_curve(main_es, m, truth);
+    check_scale_bar(svg, m);
+    CHECK(svg.find(">chord<") != std::string::npos);  // the parameter table prints the chord
   }
 }
 
@@ -363,11 +380,13 @@ TEST_CASE("plot: unknown sections and bad options are plot errors", "[plot]") {
   section::Table pts = table("points", {"section", "loop", "index", "u", "v"});
   for (int i = 0; i < 20; ++i) pts.add_row({2, 0, double(i), std::cos(i * 0.314), std::sin(i * 0.314)});
   stream.put(pts);
-  CHECK_THROWS_WITH(section::plot_svg(stream, 7), Catch::Contains("plot: section 7 is not in the stream (sections: 2)"));
+  CHECK_THROWS_WITH(section::plot_svg(stream, 7),
+                    Catch::Contains("plot: section 7 is not in the stream (sections: 2)"));
   section::PlotOptions o;
   o.width = 10;
   CHECK_THROWS_WITH(section::plot_svg(stream, 2, o), Catch::StartsWith("plot: width"));
-  CHECK_THROWS_WITH(section::plot_html(section::Stream{}), Catch::StartsWith("plot: the stream holds no section"));
+  CHECK_THROWS_WITH(section::plot_html(section::Stream{}),
+                    Catch::StartsWith("plot: the stream holds no section"));
   CHECK(section::plot_sections(stream) == std::vector<int>{2});
 }
 

@@ -16,8 +16,8 @@ double wrap_degrees(double a) {
   return a;
 }
 
-FitScore score_fit(const BSpline& curve, const std::vector<Eigen::Vector2d>& measured, const SectionTruth& truth,
-                   const FitScoreOptions& options) {
+FitScore score_fit(const BSpline& curve, const std::vector<Eigen::Vector2d>& measured,
+                   const SectionTruth& truth, const FitScoreOptions& options) {
   std::vector<double> measured_s;
   for (const auto& m : measured) measured_s.push_back(locate(truth, m).s);
   std::sort(measured_s.begin(), measured_s.end());

@@ -13,32 +13,31 @@ namespace section {
 
 struct Stream;
 
+/// How a section is drawn (sizes in px unless said).
 struct PlotOptions {
-  double width = 1000;            ///< px, width of one section's drawing (its height follows the profile's aspect)
-  double max_main_height = 520;   ///< px, the main view is shrunk to keep within this height
-  double inset_size = 300;        ///< px, side of each square edge inset; 0 = no insets
-  double inset_radii = 1.5;       ///< edge radii: half-width of an inset's window around the edge circle's centre
-  double inset_min_fraction = 0.02;  ///< of the profile's length: smallest inset half-width (sharp edges, radius 0)
-  double point_radius = 1.6;      ///< px, radius of a measured point's dot
-  bool points = true;             ///< draw the measured points ("points" table)
-  bool stations = true;           ///< draw the inscribed circles at the thickness stations
-  bool table = true;              ///< draw the parameter table
-  int spline_samples = 2000;      ///< points per loop when the curve is evaluated from the spline tables (no "samples" table)
+  double width = 1000;               ///< width of one section's drawing (its height follows the profile)
+  double max_main_height = 520;      ///< the main view is shrunk to keep within this height
+  double inset_size = 300;           ///< side of each square edge inset; 0 = no insets
+  double inset_radii = 1.5;          ///< an inset's half-width around the edge circle's centre, in edge radii
+  double inset_min_fraction = 0.02;  ///< smallest inset half-width, of the profile's extent (sharp edges)
+  double point_radius = 1.6;         ///< radius of a measured point's dot
+  bool points = true;                ///< draw the measured points ("points" table)
+  bool stations = true;              ///< draw the inscribed circles at the thickness stations
+  bool table = true;                 ///< draw the parameter table
+  int spline_samples = 2000;         ///< points per loop when the curve comes from the spline tables
 };
 
 /// Section ids present in any per-section table of `stream` (frames, points, smoothed,
 /// splines, samples, camber, params, ...) or in its issues, ascending.
 std::vector<int> plot_sections(const Stream& stream);
 
-/// A standalone SVG document (UTF-8 text) of section `section`: main view with v up and
-/// equal axis scales (the scale, px per stream unit, is in the main view group's
-/// `data-scale` attribute), the two edge insets, the parameter table and the section's
-/// issues. Element ids start with `s<section>-` so several drawings can share a page;
-/// classes name the elements (points, curve, camber, station, le-circle, te-circle,
-/// chord, scale-bar, inset, param-table). The fitted curve comes from the "samples"
-/// table, else from the spline tables (fit_spline.h's splines()), else the "smoothed"
-/// points. Throws section::Error (`plot: ...`) when the section is not in the stream or
-/// the options are out of range.
+/// A standalone SVG document of section `section`: the main view (v up, equal axes; px per
+/// stream unit in its `data-scale`), the edge insets, the parameter table and the issues.
+/// Ids start with `s<section>-`; classes name the elements (points, curve, camber, station,
+/// le-circle, te-circle, chord, scale-bar, inset, param-table). The curve comes from the
+/// spline tables, else the "samples" table, else the "smoothed" points. Throws
+/// section::Error (`plot: ...`) when the section is not in the stream or an option is out
+/// of range.
 std::string plot_svg(const Stream& stream, int section, const PlotOptions& options = {});
 
 /// One self-contained HTML page: the stream's history, a summary table of the main

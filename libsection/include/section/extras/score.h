@@ -16,7 +16,9 @@ namespace section {
 /// How a fitted curve is scored.
 struct FitScoreOptions {
   int samples = 20000;  ///< curve samples (even in parameter) at which the distance to the truth is taken
-  double near = 0.3;    ///< mm: a sample is "near data" when a measured point lies within this distance of it *along the true profile* (across a thin edge the other side's points are close but say nothing of the tip)
+  /// mm: a sample is "near data" when a measured point lies within this distance of it along
+  /// the true profile (across a thin edge the other side's points are close but say nothing of the tip)
+  double near = 0.3;
 };
 
 /// Distances of a fitted curve to the true profile (lengths in mm).
@@ -30,17 +32,17 @@ struct FitScore {
 };
 
 /// Scores `curve` against `truth`; `measured` are the section's measured points (in-plane).
-FitScore score_fit(const BSpline& curve, const std::vector<Eigen::Vector2d>& measured, const SectionTruth& truth,
-                   const FitScoreOptions& options = {});
+FitScore score_fit(const BSpline& curve, const std::vector<Eigen::Vector2d>& measured,
+                   const SectionTruth& truth, const FitScoreOptions& options = {});
 
 /// Errors of one section's camber results; signed ones are measured - true.
 struct CamberScore {
-  double camber_rms = 0, camber_max = 0;  ///< distance of the camber samples to the true camber line (extensions included)
-  double chord = 0;                       ///< signed
-  double max_thickness = 0;               ///< signed
-  double le_radius = 0, te_radius = 0;    ///< signed, relative (0.01 = 1 %)
+  double camber_rms = 0, camber_max = 0;     ///< distance of the camber samples to the true camber line
+  double chord = 0;                          ///< signed
+  double max_thickness = 0;                  ///< signed
+  double le_radius = 0, te_radius = 0;       ///< signed, relative (0.01 = 1 %)
   double inlet_angle = 0, outlet_angle = 0;  ///< signed, degrees in (-180, 180]
-  double le_point = 0, te_point = 0;      ///< distances of the edge points from the true ones
+  double le_point = 0, te_point = 0;         ///< distances of the edge points from the true ones
 };
 
 /// Scores section `section` of a stream that holds camber's tables (camber, params).

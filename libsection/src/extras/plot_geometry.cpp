@@ -1,0 +1,146 @@
+// The geometry of a section's drawing: its curves as polylines and path data, and the
+// windows of the edge insets; see plot_parts.h.
+#include "plot_parts.h"
+
+#include "section/fit_spline.h"
+
+#include <Eigen/Dense>
+
+namespace section::detail::plot {
+
+std::vector<V2> curve_of(const SectionData& d, int loop, const PlotOptions& o, double factor) {
+  if (const auto it = d.splines.find(loop); it != d.splines.end()) {
+    const int n = static_cast<int>(std::clamp(o.spline_samples * factor, 16.0, 400000.0));
+    return sample(it->second, n);
+  }
+  if (const auto it = d.polyline.find(loop); it != d.polyline.end()) return it->second;
+  return {};
+}
+
+std::vector<int> curve_loops(const SectionData& d) {
+  std::vector<int> out;
+  for (const auto& [loop, b] : d.splines) out.push_back(loop);
+  for (const auto& [loop, p] : d.polyline) out.push_back(loop);
+  return out;
+}
+
+bool closed_loop(const SectionData& d, int loop) {
+  const auto it = d.splines.find(loop);
+  return it == d.splines.end() || it->second.closed;
+}
+
+std::string path_data(const std::vector<V2>& pts, bool closed, const View& v, const Box& window, bool whole) {
+  std::string d;
+  const std::size_t n = pts.size();
+  if (n < 2) return d;
+  if (whole) {
+    bool pen = false;
+    for (const auto& p : pts) {
+      if (!finite(p)) {
+        pen = false;
+        continue;
+      }
+      d += (pen ? " L" : (d.empty() ? "M" : " M")) + px(v.x(p.x())) + " " + px(v.y(p.y()));
+      pen = true;
+    }
+    if (closed) d += " Z";
+    return d;
+  }
+  const std::size_t segments = closed ? n : n - 1;
+  bool open_run = false;
+  for (std::size_t i = 0; i < segments; ++i) {
+    const V2& a = pts[i];
+    const V2& b = pts[(i + 1) % n];
+    Box seg;
+    seg.add(a);
+    seg.add(b);
+    if (!finite(a) || !finite(b) || !seg.touches(window)) {
+      open_run = false;
+      continue;
+    }
+    if (!open_run) d += (d.empty() ? "M" : " M") + px(v.x(a.x())) + " " + px(v.y(a.y()));
+    d += " L" + px(v.x(b.x())) + " " + px(v.y(b.y()));
+    open_run = true;
+  }
+  return d;
+}
+
+namespace {
+
+// Farthest pair along the principal axis of some points: the two ends of a profile.
+std::pair<V2, V2> principal_ends(const std::vector<V2>& pts) {
+  V2 mean(0, 0);
+  for (const auto& p : pts) mean += p;
+  mean /= static_cast<double>(pts.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  const V2 axis = eig.eigenvectors().col(1);
+  V2 lo = pts.front(), hi = pts.front();
+  for (const auto& p : pts) {
+    if ((p - mean).dot(axis) < (lo - mean).dot(axis)) lo = p;
+    if ((p - mean).dot(axis) > (hi - mean).dot(axis)) hi = p;
+  }
+  return {lo, hi};
+}
+
+}  // namespace
+
+std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const PlotOptions& o) {
+  const double extent = std::max(all.u1 - all.u0, all.v1 - all.v0);
+  const double min_half = std::max(o.inset_min_fraction * extent, 1e-9);
+  std::vector<EdgeInset> out;
+  if (!d.params.empty()) {
+    for (const std::string key : {"le", "te"}) {
+      EdgeInset e;
+      e.key = key;
+      e.label = key == "le" ? "LE" : "TE";
+      e.edge_point = {param(d, key + "_u"), param(d, key + "_v")};
+      e.point = finite(e.edge_point);
+      e.circle_center = {param(d, key + "_center_u"), param(d, key + "_center_v")};
+      e.radius = param(d, key + "_radius");
+      e.circle = finite(e.circle_center) && std::isfinite(e.radius) && e.radius > 0;
+      if (e.circle) {
+        e.center = e.circle_center;
+        e.half = std::max(o.inset_radii * e.radius, min_half);
+      } else if (e.point) {
+        e.center = e.edge_point;
+        e.half = 2.5 * min_half;
+      } else {
+        continue;
+      }
+      out.push_back(e);
+    }
+    return out;
+  }
+  // No parameters: the ends of the camber line, else the profile's extremes along its
+  // principal axis, each window moved inward so that it shows the edge, not the outside.
+  std::pair<V2, V2> ends;
+  double half = 2.5 * min_half;
+  if (d.camber.size() >= 2) {
+    ends = {d.camber.front(), d.camber.back()};
+  } else {
+    std::vector<V2> pts;
+    if (!d.splines.empty() || !d.polyline.empty()) pts = curve_of(d, curve_loops(d).front(), o, 1);
+    if (pts.empty() && !d.points.empty()) pts = d.points.begin()->second;
+    if (pts.size() < 3) return out;
+    ends = principal_ends(pts);
+    const V2 axis = (ends.second - ends.first).normalized();
+    half = 3 * min_half;
+    if (finite(axis)) {
+      ends.first += 0.6 * half * axis;
+      ends.second -= 0.6 * half * axis;
+    }
+  }
+  for (int k = 0; k < 2; ++k) {
+    EdgeInset e;
+    e.key = k == 0 ? "le" : "te";
+    e.label = k == 0 ? "end 1" : "end 2";
+    e.center = k == 0 ? ends.first : ends.second;
+    e.half = half;
+    out.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace section::detail::plot

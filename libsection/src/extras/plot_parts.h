@@ -1,0 +1,166 @@
+#pragma once
+// The parts of the plot module (plot.h), internal to section_extras: what the stream holds
+// of a section (plot_data.cpp), its geometry and edge insets (plot_geometry.cpp), the SVG
+// drawing of one section (plot_svg.cpp); plot.cpp holds the public functions and the page.
+#include "section/bspline.h"
+#include "section/extras/plot.h"
+#include "section/frame.h"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace section::detail::plot {
+
+using V2 = Eigen::Vector2d;
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// ---------------------------------------------------------------- text (plot_data.cpp)
+
+/// Fixed-point text without locale (SVG wants '.' whatever the C locale says); no "-0.00".
+std::string fixed(double value, int decimals);
+/// Fixed-point text with trailing zeros dropped: 12.500 -> 12.5, 3.000 -> 3.
+std::string trimmed(double value, int decimals);
+inline std::string px(double v) {
+  return fixed(v, 2);
+}
+/// Text for XML: & < > " escaped.
+std::string escape(const std::string& text);
+
+inline bool finite(const V2& p) {
+  return std::isfinite(p.x()) && std::isfinite(p.y());
+}
+
+// ---------------------------------------------------------------- what the stream holds (plot_data.cpp)
+
+struct Station {
+  double fraction = 0, thickness = 0;
+  V2 center{0, 0};
+};
+
+// Everything drawable of one section.
+struct SectionData {
+  int id = 0;
+  std::string units = "mm";
+  bool has_frame = false;
+  Frame frame;
+  std::map<int, std::vector<V2>> points;    // measured, by loop, in loop order
+  std::vector<V2> carried;                  // those the gap fill carried onto the plane (offset != 0)
+  std::map<int, BSpline> splines;           // fitted curves by loop (spline tables)
+  std::map<int, std::vector<V2>> polyline;  // fitted curve by loop when there is no spline
+  std::string curve_source;                 // "spline", "samples", "smoothed" or ""
+  std::vector<V2> skeleton;
+  std::vector<V2> camber;
+  std::vector<Station> stations;
+  std::map<std::string, double> params;  // the section's params row
+  std::map<std::string, double> fit;     // loop 0's splines row
+  std::vector<std::string> issues;       // "stage: message" lines
+};
+
+// The spline tables read once per stream; an unreadable set becomes a note, not an error.
+struct Curves {
+  std::map<std::pair<int, int>, BSpline> splines;
+  std::string error;
+};
+Curves read_curves(const Stream& stream);
+
+/// Everything drawable of section `section`.
+SectionData collect(const Stream& stream, int section, const Curves& curves);
+
+/// The section's params value `name`, NaN when absent.
+double param(const SectionData& d, const std::string& name);
+
+/// "plane through (x, y, z), normal (...); u = (...), v up", or "" without a frame.
+std::string frame_text(const SectionData& d);
+
+struct Row {
+  std::string name, value;
+};
+/// The rows of the parameter table: what the params and splines rows hold, with units.
+std::vector<Row> parameter_rows(const SectionData& d);
+
+// ---------------------------------------------------------------- geometry (plot_geometry.cpp)
+
+// Bounds in (u, v); empty until a finite point is added.
+struct Box {
+  double u0 = std::numeric_limits<double>::infinity(), v0 = u0, u1 = -u0, v1 = -u0;
+  void add(const V2& p) {
+    if (!finite(p)) return;
+    u0 = std::min(u0, p.x());
+    v0 = std::min(v0, p.y());
+    u1 = std::max(u1, p.x());
+    v1 = std::max(v1, p.y());
+  }
+  void add(const V2& c, double r) {
+    add(c - V2(r, r));
+    add(c + V2(r, r));
+  }
+  bool empty() const { return !(u1 >= u0 && v1 >= v0); }
+  bool touches(const Box& b) const { return !(b.u0 > u1 || b.u1 < u0 || b.v0 > v1 || b.v1 < v0); }
+  bool contains(const V2& p) const { return p.x() >= u0 && p.x() <= u1 && p.y() >= v0 && p.y() <= v1; }
+  Box grown(double d) const { return {u0 - d, v0 - d, u1 + d, v1 + d}; }
+};
+
+// A box holding every point.
+inline Box everything() {
+  const double big = std::numeric_limits<double>::max();
+  return {-big, -big, big, big};
+}
+
+// World (u, v) to px: x = scale u + tx, y = -scale v + ty (v up, equal axes).
+struct View {
+  double scale = 1, tx = 0, ty = 0;
+  double x(double u) const { return scale * u + tx; }
+  double y(double v) const { return -scale * v + ty; }
+  // Maps `box` centred into the px rectangle (left, top, w, h) at the largest scale.
+  static View fit(const Box& box, double left, double top, double w, double h) {
+    View v;
+    const double du = std::max(box.u1 - box.u0, 1e-12), dv = std::max(box.v1 - box.v0, 1e-12);
+    v.scale = std::min(w / du, h / dv);
+    v.tx = left + 0.5 * (w - du * v.scale) - v.scale * box.u0;
+    v.ty = top + 0.5 * (h - dv * v.scale) + v.scale * box.v1;
+    return v;
+  }
+};
+
+// The curve of one loop as a polyline; spline curves are sampled `factor` times denser
+// than options.spline_samples (insets magnify).
+std::vector<V2> curve_of(const SectionData& d, int loop, const PlotOptions& o, double factor);
+/// The loops that have a curve: the splines' then the polylines'.
+std::vector<int> curve_loops(const SectionData& d);
+/// Whether the loop's curve is closed (polylines always are).
+bool closed_loop(const SectionData& d, int loop);
+
+// Path data of a polyline: the runs of segments touching `window` (all of it when the
+// window holds everything), each run a subpath.
+std::string path_data(const std::vector<V2>& pts, bool closed, const View& v, const Box& window, bool whole);
+
+// The inset of one edge: its window and what marks it.
+struct EdgeInset {
+  std::string key;      // "le" or "te"
+  std::string label;    // "LE", "TE", or "end 1"/"end 2" without params
+  V2 center{0, 0};      // window centre
+  double half = 0;      // window half-width
+  bool circle = false;  // a fitted edge circle exists
+  V2 circle_center{0, 0};
+  double radius = 0;
+  bool point = false;  // an edge point exists
+  V2 edge_point{0, 0};
+};
+
+/// The edges' insets: around the LE and TE circles (or points) of the params row, else
+/// around the ends of the camber line or of the profile; `all` bounds the main view.
+std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const PlotOptions& o);
+
+// ---------------------------------------------------------------- drawing (plot_svg.cpp)
+
+/// The standalone SVG document of one section (plot_svg in plot.h).
+std::string svg_of(const SectionData& d, const PlotOptions& o);
+
+}  // namespace section::detail::plot
