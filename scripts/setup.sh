@@ -5,7 +5,7 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PKGS=(build-essential cmake ninja-build ccache pkg-config
       libcgal-dev libeigen3-dev libopenmesh-dev libflann-dev liblz4-dev
-      libsuitesparse-dev libtbb-dev catch2 libcli11-dev python3)
+      libsuitesparse-dev libtbb-dev catch2 libcli11-dev python3 clang-format)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
