@@ -9,6 +9,11 @@
 #include "section/pipe/run_stage.h"
 #include "section/pipe/camber_stream.h"
 #include "section/pipe/schema.h"
+#include "section/units.h"
+
+#include <Eigen/Geometry>
+
+#include <iostream>
 
 namespace {
 
@@ -19,12 +24,18 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::camber_stream);
   // A plain profile (x y per line): its spline is fitted to its points.
   run.other_input = [&](const std::string& text, const std::string& source) {
-    const auto points = section::parse_profile(text, source);
+    auto points = section::parse_profile(text, source);
+    Eigen::AlignedBox2d box;
+    for (const auto& p : points) box.extend(p);
+    const section::InputUnits units = section::input_units(a.units, box.sizes().maxCoeff());
+    if (!units.warning.empty()) std::cerr << "camber: warning: " << units.warning << "\n";
+    for (auto& p : points) p *= units.mm;
     section::Stream stream;
     section::tool::with_input(a.common.input, [&] {
       const section::FitSplineResult fit = section::fit_spline(points, points);
       stream = section::profile_stream(fit.spline, fit.rms);
     });
+    if (!units.note.empty()) stream.notes.push_back(units.note);
     return stream;
   };
   run.written = [&](const section::Stream& stream) {

@@ -13,6 +13,9 @@
 #include "section/pipe/slice_stream.h"
 #include "section/register_views.h"
 #include "section/slice.h"
+#include "section/units.h"
+
+#include <iostream>
 
 #include <optional>
 #include <utility>
@@ -29,11 +32,14 @@ class SectionWriter {
 public:
   SectionWriter(const SliceArgs& args, std::string history) : args_(args), history_(std::move(history)) {}
   std::vector<std::string> notes;  ///< of the whole stream (registered views), written before the first part
+  std::string warning;             ///< about the whole input, said with the first section (once it is read)
 
   void operator()(const section::SectionSlice& s) {
+    if (!warning.empty()) std::cerr << "slice: warning: " << warning << "\n";
+    warning.clear();
     section::SliceResult one;
     one.sections = {s};
-    section::Stream part = section::to_stream(one, history_, args_.units);
+    section::Stream part = section::to_stream(one, history_, "mm");
     section::tool::warn_issues("slice", part, false);
     ++sections_;
     if (!s.error.empty()) ++failed_;
@@ -43,7 +49,7 @@ public:
     }
     if (!writer_) {
       section::Stream head;
-      head.units = args_.units;
+      head.units = "mm";
       head.history = {history_};
       head.notes = notes;
       writer_.emplace(args_.common.output, head);
@@ -69,8 +75,8 @@ private:
   std::size_t failed_ = 0, sections_ = 0;
 };
 
-// Views apart: held in memory, registered onto the input, merged, then sliced.
-section::Cloud merged_views(const SliceArgs& a, SectionWriter& out) {
+// The clouds of the input and its views, as read (in their own unit).
+std::vector<section::Cloud> read_views(const SliceArgs& a) {
   std::vector<std::string> names{a.common.input};
   names.insert(names.end(), a.views.begin(), a.views.end());
   std::vector<section::Cloud> clouds;
@@ -79,44 +85,88 @@ section::Cloud merged_views(const SliceArgs& a, SectionWriter& out) {
       throw section::Error(name + ": --view takes point clouds, not meshes");
     clouds.push_back(section::read_cloud(name));
   }
+  return clouds;
+}
+
+// Views apart: held in memory, registered onto the input, merged, then sliced.
+section::Cloud merged_views(const SliceArgs& a, const std::vector<section::Cloud>& clouds,
+                            SectionWriter& out) {
   section::RegisterResult reg;
   try {
     reg = section::register_views(clouds, a.register_options);
   } catch (const section::Error& e) {
     std::string what = e.what();
-    for (std::size_t k = 1; k < names.size(); ++k)
+    for (std::size_t k = 1; k < clouds.size(); ++k)
       if (what.find("view " + std::to_string(k) + " ") != std::string::npos)
-        what += " (view " + std::to_string(k) + ": " + names[k] + ")";
+        what += " (view " + std::to_string(k) + ": " + a.views[k - 1] + ")";
     throw section::Error(what);
   }
-  for (std::size_t k = 1; k < names.size(); ++k)
-    out.notes.push_back(section::describe(reg.views[k], names[k]));
+  for (std::size_t k = 1; k < clouds.size(); ++k)
+    out.notes.push_back(section::describe(reg.views[k], a.views[k - 1]));
   return section::merge_views(clouds, reg);
 }
 
-void run_slice(const SliceArgs& a, const std::string& history) {
+double extent_of(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::AlignedBox3d box;
+  for (const auto& p : points) box.extend(p);
+  return points.empty() ? 0 : box.sizes().maxCoeff();
+}
+
+// The input's unit (given, or guessed from its extent), said on standard error and in the stream
+// once the input has been read.
+section::InputUnits units_of(const SliceArgs& a, double extent, SectionWriter& out) {
+  const section::InputUnits units = section::input_units(a.units, extent);
+  out.warning = units.warning;
+  if (!units.note.empty()) out.notes.push_back(units.note);
+  return units;
+}
+
+void run_slice(const SliceArgs& given, const std::string& history) {
+  const std::string& input = given.common.input;
+  SectionWriter out(given, history);
+  // Held in memory (views, standard input, a mesh): the extent from all the points; a cloud
+  // file: from points spread over it. Everything is converted to mm before it is sliced.
+  std::vector<section::Cloud> clouds;
+  std::optional<section::Mesh> mesh;
+  double extent = 0;
+  if (!given.views.empty() || input == "-") {
+    clouds = read_views(given);
+    extent = extent_of(clouds[0].points);
+  } else if (section::is_mesh_file(input)) {
+    mesh = section::read_mesh(input);
+    extent = extent_of(mesh->vertices);
+  } else {
+    extent = section::sample_extent(input);
+  }
+  const section::InputUnits units = units_of(given, extent, out);
+  const SliceArgs a = given.in_mm(units.mm);
   const Eigen::Vector3d n(a.normal[0], a.normal[1], a.normal[2]);
   std::vector<section::Plane> planes;
-  if (!a.planes_file.empty())
+  if (!a.planes_file.empty()) {
     planes = section::parse_planes(section::read_file(a.planes_file), a.planes_file);
-  else if (!a.at.empty())
+    for (auto& p : planes) p.origin *= units.mm;
+  } else if (!a.at.empty()) {
     planes = section::planes_at(n, a.at);
-  SectionWriter out(a, history);
-  const std::string& input = a.common.input;
+  }
+  for (auto& c : clouds)
+    for (auto& p : c.points) p *= units.mm;
+  if (mesh)
+    for (auto& v : mesh->vertices) v *= units.mm;
   section::SliceResult result;
-  if (!a.views.empty()) {
-    const section::Cloud merged = merged_views(a, out);
+  if (!clouds.empty()) {
+    const section::Cloud merged = a.views.empty() ? std::move(clouds[0]) : merged_views(a, clouds, out);
     if (a.count > 0) planes = section::planes_across(merged.points, n, a.count);
     section::tool::with_input(input, [&] { result = section::slice(merged, planes, a.options); });
-  } else if (input != "-" && section::is_mesh_file(input)) {
-    const section::Mesh mesh = section::read_mesh(input);
-    if (a.count > 0) planes = section::planes_across(mesh.vertices, n, a.count);
-    section::tool::with_input(input, [&] { result = section::slice(mesh, planes, a.options); });
+  } else if (mesh) {
+    if (a.count > 0) planes = section::planes_across(mesh->vertices, n, a.count);
+    section::tool::with_input(input, [&] { result = section::slice(*mesh, planes, a.options); });
   } else {
     // Streamed: only the slab points are held, not the cloud, and each section is written
     // as it comes. Read errors name the file already, so with_input leaves them as they are.
+    section::CloudReadOptions read;
+    read.scale = units.mm;
     section::tool::with_input(input, [&] {
-      section::slice_file(input, section::PlaneSpec{planes, n, a.count}, a.options, {}, std::ref(out));
+      section::slice_file(input, section::PlaneSpec{planes, n, a.count}, a.options, read, std::ref(out));
     });
   }
   for (const auto& s : result.sections) out(s);

@@ -120,6 +120,11 @@ void CamberArgs::declare(CLI::App& app) {
   add_checked(app, "--tangent-span", options.tangent_span,
               "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)",
               CLI::Range(0.0, 0.5));
+  app.add_option("--units", units,
+                 "Length unit of a plain profile (" + length_unit_names() +
+                     "): converted to mm, the stream's unit; default mm, or m for a profile under 1 "
+                     "across (with a warning). A stream says its own unit.")
+      ->check(length_unit);
   app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
       ->check(CLI::NonNegativeNumber);
   app.callback([this] {

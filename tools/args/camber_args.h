@@ -19,6 +19,7 @@ struct CamberArgs {
   std::string thickness_file;  ///< --thickness: the thickness table (CSV) to this file
   std::string stations, le_direction, edge = "round";  ///< those flags as given
   bool edge_on_spline = false;
+  std::string units;  ///< --units: a plain profile's length unit ("" = mm, or m by its extent)
   /// Declares the options on `app`, bound to these fields.
   void declare(CLI::App& app);
 };

@@ -1,5 +1,8 @@
 #include "args/slice_args.h"
 
+#include <algorithm>
+#include <utility>
+
 namespace section::tool {
 
 const char* const SliceArgs::description =
@@ -30,6 +33,15 @@ const char* const SliceArgs::description =
     "Example: slice blade.ply --normal 0,0,1 --at 12,20,28 | smooth | fitspline | camber";
 
 namespace {
+
+// The options that are lengths, by flag (given in the input's unit).
+std::vector<std::pair<const char*, double*>> length_options(SliceArgs& a) {
+  return {{"--slab", &a.options.slab},
+          {"--cell", &a.options.morphology.cell},
+          {"--band-spacing", &a.options.band_spacing},
+          {"--fill-reach", &a.options.fill.reach},
+          {"--view-reach", &a.register_options.reach}};
+}
 
 // --normal, --at, --count, --planes: the planes.
 void declare_planes(CLI::App& app, SliceArgs& a) {
@@ -83,12 +95,27 @@ void SliceArgs::declare(CLI::App& app) {
               CLI::NonNegativeNumber);
   app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--units", units, "Length unit recorded in the stream")->capture_default_str();
-  app.callback([this] {
+  app.add_option("--units", units,
+                 "Length unit of the input (" + length_unit_names() +
+                     "): its coordinates and the lengths given here are converted to mm, the stream's "
+                     "unit; default mm, or m for an input under 1 across (with a warning)")
+      ->check(length_unit);
+  app.callback([this, &app] {
+    lengths_given.clear();
+    for (const auto& [flag, value] : length_options(*this))
+      if (app.count(flag) > 0) lengths_given.push_back(flag);
     if (normal.size() != 3) throw CLI::ValidationError("--normal takes three comma-separated numbers");
     if (at.empty() && count == 0 && planes_file.empty())
       throw CLI::RequiredError("one of --at, --count or --planes");
   });
+}
+
+SliceArgs SliceArgs::in_mm(double mm) const {
+  SliceArgs a = *this;
+  for (const auto& [flag, value] : length_options(a))
+    if (std::find(lengths_given.begin(), lengths_given.end(), flag) != lengths_given.end()) *value *= mm;
+  for (double& at : a.at) at *= mm;
+  return a;
 }
 
 }  // namespace section::tool

@@ -14,16 +14,19 @@ struct SliceArgs {
   static constexpr const char* name = "slice";
   static const char* const description;
   Common common;
-  std::vector<double> normal{0, 0, 1};  ///< --normal x,y,z
-  std::vector<double> at;               ///< --at: plane offsets along the normal
-  int count = 0;                        ///< --count: planes spread evenly over the part
-  std::string planes_file;              ///< --planes: CSV file of planes
-  std::vector<std::string> views;       ///< --view: other views of the part, registered onto the input
-  RegisterOptions register_options;     ///< --view-reach
-  SliceOptions options;                 ///< --slab, --cell, --band-*, --fill-*, --threads
-  std::string units = "mm";             ///< --units recorded in the stream
+  std::vector<double> normal{0, 0, 1};     ///< --normal x,y,z
+  std::vector<double> at;                  ///< --at: plane offsets along the normal
+  int count = 0;                           ///< --count: planes spread evenly over the part
+  std::string planes_file;                 ///< --planes: CSV file of planes
+  std::vector<std::string> views;          ///< --view: other views of the part, registered onto the input
+  RegisterOptions register_options;        ///< --view-reach
+  SliceOptions options;                    ///< --slab, --cell, --band-*, --fill-*, --threads
+  std::string units;                       ///< --units: the input's length unit ("" = mm, or m by its extent)
+  std::vector<std::string> lengths_given;  ///< the length options given (in the input's unit)
   /// Declares the options on `app`, bound to these fields.
   void declare(CLI::App& app);
+  /// The options with every length given converted to mm (`mm` = the input unit's mm).
+  SliceArgs in_mm(double mm) const;
 };
 
 }  // namespace section::tool

@@ -1,5 +1,7 @@
 #include "common/tool.h"
 
+#include "section/units.h"
+
 #include "section/error.h"
 #include "section/io/stream.h"
 #include "section/pipe/run_stage.h"
@@ -134,5 +136,22 @@ const CLI::Validator positive(
       return {};
     },
     "POSITIVE", "positive");
+
+const CLI::Validator length_unit(
+    [](const std::string& unit) {
+      try {
+        section::mm_per_unit(unit);
+      } catch (const section::Error& e) {
+        return std::string(e.what());
+      }
+      return std::string();
+    },
+    "UNIT", "length unit");
+
+std::string length_unit_names() {
+  std::string names;
+  for (const auto& u : section::length_units()) names += std::string(names.empty() ? "" : ", ") + u.name;
+  return names;
+}
 
 }  // namespace section::tool

@@ -67,6 +67,12 @@ CLI::Option* add_checked(CLI::App& app, const std::string& flag, T& value, const
 /// answers with the range 0 to 1.8e308 written out in full.
 extern const CLI::Validator positive;
 
+/// Accepts a length unit units.h knows (mm, m, cm, um, in), naming them when refused.
+extern const CLI::Validator length_unit;
+
+/// "mm, m, cm, um, in": the units --units takes, for help texts.
+std::string length_unit_names();
+
 /// The command line as one line, for the stream's history.
 std::string command_line(int argc, char** argv);
 

@@ -69,6 +69,14 @@ std::size_t read_source(ByteSource& src, const std::string& path, const PointChu
       throw Error("read_cloud: " + src.name() + ": " + why);
     if (detail::skip_bom(buf)) src.consume(3);
   }
+  // Coordinates in another unit are scaled as they come, after the checks of the file's own numbers.
+  std::vector<Eigen::Vector3d> scaled;
+  const PointChunkFn to_caller =
+      options.scale == 1 ? on_chunk : [&](const Eigen::Vector3d* p, std::size_t n) {
+        scaled.assign(p, p + n);
+        for (auto& q : scaled) q *= options.scale;
+        on_chunk(scaled.data(), n);
+      };
   std::size_t seen = 0;
   const PointChunkFn checked = [&](const Eigen::Vector3d* p, std::size_t n) {
     bool beyond = false;
@@ -79,9 +87,9 @@ std::size_t read_source(ByteSource& src, const std::string& path, const PointChu
         throw Error("read_cloud: " + src.name() + ": point " + std::to_string(seen + i + 1) +
                     " has a coordinate beyond +-1e15 (corrupt file?)");
     seen += n;
-    on_chunk(p, n);
+    to_caller(p, n);
   };
-  return format.read_cloud(src, options, checked, on_chunk);
+  return format.read_cloud(src, options, checked, to_caller);
 }
 
 // Packed doubles of a regular file read by pread on worker threads, a chunk each; `merge`
@@ -96,6 +104,7 @@ public:
         name_(name),
         chunk_(std::max<std::size_t>(options.chunk_points, 1)),
         chunks_(static_cast<std::size_t>((count_ + chunk_ - 1) / chunk_)),
+        scale_(options.scale),
         first_bad_(chunks_) {}
 
   void run(const ChunkWorkFn& work, const IndexedChunkFn& merge, int threads) {
@@ -142,6 +151,8 @@ private:
                   std::to_string(first + got / 24) + " of " + std::to_string(count_) +
                   " vertices (truncated file?)");
     detail::check_vertices(buf.data(), m, first, name_);
+    if (scale_ != 1)
+      for (auto& p : buf) p *= scale_;
     work(k, buf.data(), m, 1);
     // Merged in file order: wait for the chunks before.
     std::unique_lock<std::mutex> lock(mutex_);
@@ -159,6 +170,7 @@ private:
   const unsigned long long start_, count_;
   const std::string& name_;
   const std::size_t chunk_, chunks_;
+  const double scale_;
   std::atomic<std::size_t> next_{0};
   std::mutex mutex_;
   std::condition_variable merged_one_;
@@ -219,7 +231,8 @@ CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudRead
       if (detail::pread_full(src->regular_fd(), rec, v->record, v->start + k * v->record) < v->record)
         return {};
       const Eigen::Vector3d p = v->point(rec);
-      if (p.allFinite() && p.cwiseAbs().maxCoeff() <= detail::max_coordinate) out.points.push_back(p);
+      if (p.allFinite() && p.cwiseAbs().maxCoeff() <= detail::max_coordinate)
+        out.points.push_back(options.scale * p);
     }
     out.total = v->count;
   } catch (const Error&) {

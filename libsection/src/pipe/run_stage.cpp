@@ -4,6 +4,8 @@
 
 #include "section/error.h"
 #include "section/io/stream_reader.h"
+#include "section/pipe/schema.h"
+#include "section/units.h"
 
 #include <condition_variable>
 #include <deque>
@@ -16,6 +18,15 @@ namespace section {
 
 namespace {
 
+// Refuses a stream in a length unit the stages cannot convert to mm.
+void check_units(const std::string& units, const std::string& source) {
+  try {
+    mm_per_unit(units);
+  } catch (const Error& e) {
+    throw Error("pipe: " + source + ": " + e.what());
+  }
+}
+
 // A stream not split into parts: read, staged and written whole.
 void run_whole(const StageRun& run, PartReader& reader) {
   std::string text = reader.whole();
@@ -23,6 +34,8 @@ void run_whole(const StageRun& run, PartReader& reader) {
   Stream stream = run.other_input && text.compare(bom, 19, "# libsection-stream") != 0
                       ? run.other_input(text, reader.source())
                       : parse_stream(std::make_shared<const std::string>(std::move(text)), reader.source());
+  check_units(stream.units, reader.source());
+  convert_to_mm(stream);
   run.stage(stream, run.threads);
   stream.history.push_back(run.history);
   if (run.written) run.written(stream);
@@ -34,10 +47,10 @@ void run_whole(const StageRun& run, PartReader& reader) {
 // reads them.
 class PartScheduler {
 public:
-  PartScheduler(const StageRun& run, PartReader& reader, const Stream& head)
+  PartScheduler(const StageRun& run, PartReader& reader, const Stream& head, const std::string& units)
       : run_(run),
         reader_(reader),
-        units_(head.units),
+        units_(units),
         writer_(run.output, head),
         workers_(run.threads > 0 ? std::size_t(run.threads)
                                  : std::max<std::size_t>(1, std::thread::hardware_concurrency())) {}
@@ -84,6 +97,7 @@ private:
       try {
         Stream part = parse_stream_part(job.part, reader_.source());
         part.units = units_;
+        convert_to_mm(part);
         run_.stage(part, 1);
         job.part.text = nullptr;
         job.result = std::move(part);
@@ -150,8 +164,11 @@ void run_stage(const StageRun& run) {
   PartReader reader(run.input);
   if (!reader.parted()) return run_whole(run, reader);
   Stream head = reader.preamble();
+  const std::string units = head.units;
+  check_units(units, reader.source());  // before anything is written
+  head.units = "mm";                    // each part is converted to mm before it is staged
   head.history.push_back(run.history);
-  PartScheduler(run, reader, head).run();
+  PartScheduler(run, reader, head, units).run();
 }
 
 }  // namespace section

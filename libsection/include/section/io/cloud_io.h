@@ -28,6 +28,7 @@ struct CloudReadOptions {
   std::size_t max_points = std::size_t(1) << 33;  ///< refuse files claiming more points than this
   /// Threads parsing text and reading binary PLY; 0 = all cores (the points do not depend on it).
   int threads = 0;
+  double scale = 1;  ///< every coordinate is multiplied by this as read (a unit's mm, units.h)
 };
 
 /// Receives the points of a cloud chunk by chunk, in file order.
@@ -71,6 +72,12 @@ struct CloudPeek {
 /// spacing. Empty when that is not possible (standard input, text, ASCII PLY, a file shorter
 /// than its header says); non-finite points are left out. Never throws for the content.
 CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudReadOptions& options = {});
+
+/// The largest side of the bounding box of a cloud file, estimated from points spread over
+/// it (a binary PLY's as peek_cloud reads them; a text file's from blocks read at evenly
+/// spaced places), in the file's numbers times options.scale: enough to tell its likely unit
+/// (units.h). 0 when no sample can be read (standard input, an unreadable file).
+double sample_extent(const std::string& path, const CloudReadOptions& options = {});
 
 /// Reads the whole cloud of `path` ("-" = standard input). Throws as read_cloud_chunks.
 Cloud read_cloud(const std::string& path, const CloudReadOptions& options = {});

@@ -29,6 +29,11 @@ std::map<int, Frame> frames(const Stream& stream);
 /// Adds or replaces the "frames" table from frames by section id.
 void put_frames(Stream& stream, const std::map<int, Frame>& frames);
 
+/// Converts a stream in another length unit (`# units`, units.h) to mm, the unit every
+/// stage's defaults are stated in: each table's columns by their unit's power of length
+/// (length, area, length^2, 1/length). Throws section::Error for an unknown unit.
+void convert_to_mm(Stream& stream);
+
 namespace schema {
 
 /// Names of the columns that readers look up (the lists use them; u and v are a point's).

@@ -1,0 +1,48 @@
+#pragma once
+/// @file units.h
+/// Length units. The stream's lengths are in mm: input in another unit is converted on
+/// reading, so that every default length (stated in mm) fits the data.
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace section {
+
+/// A length unit the tools read.
+struct LengthUnit {
+  const char* name;  ///< as given to --units: "mm", "m", "cm", "um", "in"
+  double mm;         ///< millimetres in one unit
+};
+
+/// Every unit --units takes.
+const std::vector<LengthUnit>& length_units();
+
+/// Millimetres in one `unit`; throws section::Error `units: unknown length unit 'U' (known:
+/// mm, m, cm, um, in)`.
+double mm_per_unit(std::string_view unit);
+
+/// The unit a blade is likely given in, from its extent (the largest side of its bounding
+/// box, in the numbers of the file).
+struct UnitGuess {
+  std::string unit = "mm";  ///< "m" under 1, "mm" from 1 to 10000, "um" above
+  bool doubtful = false;    ///< the extent is not that of a blade in mm (under 1 or over 10000)
+};
+
+/// The likely unit of a blade `extent` across (see UnitGuess). A blade under 1 unit across
+/// is taken to be in metres; over 10000 (10 m in mm) the file may be in micrometres.
+UnitGuess guess_unit(double extent);
+
+/// The unit of an input and how it is taken.
+struct InputUnits {
+  std::string unit = "mm";  ///< the input's unit
+  double mm = 1;            ///< its millimetres: coordinates are multiplied by this on reading
+  std::string warning;      ///< set when the unit was not given and the extent makes it doubtful
+  std::string note;         ///< for the stream: how the unit was taken ("" for mm as given or assumed)
+};
+
+/// The unit of an input `extent` across (numbers as in the file; 0 = unknown): `given` when
+/// not empty (throws section::Error for an unknown unit), else mm unless the extent says
+/// metres (converted, with a warning) or micrometres (kept, with a warning).
+InputUnits input_units(const std::string& given, double extent);
+
+}  // namespace section

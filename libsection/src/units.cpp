@@ -1,0 +1,58 @@
+#include "section/units.h"
+
+#include "section/error.h"
+
+#include <cstdio>
+
+namespace section {
+
+const std::vector<LengthUnit>& length_units() {
+  static const std::vector<LengthUnit> units = {
+      {"mm", 1.0}, {"m", 1000.0}, {"cm", 10.0}, {"um", 0.001}, {"in", 25.4}};
+  return units;
+}
+
+double mm_per_unit(std::string_view unit) {
+  std::string known;
+  for (const auto& u : length_units()) {
+    if (unit == u.name) return u.mm;
+    known += (known.empty() ? "" : ", ") + std::string(u.name);
+  }
+  throw Error("units: unknown length unit '" + std::string(unit) + "' (known: " + known + ")");
+}
+
+UnitGuess guess_unit(double extent) {
+  // Turbine, compressor and propeller blades measure a few mm to a few m: 1 to 10000 in mm.
+  if (extent > 0 && extent < 1) return {"m", true};
+  if (extent > 10000) return {"um", true};
+  return {"mm", false};
+}
+
+InputUnits input_units(const std::string& given, double extent) {
+  InputUnits in;
+  if (!given.empty()) {
+    in.unit = given;
+    in.mm = mm_per_unit(given);
+    if (in.mm != 1) in.note = "units_from " + given + " (given; converted to mm)";
+    return in;
+  }
+  const UnitGuess guess = guess_unit(extent);
+  char text[256];
+  if (guess.unit == "m") {
+    in.unit = "m";
+    in.mm = 1000;
+    std::snprintf(text, sizeof text,
+                  "the input is %.3g across: taken to be in metres and converted to mm (give --units to "
+                  "say which unit it is in)",
+                  extent);
+    in.warning = text;
+    in.note = "units_from m (guessed from the extent; converted to mm)";
+  } else if (guess.doubtful) {
+    std::snprintf(text, sizeof text,
+                  "the input is %.3g across: read as mm; if it is in micrometres, give --units um", extent);
+    in.warning = text;
+  }
+  return in;
+}
+
+}  // namespace section

@@ -1,0 +1,79 @@
+#include "section/error.h"
+#include "section/pipe/schema.h"
+#include "section/units.h"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+
+using namespace section;
+
+TEST_CASE("units: millimetres per unit", "[units]") {
+  CHECK(mm_per_unit("mm") == 1);
+  CHECK(mm_per_unit("m") == 1000);
+  CHECK(mm_per_unit("cm") == 10);
+  CHECK(mm_per_unit("um") == 0.001);
+  CHECK(mm_per_unit("in") == 25.4);
+  try {
+    mm_per_unit("furlong");
+    FAIL("an unknown unit is refused");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()) == "units: unknown length unit 'furlong' (known: mm, m, cm, um, in)");
+  }
+}
+
+TEST_CASE("units: the likely unit of a blade from its extent", "[units]") {
+  CHECK(guess_unit(0.2).unit == "m");
+  CHECK(guess_unit(0.2).doubtful);
+  CHECK(guess_unit(0.999).unit == "m");
+  CHECK_FALSE(guess_unit(1).doubtful);
+  CHECK(guess_unit(45).unit == "mm");
+  CHECK_FALSE(guess_unit(10000).doubtful);
+  CHECK(guess_unit(20000).unit == "um");
+  CHECK_FALSE(guess_unit(0).doubtful);  // unknown extent: mm, no warning
+}
+
+TEST_CASE("units: an input's unit, given or guessed", "[units]") {
+  const InputUnits given = input_units("in", 0.5);
+  CHECK(given.mm == 25.4);
+  CHECK(given.warning.empty());  // a unit given is not second-guessed
+  const InputUnits metres = input_units("", 0.21);
+  CHECK(metres.unit == "m");
+  CHECK(metres.mm == 1000);
+  CHECK(metres.warning.find("taken to be in metres") != std::string::npos);
+  const InputUnits micro = input_units("", 35000);
+  CHECK(micro.mm == 1);  // kept as mm: said, not converted
+  CHECK(micro.warning.find("--units um") != std::string::npos);
+  const InputUnits mm = input_units("", 40);
+  CHECK((mm.mm == 1 && mm.warning.empty() && mm.note.empty()));
+  CHECK_THROWS_AS(input_units("yard", 40), Error);
+}
+
+TEST_CASE("units: a stream in metres converted to mm by its columns' units", "[units]") {
+  Stream s;
+  s.units = "m";
+  Table points = schema::points.table();
+  points.add_row({0, 0, 3, 0.010, -0.002, 0.6, 0.8, 0.0005});
+  s.put(points);
+  Table stats = schema::smooth_stats.table();
+  std::vector<double> row(stats.columns.size(), 2.0);
+  stats.add_row(row);
+  s.put(stats);
+  Table knots = schema::spline_knots.table();
+  knots.add_row({0, 0, 1, 0.25});
+  s.put(knots);
+  convert_to_mm(s);
+  CHECK(s.units == "mm");
+  const Table& p = *s.find("points");
+  CHECK(p.at(0, p.column("index")) == 3);                  // an id
+  CHECK(p.at(0, p.column("u")) == Approx(10).epsilon(1e-15));  // a length
+  CHECK(p.at(0, p.column("nu")) == 0.6);                   // a unit vector's component
+  CHECK(p.at(0, p.column("offset")) == Approx(0.5));
+  const Table& st = *s.find("smooth_stats");
+  CHECK(st.at(0, st.column("energy_before")) == Approx(2e6));  // a squared length
+  CHECK(st.at(0, st.column("points")) == 2);                   // a count
+  CHECK(s.find("spline_knots")->at(0, 3) == 0.25);             // a curve parameter
+  Stream unknown;
+  unknown.units = "furlong";
+  CHECK_THROWS_AS(convert_to_mm(unknown), Error);
+}
