@@ -411,8 +411,11 @@ void score_run(KindResult& res, const Run& r, const BladeDesign& blade, int plan
   if (status != 0) ++res.failed_runs;
   const std::string s_path = r.dir + "/S.txt", p_path = r.dir + "/P.csv";
   if (!fs::exists(s_path) || !fs::exists(p_path)) {
+    std::string first;  // the first tool's error (the later ones read its empty output)
+    for (const std::string& line : split(read_file(r.dir + "/E.txt"), '\n'))
+      if (first.empty() && line.find(": error: ") != std::string::npos) first = line;
     res.no_params.push_back("seed " + std::to_string(r.seed) + ": no stream (exit " + std::to_string(status) +
-                            "): " + read_file(r.dir + "/E.txt").substr(0, 300));
+                            "): " + first.substr(0, 300));
     return;
   }
   const Stream stream = read_stream(s_path);

@@ -48,7 +48,7 @@ BladeDesign turbine_blade();
 BladeDesign compressor_blade();
 
 /// Blade with a sharp, closed trailing edge: radius 0, the two sides meeting at one vertex
-/// with a finite wedge angle (about 20 degrees); a thin cambered section, round LE.
+/// with a finite wedge angle (about 12 degrees); a thin cambered section, round LE.
 BladeDesign sharp_te_blade();
 /// Mirror-symmetric impulse blade: front and back alike (inlet = stagger + theta, outlet =
 /// stagger - theta, equal edge radii, thickest at mid camber), so neither the thickness nor
