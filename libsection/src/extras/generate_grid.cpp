@@ -36,8 +36,12 @@ std::vector<double> grid_places(int around, double clustering, double P, double 
 }
 
 void check_grid(const GridOptions& o, const std::string& who) {
-  if (o.heights < 2) throw Error(who + ": heights must be at least 2");
-  if (o.around < 8) throw Error(who + ": around must be at least 8");
+  if (o.heights < 2)
+    throw Error(who + ": a grid needs at least 2 heights (got " + std::to_string(o.heights) +
+                "; chordwise: --lines, spanwise: --line-points)");
+  if (o.around < 8)
+    throw Error(who + ": a grid needs at least 8 places around the profile (got " + std::to_string(o.around) +
+                "; chordwise: --line-points, spanwise: --lines)");
   if (!(o.clustering >= 0 && o.clustering <= 1)) throw Error(who + ": clustering must be in [0, 1]");
   check_noise(o.noise, who);
   if (double(o.heights) * double(o.around) > 4e8)
