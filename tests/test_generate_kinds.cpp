@@ -36,6 +36,23 @@ Vector2d at_arc(const SectionTruth& t, double s) {
   return t.profile[std::size_t(std::max<long>(0, long(it - t.profile_s.begin()) - 1))];
 }
 
+// A grid of `heights` x `around` points (chordwise lines, the whole span).
+section::GridOptions grid_of(int heights, int around) {
+  section::GridOptions g;
+  g.heights = heights;
+  g.around = around;
+  return g;
+}
+
+// Rows: `rows` of them `pitch` apart (centred), at constant radius when hub_radius > 0.
+section::RowsOptions rows_of(int rows, double pitch, double hub_radius = 0) {
+  section::RowsOptions r;
+  r.rows = rows;
+  r.pitch = pitch;
+  r.hub_radius = hub_radius;
+  return r;
+}
+
 }  // namespace
 
 TEST_CASE("generate kinds: a sharp trailing edge closes at one vertex with a finite wedge", "[generate]") {
@@ -112,9 +129,7 @@ TEST_CASE("generate kinds: zero edge radii are allowed, negative ones refused", 
 
 TEST_CASE("generate kinds: a chordwise grid's lines lie at their heights on the true section", "[generate]") {
   const BladeDesign b = section::compressor_blade();
-  section::GridOptions g;
-  g.heights = 31;
-  g.around = 120;
+  section::GridOptions g = grid_of(31, 120);
   g.z_min = 10;
   g.z_max = 40;
   const auto grid = section::generate_grid(b, g).points;
@@ -147,9 +162,7 @@ TEST_CASE("generate kinds: a chordwise grid's lines lie at their heights on the 
 
 TEST_CASE("generate kinds: a spanwise grid is the same surface, line by line along the span", "[generate]") {
   const BladeDesign b = section::turbine_blade();
-  section::GridOptions g;
-  g.heights = 20;
-  g.around = 40;
+  section::GridOptions g = grid_of(20, 40);
   const auto chordwise = section::generate_grid(b, g).points;
   g.lines = section::GridOptions::Lines::spanwise;
   g.repeat_seam = true;
@@ -168,9 +181,7 @@ TEST_CASE("generate kinds: grid and row noise has the requested sigma along the 
   BladeDesign b = section::compressor_blade();
   b.tip = b.hub;  // prismatic: one truth
   const SectionTruth t = section::section_truth(b.hub);
-  section::GridOptions g;
-  g.heights = 40;
-  g.around = 200;
+  section::GridOptions g = grid_of(40, 200);
   g.noise = 0.01;
   g.seed = 4;
   const auto grid = section::generate_grid(b, g).points;
@@ -189,9 +200,7 @@ TEST_CASE("generate kinds: grid and row noise has the requested sigma along the 
 
 TEST_CASE("generate kinds: rows lie at their heights, about `spacing` apart", "[generate]") {
   const BladeDesign b = section::compressor_blade();
-  section::RowsOptions r;
-  r.rows = 4;
-  r.pitch = 15;
+  section::RowsOptions r = rows_of(4, 15);
   const std::vector<double> zs = section::row_heights(b, r);
   REQUIRE(zs.size() == 4);
   CHECK(zs[0] == Approx(7.5));  // centred on the 60 mm span
@@ -221,10 +230,7 @@ TEST_CASE("generate kinds: rows lie at their heights, about `spacing` apart", "[
 
 TEST_CASE("generate kinds: rotor rows lie at constant radius about the machine axis", "[generate]") {
   const BladeDesign b = section::turbine_blade();
-  section::RowsOptions r;
-  r.rows = 3;
-  r.pitch = 20;
-  r.hub_radius = 150;
+  section::RowsOptions r = rows_of(3, 20, 150);
   const std::vector<double> zs = section::row_heights(b, r);
   const auto pts = section::generate_rows(b, r).points;
   CHECK(worst_distance(b, pts) < 1e-9);  // each point on the section at its own height
@@ -246,9 +252,7 @@ TEST_CASE("generate kinds: rotor rows lie at constant radius about the machine a
 
 TEST_CASE("generate kinds: grids and rows are deterministic and check their options", "[generate]") {
   const BladeDesign b = section::turbine_blade();
-  section::GridOptions g;
-  g.heights = 5;
-  g.around = 16;
+  section::GridOptions g = grid_of(5, 16);
   g.noise = 0.003;
   CHECK(section::generate_grid(b, g).points == section::generate_grid(b, g).points);
   g.around = 4;
