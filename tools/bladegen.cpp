@@ -58,18 +58,35 @@ void write_truth(const std::string& path, const section::BladeDesign& blade, con
   if (std::fclose(f) != 0 || !ok) throw section::Error("bladegen: " + path + ": write error");
 }
 
+// The coordinates in --units (the generator's are in mm).
+section::Cloud in_units(section::Cloud cloud, double scale) {
+  if (scale != 1)
+    for (auto& p : cloud.points) p *= scale;
+  return cloud;
+}
+
 void run_bladegen(const BladegenArgs& a) {
-  const section::BladeDesign blade =
-      a.kind == "turbine" ? section::turbine_blade() : section::compressor_blade();
+  const section::BladeDesign blade = a.blade();
+  const double scale = 1 / section::tool::mm_per_unit(a.units);
   if (a.points && a.second_view.empty())
-    section::write_cloud(a.output, section::generate_scan(blade, a.scan).cloud);
+    section::write_cloud(a.output, in_units(section::generate_scan(blade, a.scan).cloud, scale));
   if (a.points && !a.second_view.empty()) {
     const std::vector<section::Cloud> views = section::views_of(section::generate_scan(blade, a.scan));
-    section::write_cloud(a.output, views[0]);
-    section::write_cloud(a.second_view, views[1]);
+    section::write_cloud(a.output, in_units(views[0], scale));
+    section::write_cloud(a.second_view, in_units(views[1], scale));
   }
-  if (a.mesh) section::write_mesh(a.output, section::generate_mesh(blade, a.profile_points, a.layers));
-  if (!a.truth.empty()) write_truth(a.truth, blade, a.at);
+  if (!a.grid.empty())
+    section::write_cloud(a.output, in_units(section::generate_grid(blade, a.grid_settings()), scale));
+  if (a.rows > 0)
+    section::write_cloud(a.output, in_units(section::generate_rows(blade, a.rows_settings()), scale));
+  if (a.mesh) {
+    section::Mesh mesh = section::generate_mesh(blade, a.profile_points, a.layers);
+    if (scale != 1)
+      for (auto& v : mesh.vertices) v *= scale;
+    section::write_mesh(a.output, mesh);
+  }
+  if (!a.truth.empty())
+    write_truth(a.truth, blade, a.at.empty() ? section::row_heights(blade, a.rows_settings()) : a.at);
 }
 
 }  // namespace

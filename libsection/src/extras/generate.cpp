@@ -81,6 +81,25 @@ BladeDesign compressor_blade() {
   return centred_blade(hub, tip);
 }
 
+BladeDesign sharp_te_blade() {
+  const SectionDesign hub = design_of(36, 35, 50, 20, 0.5, 0, 3.6, 0.35);
+  const SectionDesign tip = design_of(32, 42, 55, 30, 0.4, 0, 2.6, 0.38);
+  return centred_blade(hub, tip);
+}
+
+BladeDesign impulse_blade() {
+  // stagger 0: c(s) mirrors onto c(1 - s) about the chord's perpendicular bisector.
+  const SectionDesign hub = design_of(30, 0, 60, -60, 0.8, 0.8, 7, 0.5);
+  const SectionDesign tip = design_of(28, 0, 58, -58, 0.7, 0.7, 6, 0.5);
+  return centred_blade(hub, tip);
+}
+
+BladeDesign thick_root_blade() {
+  const SectionDesign hub = design_of(30, -20, 35, -55, 1.5, 0.2, 8.4, 0.32);
+  const SectionDesign tip = design_of(34, -25, 30, -58, 0.8, 0.12, 4.4, 0.35);
+  return centred_blade(hub, tip);
+}
+
 std::vector<SectionDesign> design_family() {
   return {SectionDesign{}, turbine_blade().at(0), compressor_blade().at(60),
           design_of(30, -20, 5, -15, 0.6, 0.15, 2.4, 0.45),

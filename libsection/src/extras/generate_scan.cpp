@@ -1,13 +1,13 @@
 // Synthetic scans of a generated blade (generate.h): rows of candidate points on the exact
 // surface, thinned by a density field and holes, some replaced by outliers, in two views.
 #include "generate_index.h"
+#include "generate_sample.h"
 #include "generate_section.h"
 #include "section/error.h"
 
 #include <atomic>
 #include <cstdint>
 #include <limits>
-#include <random>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -18,68 +18,30 @@ namespace section {
 using namespace detail::gen;
 using Eigen::Vector3d;
 
-namespace {
-
-std::uint64_t splitmix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
+std::pair<double, double> detail::gen::checked_span_range(const BladeDesign& blade, double z_min,
+                                                          double z_max, const std::string& who) {
+  if (!(blade.span > 0)) throw Error(who + ": the blade span must be positive");
+  double z_lo = 0, z_hi = blade.span;
+  if (z_max >= z_min) {
+    z_lo = z_min;
+    z_hi = z_max;
+  }
+  if (z_lo < 0 || z_hi > blade.span + 1e-12 || z_hi <= z_lo)
+    throw Error(who + ": z range [" + num(z_lo) + ", " + num(z_hi) +
+                "] must be a non-empty part of the span [0, " + num(blade.span) + "]");
+  for (int i = 0; i <= 8; ++i) check_design(blade.at(z_lo + (z_hi - z_lo) * i / 8), who);
+  return {z_lo, z_hi};
 }
 
-// Our own transforms: std::*_distribution differ between standard libraries.
-struct Rng {
-  std::mt19937_64 engine;
-  explicit Rng(std::uint64_t seed) : engine(splitmix(seed)) {}
-  double uniform() { return double(engine() >> 11) * (1.0 / 9007199254740992.0); }  // [0, 1)
-  double uniform(double a, double b) { return a + (b - a) * uniform(); }
-  /// Box-Muller: a standard normal value from two uniforms in [0, 1).
-  static double normal(double u1, double u2) {
-    return std::sqrt(-2 * std::log(1.0 - u1)) * std::cos(2 * pi * u2);
-  }
-};
-
-/// Approximate arc-length table of a section: (piece, lambda) for any arc length.
-struct RowTable {
-  static constexpr int per_piece = 64;
-  Section sec;
-  std::vector<double> cum;  // 7 * per_piece + 1 cumulative chord lengths
-  double perimeter = 0, te_s = 0;
-
-  explicit RowTable(const SectionDesign& d) : sec(make_section(d)) {
-    cum.assign(7 * per_piece + 1, 0);
-    Vector2d prev = piece_eval(sec, sec.pieces[0], 0).p;
-    for (int i = 0; i < 7; ++i)
-      for (int k = 1; k <= per_piece; ++k) {
-        const Vector2d p = piece_eval(sec, sec.pieces[i], double(k) / per_piece).p;
-        cum[i * per_piece + k] = cum[i * per_piece + k - 1] + (p - prev).norm();
-        prev = p;
-      }
-    perimeter = cum.back();
-    te_s = 0.5 * (cum[3 * per_piece] + cum[4 * per_piece]);
-  }
-  struct Where {
-    int piece;
-    double lambda;
-    std::size_t node;  // table node before a
-    double f;          // fraction towards the next node
-  };
-  /// Where arc length a in [0, perimeter) lies.
-  Where at(double a) const {
-    std::size_t k = std::size_t(std::upper_bound(cum.begin(), cum.end(), a) - cum.begin());
-    k = std::clamp<std::size_t>(k, 1, cum.size() - 1) - 1;
-    const double f = std::clamp(cum[k + 1] > cum[k] ? (a - cum[k]) / (cum[k + 1] - cum[k]) : 0.0, 0.0, 1.0);
-    return {int(k / per_piece), (double(k % per_piece) + f) / per_piece, k, f};
-  }
-};
+namespace {
 
 /// For each node of `table`, the z component of the unnormalised surface normal
 /// (u, -u . dp/dz), from the sections of the same table layout at zl and zh.
-std::vector<double> normal_z(const RowTable& table, const Section& lo, const Section& hi, double dz) {
+std::vector<double> normal_z(const ArcTable& table, const Section& lo, const Section& hi, double dz) {
   std::vector<double> gz(table.cum.size());
   for (std::size_t k = 0; k < gz.size(); ++k) {
-    const std::size_t piece = std::min<std::size_t>(6, k / RowTable::per_piece);
-    const double lam = double(k - piece * RowTable::per_piece) / RowTable::per_piece;
+    const std::size_t piece = std::min<std::size_t>(6, k / ArcTable::per_piece);
+    const double lam = double(k - piece * ArcTable::per_piece) / ArcTable::per_piece;
     const PieceEval e = piece_eval(table.sec, table.sec.pieces[piece], lam);
     const Vector2d dpdz =
         (piece_eval(hi, hi.pieces[piece], lam).p - piece_eval(lo, lo.pieces[piece], lam).p) / dz;
@@ -145,17 +107,7 @@ std::pair<double, double> checked_range(const BladeDesign& blade, const ScanOpti
     throw Error(who + ": misregistration must be zero or positive");
   if (!(o.outlier_fraction >= 0 && o.outlier_fraction < 1))
     throw Error(who + ": outlier_fraction must be in [0, 1)");
-  if (!(blade.span > 0)) throw Error(who + ": the blade span must be positive");
-  double z_lo = 0, z_hi = blade.span;
-  if (o.z_max >= o.z_min) {
-    z_lo = o.z_min;
-    z_hi = o.z_max;
-  }
-  if (z_lo < 0 || z_hi > blade.span + 1e-12 || z_hi <= z_lo)
-    throw Error(who + ": z range [" + num(z_lo) + ", " + num(z_hi) +
-                "] must be a non-empty part of the span [0, " + num(blade.span) + "]");
-  for (int i = 0; i <= 8; ++i) check_design(blade.at(z_lo + (z_hi - z_lo) * i / 8), who);
-  return {z_lo, z_hi};
+  return checked_span_range(blade, o.z_min, o.z_max, who);
 }
 
 // The density field and the holes, from the scan's own random sequence.
@@ -177,7 +129,7 @@ void draw_features(ScanPlan& plan) {
 void outlier_box(ScanPlan& plan) {
   Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   for (int i = 0; i <= 8; ++i) {
-    const RowTable t(plan.blade.at(plan.z_lo + (plan.z_hi - plan.z_lo) * i / 8));
+    const ArcTable t(plan.blade.at(plan.z_lo + (plan.z_hi - plan.z_lo) * i / 8));
     for (const Piece& pc : t.sec.pieces)
       for (int k = 0; k <= 64; ++k) {
         const Vector2d p = piece_eval(t.sec, pc, k / 64.0).p;
@@ -195,7 +147,7 @@ ScanPlan plan_scan(const BladeDesign& blade, const ScanOptions& o) {
   std::tie(plan.z_lo, plan.z_hi) = checked_range(blade, o, who);
   plan.rows = std::max(1, int(std::lround((plan.z_hi - plan.z_lo) / o.spacing)));
   plan.dz = (plan.z_hi - plan.z_lo) / plan.rows;
-  const double mid_perimeter = RowTable(blade.at(0.5 * (plan.z_lo + plan.z_hi))).perimeter;
+  const double mid_perimeter = ArcTable(blade.at(0.5 * (plan.z_lo + plan.z_hi))).perimeter;
   const double estimate = 1.2 * plan.rows * mid_perimeter / o.spacing;
   if (estimate > 4e8)
     throw Error(who + ": about " + num(estimate) +
@@ -215,7 +167,7 @@ ScanPlan plan_scan(const BladeDesign& blade, const ScanOptions& o) {
 struct Row {
   int view = 0;
   double z0 = 0;
-  RowTable table;  // arc length -> (piece, lambda) at z0
+  ArcTable table;  // arc length -> (piece, lambda) at z0
   std::vector<double> gz;
   std::vector<Section> level_sec;
   std::vector<const Hole*> near_holes;
@@ -264,7 +216,7 @@ Vector3d outlier(const ScanPlan& plan, Rng& rout) {
 // noise (Box-Muller of u1, u2) along the 3D normal, and by the view's shift.
 Vector3d surface_point(const ScanPlan& plan, const Row& row, double a, int level, double z, double u1,
                        double u2) {
-  const RowTable::Where w = row.table.at(a);
+  const ArcTable::Where w = row.table.at(a);
   const Section& sec = row.level_sec[std::size_t(level)];
   const PieceEval e = piece_eval(sec, sec.pieces[std::size_t(w.piece)], w.lambda);
   const std::vector<double>& gz = row.gz;

@@ -153,9 +153,9 @@ void check_numbers(const SectionDesign& d, const std::string& who) {
   for (double v : vals)
     if (!std::isfinite(v)) throw Error(who + ": the section design has a non-finite parameter");
   if (d.chord <= 0) throw Error(who + ": chord " + num(d.chord) + " must be positive");
-  if (d.le_radius <= 0 || d.te_radius <= 0)
-    throw Error(who + ": edge radii must be positive (le " + num(d.le_radius) + ", te " + num(d.te_radius) +
-                ")");
+  if (d.le_radius < 0 || d.te_radius < 0)
+    throw Error(who + ": edge radii must be zero (a sharp edge) or positive (le " + num(d.le_radius) +
+                ", te " + num(d.te_radius) + ")");
   if (d.le_radius >= d.max_thickness / 2 || d.te_radius >= d.max_thickness / 2)
     throw Error(who + ": edge radii (le " + num(d.le_radius) + ", te " + num(d.te_radius) +
                 ") must be below max_thickness/2 = " + num(d.max_thickness / 2));

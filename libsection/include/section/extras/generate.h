@@ -27,8 +27,8 @@ struct SectionDesign {
   double stagger = 30;              ///< angle of the line from c(0) to c(1)
   double inlet_angle = 50;          ///< camber tangent angle at c(0)
   double outlet_angle = 10;         ///< camber tangent angle at c(1)
-  double le_radius = 1.0;           ///< r(0): leading-edge radius
-  double te_radius = 0.3;           ///< r(1): trailing-edge radius
+  double le_radius = 1.0;           ///< r(0): leading-edge radius; 0 = a sharp edge (one vertex)
+  double te_radius = 0.3;           ///< r(1): trailing-edge radius; 0 = a sharp edge (one vertex)
   double max_thickness = 4.0;       ///< 2 max r(s)
   double max_thickness_pos = 0.35;  ///< s of the thickest point (of the camber curve c)
   Eigen::Vector2d offset{0, 0};     ///< position of c(0)
@@ -46,6 +46,17 @@ struct BladeDesign {
 BladeDesign turbine_blade();
 /// Compressor-like blade: low turning (~30 deg), thin, edge radii 0.2-0.35 mm.
 BladeDesign compressor_blade();
+
+/// Blade with a sharp, closed trailing edge: radius 0, the two sides meeting at one vertex
+/// with a finite wedge angle (about 12 degrees); a thin cambered section, round LE.
+BladeDesign sharp_te_blade();
+/// Mirror-symmetric impulse blade: front and back alike (inlet = stagger + theta, outlet =
+/// stagger - theta, equal edge radii, thickest at mid camber), so neither the thickness nor
+/// the edges tell the leading edge; chord along +x, 120 degrees of turning.
+BladeDesign impulse_blade();
+/// Thick root, tiny trailing edge: max thickness 28 % of the chord at the hub (13 % at the
+/// tip), TE radius 0.2 mm at the hub and 0.12 mm at the tip.
+BladeDesign thick_root_blade();
 
 /// Five sections spanning the shapes a measure must hold on: moderate (40 deg turning),
 /// the turbine hub, the compressor at mid span, thin with a 0.15 mm TE, thick at 115 deg.
@@ -134,6 +145,58 @@ ScanOptions inspection_scan();
 /// `options.seed * 100 + floor(z)`, the other options as given, z_min/z_max ignored.
 Cloud scan_bands(const BladeDesign& blade, const std::vector<double>& heights, const ScanOptions& options,
                  double half_band = 0.5);
+
+/// A CFD-like structured surface grid: the surface at `heights` heights (hub to tip of the
+/// range, ends included) times `around` places around the profile, each point exactly on
+/// the section at its height; per side (LE point to TE point and back) the places are
+/// denser at the edges, as CFD grids are. The points are written line by line.
+struct GridOptions {
+  enum class Lines {
+    chordwise,  ///< each line at one height, around the profile from the LE point
+    spanwise    ///< each line at one place on the profile, from hub to tip
+  };
+  Lines lines = Lines::chordwise;  ///< how the points are ordered into lines
+  int heights = 200;               ///< heights of the grid (>= 2), evenly spaced
+  int around = 200;                ///< places around the profile (>= 8): half per side
+  /// Edge clustering in [0, 1]: each side's place t in [0, 1) goes to the fraction
+  /// (1 - c) t + c (1 - cos(pi t)) / 2 of the side's length: 0 = even, 1 = cosine (the
+  /// spacing at the edges ~ (pi / n)^2 / 4 of the side, mid-side pi / 2 times the mean).
+  double clustering = 0.8;
+  bool repeat_seam = false;      ///< each chordwise line ends with its first point again (an O-grid's seam)
+  double noise = 0;              ///< mm, standard deviation along the section's in-plane normal
+  double z_min = 0, z_max = -1;  ///< height range; z_max < z_min = the whole span
+  std::uint64_t seed = 1;        ///< random seed (the noise)
+};
+
+/// The grid's points, line after line (GridOptions). Throws section::Error on bad options
+/// or a design invalid in the range.
+Cloud generate_grid(const BladeDesign& blade, const GridOptions& options = {});
+
+/// Sparse rows of points, as a CMM or a layered scanner gives them: a few rows, each one
+/// section's worth of points about `spacing` apart along the profile, at constant height
+/// or (a rotor, hub_radius > 0) at constant radius about the machine axis.
+struct RowsOptions {
+  int rows = 5;          ///< number of rows (>= 1)
+  double pitch = 12;     ///< mm between neighbouring rows (in height, or in radius)
+  double first = -1;     ///< mm, height of the first row; < 0 = the rows centred on the span
+  double spacing = 1.0;  ///< mm between neighbouring points along a row (arc length, even, random phase)
+  double noise = 0;      ///< mm, standard deviation along the section's in-plane normal
+  /// mm: > 0 puts each row on the cylinder of radius hub_radius + z_row about the machine
+  /// axis, the line parallel to x through (0, 0, -hub_radius) (the designs' u axis is the
+  /// axial direction): the row then leaves its plane z = z_row by up to y^2 / (2 R) where it
+  /// lies off the axis plane y = 0. 0 = each row at constant height z_row.
+  double hub_radius = 0;
+  std::uint64_t seed = 1;  ///< random seed (each row's phase and the noise)
+};
+
+/// The rows' heights z_row (for a rotor, where each row crosses the plane y = 0); throws
+/// section::Error when a row falls outside the span.
+std::vector<double> row_heights(const BladeDesign& blade, const RowsOptions& options = {});
+
+/// The rows' points, row after row from the lowest, each point exactly on the blade.
+/// Throws section::Error on bad options, a row outside the span, or a rotor row whose
+/// cylinder misses the section (|y| above its radius) or leaves the span.
+Cloud generate_rows(const BladeDesign& blade, const RowsOptions& options = {});
 
 /// Closed triangle mesh of the blade (side surface plus end caps): `layers` rings along the
 /// span of `profile_points` exact profile points each, vertex i of every ring at the same

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Black-box test of bench/evaluate_kinds (docs/ACCURACY.md, "Data kinds"): the kinds of data
+# users have through the real tools with default options, scored against the exact truth.
+#
+# Not every kind passes yet (issue 21: units, sampling, consistency flags are being built).
+# This test asserts the kinds listed in EXPECTED, which pass today, and prints the others.
+# When a kind passes, add it to EXPECTED; KINDS_STRICT=1 asserts every kind (the goal).
+source "$(dirname "$0")/lib.sh"
+E="$BIN/../bench/evaluate_kinds"
+if [ ! -x "$E" ]; then echo "skipped: no $E (built with SECTION_BUILD_BENCH=OFF)"; exit 0; fi
+EXPECTED="scan-mm,symmetric"
+[ "${KINDS_STRICT:-0}" = 1 ] && EXPECTED=all
+
+expect 0 "--help" -- "$E" --help
+check "--help lists the kinds" -- grep -q "rows-radius" "$TMP/out"
+expect 2 "an unknown kind" -- "$E" --kinds nothing
+expect 2 "an unknown flag" -- "$E" --bogus
+
+# The quick run: every kind once, the expected ones must pass.
+expect 0 "quick run, the expected kinds ($EXPECTED) pass" -- "$E" --quick --tools "$BIN" --expect "$EXPECTED"
+sed -n '/^summary/,$p' "$TMP/out"
+check "a summary line per kind" -- test "$(grep -cE '^(PASS|FAIL) ' "$TMP/out")" -eq 11
+cp "$TMP/out" "$TMP/quick.txt"
+
+# The harness itself: a camber that writes a chord 1 % long is caught as a silent wrong
+# value; the same with a flags column naming the chord is counted as flagged.
+mkdir -p "$TMP/fake"
+BIN="$(cd "$BIN" && pwd)"
+for t in slice smooth fitspline; do ln -s "$BIN/$t" "$TMP/fake/$t"; done
+cat > "$TMP/fake/camber" <<EOS
+#!/usr/bin/env bash
+# camber, then the params file's chord made 1 % long (and a flags column if FLAG is set)
+args=("\$@"); p=""
+for ((i = 0; i < \${#args[@]}; ++i)); do [ "\${args[i]}" = --params ] && p="\${args[i+1]}"; done
+"$BIN/camber" "\$@" || exit \$?
+awk -F, -v OFS=, -v flag="\${FLAG:-}" '
+  NR == 1 { for (i = 1; i <= NF; ++i) if (\$i == "chord") c = i; print \$0 (flag != "" ? ",flags" : ""); next }
+  { \$c = \$c * 1.01; print \$0 (flag != "" ? "," flag : "") }' "\$p" > "\$p.tmp" && mv "\$p.tmp" "\$p"
+EOS
+chmod +x "$TMP/fake/camber"
+expect 1 "a chord 1 % long is a silent wrong value" -- "$E" --quick --kinds scan-mm --tools "$TMP/fake"
+check "it is named" -- grep -q "SILENT WRONG seed 1 section 0 (z .*): chord off by" "$TMP/out"
+expect 0 "flagged in the row's flags column" -- env FLAG=chord "$E" --quick --kinds scan-mm \
+  --tools "$TMP/fake"
+check "counted as flagged" -- grep -qE "^  chord +[0-9.]+ um +10 +3 +3 +0" "$TMP/out"
+finish
