@@ -6,10 +6,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 mapfile -t files < <(git ls-files '*.cpp' '*.h')
 if [ "${1:-}" = --check ]; then
-  bad=0
-  for f in "${files[@]}"; do
-    clang-format --dry-run -Werror "$f" > /dev/null 2>&1 || { echo "not formatted: $f"; bad=1; }
-  done
-  exit $bad
+  # One process for all files; the names of those not formatted from its diagnostics.
+  if ! out=$(clang-format --dry-run -Werror "${files[@]}" 2>&1); then
+    grep -oE '^[^:]+\.(cpp|h):' <<<"$out" | sort -u | sed 's/:$//; s/^/not formatted: /'
+    exit 1
+  fi
+  exit 0
 fi
 clang-format -i "${files[@]}"

@@ -26,7 +26,10 @@ TEST_CASE("units: the likely unit of a blade from its extent", "[units]") {
   CHECK(guess_unit(0.2).unit == "m");
   CHECK(guess_unit(0.2).doubtful);
   CHECK(guess_unit(0.999).unit == "m");
-  CHECK_FALSE(guess_unit(1).doubtful);
+  CHECK(guess_unit(1).unit == "in");
+  CHECK(guess_unit(2.8).unit == "in");  // a 70 mm blade in inches
+  CHECK(guess_unit(2.8).doubtful);
+  CHECK_FALSE(guess_unit(10).doubtful);
   CHECK(guess_unit(45).unit == "mm");
   CHECK_FALSE(guess_unit(10000).doubtful);
   CHECK(guess_unit(20000).unit == "um");
@@ -42,8 +45,14 @@ TEST_CASE("units: an input's unit, given or guessed", "[units]") {
   CHECK(metres.mm == 1000);
   CHECK(metres.warning.find("taken to be in metres") != std::string::npos);
   const InputUnits micro = input_units("", 35000);
-  CHECK(micro.mm == 1);  // kept as mm: said, not converted
+  CHECK(micro.mm == 1);  // kept as mm: said, not converted, and doubtful
+  CHECK(micro.doubtful);
   CHECK(micro.warning.find("--units um") != std::string::npos);
+  const InputUnits inches = input_units("", 2.8);
+  CHECK((inches.mm == 1 && inches.doubtful));
+  CHECK(inches.warning.find("--units in") != std::string::npos);
+  CHECK(inches.note.rfind("units_doubtful in", 0) == 0);
+  CHECK_FALSE(input_units("mm", 2.8).doubtful);  // a small blade in mm, said so
   const InputUnits mm = input_units("", 40);
   CHECK((mm.mm == 1 && mm.warning.empty() && mm.note.empty()));
   CHECK_THROWS_AS(input_units("yard", 40), Error);
@@ -65,9 +74,9 @@ TEST_CASE("units: a stream in metres converted to mm by its columns' units", "[u
   convert_to_mm(s);
   CHECK(s.units == "mm");
   const Table& p = *s.find("points");
-  CHECK(p.at(0, p.column("index")) == 3);                  // an id
+  CHECK(p.at(0, p.column("index")) == 3);                      // an id
   CHECK(p.at(0, p.column("u")) == Approx(10).epsilon(1e-15));  // a length
-  CHECK(p.at(0, p.column("nu")) == 0.6);                   // a unit vector's component
+  CHECK(p.at(0, p.column("nu")) == 0.6);                       // a unit vector's component
   CHECK(p.at(0, p.column("offset")) == Approx(0.5));
   const Table& st = *s.find("smooth_stats");
   CHECK(st.at(0, st.column("energy_before")) == Approx(2e6));  // a squared length

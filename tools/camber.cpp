@@ -28,13 +28,13 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     Eigen::AlignedBox2d box;
     for (const auto& p : points) box.extend(p);
     const section::InputUnits units = section::input_units(a.units, box.sizes().maxCoeff());
-    if (!units.warning.empty()) std::cerr << "camber: warning: " << units.warning << "\n";
     for (auto& p : points) p *= units.mm;
     section::Stream stream;
     section::tool::with_input(a.common.input, [&] {
       const section::FitSplineResult fit = section::fit_spline(points, points);
       stream = section::profile_stream(fit.spline, fit.rms);
     });
+    if (!units.warning.empty()) std::cerr << "camber: warning: " << units.warning << "\n";
     if (!units.note.empty()) stream.notes.push_back(units.note);
     return stream;
   };

@@ -32,11 +32,9 @@ class SectionWriter {
 public:
   SectionWriter(const SliceArgs& args, std::string history) : args_(args), history_(std::move(history)) {}
   std::vector<std::string> notes;  ///< of the whole stream (registered views), written before the first part
-  std::string warning;             ///< about the whole input, said with the first section (once it is read)
+  std::string warning;             ///< about the whole input, said once a section has been sliced
 
   void operator()(const section::SectionSlice& s) {
-    if (!warning.empty()) std::cerr << "slice: warning: " << warning << "\n";
-    warning.clear();
     section::SliceResult one;
     one.sections = {s};
     section::Stream part = section::to_stream(one, history_, "mm");
@@ -48,6 +46,8 @@ public:
       return;
     }
     if (!writer_) {
+      // The input's unit is worth a word once a section of it has been sliced.
+      if (!warning.empty()) std::cerr << "slice: warning: " << warning << "\n";
       section::Stream head;
       head.units = "mm";
       head.history = {history_};

@@ -24,6 +24,7 @@ double mm_per_unit(std::string_view unit) {
 UnitGuess guess_unit(double extent) {
   // Turbine, compressor and propeller blades measure a few mm to a few m: 1 to 10000 in mm.
   if (extent > 0 && extent < 1) return {"m", true};
+  if (extent >= 1 && extent < 10) return {"in", true};
   if (extent > 10000) return {"um", true};
   return {"mm", false};
 }
@@ -48,9 +49,15 @@ InputUnits input_units(const std::string& given, double extent) {
     in.warning = text;
     in.note = "units_from m (guessed from the extent; converted to mm)";
   } else if (guess.doubtful) {
+    const bool inches = guess.unit == "in";
     std::snprintf(text, sizeof text,
-                  "the input is %.3g across: read as mm; if it is in micrometres, give --units um", extent);
+                  "the input is %.3g across: read as mm, though it looks like %s; give --units %s if it is, "
+                  "or --units mm (its parameters are flagged 'units' until then)",
+                  extent, inches ? "inches" : "micrometres", guess.unit.c_str());
     in.warning = text;
+    in.doubtful = true;
+    in.note = "units_doubtful " + guess.unit + " (read as mm; the extent suggests " +
+              (inches ? "inches" : "micrometres") + ")";
   }
   return in;
 }

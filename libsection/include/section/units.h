@@ -24,12 +24,13 @@ double mm_per_unit(std::string_view unit);
 /// The unit a blade is likely given in, from its extent (the largest side of its bounding
 /// box, in the numbers of the file).
 struct UnitGuess {
-  std::string unit = "mm";  ///< "m" under 1, "mm" from 1 to 10000, "um" above
-  bool doubtful = false;    ///< the extent is not that of a blade in mm (under 1 or over 10000)
+  std::string unit = "mm";  ///< "m" under 1, "in" from 1 to 10, "mm" from 10 to 10000, "um" above
+  bool doubtful = false;    ///< the extent is not that of a blade in mm (under 10 or over 10000)
 };
 
-/// The likely unit of a blade `extent` across (see UnitGuess). A blade under 1 unit across
-/// is taken to be in metres; over 10000 (10 m in mm) the file may be in micrometres.
+/// The likely unit of a blade `extent` across (see UnitGuess): turbine, compressor and
+/// propeller blades measure 10 mm to 10 m. Under 1 it is metres (nothing else fits); from 1
+/// to 10 inches are likelier than a blade of a few mm, and over 10000 micrometres.
 UnitGuess guess_unit(double extent);
 
 /// The unit of an input and how it is taken.
@@ -38,11 +39,13 @@ struct InputUnits {
   double mm = 1;            ///< its millimetres: coordinates are multiplied by this on reading
   std::string warning;      ///< set when the unit was not given and the extent makes it doubtful
   std::string note;         ///< for the stream: how the unit was taken ("" for mm as given or assumed)
+  bool doubtful = false;    ///< read as mm though the extent suggests another unit (inches, um)
 };
 
 /// The unit of an input `extent` across (numbers as in the file; 0 = unknown): `given` when
 /// not empty (throws section::Error for an unknown unit), else mm unless the extent says
-/// metres (converted, with a warning) or micrometres (kept, with a warning).
+/// metres (converted, with a warning); an extent that suggests inches or micrometres is
+/// read as mm, with a warning, and marked doubtful (the params rows are then flagged).
 InputUnits input_units(const std::string& given, double extent);
 
 }  // namespace section

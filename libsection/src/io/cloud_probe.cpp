@@ -43,7 +43,8 @@ std::vector<Eigen::Vector3d> text_sample(const std::string& path, const detail::
     const unsigned long long at = b == 0 ? 0 : size * static_cast<unsigned long long>(b) / blocks;
     const std::size_t got = detail::pread_full(fd, block.data(), block_bytes, at);
     const std::string_view lines = whole_lines({block.data(), got}, at == 0, at + got >= size);
-    if (b == 0 && format.cloud == CloudFormat::csv) header = std::string(lines.substr(0, lines.find('\n') + 1));
+    if (b == 0 && format.cloud == CloudFormat::csv)
+      header = std::string(lines.substr(0, lines.find('\n') + 1));
     std::string text = (b == 0 ? std::string() : header) + std::string(lines);
     if (text.find_first_not_of(" \t\r\n") == std::string::npos) continue;
     CloudReadOptions one = options;
