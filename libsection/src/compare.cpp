@@ -22,8 +22,8 @@ constexpr double degree = 3.14159265358979323846 / 180;
 void check(const CompareOptions& o) {
   if (!(o.edge_zone > 0 && o.edge_zone < 0.5))
     throw Error("compare: the edge zone must lie between 0 and 0.5 of the chord");
-  if (!(o.hole >= 0) || !(o.hole_spacings > 0) || !std::isfinite(o.outlier_distance) ||
-      !(o.outlier_floor >= 0))
+  if (!(o.hole >= 0) || !(o.hole_spacings > 0) || !(o.hole_floor >= 0) ||
+      !std::isfinite(o.outlier_distance) || !(o.outlier_floor >= 0))
     throw Error(
         "compare: the hole length, hole spacings and outlier distances must be finite and not negative");
   for (double w : o.fit.weights)
@@ -138,7 +138,7 @@ void measure_zones(const Geometry& g, const CompareOptions& o, SectionComparison
   for (const PointDeviation& p : c.points)
     if (!p.outlier) s.push_back(g.position(p.t));
   std::sort(s.begin(), s.end());
-  c.hole = o.hole > 0 ? o.hole : o.hole_spacings * median_spacing(s, g.perimeter);
+  c.hole = o.hole > 0 ? o.hole : std::max(o.hole_floor, o.hole_spacings * median_spacing(s, g.perimeter));
   for (int z = 0; z < zone_count; ++z) {
     ZoneResult& r = c.zones[z];
     r = ZoneResult{};

@@ -65,8 +65,9 @@ struct FitOptions {
 struct CompareOptions {
   FitOptions fit;           ///< the best fit
   double edge_zone = 0.05;  ///< edge zones: the profile from each edge point to this fraction of the chord
-  double hole = 0;  ///< length: a stretch of nominal this long without a point is a hole; 0 = 10 spacings
-  double hole_spacings = 10;  ///< hole = 0: this many median spacings of the points along the nominal
+  double hole = 0;  ///< length: a stretch of nominal longer than this without a point is a hole; 0 = auto
+  double hole_spacings = 10;  ///< hole = 0: this many median spacings of the points along the nominal,
+  double hole_floor = 0.25;   ///< ... and at least this length
   double outlier_distance =
       0;  ///< length: isolated points farther off are left out; 0 = automatic, < 0 = none
   double outlier_floor = 0.02;  ///< length: least automatic outlier distance (6 noise sigmas otherwise)
