@@ -173,10 +173,18 @@ SectionComparison results(const Geometry& g, const std::vector<Eigen::Vector2d>&
                           const Block& fitted, const fit::Feet& before, const std::vector<char>& out,
                           const CompareOptions& o) {
   SectionComparison c;
+  // Every point at the final motion, its foot tracked from the fit's (an outlier's from
+  // before the fit): no full search again.
   Block all = fitted;
-  all.points = measured;
-  all.feet = fit::Feet{};
-  all.place();
+  if (fitted.points.size() != measured.size()) {
+    all.points = measured;
+    all.feet.t = before.t;
+    all.feet.signed_distance.assign(measured.size(), 0);
+    for (std::size_t i = 0, j = 0; i < measured.size(); ++i)
+      if (!out[i]) all.feet.t[i] = fitted.feet.t[j++];
+    all.feet.order = before.order;  // nearly sorted: place() sorts it
+    all.place();
+  }
   c.fit.motion.angle = fitted.angle / degree;
   c.fit.motion.translation = fitted.translation;
   double sb = 0, sa = 0;

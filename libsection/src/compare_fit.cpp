@@ -88,15 +88,44 @@ double cost(const Linear& l) {
   return l.w.dot(l.r.cwiseProduct(l.r));
 }
 
+// The same sum over the blocks as placed, without the gradients.
+double cost(const std::vector<Block>& blocks) {
+  double sum = 0;
+  for (const Block& b : blocks)
+    for (std::size_t i = 0; i < b.points.size(); ++i) {
+      const double w =
+          b.zone_weight.empty() ? 1.0 : b.zone_weight[static_cast<int>(b.nominal->zone_at(b.feet.t[i]))];
+      sum += w * b.deviation(i) * b.deviation(i);
+    }
+  return sum;
+}
+
 }  // namespace
 
 void Block::place() {
   const double c = std::cos(angle), s = std::sin(angle);
-  moved.resize(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
+  const std::size_t n = points.size();
+  moved.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
     moved[i] = Eigen::Vector2d(c * points[i].x() - s * points[i].y(), s * points[i].x() + c * points[i].y()) +
                translation;
-  const bool track = feet.t.size() == points.size();
+  if (feet.t.size() != n && n >= 64) {
+    // The first feet: points come in order along the profile (slice orders them), so the
+    // full search of every 4th point seeds its neighbours' tracking; a point it does not
+    // serve (unordered input) gets the full search too.
+    constexpr std::size_t every = 4;
+    std::vector<Eigen::Vector2d> some;
+    for (std::size_t i = 0; i < n; i += every) some.push_back(moved[i]);
+    const fit::Feet coarse = fit::foot_points(nominal->curve, nominal->pc, some);
+    feet = fit::Feet{};
+    feet.t.resize(n);
+    feet.signed_distance.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      feet.t[i] = coarse.t[std::min((i + every / 2) / every, some.size() - 1)];
+    for (std::size_t j : coarse.order)
+      for (std::size_t i = j * every; i < std::min(n, (j + 1) * every); ++i) feet.order.push_back(i);
+  }
+  const bool track = feet.t.size() == n;
   feet = fit::foot_points(nominal->curve, nominal->pc, moved, track ? &feet : nullptr);
 }
 
@@ -128,7 +157,7 @@ FitRun fit_least_squares(std::vector<Block>& blocks, const FitOptions& options) 
     double step = 1, moved = 0;
     for (int halving = 0; halving < 30; ++halving, step *= 0.5) {
       moved = move_by(blocks, Eigen::VectorXd(step * x));
-      if (cost(linearise(blocks)) <= before * (1 + 1e-12) + 1e-300) break;
+      if (cost(blocks) <= before * (1 + 1e-12) + 1e-300) break;
       std::vector<Saved> again = saved;
       restore(blocks, again);
     }
