@@ -4,6 +4,7 @@
 #include "compare_fixtures.h"
 #include "section/error.h"
 #include "section/extras/generate.h"
+#include "section/extras/plot.h"
 #include "section/extras/report.h"
 #include "section/io/file.h"
 #include "section/io/tolerances.h"
@@ -238,6 +239,17 @@ TEST_CASE("compare stream: verdicts over a dent and a hole, and sections that ca
   const std::string report = section::compare_report(s);
   CHECK(report.rfind("blade: FAIL", 0) == 0);
   CHECK(report.find("profile_suction") != std::string::npos);
+  // The drawings: whiskers and bands on the failed section, the verdicts; the page opens
+  // with the blade's.
+  const std::string svg = section::plot_svg(s, 0);
+  CHECK(svg.find("class=\"whiskers\"") != std::string::npos);
+  CHECK(svg.find("class=\"tolerance-band\"") != std::string::npos);
+  CHECK(svg.find("FAIL (") != std::string::npos);
+  CHECK(svg.find("failed: profile suction side") != std::string::npos);
+  CHECK(svg.find("#d62728") != std::string::npos);  // a whisker beyond its tolerance
+  const std::string html = section::plot_html(s);
+  CHECK(html.find("Blade: FAIL") < html.find("<table class=\"summary\""));
+  CHECK(html.find("failing sections: 0") != std::string::npos);
 }
 
 TEST_CASE("compare stream: the tolerance file is read, and refused naming the line", "[compare]") {
