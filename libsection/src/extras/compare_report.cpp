@@ -46,12 +46,12 @@ std::string section_lines(int id, const Table& zones, const Table& compared) {
              padded("deviations " + fixed(zones.at(r, zones.column("min")), 4) + " .. " +
                         fixed(zones.at(r, zones.column("max")), 4),
                     48) +
-             padded(limits(zones, r), 22) + word(v) + "\n";
+             padded(limits(zones, r), 27) + word(v) + "\n";
     const int fv = static_cast<int>(zones.at(r, zones.column("form_verdict")));
     if (fv >= 0)
       out +=
           "  " + padded("form" + z, 20) + padded("form " + fixed(zones.at(r, zones.column("form")), 4), 48) +
-          padded("[-inf, " + fixed(zones.at(r, zones.column("form_limit")), 4) + "]", 22) + word(fv) + "\n";
+          padded("[-inf, " + fixed(zones.at(r, zones.column("form_limit")), 4) + "]", 27) + word(fv) + "\n";
   }
   const auto& items = compared_items();
   const std::size_t cs = compared.column("section"), ci = compared.column("item");
@@ -66,7 +66,7 @@ std::string section_lines(int id, const Table& zones, const Table& compared) {
                                        " nominal " + fixed(compared.at(r, compared.column("nominal")), 4) +
                                        " deviation " + fixed(compared.at(r, compared.column("deviation")), 4);
     out += "  " + padded(items.at(static_cast<std::size_t>(compared.at(r, ci))), 20) + padded(what, 48) +
-           padded(limits(compared, r) + (on_value ? " value" : ""), 22) + word(v) + "\n";
+           padded(limits(compared, r) + (on_value ? " on value" : ""), 27) + word(v) + "\n";
   }
   return out;
 }
