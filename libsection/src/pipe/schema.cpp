@@ -493,12 +493,18 @@ const TableSchema<ComparedRow> compared{
 const TableSchema<VerdictRow> verdicts{"verdicts", "compare", "one row per section: its verdict",
                                        verdict_columns};
 
+// The tables of slice, smooth, fitspline and camber.
+static std::vector<TableDoc> stage_tables() {
+  return {frames.doc(),       loops.doc(),   points.doc(),       skeleton.doc(),    smoothed.doc(),
+          smooth_stats.doc(), splines.doc(), spline_knots.doc(), spline_ctrl.doc(), gaps.doc(),
+          samples.doc(),      camber.doc(),  params.doc(),       thickness.doc(),   sides.doc()};
+}
+
 std::vector<TableDoc> tables() {
-  return {frames.doc(), loops.doc(), points.doc(), skeleton.doc(), smoothed.doc(), smooth_stats.doc(),
-          splines.doc(), spline_knots.doc(), spline_ctrl.doc(), gaps.doc(), samples.doc(), camber.doc(),
-          params.doc(), thickness.doc(), sides.doc(),
-          // compare's tables.
-          fits.doc(), deviations.doc(), zones.doc(), compared.doc(), verdicts.doc()};
+  std::vector<TableDoc> out = stage_tables();
+  for (TableDoc d : {fits.doc(), deviations.doc(), zones.doc(), compared.doc(), verdicts.doc()})
+    out.push_back(std::move(d));  // compare's tables
+  return out;
 }
 
 }  // namespace schema
