@@ -56,12 +56,17 @@ int run_compare(const CompareArgs& a, const std::string& history) {
     args.options.tolerances = section::read_tolerances(a.tolerances, section::tolerance_items());
   const std::unique_ptr<Nominal> nominal = read_nominal(a.nominal);
   const section::CompareStreamOptions& o = args.options;
+  // Errors name the file they come from: the nominal's or the measured stream's.
   auto stage = [&](section::Stream& s, int threads) {
     section::CompareStreamOptions part = o;
     part.threads = threads;
-    const auto frames =
-        section::schema::frames.find(s) ? section::frames(s) : std::map<int, section::Frame>{};
-    section::compare_stream(s, section::nominal_stream(nominal->source, frames, part), part);
+    std::map<int, section::Frame> frames;
+    section::Stream n;
+    section::tool::with_input(a.common.input, [&] {
+      if (section::schema::frames.find(s)) frames = section::frames(s);
+    });
+    section::tool::with_input(a.nominal, [&] { n = section::nominal_stream(nominal->source, frames, part); });
+    section::tool::with_input(a.common.input, [&] { section::compare_stream(s, n, part); });
   };
   section::Stream all;  // the verdicts, zones and compared values, gathered over the parts
   auto gather = [&](const section::Stream& s) {
@@ -74,12 +79,17 @@ int run_compare(const CompareArgs& a, const std::string& history) {
   if (o.whole) {
     // One motion for every section: the stream read, compared and written whole.
     section::Stream s = section::read_stream(a.common.input);
-    section::tool::with_input(a.common.input, [&] { stage(s, o.threads); });
+    stage(s, o.threads);
     s.history.push_back(history);
     gather(s);
     section::write_stream(a.common.output, s);
   } else {
-    section::StageRun run = section::tool::stage_run(a.common, history, o.threads, stage);
+    section::StageRun run;
+    run.input = a.common.input;
+    run.output = a.common.output;
+    run.history = history;
+    run.threads = o.threads;
+    run.stage = stage;
     run.written = gather;
     section::run_stage(run);
   }

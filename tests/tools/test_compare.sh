@@ -78,6 +78,9 @@ check "the error names the file and line" -- grep -q "badtol.csv:3: unknown item
 printf 'section,u,v\n0,1,2\n0,x,3\n' > "$TMP/badnominal.csv"
 expect 1 "a malformed nominal CSV" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/badnominal.csv"
 check "the error names the nominal's line" -- grep -q "badnominal.csv:3" "$TMP/err"
+"$BIN/slice" "$TMP/nominal.stl" --normal 0,0,1 --at 12 > "$TMP/sliced.csv" 2>/dev/null
+expect 1 "a nominal stream without splines" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/sliced.csv"
+check "the error names the nominal and what it lacks" -- grep -q "sliced.csv: pipe: the stream has no 'splines' table" "$TMP/err"
 expect 1 "a missing nominal" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/none.stl"
 check "the error names the file" -- grep -q "none.stl" "$TMP/err"
 check "no partial output on bad data" -- test ! -s "$TMP/out"
