@@ -306,7 +306,7 @@ BladeComparison compare_blade(const std::vector<BladeSection>& sections, const C
     out.sections.back().outlier_distance = distance[i];
   }
   // The motion in 3D from the first plane's: x -> R x + T with R about the normal.
-  const double angle = (f0.n.dot(f0.n) > 0 ? 1 : -1) * blocks[0].angle;
+  const double angle = blocks[0].angle;  // about f0.n, the axis
   const Eigen::Matrix3d r = Eigen::AngleAxisd(angle, f0.n).toRotationMatrix();
   out.angle = angle / degree;
   out.translation = f0.origin - r * f0.origin + f0.direction_to_world(blocks[0].translation);
