@@ -58,7 +58,7 @@ struct FitOptions {
   /// weighted: the weight of a point in each zone (index: Zone; `whole` is not used).
   std::array<double, zone_count> weights{1, 1, 1, 1, 1};
   int max_iterations = 200;    ///< fit iterations at most
-  double convergence = 1e-11;  ///< length: the fit stops when a step moves no point by more
+  double convergence = 1e-9;  ///< length: the fit stops when a step moves no point by more
 };
 
 /// Options of compare_section and compare_blade.
