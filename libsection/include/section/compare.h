@@ -57,7 +57,7 @@ struct FitOptions {
   Eigen::Vector3d center_3d{std::numeric_limits<double>::quiet_NaN(), 0, 0};
   /// weighted: the weight of a point in each zone (index: Zone; `whole` is not used).
   std::array<double, zone_count> weights{1, 1, 1, 1, 1};
-  int max_iterations = 200;    ///< fit iterations at most
+  int max_iterations = 200;   ///< fit iterations at most
   double convergence = 1e-9;  ///< length: the fit stops when a step moves no point by more
 };
 
