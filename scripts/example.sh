@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up, builds, and runs the whole pipe on the bundled example blade:
-# slice -> smooth -> fitspline -> camber, printing each section's parameters. The example
+# slice -> smooth -> fitspline -> camber, printing each section's parameters, then compare
+# against the blade's nominal with tolerances, printing the report. The example
 # scan's two views are merged 15 um apart, and fitspline says so (two layers of points).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,4 +17,14 @@ if [ -x "$BIN/fitspline" ]; then "$BIN/fitspline" "$OUT/smoothed.csv" --samples 
 if [ -x "$BIN/camber" ]; then
   "$BIN/camber" "$OUT/splines.csv" --params "$OUT/params.csv" > "$OUT/camber.csv"
   echo "camber: $OUT/camber.csv"; echo; column -s, -t "$OUT/params.csv" 2>/dev/null || cat "$OUT/params.csv"
+fi
+# The inspection: the sections against the blade's nominal (its exact design as a mesh)
+# with data/example_tolerances.csv; exit 4 = a value failed, 5 = one was not measured.
+if [ -x "$BIN/compare" ]; then
+  "$BIN/bladegen" --kind turbine --mesh --profile-points 4000 --layers 16 -o "$OUT/nominal.stl"
+  code=0
+  "$BIN/compare" "$OUT/camber.csv" --nominal "$OUT/nominal.stl" --tolerances data/example_tolerances.csv \
+    --report "$OUT/report.txt" > "$OUT/compared.csv" || code=$?
+  [ "$code" -eq 0 ] || [ "$code" -eq 4 ] || [ "$code" -eq 5 ] || exit "$code"
+  echo; echo "compare: $OUT/compared.csv (exit $code), report: $OUT/report.txt"; cat "$OUT/report.txt"
 fi

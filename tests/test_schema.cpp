@@ -5,6 +5,7 @@
 #include "section/fit_spline.h"
 #include "section/io/file.h"
 #include "section/pipe/camber_stream.h"
+#include "section/pipe/compare_stream.h"
 #include "section/pipe/fit_spline_stream.h"
 #include "section/pipe/schema.h"
 #include "section/pipe/smooth_stream.h"
@@ -142,6 +143,8 @@ TEST_CASE("schema: the stages write each table with the schema's columns", "[sch
   fit.samples = 50;
   section::fit_spline_stream(stream, fit);
   section::camber_stream(stream);
+  const section::Stream nominal = stream;  // compare's tables: the section against itself
+  section::compare_stream(stream, nominal);
   INFO(stream.issues.size() << " issues, the first: "
                             << (stream.issues.empty() ? "" : stream.issues[0].message));
   std::size_t found = 0;

@@ -3,6 +3,7 @@
 #if __has_include("args/slice_args.h")  // the tools are built (SECTION_BUILD_TOOLS)
 #include "args/bladegen_args.h"
 #include "args/camber_args.h"
+#include "args/compare_args.h"
 #include "args/fitspline_args.h"
 #include "args/plot_args.h"
 #include "args/slice_args.h"
@@ -130,5 +131,30 @@ TEST_CASE("tool options: bladegen reads the scanner and the truth heights", "[to
   CHECK(p.args.points);
   CHECK(p.args.scan.noise == 0.01);
   CHECK(p.args.at == std::vector<double>{5, 10});
+}
+
+TEST_CASE("tool options: compare reads its fit, freedom and zones into the stage options", "[tools]") {
+  const auto p = parsed<CompareArgs>({"m.csv", "--nominal", "n.stl", "--fit", "weighted", "--weights",
+                                      "le=5,te=2.5", "--freedom", "along", "--direction", "1,1",
+                                      "--edge-zone", "0.1", "--keep-outliers"});
+  REQUIRE(p.code == -1);
+  const section::CompareOptions& o = p.args.options.compare;
+  CHECK(o.fit.method == section::FitMethod::weighted);
+  CHECK(o.fit.freedom == section::FitFreedom::translation_along);
+  CHECK(o.fit.direction == Eigen::Vector2d(1, 1));
+  CHECK(o.fit.weights[1] == 5);
+  CHECK(o.fit.weights[2] == 2.5);
+  CHECK(o.fit.weights[3] == 1);
+  CHECK(o.edge_zone == 0.1);
+  CHECK(o.outlier_distance < 0);
+  const auto whole = parsed<CompareArgs>(
+      {"--nominal", "n.stl", "--whole-blade", "--freedom", "rotation", "--center", "1,2,3"});
+  REQUIRE(whole.code == -1);
+  CHECK(whole.args.options.whole);
+  CHECK(whole.args.options.compare.fit.center_3d == Eigen::Vector3d(1, 2, 3));
+  CHECK(parsed<CompareArgs>({"m.csv"}).code == 2);  // --nominal is required
+  CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--center", "1,2,3"}).code == 2);
+  CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--weights", "middle=2"}).code == 2);
+  CHECK(parsed<CompareArgs>({"--help"}).out.find("Exit status") != std::string::npos);
 }
 #endif

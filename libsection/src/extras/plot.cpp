@@ -34,7 +34,7 @@ bool has_section(const Stream& stream, int section) {
 }
 
 // The page's head: title, style, the stream's history.
-std::string html_head(const Stream& stream, std::size_t sections) {
+std::string html_head(const Stream& stream, std::size_t sections, const std::string& verdict) {
   std::string h =
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>libsection: " +
       std::to_string(sections) + " section" + (sections == 1 ? "" : "s") +
@@ -43,7 +43,8 @@ std::string html_head(const Stream& stream, std::size_t sections) {
       "table.summary{border-collapse:collapse;margin:8px 0 16px}\n"
       "table.summary td,table.summary th{border:1px solid #ccc;padding:3px 8px;text-align:right}\n"
       "pre.history{background:#f4f4f4;padding:6px;font-size:12px}\n.issue{color:#c00}\n"
-      "section{margin-bottom:24px}\n</style>\n</head>\n<body>\n<h1>Blade sections</h1>\n";
+      "section{margin-bottom:24px}\n</style>\n</head>\n<body>\n<h1>Blade sections</h1>\n" +
+      verdict;
   if (!stream.history.empty()) {
     h += "<pre class=\"history\">";
     for (const auto& line : stream.history) h += escape(line) + "\n";
@@ -105,7 +106,7 @@ std::string plot_html(const Stream& stream, const PlotOptions& options) {
   const Curves curves = read_curves(stream);
   std::vector<SectionData> data;
   for (int id : ids) data.push_back(collect(stream, id, curves));
-  std::string h = html_head(stream, ids.size()) + summary_table(data, stream.units);
+  std::string h = html_head(stream, ids.size(), blade_verdict_html(data)) + summary_table(data, stream.units);
   for (const auto& d : data) {
     h += "<section id=\"section-" + std::to_string(d.id) + "\">\n";
     try {

@@ -53,8 +53,6 @@ std::string escape(const std::string& text) {
   return out;
 }
 
-namespace {
-
 // Rows of table `name` for `section`, the wanted columns in order (NaN where the column
 // is absent), sorted by (loop or side, index) when those columns exist.
 std::vector<std::vector<double>> rows_of(const Stream& stream, const std::string& name, int section,
@@ -82,6 +80,8 @@ std::vector<std::vector<double>> rows_of(const Stream& stream, const std::string
   }
   return out;
 }
+
+namespace {
 
 std::map<int, std::vector<V2>> loops_of(const Stream& stream, const std::string& name, int section) {
   std::map<int, std::vector<V2>> out;
@@ -165,6 +165,7 @@ SectionData collect(const Stream& stream, int section, const Curves& curves) {
   }
   d.params = row_map(stream, "params", section, 0);
   d.fit = row_map(stream, "splines", section, 0);
+  collect_compare(stream, section, d);
   for (const auto& issue : stream.issues)
     if (issue.section == section)
       d.issues.push_back(issue.stage + (issue.loop >= 0 ? " (loop " + std::to_string(issue.loop) + ")" : "") +

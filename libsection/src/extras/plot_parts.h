@@ -44,6 +44,21 @@ struct Station {
   V2 center{0, 0};
 };
 
+// compare's deviation of one measured point (plot_compare.cpp).
+struct Whisker {
+  V2 foot{0, 0}, normal{0, 0};
+  double deviation = 0;
+  int zone = 0;
+  bool outlier = false;
+};
+
+// compare's profile tolerance and verdict of one zone.
+struct ZoneBand {
+  int bounds = 0;  // 1 low, 2 high, 3 both
+  double low = 0, high = 0;
+  int verdict = -1;
+};
+
 // Everything drawable of one section.
 struct SectionData {
   int id = 0;
@@ -61,6 +76,12 @@ struct SectionData {
   std::map<std::string, double> params;  // the section's params row
   std::map<std::string, double> fit;     // loop 0's splines row
   std::vector<std::string> issues;       // "stage: message" lines
+  // compare's tables (plot_compare.cpp): whiskers, zone bands, the section's verdict
+  // (-2 not compared) with its counts and the values failed or not measured.
+  std::vector<Whisker> whiskers;
+  std::map<int, ZoneBand> bands;
+  int verdict = -2, passed = 0, failed = 0, not_measured = 0;
+  std::vector<std::string> failed_items, unmeasured_items;
 };
 
 // The spline tables read once per stream; an unreadable set becomes a note, not an error.
@@ -72,6 +93,11 @@ Curves read_curves(const Stream& stream);
 
 /// Everything drawable of section `section`.
 SectionData collect(const Stream& stream, int section, const Curves& curves);
+
+/// Rows of table `name` for `section`, the wanted columns in order (NaN where a column is
+/// absent), sorted by (loop or side, index) when those columns exist.
+std::vector<std::vector<double>> rows_of(const Stream& stream, const std::string& name, int section,
+                                         const std::vector<std::string>& columns);
 
 /// The section's params value `name`, NaN when absent.
 double param(const SectionData& d, const std::string& name);
@@ -162,5 +188,19 @@ std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const P
 
 /// The standalone SVG document of one section (plot_svg in plot.h).
 std::string svg_of(const SectionData& d, const PlotOptions& o);
+
+// ---------------------------------------------------------------- compare (plot_compare.cpp)
+
+/// compare's tables of the section into `d` (nothing when the stream has none).
+void collect_compare(const Stream& stream, int section, SectionData& d);
+/// The whiskers (deviations along the nominal's normal, magnified, coloured by the
+/// tolerance they use) and the zones' tolerance bands, in view `v`.
+void draw_compare(std::string& s, const SectionData& d, const View& v);
+/// The section's verdict line ("" when not compared).
+std::string verdict_line(const SectionData& d);
+/// What the whiskers and bands show ("" without deviations).
+std::string whisker_legend(const SectionData& d);
+/// The blade's verdict as an HTML paragraph ("" when no section was compared).
+std::string blade_verdict_html(const std::vector<SectionData>& data);
 
 }  // namespace section::detail::plot

@@ -99,6 +99,7 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
       s += "</g>";
     }
   }
+  if (whole) draw_compare(s, d, v);
   for (int loop : curve_loops(d)) {
     const std::string data = path_data(curve_of(d, loop, o, density), closed_loop(d, loop), v, near, whole);
     if (!data.empty())
@@ -156,6 +157,16 @@ void title(Page& p) {
   p.body += "<text class=\"subtitle\" x=\"" + px(p.margin + 110) + "\" y=\"" + px(p.y) + "\">" +
             escape(sub.empty() ? "units " + d.units : sub + "; units " + d.units) + "</text>";
   p.y += 12;
+  // compare's verdict and what its whiskers show (plot_compare.cpp).
+  const char* colour = d.verdict == 1 ? "#c00" : d.verdict == 2 ? "#b07800" : "#080";
+  for (const auto& [text, style] :
+       {std::pair{verdict_line(d), std::string("font-weight:bold;fill:") + colour},
+        std::pair{whisker_legend(d), std::string("font-size:11px;fill:#555")}}) {
+    if (text.empty()) continue;
+    p.body += "<text class=\"verdict\" x=\"" + px(p.margin) + "\" y=\"" + px(p.y + 8) + "\" style=\"" +
+              style + "\">" + escape(text) + "</text>";
+    p.y += 18;
+  }
 }
 
 // The insets' frames and labels on the main view.

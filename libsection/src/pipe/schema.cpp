@@ -261,6 +261,112 @@ constexpr auto side_columns = by_section<SideRow>({
     point_uv<SideRow>("the profile point"),
 });
 
+// compare's tables (docs/COMPARE.md).
+double bounds(const Tolerance* t) {
+  return !t ? 0.0 : (std::isfinite(t->low) ? 1.0 : 0.0) + (std::isfinite(t->high) ? 2.0 : 0.0);
+}
+double finite_or_0(double v) {
+  return std::isfinite(v) ? v : 0.0;
+}
+
+constexpr auto fit_columns = by_section<FitRow>({
+    {"method", "code", "the fit: 0 least squares, 1 minimum zone, 2 weighted",
+     [](auto& r) { return double(r.method); }},
+    {"freedom", "code",
+     "its freedom: 0 none, 1 translation, 2 translation along a direction, 3 rotation, 4 all",
+     [](auto& r) { return double(r.freedom); }},
+    {"whole", "flag", "1 when one motion fits every section (the whole blade)",
+     [](auto& r) { return r.whole ? 1.0 : 0.0; }},
+    {"angle", "degrees",
+     "the rotation that moves the measured section onto the nominal, counterclockwise in (u, v)",
+     [](auto& r) { return r.fit.motion.angle; }},
+    {"shift_", uv, "length", "then the translation in the plane: p -> R(angle) p + shift",
+     [](auto& r) { return r.fit.motion.translation; }},
+    {"shift_", xyz, "length",
+     "the same motion's translation in 3D: x -> R x + shift (R about the plane's normal)",
+     [](auto& r) { return r.shift; }},
+    {"points", "count", "measured points compared", [](auto& r) { return double(r.points); }},
+    {"outliers", "count", "isolated points farther off than the outlier distance, left out",
+     [](auto& r) { return double(r.outliers); }},
+    {"iterations", "count", "fit iterations done", [](auto& r) { return double(r.fit.iterations); }},
+    {"rms_before", "length", "rms deviation before the fit (outliers out)",
+     [](auto& r) { return r.fit.rms_before; }},
+    {"max_before", "length", "largest absolute deviation before the fit",
+     [](auto& r) { return r.fit.max_before; }},
+    {"rms_after", "length", "rms deviation after the fit", [](auto& r) { return r.fit.rms_after; }},
+    {"max_after", "length", "largest absolute deviation after the fit",
+     [](auto& r) { return r.fit.max_after; }},
+});
+
+constexpr auto deviation_columns = by_section<DeviationRow>({
+    index_of<DeviationRow>("the point's order among the section's profile points (table points, loop 0)"),
+    {"zone", "code", "the zone of its foot (zones below)",
+     [](auto& r) { return double(static_cast<int>(r.point.zone)); }},
+    {"outlier", "flag", "1 when left out of the fit and the zones",
+     [](auto& r) { return r.point.outlier ? 1.0 : 0.0; }},
+    {"", uv, "length", "the measured point moved by the fit", [](auto& r) { return r.point.point; }},
+    {"foot_", uv, "length", "its foot: the nearest point of the nominal profile",
+     [](auto& r) { return r.point.foot; }},
+    {"", xyz, "length", "the foot in 3D", [](auto& r) { return r.world; }},
+    {"n", uv, "1", "the nominal's outward unit normal at the foot", [](auto& r) { return r.point.normal; }},
+    {"before", "length", "the signed deviation before the fit: positive = material outside the nominal",
+     [](auto& r) { return r.point.before; }},
+    {"deviation", "length", "the signed deviation after the fit", [](auto& r) { return r.point.after; }},
+});
+
+constexpr auto zone_columns = by_section<ZoneRow>({
+    {"zone", "code", "0 whole profile, 1 leading edge, 2 trailing edge, 3 pressure side, 4 suction side",
+     [](auto& r) { return double(r.zone); }},
+    {"points", "count", "points in the zone (outliers out)", [](auto& r) { return double(r.result.points); }},
+    {"min", "length", "the smallest deviation after the fit", [](auto& r) { return r.result.min; }},
+    {"max", "length", "the largest", [](auto& r) { return r.result.max; }},
+    {"form", "length", "max - min: the narrowest band of constant width about the nominal holding the points",
+     [](auto& r) { return r.result.form; }},
+    {"length", "length", "the zone's length along the nominal", [](auto& r) { return r.result.length; }},
+    {"unmeasured", "length", "its longest stretch without a measured point",
+     [](auto& r) { return r.result.unmeasured; }},
+    {"measured", "flag", "0 when that stretch is a hole (or the zone has no point)",
+     [](auto& r) { return r.result.measured ? 1.0 : 0.0; }},
+    {"bounds", "code", "the profile tolerance's limits: 0 none, 1 low only, 2 high only, 3 both",
+     [](auto& r) { return bounds(r.band); }},
+    {"low", "length", "the lowest deviation allowed (0 when unbounded)",
+     [](auto& r) { return r.band ? finite_or_0(r.band->low) : 0.0; }},
+    {"high", "length", "the highest deviation allowed (0 when unbounded)",
+     [](auto& r) { return r.band ? finite_or_0(r.band->high) : 0.0; }},
+    {"verdict", "code", "the profile's verdict (verdicts below)", [](auto& r) { return double(r.verdict); }},
+    {"form_limit", "length", "the largest form allowed (0 when none)",
+     [](auto& r) { return r.form ? finite_or_0(r.form->high) : 0.0; }},
+    {"form_verdict", "code", "the form's verdict", [](auto& r) { return double(r.form_verdict); }},
+});
+
+constexpr auto compared_columns = by_section<ComparedRow>({
+    {"item", "code", "the value compared (compared values below)", [](auto& r) { return double(r.item); }},
+    {"measured", "flag", "0 when the value is not measured (a hole over its zone, a section that failed)",
+     [](auto& r) { return r.measured ? 1.0 : 0.0; }},
+    {"value", "item", "the measured value (0 when not measured)", [](auto& r) { return r.value; }},
+    {"nominal", "item", "the nominal's value", [](auto& r) { return r.nominal; }},
+    {"deviation", "item", "value - nominal (angles wrapped into (-180, 180])",
+     [](auto& r) { return r.deviation; }},
+    {"bounds", "code", "the tolerance's limits: 0 none, 1 low only, 2 high only, 3 both",
+     [](auto& r) { return bounds(r.tolerance); }},
+    {"on_value", "flag", "1 when the limits bound the value, 0 its deviation",
+     [](auto& r) { return r.tolerance && r.tolerance->on_value ? 1.0 : 0.0; }},
+    {"low", "item", "the lowest allowed (0 when unbounded)",
+     [](auto& r) { return r.tolerance ? finite_or_0(r.tolerance->low) : 0.0; }},
+    {"high", "item", "the highest allowed (0 when unbounded)",
+     [](auto& r) { return r.tolerance ? finite_or_0(r.tolerance->high) : 0.0; }},
+    {"verdict", "code", "its verdict (verdicts below)", [](auto& r) { return double(r.verdict); }},
+});
+
+constexpr auto verdict_columns = by_section<VerdictRow>({
+    {"verdict", "code",
+     "1 when a value failed, else 2 when one was not measured, else 0; -1 when none is toleranced",
+     [](auto& r) { return double(r.verdict); }},
+    {"passed", "count", "values that passed", [](auto& r) { return double(r.passed); }},
+    {"failed", "count", "values that failed", [](auto& r) { return double(r.failed); }},
+    {"not_measured", "count", "values not measured", [](auto& r) { return double(r.not_measured); }},
+});
+
 // The names of a column: its own, or a point's prefix with each axis.
 template <class Row>
 std::vector<std::string> names_of(const Column<Row>& c) {
@@ -331,6 +437,11 @@ template struct TableSchema<CamberRow>;
 template struct TableSchema<ParamsRow>;
 template struct TableSchema<ThicknessRow>;
 template struct TableSchema<SideRow>;
+template struct TableSchema<FitRow>;
+template struct TableSchema<DeviationRow>;
+template struct TableSchema<ZoneRow>;
+template struct TableSchema<ComparedRow>;
+template struct TableSchema<VerdictRow>;
 
 const TableSchema<FrameRow> frames{"frames", "slice", "the plane frame of each section", frame_columns};
 const TableSchema<LoopRow> loops{"loops", "slice", "one row per loop of each section", loop_columns};
@@ -369,10 +480,33 @@ const TableSchema<SideRow> sides{
     "sides", "camber",
     "the profile split at the LE and TE points, each side sampled evenly in curve parameter", side_columns};
 
-std::vector<TableDoc> tables() {
+// compare's tables.
+const TableSchema<FitRow> fits{"fits", "compare",
+                               "one row per section: the best fit of the measured section onto the nominal",
+                               fit_columns};
+const TableSchema<DeviationRow> deviations{
+    "deviations", "compare", "each measured profile point's deviation from the nominal along its normal",
+    deviation_columns};
+const TableSchema<ZoneRow> zones{"zones", "compare", "each zone's deviations, form, coverage and verdicts",
+                                 zone_columns};
+const TableSchema<ComparedRow> compared{
+    "compared", "compare", "each compared value of a section: measured, nominal, deviation and verdict",
+    compared_columns};
+const TableSchema<VerdictRow> verdicts{"verdicts", "compare", "one row per section: its verdict",
+                                       verdict_columns};
+
+// The tables of slice, smooth, fitspline and camber.
+static std::vector<TableDoc> stage_tables() {
   return {frames.doc(),       loops.doc(),   points.doc(),       skeleton.doc(),    smoothed.doc(),
           smooth_stats.doc(), splines.doc(), spline_knots.doc(), spline_ctrl.doc(), gaps.doc(),
           samples.doc(),      camber.doc(),  params.doc(),       thickness.doc(),   sides.doc()};
+}
+
+std::vector<TableDoc> tables() {
+  std::vector<TableDoc> out = stage_tables();
+  for (TableDoc d : {fits.doc(), deviations.doc(), zones.doc(), compared.doc(), verdicts.doc()})
+    out.push_back(std::move(d));  // compare's tables
+  return out;
 }
 
 }  // namespace schema

@@ -5,6 +5,7 @@
 /// one entry over two or three columns). The header rows, the row writers, the readers'
 /// column lookups and docs/FORMAT.md's column tables all come from those lists
 /// (tests/test_schema.cpp holds FORMAT.md to them).
+#include "section/compare.h"
 #include "section/fit_spline.h"
 #include "section/frame.h"
 #include "section/io/stream.h"
@@ -216,6 +217,46 @@ struct SideRow {
   Eigen::Vector2d point;
 };
 
+// compare's rows (docs/COMPARE.md). Verdict codes: -1 no tolerance, 0 pass, 1 fail,
+// 2 not measured; `bounds` of a tolerance: 0 none, 1 low only, 2 high only, 3 both.
+struct FitRow {
+  int section;
+  const FitResult& fit;
+  int method, freedom;    ///< FitMethod, FitFreedom
+  bool whole;             ///< the whole-blade fit
+  Eigen::Vector3d shift;  ///< the translation in 3D
+  int points, outliers;
+};
+struct DeviationRow {
+  int section;
+  std::size_t index;  ///< the point's row among the section's loop-0 points
+  const PointDeviation& point;
+  Eigen::Vector3d world;  ///< the foot in 3D
+};
+struct ZoneRow {
+  int section;
+  int zone;  ///< Zone
+  const ZoneResult& result;
+  const Tolerance* band;  ///< the profile tolerance, or nullptr
+  int verdict;
+  const Tolerance* form;  ///< the form tolerance, or nullptr
+  int form_verdict;
+};
+struct ComparedRow {
+  int section;
+  int item;  ///< the compared value's code (docs/FORMAT.md)
+  bool measured;
+  double value, nominal, deviation;
+  const Tolerance* tolerance;
+  int verdict;
+};
+struct VerdictRow {
+  int section;
+  int verdict;  ///< the section's: 1 when a value failed, else 2 when one was not measured, else 0 (-1: none
+                ///< toleranced)
+  int passed, failed, not_measured;
+};
+
 // The tables, in the order the tools write them.
 extern const TableSchema<FrameRow> frames;
 extern const TableSchema<LoopRow> loops;
@@ -232,6 +273,12 @@ extern const TableSchema<CamberRow> camber;
 extern const TableSchema<ParamsRow> params;
 extern const TableSchema<ThicknessRow> thickness;
 extern const TableSchema<SideRow> sides;
+// compare's tables.
+extern const TableSchema<FitRow> fits;
+extern const TableSchema<DeviationRow> deviations;
+extern const TableSchema<ZoneRow> zones;
+extern const TableSchema<ComparedRow> compared;
+extern const TableSchema<VerdictRow> verdicts;
 
 /// Every table above as docs/FORMAT.md lists it, in that order.
 std::vector<TableDoc> tables();

@@ -1,0 +1,160 @@
+// compare's nominal on the stream: a mesh sliced on the measured planes, a stream's
+// sections matched by plane, or sections of points, each through the same fitspline and
+// camber code as the measurement.
+#include "section/pipe/compare_stream.h"
+
+#include "section/error.h"
+#include "section/io/stream.h"
+#include "section/pipe/camber_stream.h"
+#include "section/pipe/fit_spline_stream.h"
+#include "section/pipe/schema.h"
+#include "section/slice.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace section {
+
+namespace {
+
+using Loops = std::map<int, std::vector<Eigen::Vector2d>>;
+
+// The triangles of `mesh` that reach the plane of `f` (a vertex on each side, or on it):
+// all that its section passes through, so that slicing them alone gives the same polylines
+// for a fraction of the cost (the slicer's setup grows with the mesh).
+Mesh crossing(const Mesh& mesh, const Frame& f) {
+  Mesh band;
+  std::vector<int> index(mesh.vertices.size(), -1);
+  for (const auto& t : mesh.triangles) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (int v : t) {
+      const double h = f.height(mesh.vertices[static_cast<std::size_t>(v)]);
+      lo = std::min(lo, h);
+      hi = std::max(hi, h);
+    }
+    if (!(lo <= 0 && hi >= 0)) continue;
+    std::array<int, 3> kept;
+    for (int k = 0; k < 3; ++k) {
+      int& i = index[static_cast<std::size_t>(t[k])];
+      if (i < 0) {
+        i = static_cast<int>(band.vertices.size());
+        band.vertices.push_back(mesh.vertices[static_cast<std::size_t>(t[k])]);
+      }
+      kept[k] = i;
+    }
+    band.triangles.push_back(kept);
+  }
+  return band;
+}
+
+// Loop 0 of the mesh's section on each measured plane, in the measured frame.
+Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, Stream& out) {
+  Loops loops;
+  for (const auto& [id, f] : frames) {
+    const Mesh band = crossing(mesh, f);
+    SectionSlice s;
+    if (band.triangles.empty())
+      s.error = "no triangle reaches the plane";
+    else
+      s = slice(band, {Plane{f.origin, f.n}}).sections.front();
+    if (!s.error.empty() || s.morphology.loops.empty()) {
+      out.issues.push_back({id, -1, "compare",
+                            "the nominal mesh has no section on this plane" +
+                                (s.error.empty() ? std::string() : ": " + s.error)});
+      continue;
+    }
+    for (const auto& p : s.morphology.loops[0].points) loops[id].push_back(f.to_plane(s.frame.to_world(p)));
+  }
+  return loops;
+}
+
+// The points of a table by section: section, u, v as they are, or x, y, z on the plane
+// they lie on.
+Loops point_sections(const Table& t, const std::map<int, Frame>& frames, const CompareStreamOptions& o) {
+  Loops loops;
+  const long cs = t.find_column("section"), cu = t.find_column("u"), cv = t.find_column("v");
+  const long cx = t.find_column("x"), cy = t.find_column("y"), cz = t.find_column("z");
+  if (cs >= 0 && cu >= 0 && cv >= 0) {
+    for (std::size_t r = 0; r < t.rows(); ++r)
+      loops[static_cast<int>(t.at(r, cs))].push_back({t.at(r, cu), t.at(r, cv)});
+    return loops;
+  }
+  if (cx < 0 || cy < 0 || cz < 0)
+    throw Error("compare: the nominal points need the columns section, u, v or x, y, z");
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    const Eigen::Vector3d p(t.at(r, cx), t.at(r, cy), t.at(r, cz));
+    for (const auto& [id, f] : frames)
+      if (std::abs(f.height(p)) <= o.plane_tolerance) loops[id].push_back(f.to_plane(p));
+  }
+  return loops;
+}
+
+// The nominal stream's section on each measured plane: its splines moved into the measured
+// frame (the same plane, facing the same way).
+void matched_sections(const Stream& nominal, const std::map<int, Frame>& frames,
+                      const CompareStreamOptions& o, Stream& out) {
+  const std::map<int, Frame> theirs =
+      schema::frames.find(nominal) ? section::frames(nominal) : std::map<int, Frame>{};
+  const auto curves = splines(nominal);
+  Table head = schema::splines.table("iterations"), knots = schema::spline_knots.table(),
+        ctrl = schema::spline_ctrl.table();
+  for (const auto& [id, f] : frames) {
+    int match = -1;
+    for (const auto& [their_id, g] : theirs)
+      if (g.n.dot(f.n) > 1 - 1e-9 && std::abs(f.height(g.origin)) <= o.plane_tolerance) match = their_id;
+    if (theirs.empty() && curves.count({id, 0})) match = id;  // no frames: matched by id
+    const auto curve = curves.find({match, 0});
+    if (curve == curves.end()) {
+      out.issues.push_back({id, -1, "compare", "the nominal stream has no section on this plane"});
+      continue;
+    }
+    BSpline b = curve->second;
+    if (!theirs.empty())
+      for (auto& p : b.control) p = f.to_plane(theirs.at(match).to_world(p));
+    FitSplineResult fit;
+    fit.spline = b;
+    schema::splines.add(head, {id, 0, fit});
+    for (std::size_t i = 0; i < b.knots.size(); ++i) schema::spline_knots.add(knots, {id, 0, i, b.knots[i]});
+    for (std::size_t i = 0; i < b.control.size(); ++i)
+      schema::spline_ctrl.add(ctrl, {id, 0, i, b.control[i]});
+  }
+  out.put(head);
+  out.put(knots);
+  out.put(ctrl);
+}
+
+}  // namespace
+
+Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& frames,
+                      const CompareStreamOptions& options) {
+  Stream out;
+  put_frames(out, frames);
+  if (source.stream) {
+    matched_sections(*source.stream, frames, options, out);
+  } else {
+    Loops loops;
+    if (source.mesh) loops = mesh_sections(*source.mesh, frames, out);
+    if (source.points) loops = point_sections(*source.points, frames, options);
+    Table pts = schema::points.table();
+    for (const auto& [id, loop] : loops) {
+      if (!frames.count(id)) continue;
+      for (std::size_t i = 0; i < loop.size(); ++i)
+        schema::points.add(pts, {id, 0, i, loop[i], Eigen::Vector2d(0, 0), 0.0});
+    }
+    for (const auto& [id, f] : frames)
+      if (!loops.count(id) && !source.mesh)
+        out.issues.push_back({id, -1, "compare", "the nominal points have no section on this plane"});
+    out.put(pts);
+    FitSplineOptions fo = options.fit_spline;
+    fo.threads = options.threads;
+    fit_spline_stream(out, fo);
+  }
+  CamberOptions co = options.camber;
+  co.threads = options.threads;
+  camber_stream(out, co);
+  return out;
+}
+
+}  // namespace section

@@ -1,0 +1,305 @@
+// Stream stage of compare: measured sections and their nominals in; fit, deviations, zones,
+// compared values and verdicts out.
+#include "section/pipe/compare_stream.h"
+
+#include "section/error.h"
+#include "section/io/stream.h"
+#include "section/pipe/fit_spline_stream.h"
+#include "section/pipe/schema.h"
+#include "pipe/adapter.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+namespace section {
+
+namespace {
+
+// A compared value: its params column (or fit_*), the zones it needs measured (bits 1 LE,
+// 2 TE, 4 pressure, 8 suction) and whether it is an angle.
+struct Item {
+  const char* name;
+  int zones;
+  bool angle;
+};
+constexpr int le = 1, te = 2, ps = 4, ss = 8, all_zones = 15;
+const Item items[] = {
+    {"chord", le | te, false},
+    {"camber_length", all_zones, false},
+    {"max_thickness", ps | ss, false},
+    {"max_thickness_pos", all_zones, false},
+    {"le_radius", le, false},
+    {"te_radius", te, false},
+    {"le_curvature_radius", le, false},
+    {"te_curvature_radius", te, false},
+    {"stagger", le | te, true},
+    {"inlet_angle", le, true},
+    {"outlet_angle", te, true},
+    {"camber_angle", le | te, true},
+    {"area", all_zones, false},
+    {"caliper_chord", le | te | ps, false},
+    {"caliper_stagger", le | te | ps, true},
+    {"fit_shift", 0, false},
+    {"fit_rotation", 0, true},
+};
+const char* const zone_suffix[] = {"", "_le", "_te", "_pressure", "_suction"};
+
+using Row = std::map<std::string, double>;
+
+// The rows of a table by section, as column name -> value.
+std::map<int, Row> by_section(const Table* t) {
+  std::map<int, Row> out;
+  if (!t) return out;
+  const std::size_t cs = t->column(schema::col::section);
+  for (std::size_t r = 0; r < t->rows(); ++r) {
+    Row& row = out[static_cast<int>(t->at(r, cs))];
+    for (std::size_t c = 0; c < t->columns.size(); ++c) row[t->columns[c]] = t->at(r, c);
+  }
+  return out;
+}
+
+// Everything compare_stream needs of both streams.
+struct Input {
+  std::map<int, Frame> frames;
+  std::vector<int> ids;
+  std::map<std::pair<int, int>, pipe::LoopRows> points;
+  std::map<std::pair<int, int>, BSpline> curves;
+  std::map<int, Row> params, nominal_params;
+  std::map<int, NominalSection> nominals;
+  std::map<int, std::string> nominal_issue;
+};
+
+Input gather(const Stream& stream, const Stream& nominal) {
+  Input in;
+  if (schema::frames.find(stream)) in.frames = frames(stream);
+  if (const Table* t = schema::points.find(stream)) in.points = pipe::loop_rows(*t, "compare");
+  if (schema::splines.find(stream)) in.curves = splines(stream);
+  in.params = by_section(schema::params.find(stream));
+  in.nominal_params = by_section(schema::params.find(nominal));
+  const auto curves =
+      schema::splines.find(nominal) ? splines(nominal) : std::map<std::pair<int, int>, BSpline>{};
+  for (const auto& [id, row] : in.nominal_params) {
+    const auto c = curves.find({id, 0});
+    if (c == curves.end()) continue;
+    NominalSection& n = in.nominals[id];
+    n.curve = c->second;
+    n.le_point = {row.at("le_u"), row.at("le_v")};
+    n.te_point = {row.at("te_u"), row.at("te_v")};
+    n.pressure_side = row.at("pressure_side") > 0 ? 1 : -1;
+  }
+  for (const auto& i : nominal.issues)
+    if (!in.nominal_issue.count(i.section)) in.nominal_issue[i.section] = i.stage + ": " + i.message;
+  for (const auto& [id, f] : in.frames) in.ids.push_back(id);
+  if (in.frames.empty())
+    for (const auto& [key, c] : in.curves)
+      if (key.second == 0) in.ids.push_back(key.first);
+  return in;
+}
+
+// A section's measured points: loop 0 of the points table, else 2000 samples of its spline;
+// `index` gets each point's index.
+std::vector<Eigen::Vector2d> measured_points(const Input& in, int id, std::vector<double>& index) {
+  std::vector<Eigen::Vector2d> out;
+  if (const auto p = in.points.find({id, 0}); p != in.points.end()) {
+    for (const auto& [i, q] : p->second) {
+      index.push_back(i);
+      out.push_back(q);
+    }
+  } else if (const auto c = in.curves.find({id, 0}); c != in.curves.end()) {
+    out = sample(c->second, 2000);
+    for (std::size_t i = 0; i < out.size(); ++i) index.push_back(static_cast<double>(i));
+  }
+  return out;
+}
+
+// Why a section cannot be compared ("" when it can).
+std::string unusable(const Input& in, int id, std::size_t points) {
+  if (!in.nominals.count(id)) {
+    const auto i = in.nominal_issue.find(id);
+    return "no nominal for this section" +
+           (i != in.nominal_issue.end() ? " (" + i->second + ")" : std::string());
+  }
+  if (points == 0) return "no measured profile (loop 0) in the stream";
+  if (!in.params.count(id)) return "no params row: the measured section has not been through camber";
+  return "";
+}
+
+enum : std::size_t { fit_rows, deviation_rows, zone_rows, compared_rows, verdict_rows };
+
+// Counts verdicts toward the section's.
+struct Tally {
+  int passed = 0, failed = 0, not_measured = 0;
+  int add(Verdict v) {
+    (v == Verdict::pass ? passed : v == Verdict::fail ? failed : not_measured)++;
+    return static_cast<int>(v);
+  }
+  int verdict() const { return failed ? 1 : not_measured ? 2 : passed ? 0 : -1; }
+};
+
+double wrapped(double degrees) {
+  double d = std::fmod(degrees, 360.0);
+  if (d > 180) d -= 360;
+  if (d <= -180) d += 360;
+  return d;
+}
+
+// The rows of the zones and compared tables, and the verdict row, of one section; `c` is
+// null for a section that could not be compared (every toleranced value not measured).
+void judge(int id, const SectionComparison* c, const Input& in, const CompareStreamOptions& o,
+           pipe::Slot& slot) {
+  Tally tally;
+  const std::vector<Tolerance>& tol = o.tolerances;
+  const ZoneResult none;
+  for (int z = 0; z < zone_count; ++z) {
+    const ZoneResult& r = c ? c->zones[z] : none;
+    const Tolerance* band = find_tolerance(tol, std::string("profile") + zone_suffix[z], id);
+    const Tolerance* form = find_tolerance(tol, std::string("form") + zone_suffix[z], id);
+    const int v = band ? tally.add(verdict(*band, r.min, r.max, r.measured && c)) : -1;
+    const int fv = form ? tally.add(verdict(*form, r.form, r.form, r.measured && c)) : -1;
+    schema::zones.append(slot.rows[zone_rows], {id, z, r, band, v, form, fv});
+  }
+  const auto p = in.params.find(id);
+  const auto n = in.nominal_params.find(id);
+  for (std::size_t k = 0; k < std::size(items); ++k) {
+    const Item& item = items[k];
+    double value = 0, nominal = 0;
+    bool measured = c != nullptr;
+    for (int z = 1; z < zone_count && measured; ++z)
+      if (item.zones >> (z - 1) & 1) measured = c->zones[z].measured;
+    if (c && item.name == std::string("fit_shift")) {
+      value = c->fit.motion.translation.norm();
+    } else if (c && item.name == std::string("fit_rotation")) {
+      value = c->fit.motion.angle;
+    } else if (c) {
+      const auto mv = p->second.find(item.name), nv = n->second.find(item.name);
+      measured = measured && mv != p->second.end();
+      value = mv != p->second.end() ? mv->second : 0.0;
+      nominal = nv != n->second.end() ? nv->second : 0.0;
+    }
+    if (!measured) value = 0;
+    const double deviation = measured ? (item.angle ? wrapped(value - nominal) : value - nominal) : 0.0;
+    const Tolerance* t = find_tolerance(tol, item.name, id);
+    int v = -1;
+    if (t)
+      v = tally.add(measured
+                        ? verdict(*t, t->on_value ? value : deviation, t->on_value ? value : deviation, true)
+                        : Verdict::not_measured);
+    schema::compared.append(slot.rows[compared_rows],
+                            {id, static_cast<int>(k), measured, value, nominal, deviation, t, v});
+  }
+  schema::verdicts.append(slot.rows[verdict_rows],
+                          {id, tally.verdict(), tally.passed, tally.failed, tally.not_measured});
+}
+
+// The fit and deviations rows of a compared section.
+void describe(int id, const SectionComparison& c, const std::vector<double>& index, const Frame& f,
+              const CompareStreamOptions& o, const Eigen::Vector3d* blade_shift, pipe::Slot& slot) {
+  Eigen::Vector3d shift;
+  if (blade_shift) {
+    shift = *blade_shift;
+  } else {
+    const Eigen::Matrix3d r =
+        Eigen::AngleAxisd(c.fit.motion.angle * 3.14159265358979323846 / 180, f.n).toRotationMatrix();
+    shift = f.origin - r * f.origin + f.direction_to_world(c.fit.motion.translation);
+  }
+  schema::fits.append(slot.rows[fit_rows], {id, c.fit, static_cast<int>(o.compare.fit.method),
+                                            static_cast<int>(o.compare.fit.freedom), o.whole, shift,
+                                            static_cast<int>(c.points.size()), c.outliers});
+  for (std::size_t i = 0; i < c.points.size(); ++i)
+    schema::deviations.append(slot.rows[deviation_rows], {id, static_cast<std::size_t>(index[i]), c.points[i],
+                                                          f.to_world(c.points[i].foot)});
+}
+
+Frame frame_of(const Input& in, int id) {
+  const auto f = in.frames.find(id);
+  return f != in.frames.end() ? f->second : Frame{};
+}
+
+}  // namespace
+
+const std::vector<std::string>& compared_items() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const Item& i : items) out.emplace_back(i.name);
+    return out;
+  }();
+  return names;
+}
+
+std::vector<std::string> tolerance_items() {
+  std::vector<std::string> out = compared_items();
+  for (const char* what : {"profile", "form"})
+    for (const char* z : zone_suffix) out.push_back(what + std::string(z));
+  return out;
+}
+
+int stream_verdict(const Stream& stream) {
+  const Table* t = schema::verdicts.find(stream);
+  if (!t) return 0;
+  const std::size_t cv = t->column("verdict");
+  int worst = 0;
+  for (std::size_t r = 0; r < t->rows(); ++r) {
+    const int v = static_cast<int>(t->at(r, cv));
+    if (v == 1) return 1;
+    if (v == 2) worst = 2;
+  }
+  return worst;
+}
+
+void compare_stream(Stream& stream, const Stream& nominal, const CompareStreamOptions& options) {
+  pipe::clear_issues(stream, "compare");
+  const Input in = gather(stream, nominal);
+  Table fit = schema::fits.table(), deviations = schema::deviations.table(), zones = schema::zones.table(),
+        compared = schema::compared.table(), verdicts = schema::verdicts.table();
+  const std::vector<Table*> tables{&fit, &deviations, &zones, &compared, &verdicts};
+  std::vector<std::vector<double>> index(in.ids.size());
+  std::vector<std::vector<Eigen::Vector2d>> pts(in.ids.size());
+  std::vector<std::string> why(in.ids.size());
+  for (std::size_t k = 0; k < in.ids.size(); ++k) {
+    pts[k] = measured_points(in, in.ids[k], index[k]);
+    why[k] = unusable(in, in.ids[k], pts[k].size());
+  }
+  std::optional<BladeComparison> blade;
+  if (options.whole) {
+    std::vector<BladeSection> sections;
+    for (std::size_t k = 0; k < in.ids.size(); ++k)
+      if (why[k].empty()) sections.push_back({&in.nominals.at(in.ids[k]), &pts[k], frame_of(in, in.ids[k])});
+    if (!sections.empty()) blade = compare_blade(sections, options.compare);
+  }
+  std::vector<std::size_t> position(in.ids.size(), 0);  // the section's place among the blade's
+  for (std::size_t k = 0, b = 0; k < in.ids.size(); ++k)
+    if (why[k].empty()) position[k] = b++;
+  pipe::run_slots(
+      in.ids.size(), options.whole ? 1 : options.threads, tables, stream.issues, "compare",
+      [&](std::size_t k, pipe::Slot& slot) {
+        const int id = in.ids[k];
+        if (!why[k].empty()) {
+          judge(id, nullptr, in, options, slot);
+          slot.issues.push_back({id, -1, "compare", why[k] + "; its values are not measured"});
+          return;
+        }
+        try {
+          const SectionComparison c = blade ? blade->sections[position[k]]
+                                            : compare_section(in.nominals.at(id), pts[k], options.compare);
+          describe(id, c, index[k], frame_of(in, id), options, blade ? &blade->translation : nullptr, slot);
+          judge(id, &c, in, options, slot);
+        } catch (const Error& e) {
+          // The section's values are then not measured: listed so, with the reason.
+          for (auto& rows : slot.rows) rows.clear();
+          judge(id, nullptr, in, options, slot);
+          std::string message = e.what();
+          if (message.rfind("compare: ", 0) == 0) message = message.substr(9);
+          slot.issues.push_back({id, -1, "compare", message + "; its values are not measured"});
+        }
+      },
+      [&](std::size_t k, const std::string& message) {
+        return SectionIssue{in.ids[k], -1, "compare", message};
+      });
+  for (Table* t : tables) stream.put(std::move(*t));
+}
+
+}  // namespace section

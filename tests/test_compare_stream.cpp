@@ -1,0 +1,295 @@
+// Tests of compare on the stream: a blade mesh moved rigidly against its nominal (per
+// section and whole-blade fits), nominals from a stream and from points, verdicts over a
+// dent and a hole, sections that cannot be compared, and the tolerance file.
+#include "compare_fixtures.h"
+#include "section/error.h"
+#include "section/extras/generate.h"
+#include "section/extras/plot.h"
+#include "section/extras/report.h"
+#include "section/io/file.h"
+#include "section/io/tolerances.h"
+#include "section/pipe/camber_stream.h"
+#include "section/pipe/compare_stream.h"
+#include "section/pipe/fit_spline_stream.h"
+#include "section/pipe/schema.h"
+#include "section/pipe/slice_stream.h"
+#include "section/slice.h"
+
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace compare_test;
+namespace schema = section::schema;
+
+namespace {
+
+// The measured stream of a mesh: sliced at `zs`, fitted, through camber.
+section::Stream measured_stream(const section::Mesh& mesh, const std::vector<double>& zs) {
+  section::Stream s = section::to_stream(section::slice(mesh, section::planes_at({0, 0, 1}, zs)), "slice");
+  section::fit_spline_stream(s);
+  section::camber_stream(s);
+  return s;
+}
+
+// True when no issue of stage compare was recorded (camber's notes on edges may be there).
+bool compared_all(const section::Stream& s) {
+  for (const auto& i : s.issues)
+    if (i.stage == "compare") return false;
+  return true;
+}
+
+// A column of a table by section (the first row of each).
+std::map<int, double> column(const section::Stream& s, const char* table, const char* name) {
+  const section::Table& t = s.get(table, "compare");
+  std::map<int, double> out;
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    out.emplace(static_cast<int>(t.at(r, 0)), t.at(r, t.column(name)));
+  return out;
+}
+
+// The rows of "compared" for one item: section -> (measured, deviation, verdict).
+std::map<int, std::array<double, 3>> compared(const section::Stream& s, const std::string& item) {
+  const auto& items = section::compared_items();
+  const double code = static_cast<double>(std::find(items.begin(), items.end(), item) - items.begin());
+  const section::Table& t = schema::compared.get(s);
+  std::map<int, std::array<double, 3>> out;
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    if (t.at(r, t.column("item")) == code)
+      out[static_cast<int>(t.at(r, 0))] = {t.at(r, t.column("measured")), t.at(r, t.column("deviation")),
+                                           t.at(r, t.column("verdict"))};
+  return out;
+}
+
+// The zones table's `name` for a section and zone.
+double zone_value(const section::Stream& s, int section, int zone, const char* name) {
+  const section::Table& t = schema::zones.get(s);
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    if (t.at(r, 0) == section && t.at(r, t.column("zone")) == zone) return t.at(r, t.column(name));
+  return std::nan("");
+}
+
+std::vector<section::Tolerance> tolerances(const std::string& text) {
+  return section::parse_tolerances(text, "tol.csv", section::tolerance_items());
+}
+
+}  // namespace
+
+TEST_CASE("compare stream: a blade mesh moved rigidly is fitted back, per section and whole", "[compare]") {
+  const section::BladeDesign blade = section::turbine_blade();
+  const section::Mesh nominal = section::generate_mesh(blade, 2000, 16);  // rings at z = 4 k
+  const double angle = 0.05;
+  const Eigen::Vector3d centre(3, 1, 0), shift(0.02, -0.01, 0);
+  const Eigen::Matrix3d r0 = Eigen::AngleAxisd(angle * pi / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  section::Mesh moved_mesh = nominal;
+  for (auto& v : moved_mesh.vertices) v = r0 * (v - centre) + centre + shift;
+  const std::vector<double> zs{12, 20, 28};
+  for (bool whole : {false, true}) {
+    section::Stream s = measured_stream(moved_mesh, zs);
+    section::CompareStreamOptions o;
+    o.whole = whole;
+    section::NominalSource source;
+    source.mesh = &nominal;
+    const section::Stream n = section::nominal_stream(source, section::frames(s), o);
+    CHECK(compared_all(n));
+    section::compare_stream(s, n, o);
+    INFO("whole " << whole);
+    CHECK(compared_all(s));
+    const auto angles = column(s, "fits", "angle"), after = column(s, "fits", "max_after");
+    const auto sx = column(s, "fits", "shift_x"), sy = column(s, "fits", "shift_y"),
+               sz = column(s, "fits", "shift_z");
+    REQUIRE(angles.size() == 3);
+    for (const auto& [id, a] : angles) {
+      CHECK(std::abs(a + angle) < 0.001);
+      CHECK(after.at(id) < 0.002);  // both splines fitted to the mesh's polylines: ~1 um each
+      // x -> R x + shift undoes the move.
+      const Eigen::Matrix3d r = Eigen::AngleAxisd(a * pi / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      const Eigen::Vector3d x(10, -3, zs[id]);
+      CHECK((r * (r0 * (x - centre) + centre + shift) + Eigen::Vector3d(sx.at(id), sy.at(id), sz.at(id)) - x)
+                .norm() < 0.001);
+    }
+    // The params as measured deviate by the move (stagger) or not at all (chord).
+    for (const auto& [id, row] : compared(s, "chord")) CHECK(std::abs(row[1]) < 0.001);
+    for (const auto& [id, row] : compared(s, "stagger")) CHECK(row[1] == Approx(angle).margin(0.002));
+    CHECK(section::stream_verdict(s) == 0);
+  }
+}
+
+TEST_CASE("compare stream: nominals from a stream in other frames and from x, y, z points agree",
+          "[compare]") {
+  const section::Mesh mesh = section::generate_mesh(section::compressor_blade(), 2000, 16);
+  section::Stream s = measured_stream(mesh, {16, 32});
+  const auto frames = section::frames(s);
+  section::CompareStreamOptions o;
+  // The nominal stream: the mesh's sections in frames turned 30 degrees and moved in-plane.
+  section::NominalSource from_mesh;
+  from_mesh.mesh = &mesh;
+  section::Stream other = section::nominal_stream(from_mesh, frames, o);
+  std::map<int, section::Frame> turned;
+  for (const auto& [id, f] : frames) {
+    section::Frame g = f;
+    const Eigen::AngleAxisd turn(30 * pi / 180, f.n);
+    g.u = turn * f.u;
+    g.v = turn * f.v;
+    g.origin = f.origin + 2 * f.u - 1 * f.v;
+    turned[id + 10] = g;
+  }
+  section::Table ctrl = *other.find("spline_ctrl");
+  for (std::size_t r = 0; r < ctrl.rows(); ++r) {
+    const int id = static_cast<int>(ctrl.at(r, 0));
+    const Eigen::Vector2d p =
+        turned.at(id + 10).to_plane(frames.at(id).to_world({ctrl.at(r, 3), ctrl.at(r, 4)}));
+    ctrl.values[r * ctrl.columns.size()] = id + 10;
+    ctrl.values[r * ctrl.columns.size() + 3] = p.x();
+    ctrl.values[r * ctrl.columns.size() + 4] = p.y();
+  }
+  for (const char* name : {"splines", "spline_knots"}) {
+    section::Table t = *other.find(name);
+    for (std::size_t r = 0; r < t.rows(); ++r) t.values[r * t.columns.size()] += 10;
+    other.put(t);
+  }
+  other.put(ctrl);
+  section::put_frames(other, turned);
+  section::NominalSource from_stream;
+  from_stream.stream = &other;
+  // The nominal points in 3D: the mesh's section vertices.
+  const section::Stream sliced =
+      section::to_stream(section::slice(mesh, section::planes_at({0, 0, 1}, {16, 32})), "slice");
+  section::Table xyz("nominal", {"x", "y", "z"});
+  const section::Table& pts = schema::points.get(sliced);
+  for (std::size_t r = 0; r < pts.rows(); ++r) {
+    if (pts.at(r, 1) != 0) continue;
+    const Eigen::Vector3d w =
+        frames.at(static_cast<int>(pts.at(r, 0))).to_world({pts.at(r, 3), pts.at(r, 4)});
+    xyz.add_row({w.x(), w.y(), w.z()});
+  }
+  section::NominalSource from_points;
+  from_points.points = &xyz;
+  for (const auto* source : {&from_stream, &from_points}) {
+    section::Stream m = s;
+    const section::Stream n = section::nominal_stream(*source, frames, o);
+    CHECK(compared_all(n));
+    section::compare_stream(m, n, o);
+    CHECK(compared_all(m));
+    for (const auto& [id, v] : column(m, "fits", "max_before")) CHECK(v < 0.002);
+    for (const auto& [id, row] : compared(m, "le_radius")) CHECK(std::abs(row[1]) < 0.002);
+  }
+}
+
+TEST_CASE("compare stream: verdicts over a dent and a hole, and sections that cannot be compared",
+          "[compare]") {
+  const Case c = make_case(section::design_family()[0]);
+  std::vector<Vector2d> normals;
+  const std::vector<Vector2d> all = profile_points(c.truth, 0.05, 0, 1, &normals);
+  // Measured: section 0 with a 0.04 dent mid-chord on the suction side and a hole over
+  // the LE; section 1 the truth; section 2 no nominal.
+  section::Stream s;
+  section::Table pts = schema::points.table();
+  section::Table nominal("nominal", {"section", "u", "v"});
+  for (int id = 0; id < 3; ++id) {
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      Vector2d p = all[i];
+      if (id == 0) {
+        if ((p - c.truth.le_point).norm() < 1) continue;
+        const double x = (chord_fraction(c.truth, p) - 0.5) * c.truth.chord;
+        if (!on_pressure_side(c, p, normals[i], 0, 1) && std::abs(x) < 1)
+          p -= 0.02 * (1 + std::cos(pi * x)) * normals[i];
+      }
+      schema::points.add(pts, {id, 0, k++, p, normals[i], 0.0});
+    }
+  }
+  for (int id : {0, 1})
+    for (std::size_t i = 0; i < c.truth.profile.size(); i += 5)
+      nominal.add_row({double(id), c.truth.profile[i].x(), c.truth.profile[i].y()});
+  s.put(pts);
+  section::fit_spline_stream(s);
+  section::camber_stream(s);
+  section::NominalSource source;
+  source.points = &nominal;
+  section::CompareStreamOptions o;
+  o.compare.fit.freedom = section::FitFreedom::none;
+  o.tolerances = tolerances(
+      "item,section,low,high\nprofile_suction,,-0.03,0.03\nprofile_pressure,*,-0.03,0.03\nprofile_le,all,-0."
+      "03,0.03\n"
+      "chord,,-0.05,0.05\nte_radius,,-0.01,0.01\n");
+  const std::map<int, section::Frame> frames{{0, {}}, {1, {}}, {2, {}}};
+  const section::Stream n = section::nominal_stream(source, frames, o);
+  section::compare_stream(s, n, o);
+  const auto verdicts = column(s, "verdicts", "verdict");
+  CHECK(verdicts.at(0) == 1);  // the dent fails
+  CHECK(verdicts.at(1) == 0);
+  CHECK(verdicts.at(2) == 2);  // no nominal: not measured
+  CHECK(zone_value(s, 0, 4, "verdict") == 1);
+  CHECK(zone_value(s, 0, 4, "min") == Approx(-0.04).margin(0.001));
+  CHECK(zone_value(s, 0, 3, "verdict") == 0);
+  CHECK(zone_value(s, 0, 1, "verdict") == 2);  // the hole over the LE
+  CHECK(zone_value(s, 0, 1, "measured") == 0);
+  CHECK(compared(s, "chord").at(0)[2] == 2);  // the chord needs the LE
+  CHECK(compared(s, "te_radius").at(0)[2] == 0);
+  CHECK(compared(s, "chord").at(1)[2] == 0);
+  CHECK(compared(s, "chord").at(2)[0] == 0);
+  CHECK(section::stream_verdict(s) == 1);
+  bool issue = false;
+  for (const auto& i : s.issues) issue = issue || (i.section == 2 && i.stage == "compare");
+  CHECK(issue);
+  const std::string report = section::compare_report(s);
+  CHECK(report.rfind("blade: FAIL", 0) == 0);
+  CHECK(report.find("profile_suction") != std::string::npos);
+  // The drawings: whiskers and bands on the failed section, the verdicts; the page opens
+  // with the blade's.
+  const std::string svg = section::plot_svg(s, 0);
+  CHECK(svg.find("class=\"whiskers\"") != std::string::npos);
+  CHECK(svg.find("class=\"tolerance-band\"") != std::string::npos);
+  CHECK(svg.find("FAIL (") != std::string::npos);
+  CHECK(svg.find("failed: profile suction side") != std::string::npos);
+  CHECK(svg.find("#d62728") != std::string::npos);  // a whisker beyond its tolerance
+  const std::string html = section::plot_html(s);
+  CHECK(html.find("Blade: FAIL") < html.find("<table class=\"summary\""));
+  CHECK(html.find("failing sections: 0") != std::string::npos);
+}
+
+TEST_CASE("compare stream: the tolerance file is read, and refused naming the line", "[compare]") {
+  const auto t = tolerances(
+      "# "
+      "tolerances\nitem,section,low,high,on\nchord,*,-0.1,0.1\nle_radius,3,0.9,1.1,value\nform_le,,,0.02\n");
+  REQUIRE(t.size() == 3);
+  CHECK(t[0].section == -1);
+  CHECK(t[1].section == 3);
+  CHECK(t[1].on_value);
+  CHECK(!t[2].on_value);
+  CHECK(std::isinf(t[2].low));
+  CHECK(t[2].high == 0.02);
+  CHECK(t[2].where == "tol.csv:5");
+  const auto refused = [](const std::string& text, const std::string& what) {
+    try {
+      tolerances(text);
+    } catch (const section::Error& e) {
+      INFO(e.what());
+      CHECK(std::string(e.what()).find(what) != std::string::npos);
+      return;
+    }
+    FAIL("accepted: " << text);
+  };
+  refused("item,low,high\nchrod,-1,1\n", "tol.csv:2: unknown item 'chrod'");
+  refused("item,low,high\nchord,-1,x\n", "tol.csv:2: high: expected a number");
+  refused("item,low,high\nchord,1,-1\n", "tol.csv:2: low is above high");
+  refused("item,low,high\nchord,,\n", "tol.csv:2: neither low nor high");
+  refused("item,low,high\nchord,-1,1\n\nchord,-2,2\n",
+          "tol.csv:4: a second row for 'chord' (the first: tol.csv:2)");
+  refused("item,lo,high\n", "tol.csv:1: unknown column 'lo'");
+  refused("item,section,low\nchord,-3,1\n", "tol.csv:2: section: expected a section id");
+  refused("item,low,high,on\nchord,-1,1,both\n", "on: expected 'deviation' or 'value'");
+  refused("# nothing\n", "tol.csv: no header line");
+}
+
+TEST_CASE("compare stream: docs/FORMAT.md lists the compared values by their codes", "[compare]") {
+  const std::string text = section::read_file(std::string(SECTION_SOURCE_DIR) + "/docs/FORMAT.md");
+  std::string line = "Compared values (item): ";
+  const auto& items = section::compared_items();
+  for (std::size_t k = 0; k < items.size(); ++k) line += (k ? ", " : "") + std::to_string(k) + " " + items[k];
+  CHECK(text.find(line + ".\n") != std::string::npos);
+}

@@ -1,0 +1,115 @@
+// compare: the measured sections of a pipe stream against their nominal, with tolerances.
+#include "args/compare_args.h"
+
+#include "section/error.h"
+#include "section/extras/report.h"
+#include "section/io/csv.h"
+#include "section/io/file.h"
+#include "section/io/mesh_io.h"
+#include "section/io/stream.h"
+#include "section/io/tolerances.h"
+#include "section/pipe/compare_stream.h"
+#include "section/pipe/run_stage.h"
+#include "section/pipe/schema.h"
+
+#include <iostream>
+#include <memory>
+
+namespace {
+
+using section::tool::CompareArgs;
+
+// The nominal file: a mesh by its extension, else a stream by its first line, else a CSV
+// table of section points.
+struct Nominal {
+  section::Mesh mesh;
+  section::Stream stream;
+  section::Table points;
+  section::NominalSource source;
+};
+
+std::unique_ptr<Nominal> read_nominal(const std::string& path) {
+  auto n = std::make_unique<Nominal>();
+  n->source.name = path;
+  for (const char* ext : {".stl", ".obj", ".off", ".ply", ".STL", ".OBJ", ".OFF", ".PLY"})
+    if (section::tool::ends_with(path, ext)) {
+      n->mesh = section::read_mesh(path);
+      n->source.mesh = &n->mesh;
+      return n;
+    }
+  const std::string text = section::read_file(path);
+  section::tool::with_input(path, [&] {
+    if (text.rfind("# libsection-stream", 0) == 0) {
+      n->stream = section::parse_stream(text, path);
+      n->source.stream = &n->stream;
+    } else {
+      n->points = section::parse_csv(text, path);
+      n->source.points = &n->points;
+    }
+  });
+  return n;
+}
+
+int run_compare(const CompareArgs& a, const std::string& history) {
+  CompareArgs args = a;
+  if (!a.tolerances.empty())
+    args.options.tolerances = section::read_tolerances(a.tolerances, section::tolerance_items());
+  const std::unique_ptr<Nominal> nominal = read_nominal(a.nominal);
+  const section::CompareStreamOptions& o = args.options;
+  // Errors name the file they come from: the nominal's or the measured stream's.
+  auto stage = [&](section::Stream& s, int threads) {
+    section::CompareStreamOptions part = o;
+    part.threads = threads;
+    std::map<int, section::Frame> frames;
+    section::Stream n;
+    section::tool::with_input(a.common.input, [&] {
+      if (section::schema::frames.find(s)) frames = section::frames(s);
+    });
+    section::tool::with_input(a.nominal, [&] { n = section::nominal_stream(nominal->source, frames, part); });
+    section::tool::with_input(a.common.input, [&] { section::compare_stream(s, n, part); });
+  };
+  section::Stream all;  // the verdicts, zones and compared values, gathered over the parts
+  auto gather = [&](const section::Stream& s) {
+    section::tool::warn_issues("compare", s, false);
+    for (const char* name : {"verdicts", "zones", "compared"}) {
+      if (!all.find(name)) all.put(section::Table(name, {}));
+      section::append_rows(*all.find(name), s.get(name, "compare"));
+    }
+  };
+  if (o.whole) {
+    // One motion for every section: the stream read, compared and written whole.
+    section::Stream s = section::read_stream(a.common.input);
+    stage(s, o.threads);
+    s.history.push_back(history);
+    gather(s);
+    section::write_stream(a.common.output, s);
+  } else {
+    section::StageRun run;
+    run.input = a.common.input;
+    run.output = a.common.output;
+    run.history = history;
+    run.threads = o.threads;
+    run.stage = stage;
+    run.written = gather;
+    section::run_stage(run);
+  }
+  if (!a.report.empty()) {
+    const std::string text = section::compare_report(all);
+    if (a.report == "-")
+      std::cerr << text;
+    else
+      section::write_file(a.report, text);
+  }
+  const int verdict = section::stream_verdict(all);
+  return verdict == 1 ? section::tool::exit_failed : verdict == 2 ? section::tool::exit_not_measured : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int verdict = 0;
+  const int code = section::tool::run<CompareArgs>(argc, argv, [&](const CompareArgs& args) {
+    verdict = run_compare(args, section::tool::command_line(argc, argv));
+  });
+  return code != 0 ? code : verdict;
+}
