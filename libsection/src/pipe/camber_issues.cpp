@@ -21,10 +21,13 @@ std::string join(std::string a, const std::string& b) {
   return a.empty() ? b : b.empty() ? a : a + ", " + b;
 }
 
-// An edge that is not round: a flat face is reported with its width (never a circle);
-// other blunt and sharp edges as the edge model says.
+// An edge that is not round: a flat face is reported with its width and a sharp edge as
+// a vertex (never a circle); other blunt edges as the edge model says.
 std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
   if (e.shape == EdgeShape::round) return std::string();
+  if (e.shape == EdgeShape::sharp)
+    return std::string(which) + " is " + edge_shape_name(EdgeShape::sharp) +
+           (e.vertex ? ": the profile closes at a vertex" : "") + " (radius reported as 0)";
   if (e.face > 0)
     return std::string(which) + " is " + edge_shape_name(EdgeShape::blunt) + ": a flat face " +
            format_number(e.face) + " wide (radius reported as 0)";
@@ -37,8 +40,9 @@ std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
 // An edge whose point or arc lies over a hole in the measured points.
 std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* which, double edge_hole) {
   const double size = edge_size(e), unmeasured = cover.around;
+  if (!(size > 0)) return std::string();  // a vertex, or an edge given radius 0: no scale to judge by
   if (!(unmeasured > size)) {
-    if (!(cover.hole >= edge_hole * size)) return std::string();
+    if (!(cover.hole > 0 && cover.hole >= edge_hole * size)) return std::string();
     return std::string(which) + " partly not measured: " + format_number(cover.hole) +
            " of the profile without a measured point begins " + format_number(cover.hole_distance) +
            " from the edge point (edge " + (e.radius > 0 ? "radius " : "face ") + format_number(size) +
@@ -224,7 +228,8 @@ void describe_issues(const SectionFacts& f, std::vector<SectionIssue>& issues) {
     }
   }
   // The thickness rule is a near tie: say so rather than let the orientation pass as known.
-  if (!r.le_by_direction && std::abs(f.params.max_thickness_pos - 0.5) <= opt.le_thickness_margin) {
+  if (!r.le_by_direction && !r.le_by_bluntness &&
+      std::abs(f.params.max_thickness_pos - 0.5) <= opt.le_thickness_margin) {
     char text[256];
     std::snprintf(text, sizeof text,
                   "the leading edge was taken as the end nearer the maximum thickness, which lies at %.2f of "
