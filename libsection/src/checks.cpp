@@ -122,7 +122,7 @@ struct Checker {
     const double pass = f.inside ? e.radius - f.distance : e.radius + f.distance;
     const double limit = options.noise_factor * std::max(options.noise, e.fit_rms) + options.floor * pr.scale;
     if (pass > limit) return fail(c, pass, limit);
-    if (!(options.noise > 0)) return;
+    if (!(options.noise > 0) || !e.circular) return;  // not circular: flagged as such (le_circle)
     double worst = 0;
     const double span = e.arc_t1 - e.arc_t0;  // the walks from the edge point, unwrapped
     for (int i = 0; i <= 60; ++i)
@@ -140,8 +140,9 @@ struct Checker {
 
   // What an edge may leave of the extent along the chord line e: a round edge's circle
   // reaches R (1 - cos a) beyond its point, a = the angle between the end tangent and e.
+  // A nose that is not circular may reach up to its diameter beyond the point.
   static double edge_allowance(const Edge& e, const Eigen::Vector2d& tangent, const Eigen::Vector2d& e_dir) {
-    const double r = e.face > 0 ? 0.5 * e.face : e.radius;
+    const double r = e.face > 0 ? 0.5 * e.face : e.circular ? e.radius : 2 * e.radius;
     return r * (1 - std::abs(tangent.dot(e_dir)));
   }
 
