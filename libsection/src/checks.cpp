@@ -138,22 +138,29 @@ struct Checker {
     if (d > limit) fail(c, d, limit);
   }
 
-  // What an edge may leave of the extent along the chord line e: a round edge's circle
-  // reaches R (1 - cos a) beyond its point, a = the angle between the end tangent and e.
-  // A nose that is not circular may reach up to its diameter beyond the point.
-  static double edge_allowance(const Edge& e, const Eigen::Vector2d& tangent, const Eigen::Vector2d& e_dir) {
-    const double r = e.face > 0 ? 0.5 * e.face : e.circular ? e.radius : 2 * e.radius;
-    return r * (1 - std::abs(tangent.dot(e_dir)));
+  // How far the profile near an edge reaches beyond its edge point along the camber's
+  // outward end direction `out` (0 when the point is the end, as on a circle met along
+  // its radius); limit: the edge's fit (a nose that is not circular), a face's half width.
+  void edge_end(const Edge& e, const Eigen::Vector2d& out_dir, double& gap, double& limit) const {
+    const double reach = params.max_thickness + e.radius + e.face;
+    gap = 0;
+    for (const auto& p : pr.samples)
+      if ((p - e.point).norm() < reach) gap = std::max(gap, (p - e.point).dot(out_dir));
+    limit =
+        options.noise_factor * std::max(options.noise, e.fit_rms) + options.floor * pr.scale + 0.5 * e.face;
   }
 
+  // The chord: its edge points at the ends of the profile (a point up a flank makes it
+  // short), and the caliper chord the profile's extent along its line.
   void chord() {
-    const Eigen::Vector2d d = params.te_point - params.le_point;
-    if (!(d.norm() > 0)) return fail(Check::chord, 0, tol);
-    const Eigen::Vector2d e = d.normalized();
-    const double gap = extent(pr, e) - params.chord;
-    const double limit = edge_allowance(camber.le, camber.le_tangent, e) +
-                         edge_allowance(camber.te, camber.te_tangent, e) + tol;
-    if (gap > limit || gap < -tol) fail(Check::chord, gap, gap < 0 ? tol : limit);
+    double gap_le = 0, gap_te = 0, limit_le = 0, limit_te = 0;
+    edge_end(camber.le, -camber.le_tangent, gap_le, limit_le);
+    edge_end(camber.te, camber.te_tangent, gap_te, limit_te);
+    if (gap_le - limit_le > gap_te - limit_te) {
+      if (gap_le > limit_le) fail(Check::chord, gap_le, limit_le);
+    } else if (gap_te > limit_te) {
+      fail(Check::chord, gap_te, limit_te);
+    }
     const double a = params.caliper_stagger * pi / 180;
     const double caliper_gap = std::abs(extent(pr, {std::cos(a), std::sin(a)}) - params.caliper_chord);
     if (caliper_gap > tol) fail(Check::caliper, caliper_gap, tol);
@@ -171,7 +178,8 @@ struct Checker {
     const double turn = wrap(a1 - a2);
     const double expected = wrap(a1 + 0.5 * turn);
     const double noise = options.noise_factor * options.noise / l * 180 / pi;
-    const double limit = std::max(options.angle_floor, std::abs(turn)) + noise;
+    // A constant curvature extrapolates exactly; a quarter of the turning allows its change.
+    const double limit = std::max(options.angle_floor, 0.25 * std::abs(turn)) + noise;
     const double off = std::abs(wrap(reported - expected));
     if (off > limit) fail(c, off, limit);
   }
@@ -232,43 +240,60 @@ double line_at(double h, double h1, double v1, double h2, double v2, bool angle)
   return v1 + (v2 - v1) * (h - h1) / (h2 - h1);
 }
 
+// Residual of each active section from the line through its two active neighbours (at
+// an end, the two nearest: extrapolated, so its weight is halved), by height order.
+void residuals(const std::vector<BladeSection>& sections, const std::vector<std::size_t>& active,
+               const Quantity& q, std::vector<double>& expected, std::vector<double>& residual,
+               std::vector<double>& weight) {
+  const std::size_t n = active.size();
+  expected.assign(n, 0);
+  residual.assign(n, 0);
+  weight.assign(n, 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t a = k == 0 ? 1 : k == n - 1 ? n - 3 : k - 1;
+    const std::size_t b = k == 0 ? 2 : k == n - 1 ? n - 2 : k + 1;
+    const BladeSection &s = sections[active[k]], &sa = sections[active[a]], &sb = sections[active[b]];
+    expected[k] = line_at(s.height, sa.height, q.get(sa.params), sb.height, q.get(sb.params), q.angle);
+    residual[k] = q.angle ? wrap(q.get(s.params) - expected[k]) : q.get(s.params) - expected[k];
+    if (k == 0 || k == n - 1) weight[k] = 0.5;
+  }
+}
+
 }  // namespace
 
 std::vector<Jump> check_blade(const std::vector<BladeSection>& sections, const BladeCheckOptions& options) {
   std::vector<Jump> out;
   const std::size_t n = sections.size();
-  if (n < static_cast<std::size_t>(std::max(options.min_sections, 3))) return out;
+  const std::size_t least = static_cast<std::size_t>(std::max(options.min_sections, 3));
+  if (n < least) return out;
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return sections[a].height < sections[b].height; });
+  std::vector<double> expected, residual, weight;
   for (const Quantity& q : quantities) {
-    // Residual of each section from the line through its neighbours (or, at an end, the
-    // two nearest), halved at the ends (extrapolation doubles the neighbours' errors).
-    std::vector<double> value(n), expected(n), residual(n), weight(n, 1.0);
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t a = k == 0 ? 1 : k == n - 1 ? n - 3 : k - 1;
-      const std::size_t b = k == 0 ? 2 : k == n - 1 ? n - 2 : k + 1;
-      const BladeSection &s = sections[order[k]], &sa = sections[order[a]], &sb = sections[order[b]];
-      value[k] = q.get(s.params);
-      expected[k] = line_at(s.height, sa.height, q.get(sa.params), sb.height, q.get(sb.params), q.angle);
-      residual[k] = q.angle ? wrap(value[k] - expected[k]) : value[k] - expected[k];
-      if (k == 0 || k == n - 1) weight[k] = 0.5;
-    }
     // The blade's own spread of residuals (median absolute, robust to the jumps themselves).
-    std::vector<double> abs_res;
-    for (std::size_t k = 0; k < n; ++k) abs_res.push_back(std::abs(residual[k]) * weight[k]);
-    std::nth_element(abs_res.begin(), abs_res.begin() + n / 2, abs_res.end());
-    const double spread = n >= 7 ? options.spread * 1.4826 * abs_res[n / 2] : 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double limit = std::max(q.least(sections[order[k]].params, options), spread) / weight[k];
-      const double r = std::abs(residual[k]);
-      if (!(r > limit)) continue;
-      // The section that jumps departs more than its neighbours (whose residuals it drags).
-      bool largest = true;
-      for (std::size_t j : {k - 1, k + 1})
-        if (j < n && std::abs(residual[j]) * weight[j] > r * weight[k]) largest = false;
-      if (largest) out.push_back({order[k], q.check, value[k], expected[k], limit});
+    residuals(sections, order, q, expected, residual, weight);
+    std::vector<double> spread_of;
+    for (std::size_t k = 0; k < n; ++k) spread_of.push_back(std::abs(residual[k]) * weight[k]);
+    std::nth_element(spread_of.begin(), spread_of.begin() + n / 2, spread_of.end());
+    const double spread = n >= 7 ? options.spread * 1.4826 * spread_of[n / 2] : 0.0;
+    // The section departing most (against its limit) is flagged and left out, and the
+    // others compared again: a jump drags its neighbours' residuals, never flags them.
+    std::vector<std::size_t> active = order;
+    while (active.size() >= least) {
+      residuals(sections, active, q, expected, residual, weight);
+      std::size_t worst = 0;
+      double worst_ratio = 0, worst_limit = 0;
+      for (std::size_t k = 0; k < active.size(); ++k) {
+        const double limit = std::max(q.least(sections[active[k]].params, options), spread);
+        const double ratio = std::abs(residual[k]) * weight[k] / std::max(limit, 1e-300);
+        if (ratio > worst_ratio) worst_ratio = ratio, worst = k, worst_limit = limit / weight[k];
+      }
+      if (!(worst_ratio > 1)) break;
+      out.push_back(
+          {active[worst], q.check, q.get(sections[active[worst]].params), expected[worst], worst_limit});
+      active.erase(active.begin() + static_cast<long>(worst));
     }
   }
   std::stable_sort(out.begin(), out.end(), [](const Jump& a, const Jump& b) { return a.index < b.index; });

@@ -239,10 +239,11 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
                     k.check == Check::le_point ? "leading-edge" : "trailing-edge", name, k.value, k.limit);
       break;
     case Check::chord:
-      std::snprintf(text, sizeof text,
-                    "chord %.6g fails check %s: the profile's extent along the chord line exceeds it by %.3g "
-                    "(the edges allow %.3g): the edge points are not at the ends of the profile",
-                    p.chord, name, k.value, k.limit);
+      std::snprintf(
+          text, sizeof text,
+          "chord %.6g fails check %s: the profile reaches %.3g beyond an edge point along the camber "
+          "line's end direction (at most %.3g): the edge points are not at the ends of the profile",
+          p.chord, name, k.value, k.limit);
       break;
     case Check::caliper:
       std::snprintf(text, sizeof text,
