@@ -10,6 +10,7 @@
 namespace section {
 
 using detail::cross;
+using detail::degrees;
 using detail::pi;
 using detail::SampledProfile;
 
@@ -20,17 +21,6 @@ const char* check_name(Check check) {
 }
 
 namespace {
-
-double degrees(const Eigen::Vector2d& d) {
-  return std::atan2(d.y(), d.x()) * 180 / pi;
-}
-
-double wrap(double a) {
-  a = std::fmod(a, 360);
-  if (a > 180) a -= 360;
-  if (a <= -180) a += 360;
-  return a;
-}
 
 // Distance from q to the profile: the nearest sample's segment, refined by Newton on the
 // exact curve (the foot point), and whether q lies inside (crossings of a ray along +u).
@@ -175,12 +165,12 @@ struct Checker {
                           p2 = camber_at(camber, s0 + 2 * sign * l);
     // Directions toward the TE.
     const double a1 = degrees(sign * (p1 - p0)), a2 = degrees(sign * (p2 - p1));
-    const double turn = wrap(a1 - a2);
-    const double expected = wrap(a1 + 0.5 * turn);
+    const double turn = detail::wrap_degrees(a1 - a2);
+    const double expected = detail::wrap_degrees(a1 + 0.5 * turn);
     const double noise = options.noise_factor * options.noise / l * 180 / pi;
     // A constant curvature extrapolates exactly; a quarter of the turning allows its change.
     const double limit = std::max(options.angle_floor, 0.25 * std::abs(turn)) + noise;
-    const double off = std::abs(wrap(reported - expected));
+    const double off = std::abs(detail::wrap_degrees(reported - expected));
     if (off > limit) fail(c, off, limit);
   }
 };
@@ -235,7 +225,7 @@ const Quantity quantities[] = {
 // The value expected at height h from (h1, v1) and (h2, v2): the line through them (angles
 // unwrapped about v1).
 double line_at(double h, double h1, double v1, double h2, double v2, bool angle) {
-  if (angle) v2 = v1 + wrap(v2 - v1);
+  if (angle) v2 = v1 + detail::wrap_degrees(v2 - v1);
   if (!(std::abs(h2 - h1) > 0)) return 0.5 * (v1 + v2);
   return v1 + (v2 - v1) * (h - h1) / (h2 - h1);
 }
@@ -254,7 +244,8 @@ void residuals(const std::vector<BladeSection>& sections, const std::vector<std:
     const std::size_t b = k == 0 ? 2 : k == n - 1 ? n - 2 : k + 1;
     const BladeSection &s = sections[active[k]], &sa = sections[active[a]], &sb = sections[active[b]];
     expected[k] = line_at(s.height, sa.height, q.get(sa.params), sb.height, q.get(sb.params), q.angle);
-    residual[k] = q.angle ? wrap(q.get(s.params) - expected[k]) : q.get(s.params) - expected[k];
+    residual[k] =
+        q.angle ? detail::wrap_degrees(q.get(s.params) - expected[k]) : q.get(s.params) - expected[k];
     if (k == 0 || k == n - 1) weight[k] = 0.5;
   }
 }

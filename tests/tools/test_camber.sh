@@ -92,6 +92,7 @@ if [ -x "$BIN/bladegen" ] && [ -x "$BIN/slice" ] && [ -x "$BIN/smooth" ] && [ -x
   st="${PIPESTATUS[*]}"
   check "the full pipe runs (exit statuses $st)" -- test "$st" = "0 0 0 0"
   check "the full pipe writes params for 3 sections" -- test "$(grep -c '^[0-9]' "$TMP/pipe.csv")" -eq 3
+  check "no value of the generated blade is flagged (flags 0)" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } { if ($c["flags"] != 0) exit 1 }' "$TMP/pipe.csv"
 fi
 # Edge circles refitted to the measured points (the stream's points table), or fitted to
 # the spline's arcs alone with --edge-on-spline: both within 3 % of the true LE radius
