@@ -54,8 +54,10 @@ InscribedCircle reversed(InscribedCircle c) {
 }
 
 // Orders the branch from LE to TE: the LE is the end farther along le_direction when
-// given, else the blunter end (its last circle le_bluntness times the other's or more; a
-// sharp edge's is near 0), else the end nearer the thickest circle.
+// given, else the blunter end when the other is sharp (its last circle under sharp_ratio
+// of the largest diameter, the other's le_bluntness times it or more: the last circles of
+// two round ends vary too much with pruning to compare), else the end nearer the thickest
+// circle.
 void orient(std::vector<InscribedCircle>& circles, const CamberOptions& options, CamberResult& res) {
   double length = 0, before = 0, widest = 0;
   for (std::size_t k = 1; k < circles.size(); ++k) {
@@ -67,7 +69,8 @@ void orient(std::vector<InscribedCircle>& circles, const CamberOptions& options,
   if (options.le_direction.norm() > 0) {
     res.le_by_direction = true;
     flip = circles.back().center.dot(options.le_direction) > circles.front().center.dot(options.le_direction);
-  } else if (options.le_bluntness > 0 && std::max(r0, r1) >= options.le_bluntness * std::min(r0, r1)) {
+  } else if (options.le_bluntness > 0 && std::min(r0, r1) < options.sharp_ratio * 2 * widest &&
+             std::max(r0, r1) >= options.le_bluntness * std::min(r0, r1)) {
     res.le_by_bluntness = true;
     flip = r1 > r0;
   }

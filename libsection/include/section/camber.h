@@ -42,9 +42,10 @@ struct CamberOptions {
   /// The LE is the end farther along this direction when non-zero; zero = the LE is the
   /// blunter end (see le_bluntness), else the end nearer the maximum thickness.
   Eigen::Vector2d le_direction{0, 0};
-  /// The blunter end is the LE when the last medial circle at one end is at least this many
-  /// times the other's (a sharp edge's is near 0); 0 = thickness alone.
-  double le_bluntness = 1.5;
+  /// The blunter end is the LE when the other end is sharp (its last medial circle under
+  /// sharp_ratio of the largest diameter) and this one's is at least this many times it;
+  /// 0 = thickness alone.
+  double le_bluntness = 3;
   /// Stream: the LE direction in 3D (the cloud's x, y, z), projected onto each section's
   /// plane; used when non-zero and le_direction is zero.
   Eigen::Vector3d le_direction_3d{0, 0, 0};
