@@ -15,6 +15,7 @@
 #include "section/extras/score.h"
 #include "section/fit_spline.h"
 #include "section/io/stream.h"
+#include "section/checks.h"
 #include "section/pipe/camber_stream.h"
 #include "section/pipe/fit_spline_stream.h"
 #include "section/pipe/slice_stream.h"
@@ -258,6 +259,7 @@ void run_pipe(Case& c, const Cloud& cloud, const Options& opt) {
   if (opt.with_camber) {
     const auto c0 = std::chrono::steady_clock::now();
     camber_stream(stream, opt.camber_options);
+    check_blade_stream({&stream});
     c.camber_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count() / zs.size();
     stream = parse_stream(format_stream(stream), "camber");
@@ -429,6 +431,15 @@ std::string where_columns(const Case& c, int id, const SectionTruth& truth, cons
         line += buf;
       }
   }
+  // The checks the section's params failed (the params table's flags, section/checks.h).
+  if (const Table* par = c.stream.find("params"))
+    for (std::size_t r = 0; r < par->rows(); ++r)
+      if (int(par->at(r, 0)) == id && par->at(r, par->column("flags")) != 0) {
+        line += " flags";
+        const auto flags = static_cast<std::uint32_t>(par->at(r, par->column("flags")));
+        for (const auto& k : check_names)
+          if (flags & bit(k.check)) line += std::string(":") + k.name;
+      }
   // Edges camber flagged as not measured (a hole or too few points on the edge).
   for (const auto& is : c.stream.issues)
     if (is.section == id && is.stage == "camber") {

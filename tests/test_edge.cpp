@@ -290,3 +290,29 @@ TEST_CASE("edge: a hole beside an edge point is flagged as partly not measured",
     }
   }
 }
+
+TEST_CASE("edge: an edge without a radius is not reported partly not measured by a hole of 0", "[edge]") {
+  // `--edge auto` said "trailing edge partly not measured: 0 of the profile without a
+  // measured point begins 0 from the edge point" on an edge given radius 0: a sharp TE
+  // (NACA 0012, closed) with its measured points, in both edge models.
+  const std::vector<Vector2d> pts = naca0012();
+  for (auto model : {section::EdgeModel::round, section::EdgeModel::automatic}) {
+    section::Stream stream = section::profile_stream(dense_spline(pts));
+    section::Table points{"points", {"section", "loop", "index", "u", "v"}, {}};
+    for (std::size_t i = 0; i < pts.size(); i += 4)
+      points.add_row({0, 0, double(i / 4), pts[i].x(), pts[i].y()});
+    stream.put(points);
+    section::CamberOptions o;
+    o.edge = model;
+    section::camber_stream(stream, o);
+    REQUIRE(stream.find("params")->rows() == 1);
+    for (const auto& issue : stream.issues) {
+      INFO(issue.message);
+      CHECK(issue.message.find("not measured") == std::string::npos);
+      CHECK(issue.message.find("begins 0 from") == std::string::npos);
+    }
+    const section::Table& params = *stream.find("params");
+    CHECK(params.at(0, params.column("te_shape")) == 2);
+    CHECK(params.at(0, params.column("te_radius")) == 0);
+  }
+}

@@ -38,14 +38,19 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     if (!units.note.empty()) stream.notes.push_back(units.note);
     return stream;
   };
+  // The check across the blade needs every section: the parts are held until all are measured.
+  run.hold = [](const std::vector<section::Stream*>& parts) { section::check_blade_stream(parts); };
+  section::tool::SectionTally tally("splines", "params");
   run.written = [&](const section::Stream& stream) {
     section::tool::warn_issues("camber", stream, false);
+    tally.add(stream);
     section::append_rows(params, section::schema::params.get(stream));
     section::append_rows(thickness, section::schema::thickness.get(stream));
   };
   section::run_stage(run);
   if (!a.params_file.empty()) section::write_file(a.params_file, section::format_csv(params));
   if (!a.thickness_file.empty()) section::write_file(a.thickness_file, section::format_csv(thickness));
+  tally.check(a.allow_partial);
 }
 
 }  // namespace

@@ -31,7 +31,6 @@ namespace {
 // The medial branch's length along its centres and its widest circle.
 struct BranchSize {
   double length = 0, widest = 0;
-  int widest_k = 0;
 };
 
 // Blade-likeness: a circle or a square has a medial axis about as long as it is wide.
@@ -39,7 +38,7 @@ BranchSize blade_size(const std::vector<InscribedCircle>& circles, const CamberO
   BranchSize b;
   for (std::size_t k = 0; k < circles.size(); ++k) {
     if (k) b.length += (circles[k].center - circles[k - 1].center).norm();
-    if (circles[k].radius > b.widest) b.widest = circles[k].radius, b.widest_k = static_cast<int>(k);
+    b.widest = std::max(b.widest, circles[k].radius);
   }
   if (b.length < options.min_slenderness * 2 * b.widest)
     throw Error("camber: the profile is not blade-like: its medial axis (" + std::to_string(b.length) +
@@ -54,16 +53,26 @@ InscribedCircle reversed(InscribedCircle c) {
   return c;
 }
 
-// Orders the branch from LE to TE: the LE is the end nearer the thickest circle, or the
-// end farther along le_direction when given.
-void orient(std::vector<InscribedCircle>& circles, const BranchSize& size, const CamberOptions& options,
-            CamberResult& res) {
-  double before = 0;
-  for (int k = 1; k <= size.widest_k; ++k) before += (circles[k].center - circles[k - 1].center).norm();
-  bool flip = before > 0.5 * size.length;
+// Orders the branch from LE to TE: the LE is the end farther along le_direction when
+// given, else the blunter end when the other is sharp (its last circle under sharp_ratio
+// of the largest diameter, the other's le_bluntness times it or more: the last circles of
+// two round ends vary too much with pruning to compare), else the end nearer the thickest
+// circle.
+void orient(std::vector<InscribedCircle>& circles, const CamberOptions& options, CamberResult& res) {
+  double length = 0, before = 0, widest = 0;
+  for (std::size_t k = 1; k < circles.size(); ++k) {
+    length += (circles[k].center - circles[k - 1].center).norm();
+    if (circles[k].radius > widest) widest = circles[k].radius, before = length;
+  }
+  bool flip = before > 0.5 * length;
+  const double r0 = circles.front().radius, r1 = circles.back().radius;
   if (options.le_direction.norm() > 0) {
     res.le_by_direction = true;
     flip = circles.back().center.dot(options.le_direction) > circles.front().center.dot(options.le_direction);
+  } else if (options.le_bluntness > 0 && std::min(r0, r1) < options.sharp_ratio * 2 * widest &&
+             std::max(r0, r1) >= options.le_bluntness * std::min(r0, r1)) {
+    res.le_by_bluntness = true;
+    flip = r1 > r0;
   }
   if (flip) {
     std::reverse(circles.begin(), circles.end());
@@ -188,6 +197,7 @@ void end_at_centre(const SampledProfile& pr, std::vector<InscribedCircle>& circl
                    const InscribedCircle& end, const Eigen::Vector2d& d, bool front,
                    const CamberOptions& options) {
   if (e.shape == EdgeShape::blunt && e.face > 0) return;  // a face, not a circle: see trim_at_face
+  if (e.shape == EdgeShape::sharp) return;                // a vertex, not a circle
   const bool round = e.shape == EdgeShape::round || options.edge == EdgeModel::round;
   // A circle much larger than the end's inscribed circle fits a flank, not the edge; on
   // an edge that is not circular the fitted centre moves with the arc taken.
@@ -260,6 +270,7 @@ Ends settle_edges(const SampledProfile& pr, const std::vector<InscribedCircle>& 
 // inside its points, the circle through them does not (docs/CAMBER.md).
 void final_edge_point(const SampledProfile& pr, const InscribedCircle& end, const Eigen::Vector2d& d,
                       Edge& e) {
+  if (e.vertex) return;  // the vertex is the edge point
   double t = 0;
   if (detail::ray_hit(pr, end.center, d, t))
     e.point = pr.fast.jet(t).point, e.t = t;
@@ -434,18 +445,18 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
   MedialAxis ma = medial_axis(profile, options.medial);
   std::vector<InscribedCircle> medial = ma.circles;
   const BranchSize size = blade_size(medial, options);
-  orient(medial, size, options, res);
   prune_ends(medial, options.edge_prune);
+  orient(medial, options, res);
   AxisCurve ax = detail::make_axis(detail::centers(medial), 1e-8);
   Ends ends = settle_edges(pr, medial, ax, size, options, measured);
   const std::vector<InscribedCircle>& circles = ends.circles;
   std::tie(res.le_tangent, res.te_tangent) = end_tangents(ax, circles, options.tangent_span, size.length);
   final_edge_point(pr, circles.front(), -res.le_tangent, ends.le);
   final_edge_point(pr, circles.back(), res.te_tangent, ends.te);
-  if (options.edge == EdgeModel::automatic) {
-    if (ends.le.shape != EdgeShape::round) ends.le.radius = 0;
-    if (ends.te.shape != EdgeShape::round) ends.te.radius = 0;
-  }
+  for (Edge* e : {&ends.le, &ends.te})
+    if (e->shape == EdgeShape::sharp ||
+        (options.edge == EdgeModel::automatic && e->shape != EdgeShape::round))
+      e->radius = 0;
   res.le = ends.le;
   res.te = ends.te;
   ma.circles = circles;

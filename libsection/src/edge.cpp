@@ -430,6 +430,43 @@ bool straightest_cap(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2
   return found;
 }
 
+// The vertex of a sharp edge: the profile point farthest along d near the end circle
+// `end` (the medial branch runs into the vertex, its last circle shrinking to the spline's
+// rounding of the corner), refined to where the tangent is square to d.
+Edge sharp_vertex(const SampledProfile& pr, const InscribedCircle& end, const Eigen::Vector2d& d) {
+  const int n = static_cast<int>(pr.samples.size());
+  const int near = pr.nearest(end.center);
+  const double reach = std::max(20 * end.radius, 2 * pr.period / n * pr.fast.jet(pr.ts[near]).d1.norm());
+  int best = near;
+  for (int dir : {-1, 1})
+    for (int k = 1; k < n / 4; ++k) {
+      const int i = ((near + dir * k) % n + n) % n;
+      if ((pr.samples[i] - end.center).norm() > reach) break;
+      if (pr.samples[i].dot(d) > pr.samples[best].dot(d)) best = i;
+    }
+  double t = pr.ts[best];
+  const double h = pr.period / n;
+  for (int it = 0; it < 30; ++it) {
+    const detail::CurveJet j = pr.fast.jet(t);
+    const double g = j.d1.dot(d), dg = j.d2.dot(d);
+    if (!(dg < 0)) break;  // past a maximum along d: keep the sample's
+    const double step = std::clamp(g / dg, -h, h);
+    t -= step;
+    if (std::abs(step) < 1e-15 * pr.period) break;
+  }
+  Edge e;
+  e.t = pr.wrap(t);
+  e.point = pr.fast.jet(e.t).point;
+  if (e.point.dot(d) < pr.samples[best].dot(d)) e.t = pr.ts[best], e.point = pr.samples[best];
+  e.center = e.point;
+  e.arc_t0 = e.arc_t1 = e.t;
+  e.shape = EdgeShape::sharp;
+  e.vertex = true;
+  const double k = pr.convexity(e.t);
+  e.curvature_radius = k > 0 ? 1 / k : 0;
+  return e;
+}
+
 void classify_edge(Edge& e, double max_diameter, const CamberOptions& options) {
   if (e.radius < options.sharp_ratio * max_diameter)
     e.shape = EdgeShape::sharp;
@@ -481,6 +518,8 @@ Face blunt_face(const SampledProfile& pr, const std::vector<InscribedCircle>& fr
 Edge detect_edge(const SampledProfile& pr, const InscribedCircle& end, const Eigen::Vector2d& d,
                  const Face& face, double max_diameter, const CamberOptions& options,
                  const std::vector<Eigen::Vector2d>& measured) {
+  // The medial branch runs into a vertex: a sharp (closed) edge, no circle to fit.
+  if (!face.found && end.radius < options.sharp_ratio * max_diameter) return sharp_vertex(pr, end, d);
   Edge e;
   try {
     e = measure_edge(pr, end, d, options, measured);

@@ -17,20 +17,12 @@
 namespace section {
 
 using detail::cross;
+using detail::degrees;
 using detail::left_normal;
 using detail::pi;
+using detail::wrap_degrees;
 
 namespace {
-
-double degrees(const Eigen::Vector2d& d) {
-  return std::atan2(d.y(), d.x()) * 180 / pi;
-}
-double wrap_degrees(double a) {
-  a = std::fmod(a, 360);
-  if (a > 180) a -= 360;
-  if (a <= -180) a += 360;
-  return a;
-}
 
 // Indices of the convex hull of points (counterclockwise, Andrew's monotone chain).
 std::vector<int> convex_hull(const std::vector<Eigen::Vector2d>& p) {

@@ -43,15 +43,41 @@ check "a 3D --le-direction sets the LE" -- awk -F, 'NR == 1 { for (i = 1; i <= N
 expect 0 "camber --le-direction -1,0,0" -- "$camber" "$TMP/ellipse.dat" --le-direction=-1,0,0 --params "$TMP/p4.csv" -o /dev/null
 check "a 3D --le-direction the other way" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } { if ($c["le_u"] > -19.9 || $c["le_by_direction"] != 1) exit 1 }' \
   "$TMP/p4.csv"
-expect 0 "camber --le-direction 0,0,1" -- "$camber" "$TMP/ellipse.dat" --le-direction 0,0,1 -o "$TMP/normal.txt"
+expect 3 "camber --le-direction 0,0,1 (no params: exit 3)" -- "$camber" "$TMP/ellipse.dat" --le-direction 0,0,1 -o "$TMP/normal.txt"
 check "a direction normal to the plane is an issue" -- grep -q "is normal to the plane of section 0" "$TMP/normal.txt"
+check "the stream is still written whole" -- grep -q "^# table params$" "$TMP/normal.txt"
 expect 2 "camber --le-direction 1,2,3,4" -- "$camber" "$TMP/ellipse.dat" --le-direction 1,2,3,4
 
-# A circle is not a blade: an issue and a warning, no params row, exit 0.
+# A circle is not a blade: an issue and a warning, no params row, exit 3 (a section asked
+# about has no params; README "Exit status"), or 0 with --allow-partial.
 awk 'BEGIN { for (i = 0; i < 500; ++i) { t = 2 * 3.14159265358979 * i / 500; printf "%.9f,%.9f\n", 5 * cos(t), 5 * sin(t) } }' > "$TMP/circle.csv"
-expect 0 "camber on a circle" -- "$camber" "$TMP/circle.csv" -o "$TMP/circle.txt"
+expect 3 "camber on a circle" -- "$camber" "$TMP/circle.csv" -o "$TMP/circle.txt" --params "$TMP/circle_params.csv"
 check "a warning for a circle" -- grep -q "not blade-like" "$TMP/err"
+check "exit 3 is explained" -- grep -q "camber: incomplete: 1 of 1 sections have no params (section 0" "$TMP/err"
 check "an issue recorded for a circle" -- grep -q "^# issue section=0 .*stage=camber" "$TMP/circle.txt"
+check "the stream ends with # end or is whole" -- grep -q "^# table params$" "$TMP/circle.txt"
+check "the params CSV has its header and no row" -- test "$(wc -l < "$TMP/circle_params.csv")" = 1
+expect 0 "camber on a circle --allow-partial" -- "$camber" "$TMP/circle.csv" -o /dev/null --allow-partial
+check "--help names exit status 3" -- sh -c "'$camber' --help | grep -q '3 the stream is written but some sections have no params'"
+
+# A NACA 4412 whose trailing edge closes at one vertex, as a plain profile (Selig order,
+# the TE point repeated): measured, the TE sharp with radius 0 at the vertex (100, 0),
+# exit 0 (it failed with "end tangent does not meet the profile" and an empty params file).
+awk 'BEGIN { pi = 3.14159265358979; m = 0.04; p = 0.4; t = 0.12; n = 150; print "NACA 4412 closed TE"
+  for (k = 0; k < 2 * n - 1; ++k) {
+    i = k < n ? n - 1 - k : k - n + 1; up = k < n ? 1 : -1
+    x = (1 - cos(pi * i / (n - 1))) / 2
+    yt = 5 * t * (0.2969 * sqrt(x) - 0.1260 * x - 0.3516 * x^2 + 0.2843 * x^3 - 0.1036 * x^4)
+    if (x < p) { yc = m / p^2 * (2 * p * x - x^2); dy = 2 * m / p^2 * (p - x) }
+    else { yc = m / (1 - p)^2 * (1 - 2 * p + 2 * p * x - x^2); dy = 2 * m / (1 - p)^2 * (p - x) }
+    th = atan2(dy, 1)
+    printf "%.6f %.6f\n", 100 * (x - up * yt * sin(th)), 100 * (yc + up * yt * cos(th)) } }' > "$TMP/naca4412.dat"
+expect 0 "camber on a NACA 4412 with a closed TE" -- "$camber" "$TMP/naca4412.dat" --params "$TMP/naca.csv" -o /dev/null
+check "its TE is sharp, radius 0, at the vertex (100, 0) within 10 um" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { du = $c["te_u"] - 100; dv = $c["te_v"]; if ($c["te_shape"] != 2 || $c["te_radius"] != 0 || du * du + dv * dv > 1e-4) exit 1 }' "$TMP/naca.csv"
+check "the TE is named sharp in the issue" -- grep -q "trailing edge is sharp: the profile closes at a vertex" "$TMP/err"
+check "the LE is the blunt end (by bluntness)" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { if ($c["le_u"] > 1 || $c["le_by_bluntness"] != 1) exit 1 }' "$TMP/naca.csv"
 
 # Bad data: a malformed row names the line and exits 1.
 printf '1 2\n3 4\n5 x\n' > "$TMP/bad.txt"
@@ -66,6 +92,7 @@ if [ -x "$BIN/bladegen" ] && [ -x "$BIN/slice" ] && [ -x "$BIN/smooth" ] && [ -x
   st="${PIPESTATUS[*]}"
   check "the full pipe runs (exit statuses $st)" -- test "$st" = "0 0 0 0"
   check "the full pipe writes params for 3 sections" -- test "$(grep -c '^[0-9]' "$TMP/pipe.csv")" -eq 3
+  check "no value of the generated blade is flagged (flags 0)" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } { if ($c["flags"] != 0) exit 1 }' "$TMP/pipe.csv"
 fi
 # Edge circles refitted to the measured points (the stream's points table), or fitted to
 # the spline's arcs alone with --edge-on-spline: both within 3 % of the true LE radius

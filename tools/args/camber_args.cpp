@@ -15,6 +15,13 @@ const char* const CamberArgs::description =
     "inscribed circles' centres, extended along its end tangents to the LE and TE points)\n"
     "and the section parameters. Adds the tables 'camber', 'params', 'thickness' and\n"
     "'sides' to the stream; sections that fail are recorded as issues.\n\n"
+    "Every params row is checked before it is written (edge circles inside the blade, edge\n"
+    "points on the profile, chord against the profile's extent, metal angles against the\n"
+    "camber line, values against the neighbouring sections): a value that fails a check is\n"
+    "flagged in the row's 'flags' column and by an issue (docs/CAMBER.md, \"Checks\").\n\n"
+    "Exit status: 0 every section has params (flags or not), 1 bad data, 2 bad usage,\n"
+    "3 the stream is written but some sections have no params (see their issues; exit 0\n"
+    "with --allow-partial).\n\n"
     "Example: slice blade.ply --count 9 | smooth | fitspline | camber --params params.csv";
 
 std::vector<double> numbers(const std::string& text, const std::string& flag) {
@@ -125,6 +132,7 @@ void CamberArgs::declare(CLI::App& app) {
                      "): converted to mm, the stream's unit; default mm, or m for a profile under 1 "
                      "across (with a warning). A stream says its own unit.")
       ->check(length_unit);
+  add_allow_partial(app, allow_partial);
   app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
       ->check(CLI::NonNegativeNumber);
   app.callback([this] {

@@ -19,7 +19,8 @@ struct CamberArgs {
   std::string thickness_file;  ///< --thickness: the thickness table (CSV) to this file
   std::string stations, le_direction, edge = "round";  ///< those flags as given
   bool edge_on_spline = false;
-  std::string units;  ///< --units: a plain profile's length unit ("" = mm, or m by its extent)
+  bool allow_partial = false;  ///< --allow-partial: exit 0 when some sections have no params
+  std::string units;           ///< --units: a plain profile's length unit ("" = mm, or m by its extent)
   /// Declares the options on `app`, bound to these fields.
   void declare(CLI::App& app);
 };

@@ -66,13 +66,50 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
   if (code >= 0) return code;
   try {
     body();
-    return 0;
+    return exit_ok;
+  } catch (const Incomplete& e) {
+    std::cerr << name << ": incomplete: " << e.what() << "\n";
+    return exit_incomplete;
   } catch (const std::bad_alloc&) {
     std::cerr << name << ": error: out of memory\n";
   } catch (const std::exception& e) {
     std::cerr << name << ": error: " << e.what() << "\n";
   }
   return 1;
+}
+
+void add_allow_partial(CLI::App& app, bool& allow) {
+  app.add_flag("--allow-partial", allow,
+               "Exit 0 even when some sections have no result (each has an issue); without it such a run "
+               "exits 3 once its output is written");
+}
+
+void SectionTally::add(const section::Stream& part) {
+  auto sections_of = [](const section::Table* t, std::set<int>& into) {
+    if (!t) return;
+    const long c = t->find_column("section");
+    if (c < 0) return;
+    for (std::size_t r = 0; r < t->rows(); ++r) into.insert(static_cast<int>(t->at(r, std::size_t(c))));
+  };
+  sections_of(part.find("frames"), asked_);
+  sections_of(part.find(input_), asked_);
+  sections_of(part.find(output_), done_);
+  for (const auto& issue : part.issues)
+    if (issue.section >= 0) asked_.insert(issue.section);
+}
+
+void SectionTally::check(bool allow_partial) const {
+  std::vector<int> missing;
+  for (int s : asked_)
+    if (!done_.count(s)) missing.push_back(s);
+  if (missing.empty() || allow_partial) return;
+  std::string list;
+  for (std::size_t i = 0; i < missing.size() && i < 20; ++i)
+    list += (i ? ", " : "") + std::to_string(missing[i]);
+  if (missing.size() > 20) list += ", ...";
+  throw Incomplete(std::to_string(missing.size()) + " of " + std::to_string(asked_.size()) +
+                   " sections have no " + output_ + " (section" + (missing.size() > 1 ? "s " : " ") + list +
+                   ": see their issues); the output holds the others; --allow-partial accepts this");
 }
 
 void with_input(const std::string& input, const std::function<void()>& stage) {

@@ -1,6 +1,7 @@
 #pragma once
 // Shared plumbing of the command-line tools: common flags, the single top-level catch,
-// exit codes (0 success or --help, 1 bad data, 2 bad usage).
+// exit codes (0 success or --help, 1 bad data, 2 bad usage, 3 some sections without a
+// result).
 #include "section/io/stream.h"
 #include "section/pipe/run_stage.h"
 
@@ -8,9 +9,48 @@
 
 #include <functional>
 #include <iosfwd>
+#include <set>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace section::tool {
+
+/// The tools' exit statuses (README, "Exit status").
+enum ExitStatus : int {
+  exit_ok = 0,          ///< success, --help, --version
+  exit_bad_data = 1,    ///< bad input data (a message names the file and line or section)
+  exit_bad_usage = 2,   ///< bad command line
+  exit_incomplete = 3,  ///< the output is written, but some sections asked for have no result
+};
+
+/// Thrown by a tool's body once its output is complete when some sections asked for have
+/// no result: run_tool prints `NAME: incomplete: message` and returns exit_incomplete.
+struct Incomplete : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Declares --allow-partial bound to `allow` (accept a result without some sections: exit 0).
+void add_allow_partial(CLI::App& app, bool& allow);
+
+/// The sections a stage was asked about and those it gave a result for, tallied over the
+/// parts of its output as they are written (StageRun::written).
+class SectionTally {
+public:
+  /// `input`: the table whose sections the stage works on; `output`: the table it writes.
+  SectionTally(std::string input, std::string output)
+      : input_(std::move(input)), output_(std::move(output)) {}
+  /// Takes a part (or the whole stream): its frames, issues and input table's sections are
+  /// asked about, its output table's sections have a result.
+  void add(const section::Stream& part);
+  /// Throws Incomplete (naming the sections without a result) unless every section asked
+  /// about has one or `allow_partial`.
+  void check(bool allow_partial) const;
+
+private:
+  std::string input_, output_;
+  std::set<int> asked_, done_;
+};
 
 /// Flags every tool has.
 struct Common {
@@ -28,8 +68,8 @@ int parse_args(const std::string& name, const std::string& description, int argc
                const std::function<void(CLI::App&)>& declare, std::ostream& out, std::ostream& err);
 
 /// Parses argv as parse_args does, then runs `body`. Prints `NAME: error: message` on
-/// stderr and returns 1 on section::Error or any other exception, 2 on bad usage, 0 on
-/// success or --help/--version.
+/// stderr and returns 1 on section::Error or any other exception, 2 on bad usage, 3
+/// (`NAME: incomplete: message`) on Incomplete, 0 on success or --help/--version.
 int run_tool(const std::string& name, const std::string& description, int argc, char** argv,
              const std::function<void(CLI::App&)>& declare, const std::function<void()>& body);
 

@@ -40,8 +40,12 @@ struct CamberOptions {
   double sharp_ratio = 0.01;          ///< sharp: radius below this fraction of the largest diameter
   double min_slenderness = 2;         ///< not a blade: axis length below this x largest diameter
   /// The LE is the end farther along this direction when non-zero; zero = the LE is the
-  /// end nearer the maximum thickness.
+  /// blunter end (see le_bluntness), else the end nearer the maximum thickness.
   Eigen::Vector2d le_direction{0, 0};
+  /// The blunter end is the LE when the other end is sharp (its last medial circle under
+  /// sharp_ratio of the largest diameter) and this one's is at least this many times it;
+  /// 0 = thickness alone.
+  double le_bluntness = 3;
   /// Stream: the LE direction in 3D (the cloud's x, y, z), projected onto each section's
   /// plane; used when non-zero and le_direction is zero.
   Eigen::Vector3d le_direction_3d{0, 0, 0};
@@ -68,7 +72,8 @@ struct CamberResult {
   double thickest_s = 0;                               ///< its arc length from the LE point
   /// +1 when the pressure (concave) side lies left of the LE-to-TE direction, -1 right.
   int pressure_side = -1;
-  bool le_by_direction = false;  ///< LE chosen by CamberOptions::le_direction (else by thickness)
+  bool le_by_direction = false;  ///< LE chosen by CamberOptions::le_direction
+  bool le_by_bluntness = false;  ///< LE chosen as the blunter end (else by thickness)
   double orientation = 1;        ///< +1 when the profile runs counterclockwise, -1 clockwise
   /// The most by which a sample between the extensions lies nearer the profile than its
   /// inscribed radius says (0 on the medial axis; large where the line was interpolated),

@@ -7,8 +7,9 @@
 namespace section {
 
 /// Edge model: `round` fits a circle to every edge; `automatic` fits it only to edges
-/// detected as round and reports blunt and sharp edges with radius 0. A blunt edge with a
-/// flat face (Edge::face > 0) gets radius 0 in both models: a face is not a circle.
+/// detected as round and reports blunt edges with radius 0. A blunt edge with a flat face
+/// (Edge::face > 0) and a sharp edge get radius 0 in both models: a face or a vertex is
+/// not a circle.
 enum class EdgeModel { round, automatic };
 /// Detected edge shape.
 enum class EdgeShape { round = 0, blunt = 1, sharp = 2 };
@@ -46,6 +47,9 @@ struct Edge {
   bool circular = true;
   double face = 0;         ///< blunt edge with a flat face: the face's width (0 otherwise)
   bool on_points = false;  ///< the circle was refitted to the measured points on the arc
+  /// Sharp (closed) edge: the medial branch runs into a vertex of the profile, which is
+  /// the edge point (radius 0, centre = point, no arc).
+  bool vertex = false;
 };
 
 }  // namespace section

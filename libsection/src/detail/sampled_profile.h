@@ -18,6 +18,17 @@ constexpr double pi = 3.14159265358979323846;
 inline Eigen::Vector2d left_normal(const Eigen::Vector2d& d) {
   return {-d.y(), d.x()};
 }
+/// The angle of d in degrees from +u, in (-180, 180].
+inline double degrees(const Eigen::Vector2d& d) {
+  return std::atan2(d.y(), d.x()) * 180 / pi;
+}
+/// An angle in degrees wrapped into (-180, 180].
+inline double wrap_degrees(double a) {
+  a = std::fmod(a, 360);
+  if (a > 180) a -= 360;
+  if (a <= -180) a += 360;
+  return a;
+}
 /// The z component of a x b.
 inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();

@@ -21,10 +21,13 @@ std::string join(std::string a, const std::string& b) {
   return a.empty() ? b : b.empty() ? a : a + ", " + b;
 }
 
-// An edge that is not round: a flat face is reported with its width (never a circle);
-// other blunt and sharp edges as the edge model says.
+// An edge that is not round: a flat face is reported with its width and a sharp edge as
+// a vertex (never a circle); other blunt edges as the edge model says.
 std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
   if (e.shape == EdgeShape::round) return std::string();
+  if (e.shape == EdgeShape::sharp)
+    return std::string(which) + " is " + edge_shape_name(EdgeShape::sharp) +
+           (e.vertex ? ": the profile closes at a vertex" : "") + " (radius reported as 0)";
   if (e.face > 0)
     return std::string(which) + " is " + edge_shape_name(EdgeShape::blunt) + ": a flat face " +
            format_number(e.face) + " wide (radius reported as 0)";
@@ -37,8 +40,9 @@ std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
 // An edge whose point or arc lies over a hole in the measured points.
 std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* which, double edge_hole) {
   const double size = edge_size(e), unmeasured = cover.around;
+  if (!(size > 0)) return std::string();  // a vertex, or an edge given radius 0: no scale to judge by
   if (!(unmeasured > size)) {
-    if (!(cover.hole >= edge_hole * size)) return std::string();
+    if (!(cover.hole > 0 && cover.hole >= edge_hole * size)) return std::string();
     return std::string(which) + " partly not measured: " + format_number(cover.hole) +
            " of the profile without a measured point begins " + format_number(cover.hole_distance) +
            " from the edge point (edge " + (e.radius > 0 ? "radius " : "face ") + format_number(size) +
@@ -200,9 +204,86 @@ EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
   return out;
 }
 
-void describe_issues(const SectionFacts& f, std::vector<SectionIssue>& issues) {
+namespace {
+
+// The flags of an edge's notes: a hole at it, a circle that does not fit it (not circular,
+// or a blunt edge fitted as round anyway).
+std::uint32_t edge_flags(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover, bool le) {
+  std::uint32_t flags = 0;
+  if (!hole_note(e, cover, "", f.options.edge_hole).empty())
+    flags |= bit(le ? Check::le_measured : Check::te_measured);
+  const bool blunt_as_round = e.shape == EdgeShape::blunt && e.face == 0 && e.radius > 0;
+  if (blunt_as_round || !circularity_note(e, "", f.options.profile_noise).empty())
+    flags |= bit(le ? Check::le_circle : Check::te_circle);
+  return flags;
+}
+
+// A failed check of section_check in words, with its values.
+std::string finding_note(const Finding& k, const SectionParams& p) {
+  char text[320];
+  const char* name = check_name(k.check);
+  switch (k.check) {
+    case Check::le_radius:
+    case Check::te_radius: {
+      const bool le = k.check == Check::le_radius;
+      std::snprintf(text, sizeof text,
+                    "%s radius %.4g fails check %s: its circle passes or leaves the profile by %.3g (at most "
+                    "%.3g): it does not fit the blade there",
+                    le ? "leading-edge" : "trailing-edge", le ? p.le_radius : p.te_radius, name, k.value,
+                    k.limit);
+      break;
+    }
+    case Check::le_point:
+    case Check::te_point:
+      std::snprintf(text, sizeof text, "%s point fails check %s: it lies %.3g off the profile (at most %.3g)",
+                    k.check == Check::le_point ? "leading-edge" : "trailing-edge", name, k.value, k.limit);
+      break;
+    case Check::chord:
+      std::snprintf(
+          text, sizeof text,
+          "chord %.6g fails check %s: the profile reaches %.3g beyond an edge point along the camber "
+          "line's end direction (at most %.3g): the edge points are not at the ends of the profile",
+          p.chord, name, k.value, k.limit);
+      break;
+    case Check::caliper:
+      std::snprintf(text, sizeof text,
+                    "caliper chord %.6g fails check %s: the profile's extent along its line differs by %.3g "
+                    "(at most %.3g)",
+                    p.caliper_chord, name, k.value, k.limit);
+      break;
+    default: {
+      const bool in = k.check == Check::inlet_angle;
+      std::snprintf(
+          text, sizeof text,
+          "%s angle %.2f fails check %s: it is %.2f deg off the camber line's direction next to the "
+          "%s (at most %.2f): the camber line bends there",
+          in ? "inlet" : "outlet", in ? p.inlet_angle : p.outlet_angle, name, k.value,
+          in ? "leading edge" : "trailing edge", k.limit);
+    }
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string jump_note(const Jump& j) {
+  const char* column = "";
+  for (const auto& c : check_names)
+    if (c.check == j.check) column = c.columns;
+  char text[256];
+  std::snprintf(
+      text, sizeof text,
+      "%s %.5g fails check %s: it jumps by %.3g from the %.5g its neighbouring sections give (at most "
+      "%.3g)",
+      column, j.value, check_name(j.check), j.value - j.expected, j.expected, j.limit);
+  return text;
+}
+
+std::uint32_t describe_issues(const SectionFacts& f, const std::vector<Finding>& findings,
+                              std::vector<SectionIssue>& issues) {
   const CamberResult& r = f.camber;
   const CamberOptions& opt = f.options;
+  std::uint32_t flags = edge_flags(f, r.le, f.le, true) | edge_flags(f, r.te, f.te, false);
   const std::string le_msg = edge_note(f, r.le, f.le, "leading edge"),
                     te_msg = edge_note(f, r.te, f.te, "trailing edge");
   if (!le_msg.empty() || !te_msg.empty())
@@ -221,17 +302,25 @@ void describe_issues(const SectionFacts& f, std::vector<SectionIssue>& issues) {
                     "interpolated",
                     r.off_axis, r.off_axis_s / std::max(r.length, 1e-300));
       issues.push_back({f.section, 0, "camber", text});
+      flags |= bit(Check::off_axis);
     }
   }
   // The thickness rule is a near tie: say so rather than let the orientation pass as known.
-  if (!r.le_by_direction && std::abs(f.params.max_thickness_pos - 0.5) <= opt.le_thickness_margin) {
+  if (!r.le_by_direction && !r.le_by_bluntness &&
+      std::abs(f.params.max_thickness_pos - 0.5) <= opt.le_thickness_margin) {
     char text[256];
     std::snprintf(text, sizeof text,
                   "the leading edge was taken as the end nearer the maximum thickness, which lies at %.2f of "
                   "the camber line: too near mid-chord to tell; give the leading-edge direction",
                   f.params.max_thickness_pos);
     issues.push_back({f.section, 0, "camber", text});
+    flags |= bit(Check::le_choice);
   }
+  for (const Finding& k : findings) {
+    issues.push_back({f.section, 0, "camber", finding_note(k, f.params)});
+    flags |= bit(k.check);
+  }
+  return flags;
 }
 
 }  // namespace section::pipe

@@ -5,11 +5,13 @@
 // near tie), with the edge coverage they rest on.
 #include "section/bspline.h"
 #include "section/camber.h"
+#include "section/checks.h"
 #include "section/io/stream.h"
 #include "section/params.h"
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -55,7 +57,14 @@ struct SectionFacts {
   const CamberOptions& options;  ///< as the section was measured with
 };
 
-/// Appends the issues of a measured section (stage "camber", loop 0) to `issues`.
-void describe_issues(const SectionFacts& facts, std::vector<SectionIssue>& issues);
+/// Appends the issues of a measured section (stage "camber", loop 0) to `issues`: its edges
+/// (shape, holes, carried points, circularity), a camber line off the medial axis, an LE
+/// chosen by a near tie, and the checks it failed (`findings`, section/checks.h). Returns
+/// the flags of them all (the params table's `flags`).
+std::uint32_t describe_issues(const SectionFacts& facts, const std::vector<Finding>& findings,
+                              std::vector<SectionIssue>& issues);
+
+/// The words of a jump across a blade's sections (check_blade), for the section's issue.
+std::string jump_note(const Jump& jump);
 
 }  // namespace section::pipe

@@ -2,6 +2,7 @@
 #include "section/pipe/camber_stream.h"
 
 #include "section/camber.h"
+#include "section/checks.h"
 #include "section/error.h"
 #include "section/fit_spline.h"
 #include "section/params.h"
@@ -150,7 +151,7 @@ SectionCamber measure(const BSpline& curve, CamberOptions& opt, const Measured& 
 enum : std::size_t { camber_rows, params_rows, thickness_rows, sides_rows };
 
 // A measured section's rows of the tables camber, params, thickness and sides.
-void add_rows(int section, const Frame& f, const SectionCamber& m, pipe::Slot& slot) {
+void add_rows(int section, const Frame& f, const SectionCamber& m, std::uint32_t flags, pipe::Slot& slot) {
   const CamberResult& r = m.camber;
   for (std::size_t i = 0; i < r.points.size(); ++i)
     schema::camber.append(slot.rows[camber_rows],
@@ -158,7 +159,7 @@ void add_rows(int section, const Frame& f, const SectionCamber& m, pipe::Slot& s
   const SectionParams& p = m.params;
   schema::params.append(slot.rows[params_rows],
                         {section, p, r, f.to_world(p.le_point), f.to_world(p.te_point),
-                         f.to_world(p.centroid), m.le.around, m.te.around});
+                         f.to_world(p.centroid), m.le.around, m.te.around, flags});
   for (std::size_t i = 0; i < m.stations.size(); ++i)
     schema::thickness.append(slot.rows[thickness_rows], {section, i, m.stations[i]});
   for (int side = 0; side < 2; ++side) {
@@ -182,11 +183,69 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   const Measured none;
   const Measured& q = points != in.measured.end() ? points->second : none;
   const SectionCamber m = measure(curve, opt, q);
-  add_rows(section, f, m, slot);
-  pipe::describe_issues({section, curve, m.camber, m.params, m.le, m.te, q, opt}, slot.issues);
+  CheckOptions checks;
+  checks.noise = opt.profile_noise;
+  const SectionCheck check = check_section(curve, m.camber, m.params, checks);
+  const std::uint32_t flags = pipe::describe_issues({section, curve, m.camber, m.params, m.le, m.te, q, opt},
+                                                    check.findings, slot.issues);
+  add_rows(section, f, m, flags, slot);
 }
 
 }  // namespace
+
+namespace {
+
+// A params row of one of the streams, as check_blade reads it.
+struct HeldRow {
+  Stream* stream;
+  std::size_t row;
+  int section;
+};
+
+// The mean normal of the frames of all streams (oriented as the first), or +z.
+Eigen::Vector3d mean_normal(const std::vector<Stream*>& streams) {
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  for (Stream* s : streams)
+    if (schema::frames.find(*s))
+      for (const auto& [id, f] : frames(*s)) n += n.dot(f.n) < 0 ? Eigen::Vector3d(-f.n) : f.n;
+  return n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitZ();
+}
+
+}  // namespace
+
+void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOptions& options) {
+  std::vector<HeldRow> rows;
+  std::vector<BladeSection> sections;
+  const Eigen::Vector3d n = mean_normal(streams);
+  for (Stream* s : streams) {
+    const Table* t = schema::params.find(*s);
+    if (!t) continue;
+    auto get = [&](std::size_t r, const char* name) { return t->at(r, t->column(name)); };
+    for (std::size_t r = 0; r < t->rows(); ++r) {
+      BladeSection b;
+      b.height = Eigen::Vector3d(get(r, "centroid_x"), get(r, "centroid_y"), get(r, "centroid_z")).dot(n);
+      SectionParams& p = b.params;
+      p.chord = get(r, "chord");
+      p.max_thickness = get(r, "max_thickness");
+      p.le_radius = get(r, "le_radius");
+      p.te_radius = get(r, "te_radius");
+      p.stagger = get(r, "stagger");
+      p.inlet_angle = get(r, "inlet_angle");
+      p.outlet_angle = get(r, "outlet_angle");
+      p.camber_angle = get(r, "camber_angle");
+      sections.push_back(b);
+      rows.push_back({s, r, static_cast<int>(get(r, col::section))});
+    }
+  }
+  for (const Jump& j : check_blade(sections, options)) {
+    const HeldRow& h = rows[j.index];
+    Table& t = *h.stream->find(schema::params.name);
+    double& flags = t.values[h.row * t.columns.size() + t.column("flags")];
+    flags = double(static_cast<std::uint32_t>(flags) | bit(j.check));
+    t.source.reset();  // changed: formatted from its values
+    h.stream->issues.push_back({h.section, 0, "camber", pipe::jump_note(j)});
+  }
+}
 
 Stream profile_stream(const BSpline& spline, double rms) {
   Stream stream;

@@ -38,6 +38,7 @@ void run_whole(const StageRun& run, PartReader& reader) {
   convert_to_mm(stream);
   run.stage(stream, run.threads);
   stream.history.push_back(run.history);
+  if (run.hold) run.hold({&stream});
   if (run.written) run.written(stream);
   if (run.before_end) run.before_end();
   write_stream(run.output, stream);
@@ -74,6 +75,7 @@ public:
     changed_.notify_all();
     for (auto& t : pool) t.join();
     if (error_) std::rethrow_exception(error_);
+    write_held();
     if (run_.before_end) run_.before_end();
     writer_.finish();
   }
@@ -122,13 +124,29 @@ private:
         jobs_.pop_front();
         ++first_job_;
         lock.unlock();
-        if (run_.written) run_.written(job.result);
-        writer_.part(job.part.label, job.result);
+        if (run_.hold) {
+          held_.push_back(std::move(job));
+        } else {
+          if (run_.written) run_.written(job.result);
+          writer_.part(job.part.label, job.result);
+        }
         lock.lock();
         continue;
       }
       if (all ? jobs_.empty() : !(room && jobs_.size() >= 2 * workers_)) return;
       changed_.wait(lock, [&] { return error_ || (!jobs_.empty() && jobs_.front().done); });
+    }
+  }
+
+  // The parts held for StageRun::hold, given to it and written, in order.
+  void write_held() {
+    if (!run_.hold) return;
+    std::vector<Stream*> parts;
+    for (Job& job : held_) parts.push_back(&job.result);
+    run_.hold(parts);
+    for (Job& job : held_) {
+      if (run_.written) run_.written(job.result);
+      writer_.part(job.part.label, job.result);
     }
   }
 
@@ -150,6 +168,7 @@ private:
   StreamWriter writer_;
   const std::size_t workers_;
   std::deque<Job> jobs_;           // read and not yet written, in order (references stay valid)
+  std::vector<Job> held_;          // staged and held for StageRun::hold, in order
   std::size_t first_job_ = 0;      // index of jobs_.front()
   std::size_t next_to_stage_ = 0;  // index of the next job a worker takes
   std::mutex mutex_;

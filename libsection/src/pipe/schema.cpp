@@ -227,8 +227,11 @@ constexpr auto params_columns = by_section<ParamsRow>({
     {"pressure_side", "code",
      "+1 when the pressure (concave) side lies left of the LE-to-TE direction, -1 right",
      [](auto& r) { return double(r.camber.pressure_side); }},
-    {"le_by_direction", "flag", "1 when --le-direction set the LE, 0 when the maximum thickness did",
+    {"le_by_direction", "flag",
+     "1 when --le-direction set the LE, 0 when the edges or the maximum thickness did",
      [](auto& r) { return r.camber.le_by_direction ? 1.0 : 0.0; }},
+    {"le_by_bluntness", "flag", "1 when the LE was taken as the blunter end, 0 otherwise",
+     [](auto& r) { return r.camber.le_by_bluntness ? 1.0 : 0.0; }},
     {"le_face", "length",
      "width of the leading edge's flat face (its radius is then 0), 0 for an edge without one",
      [](auto& r) { return r.camber.le.face; }},
@@ -238,6 +241,8 @@ constexpr auto params_columns = by_section<ParamsRow>({
      "lies at it",
      [](auto& r) { return r.le_unmeasured; }},
     {"te_unmeasured", "length", "the same at the TE point", [](auto& r) { return r.te_unmeasured; }},
+    {"flags", "code", "the checks the section's values failed, one bit each (checks below); 0 when none",
+     [](auto& r) { return double(r.flags); }},
 });
 
 constexpr auto thickness_columns = by_section<ThicknessRow>({

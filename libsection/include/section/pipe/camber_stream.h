@@ -2,7 +2,10 @@
 /// @file pipe/camber_stream.h
 /// The camber stage on the stream: splines -> tables "camber", "params", "thickness", "sides".
 #include "section/camber.h"
+#include "section/checks.h"
 #include "section/io/stream.h"
+
+#include <vector>
 
 namespace section {
 
@@ -11,6 +14,13 @@ namespace section {
 /// "params", "thickness" and "sides" (docs/FORMAT.md). A section that fails, or has
 /// more than one loop, gets an issue and the others go on.
 void camber_stream(Stream& stream, const CamberOptions& options = {});
+
+/// The blade check (check_blade, section/checks.h) across the sections of the streams
+/// given (the parts of one stream, or one whole stream), after camber_stream: each value
+/// that jumps from its neighbouring sections sets its check's bit in the section's params
+/// row (`flags`) and adds an issue (stage "camber") to the stream holding it. Heights: the
+/// sections' centroids along the frames' mean normal.
+void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOptions& options = {});
 
 /// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
 /// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain

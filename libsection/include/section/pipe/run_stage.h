@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace section {
 
@@ -20,6 +21,10 @@ struct StageRun {
   std::function<void(Stream&, int threads)> stage;
   /// Sees each part (or the whole stream) as it is written, in order, from one thread.
   std::function<void(const Stream&)> written;
+  /// When set, the parts (or the whole stream) are held until every one is staged, then
+  /// given here together, in order, before any is written: for a last stage that needs
+  /// every section (camber's check across the blade). `written` then sees them after it.
+  std::function<void(const std::vector<Stream*>& parts)> hold;
   /// Runs once all is staged, before `# end`; may throw to leave the output unfinished.
   std::function<void()> before_end;
   /// Turns an input that is not a stream into one (camber: a plain profile); unset, such

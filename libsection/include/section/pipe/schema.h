@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <cstdint>
 #include <iterator>
 #include <map>
 #include <string>
@@ -205,6 +206,7 @@ struct ParamsRow {
   const CamberResult& camber;
   Eigen::Vector3d le, te, centroid;  ///< the edge points and the centroid in 3D
   double le_unmeasured, te_unmeasured;
+  std::uint32_t flags;  ///< the checks the section failed (section/checks.h)
 };
 struct ThicknessRow {
   int section;

@@ -1,0 +1,154 @@
+#pragma once
+/// @file checks.h
+/// Consistency checks of the measured parameters (docs/CAMBER.md, "Checks"): every value of
+/// a params row is tested against the geometry it came from before it is written, and
+/// across the sections of a blade against its neighbours. A value that fails a check is
+/// flagged (a bit of the params table's `flags` column, each bit a named check) and
+/// described in the section's issue; it is never printed bare.
+#include "section/bspline.h"
+#include "section/camber.h"
+#include "section/params.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace section {
+
+/// The checks, one bit each in the params table's `flags` column (docs/FORMAT.md).
+enum class Check : std::uint32_t {
+  le_radius = 1u << 0,        ///< LE circle larger than the blade there, or off the profile over its arc
+  te_radius = 1u << 1,        ///< the same at the TE
+  le_circle = 1u << 2,        ///< LE not circular: its radius and point depend on the arc taken
+  te_circle = 1u << 3,        ///< the same at the TE
+  le_measured = 1u << 4,      ///< LE (partly) not measured: its values bridge a hole in the data
+  te_measured = 1u << 5,      ///< the same at the TE
+  le_point = 1u << 6,         ///< LE point off the profile
+  te_point = 1u << 7,         ///< TE point off the profile
+  chord = 1u << 8,            ///< chord disagrees with the profile's extent along it
+  caliper = 1u << 9,          ///< caliper chord disagrees with the profile's extent along its line
+  inlet_angle = 1u << 10,     ///< inlet angle off the camber line's direction near the LE
+  outlet_angle = 1u << 11,    ///< outlet angle off the camber line's direction near the TE
+  le_choice = 1u << 12,       ///< LE chosen by a near tie of the thickness rule: maybe the wrong end
+  off_axis = 1u << 13,        ///< camber line off the medial axis (interpolated there)
+  jump_chord = 1u << 14,      ///< chord jumps from the neighbouring sections
+  jump_thickness = 1u << 15,  ///< max thickness jumps
+  jump_stagger = 1u << 16,    ///< stagger jumps
+  jump_inlet = 1u << 17,      ///< inlet angle jumps
+  jump_outlet = 1u << 18,     ///< outlet angle jumps
+  jump_camber = 1u << 19,     ///< camber angle jumps
+  jump_le_radius = 1u << 20,  ///< LE radius jumps
+  jump_te_radius = 1u << 21,  ///< TE radius jumps
+};
+
+/// A check's name (the word the issues use) and the params columns whose values it flags.
+struct CheckName {
+  Check check;
+  const char* name;
+  const char* columns;  ///< the params columns it flags, space-separated
+};
+inline constexpr CheckName check_names[] = {
+    {Check::le_radius, "le_radius", "le_radius le_center"},
+    {Check::te_radius, "te_radius", "te_radius te_center"},
+    {Check::le_circle, "le_circle", "le_radius le_center le_point"},
+    {Check::te_circle, "te_circle", "te_radius te_center te_point"},
+    {Check::le_measured, "le_measured", "le_radius le_center le_point"},
+    {Check::te_measured, "te_measured", "te_radius te_center te_point"},
+    {Check::le_point, "le_point", "le_point chord stagger"},
+    {Check::te_point, "te_point", "te_point chord stagger"},
+    {Check::chord, "chord", "chord stagger le_point te_point"},
+    {Check::caliper, "caliper", "caliper_chord caliper_stagger"},
+    {Check::inlet_angle, "inlet_angle", "inlet_angle camber_angle"},
+    {Check::outlet_angle, "outlet_angle", "outlet_angle camber_angle"},
+    {Check::le_choice, "le_choice", "every column that depends on which end is the LE"},
+    {Check::off_axis, "off_axis", "camber_length max_thickness max_thickness_pos"},
+    {Check::jump_chord, "jump_chord", "chord"},
+    {Check::jump_thickness, "jump_thickness", "max_thickness"},
+    {Check::jump_stagger, "jump_stagger", "stagger"},
+    {Check::jump_inlet, "jump_inlet", "inlet_angle"},
+    {Check::jump_outlet, "jump_outlet", "outlet_angle"},
+    {Check::jump_camber, "jump_camber", "camber_angle"},
+    {Check::jump_le_radius, "jump_le_radius", "le_radius"},
+    {Check::jump_te_radius, "jump_te_radius", "te_radius"},
+};
+
+/// The bit of a check in a flags mask.
+constexpr std::uint32_t bit(Check c) {
+  return static_cast<std::uint32_t>(c);
+}
+
+/// The name of a check ("le_radius", ...).
+const char* check_name(Check check);
+
+/// Options of check_section (lengths in the profile's units, angles in degrees).
+struct CheckOptions {
+  double noise = 0;              ///< rms of the measured points about the profile (0 = unknown)
+  double noise_factor = 4;       ///< a distance is off beyond this many noise rms ...
+  double floor = 1e-5;           ///< ... plus this fraction of the profile's size
+  double tangent_length = 0.05;  ///< camber-length fraction over which the end directions are taken
+  double angle_floor = 1;        ///< degrees: least angle tolerance
+};
+
+/// One failed check: what was measured and the most it may be (same unit).
+struct Finding {
+  Check check = Check::le_radius;
+  double value = 0;  ///< the measured discrepancy (see check_section)
+  double limit = 0;  ///< the most it may be
+};
+
+/// The checks a section failed.
+struct SectionCheck {
+  std::uint32_t flags = 0;        ///< bits of the failed checks
+  std::vector<Finding> findings;  ///< one per failed check, in bit order
+};
+
+/// Checks a section's parameters against its profile (docs/CAMBER.md, "Checks"); sets the
+/// bits le_radius/te_radius, le_point/te_point, chord, caliper, inlet_angle/outlet_angle:
+/// - round edge: value = how far its circle passes the profile (radius minus the centre's
+///   distance to the profile; radius plus it when the centre lies outside), limit =
+///   noise_factor x max(noise, fit rms) + floor x size; or, with the noise known, the
+///   largest distance of the edge arc from the circle, limit 2 x noise_factor x
+///   max(noise, 1e-4 R);
+/// - edge point: its distance to the profile, limit noise_factor x noise + floor x size;
+/// - chord: the profile's extent along the chord line minus the chord, limit
+///   sum of R (1 - cos a) over both edges (a: the end tangent against the chord line) +
+///   the distance limit; also flagged when negative beyond that limit;
+/// - caliper: |caliper chord - the profile's extent along the caliper line|, the distance limit;
+/// - angles: |end tangent - the end direction extrapolated from the camber line's two
+///   chords of tangent_length x camber length from the edge|, limit max(angle_floor, the
+///   turning between those chords) + the angle noise x noise / length subtends.
+SectionCheck check_section(const BSpline& profile, const CamberResult& camber, const SectionParams& params,
+                           const CheckOptions& options = {});
+
+/// A section of a blade as check_blade sees it.
+struct BladeSection {
+  double height = 0;     ///< position along the blade (the plane's offset along the mean normal)
+  SectionParams params;  ///< its parameters (chord, max thickness, radii, angles read)
+};
+
+/// Options of check_blade: the least jump flagged per kind of value.
+struct BladeCheckOptions {
+  double angle = 2;         ///< degrees (stagger, inlet, outlet, camber angle)
+  double length = 0.02;     ///< fraction of the chord (chord, max thickness: of the max thickness)
+  double radius = 0.25;     ///< fraction of the edge radius
+  double thickness = 0.05;  ///< fraction of the max thickness
+  double spread = 6;        ///< ... or this many robust sigmas of the blade's own residuals, if more
+  int min_sections = 3;     ///< fewer sections: nothing is checked
+};
+
+/// A value that jumps from its neighbours.
+struct Jump {
+  std::size_t index = 0;  ///< into the sections given
+  Check check = Check::jump_chord;
+  double value = 0;     ///< the section's value
+  double expected = 0;  ///< from its neighbours (interpolated by height, or extrapolated at an end)
+  double limit = 0;     ///< the least jump flagged
+};
+
+/// The values that jump from their neighbours across the sections of one blade (any
+/// order; sorted by height): a value is compared with the line through its two neighbours
+/// (the two nearest at an end, where the limit doubles) and flagged when it departs by more
+/// than the limit and more than its neighbours do.
+std::vector<Jump> check_blade(const std::vector<BladeSection>& sections,
+                              const BladeCheckOptions& options = {});
+
+}  // namespace section

@@ -1,0 +1,294 @@
+#include "section/checks.h"
+
+#include "detail/sampled_profile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace section {
+
+using detail::cross;
+using detail::degrees;
+using detail::pi;
+using detail::SampledProfile;
+
+const char* check_name(Check check) {
+  for (const auto& c : check_names)
+    if (c.check == check) return c.name;
+  return "unknown";
+}
+
+namespace {
+
+// Distance from q to the profile: the nearest sample's segment, refined by Newton on the
+// exact curve (the foot point), and whether q lies inside (crossings of a ray along +u).
+struct Foot {
+  double distance = 0;
+  bool inside = false;
+};
+
+Foot foot(const SampledProfile& pr, const Eigen::Vector2d& q) {
+  const int n = static_cast<int>(pr.samples.size());
+  Foot f;
+  int crossings = 0;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d& a = pr.samples[i];
+    const Eigen::Vector2d& b = pr.samples[(i + 1) % n];
+    if ((a.y() > q.y()) != (b.y() > q.y()) &&
+        q.x() < a.x() + (q.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
+      ++crossings;
+  }
+  f.inside = crossings % 2 == 1;
+  double t = pr.ts[pr.nearest(q)];
+  const double h = pr.period / n;
+  for (int it = 0; it < 30; ++it) {
+    const detail::CurveJet j = pr.fast.jet(t);
+    const Eigen::Vector2d e = j.point - q;
+    const double g = e.dot(j.d1), dg = j.d1.squaredNorm() + e.dot(j.d2);
+    if (!(dg > 0)) break;
+    const double step = std::clamp(g / dg, -h, h);
+    t -= step;
+    if (std::abs(step) < 1e-14 * pr.period) break;
+  }
+  f.distance = std::min((pr.fast.jet(t).point - q).norm(), pr.sample_distance(q));
+  return f;
+}
+
+// Extent of the profile along the unit direction e (its samples, refined by Newton at the
+// two extremes).
+double extent(const SampledProfile& pr, const Eigen::Vector2d& e) {
+  int lo = 0, hi = 0;
+  const int n = static_cast<int>(pr.samples.size());
+  for (int i = 1; i < n; ++i) {
+    if (pr.samples[i].dot(e) > pr.samples[hi].dot(e)) hi = i;
+    if (pr.samples[i].dot(e) < pr.samples[lo].dot(e)) lo = i;
+  }
+  auto refine = [&](int i, double sign) {
+    double t = pr.ts[i], best = sign * pr.samples[i].dot(e);
+    const double h = pr.period / n;
+    for (int it = 0; it < 30; ++it) {
+      const detail::CurveJet j = pr.fast.jet(t);
+      const double g = sign * j.d1.dot(e), dg = sign * j.d2.dot(e);
+      if (!(dg < 0)) break;
+      const double step = std::clamp(g / dg, -h, h);
+      t -= step;
+      best = std::max(best, sign * pr.fast.jet(t).point.dot(e));
+      if (std::abs(step) < 1e-14 * pr.period) break;
+    }
+    return best;
+  };
+  return refine(hi, 1) + refine(lo, -1);
+}
+
+// The point of the sampled camber line at arc length s (linear between samples).
+Eigen::Vector2d camber_at(const CamberResult& c, double s) {
+  const auto it = std::lower_bound(c.s.begin(), c.s.end(), s);
+  if (it == c.s.begin()) return c.points.front();
+  if (it == c.s.end()) return c.points.back();
+  const std::size_t k = static_cast<std::size_t>(it - c.s.begin());
+  const double w = (s - c.s[k - 1]) / std::max(c.s[k] - c.s[k - 1], 1e-300);
+  return (1 - w) * c.points[k - 1] + w * c.points[k];
+}
+
+struct Checker {
+  const SampledProfile& pr;
+  const CamberResult& camber;
+  const SectionParams& params;
+  const CheckOptions& options;
+  double tol;  // a distance that is off
+  SectionCheck out;
+
+  void fail(Check c, double value, double limit) {
+    out.flags |= bit(c);
+    out.findings.push_back({c, value, limit});
+  }
+
+  // A round edge's circle: inside the blade, and on the profile over its arc.
+  void edge_circle(const Edge& e, Check c) {
+    if (e.shape != EdgeShape::round || e.vertex || e.face > 0 || !(e.radius > 0)) return;
+    const Foot f = foot(pr, e.center);
+    const double pass = f.inside ? e.radius - f.distance : e.radius + f.distance;
+    const double limit = options.noise_factor * std::max(options.noise, e.fit_rms) + options.floor * pr.scale;
+    if (pass > limit) return fail(c, pass, limit);
+    if (!(options.noise > 0) || !e.circular) return;  // not circular: flagged as such (le_circle)
+    double worst = 0;
+    const double span = e.arc_t1 - e.arc_t0;  // the walks from the edge point, unwrapped
+    for (int i = 0; i <= 60; ++i)
+      worst = std::max(worst,
+                       std::abs((pr.fast.jet(e.arc_t0 + span * i / 60).point - e.center).norm() - e.radius));
+    const double arc_limit = 2 * options.noise_factor * std::max(options.noise, 1e-4 * e.radius);
+    if (worst > arc_limit) fail(c, worst, arc_limit);
+  }
+
+  void edge_point(const Edge& e, Check c) {
+    const double d = foot(pr, e.point).distance;
+    const double limit = options.noise_factor * options.noise + options.floor * pr.scale;
+    if (d > limit) fail(c, d, limit);
+  }
+
+  // How far the profile near an edge reaches beyond its edge point along the camber's
+  // outward end direction `out` (0 when the point is the end, as on a circle met along
+  // its radius); limit: the edge's fit (a nose that is not circular), a face's half width.
+  void edge_end(const Edge& e, const Eigen::Vector2d& out_dir, double& gap, double& limit) const {
+    const double reach = params.max_thickness + e.radius + e.face;
+    gap = 0;
+    for (const auto& p : pr.samples)
+      if ((p - e.point).norm() < reach) gap = std::max(gap, (p - e.point).dot(out_dir));
+    limit =
+        options.noise_factor * std::max(options.noise, e.fit_rms) + options.floor * pr.scale + 0.5 * e.face;
+  }
+
+  // The chord: its edge points at the ends of the profile (a point up a flank makes it
+  // short), and the caliper chord the profile's extent along its line.
+  void chord() {
+    double gap_le = 0, gap_te = 0, limit_le = 0, limit_te = 0;
+    edge_end(camber.le, -camber.le_tangent, gap_le, limit_le);
+    edge_end(camber.te, camber.te_tangent, gap_te, limit_te);
+    if (gap_le - limit_le > gap_te - limit_te) {
+      if (gap_le > limit_le) fail(Check::chord, gap_le, limit_le);
+    } else if (gap_te > limit_te) {
+      fail(Check::chord, gap_te, limit_te);
+    }
+    const double a = params.caliper_stagger * pi / 180;
+    const double caliper_gap = std::abs(extent(pr, {std::cos(a), std::sin(a)}) - params.caliper_chord);
+    if (caliper_gap > tol) fail(Check::caliper, caliper_gap, tol);
+  }
+
+  // The end direction extrapolated from the camber line's two chords nearest the edge
+  // (`sign` +1 from the LE inward, -1 from the TE), against the reported end tangent.
+  void end_angle(double reported, double s0, double sign, Check c) {
+    const double l = options.tangent_length * camber.length;
+    if (!(l > 0)) return;
+    const Eigen::Vector2d p0 = camber_at(camber, s0), p1 = camber_at(camber, s0 + sign * l),
+                          p2 = camber_at(camber, s0 + 2 * sign * l);
+    // Directions toward the TE.
+    const double a1 = degrees(sign * (p1 - p0)), a2 = degrees(sign * (p2 - p1));
+    const double turn = detail::wrap_degrees(a1 - a2);
+    const double expected = detail::wrap_degrees(a1 + 0.5 * turn);
+    const double noise = options.noise_factor * options.noise / l * 180 / pi;
+    // A constant curvature extrapolates exactly; a quarter of the turning allows its change.
+    const double limit = std::max(options.angle_floor, 0.25 * std::abs(turn)) + noise;
+    const double off = std::abs(detail::wrap_degrees(reported - expected));
+    if (off > limit) fail(c, off, limit);
+  }
+};
+
+}  // namespace
+
+SectionCheck check_section(const BSpline& profile, const CamberResult& camber, const SectionParams& params,
+                           const CheckOptions& options) {
+  const SampledProfile pr(profile, 4000);
+  Checker k{pr, camber, params, options, options.noise_factor * options.noise + options.floor * pr.scale, {}};
+  k.edge_circle(camber.le, Check::le_radius);
+  k.edge_circle(camber.te, Check::te_radius);
+  k.edge_point(camber.le, Check::le_point);
+  k.edge_point(camber.te, Check::te_point);
+  k.chord();
+  k.end_angle(params.inlet_angle, camber.ext_le, 1, Check::inlet_angle);
+  k.end_angle(params.outlet_angle, camber.length - camber.ext_te, -1, Check::outlet_angle);
+  std::sort(k.out.findings.begin(), k.out.findings.end(),
+            [](const Finding& a, const Finding& b) { return bit(a.check) < bit(b.check); });
+  return k.out;
+}
+
+namespace {
+
+// One value of the blade check: how to read it, compare it and the least jump flagged.
+struct Quantity {
+  Check check;
+  double (*get)(const SectionParams&);
+  bool angle;
+  double (*least)(const SectionParams&, const BladeCheckOptions&);
+};
+
+const Quantity quantities[] = {
+    {Check::jump_chord, [](const SectionParams& p) { return p.chord; }, false,
+     [](const SectionParams& p, const BladeCheckOptions& o) { return o.length * p.chord; }},
+    {Check::jump_thickness, [](const SectionParams& p) { return p.max_thickness; }, false,
+     [](const SectionParams& p, const BladeCheckOptions& o) { return o.thickness * p.max_thickness; }},
+    {Check::jump_stagger, [](const SectionParams& p) { return p.stagger; }, true,
+     [](const SectionParams&, const BladeCheckOptions& o) { return o.angle; }},
+    {Check::jump_inlet, [](const SectionParams& p) { return p.inlet_angle; }, true,
+     [](const SectionParams&, const BladeCheckOptions& o) { return o.angle; }},
+    {Check::jump_outlet, [](const SectionParams& p) { return p.outlet_angle; }, true,
+     [](const SectionParams&, const BladeCheckOptions& o) { return o.angle; }},
+    {Check::jump_camber, [](const SectionParams& p) { return p.camber_angle; }, true,
+     [](const SectionParams&, const BladeCheckOptions& o) { return o.angle; }},
+    {Check::jump_le_radius, [](const SectionParams& p) { return p.le_radius; }, false,
+     [](const SectionParams& p, const BladeCheckOptions& o) { return o.radius * p.le_radius; }},
+    {Check::jump_te_radius, [](const SectionParams& p) { return p.te_radius; }, false,
+     [](const SectionParams& p, const BladeCheckOptions& o) { return o.radius * p.te_radius; }},
+};
+
+// The value expected at height h from (h1, v1) and (h2, v2): the line through them (angles
+// unwrapped about v1).
+double line_at(double h, double h1, double v1, double h2, double v2, bool angle) {
+  if (angle) v2 = v1 + detail::wrap_degrees(v2 - v1);
+  if (!(std::abs(h2 - h1) > 0)) return 0.5 * (v1 + v2);
+  return v1 + (v2 - v1) * (h - h1) / (h2 - h1);
+}
+
+// Residual of each active section from the line through its two active neighbours (at
+// an end, the two nearest: extrapolated, so its weight is halved), by height order.
+void residuals(const std::vector<BladeSection>& sections, const std::vector<std::size_t>& active,
+               const Quantity& q, std::vector<double>& expected, std::vector<double>& residual,
+               std::vector<double>& weight) {
+  const std::size_t n = active.size();
+  expected.assign(n, 0);
+  residual.assign(n, 0);
+  weight.assign(n, 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t a = k == 0 ? 1 : k == n - 1 ? n - 3 : k - 1;
+    const std::size_t b = k == 0 ? 2 : k == n - 1 ? n - 2 : k + 1;
+    const BladeSection &s = sections[active[k]], &sa = sections[active[a]], &sb = sections[active[b]];
+    expected[k] = line_at(s.height, sa.height, q.get(sa.params), sb.height, q.get(sb.params), q.angle);
+    residual[k] =
+        q.angle ? detail::wrap_degrees(q.get(s.params) - expected[k]) : q.get(s.params) - expected[k];
+    if (k == 0 || k == n - 1) weight[k] = 0.5;
+  }
+}
+
+}  // namespace
+
+std::vector<Jump> check_blade(const std::vector<BladeSection>& sections, const BladeCheckOptions& options) {
+  std::vector<Jump> out;
+  const std::size_t n = sections.size();
+  const std::size_t least = static_cast<std::size_t>(std::max(options.min_sections, 3));
+  if (n < least) return out;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return sections[a].height < sections[b].height; });
+  std::vector<double> expected, residual, weight;
+  for (const Quantity& q : quantities) {
+    // The blade's own spread of residuals (median absolute, robust to the jumps themselves).
+    residuals(sections, order, q, expected, residual, weight);
+    std::vector<double> spread_of;
+    for (std::size_t k = 0; k < n; ++k) spread_of.push_back(std::abs(residual[k]) * weight[k]);
+    std::nth_element(spread_of.begin(), spread_of.begin() + n / 2, spread_of.end());
+    const double spread = n >= 7 ? options.spread * 1.4826 * spread_of[n / 2] : 0.0;
+    // The section departing most (against its limit) is flagged and left out, and the
+    // others compared again: a jump drags its neighbours' residuals, never flags them.
+    std::vector<std::size_t> active = order;
+    while (active.size() >= least) {
+      residuals(sections, active, q, expected, residual, weight);
+      std::size_t worst = 0;
+      double worst_ratio = 0, worst_limit = 0;
+      for (std::size_t k = 0; k < active.size(); ++k) {
+        const double limit = std::max(q.least(sections[active[k]].params, options), spread);
+        const double ratio = std::abs(residual[k]) * weight[k] / std::max(limit, 1e-300);
+        if (ratio > worst_ratio) worst_ratio = ratio, worst = k, worst_limit = limit / weight[k];
+      }
+      if (!(worst_ratio > 1)) break;
+      out.push_back(
+          {active[worst], q.check, q.get(sections[active[worst]].params), expected[worst], worst_limit});
+      active.erase(active.begin() + static_cast<long>(worst));
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Jump& a, const Jump& b) { return a.index < b.index; });
+  return out;
+}
+
+}  // namespace section

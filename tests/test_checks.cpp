@@ -1,0 +1,257 @@
+// Tests of the consistency checks (section/checks.h): correct values of exact and noisy
+// generated sections pass them; the wrong values seen on real data (an edge circle a
+// hundred times too large, a chord short of the profile, an edge point off it, a metal
+// angle off the camber line, a section that jumps from its neighbours) fail them.
+#include "section/checks.h"
+
+#include "camber_fixtures.h"
+#include "section/params.h"
+#include "section/pipe/camber_stream.h"
+#include "section/pipe/schema.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace camber_test;
+using section::Check;
+
+namespace {
+
+// A section measured and checked, with the noise the check is told.
+struct Checked {
+  section::CamberResult camber;
+  section::SectionParams params;
+  section::SectionCheck check;
+};
+
+Checked measure(const BSpline& spline, double noise, const std::vector<Vector2d>& measured = {}) {
+  section::CamberOptions o;
+  o.profile_noise = noise;
+  Checked c;
+  c.camber = section::camber_line(spline, o, measured);
+  c.params = section::section_params(spline, c.camber);
+  section::CheckOptions k;
+  k.noise = noise;
+  c.check = section::check_section(spline, c.camber, c.params, k);
+  return c;
+}
+
+section::SectionCheck recheck(const BSpline& spline, const Checked& c, double noise) {
+  section::CheckOptions k;
+  k.noise = noise;
+  return section::check_section(spline, c.camber, c.params, k);
+}
+
+std::string names(std::uint32_t flags) {
+  std::string out;
+  for (const auto& k : section::check_names)
+    if (flags & section::bit(k.check)) out += std::string(out.empty() ? "" : " ") + k.name;
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("checks: every check has a name of its own and a bit of its own", "[checks]") {
+  std::uint32_t all = 0;
+  for (const auto& k : section::check_names) {
+    CHECK((all & section::bit(k.check)) == 0);
+    all |= section::bit(k.check);
+    CHECK(std::string(section::check_name(k.check)) == k.name);
+  }
+  CHECK(all == (1u << std::size(section::check_names)) - 1);
+}
+
+TEST_CASE("checks: correct values of exact sections are not flagged", "[checks]") {
+  // Five designs (thin and thick, 20-115 degrees of turning, edge radii 0.15-2.5 mm).
+  for (const SectionDesign& design : designs()) {
+    const SectionTruth truth = section::section_truth(design, 20000);
+    const BSpline spline = dense_spline(truth.profile);
+    const Checked c = measure(spline, 0);
+    INFO("design chord " << design.chord << " turning " << design.inlet_angle - design.outlet_angle << ": "
+                         << names(c.check.flags));
+    CHECK(c.check.flags == 0);
+    CHECK(std::abs(c.params.chord - truth.chord) < 5e-3);  // a sanity check (accuracy: test_camber)
+  }
+}
+
+TEST_CASE("checks: correct values of noisy sections (sigma 5 um) are not flagged", "[checks]") {
+  // Four designs x four seeds, points every 20 um, edges refitted to them: no false flag.
+  int sections = 0, flagged = 0;
+  for_noisy_fits(0.02, {1u, 2u, 3u, 4u},
+                 [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
+                     const BSpline& spline) {
+                   const Checked c = measure(spline, 0.005, pts);
+                   ++sections;
+                   if (c.check.flags) ++flagged;
+                   INFO("design " << k << " seed " << seed << ": " << names(c.check.flags) << "; LE radius "
+                                  << c.camber.le.radius << " / " << truth.le_radius);
+                   CHECK(c.check.flags == 0);
+                 });
+  CHECK(sections == 16);
+  CHECK(flagged == 0);
+}
+
+TEST_CASE("checks: a closed sharp trailing edge is measured at its vertex and not flagged", "[checks]") {
+  // NACA 0012 (closed TE, a 16-degree wedge at (100, 0)), through fit_spline as a plain
+  // profile would be: it failed with "the camber line's end tangent does not meet the
+  // profile" before; now the TE is sharp, radius 0, its point the vertex.
+  const std::vector<Vector2d> pts = naca0012();
+  for (const BSpline& spline : {dense_spline(pts), section::fit_spline(pts, pts).spline}) {
+    const Checked c = measure(spline, 0);
+    CHECK(c.camber.te.shape == section::EdgeShape::sharp);
+    CHECK(c.camber.te.vertex);
+    CHECK(c.camber.te.radius == 0);
+    CHECK((c.camber.te.point - Vector2d(100, 0)).norm() < 0.02);  // the spline rounds the corner
+    CHECK(c.camber.le.point.norm() < 0.01);
+    CHECK(c.camber.le_by_bluntness);  // the round end is the LE, whatever the thickness says
+    INFO(names(c.check.flags));
+    CHECK((c.check.flags & (section::bit(Check::te_radius) | section::bit(Check::te_point) |
+                            section::bit(Check::chord) | section::bit(Check::outlet_angle))) == 0);
+  }
+}
+
+TEST_CASE("checks: an edge circle far larger than the blade there is flagged", "[checks]") {
+  // The kinds seen on real data: a 0.35 mm TE reported as 35 mm (two misregistered views),
+  // a sharp TE reported with a 38.9 mm radius on a 31.6 mm chord (a propeller root). The
+  // circle is put tangent at the edge point, on the camber line, a hundred times too large.
+  const SectionTruth truth = section::section_truth(section::compressor_blade().at(30), 20000);
+  const BSpline spline = dense_spline(truth.profile);
+  Checked c = measure(spline, 0.005);
+  REQUIRE(c.check.flags == 0);
+  for (double factor : {100.0, 3.0}) {
+    Checked bad = c;
+    bad.camber.te.radius = factor * c.camber.te.radius;
+    bad.camber.te.center = c.camber.te.point - bad.camber.te.radius * c.camber.te_tangent;
+    bad.params.te_radius = bad.camber.te.radius;
+    const section::SectionCheck k = recheck(spline, bad, 0.005);
+    INFO("factor " << factor << ": " << names(k.flags));
+    CHECK((k.flags & section::bit(Check::te_radius)) != 0);
+    REQUIRE(!k.findings.empty());
+    CHECK(k.findings.front().value > k.findings.front().limit);
+  }
+  // A sharp propeller-like root (NACA 0012 scaled to a 31.6 mm chord) given a 38.9 mm TE circle.
+  std::vector<Vector2d> root = naca0012();
+  for (auto& p : root) p *= 0.316;
+  const BSpline root_spline = dense_spline(root);
+  Checked r = measure(root_spline, 0.005);
+  r.camber.te.shape = section::EdgeShape::round;
+  r.camber.te.vertex = false;
+  r.camber.te.radius = r.params.te_radius = 38.9;
+  r.camber.te.center = r.camber.te.point - 38.9 * r.camber.te_tangent;
+  CHECK((recheck(root_spline, r, 0.005).flags & section::bit(Check::te_radius)) != 0);
+}
+
+TEST_CASE("checks: a chord short of the profile and an edge point off it are flagged", "[checks]") {
+  // The TE point moved 2 mm up a flank (a chord 2 mm short, as with the misregistered
+  // views), and the LE point moved 0.05 mm off the profile.
+  const SectionTruth truth = section::section_truth(section::turbine_blade().at(20), 20000);
+  const BSpline spline = dense_spline(truth.profile);
+  const Checked c = measure(spline, 0.005);
+  REQUIRE(c.check.flags == 0);
+  std::size_t k = 0;
+  while (k + 1 < truth.profile.size() && truth.profile_s[k] < truth.te_s - 2) ++k;
+  Checked shortened = c;
+  shortened.camber.te.point = shortened.params.te_point = truth.profile[k];
+  shortened.params.chord = (shortened.params.te_point - shortened.params.le_point).norm();
+  const section::SectionCheck ks = recheck(spline, shortened, 0.005);
+  INFO(names(ks.flags));
+  CHECK((ks.flags & section::bit(Check::chord)) != 0);
+  CHECK((ks.flags & section::bit(Check::te_point)) == 0);  // still on the profile
+
+  Checked off = c;
+  off.camber.le.point = off.params.le_point = c.params.le_point - 0.05 * c.camber.le_tangent;
+  CHECK((recheck(spline, off, 0.005).flags & section::bit(Check::le_point)) != 0);
+  off.camber.le.point = off.params.le_point = c.params.le_point - 0.005 * c.camber.le_tangent;
+  CHECK((recheck(spline, off, 0.005).flags & section::bit(Check::le_point)) == 0);  // within 4 sigma
+}
+
+TEST_CASE("checks: a metal angle off the camber line's direction is flagged", "[checks]") {
+  for (const SectionDesign& design : designs()) {
+    const SectionTruth truth = section::section_truth(design, 20000);
+    const BSpline spline = dense_spline(truth.profile);
+    const Checked c = measure(spline, 0.005);
+    for (double off : {-6.0, 6.0}) {
+      Checked bad = c;
+      bad.params.inlet_angle += off;
+      bad.params.outlet_angle -= off;
+      const section::SectionCheck k = recheck(spline, bad, 0.005);
+      INFO("design chord " << design.chord << " off " << off << ": " << names(k.flags));
+      CHECK((k.flags & section::bit(Check::inlet_angle)) != 0);
+      CHECK((k.flags & section::bit(Check::outlet_angle)) != 0);
+    }
+  }
+}
+
+TEST_CASE("checks: blade: a section that jumps from its neighbours is flagged with the jump", "[checks]") {
+  // Nine sections 7.5 mm apart: smooth trends (chord, twist, turning) with small noise.
+  std::vector<section::BladeSection> blade;
+  for (int k = 0; k < 9; ++k) {
+    section::BladeSection s;
+    s.height = 7.5 * k;
+    const double z = s.height / 60;
+    s.params.chord = 40 - 2 * z + 0.01 * std::sin(7.0 * k);
+    s.params.max_thickness = 8 - 1 * z * z;
+    s.params.stagger = -10 - 4 * z + 0.1 * std::cos(5.0 * k);
+    s.params.inlet_angle = 45 - 5 * z;
+    s.params.outlet_angle = -65 - 3 * z * z;
+    s.params.camber_angle = s.params.inlet_angle - s.params.outlet_angle;
+    s.params.le_radius = 2 - 0.2 * z;
+    s.params.te_radius = 0.5 - 0.05 * z;
+    blade.push_back(s);
+  }
+  CHECK(section::check_blade(blade).empty());
+  // Stagger flipping by 175 degrees (-63 / 112 on a sparse rotor) at section 4, a chord
+  // 60 % short at section 7.
+  std::vector<section::BladeSection> bad = blade;
+  bad[4].params.stagger += 175;
+  bad[7].params.chord *= 0.4;
+  const std::vector<section::Jump> jumps = section::check_blade(bad);
+  REQUIRE(jumps.size() == 2);
+  CHECK(jumps[0].index == 4);
+  CHECK(jumps[0].check == Check::jump_stagger);
+  CHECK(std::abs(std::abs(jumps[0].value - jumps[0].expected) - 175) < 1);
+  CHECK(jumps[1].index == 7);
+  CHECK(jumps[1].check == Check::jump_chord);
+  // Camber angles 5.6, 17.1, 16.8, 3.8 over four sections (the blade's fall smoothly from
+  // 17.9 to 9.3): the ends that depart from their neighbours are flagged.
+  std::vector<section::BladeSection> four(4);
+  const double camber[] = {5.6, 17.1, 16.8, 3.8};
+  for (int k = 0; k < 4; ++k) {
+    four[k].height = 15 * k;
+    four[k].params = blade[k].params;
+    four[k].params.camber_angle = camber[k];
+  }
+  int flagged = 0;
+  for (const auto& j : section::check_blade(four)) flagged += j.check == Check::jump_camber;
+  CHECK(flagged >= 2);
+  // Fewer than three sections: nothing to compare.
+  CHECK(section::check_blade({bad[0], bad[4]}).empty());
+}
+
+TEST_CASE("checks: the stream's params rows carry the blade check's flags and issues", "[checks]") {
+  // Five sections' params rows (centroids 10 apart along z), the third with a chord 30 % short.
+  section::Stream stream;
+  section::Table t = section::schema::params.table();
+  for (int k = 0; k < 5; ++k) {
+    section::SectionParams p;
+    p.chord = k == 2 ? 28 : 40;
+    p.max_thickness = 4;
+    p.le_radius = 1, p.te_radius = 0.3;
+    p.stagger = 30, p.inlet_angle = 50, p.outlet_angle = 10, p.camber_angle = 40;
+    const section::CamberResult c;
+    const Eigen::Vector3d at(0, 0, 10.0 * k);
+    section::schema::params.add(t, {k, p, c, at, at, at, 0, 0, 0});
+  }
+  stream.put(t);
+  section::check_blade_stream({&stream});
+  const section::Table& params = *stream.find("params");
+  for (std::size_t r = 0; r < params.rows(); ++r)
+    CHECK(params.at(r, params.column("flags")) == (r == 2 ? section::bit(Check::jump_chord) : 0));
+  REQUIRE(stream.issues.size() == 1);
+  CHECK(stream.issues[0].section == 2);
+  CHECK(stream.issues[0].message.find("chord 28 fails check jump_chord: it jumps by -12") !=
+        std::string::npos);
+}
