@@ -11,6 +11,7 @@
 // silent wrong value or fewer than 95 % of its planes with params; 2 on bad usage.
 // Usage: evaluate_kinds [--quick] [--seeds N] [--kinds K1,K2] [--expect K1,K2|all]
 //                       [--tools DIR] [--keep DIR] [--verbose]
+#include "section/checks.h"
 #include "section/extras/generate.h"
 #include "section/extras/score.h"
 #include "section/io/cloud_io.h"
@@ -235,7 +236,16 @@ SectionFlags flags_of(const Stream& stream, const Csv& params, std::size_t row, 
   char* end = nullptr;
   const double number = std::strtod(cell.c_str(), &end);
   if (!cell.empty() && end && *end == '\0') {
-    f.row_flag = number != 0;
+    // The checks' bit mask: each set bit flags the columns its check names; one that flags
+    // every column (the LE's choice, a doubtful unit) flags the whole row.
+    const auto mask = static_cast<std::uint32_t>(number);
+    for (const auto& check : section::check_names) {
+      if (!(mask & section::bit(check.check))) continue;
+      const std::string columns = check.columns;
+      if (columns.rfind("every", 0) == 0) f.row_flag = true;
+      std::istringstream words(columns);
+      for (std::string column; words >> column;) f.tokens.insert(column);
+    }
     return f;
   }
   std::string word;

@@ -425,7 +425,7 @@ TEST_CASE("compare: the whole-blade fit recovers one move of all sections", "[co
   cases[1].nominal.le_point.y() = -cases[1].nominal.le_point.y();
   cases[1].nominal.te_point.y() = -cases[1].nominal.te_point.y();
   cases[1].nominal.pressure_side = -cases[1].nominal.pressure_side;
-  std::vector<section::BladeSection> sections;
+  std::vector<section::ComparedSection> sections;
   for (std::size_t i = 0; i < cases.size(); ++i)
     sections.push_back({&cases[i].nominal, &measured[i], frames[i]});
   for (FitMethod m : {FitMethod::least_squares, FitMethod::minimum_zone}) {

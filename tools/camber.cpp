@@ -38,8 +38,15 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     if (!units.note.empty()) stream.notes.push_back(units.note);
     return stream;
   };
+  // A doubtful unit (slice's or the plain profile's note) flags every row.
+  bool doubtful_units = false;
+  run.preamble = [&](const section::Stream& head) { doubtful_units = section::units_doubtful(head); };
   // The check across the blade needs every section: the parts are held until all are measured.
-  run.hold = [](const std::vector<section::Stream*>& parts) { section::check_blade_stream(parts); };
+  run.hold = [&](const std::vector<section::Stream*>& parts) {
+    section::check_blade_stream(parts);
+    if (doubtful_units)
+      for (section::Stream* part : parts) section::flag_doubtful_units(*part);
+  };
   section::tool::SectionTally tally("splines", "params");
   run.written = [&](const section::Stream& stream) {
     section::tool::warn_issues("camber", stream, false);

@@ -254,7 +254,7 @@ SectionComparison compare_section(const NominalSection& nominal, const std::vect
   return c;
 }
 
-BladeComparison compare_blade(const std::vector<BladeSection>& sections, const CompareOptions& options) {
+BladeComparison compare_blade(const std::vector<ComparedSection>& sections, const CompareOptions& options) {
   check(options);
   BladeComparison out;
   if (sections.empty()) return out;
@@ -262,7 +262,7 @@ BladeComparison compare_blade(const std::vector<BladeSection>& sections, const C
   out.axis = f0.n;
   std::vector<Geometry> geos;
   geos.reserve(sections.size());
-  for (const BladeSection& s : sections) {
+  for (const ComparedSection& s : sections) {
     check_points(*s.measured, freedoms(options.fit.freedom));
     if (std::abs(std::abs(s.frame.n.dot(f0.n)) - 1) > 1e-9)
       throw Error("compare: a whole-blade fit needs parallel section planes");

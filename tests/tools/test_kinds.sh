@@ -23,24 +23,24 @@ check "a summary line per kind" -- test "$(grep -cE '^(PASS|FAIL) ' "$TMP/out")"
 cp "$TMP/out" "$TMP/quick.txt"
 
 # The harness itself: a camber that writes a chord 1 % long is caught as a silent wrong
-# value; the same with a flags column naming the chord is counted as flagged.
+# value; the same with the flags column's chord bit set is counted as flagged.
 mkdir -p "$TMP/fake"
 BIN="$(cd "$BIN" && pwd)"
 for t in slice smooth fitspline; do ln -s "$BIN/$t" "$TMP/fake/$t"; done
 cat > "$TMP/fake/camber" <<EOS
 #!/usr/bin/env bash
-# camber, then the params file's chord made 1 % long (and a flags column if FLAG is set)
+# camber, then the params file's chord made 1 % long (and its flags set to FLAG if given)
 args=("\$@"); p=""
 for ((i = 0; i < \${#args[@]}; ++i)); do [ "\${args[i]}" = --params ] && p="\${args[i+1]}"; done
 "$BIN/camber" "\$@" || exit \$?
 awk -F, -v OFS=, -v flag="\${FLAG:-}" '
-  NR == 1 { for (i = 1; i <= NF; ++i) if (\$i == "chord") c = i; print \$0 (flag != "" ? ",flags" : ""); next }
-  { \$c = \$c * 1.01; print \$0 (flag != "" ? "," flag : "") }' "\$p" > "\$p.tmp" && mv "\$p.tmp" "\$p"
+  NR == 1 { for (i = 1; i <= NF; ++i) { if (\$i == "chord") c = i; if (\$i == "flags") f = i }; print; next }
+  { \$c = \$c * 1.01; if (flag != "") \$f = flag; print }' "\$p" > "\$p.tmp" && mv "\$p.tmp" "\$p"
 EOS
 chmod +x "$TMP/fake/camber"
 expect 1 "a chord 1 % long is a silent wrong value" -- "$E" --quick --kinds scan-mm --tools "$TMP/fake"
 check "it is named" -- grep -q "SILENT WRONG seed 1 section 0 (z .*): chord off by" "$TMP/out"
-expect 0 "flagged in the row's flags column" -- env FLAG=chord "$E" --quick --kinds scan-mm \
+expect 0 "flagged in the row's flags column (the chord check's bit, 256)" -- env FLAG=256 "$E" --quick --kinds scan-mm \
   --tools "$TMP/fake"
 check "counted as flagged" -- grep -qE "^  chord +[0-9.]+ um +10 +3 +3 +0" "$TMP/out"
 finish

@@ -38,6 +38,7 @@ enum class Check : std::uint32_t {
   jump_camber = 1u << 19,     ///< camber angle jumps
   jump_le_radius = 1u << 20,  ///< LE radius jumps
   jump_te_radius = 1u << 21,  ///< TE radius jumps
+  units = 1u << 22,           ///< the input's unit is doubtful (read as mm though it looks like inches or um)
 };
 
 /// A check's name (the word the issues use) and the params columns whose values it flags.
@@ -69,6 +70,7 @@ inline constexpr CheckName check_names[] = {
     {Check::jump_camber, "jump_camber", "camber_angle"},
     {Check::jump_le_radius, "jump_le_radius", "le_radius"},
     {Check::jump_te_radius, "jump_te_radius", "te_radius"},
+    {Check::units, "units", "every length column (and, through the defaults, every value)"},
 };
 
 /// The bit of a check in a flags mask.

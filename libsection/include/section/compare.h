@@ -141,7 +141,7 @@ SectionComparison compare_section(const NominalSection& nominal, const std::vect
                                   const CompareOptions& options = {});
 
 /// One section of a blade for compare_blade.
-struct BladeSection {
+struct ComparedSection {
   const NominalSection* nominal = nullptr;                 ///< its nominal, in the plane's coordinates
   const std::vector<Eigen::Vector2d>* measured = nullptr;  ///< its measured points
   Frame frame;                                             ///< its plane
@@ -160,7 +160,8 @@ struct BladeComparison {
 /// planes' (common) normal and a translation across it, as options.fit.freedom allows
 /// (translation_along and rotation read direction_3d and center_3d). Throws section::Error
 /// when the planes are not parallel, and as compare_section does.
-BladeComparison compare_blade(const std::vector<BladeSection>& sections, const CompareOptions& options = {});
+BladeComparison compare_blade(const std::vector<ComparedSection>& sections,
+                              const CompareOptions& options = {});
 
 /// The verdict of a value against its tolerance.
 enum class Verdict : int { pass = 0, fail = 1, not_measured = 2 };

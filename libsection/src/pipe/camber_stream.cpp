@@ -247,6 +247,27 @@ void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOpt
   }
 }
 
+bool units_doubtful(const Stream& stream) {
+  for (const auto& note : stream.notes)
+    if (note.rfind("units_doubtful", 0) == 0) return true;
+  return false;
+}
+
+void flag_doubtful_units(Stream& stream) {
+  Table* t = stream.find(schema::params.name);
+  if (!t || t->rows() == 0) return;
+  const std::size_t flags = t->column("flags"), id = t->column(col::section);
+  for (std::size_t r = 0; r < t->rows(); ++r) {
+    double& f = t->values[r * t->columns.size() + flags];
+    f = double(static_cast<std::uint32_t>(f) | bit(Check::units));
+    stream.issues.push_back(
+        {static_cast<int>(t->at(r, id)), 0, "camber",
+         "its values fail check units: the input was read as mm though its extent suggests "
+         "another unit (see slice's warning); give --units"});
+  }
+  t->source.reset();  // changed: formatted from its values
+}
+
 Stream profile_stream(const BSpline& spline, double rms) {
   Stream stream;
   FitSplineResult fit;

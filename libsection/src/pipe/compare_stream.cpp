@@ -265,7 +265,7 @@ void compare_stream(Stream& stream, const Stream& nominal, const CompareStreamOp
   }
   std::optional<BladeComparison> blade;
   if (options.whole) {
-    std::vector<BladeSection> sections;
+    std::vector<ComparedSection> sections;
     for (std::size_t k = 0; k < in.ids.size(); ++k)
       if (why[k].empty()) sections.push_back({&in.nominals.at(in.ids[k]), &pts[k], frame_of(in, in.ids[k])});
     if (!sections.empty()) blade = compare_blade(sections, options.compare);

@@ -36,6 +36,7 @@ void run_whole(const StageRun& run, PartReader& reader) {
                       : parse_stream(std::make_shared<const std::string>(std::move(text)), reader.source());
   check_units(stream.units, reader.source());
   convert_to_mm(stream);
+  if (run.preamble) run.preamble(stream);
   run.stage(stream, run.threads);
   stream.history.push_back(run.history);
   if (run.hold) run.hold({&stream});
@@ -187,6 +188,7 @@ void run_stage(const StageRun& run) {
   check_units(units, reader.source());  // before anything is written
   head.units = "mm";                    // each part is converted to mm before it is staged
   head.history.push_back(run.history);
+  if (run.preamble) run.preamble(head);
   PartScheduler(run, reader, head, units).run();
 }
 

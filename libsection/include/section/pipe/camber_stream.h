@@ -22,6 +22,15 @@ void camber_stream(Stream& stream, const CamberOptions& options = {});
 /// sections' centroids along the frames' mean normal.
 void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOptions& options = {});
 
+/// True when the stream's notes say its input's unit is doubtful (slice's or camber's
+/// `units_doubtful` note: read as mm though its extent suggests inches or micrometres).
+bool units_doubtful(const Stream& stream);
+
+/// Sets the `units` check's bit on every params row of `stream` and says so in an issue per
+/// section: the input's unit is doubtful, so every length, and every value the length
+/// defaults shaped, may be misscaled.
+void flag_doubtful_units(Stream& stream);
+
 /// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
 /// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain
 /// profile (an airfoil .dat file, a CMM section).

@@ -19,6 +19,9 @@ struct StageRun {
   /// The stage: runs on each part (or the whole stream), from several threads at once,
   /// told how many threads it may use itself (1 for a part, `threads` for a whole stream).
   std::function<void(Stream&, int threads)> stage;
+  /// Sees the preamble (units, history, notes) before any part is staged; for a stream not
+  /// split into parts, the whole stream before it is staged.
+  std::function<void(const Stream& head)> preamble;
   /// Sees each part (or the whole stream) as it is written, in order, from one thread.
   std::function<void(const Stream&)> written;
   /// When set, the parts (or the whole stream) are held until every one is staged, then
