@@ -236,14 +236,12 @@ SectionFlags flags_of(const Stream& stream, const Csv& params, std::size_t row, 
   char* end = nullptr;
   const double number = std::strtod(cell.c_str(), &end);
   if (!cell.empty() && end && *end == '\0') {
-    // The checks' bit mask: each set bit flags the columns its check names; one that flags
-    // every column (the LE's choice, a doubtful unit) flags the whole row.
+    // Each set bit flags its check's columns; "every ..." (a doubtful unit) the whole row.
     const auto mask = static_cast<std::uint32_t>(number);
     for (const auto& check : section::check_names) {
       if (!(mask & section::bit(check.check))) continue;
-      const std::string columns = check.columns;
-      if (columns.rfind("every", 0) == 0) f.row_flag = true;
-      std::istringstream words(columns);
+      if (std::string(check.columns).rfind("every", 0) == 0) f.row_flag = true;
+      std::istringstream words(check.columns);
       for (std::string column; words >> column;) f.tokens.insert(column);
     }
     return f;
