@@ -6,7 +6,7 @@ expect 0 "help" -- "$BIN/slice" --help
 check "help names the options" -- grep -q -- "--normal" "$TMP/out"
 expect 0 "version" -- "$BIN/slice" --version
 expect 2 "bad flag" -- "$BIN/slice" --no-such-flag x.xyz
-expect 2 "no planes" -- "$BIN/slice" x.xyz
+expect 2 "rows and planes" -- "$BIN/slice" x.xyz --rows --at 1
 expect 2 "bad normal" -- "$BIN/slice" x.xyz --normal 0,1 --at 1
 expect 1 "missing file" -- "$BIN/slice" "$TMP/none.xyz" --at 1
 check "missing file named" -- grep -q "none.xyz" "$TMP/err"
