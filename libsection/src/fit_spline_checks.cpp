@@ -65,13 +65,18 @@ Along along_curve(const Refinement& r) {
 
 // The longest stretch of the curve between consecutive measured feet, and the median
 // spacing, as arc lengths: a hole in the data is where the curve is bridged, not measured.
+// The spacing is the median of the stretches that are not zero: exact copies of a point
+// add zero stretches, which would make it zero and every stretch a hole.
 void measure_gaps(const Refinement& r, const Along& along, double gap_factor, FitSplineResult& result) {
   const std::vector<double>& ts = along.ts;
   const std::vector<double>& lengths = along.chords;
   if (ts.size() < 2) return;
   const BSpline& c = r.curve;
   const double period = c.t_max() - c.t_min();
-  result.spacing = median_nonnegative(lengths);
+  std::vector<double> apart;
+  for (double l : lengths)
+    if (l > 0) apart.push_back(l);
+  result.spacing = median_nonnegative(std::move(apart));
   for (std::size_t i = 0; i < ts.size(); ++i) {
     if (!(lengths[i] > gap_factor * result.spacing)) continue;
     const double end = i + 1 < ts.size() ? ts[i + 1] : ts[0] + period;
