@@ -5,6 +5,7 @@
 #include "section/error.h"
 #include "section/extras/generate.h"
 #include "section/extras/score.h"
+#include "section/fit_spline.h"
 #include "section/io/slice_file.h"
 #include "section/io/stream.h"
 #include "section/pipe/camber_stream.h"
@@ -273,6 +274,8 @@ TEST_CASE("sampling: a 2D profile, ordered or shuffled, is one section in its ow
   REQUIRE(cloud);
   REQUIRE(cloud->points.size() == 400);
   CHECK(!profile_cloud("1 2 3\n4 5 6\n", "cloud.xyz"));
+  CHECK(!profile_cloud("241 21\n1 2 3\n4 5 6\n", "blade3d.dat"));  // a count header over rows of three
+  CHECK(profile_cloud("NACA 4412\n1 0\n0.5 0.05\n0 0\n0.5 -0.02\n", "naca.dat")->points.size() == 4);
   CHECK(!profile_cloud("ply\nformat ascii 1.0\n", "cloud.ply"));
   for (const bool shuffled : {false, true}) {
     Cloud c = *cloud;
@@ -314,4 +317,29 @@ TEST_CASE("sampling: exact copies of points do not shrink the spacing", "[sampli
     CHECK(b.sections[0].slab_points == a.sections[0].slab_points);
     CHECK(b.sections[0].morphology.loops[0].points == a.sections[0].morphology.loops[0].points);
   }
+  // A profile given with every point twice (as a stream made elsewhere may hold it): its
+  // spacing is not zero, and its holes are those of the profile once.
+  const auto loop = slice(once, planes_at({0, 0, 1}, {30.0})).sections[0].morphology.loops.at(0).points;
+  std::vector<Eigen::Vector2d> twice;
+  for (const auto& p : loop) twice.insert(twice.end(), {p, p});
+  const FitSplineResult f1 = fit_spline(loop, loop), f2 = fit_spline(twice, twice);
+  CHECK(f2.spacing == Approx(f1.spacing).epsilon(0.05));
+  CHECK(f2.gaps.size() == f1.gaps.size());
+}
+
+TEST_CASE("sampling: a section that does not close names the option that helps", "[sampling]") {
+  // A wavy ring cut by a slab thinner than its waves: two short arcs, which close nothing.
+  Cloud ring;
+  for (int i = 0; i < 2000; ++i) {
+    const double a = 0.00314 * i;
+    ring.points.emplace_back(10 * std::cos(a), 5 * std::sin(a), 0.5 + 0.01 * std::sin(a));
+  }
+  SliceOptions o;
+  o.slab = 0.004;
+  const SliceResult r = slice(ring, planes_at({0, 0, 1}, {0.5}), o);
+  const std::string& e = r.sections[0].error;
+  INFO(e);
+  CHECK(e.find("morphology:") == 0);
+  CHECK(e.find("a wider slab holds more points (--slab, now 0.004 mm)") != std::string::npos);
+  CHECK(e.find("max_dilation") == std::string::npos);
 }

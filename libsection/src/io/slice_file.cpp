@@ -423,11 +423,12 @@ void check_slab_width(double slab) {
 
 bool looks_like_profile(std::string_view head) {
   if (head.substr(0, 3) == "ply") return false;
-  int titles = 0;
-  for (std::size_t pos = 0; pos < head.size();) {
-    const std::size_t nl = std::min(head.find('\n', pos), head.size());
-    const std::string_view line = detail::trim(head.substr(pos, nl - pos));
-    pos = nl + 1;
+  int titles = 0, rows = 0;
+  for (std::size_t pos = 0; pos < head.size() && rows < 16;) {
+    const std::size_t nl = head.find('\n', pos);
+    if (nl == std::string_view::npos && rows > 0) break;  // a line cut by the end of the look
+    const std::string_view line = detail::trim(head.substr(pos, std::min(nl, head.size()) - pos));
+    pos = std::min(nl, head.size()) + 1;
     if (line.empty() || line[0] == '#' || line.substr(0, 2) == "//") continue;
     std::vector<std::string_view> fields;
     detail::split_fields(line, [&](std::string_view f) {
@@ -435,13 +436,17 @@ bool looks_like_profile(std::string_view head) {
       return fields.size() < 3;
     });
     double x = 0, y = 0;
-    if (fields.empty() || !detail::parse_double(fields[0], x)) {
+    if (rows == 0 && (fields.empty() || !detail::parse_double(fields[0], x))) {
       if (++titles > 8) return false;  // a title line, as in airfoil .dat files
       continue;
     }
-    return fields.size() == 2 && detail::parse_double(fields[1], y);
+    // Two numbers on every data line looked at (a count such as `241 21` over rows of
+    // three is a header, not a profile).
+    if (fields.size() != 2 || !detail::parse_double(fields[0], x) || !detail::parse_double(fields[1], y))
+      return false;
+    ++rows;
   }
-  return false;
+  return rows > 0;
 }
 
 std::optional<Cloud> profile_cloud(std::string_view text, const std::string& name) {

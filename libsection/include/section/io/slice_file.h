@@ -11,8 +11,9 @@
 
 namespace section {
 
-/// True when `head` (the start of a file) is a plain 2D profile: text whose first data line
-/// (after blank lines, `#` lines and up to 8 title lines) holds exactly two numbers, x y.
+/// True when `head` (the start of a file) is a plain 2D profile: text whose data lines
+/// (after blank lines, `#` lines and up to 8 title lines; the first 16 looked at) hold
+/// exactly two numbers each, x y.
 bool looks_like_profile(std::string_view head);
 
 /// A plain 2D profile (parse_profile: x y a line, ordered or not) as a cloud at z = 0, when
