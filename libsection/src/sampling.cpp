@@ -21,6 +21,8 @@ using Vec3 = Eigen::Vector3d;
 // Neighbours of a point looked at: the 16 nearest distinct others, from a search for 24
 // (exact copies of the point, itself included, are skipped).
 constexpr int wanted = 16, searched = 24;
+// The first look: this many points (at most), this many of them measured.
+constexpr std::size_t first_look = 50'000, first_queries = 5'000;
 // Within 45 degrees of the normal a neighbour is above or below; within 30 degrees of the
 // plane it is beside, in the same row.
 const double above = std::sqrt(0.5), beside = 0.5;
@@ -275,33 +277,41 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
   if (!normal.allFinite() || !(normal.norm() > 0))
     throw Error("slice: the plane normal must be finite and non-zero");
   const Vec3 n = normal.normalized();
-  Sampling s;
-  const std::size_t m = std::min(points.size(), std::max<std::size_t>(options.max_points, 1));
-  s.points = m;
-  if (m < 2) return s;
-  const std::vector<Vec3> first(points.begin(), points.begin() + std::ptrdiff_t(m));
-  const detail::NearestPoints<3> tree(first);
-  std::vector<double> heights;
-  measure_spacings(tree, first, n, options, s, heights);
-  // Heights on levels (the quartiles of the gaps along the normal close together, where a
-  // dense scan's spread over a factor of two) wider apart than the spacing are lines too:
-  // a slab of the spacing would fall between them.
-  const bool levels = s.normal_low >= 0.8 * s.normal_high && s.normal_spacing > s.spacing;
-  if (!(s.spacing > 0) || !(levels || s.normal_spacing > options.anisotropy * s.spacing)) return s;
-  s.kind = SamplingKind::lines;
-  s.rows = find_rows(tree, first, n, s.spacing, options);
-  if (!s.rows.empty()) {
-    classify_rows(options, s);
+  const std::size_t all = std::min(points.size(), std::max<std::size_t>(options.max_points, 1));
+  // A first look at fewer points settles a dense scan for a fraction of the cost; the rest
+  // only when they are not one.
+  for (const std::size_t m : {std::min(all, first_look), all}) {
+    Sampling s;
+    s.points = m;
+    if (m < 2) return s;
+    const std::vector<Vec3> first(points.begin(), points.begin() + std::ptrdiff_t(m));
+    const detail::NearestPoints<3> tree(first);
+    std::vector<double> heights;
+    SamplingOptions o = options;
+    if (m < all) o.queries = std::min(o.queries, first_queries);
+    measure_spacings(tree, first, n, o, s, heights);
+    // Heights on levels (the quartiles of the gaps along the normal close together, where
+    // a dense scan's spread over a factor of two) wider apart than the spacing are lines
+    // too: a slab of the spacing would fall between them.
+    const bool levels = s.normal_low >= 0.8 * s.normal_high && s.normal_spacing > s.spacing;
+    if (!(s.spacing > 0) || !(levels || s.normal_spacing > options.anisotropy * s.spacing)) return s;
+    if (m < all) continue;
+    s.kind = SamplingKind::lines;
+    s.rows = find_rows(tree, first, n, s.spacing, options);
+    if (!s.rows.empty()) {
+      classify_rows(options, s);
+      return s;
+    }
+    // Lines that do not come apart into rows (slanted, or crossing): the slab bridges the
+    // gap along the normal that nine in ten points see.
+    std::vector<double> finite;
+    for (double h : heights)
+      if (std::isfinite(h)) finite.push_back(h);
+    s.slab = quantile(finite, 0.9);
+    if (!(s.slab > 0)) s.kind = SamplingKind::dense;
     return s;
   }
-  // Lines that do not come apart into rows (slanted, or crossing): the slab bridges the
-  // gap along the normal that nine in ten points see.
-  std::vector<double> finite;
-  for (double h : heights)
-    if (std::isfinite(h)) finite.push_back(h);
-  s.slab = quantile(finite, 0.9);
-  if (!(s.slab > 0)) s.kind = SamplingKind::dense;
-  return s;
+  return Sampling{};
 }
 
 }  // namespace section

@@ -66,7 +66,8 @@ struct Sampling {
 /// Finds what kind of sampling `points` are with respect to planes of normal `normal`:
 /// the spacing in the surface (nearest distinct neighbour) against the spacing along the
 /// normal (nearest neighbour within 45 degrees of it), both medians over up to `queries` of
-/// the first `max_points` points; when the latter is over `anisotropy` times the former (or
+/// the first `max_points` points (a first look at 50 000 of them, 5 000 measured, settles a
+/// dense scan); when the latter is over `anisotropy` times the former (or
 /// over the former, on levels: its quartiles within 20 % of each other), the
 /// points are split into rows (points joined to their 16 nearest neighbours across the
 /// normal, within 30 degrees of the plane; a piece lying in a larger one's plane joins it)
