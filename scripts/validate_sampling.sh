@@ -8,12 +8,12 @@
 # Usage: scripts/validate_sampling.sh [tool directory] [data directory]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-bin="${1:-${SECTION_BIN:-$here/../build/tools}}"
-data="${2:-$here/../../shared/data/real}"
-[ -x "$bin/slice" ] || { echo "validate_sampling: no slice binary in $bin" >&2; exit 2; }
-[ -d "$data" ] || { echo "validate_sampling: no data directory $data" >&2; exit 2; }
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
+bin="${1:-${SECTION_BIN:-$here/../build/tools}}" data="${2:-$here/../../shared/data/real}"
+if [ ! -x "$bin/slice" ] || [ ! -d "$data" ]; then
+  echo "validate_sampling: need the tools in $bin and the data in $data" >&2
+  exit 2
+fi
+tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 
 # Rotor 37: columns J, Z [cm], R [cm], THETA1, THETA2; x = Z, y = R sin, z = R cos (mm).
 awk '$1 ~ /^[0-9]+$/ && NF == 5 { z = $2 * 10; r = $3 * 10;

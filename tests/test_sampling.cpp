@@ -8,12 +8,10 @@
 #include "section/fit_spline.h"
 #include "section/io/slice_file.h"
 #include "section/io/stream.h"
-#include "section/pipe/camber_stream.h"
-#include "section/pipe/fit_spline_stream.h"
 #include "section/pipe/slice_stream.h"
-#include "section/pipe/smooth_stream.h"
 #include "section/sampling.h"
 #include "section/slice.h"
+#include "pipe_stages.h"
 
 #include <catch2/catch.hpp>
 
@@ -88,13 +86,7 @@ double worst_distance(const SectionSlice& s, const SectionTruth& truth) {
 // camber scores against the truth at its height; a section without params fails the test.
 std::vector<CamberScore> camber_scores(const SliceResult& r, const std::vector<double>& zs,
                                        const BladeDesign& blade) {
-  Stream stream = parse_stream(format_stream(to_stream(r, "slice")), "slice");
-  smooth_stream(stream);
-  stream = parse_stream(format_stream(stream), "smooth");
-  fit_spline_stream(stream);
-  stream = parse_stream(format_stream(stream), "fitspline");
-  camber_stream(stream);
-  stream = parse_stream(format_stream(stream), "camber");
+  const Stream stream = test::after_slice(to_stream(r, "slice"));
   std::vector<CamberScore> out;
   for (std::size_t k = 0; k < zs.size(); ++k) {
     INFO("section " << k << " at z = " << zs[k]);
