@@ -285,6 +285,19 @@ TEST_CASE("sampling: a 2D profile, ordered or shuffled, is one section in its ow
   }
 }
 
+TEST_CASE("sampling: points along a line are no profile", "[sampling]") {
+  // A row that is a straight line (or a slightly bent one) encloses nothing: no section,
+  // said so, rather than a loop out and back of no area.
+  for (const double bend : {0.0, 1e-4, 0.01}) {
+    Cloud line;
+    for (int i = 0; i < 500; ++i) line.points.emplace_back(0.1 * i, bend * (0.1 * i) * (0.1 * i), 0.0);
+    const SliceResult r = slice_rows(line, {0, 0, 1});
+    REQUIRE(r.sections.size() == 1);
+    CHECK(r.sections[0].error.find("lie along one curve, not round a profile") != std::string::npos);
+    CHECK(r.sections[0].morphology.loops.empty());
+  }
+}
+
 TEST_CASE("sampling: exact copies of points do not shrink the spacing", "[sampling]") {
   const BladeDesign blade = compressor_blade();
   ScanOptions so = inspection_scan();

@@ -106,6 +106,10 @@ section::SliceResult slice_by_rows(const SliceArgs& a, const section::Cloud& clo
   section::SamplingOptions all = a.options.sampling;  // a row is a section only with all its points
   all.max_points = std::max(all.max_points, cloud.points.size());
   const section::Sampling sampling = section::sampling_of(cloud.points, n, all);
+  if (!(sampling.spacing > 0) || cloud.points.size() < 8)
+    throw section::Error("no section planes given, and " + std::to_string(cloud.points.size()) + " points" +
+                         (sampling.spacing > 0 ? "" : ", all equal,") +
+                         " make no row (a section needs 8 distinct points or more)");
   if (!a.rows && sampling.kind != section::SamplingKind::rows)
     throw section::Error(
         "no section planes given, and the points are not sparse rows (each a section's worth) "

@@ -110,7 +110,20 @@ MorphologyResult order_along_chord(const std::vector<Eigen::Vector2d>& points) {
   }
   const Eigen::VectorXd c = a.colPivHouseholderQr().solve(b);
   std::vector<std::size_t> upper, lower;
-  for (std::size_t i = 0; i < n; ++i) (y[i] > a.row(Eigen::Index(i)).dot(c) ? upper : lower).push_back(i);
+  std::vector<double> off(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    off[i] = y[i] - a.row(Eigen::Index(i)).dot(c);
+    (off[i] > 0 ? upper : lower).push_back(i);
+  }
+  // Round a profile the points lie on both sides of the mean line, up to half its thickness
+  // off (1 % of the chord for a blade 2 % thick; the 90 % quantile, as points crowd at the
+  // thin edges); along one curve (an open arc, a line) on it.
+  for (double& o : off) o = std::abs(o);
+  const std::size_t q = n * 9 / 10;
+  std::nth_element(off.begin(), off.begin() + std::ptrdiff_t(q), off.end());
+  if (!(off[q] > 0.002 * 2 * reach))
+    throw Error("morphology: the " + std::to_string(n) +
+                " points close into no loop and lie along one curve, not round a profile");
   std::sort(upper.begin(), upper.end(), [&](std::size_t i, std::size_t j) { return x[i] < x[j]; });
   std::sort(lower.begin(), lower.end(), [&](std::size_t i, std::size_t j) { return x[i] > x[j]; });
   upper.insert(upper.end(), lower.begin(), lower.end());
