@@ -1,7 +1,11 @@
 #include "section/io/slice_file.h"
 
 #include "section/error.h"
+#include "section/io/csv.h"
+#include "section/io/file.h"
 #include "detail/parallel.h"
+#include "io/byte_source.h"
+#include "io/text.h"
 #include "detail/slab_scan.h"
 #include "detail/slice_steps.h"
 
@@ -9,6 +13,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <random>
 
 namespace section {
@@ -259,6 +264,8 @@ struct FirstPass {
   double lo = INFINITY, hi = -INFINITY, largest = 0;  // extent along the normal, largest coordinate
   std::size_t total = 0;                              // points
   Reservoir sample;                                   // filled when `sampled`
+  std::size_t hold = 0;                               // when `sampled`: the first this many points are kept
+  std::vector<Eigen::Vector3d> first;                 // those, in file order (their sampling: sampling_of)
 };
 
 // Pass 1: the extent along the normal and, when `sampled`, a uniform random sample for the
@@ -279,6 +286,7 @@ void first_pass(const std::string& path, const CloudReadOptions& read, const Eig
           if (!r.kept[k].empty()) guess.kept[k].push_back(std::move(r.kept[k]));
         if (!sampled) return;
         pass.sample.take(p, count);
+        pass.first.insert(pass.first.end(), p, p + std::min(count, pass.hold - pass.first.size()));
       });
 }
 
@@ -358,14 +366,109 @@ SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes
   return result;
 }
 
+// The slab from pass 1: a dense scan's spacing from the random sample scaled back to the
+// full density (as mean_spacing scales a subset's), unless exact copies inflate that
+// density; lines' spacing along the normal (detail::sampled_slab).
+double sampled_slab(const FirstPass& first, const Sampling& sampling) {
+  if (sampling.kind == SamplingKind::dense && 100 * sampling.duplicates <= sampling.measured) {
+    const std::vector<Eigen::Vector3d>& sample = first.sample.points;
+    double slab = mean_spacing(sample);
+    if (sample.size() < first.total) slab *= std::sqrt(double(sample.size()) / double(first.total)) / 0.47;
+    if (slab > 0) return slab;
+  }
+  return detail::sampled_slab(first.first, sampling);
+}
+
+// Sparse rows (the planes through them take them as they lie: detail::slice_through_rows)
+// and lines whose rows pass 1 found (interpolated between them: detail::slice_between_lines),
+// from the whole cloud in memory (read again when pass 1 kept only its first points).
+SliceResult slice_held(const std::string& path, const std::vector<Plane>& planes, const SliceOptions& options,
+                       const CloudReadOptions& read, const SectionSink& sink, FirstPass first,
+                       Sampling sampling, const SamplingSink& on_sampling) {
+  SliceResult result;
+  result.points = first.total;
+  result.file_passes = 1;
+  std::vector<Eigen::Vector3d> points = std::move(first.first);
+  if (points.size() < first.total) {
+    points = read_cloud(path, read).points;
+    sampling = detail::sample_all(points, planes[0].normal, options.sampling);
+    result.file_passes = 2;
+  }
+  result.sampling = std::move(sampling);
+  if (on_sampling) on_sampling(result.sampling);
+  if (result.sampling.kind == SamplingKind::rows) {
+    detail::slice_through_rows(points, planes, options, result, sink);
+    return result;
+  }
+  if (result.sampling.kind == SamplingKind::lines && !result.sampling.rows.empty() &&
+      result.sampling.points == points.size()) {
+    result.slab = result.sampling.slab;
+    detail::slice_between_lines(points, planes, options, result, sink);
+    return result;
+  }
+  // All the points are no rows after all (the first ones looked like rows).
+  Cloud cloud{std::move(points)};
+  SliceResult lines = slice(cloud, planes, options);
+  lines.file_passes = result.file_passes;
+  if (sink)
+    for (const auto& s : lines.sections) sink(s);
+  return lines;
+}
+
 void check_slab_width(double slab) {
   if (!(slab > 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be positive and finite");
 }
 
 }  // namespace
 
+bool looks_like_profile(std::string_view head) {
+  if (head.substr(0, 3) == "ply") return false;
+  int titles = 0, rows = 0;
+  for (std::size_t pos = 0; pos < head.size() && rows < 16;) {
+    const std::size_t nl = head.find('\n', pos);
+    if (nl == std::string_view::npos && rows > 0) break;  // a line cut by the end of the look
+    const std::string_view line = detail::trim(head.substr(pos, std::min(nl, head.size()) - pos));
+    pos = std::min(nl, head.size()) + 1;
+    if (line.empty() || line[0] == '#' || line.substr(0, 2) == "//") continue;
+    std::vector<std::string_view> fields;
+    detail::split_fields(line, [&](std::string_view f) {
+      fields.push_back(detail::trim(f));
+      return fields.size() < 3;
+    });
+    double x = 0, y = 0;
+    if (rows == 0 && (fields.empty() || !detail::parse_double(fields[0], x))) {
+      if (++titles > 8) return false;  // a title line, as in airfoil .dat files
+      continue;
+    }
+    // Two numbers on every data line looked at (a count such as `241 21` over rows of
+    // three is a header, not a profile).
+    if (fields.size() != 2 || !detail::parse_double(fields[0], x) || !detail::parse_double(fields[1], y))
+      return false;
+    ++rows;
+  }
+  return rows > 0;
+}
+
+std::optional<Cloud> profile_cloud(std::string_view text, const std::string& name) {
+  if (!looks_like_profile(text.substr(0, std::size_t(1) << 16))) return std::nullopt;
+  Cloud cloud;
+  for (const Eigen::Vector2d& p : parse_profile(text, name)) cloud.points.emplace_back(p.x(), p.y(), 0.0);
+  return cloud;
+}
+
+std::optional<Cloud> read_profile_cloud(const std::string& path) {
+  {
+    detail::ByteSource src(path, "read_cloud");
+    if (src.is_directory()) return std::nullopt;
+    src.fetch(std::size_t(1) << 16);
+    if (!looks_like_profile(src.bytes())) return std::nullopt;
+  }
+  return profile_cloud(read_file(path), path);
+}
+
 SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
-                       const CloudReadOptions& read, const SectionSink& sink) {
+                       const CloudReadOptions& read, const SectionSink& sink,
+                       const SamplingSink& on_sampling) {
   detail::check_slab(options.slab);
   if (options.fill_gaps) check_gap_fill_options(options.fill);
   detail::check_band_options(options);
@@ -377,6 +480,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     const Cloud cloud = read_cloud(path, read);
     const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
     SliceResult result = slice(cloud, planes, options);
+    if (on_sampling && options.slab == 0) on_sampling(result.sampling);
     if (sink)
       for (const auto& s : result.sections) sink(s);
     return result;
@@ -388,29 +492,39 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   if (read_chunks.threads == 0) read_chunks.threads = options.threads;
   std::vector<Plane> planes = spec.planes;
   double slab = options.slab;
+  Sampling found;
   if (spec.count > 0 || slab == 0) {
     // Points near planes guessed from a first look at the file are kept on the way: when
     // the planes and slab found are near enough to the guess, pass 2 is not needed.
     Guess guess = guess_planes(path, spec, options, read);
     FirstPass first;
+    first.hold = options.sampling.max_points;
     first_pass(path, read_chunks, spec.normal.normalized(), slab == 0, guess, first);
     if (spec.count > 0) planes = spread(spec.normal, first.lo, first.hi, spec.count);
     if (slab == 0) {
-      // mean_spacing scales a subset's spacing back to the full density the same way.
-      const std::vector<Eigen::Vector3d>& sample = first.sample.points;
-      slab = mean_spacing(sample);
-      if (sample.size() < first.total) slab *= std::sqrt(double(sample.size()) / double(first.total)) / 0.47;
-      if (!(slab > 0))
-        throw Error(
-            "slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
+      Sampling sampling = sampling_of(first.first, planes[0].normal, options.sampling);
+      const bool all_held = first.first.size() == first.total;
+      if (sampling.kind == SamplingKind::rows ||
+          (sampling.kind == SamplingKind::lines && !sampling.rows.empty() && all_held))
+        return slice_held(path, planes, options, read, sink, std::move(first), std::move(sampling),
+                          on_sampling);
+      slab = sampled_slab(first, sampling);
+      if (on_sampling) on_sampling(sampling);
+      found = std::move(sampling);
+      found.rows.clear();
     }
     check_slab_width(slab);
-    if (guess.active && guess.covers(planes, slab, first.largest))
-      return slice_kept(path, planes, slab, guess, first.total, options, read_chunks, sink);
+    if (guess.active && guess.covers(planes, slab, first.largest)) {
+      SliceResult r = slice_kept(path, planes, slab, guess, first.total, options, read_chunks, sink);
+      r.sampling = std::move(found);
+      return r;
+    }
   }
   check_slab_width(slab);
-  return slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options, read_chunks,
-                    sink);
+  SliceResult r =
+      slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options, read_chunks, sink);
+  r.sampling = std::move(found);
+  return r;
 }
 
 }  // namespace section
