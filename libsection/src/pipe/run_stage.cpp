@@ -2,6 +2,7 @@
 // several at a time, each written as soon as it and the parts before it are done.
 #include "section/pipe/run_stage.h"
 
+#include "detail/parallel.h"
 #include "section/error.h"
 #include "section/io/stream_reader.h"
 
@@ -43,8 +44,8 @@ public:
                                  : std::max<std::size_t>(1, std::thread::hardware_concurrency())) {}
 
   void run() {
-    std::vector<std::thread> pool;
-    for (std::size_t w = 0; w < workers_; ++w) pool.emplace_back([this] { work(); });
+    std::vector<std::thread> pool = detail::start_threads(workers_, [this] { work(); });
+    if (pool.empty()) return run_alone();  // no thread could start (a low ulimit -v)
     try {
       StreamPart part;
       while (reader_.next(part))
@@ -72,6 +73,28 @@ private:
     bool done = false;
   };
 
+  // Parses and stages a job's part (its text is then released).
+  void stage(Job& job) {
+    Stream part = parse_stream_part(job.part, reader_.source());
+    part.units = units_;
+    run_.stage(part, 1);
+    job.part.text = nullptr;
+    job.result = std::move(part);
+  }
+
+  // Each part read, staged and written in turn, on this thread alone.
+  void run_alone() {
+    StreamPart part;
+    while (reader_.next(part)) {
+      Job job{std::move(part), {}, false};
+      stage(job);
+      if (run_.written) run_.written(job.result);
+      writer_.part(job.part.label, job.result);
+    }
+    if (run_.before_end) run_.before_end();
+    writer_.finish();
+  }
+
   // A worker: stages the parts in turn until the input is done or a part has failed.
   void work() {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -82,11 +105,7 @@ private:
       Job& job = jobs_[next_to_stage_++ - first_job_];
       lock.unlock();
       try {
-        Stream part = parse_stream_part(job.part, reader_.source());
-        part.units = units_;
-        run_.stage(part, 1);
-        job.part.text = nullptr;
-        job.result = std::move(part);
+        stage(job);
         lock.lock();
         job.done = true;
       } catch (...) {
