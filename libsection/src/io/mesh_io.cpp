@@ -10,12 +10,26 @@
 
 namespace section {
 
+namespace {
+
+// The check the text mesh readers make of their first bytes, made on a pipe's before it is
+// copied (ByteSource's spool): the same message, before the rest of an endless input.
+void check_head(const std::string& path, std::string_view head) {
+  const std::string ext = detail::extension(path);
+  if (ext != "obj" && ext != "off") return;
+  detail::skip_bom(head);
+  if (ext == "off") head = head.substr(0, head.find('\n'));  // (read_off checks its first line)
+  if (const char* why = detail::text_encoding_problem(head)) throw Error("read_mesh: " + path + ": " + why);
+}
+
+}  // namespace
+
 bool is_mesh_file(const std::string& path) {
   const detail::InputFormat* format = detail::format_of_extension(path);
   if (!format || !format->read_mesh) return false;
   if (!format->holds_mesh) return true;
   try {
-    detail::ByteSource src(path, "");
+    detail::ByteSource src(path, "", detail::HeadCheck{});
     return format->holds_mesh(src);
   } catch (const Error&) {
     return false;
@@ -24,14 +38,14 @@ bool is_mesh_file(const std::string& path) {
 
 Mesh read_mesh(const std::string& path) {
   if (path == "-") throw Error("read_mesh: meshes are read from files, not standard input");
-  detail::ByteSource src(path, "read_mesh: ");
-  // (a directory reads as empty, as it always did)
-  const std::string text = src.is_directory() ? std::string() : src.read_all();
-  if (text.empty()) throw Error("read_mesh: " + path + ": empty file");
   const detail::InputFormat* format = detail::format_of_extension(path);
   if (!format || !format->read_mesh)
     throw Error("read_mesh: " + path + ": unknown mesh extension (use " + detail::named_extensions(true) +
                 ")");
+  // (a named pipe is copied to a temporary file once: is_mesh_file may have read it)
+  detail::ByteSource src(path, "read_mesh: ", [&](std::string_view head) { check_head(path, head); });
+  const std::string text = src.read_all();
+  if (text.empty()) throw Error("read_mesh: " + path + ": empty file");
   Mesh mesh = format->read_mesh(path, text);
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const Eigen::Vector3d& p = mesh.vertices[i];
@@ -54,8 +68,13 @@ void write_mesh(const std::string& path, const Mesh& mesh) {
       if (t[k] < 0 || t[k] >= static_cast<int>(mesh.vertices.size()))
         throw Error("write_mesh: triangle index out of range");
   const std::string ext = detail::extension(path);
-  if (!detail::openmesh_write(path, mesh, ext == "stl" || ext == "ply"))
+  // OpenMesh writes the file by its name: a temporary one with the same extension, renamed
+  // when whole (ByteSink), or the path itself when it is not a regular file.
+  detail::ByteSink out(path, "write_mesh: ", ext.empty() ? "" : "." + ext);
+  const std::string& target = out.temporary().empty() ? path : out.temporary();
+  if (!detail::openmesh_write(target, mesh, ext == "stl" || ext == "ply"))
     throw Error("write_mesh: " + path + ": cannot write (unknown extension or unwritable path)");
+  out.close();
 }
 
 }  // namespace section

@@ -372,15 +372,6 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   if (spec.count > 0 && (!spec.normal.allFinite() || !(spec.normal.norm() > 0)))
     throw Error("slice: the plane normal must be finite and non-zero");
   if (spec.count == 0) detail::check_planes(spec.planes);
-  if (path == "-") {
-    // A pipe cannot be read twice: hold the cloud.
-    const Cloud cloud = read_cloud(path, read);
-    const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
-    SliceResult result = slice(cloud, planes, options);
-    if (sink)
-      for (const auto& s : result.sections) sink(s);
-    return result;
-  }
   // Chunks of at most 64k points (1.5 MB): each stays in a core's cache from its read to its
   // scan, and the workers end the file together.
   CloudReadOptions read_chunks = read;

@@ -23,8 +23,9 @@ using SectionSink = std::function<void(const SectionSlice&)>;
 /// slab points of each plane. A file is read once when the planes and the slab width are
 /// given, or when those guessed from a first look at a binary PLY file hold; twice
 /// otherwise (first for the extent along the normal and a random sample of 50000 points
-/// for the spacing). Standard input ("-") is held in memory and sliced by
-/// slice(Cloud). Same results in meaning as slice(read_cloud(path), ...); the estimated
+/// for the spacing). Standard input ("-"), a named pipe or a process substitution is first
+/// copied to a temporary file (read_cloud_chunks) and then read as a file is, with the same
+/// results. Same results in meaning as slice(read_cloud(path), ...); the estimated
 /// slab width may differ slightly (another random sample). Throws as read_cloud and slice.
 /// `sink`, when set, receives each section in plane order as soon as it and those before
 /// it are done, from one thread at a time (the slice tool writes it to the pipe while the

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace section {
 
@@ -29,7 +30,9 @@ Stream parse_stream_part(const StreamPart& part, const std::string& source);
 class PartReader {
 public:
   /// Opens `path` ("-" = standard input) and reads up to the first `# part`, `# table` or
-  /// data line. Throws section::Error when it cannot be opened or read.
+  /// data line. Throws section::Error when it cannot be opened or read, holds binary data,
+  /// UTF-16 or CR-only line ends; later reads throw for a line longer than max_text_line and
+  /// for a part (or a stream not split into parts) larger than max_input_bytes() (io/limits.h).
   explicit PartReader(const std::string& path);
   ~PartReader();
   PartReader(const PartReader&) = delete;
@@ -50,6 +53,11 @@ public:
   bool next(StreamPart& part);
 
 private:
+  // The next line (counted); throws for one longer than max_text_line.
+  bool next_line(std::string_view& line);
+  // Throws when `text` (WHAT of the input) is larger than max_input_bytes().
+  void held(const std::string& text, const std::string& what) const;
+
   std::unique_ptr<detail::ByteSource> in_;
   std::string source_, head_, text_, label_;
   std::size_t line_no_ = 0, first_line_ = 0;
