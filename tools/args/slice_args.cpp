@@ -86,6 +86,8 @@ void SliceArgs::declare(CLI::App& app) {
   app.add_option("--units", units, "Length unit recorded in the stream")->capture_default_str();
   app.callback([this] {
     if (normal.size() != 3) throw CLI::ValidationError("--normal takes three comma-separated numbers");
+    if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0)
+      throw CLI::ValidationError("--normal", "must not be 0,0,0 (a plane needs a direction)");
     if (at.empty() && count == 0 && planes_file.empty())
       throw CLI::RequiredError("one of --at, --count or --planes");
   });
