@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <new>
 #include <optional>
 
 namespace section {
@@ -171,6 +172,8 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         r.filled = MorphologyResult{};
         s.fill = std::move(r);
       }
+    } catch (const std::bad_alloc&) {
+      throw;  // out of memory fails the run: a section left out for it would pass unnoticed
     } catch (const std::exception& e) {
       s.error = e.what();
     }
