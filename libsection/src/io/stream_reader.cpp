@@ -46,6 +46,7 @@ PartReader::PartReader(const std::string& path) : in_(std::make_unique<detail::B
   }
   parted_ = key_of(text_) == "part";
   if (parted_) label_ = std::string(detail::meta_line(text_).rest);
+  if (parted_) labels_.insert(label_);
   first_line_ = line_no_;
 }
 
@@ -93,6 +94,9 @@ bool PartReader::next(StreamPart& part) {
       text_.clear();
       first_line_ = line_no_;
       label_ = std::string(detail::meta_line(line).rest);
+      if (key == "part" && !labels_.insert(label_).second)
+        detail::stream_fail(source_, line_no_,
+                            "a second part of section " + label_ + " (each section is one part)");
       if (key == "part") text_ += line;
       ended_ = key == "end";
       if (ended_ && !label_.empty()) end_error_line_ = line_no_;  // reported once this part is staged

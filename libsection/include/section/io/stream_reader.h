@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <set>
 #include <string>
 #include <string_view>
 
@@ -49,7 +50,8 @@ public:
   std::string whole();
   /// The next part, read up to the next `# part` or `# end`; false once `# end` is passed
   /// and the rest of the input is found blank. Throws section::Error naming the line for
-  /// anything after `# end`, and when the input ends before it (a truncated stream).
+  /// anything after `# end`, a second part of one section, and when the input ends before
+  /// `# end` (a truncated stream).
   bool next(StreamPart& part);
 
 private:
@@ -63,6 +65,7 @@ private:
   std::size_t line_no_ = 0, first_line_ = 0;
   bool parted_ = false, ended_ = false;
   std::size_t end_error_line_ = 0;  // a `# end` line with words after it, reported after the last part
+  std::set<std::string> labels_;    // of the parts so far
 };
 
 }  // namespace section
