@@ -5,6 +5,7 @@
 #include "detail/parallel.h"
 #include "section/error.h"
 #include "section/io/stream_reader.h"
+#include "section/pipe/validate.h"
 
 #include <condition_variable>
 #include <deque>
@@ -24,6 +25,7 @@ void run_whole(const StageRun& run, PartReader& reader) {
   Stream stream = run.other_input && text.compare(bom, 19, "# libsection-stream") != 0
                       ? run.other_input(text, reader.source())
                       : parse_stream(std::make_shared<const std::string>(std::move(text)), reader.source());
+  validate_stream(stream, reader.source());
   run.stage(stream, run.threads);
   stream.history.push_back(run.history);
   if (run.written) run.written(stream);
@@ -76,6 +78,7 @@ private:
   // Parses and stages a job's part (its text is then released).
   void stage(Job& job) {
     Stream part = parse_stream_part(job.part, reader_.source());
+    validate_stream(part, reader_.source());
     part.units = units_;
     run_.stage(part, 1);
     job.part.text = nullptr;
