@@ -280,7 +280,7 @@ void warn_issues(const std::string& stage, const section::Stream& stream, bool l
   for (const auto& issue : stream.issues) {
     if (issue.stage != stage) continue;
     std::cerr << stage << ": warning: section " << issue.section;
-    if (loops) std::cerr << " loop " << issue.loop;
+    if (loops && issue.loop >= 0) std::cerr << " loop " << issue.loop;
     std::cerr << ": " << issue.message << "\n";
   }
 }

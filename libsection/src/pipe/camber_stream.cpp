@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 
 namespace section {
@@ -27,9 +28,9 @@ std::map<int, std::vector<Eigen::Vector2d>> skeletons(const Stream& stream) {
   std::map<int, std::vector<Eigen::Vector2d>> out;
   const Table* t = schema::skeleton.find(stream);
   if (!t) return out;
-  const long cs = t->find_column(col::section), cl = t->find_column(col::loop),
-             ci = t->find_column(col::index), cu = t->find_column(col::u), cv = t->find_column(col::v);
-  if (cs < 0 || cu < 0 || cv < 0) return out;
+  // A table without the columns it needs is refused, not left out unremarked.
+  const long cs = long(t->column(col::section)), cl = t->find_column(col::loop),
+             ci = t->find_column(col::index), cu = long(t->column(col::u)), cv = long(t->column(col::v));
   std::map<int, std::map<int, Eigen::Vector2d>> rows;
   for (std::size_t r = 0; r < t->rows(); ++r) {
     if (cl >= 0 && t->at(r, cl) != 0) continue;
@@ -46,9 +47,11 @@ std::map<int, Measured> measured_points(const Stream& stream) {
   std::map<int, Measured> out;
   const Table* t = schema::points.find(stream);
   if (!t) return out;
-  const long cs = t->find_column(col::section), cl = t->find_column(col::loop), cu = t->find_column(col::u),
-             cv = t->find_column(col::v), co = t->find_column(col::offset);
-  if (cs < 0 || cl < 0 || cu < 0 || cv < 0) return out;
+  // A table without the columns it needs is refused: the edges would silently be fitted to
+  // the spline alone.
+  const std::size_t cs = t->column(col::section), cl = t->column(col::loop), cu = t->column(col::u),
+                    cv = t->column(col::v);
+  const long co = t->find_column(col::offset);
   for (std::size_t r = 0; r < t->rows(); ++r) {
     if (t->at(r, cl) != 0) continue;
     Measured& m = out[static_cast<int>(t->at(r, cs))];
@@ -213,8 +216,12 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   Table camber = schema::camber.table(), params = schema::params.table(),
         thickness = schema::thickness.table(), sides = schema::sides.table();
   std::vector<std::pair<int, const BSpline*>> work;
-  for (const auto& [key, curve] : in.curves)
+  std::set<int> present;
+  for (const auto& [key, curve] : in.curves) {
+    present.insert(key.first);
     if (key.second == 0) work.push_back({key.first, &curve});
+  }
+  pipe::vanished_sections(stream, present, "camber", "spline");
   pipe::run_slots(
       work.size(), options.threads, {&camber, &params, &thickness, &sides}, stream.issues, "camber",
       [&](std::size_t w, pipe::Slot& slot) {
