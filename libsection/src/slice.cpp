@@ -2,6 +2,7 @@
 
 #include "section/error.h"
 #include "detail/cgal.h"
+#include "detail/local_origin.h"
 #include "detail/parallel.h"
 #include "detail/slab_scan.h"
 #include "detail/slice_steps.h"
@@ -135,11 +136,21 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
     s.slab_points = slabs[i].size();
     try {
       if (slabs[i].empty()) throw Error("no points in the slab (the plane misses the part?)");
+      // A section far from its plane's origin is ordered about an origin near it (the
+      // frame's origin moves there, in the plane): small (u, v) for every later stage.
+      const Eigen::Vector2d local = detail::local_origin(slabs[i]);
+      if (local != Eigen::Vector2d::Zero()) {
+        for (auto& p : slabs[i]) p -= local;
+        s.frame.origin = s.frame.to_world(local);
+      }
       s.morphology = order_section(slabs[i], options.morphology);
       std::size_t first = slabs[i].size();
       std::optional<std::vector<Eigen::Vector3d>> near_points;
       const auto near = [&]() -> const std::vector<Eigen::Vector3d>& {
-        if (!near_points) near_points = near_of ? near_of(i) : std::vector<Eigen::Vector3d>{};
+        if (!near_points) {
+          near_points = near_of ? near_of(i) : std::vector<Eigen::Vector3d>{};
+          for (auto& q : *near_points) q.head<2>() -= local;
+        }
         return *near_points;
       };
       if (options.band_spacing > 0 && !s.morphology.loops.empty()) {
@@ -237,6 +248,12 @@ SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const Slic
     SectionSlice& s = result.sections[i];
     s.id = static_cast<int>(i);
     s.frame = make_frame(planes[i].origin, planes[i].normal);
+    // Far from the plane's origin, the frame's origin moves near the cut (small (u, v)).
+    std::vector<Eigen::Vector2d> cut;
+    for (const auto& line : cuts[i])
+      for (const auto& p : line) cut.push_back(s.frame.to_plane(p));
+    const Eigen::Vector2d local = detail::local_origin(cut);
+    if (local != Eigen::Vector2d::Zero()) s.frame.origin = s.frame.to_world(local);
     std::vector<Loop> loops;
     std::size_t open = 0;
     for (const auto& line : cuts[i]) {

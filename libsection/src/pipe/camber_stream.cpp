@@ -8,6 +8,7 @@
 #include "section/io/stream.h"
 #include "section/pipe/schema.h"
 #include "section/pipe/fit_spline_stream.h"
+#include "detail/local_origin.h"
 #include "pipe/adapter.h"
 #include "pipe/camber_issues.h"
 
@@ -171,7 +172,27 @@ void add_rows(int section, const Frame& f, const SectionCamber& m, pipe::Slot& s
   }
 }
 
-// Loop 0 of a section into its slot: rows and issues.
+// `m`'s points moved by `by` (the positions the rows hold; lengths and angles stay).
+void move(SectionCamber& m, const Eigen::Vector2d& by) {
+  for (auto& p : m.camber.points) p += by;
+  for (Edge* e : {&m.camber.le, &m.camber.te}) e->point += by, e->center += by;
+  for (Eigen::Vector2d* p : {&m.params.centroid, &m.params.le_point, &m.params.te_point, &m.params.caliper_le,
+                             &m.params.caliper_te})
+    *p += by;
+  for (auto& t : m.stations) t.point += by, t.pressure += by, t.suction += by;
+  for (auto* side : {&m.sides.pressure, &m.sides.suction})
+    for (auto& p : *side) p += by;
+}
+
+// The measured points moved by -origin.
+Measured moved(const Measured& q, const Eigen::Vector2d& origin) {
+  Measured out = q;
+  for (auto* list : {&out.all, &out.in_slab, &out.carried}) *list = detail::moved(*list, origin);
+  return out;
+}
+
+// Loop 0 of a section into its slot: rows and issues. Far from the origin of its (u, v)
+// (a stream not written by slice), it is measured about a local origin and moved back.
 void camber_section(int section, const BSpline& curve, const CamberInput& in, const CamberOptions& options,
                     pipe::Slot& slot) {
   if (in.loops.at(section) > 1)
@@ -183,10 +204,15 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   CamberOptions opt = section_options(options, in, section, f);
   const auto points = in.measured.find(section);
   const Measured none;
-  const Measured& q = points != in.measured.end() ? points->second : none;
-  const SectionCamber m = measure(curve, opt, q);
+  const Eigen::Vector2d origin = detail::local_origin(curve.control);
+  BSpline local = curve;
+  local.control = detail::moved(curve.control, origin);
+  opt.medial.seed = detail::moved(opt.medial.seed, origin);
+  const Measured q = moved(points != in.measured.end() ? points->second : none, origin);
+  SectionCamber m = measure(local, opt, q);
+  pipe::describe_issues({section, local, m.camber, m.params, m.le, m.te, q, opt}, slot.issues);
+  if (origin != Eigen::Vector2d::Zero()) move(m, origin);
   add_rows(section, f, m, slot);
-  pipe::describe_issues({section, curve, m.camber, m.params, m.le, m.te, q, opt}, slot.issues);
 }
 
 }  // namespace
