@@ -27,6 +27,11 @@ using SectionSink = std::function<void(const SectionSlice&)>;
 /// copied to a temporary file (read_cloud_chunks) and then read as a file is, with the same
 /// results. Same results in meaning as slice(read_cloud(path), ...); the estimated
 /// slab width may differ slightly (another random sample). Throws as read_cloud and slice.
+/// The points held for the planes (slabs, the points beside them that gaps and bands take,
+/// the sections made) stay within half of memory_limit() (io/limits.h): about 4 kB a plane
+/// is counted before any point, so that a plane count the memory cannot take is refused at
+/// once, and the rest as it is read (`slice: the points held for N planes pass the memory
+/// limit ...`).
 /// `sink`, when set, receives each section in plane order as soon as it and those before
 /// it are done, from one thread at a time (the slice tool writes it to the pipe while the
 /// others are still being ordered); the result holds them all the same.
