@@ -75,8 +75,7 @@ section::Cloud merged_views(const SliceArgs& a, SectionWriter& out) {
   names.insert(names.end(), a.views.begin(), a.views.end());
   std::vector<section::Cloud> clouds;
   for (const auto& name : names) {
-    if (name != "-" && section::is_mesh_file(name))
-      throw section::Error(name + ": --view takes point clouds, not meshes");
+    if (section::is_mesh_file(name)) throw section::Error(name + ": --view takes point clouds, not meshes");
     clouds.push_back(section::read_cloud(name));
   }
   section::RegisterResult reg;
@@ -108,7 +107,7 @@ void run_slice(const SliceArgs& a, const std::string& history) {
     const section::Cloud merged = merged_views(a, out);
     if (a.count > 0) planes = section::planes_across(merged.points, n, a.count);
     section::tool::with_input(input, [&] { result = section::slice(merged, planes, a.options); });
-  } else if (input != "-" && section::is_mesh_file(input)) {
+  } else if (section::is_mesh_file(input)) {
     const section::Mesh mesh = section::read_mesh(input);
     if (a.count > 0) planes = section::planes_across(mesh.vertices, n, a.count);
     section::tool::with_input(input, [&] { result = section::slice(mesh, planes, a.options); });
