@@ -258,3 +258,43 @@ TEST_CASE("robustness: a mesh with no extension is told by its content", "[robus
   CHECK(!is_mesh_file(bare));
   for (const auto& p : {named, bare}) std::remove(p.c_str());
 }
+
+#if __has_include("common/tool.h")  // the tools are built (SECTION_BUILD_TOOLS)
+#include "common/tool.h"
+
+#include <sstream>
+
+TEST_CASE("robustness: the tools' command line refuses NaN, 0,0,0 and clobbering", "[robustness][tools]") {
+  using namespace section::tool;
+  CHECK(byte_size("100000") == 100000);
+  CHECK(byte_size("512M") == 512000000);
+  CHECK(byte_size("1.5GB") == 1500000000);
+  CHECK(byte_size("8g") == 8000000000ULL);
+  for (const char* bad : {"", "0", "-1G", "nan", "1Q", "1GiB", "inf"}) CHECK(byte_size(bad) == 0);
+  CHECK(tidy_message("slice", "slice: the slab width must be finite") == "the slab width must be finite");
+  CHECK(tidy_message("slice", "<stdin>: slice: cannot estimate") == "<stdin>: cannot estimate");
+  CHECK(tidy_message("slice", "read_cloud: x.xyz:3: bad") == "read_cloud: x.xyz:3: bad");
+  // A numeric option given NaN or infinity is bad usage, named.
+  const auto usage = [](std::vector<std::string> words) {
+    words.insert(words.begin(), "tool");
+    std::vector<char*> argv;
+    for (auto& w : words) argv.push_back(w.data());
+    double x = 0;
+    std::vector<double> list;
+    std::ostringstream out, err;
+    const int code = parse_args(
+        "tool", "", int(argv.size()), argv.data(),
+        [&](CLI::App& app) {
+          app.add_option("--x", x)->check(CLI::NonNegativeNumber);
+          app.add_option("--list", list)->delimiter(',');
+        },
+        out, err);
+    return std::to_string(code) + " " + err.str();
+  };
+  CHECK_THAT(usage({"--x", "nan"}),
+             Catch::StartsWith("2 ") && Catch::Contains("--x: must be a finite number"));
+  CHECK_THAT(usage({"--list", "1,inf"}), Catch::Contains("--list: must be a finite number, got 'inf'"));
+  CHECK_THAT(usage({"--x", "-1"}), Catch::Contains("Value -1 is below 0\n"));
+  CHECK(usage({"--x", "2", "--list", "1,2"}) == "-1 ");
+}
+#endif

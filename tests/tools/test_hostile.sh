@@ -9,7 +9,7 @@ R="$SRC/tests/robustness"
 H="python3 $R/hostile.py"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-}"
 T=60  # seconds a run may take (a hang fails it)
-if (ulimit -v 2000000 && "$BIN/slice" --help) >/dev/null 2>&1; then CAPS=1; else CAPS=0; fi
+if bash -c 'ulimit -v 2000000 && "$0" --help' "$BIN/slice" >/dev/null 2>&1; then CAPS=1; else CAPS=0; fi
 [ $CAPS = 1 ] || echo "note: ulimit -v cannot be set here: the memory cap cases run without it"
 
 # run NAME RC REGEX [CAP_KB] -- CMD...: CMD (a shell command line) under timeout (and

@@ -198,7 +198,8 @@ extern "C" void remove_and_reraise(int sig) {
 std::string same_files(CLI::App& app) {
   // The flags that name files, for every tool: a new one is added here.
   const auto inputs = paths_of(app, {"--input", "--view", "--planes"});
-  const auto outputs = paths_of(app, {"--output", "--params", "--thickness", "--report"});
+  const auto outputs =
+      paths_of(app, {"--output", "--params", "--thickness", "--report", "--second-view", "--truth"});
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     FileId out;
     if (!file_id(outputs[k].second, out)) continue;

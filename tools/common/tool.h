@@ -37,9 +37,9 @@ int parse_app(CLI::App& app, const std::string& name, int argc, char** argv,
               const std::function<void(CLI::App&)>& declare, std::ostream& out, std::ostream& err);
 
 /// Why the command line names one file twice where that would lose data: an output
-/// (-o, --params, --thickness, --report) that is an input (the input, --view, --planes) or
-/// another output, by device and inode (a symlink or hard link to it counts; /dev/null
-/// and "-" do not); "" when none does.
+/// (-o, --params, --thickness, --report, --second-view, --truth) that is an input (the input, --view,
+/// --planes) or another output, by device and inode (a symlink or hard link to it counts; /dev/null and "-"
+/// do not); "" when none does.
 std::string same_files(CLI::App& app);
 
 /// Installs the handlers of SIGINT, SIGTERM, SIGHUP and SIGQUIT that remove the outputs'
