@@ -77,11 +77,6 @@ private:
 
 // A cloud file as read (in its own unit): a plain 2D profile (two columns) at z = 0.
 section::Cloud read_points(const std::string& name) {
-  if (name == "-") {
-    const std::string text = section::read_file(name);
-    if (auto profile = section::profile_cloud(text, "<stdin>")) return std::move(*profile);
-    return section::parse_cloud(text, "<stdin>");
-  }
   if (auto profile = section::read_profile_cloud(name)) return std::move(*profile);
   return section::read_cloud(name);
 }
@@ -92,8 +87,7 @@ std::vector<section::Cloud> read_views(const SliceArgs& a) {
   names.insert(names.end(), a.views.begin(), a.views.end());
   std::vector<section::Cloud> clouds;
   for (const auto& name : names) {
-    if (name != "-" && section::is_mesh_file(name))
-      throw section::Error(name + ": --view takes point clouds, not meshes");
+    if (section::is_mesh_file(name)) throw section::Error(name + ": --view takes point clouds, not meshes");
     clouds.push_back(read_points(name));
   }
   return clouds;
@@ -169,7 +163,7 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   std::vector<section::Cloud> clouds;
   std::optional<section::Mesh> mesh;
   double extent = 0;
-  const bool is_mesh = input != "-" && section::is_mesh_file(input);
+  const bool is_mesh = section::is_mesh_file(input);
   if (is_mesh && given.by_rows())
     throw section::Error(input + ": a mesh is cut by planes: give --at, --count or --planes");
   if (is_mesh) {

@@ -2,6 +2,7 @@
 
 #include "section/error.h"
 #include "detail/cgal.h"
+#include "detail/local_origin.h"
 #include "detail/parallel.h"
 #include "detail/slab_scan.h"
 #include "detail/slice_steps.h"
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <new>
 #include <numeric>
 #include <optional>
 
@@ -175,6 +177,13 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         throw Error(s.error.empty() ? "no points in the slab (the plane misses the part?)" : s.error);
       if (copies && slabs[i].size() == 1)
         throw Error("morphology: the points are all equal; no loop can be formed");
+      // A section far from its plane's origin is ordered about an origin near it (the
+      // frame's origin moves there, in the plane): small (u, v) for every later stage.
+      const Eigen::Vector2d local = detail::local_origin(slabs[i]);
+      if (local != Eigen::Vector2d::Zero()) {
+        for (auto& p : slabs[i]) p -= local;
+        s.frame.origin = s.frame.to_world(local);
+      }
       s.morphology =
           order ? order(slabs[i], options.morphology) : order_section(slabs[i], options.morphology);
       std::size_t first = slabs[i].size();
@@ -183,6 +192,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         if (!near_points) {
           near_points = near_of ? near_of(i) : std::vector<Eigen::Vector3d>{};
           drop_copies(*near_points);
+          for (auto& q : *near_points) q.head<2>() -= local;
         }
         return *near_points;
       };
@@ -217,6 +227,8 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         r.filled = MorphologyResult{};
         s.fill = std::move(r);
       }
+    } catch (const std::bad_alloc&) {
+      throw;  // out of memory fails the run: a section left out for it would pass unnoticed
     } catch (const std::exception& e) {
       s.error = with_hint(e.what(), s, slab);
     }
@@ -287,6 +299,12 @@ SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const Slic
     SectionSlice& s = result.sections[i];
     s.id = static_cast<int>(i);
     s.frame = make_frame(planes[i].origin, planes[i].normal);
+    // Far from the plane's origin, the frame's origin moves near the cut (small (u, v)).
+    std::vector<Eigen::Vector2d> cut;
+    for (const auto& line : cuts[i])
+      for (const auto& p : line) cut.push_back(s.frame.to_plane(p));
+    const Eigen::Vector2d local = detail::local_origin(cut);
+    if (local != Eigen::Vector2d::Zero()) s.frame.origin = s.frame.to_world(local);
     std::vector<Loop> loops;
     std::size_t open = 0;
     for (const auto& line : cuts[i]) {

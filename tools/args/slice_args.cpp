@@ -120,6 +120,8 @@ void SliceArgs::declare(CLI::App& app) {
     for (const auto& [flag, value] : length_options(*this))
       if (app.count(flag) > 0) lengths_given.push_back(flag);
     if (normal.size() != 3) throw CLI::ValidationError("--normal takes three comma-separated numbers");
+    if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0)
+      throw CLI::ValidationError("--normal", "must not be 0,0,0 (a plane needs a direction)");
   });
 }
 

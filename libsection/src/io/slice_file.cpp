@@ -3,6 +3,7 @@
 #include "section/error.h"
 #include "section/io/csv.h"
 #include "section/io/file.h"
+#include "section/io/limits.h"
 #include "detail/parallel.h"
 #include "io/byte_source.h"
 #include "io/text.h"
@@ -100,7 +101,8 @@ std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, c
 // order (add_near_points), chunks read side by side.
 std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& path,
                                                            const std::vector<Plane>& planes, double reach,
-                                                           const CloudReadOptions& read) {
+                                                           const CloudReadOptions& read,
+                                                           detail::HeldBytes& held) {
   const auto groups = detail::group_planes(planes, 2 * reach);
   const auto frame = detail::frames_of(planes);
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
@@ -112,8 +114,10 @@ std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& pa
         return f;
       },
       [&](std::vector<std::vector<Eigen::Vector3d>>& f, const Eigen::Vector3d*, std::size_t) {
-        for (std::size_t k = 0; k < planes.size(); ++k)
+        for (std::size_t k = 0; k < planes.size(); ++k) {
+          held.add(sizeof(Eigen::Vector3d) * f[k].size());
           near[k].insert(near[k].end(), f[k].begin(), f[k].end());
+        }
       });
   return near;
 }
@@ -272,7 +276,7 @@ struct FirstPass {
 // spacing; the points near the guessed planes are kept in `guess` on the way. Chunks are
 // read and scanned side by side, and taken in file order.
 void first_pass(const std::string& path, const CloudReadOptions& read, const Eigen::Vector3d& n, bool sampled,
-                Guess& guess, FirstPass& pass) {
+                Guess& guess, FirstPass& pass, detail::HeldBytes& held) {
   pass.total = scan_chunks(
       path, read,
       [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
@@ -282,8 +286,10 @@ void first_pass(const std::string& path, const CloudReadOptions& read, const Eig
         pass.lo = std::min(pass.lo, r.lo);
         pass.hi = std::max(pass.hi, r.hi);
         pass.largest = std::max(pass.largest, r.big);
-        for (std::size_t k = 0; k < r.kept.size(); ++k)
+        for (std::size_t k = 0; k < r.kept.size(); ++k) {
+          held.add(sizeof(Eigen::Vector3d) * r.kept[k].size());
           if (!r.kept[k].empty()) guess.kept[k].push_back(std::move(r.kept[k]));
+        }
         if (!sampled) return;
         pass.sample.take(p, count);
         pass.first.insert(pass.first.end(), p, p + std::min(count, pass.hold - pass.first.size()));
@@ -294,7 +300,7 @@ void first_pass(const std::string& path, const CloudReadOptions& read, const Eig
 // near enough to them: the same slab points, in the same order, as pass 2 would give.
 SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes, double slab, Guess& guess,
                        std::size_t total, const SliceOptions& options, const CloudReadOptions& read_chunks,
-                       const SectionSink& sink) {
+                       const SectionSink& sink, detail::HeldBytes& held) {
   std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
   const double reach = detail::fill_reach(options, slab);
   detail::parallel_for(planes.size(), options.threads, [&](std::size_t k) {
@@ -313,7 +319,7 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
   std::once_flag near_read;
   const detail::NearFn near_of = [&](std::size_t k) {
     if (!(reach > 0)) return std::vector<Eigen::Vector3d>{};
-    std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks); });
+    std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks, held); });
     return std::move(near[k]);
   };
   SliceResult result;
@@ -328,7 +334,7 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
 // side and their points appended in file order.
 SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes, double slab, int passes,
                        const SliceOptions& options, const CloudReadOptions& read_chunks,
-                       const SectionSink& sink) {
+                       const SectionSink& sink, detail::HeldBytes& held) {
   const auto groups = detail::group_planes(planes, slab);
   const auto frame = detail::frames_of(planes);
   std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
@@ -355,6 +361,7 @@ SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes
       },
       [&](Found& f, const Eigen::Vector3d*, std::size_t) {
         for (std::size_t k = 0; k < planes.size(); ++k) {
+          held.add(sizeof(Eigen::Vector2d) * f.slabs[k].size() + sizeof(Eigen::Vector3d) * f.near[k].size());
           slabs[k].insert(slabs[k].end(), f.slabs[k].begin(), f.slabs[k].end());
           near[k].insert(near[k].end(), f.near[k].begin(), f.near[k].end());
         }
@@ -419,6 +426,14 @@ void check_slab_width(double slab) {
   if (!(slab > 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be positive and finite");
 }
 
+// The bytes a section's result holds (its loops and skeleton), for the memory limit.
+std::size_t bytes_of(const SectionSlice& s) {
+  std::size_t bytes = sizeof(SectionSlice) + 24 * s.morphology.skeleton.size();
+  for (const Loop& l : s.morphology.loops)
+    bytes += 16 * (l.points.size() + l.normals.size() + l.boundary.size()) + 8 * l.index.size();
+  return bytes;
+}
+
 }  // namespace
 
 bool looks_like_profile(std::string_view head) {
@@ -457,17 +472,20 @@ std::optional<Cloud> profile_cloud(std::string_view text, const std::string& nam
 }
 
 std::optional<Cloud> read_profile_cloud(const std::string& path) {
+  // Spooled: a pipe looked at here is read again, whole, by read_cloud.
+  const auto any = [](std::string_view) {};
   {
-    detail::ByteSource src(path, "read_cloud");
+    detail::ByteSource src(path, "read_cloud: ", any);
     if (src.is_directory()) return std::nullopt;
     src.fetch(std::size_t(1) << 16);
     if (!looks_like_profile(src.bytes())) return std::nullopt;
   }
-  return profile_cloud(read_file(path), path);
+  detail::ByteSource src(path, "read_cloud: ", any);
+  return profile_cloud(src.read_all(), src.name());
 }
 
 SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
-                       const CloudReadOptions& read, const SectionSink& sink,
+                       const CloudReadOptions& read, const SectionSink& given_sink,
                        const SamplingSink& on_sampling) {
   detail::check_slab(options.slab);
   if (options.fill_gaps) check_gap_fill_options(options.fill);
@@ -481,10 +499,22 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
     SliceResult result = slice(cloud, planes, options);
     if (on_sampling && options.slab == 0) on_sampling(result.sampling);
-    if (sink)
-      for (const auto& s : result.sections) sink(s);
+    if (given_sink)
+      for (const auto& s : result.sections) given_sink(s);
     return result;
   }
+  // The points held for the planes (slabs, the points beside them, the sections made) stay
+  // within half the memory limit: about 4 kB a plane before any point, refused at once.
+  const std::size_t plane_count = spec.count > 0 ? std::size_t(spec.count) : spec.planes.size();
+  detail::HeldBytes held(memory_limit() / 2,
+                         "slice: the points held for " + std::to_string(plane_count) +
+                             " planes pass the memory limit: give fewer planes, a smaller "
+                             "--fill-reach or --band-max, or --no-fill");
+  held.add(4096 * plane_count);
+  const SectionSink sink = [&](const SectionSlice& s) {
+    held.add(bytes_of(s));
+    if (given_sink) given_sink(s);
+  };
   // Chunks of at most 64k points (1.5 MB): each stays in a core's cache from its read to its
   // scan, and the workers end the file together.
   CloudReadOptions read_chunks = read;
@@ -499,7 +529,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     Guess guess = guess_planes(path, spec, options, read);
     FirstPass first;
     first.hold = options.sampling.max_points;
-    first_pass(path, read_chunks, spec.normal.normalized(), slab == 0, guess, first);
+    first_pass(path, read_chunks, spec.normal.normalized(), slab == 0, guess, first, held);
     if (spec.count > 0) planes = spread(spec.normal, first.lo, first.hi, spec.count);
     if (slab == 0) {
       Sampling sampling = sampling_of(first.first, planes[0].normal, options.sampling);
@@ -515,14 +545,14 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     }
     check_slab_width(slab);
     if (guess.active && guess.covers(planes, slab, first.largest)) {
-      SliceResult r = slice_kept(path, planes, slab, guess, first.total, options, read_chunks, sink);
+      SliceResult r = slice_kept(path, planes, slab, guess, first.total, options, read_chunks, sink, held);
       r.sampling = std::move(found);
       return r;
     }
   }
   check_slab_width(slab);
-  SliceResult r =
-      slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options, read_chunks, sink);
+  SliceResult r = slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options,
+                             read_chunks, sink, held);
   r.sampling = std::move(found);
   return r;
 }

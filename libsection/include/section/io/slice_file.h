@@ -44,13 +44,20 @@ using SamplingSink = std::function<void(const Sampling&)>;
 /// dense scan's spacing and the first SamplingOptions::max_points points for the sampling,
 /// sampling_of). Sparse rows are held in memory (read a second time when the file holds
 /// more than those first points) and sliced as slice(Cloud) slices them. Standard input
-/// ("-") is held in memory and sliced by slice(Cloud). Same results in meaning as
+/// ("-") is held in memory (within the memory limit, io/limits.h) and sliced by
+/// slice(Cloud); a named pipe or a process substitution is first copied to a temporary
+/// file (read_cloud_chunks) and then read as a file is. Same results in meaning as
 /// slice(read_cloud(path), ...); the estimated slab width may differ slightly (another
-/// random sample). Throws as read_cloud and slice. `sink`, when set, receives each section
-/// in plane order as soon as it and those before it are done, from one thread at a time
-/// (the slice tool writes it to the pipe while the others are still being ordered); the
-/// result holds them all the same. `on_sampling`, when set, receives the sampling found
-/// (slab 0) before any section.
+/// random sample). Throws as read_cloud and slice.
+/// The points held for the planes (slabs, the points beside them that gaps and bands take,
+/// the sections made) stay within half of memory_limit() (io/limits.h): about 4 kB a plane
+/// is counted before any point, so that a plane count the memory cannot take is refused at
+/// once, and the rest as it is read (`slice: the points held for N planes pass the memory
+/// limit ...`).
+/// `sink`, when set, receives each section in plane order as soon as it and those before
+/// it are done, from one thread at a time (the slice tool writes it to the pipe while the
+/// others are still being ordered); the result holds them all the same. `on_sampling`, when
+/// set, receives the sampling found (slab 0) before any section.
 SliceResult slice_file(const std::string& path, const PlaneSpec& planes, const SliceOptions& options = {},
                        const CloudReadOptions& read = {}, const SectionSink& sink = {},
                        const SamplingSink& on_sampling = {});
