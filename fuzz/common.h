@@ -30,14 +30,20 @@ inline int fuzz_parse_cloud(const std::uint8_t* data, std::size_t size, section:
   return 0;
 }
 
-// read_mesh reads files only (the reader is picked by extension), so each input goes
-// through a per-process temporary file.
-inline int fuzz_read_mesh(const std::uint8_t* data, std::size_t size, const char* ext) {
+// The input in a per-process temporary file with extension `ext`, for the readers of files.
+inline std::string fuzz_file(const std::uint8_t* data, std::size_t size, const char* ext) {
   const std::string path = "/tmp/section-fuzz-" + std::to_string(::getpid()) + "." + ext;
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) std::abort();
   if (size) std::fwrite(data, 1, size, f);
   std::fclose(f);
+  return path;
+}
+
+// read_mesh reads files only (the reader is picked by extension), so each input goes
+// through a per-process temporary file.
+inline int fuzz_read_mesh(const std::uint8_t* data, std::size_t size, const char* ext) {
+  const std::string path = fuzz_file(data, size, ext);
   try {
     const section::Mesh mesh = section::read_mesh(path);
     for (const auto& t : mesh.triangles)

@@ -13,7 +13,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR="${FUZZ_BUILD_DIR:-build-fuzz}"
-TARGETS=(fuzz_xyz fuzz_csv_cloud fuzz_ply fuzz_stl fuzz_obj_off fuzz_pipe)
+TARGETS=(fuzz_xyz fuzz_csv_cloud fuzz_ply fuzz_stl fuzz_obj_off fuzz_pipe fuzz_parts fuzz_planes)
 
 # Seed files from the robustness corpus (and the example data) by target.
 seeds_for() {
@@ -24,15 +24,23 @@ seeds_for() {
     fuzz_stl) ls tests/robustness/*.stl 2>/dev/null ;;
     fuzz_obj_off) ls tests/robustness/*.obj tests/robustness/*.off 2>/dev/null ;;
     fuzz_pipe) ls tests/robustness/*stream* tests/robustness/*.dat 2>/dev/null ;;
+    fuzz_parts) ls tests/robustness/*stream* tests/robustness/parts_*.csv 2>/dev/null ;;
+    fuzz_planes) ls tests/robustness/planes_*.csv 2>/dev/null ;;
   esac
 }
 
 build() {
-  if ! command -v clang++ >/dev/null 2>&1; then
+  # clang and its runtime libraries (libFuzzer, ASan, UBSan: compiler-rt, not installed with
+  # clang without its recommended packages)
+  local rt; rt=$(clang++ -print-resource-dir 2>/dev/null)/lib/linux/libclang_rt.fuzzer-x86_64.a
+  if ! command -v clang++ >/dev/null 2>&1 || [ ! -f "$rt" ]; then
     SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
     export DEBIAN_FRONTEND=noninteractive
     $SUDO apt-get update -qq
     $SUDO apt-get install -y -qq --no-install-recommends clang
+    local v; v=$(clang++ --version | sed -n 's/.*version \([0-9]*\).*/\1/p' | head -1)
+    $SUDO apt-get install -y -qq --no-install-recommends "libclang-rt-$v-dev" ||
+      $SUDO apt-get install -y -qq --no-install-recommends libclang-rt-dev
   fi
   GEN=(); command -v ninja >/dev/null 2>&1 && GEN=(-G Ninja)
   CC=clang CXX=clang++ cmake -S . -B "$BUILD_DIR" "${GEN[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \

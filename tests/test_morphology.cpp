@@ -323,11 +323,14 @@ TEST_CASE("morphology: bad input throws a clear error", "[morphology]") {
   Points arc;
   for (int i = 0; i < 500; ++i) arc.emplace_back(10 * std::cos(i * 0.005), 10 * std::sin(i * 0.005));
   CHECK_THROWS_WITH(order_section(arc), Catch::Contains("do not close"));
-  // A raster beyond max_cells is refused before it is allocated.
+  // It names no option a user cannot give (max_dilation) or that would not help (the cell).
+  CHECK_THROWS_WITH(order_section(arc), !Catch::Contains("max_dilation") && !Catch::Contains("cell or"));
+  // A raster beyond max_cells is refused before it is allocated; a larger cell helps there.
   MorphologyOptions o;
   o.cell = 1e-4;
   const Scan sc = scan(ellipse({0, 0}, 10, 10), ScanSpec{});
-  CHECK_THROWS_WITH(order_section(sc.points, o), Catch::Contains("max_cells"));
+  CHECK_THROWS_WITH(order_section(sc.points, o),
+                    Catch::Contains("max_cells") && Catch::Contains("slice --cell"));
 }
 
 TEST_CASE("morphology: skeleton of a stadium lies on its axis with the true radius", "[morphology]") {

@@ -16,6 +16,7 @@
 #include "section/extras/score.h"
 #include "section/slice.h"
 #include "section/smooth.h"
+#include "pipe_stages.h"
 
 #include <catch2/catch.hpp>
 
@@ -90,14 +91,7 @@ std::vector<SectionErrors> run_pipe(const BladeDesign& blade, const std::vector<
   }
   SliceOptions sopt;
   sopt.slab = 0.08;
-  Stream stream =
-      parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");
-  smooth_stream(stream);
-  stream = parse_stream(format_stream(stream), "smooth");
-  fit_spline_stream(stream);
-  stream = parse_stream(format_stream(stream), "fitspline");
-  camber_stream(stream);
-  stream = parse_stream(format_stream(stream), "camber");
+  const Stream stream = test::after_slice(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice"));
 
   const auto curves = splines(stream);
   const Table& pts = stream.get("points", "slice");

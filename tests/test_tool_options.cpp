@@ -59,9 +59,13 @@ TEST_CASE("tool options: slice reads its planes, slab and input", "[tools]") {
 }
 
 TEST_CASE("tool options: bad usage is refused with exit code 2 and names the flag", "[tools]") {
+  // No planes: each row of points a section (slice decides from the points), as --rows.
   const auto no_planes = parsed<SliceArgs>({"blade.ply"});
-  CHECK(no_planes.code == 2);
-  CHECK(no_planes.err.find("one of --at, --count or --planes") != std::string::npos);
+  CHECK(no_planes.code == -1);
+  CHECK(no_planes.args.by_rows());
+  CHECK(parsed<SliceArgs>({"blade.ply", "--rows"}).args.rows);
+  CHECK(parsed<SliceArgs>({"blade.ply", "--rows", "--at", "1"}).code == 2);
+  CHECK(parsed<SliceArgs>({"blade.ply", "--rows", "--count", "3"}).code == 2);
   CHECK(parsed<SliceArgs>({"blade.ply", "--count", "0"}).code == 2);
   CHECK(parsed<SliceArgs>({"blade.ply", "--at", "1", "--normal", "1,2"}).code == 2);
   CHECK(parsed<SliceArgs>({"blade.ply", "--at", "1", "--count", "3"}).code == 2);

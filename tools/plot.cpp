@@ -5,6 +5,7 @@
 #include "section/io/stream.h"
 #include "section/io/file.h"
 #include "section/extras/plot.h"
+#include "section/pipe/validate.h"
 
 #include <filesystem>
 #include <iostream>
@@ -32,6 +33,7 @@ void plot_each(const section::Stream& stream, const std::vector<int>& ids, const
 void run_plot(const PlotArgs& a) {
   const std::string& out = a.common.output;
   const section::Stream stream = section::read_stream(a.common.input);
+  section::validate_stream(stream, section::tool::input_name(a.common.input));
   if (a.html) {
     section::write_file(out, section::plot_html(stream, a.options));
     return;

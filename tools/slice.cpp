@@ -15,8 +15,8 @@
 #include "section/slice.h"
 #include "section/units.h"
 
+#include <algorithm>
 #include <iostream>
-
 #include <optional>
 #include <utility>
 #include <vector>
@@ -75,17 +75,51 @@ private:
   std::size_t failed_ = 0, sections_ = 0;
 };
 
+// A cloud file as read (in its own unit): a plain 2D profile (two columns) at z = 0.
+section::Cloud read_points(const std::string& name) {
+  if (auto profile = section::read_profile_cloud(name)) return std::move(*profile);
+  return section::read_cloud(name);
+}
+
 // The clouds of the input and its views, as read (in their own unit).
 std::vector<section::Cloud> read_views(const SliceArgs& a) {
   std::vector<std::string> names{a.common.input};
   names.insert(names.end(), a.views.begin(), a.views.end());
   std::vector<section::Cloud> clouds;
   for (const auto& name : names) {
-    if (name != "-" && section::is_mesh_file(name))
-      throw section::Error(name + ": --view takes point clouds, not meshes");
-    clouds.push_back(section::read_cloud(name));
+    if (section::is_mesh_file(name)) throw section::Error(name + ": --view takes point clouds, not meshes");
+    clouds.push_back(read_points(name));
   }
   return clouds;
+}
+
+// With no planes (or --rows): each row of points a section as it lies, when the points are
+// rows (sparse rows, a single profile; with --rows also lines close together).
+section::SliceResult slice_by_rows(const SliceArgs& a, const section::Cloud& cloud,
+                                   const Eigen::Vector3d& n) {
+  section::SamplingOptions all = a.options.sampling;  // a row is a section only with all its points
+  all.max_points = std::max(all.max_points, cloud.points.size());
+  const section::Sampling sampling = section::sampling_of(cloud.points, n, all);
+  if (!(sampling.spacing > 0) || cloud.points.size() < 8)
+    throw section::Error("no section planes given, and " + std::to_string(cloud.points.size()) + " points" +
+                         (sampling.spacing > 0 ? "" : ", all equal,") +
+                         " make no row (a section needs 8 distinct points or more)");
+  if (!a.rows && sampling.kind != section::SamplingKind::rows)
+    throw section::Error(
+        "no section planes given, and the points are not sparse rows (each a section's worth) "
+        "but " +
+        sampling.describe() + ": give planes (--at, --count or --planes)" +
+        (sampling.rows.empty() ? std::string()
+                               : ", or --rows to take each of its " + std::to_string(sampling.rows.size()) +
+                                     " lines as a section"));
+  return section::slice_rows(cloud, sampling, a.options);
+}
+
+// What the points are, said in the stream and, unless a dense scan, on standard error.
+void say_sampling(const section::Sampling& sampling, SectionWriter& out) {
+  if (sampling.kind == section::SamplingKind::dense) return;
+  out.notes.push_back(section::sampling_note(sampling));
+  std::cerr << "slice: the points are " << sampling.describe() << "\n";
 }
 
 // Views apart: held in memory, registered onto the input, merged, then sliced.
@@ -129,12 +163,15 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   std::vector<section::Cloud> clouds;
   std::optional<section::Mesh> mesh;
   double extent = 0;
-  if (!given.views.empty() || input == "-") {
-    clouds = read_views(given);
-    extent = extent_of(clouds[0].points);
-  } else if (section::is_mesh_file(input)) {
+  const bool is_mesh = section::is_mesh_file(input);
+  if (is_mesh && given.by_rows())
+    throw section::Error(input + ": a mesh is cut by planes: give --at, --count or --planes");
+  if (is_mesh) {
     mesh = section::read_mesh(input);
     extent = extent_of(mesh->vertices);
+  } else if (!given.views.empty() || input == "-" || given.by_rows() || section::read_profile_cloud(input)) {
+    clouds = read_views(given);
+    extent = extent_of(clouds[0].points);
   } else {
     extent = section::sample_extent(input);
   }
@@ -156,7 +193,10 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   if (!clouds.empty()) {
     const section::Cloud merged = a.views.empty() ? std::move(clouds[0]) : merged_views(a, clouds, out);
     if (a.count > 0) planes = section::planes_across(merged.points, n, a.count);
-    section::tool::with_input(input, [&] { result = section::slice(merged, planes, a.options); });
+    section::tool::with_input(input, [&] {
+      result = a.by_rows() ? slice_by_rows(a, merged, n) : section::slice(merged, planes, a.options);
+    });
+    if (a.options.slab == 0) say_sampling(result.sampling, out);
   } else if (mesh) {
     if (a.count > 0) planes = section::planes_across(mesh->vertices, n, a.count);
     section::tool::with_input(input, [&] { result = section::slice(*mesh, planes, a.options); });
@@ -166,7 +206,8 @@ void run_slice(const SliceArgs& given, const std::string& history) {
     section::CloudReadOptions read;
     read.scale = units.mm;
     section::tool::with_input(input, [&] {
-      section::slice_file(input, section::PlaneSpec{planes, n, a.count}, a.options, read, std::ref(out));
+      section::slice_file(input, section::PlaneSpec{planes, n, a.count}, a.options, read, std::ref(out),
+                          [&](const section::Sampling& sampling) { say_sampling(sampling, out); });
     });
   }
   for (const auto& s : result.sections) out(s);

@@ -190,7 +190,7 @@ std::string num(double x) {
 Error raster_too_large(double wc, double hc, double h, std::size_t max_cells) {
   return Error("morphology: a raster of " + num(wc) + " x " + num(hc) + " cells (cell " + num(h) +
                " mm) exceeds max_cells " + std::to_string(max_cells) +
-               "; use a larger cell or raise max_cells");
+               "; a larger cell makes it smaller (slice --cell)");
 }
 
 bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,

@@ -1,5 +1,6 @@
 #include "section/fit_spline.h"
 
+#include "detail/local_origin.h"
 #include "fit_spline_steps.h"
 #include "section/error.h"
 
@@ -207,6 +208,13 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
 }  // namespace
 
 FitSplineResult fit_spline(const Points& profile, const Points& measured, const FitSplineOptions& o) {
+  // Far from the origin, the fit is made about a local origin and the curve moved back.
+  const Eigen::Vector2d origin = detail::local_origin(profile);
+  if (origin != Eigen::Vector2d::Zero()) {
+    FitSplineResult r = fit_spline(detail::moved(profile, origin), detail::moved(measured, origin), o);
+    for (auto& c : r.spline.control) c += origin;
+    return r;
+  }
   try {
     return fit_once(profile, measured, o);
   } catch (const FoldError&) {

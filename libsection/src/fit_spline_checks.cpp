@@ -65,13 +65,18 @@ Along along_curve(const Refinement& r) {
 
 // The longest stretch of the curve between consecutive measured feet, and the median
 // spacing, as arc lengths: a hole in the data is where the curve is bridged, not measured.
+// The spacing is the median of the stretches that are not zero: exact copies of a point
+// add zero stretches, which would make it zero and every stretch a hole.
 void measure_gaps(const Refinement& r, const Along& along, double gap_factor, FitSplineResult& result) {
   const std::vector<double>& ts = along.ts;
   const std::vector<double>& lengths = along.chords;
   if (ts.size() < 2) return;
   const BSpline& c = r.curve;
   const double period = c.t_max() - c.t_min();
-  result.spacing = median_nonnegative(lengths);
+  std::vector<double> apart;
+  for (double l : lengths)
+    if (l > 0) apart.push_back(l);
+  result.spacing = median_nonnegative(std::move(apart));
   for (std::size_t i = 0; i < ts.size(); ++i) {
     if (!(lengths[i] > gap_factor * result.spacing)) continue;
     const double end = i + 1 < ts.size() ? ts[i + 1] : ts[0] + period;
@@ -157,8 +162,12 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
   // Noise alone, where it runs high, also spreads a few windows, into "layers" closer
   // together than two views give (docs/FITSPLINE.md): below layer_separation noise sigmas
   // nothing is reported.
+  // Nor do the points slice's band carried onto the plane, by up to a few micrometres where
+  // an edge changes with height faster than the band's drift follows: on near-exact data a
+  // single surface, yet "layers" 2-3 um apart. Layers closer than 5 exact_noise (5 um, a
+  // third of the fit's own bound) go unsaid.
   const double separation = median(separations);
-  if (separation >= o.layer_separation * noise)
+  if (separation >= std::max(o.layer_separation * noise, 5 * o.exact_noise))
     result.layers = separation;
   else
     result.layers_length = 0;

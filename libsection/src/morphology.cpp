@@ -264,8 +264,7 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points, const
   if (s.found.empty())
     throw Error("morphology: the " + std::to_string(points.size()) +
                 " points do not close into a loop up to a dilation of " + std::to_string(opt.max_dilation) +
-                " cells (cell " + morph::num(h) +
-                " mm); the section may be open or too sparse: try a larger cell or max_dilation");
+                " cells (cell " + morph::num(h) + " mm); the section may be open or too sparse");
   // Largest area first.
   const auto larger = [](const Found& a, const Found& b) { return a.area > b.area; };
   if (!std::is_sorted(s.found.begin(), s.found.end(), larger)) {

@@ -3,6 +3,7 @@
 #include "detail/axis_curve.h"
 #include "detail/camber_line.h"
 #include "detail/inscribed.h"
+#include "detail/local_origin.h"
 #include "detail/piecewise_curve.h"
 #include "detail/sampled_profile.h"
 #include "section/error.h"
@@ -88,6 +89,8 @@ double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
                               0.9061798459386640};
   static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
                               0.2369268850561891};
+  // About a local origin far from 0: x^2 y' at 1e6 keeps few digits of the centroid.
+  const Eigen::Vector2d origin = detail::local_origin(curve.control);
   double area = 0, mx = 0, my = 0;
   const int sub = std::max(1, curve.degree / 3);  // higher degrees: split each span
   for (std::size_t k = 0; k + 1 < curve.knots.size(); ++k)
@@ -97,13 +100,14 @@ double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
       for (int i = 0; i < 5; ++i) {
         const double t = 0.5 * (a + b) + 0.5 * (b - a) * x[i];
         const detail::CurveJet j = f.jet(t);
+        const Eigen::Vector2d p = j.point - origin;
         const double ww = 0.5 * (b - a) * w[i];
-        area += ww * 0.5 * cross(j.point, j.d1);
-        mx += ww * 0.5 * j.point.x() * j.point.x() * j.d1.y();
-        my -= ww * 0.5 * j.point.y() * j.point.y() * j.d1.x();
+        area += ww * 0.5 * cross(p, j.d1);
+        mx += ww * 0.5 * p.x() * p.x() * j.d1.y();
+        my -= ww * 0.5 * p.y() * p.y() * j.d1.x();
       }
     }
-  if (centroid) *centroid = area != 0 ? Eigen::Vector2d(mx / area, my / area) : Eigen::Vector2d(0, 0);
+  if (centroid) *centroid = area != 0 ? Eigen::Vector2d(mx / area, my / area) + origin : origin;
   return area;
 }
 

@@ -2,13 +2,17 @@
 
 #include "section/error.h"
 #include "detail/cgal.h"
+#include "detail/local_origin.h"
 #include "detail/parallel.h"
 #include "detail/slab_scan.h"
 #include "detail/slice_steps.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
+#include <new>
+#include <numeric>
 #include <optional>
 
 namespace section {
@@ -120,25 +124,76 @@ private:
   const SectionFn& sink_;
 };
 
+// Drops the exact copies of a point (the first stays), in order: a copy adds nothing, and
+// zero distances make the spacings of the later stages zero (every interval a hole).
+// True when there were copies.
+template <class P>
+bool drop_copies(std::vector<P>& points) {
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  const auto before = [&](std::size_t a, std::size_t b) {
+    for (int k = 0; k < int(P::RowsAtCompileTime); ++k)
+      if (points[a][k] != points[b][k]) return points[a][k] < points[b][k];
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), before);
+  std::vector<char> copy(points.size(), 0);
+  bool any = false;
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (points[order[k]] == points[order[k - 1]]) copy[order[k]] = 1, any = true;
+  if (!any) return false;
+  std::size_t w = 0;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (!copy[k]) points[w++] = points[k];
+  points.resize(w);
+  return true;
+}
+
+// A section that does not close, with what can help: a slab's section a wider slab (the
+// ordering's own cell and dilation are no options), a row nothing but more points.
+std::string with_hint(const std::string& what, const SectionSlice& s, double slab) {
+  if (what.rfind("morphology:", 0) != 0) return what;
+  if (s.row >= 0) return what + " (the row's points as they lie: it is too sparse or not closed)";
+  char hint[96];
+  std::snprintf(hint, sizeof hint, "; a wider slab holds more points (--slab, now %.3g mm)", slab);
+  return what + hint;
+}
+
 }  // namespace
 
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
                  const std::vector<Plane>& planes, double slab, const SliceOptions& options,
-                 SliceResult& result, const SectionFn& sink) {
+                 SliceResult& result, const SectionFn& sink, const OrderFn& order) {
   result.sections.resize(planes.size());
   InOrder in_order(planes.size(), sink);
   detail::parallel_for(planes.size(), options.threads, [&](std::size_t i) {
     SectionSlice& s = result.sections[i];
     s.id = static_cast<int>(i);
     s.frame = make_frame(planes[i].origin, planes[i].normal);
+    const bool copies = drop_copies(slabs[i]);
     s.slab_points = slabs[i].size();
     try {
-      if (slabs[i].empty()) throw Error("no points in the slab (the plane misses the part?)");
-      s.morphology = order_section(slabs[i], options.morphology);
+      if (slabs[i].empty())
+        throw Error(s.error.empty() ? "no points in the slab (the plane misses the part?)" : s.error);
+      if (copies && slabs[i].size() == 1)
+        throw Error("morphology: the points are all equal; no loop can be formed");
+      // A section far from its plane's origin is ordered about an origin near it (the
+      // frame's origin moves there, in the plane): small (u, v) for every later stage.
+      const Eigen::Vector2d local = detail::local_origin(slabs[i]);
+      if (local != Eigen::Vector2d::Zero()) {
+        for (auto& p : slabs[i]) p -= local;
+        s.frame.origin = s.frame.to_world(local);
+      }
+      s.morphology =
+          order ? order(slabs[i], options.morphology) : order_section(slabs[i], options.morphology);
       std::size_t first = slabs[i].size();
       std::optional<std::vector<Eigen::Vector3d>> near_points;
       const auto near = [&]() -> const std::vector<Eigen::Vector3d>& {
-        if (!near_points) near_points = near_of ? near_of(i) : std::vector<Eigen::Vector3d>{};
+        if (!near_points) {
+          near_points = near_of ? near_of(i) : std::vector<Eigen::Vector3d>{};
+          drop_copies(*near_points);
+          for (auto& q : *near_points) q.head<2>() -= local;
+        }
         return *near_points;
       };
       if (options.band_spacing > 0 && !s.morphology.loops.empty()) {
@@ -150,6 +205,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         if (half >= slab && !near().empty()) {
           std::vector<Eigen::Vector2d> band = drift_band(
               s.morphology, near(), slab, half, options.band_spacing, options.band_sparse_max * slab);
+          drop_copies(band);
           if (band.size() > slabs[i].size()) {
             // A band that cannot be ordered leaves the slab's ordering as it is.
             try {
@@ -171,8 +227,10 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         r.filled = MorphologyResult{};
         s.fill = std::move(r);
       }
+    } catch (const std::bad_alloc&) {
+      throw;  // out of memory fails the run: a section left out for it would pass unnoticed
     } catch (const std::exception& e) {
-      s.error = e.what();
+      s.error = with_hint(e.what(), s, slab);
     }
     std::vector<Eigen::Vector2d>().swap(slabs[i]);
     in_order.finished(i, result.sections);
@@ -190,10 +248,17 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
   result.points = cloud.points.size();
   result.slab = options.slab;
   if (result.slab == 0) {
-    result.slab = mean_spacing(cloud.points);
-    if (!(result.slab > 0))
-      throw Error(
-          "slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
+    result.sampling = detail::sample_all(cloud.points, planes[0].normal, options.sampling);
+    const Sampling& s = result.sampling;
+    if (s.kind == SamplingKind::rows) {
+      detail::slice_through_rows(cloud.points, planes, options, result, {});
+      return result;
+    }
+    result.slab = detail::sampled_slab(cloud.points, s);
+    if (s.kind == SamplingKind::lines && !s.rows.empty() && s.points == cloud.points.size()) {
+      detail::slice_between_lines(cloud.points, planes, options, result, {});
+      return result;
+    }
   }
   if (!(result.slab > 0) || !std::isfinite(result.slab))
     throw Error("slice: the slab width must be positive and finite");
@@ -234,6 +299,12 @@ SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const Slic
     SectionSlice& s = result.sections[i];
     s.id = static_cast<int>(i);
     s.frame = make_frame(planes[i].origin, planes[i].normal);
+    // Far from the plane's origin, the frame's origin moves near the cut (small (u, v)).
+    std::vector<Eigen::Vector2d> cut;
+    for (const auto& line : cuts[i])
+      for (const auto& p : line) cut.push_back(s.frame.to_plane(p));
+    const Eigen::Vector2d local = detail::local_origin(cut);
+    if (local != Eigen::Vector2d::Zero()) s.frame.origin = s.frame.to_world(local);
     std::vector<Loop> loops;
     std::size_t open = 0;
     for (const auto& line : cuts[i]) {

@@ -2,6 +2,7 @@
 
 #include "section/error.h"
 #include "detail/cholmod_solver.h"
+#include "detail/local_origin.h"
 
 #include <algorithm>
 #include <array>
@@ -336,6 +337,13 @@ double minimise(const Problem& p, const SmoothOptions& options, Points& q, Smoot
 }  // namespace
 
 SmoothResult smooth(const Points& points, const SmoothOptions& options) {
+  // Far from the origin, smoothed about a local origin and moved back.
+  const Eigen::Vector2d origin = detail::local_origin(points);
+  if (origin != Eigen::Vector2d::Zero()) {
+    SmoothResult r = smooth(detail::moved(points, origin), options);
+    for (auto& q : r.points) q += origin;
+    return r;
+  }
   check_options(options);
   SmoothResult result;
   const Problem p = prepare(points, options, result);

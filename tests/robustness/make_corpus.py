@@ -230,6 +230,19 @@ def main():
     put("planes_missing_column.csv", "origin_x,origin_y,origin_z,normal_x,normal_y\n0,0,5,0,0\n")
     put("planes_zero_normal.csv",
         "origin_x,origin_y,origin_z,normal_x,normal_y,normal_z\n0,0,5,0,0,0\n")
+    put("planes_good.csv", "origin_x,origin_y,origin_z,normal_x,normal_y,normal_z\n0,0,5,0,0,1\n0,0,10,0,0.1,1\n")
+
+    # ---- a stream split into parts (a seed of fuzz_parts): section 1 failed at slice
+    parts = ["# libsection-stream 1", "# units mm", "# history slice --at 0,5 blade.ply"]
+    for s in range(2):
+        parts += ["# part %d" % s] + (["# issue section=1 loop=-1 stage=slice message=no points in the slab"]
+                                      if s == 1 else [])
+        parts += ["# table frames", "section,origin_x,origin_y,origin_z,u_x,u_y,u_z,v_x,v_y,v_z,n_x,n_y,n_z",
+                  "%d,0,0,%d,1,0,0,0,1,0,0,0,1" % (s, 5 * s), "# table points", "section,loop,index,u,v,nu,nv,offset"]
+        for i in range(12 if s == 0 else 0):
+            t = 2 * math.pi * i / 12
+            parts.append("0,0,%d,%.6g,%.6g,%.6g,%.6g,0" % (i, 20 * math.cos(t), 3 * math.sin(t), math.cos(t), math.sin(t)))
+    put("parts_stream.csv", "\n".join(parts + ["# end"]) + "\n")
 
 
 if __name__ == "__main__":

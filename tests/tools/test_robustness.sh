@@ -114,8 +114,8 @@ refuse slice "$R/nan_binary.ply" "vertex 5 has a non-finite coordinate" "${S[@]}
 refuse slice "$R/no_xyz.ply" "lacks x, y or z" "${S[@]}"
 refuse slice "$R/bad_format.ply" ":2: unknown PLY format 'utf16'" "${S[@]}"
 refuse slice "$R/billions_mesh.ply" "declares 4000000000 vertex elements but the file has only" "${S[@]}"
-refuse_stdin slice "$R/billions.ply" "ends after 10 of 4000000000 vertices" "${S[@]}"
-refuse_stdin slice "$R/truncated_binary.ply" "ends after 1431 of 1440 vertices" "${S[@]}"
+refuse_stdin slice "$R/billions.ply" "(ends after 10 of|declares) 4000000000 vertices( but the file holds only 10)?" "${S[@]}"
+refuse_stdin slice "$R/truncated_binary.ply" "(ends after 1431 of|declares) 1440 vertices( but the file holds only 1431)?" "${S[@]}"
 
 # ---------------------------------------------------------------- meshes (slice)
 # mesh.cpp reads every mesh format itself (OpenMesh's readers hung or aborted on such files).

@@ -6,7 +6,7 @@ expect 0 "help" -- "$BIN/slice" --help
 check "help names the options" -- grep -q -- "--normal" "$TMP/out"
 expect 0 "version" -- "$BIN/slice" --version
 expect 2 "bad flag" -- "$BIN/slice" --no-such-flag x.xyz
-expect 2 "no planes" -- "$BIN/slice" x.xyz
+expect 2 "rows and planes" -- "$BIN/slice" x.xyz --rows --at 1
 expect 2 "bad normal" -- "$BIN/slice" x.xyz --normal 0,1 --at 1
 expect 1 "missing file" -- "$BIN/slice" "$TMP/none.xyz" --at 1
 check "missing file named" -- grep -q "none.xyz" "$TMP/err"
@@ -53,6 +53,34 @@ check "no fill note without filling" -- sh -c "! grep -q '^# fill' '$TMP/out'"
 check "stdin gives the same rows" -- cmp -s <(grep -v '^# history' "$TMP/from_file.csv") <(grep -v '^# history' "$TMP/from_stdin.csv")
 expect 1 "all planes miss" -- "$BIN/slice" "$TMP/ring.xyz" --at 50 --slab 0.1
 check "nothing on stdout when all fail" -- test ! -s "$TMP/out"
+
+# What the points are (docs/SAMPLING.md). A 2D profile (two columns, any extension, in
+# any order) is one section at z = 0 with no plane flags, through the whole pipe.
+awk 'BEGIN { print "# an ellipse"; for (i = 0; i < 300; i++) { a = 6.283185307179586 * ((i * 7) % 300) / 300; printf "%.9f %.9f\n", 20*cos(a), 3*sin(a) } }' > "$TMP/profile.xy"
+expect 0 "a 2D profile needs no planes" -- "$BIN/slice" "$TMP/profile.xy"
+check "one row, one section" -- grep -q "^# row section=0 row=0 height=0 spread=0 points=300" "$TMP/out"
+check "the sampling noted" -- grep -q "^# sampling kind=rows .* rows=1 " "$TMP/out"
+check "said on stderr" -- grep -q "one row of points, a single section" "$TMP/err"
+"$BIN/slice" "$TMP/profile.xy" 2>/dev/null | "$BIN/smooth" 2>/dev/null | "$BIN/fitspline" 2>/dev/null |
+  "$BIN/camber" --params "$TMP/profile.csv" >/dev/null 2>&1
+check "the pipe measures the profile: chord 40" -- awk -F, 'NR == 2 { exit !($2 > 39.99 && $2 < 40.01) }' "$TMP/profile.csv"
+"$BIN/slice" < "$TMP/profile.xy" > "$TMP/profile_stdin.txt" 2>/dev/null
+check "a 2D profile on stdin too" -- grep -q "^# row section=0 row=0 height=0" "$TMP/profile_stdin.txt"
+# Sparse rows (three ellipses 10 mm apart): one section per row with no planes; a plane
+# between rows says which rows lie beside it; a dense ring with no planes asks for planes.
+awk 'BEGIN { for (z = 0; z <= 20; z += 10) for (i = 0; i < 200; i++) { a = 6.283185307179586 * i / 200; printf "%.9f %.9f %g\n", 20*cos(a), 3*sin(a), z } }' > "$TMP/rows.xyz"
+expect 0 "rows need no planes" -- "$BIN/slice" "$TMP/rows.xyz"
+check "a section per row" -- test "$(grep -c '^# row section=' "$TMP/out")" -eq 3
+check "said so" -- grep -q "3 rows of points 10 mm apart, each a section" "$TMP/err"
+expect 0 "a plane through a row takes it" -- "$BIN/slice" "$TMP/rows.xyz" --at 10,15
+check "the row taken" -- grep -q "^# row section=0 row=1 height=10 " "$TMP/out"
+check "between rows: the rows named" -- grep -q "section 1: the plane at height 15 falls between the rows at heights 10 and 20" "$TMP/err"
+check "between rows: an issue" -- grep -q "^# issue section=1" "$TMP/out"
+expect 1 "a dense ring with no planes" -- "$BIN/slice" "$TMP/ring.xyz"
+check "asks for planes, naming them" -- grep -q "give planes (--at, --count or --planes)" "$TMP/err"
+check "nothing written" -- test ! -s "$TMP/out"
+expect 1 "--rows on a dense ring" -- "$BIN/slice" "$TMP/ring.xyz" --rows --slab 0.1
+check "not rows, said" -- grep -q "are not rows of points" "$TMP/err"
 
 # Views apart: the second view of a generated scan, misregistered by 15 um, is registered
 # onto the first before slicing; the stream notes it. A view far off is refused, named.

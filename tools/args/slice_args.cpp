@@ -30,7 +30,16 @@ const char* const SliceArgs::description =
     "few micrometres otherwise shifts every section it alone covers by that much.\n\n"
     "Planes: --normal with --at offsets or --count planes spread over the part, or --planes FILE\n"
     "(CSV with origin_x,origin_y,origin_z,normal_x,normal_y,normal_z).\n\n"
-    "Example: slice blade.ply --normal 0,0,1 --at 12,20,28 | smooth | fitspline | camber";
+    "Sampling (docs/SAMPLING.md): with no --slab the points tell it. A dense scan: the slab is\n"
+    "its point spacing. Lines of points close together (a structured surface grid): their\n"
+    "spacing along the normal. Sparse rows, each a section's worth (a CMM pass, a scanner\n"
+    "layer, one 2D profile, also at a constant radius if nearly planar): a plane through a row\n"
+    "takes it as it lies, a plane between rows is reported with the rows beside it. With no\n"
+    "planes, or --rows, each row is a section in its own best plane. A file of two columns\n"
+    "(x y) is one profile at z = 0 and needs no planes. The stream notes what was found\n"
+    "('# sampling ...', '# row ...').\n\n"
+    "Example: slice blade.ply --normal 0,0,1 --at 12,20,28 | smooth | fitspline | camber\n"
+    "         slice profile.xy | smooth | fitspline | camber";
 
 namespace {
 
@@ -51,13 +60,19 @@ void declare_planes(CLI::App& app, SliceArgs& a) {
   auto* o_count = app.add_option("--count", a.count, "Number of planes spread evenly over the part")
                       ->check(CLI::Range(1, 100000));
   auto* o_planes = app.add_option("--planes", a.planes_file, "CSV file of planes (origin and normal)");
-  o_at->excludes(o_count)->excludes(o_planes);
-  o_count->excludes(o_planes);
+  auto* o_rows = app.add_flag("--rows", a.rows,
+                              "Each row of points across the normal a section as it lies, in its best plane "
+                              "(the default with no planes)");
+  o_at->excludes(o_count)->excludes(o_planes)->excludes(o_rows);
+  o_count->excludes(o_planes)->excludes(o_rows);
+  o_planes->excludes(o_rows);
 }
 
 // --slab, --cell and the band's and the gap fill's options.
 void declare_slab(CLI::App& app, SliceOptions& options) {
-  add_checked(app, "--slab", options.slab, "Slab width d; 0 = the estimated point spacing",
+  add_checked(app, "--slab", options.slab,
+              "Slab width d; 0 = from the points: a dense scan's spacing, lines' spacing along the normal, "
+              "sparse rows as they lie",
               CLI::NonNegativeNumber);
   add_checked(app, "--cell", options.morphology.cell,
               "Raster cell h; 0 = the estimated spacing in the section", CLI::NonNegativeNumber);
@@ -105,8 +120,8 @@ void SliceArgs::declare(CLI::App& app) {
     for (const auto& [flag, value] : length_options(*this))
       if (app.count(flag) > 0) lengths_given.push_back(flag);
     if (normal.size() != 3) throw CLI::ValidationError("--normal takes three comma-separated numbers");
-    if (at.empty() && count == 0 && planes_file.empty())
-      throw CLI::RequiredError("one of --at, --count or --planes");
+    if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0)
+      throw CLI::ValidationError("--normal", "must not be 0,0,0 (a plane needs a direction)");
   });
 }
 

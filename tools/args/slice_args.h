@@ -18,6 +18,7 @@ struct SliceArgs {
   std::vector<double> at;                  ///< --at: plane offsets along the normal
   int count = 0;                           ///< --count: planes spread evenly over the part
   std::string planes_file;                 ///< --planes: CSV file of planes
+  bool rows = false;                       ///< --rows: each row of points a section as it lies
   std::vector<std::string> views;          ///< --view: other views of the part, registered onto the input
   RegisterOptions register_options;        ///< --view-reach
   SliceOptions options;                    ///< --slab, --cell, --band-*, --fill-*, --threads
@@ -27,6 +28,9 @@ struct SliceArgs {
   void declare(CLI::App& app);
   /// The options with every length given converted to mm (`mm` = the input unit's mm).
   SliceArgs in_mm(double mm) const;
+  /// True when no planes are given: the rows are taken as sections (--rows, or a cloud
+  /// that is sparse rows or a single profile).
+  bool by_rows() const { return rows || (at.empty() && count == 0 && planes_file.empty()); }
 };
 
 }  // namespace section::tool

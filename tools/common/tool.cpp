@@ -3,14 +3,20 @@
 #include "section/units.h"
 
 #include "section/error.h"
+#include "section/io/limits.h"
 #include "section/io/stream.h"
 #include "section/pipe/run_stage.h"
 
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <new>
+#include <utility>
+#include <vector>
+
+#include <sys/stat.h>
 
 #if __has_include(<malloc.h>)
 #include <malloc.h>  // mallopt (glibc)
@@ -28,16 +34,81 @@ std::string basename_of(const std::string& path) {
 void add_common(CLI::App& app, Common& common) {
   app.add_option("input,-i,--input", common.input, "Input file, - for standard input")->capture_default_str();
   app.add_option("-o,--output", common.output, "Output file, - for standard output")->capture_default_str();
+  app.add_option_function<std::string>(
+         "--max-memory", [](const std::string& size) { set_memory_limit(byte_size(size)); },
+         "Memory the inputs may take (e.g. 8G): a stream, a part or a mesh up to a quarter of it, a "
+         "cloud from a pipe up to all of it (a temporary copy), the slab points of all planes up to half; "
+         "default: the memory available (RAM, ulimit -v, cgroup)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            return byte_size(text) > 0 ? std::string()
+                                       : "must be a size such as 4G, 512M or 100000000, got '" + text + "'";
+          },
+          "SIZE"));
 }
+
+std::size_t byte_size(const std::string& text) {
+  double v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (r.ec != std::errc() || !(v > 0) || !std::isfinite(v)) return 0;
+  std::string unit(r.ptr, text.data() + text.size());
+  if (!unit.empty() && (unit.back() == 'B' || unit.back() == 'b')) unit.pop_back();
+  const std::string units = "kmgtp";
+  double scale = 1;
+  if (unit.size() == 1) {
+    const auto k = units.find(static_cast<char>(std::tolower(static_cast<unsigned char>(unit[0]))));
+    if (k == std::string::npos) return 0;
+    scale = std::pow(1000.0, double(k + 1));
+  } else if (!unit.empty()) {
+    return 0;
+  }
+  return v * scale < 1.8e19 ? static_cast<std::size_t>(v * scale) : 0;
+}
+
+namespace {
+
+// CLI11's "Value -1 not in range 0.000000 to 1797693...(309 digits).000000" (its
+// NonNegativeNumber) as "Value -1 is below 0".
+std::string readable_range(std::string what) {
+  const std::string range = " not in range ", top = " to 179769313486231570";
+  const auto at = what.find(range), to = what.find(top);
+  if (at == std::string::npos || to == std::string::npos || to < at) return what;
+  std::string low = what.substr(at + range.size(), to - at - range.size());
+  while (low.find('.') != std::string::npos && (low.back() == '0' || low.back() == '.')) low.pop_back();
+  const auto end = what.find_first_not_of("0123456789.", to + top.size());
+  return what.substr(0, at) + " is below " + low + (end == std::string::npos ? "" : what.substr(end));
+}
+
+// A non-finite value given to a numeric option ("--slab nan", "--at 1,inf"): CLI11's
+// number checks let NaN through.
+void refuse_non_finite(CLI::App& app) {
+  for (const CLI::Option* o : app.get_options()) {
+    if (o->get_type_name().find("FLOAT") == std::string::npos) continue;
+    for (const std::string& text : o->results()) {
+      double v = 0;
+      const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (r.ec == std::errc() && r.ptr == text.data() + text.size() && !std::isfinite(v))
+        throw CLI::ValidationError(o->get_name(), "must be a finite number, got '" + text + "'");
+    }
+  }
+}
+
+}  // namespace
 
 int parse_args(const std::string& name, const std::string& description, int argc, char** argv,
                const std::function<void(CLI::App&)>& declare, std::ostream& out, std::ostream& err) {
   CLI::App app{description, name};
+  return parse_app(app, name, argc, argv, declare, out, err);
+}
+
+int parse_app(CLI::App& app, const std::string& name, int argc, char** argv,
+              const std::function<void(CLI::App&)>& declare, std::ostream& out, std::ostream& err) {
   app.set_version_flag("--version", std::string(name) + " (libsection) " + SECTION_VERSION);
   app.get_formatter()->column_width(34);
   try {
     declare(app);
     app.parse(argc, argv);
+    refuse_non_finite(app);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e, out, err);
   } catch (const CLI::CallForAllHelp& e) {
@@ -45,7 +116,7 @@ int parse_args(const std::string& name, const std::string& description, int argc
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e, out, err);
   } catch (const CLI::ParseError& e) {
-    err << name << ": usage error: " << e.what() << "\n"
+    err << name << ": usage error: " << readable_range(e.what()) << "\n"
         << "Run '" << name << " --help' for the options.\n";
     return 2;
   }
@@ -62,8 +133,15 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
   mallopt(M_TOP_PAD, 64 << 20);
 #endif
-  const int code = parse_args(name, description, argc, argv, declare, std::cout, std::cerr);
+  CLI::App app{description, name};
+  const int code = parse_app(app, name, argc, argv, declare, std::cout, std::cerr);
   if (code >= 0) return code;
+  const std::string clash = same_files(app);
+  if (!clash.empty()) {
+    std::cerr << name << ": usage error: " << clash << "\n";
+    return 2;
+  }
+  remove_outputs_on_signals();
   try {
     body();
     return exit_ok;
@@ -73,7 +151,7 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
   } catch (const std::bad_alloc&) {
     std::cerr << name << ": error: out of memory\n";
   } catch (const std::exception& e) {
-    std::cerr << name << ": error: " << e.what() << "\n";
+    std::cerr << name << ": error: " << tidy_message(name, e.what()) << "\n";
   }
   return 1;
 }
@@ -110,6 +188,98 @@ void SectionTally::check(bool allow_partial) const {
   throw Incomplete(std::to_string(missing.size()) + " of " + std::to_string(asked_.size()) +
                    " sections have no " + output_ + " (section" + (missing.size() > 1 ? "s " : " ") + list +
                    ": see their issues); the output holds the others; --allow-partial accepts this");
+}
+
+namespace {
+
+// A file's identity: its device and inode when it exists, else its directory's and its name.
+struct FileId {
+  dev_t dev = 0;
+  ino_t ino = 0;
+  std::string name;  // for a file not there yet
+  bool operator==(const FileId& o) const { return dev == o.dev && ino == o.ino && name == o.name; }
+};
+
+// The identity of `path`; false for "-", a file that cannot be checked, or one that is not
+// a regular file (/dev/null may be given for several outputs).
+bool file_id(const std::string& path, FileId& id) {
+  if (path.empty() || path == "-") return false;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    id = {st.st_dev, st.st_ino, ""};
+    return S_ISREG(st.st_mode);
+  }
+  const auto slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+  if (::stat(dir.c_str(), &st) != 0) return false;
+  id = {st.st_dev, st.st_ino, path.substr(slash == std::string::npos ? 0 : slash + 1)};
+  return true;
+}
+
+// Every path given to the options named in `flags`, with the flag.
+std::vector<std::pair<std::string, std::string>> paths_of(CLI::App& app,
+                                                          std::initializer_list<const char*> flags) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const char* flag : flags)
+    if (const CLI::Option* o = app.get_option_no_throw(flag))
+      for (const std::string& path : o->results()) out.emplace_back(flag, path);
+  return out;
+}
+
+extern "C" void remove_and_reraise(int sig) {
+  section::remove_temporary_files();
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+}  // namespace
+
+std::string same_files(CLI::App& app) {
+  // The flags that name files, for every tool: a new one is added here.
+  const auto inputs = paths_of(app, {"--input", "--view", "--planes"});
+  const auto outputs =
+      paths_of(app, {"--output", "--params", "--thickness", "--report", "--second-view", "--truth"});
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    FileId out;
+    if (!file_id(outputs[k].second, out)) continue;
+    for (const auto& [flag, path] : inputs) {
+      FileId in;
+      if (file_id(path, in) && in == out)
+        return outputs[k].first + " " + outputs[k].second + " is the input " + path + " (" + flag +
+               "): it would be overwritten";
+    }
+    for (std::size_t j = 0; j < k; ++j) {
+      FileId other;
+      if (file_id(outputs[j].second, other) && other == out)
+        return outputs[k].first + " " + outputs[k].second + " is the output of " + outputs[j].first +
+               " too: give each output its own file";
+    }
+  }
+  return "";
+}
+
+void remove_outputs_on_signals() {
+  struct sigaction action {};
+  action.sa_handler = remove_and_reraise;
+  sigemptyset(&action.sa_mask);
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+    struct sigaction old {};
+    // A signal ignored by the caller (nohup) stays ignored.
+    if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler != SIG_IGN) ::sigaction(sig, &action, nullptr);
+  }
+  // Past `ulimit -f` a write fails with EFBIG (an error naming the file) instead of killing
+  // the tool with its temporary file left behind.
+  std::signal(SIGXFSZ, SIG_IGN);
+}
+
+std::string tidy_message(const std::string& name, std::string message) {
+  // "slice: the slab ..." or "FILE: slice: the slab ..." after "slice: error: ".
+  const std::string own = name + ": ";
+  if (message.rfind(own, 0) == 0) return message.substr(own.size());
+  const auto colon = message.find(": ");
+  if (colon != std::string::npos && message.compare(colon + 2, own.size(), own) == 0)
+    message.erase(colon + 2, own.size());
+  return message;
 }
 
 void with_input(const std::string& input, const std::function<void()>& stage) {
@@ -150,7 +320,7 @@ void warn_issues(const std::string& stage, const section::Stream& stream, bool l
   for (const auto& issue : stream.issues) {
     if (issue.stage != stage) continue;
     std::cerr << stage << ": warning: section " << issue.section;
-    if (loops) std::cerr << " loop " << issue.loop;
+    if (loops && issue.loop >= 0) std::cerr << " loop " << issue.loop;
     std::cerr << ": " << issue.message << "\n";
   }
 }

@@ -58,8 +58,13 @@ struct Common {
   std::string output = "-";  ///< -o/--output, "-" = standard output
 };
 
-/// Declares -i/--input (also as the first positional argument), -o/--output and --version.
+/// Declares -i/--input (also as the first positional argument), -o/--output and
+/// --max-memory (section::set_memory_limit).
 void add_common(CLI::App& app, Common& common);
+
+/// Bytes of a size such as "100000", "512M", "8G", "1.5GB" (k, M, G, T, P: powers of 1000);
+/// 0 when it is not one.
+std::size_t byte_size(const std::string& text);
 
 /// Parses argv into the options that `declare` binds: -1 when the tool is to run, else its
 /// exit code: 0 after --help or --version (written to `out`), 2 on bad usage
@@ -67,7 +72,27 @@ void add_common(CLI::App& app, Common& common);
 int parse_args(const std::string& name, const std::string& description, int argc, char** argv,
                const std::function<void(CLI::App&)>& declare, std::ostream& out, std::ostream& err);
 
-/// Parses argv as parse_args does, then runs `body`. Prints `NAME: error: message` on
+/// parse_args on an App of the caller's (to look at its options after).
+int parse_app(CLI::App& app, const std::string& name, int argc, char** argv,
+              const std::function<void(CLI::App&)>& declare, std::ostream& out, std::ostream& err);
+
+/// Why the command line names one file twice where that would lose data: an output
+/// (-o, --params, --thickness, --report, --second-view, --truth) that is an input (the input, --view,
+/// --planes) or another output, by device and inode (a symlink or hard link to it counts; /dev/null and "-"
+/// do not); "" when none does.
+std::string same_files(CLI::App& app);
+
+/// Installs the handlers of SIGINT, SIGTERM, SIGHUP and SIGQUIT that remove the outputs'
+/// temporary files (section::remove_temporary_files) and end the tool as the signal would;
+/// ignores SIGXFSZ, so that a write past `ulimit -f` fails with an error naming the file.
+void remove_outputs_on_signals();
+
+/// An error message without the tool's name repeated: "slice: x" and "FILE: slice: x" lose
+/// the "slice: " that `NAME: error: ` already says.
+std::string tidy_message(const std::string& name, std::string message);
+
+/// Parses argv as parse_args does, refuses the same file given twice (same_files: exit 2),
+/// installs remove_outputs_on_signals, then runs `body`. Prints `NAME: error: message` on
 /// stderr and returns 1 on section::Error or any other exception, 2 on bad usage, 3
 /// (`NAME: incomplete: message`) on Incomplete, 0 on success or --help/--version.
 int run_tool(const std::string& name, const std::string& description, int argc, char** argv,

@@ -9,6 +9,7 @@
 #include "section/gap_fill.h"
 #include "section/mesh.h"
 #include "section/morphology.h"
+#include "section/sampling.h"
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -33,13 +34,14 @@ std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, con
 
 /// Options of slice (lengths in the cloud's units; docs/MORPHOLOGY.md for the band and the fill).
 struct SliceOptions {
-  double slab = 0;               ///< slab width d; 0 = the cloud's mean spacing
+  double slab = 0;               ///< slab width d; 0 = chosen from the points' sampling (docs/SAMPLING.md)
   MorphologyOptions morphology;  ///< ordering of each section's points
   double band_spacing = 0.02;    ///< widen the slab into a band (drift_band.h) to one point per this; 0 = off
   double band_max = 2;           ///< slab widths: the band's largest half width
   double band_sparse_max = 0;    ///< slab widths: the band's half width beside sparse stretches; 0 = off
   bool fill_gaps = true;         ///< fill gaps of the slab from scan points beside the plane (gap_fill.h)
   GapFillOptions fill;           ///< how (reach 0 = 12 slab widths)
+  SamplingOptions sampling;      ///< how the points' sampling is told (when slab is 0)
   int threads = 0;               ///< worker threads for the sections; 0 = all cores
 };
 
@@ -52,13 +54,17 @@ struct SectionSlice {
   std::size_t band_points = 0;  ///< points of the band that replaced the slab's (0: the slab alone)
   double band_half_width = 0;   ///< its half width (0: the slab alone)
   GapFillResult fill;           ///< gaps found and filled (counts; the carried points are in the loops)
+  int row = -1;                 ///< the row of points taken as the section (Sampling::rows); -1: a slab
+  double row_height = 0;        ///< mm, that row's height along the sampling's normal
+  double row_spread = 0;        ///< mm, its points' largest distance from the section plane
   std::string error;            ///< why the section failed; empty when it did not
 };
 
 /// What slice returns: one SectionSlice per plane, and the slab used.
 struct SliceResult {
   std::vector<SectionSlice> sections;  ///< one per plane, in plane order
-  double slab = 0;                     ///< slab width used
+  double slab = 0;                     ///< slab width used (0: rows taken as they lie, or a mesh)
+  Sampling sampling;                   ///< what the points are (when the slab was chosen from them)
   std::size_t points = 0;              ///< points in the cloud (or mesh vertices)
   int file_passes = 0;                 ///< slice_file: times the file was read (1 or 2); 0 in memory
 };
@@ -71,9 +77,26 @@ std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::V
                                                       const std::vector<Plane>& planes, double slab);
 
 /// Slices a cloud: slab points of every plane ordered into loops by morphology.
+/// With slab 0 the slab follows the points' sampling (sampling_of along the first plane's
+/// normal): a dense scan's mean spacing (the nearest distinct neighbour's when exact copies
+/// would shrink it), lines' spacing along the normal; sparse rows are not bridged: a plane
+/// through a row (all of it within SamplingOptions::flatness of its size from the plane)
+/// takes that row, and a plane between rows fails, naming the rows beside it.
 /// Sections that fail (no points, no closed loop) carry their error; the others go on.
-/// Throws section::Error for bad options (no planes, a zero normal, a negative slab).
+/// Exact copies of a point count once. Throws section::Error for bad options (no planes,
+/// a zero normal, a negative slab).
 SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options = {});
+
+/// Each row of points of a cloud taken as a section as it lies (`slice --rows`): the rows
+/// across `normal` (sampling_of), each in its best plane (frame origin the plane's point
+/// nearest to 0), in height order. A row whose points stray from its best plane by more than
+/// SamplingOptions::flatness of its size fails, saying so. Throws section::Error when the
+/// points are not rows or lines (a dense scan: it names its spacings).
+SliceResult slice_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options = {});
+
+/// As above, with the rows of a sampling already found over all the points of `cloud`
+/// (sampling_of with max_points at least their number).
+SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const SliceOptions& options = {});
 
 /// Slices a mesh exactly (CGAL's polygon mesh slicer): each closed intersection polyline is
 /// a loop, oriented counterclockwise in (u, v), loop 0 the largest; its vertices are the points.

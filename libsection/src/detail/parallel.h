@@ -11,6 +11,24 @@
 
 namespace section::detail {
 
+/// Starts up to `count` threads running `body`: as many as the system lets start (none under
+/// a low `ulimit -v`, where a thread's stack cannot be mapped); the caller does the work of
+/// those that did not, and joins the others.
+template <class F>
+std::vector<std::thread> start_threads(std::size_t count, const F& body) {
+  std::vector<std::thread> pool;
+  for (std::size_t t = 0; t < count; ++t) {
+    try {
+      pool.emplace_back(body);
+    } catch (const std::exception&) {
+      break;  // (std::system_error EAGAIN, or no memory for the list)
+    }
+  }
+  return pool;
+}
+
+/// Runs body(i) for i in [0, count) on up to `threads` threads (0 = all cores), fewer when
+/// threads cannot start; rethrows the first exception a body threw once all are done.
 template <class F>
 void parallel_for(std::size_t count, int threads, F&& body) {
   std::size_t workers =
@@ -33,8 +51,7 @@ void parallel_for(std::size_t count, int threads, F&& body) {
       }
     }
   };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(run);
+  std::vector<std::thread> pool = start_threads(workers - 1, run);
   run();
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);

@@ -24,11 +24,55 @@ using NearFn = std::function<std::vector<Eigen::Vector3d>(std::size_t i)>;
 /// Receives each finished section (io/slice_file.h's SectionSink).
 using SectionFn = std::function<void(const SectionSlice&)>;
 
-/// Orders the slab points of every plane into loops, sections in parallel, and fills the
-/// profile's gaps from the near points; frees each section's points once done and hands
-/// it to `sink` in plane order.
+/// Orders one section's points into loops: order_section, or order_row for a row.
+using OrderFn =
+    std::function<MorphologyResult(const std::vector<Eigen::Vector2d>&, const MorphologyOptions&)>;
+
+/// Orders the slab points of every plane into loops (`order`, default order_section),
+/// sections in parallel, and fills the profile's gaps from the near points; frees each
+/// section's points once done and hands it to `sink` in plane order. Exact copies of a point
+/// count once. A section of result.sections set beforehand keeps its row fields, and its
+/// error when its slab is empty (why: between rows, say).
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
                  const std::vector<Plane>& planes, double slab, const SliceOptions& options,
-                 SliceResult& result, const SectionFn& sink = {});
+                 SliceResult& result, const SectionFn& sink = {}, const OrderFn& order = {});
+
+/// A row's points ordered into its profile: the morphology's loop when it closes a single
+/// one keeping nearly all of them, in an order that does not cross itself; else (a thin profile sampled
+/// sparser than it is thick, which the closing bridges and cuts in pieces) along its chord, side by side
+/// (order_along_chord).
+MorphologyResult order_row(const std::vector<Eigen::Vector2d>& points, const MorphologyOptions& options);
+
+/// The points of one blade profile ordered along its chord (their main axis): each point on
+/// the side of a quartic mean line fitted through them all, one side forward, the other
+/// back, counterclockwise, as loop 0 (no skeleton). Throws section::Error when that order
+/// crosses itself (the points are no single profile along a chord).
+MorphologyResult order_along_chord(const std::vector<Eigen::Vector2d>& points);
+
+/// sampling_of over the points, and over all of them when its first look found rows (a
+/// row is a section only with all its points).
+Sampling sample_all(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+                    const SamplingOptions& options);
+
+/// The slab of a dense scan or of lines from their sampling: a dense scan's mean spacing
+/// (mean_spacing, or the sampling's nearest distinct neighbour where exact copies shrink
+/// it), lines' spacing along the normal. Throws when there is no spacing to take.
+double sampled_slab(const std::vector<Eigen::Vector3d>& points, const Sampling& sampling);
+
+/// Planes through sparse rows (result.sampling.kind rows): each takes the row it passes
+/// through, or fails naming the rows beside it; the rows' points are the slabs.
+void slice_through_rows(const std::vector<Eigen::Vector3d>& points, const std::vector<Plane>& planes,
+                        const SliceOptions& options, SliceResult& result, const SectionFn& sink);
+
+/// Planes through lines of points close together (result.sampling.kind lines, its rows
+/// found over all the points): the section of each is interpolated between the lines below
+/// and above it, each line's points carried toward the other line's curve by the other's
+/// share of the height (exact lines give the section to second order in their spacing).
+void slice_between_lines(const std::vector<Eigen::Vector3d>& points, const std::vector<Plane>& planes,
+                         const SliceOptions& options, SliceResult& result, const SectionFn& sink);
+
+/// Each row of result.sampling taken as a section in its own best plane.
+void rows_as_sections(const std::vector<Eigen::Vector3d>& points, const SliceOptions& options,
+                      SliceResult& result, const SectionFn& sink);
 
 }  // namespace section::detail

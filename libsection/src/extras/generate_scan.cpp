@@ -1,5 +1,6 @@
 // Synthetic scans of a generated blade (generate.h): rows of candidate points on the exact
 // surface, thinned by a density field and holes, some replaced by outliers, in two views.
+#include "detail/parallel.h"
 #include "generate_index.h"
 #include "generate_sample.h"
 #include "generate_section.h"
@@ -271,8 +272,7 @@ void run_tasks(int tasks, const F& task) {
   auto worker = [&] {
     for (int t; (t = next.fetch_add(1)) < tasks;) task(t);
   };
-  std::vector<std::thread> threads;
-  for (unsigned i = 1; i < hw; ++i) threads.emplace_back(worker);
+  std::vector<std::thread> threads = detail::start_threads(hw - 1, worker);  // (fewer when refused)
   worker();
   for (auto& th : threads) th.join();
 }

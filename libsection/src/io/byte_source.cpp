@@ -1,16 +1,135 @@
 #include "io/byte_source.h"
 
 #include "section/error.h"
+#include "section/io/limits.h"
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <iostream>
+#include <map>
+#include <mutex>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 namespace section::detail {
+
+namespace {
+
+std::string reason(int error) {
+  return std::strerror(error);
+}
+
+// A new descriptor of the file open as `fd`, with an offset of its own (two readers of one
+// spooled input do not move each other's place); a duplicate when /proc is not there.
+int reopen(int fd) {
+  const std::string self = "/proc/self/fd/" + std::to_string(fd);
+  const int again = ::open(self.c_str(), O_RDONLY | O_CLOEXEC);
+  if (again >= 0) return again;
+  const int dup = ::dup(fd);
+  if (dup >= 0) ::lseek(dup, 0, SEEK_SET);
+  return dup;
+}
+
+// A regular file that is not at its start (standard input redirected after a read) is
+// spooled too: readers read a file from its first byte.
+bool readable_in_place(int fd) {
+  struct stat st {};
+  return ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && ::lseek(fd, 0, SEEK_CUR) == 0;
+}
+
+// Copies the input `path` ("-" = standard input) into an unlinked temporary file in TMPDIR:
+// `check` sees its first 64 KiB first; at most memory_limit() bytes. Returns its descriptor.
+int spool(const std::string& path, const std::string& name, const std::string& component,
+          const HeadCheck& check) {
+  const int in = path == "-" ? 0 : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) throw Error(component + path + ": cannot open: " + reason(errno));
+  struct Closer {
+    int fd;
+    ~Closer() {
+      if (fd > 0) ::close(fd);
+    }
+  } closer{path == "-" ? -1 : in};
+  const char* dir = std::getenv("TMPDIR");
+  std::string pattern = std::string(dir && *dir ? dir : "/tmp") + "/libsection-spool-XXXXXX";
+  const int out = ::mkstemp(pattern.data());
+  if (out < 0)
+    throw Error(component + name + ": cannot make a temporary copy in " + pattern + ": " + reason(errno));
+  ::unlink(pattern.c_str());  // gone with the last descriptor, even after a kill
+  const auto fail = [&](const std::string& what) {
+    ::close(out);
+    throw Error(component + name + ": " + what);
+  };
+  const std::size_t limit = memory_limit();
+  std::unique_ptr<char[]> buf(new char[1 << 20]);
+  std::size_t total = 0, head = 0;
+  bool checked = false;
+  while (true) {
+    // The first 64 KiB are gathered and checked before anything is written.
+    const std::size_t want = checked ? (1 << 20) : (1 << 16) - head;
+    const ssize_t got = ::read(in, buf.get() + (checked ? 0 : head), want);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0)
+      fail(path == "-" ? "cannot read standard input: " + reason(errno) : "read error: " + reason(errno));
+    if (!checked) {
+      head += std::size_t(got);
+      if (got > 0 && head < (1 << 16)) continue;
+      if (check) {
+        try {
+          check(std::string_view(buf.get(), head));
+        } catch (...) {
+          ::close(out);
+          throw;
+        }
+      }
+      checked = true;
+    }
+    const std::size_t n = head ? head : std::size_t(got);
+    head = 0;
+    if (n == 0) break;
+    if ((total += n) > limit) {
+      ::close(out);
+      refuse_size(component + name, limit);
+    }
+    for (std::size_t done = 0; done < n;) {
+      const ssize_t w = ::write(out, buf.get() + done, n - done);
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0)
+        fail("cannot copy it to a temporary file in " + std::string(dir && *dir ? dir : "/tmp") + ": " +
+             reason(errno) + " (set TMPDIR, or give the file by path)");
+      done += std::size_t(w);
+    }
+  }
+  return out;
+}
+
+// The spooled inputs of the process, by path: each is copied once, and one that failed
+// fails again with the same error (opened again, a pipe would hang or give other bytes).
+int spooled(const std::string& path, const std::string& name, const std::string& component,
+            const HeadCheck& check) {
+  static std::mutex mutex;
+  static std::map<std::string, std::pair<int, std::exception_ptr>> files;
+  std::lock_guard<std::mutex> lock(mutex);
+  const auto at = files.find(path);
+  if (at != files.end()) {
+    if (at->second.second) std::rethrow_exception(at->second.second);
+    return at->second.first;
+  }
+  try {
+    const int fd = spool(path, name, component, check);
+    files[path] = {fd, nullptr};
+    return fd;
+  } catch (...) {
+    files[path] = {-1, std::current_exception()};
+    throw;
+  }
+}
+
+}  // namespace
 
 ByteSource::ByteSource(const std::string& path, std::string component)
     : name_(path == "-" ? "<stdin>" : path), component_(std::move(component)) {
@@ -19,10 +138,44 @@ ByteSource::ByteSource(const std::string& path, std::string component)
     return;
   }
   file_ = std::fopen(path.c_str(), "rb");
-  if (!file_) throw Error(component_ + path + ": cannot open: " + std::strerror(errno));
+  if (!file_) throw Error(component_ + path + ": cannot open: " + reason(errno));
   owned_ = true;
+  open(path);
+}
+
+ByteSource::ByteSource(const std::string& path, std::string component, const HeadCheck& check)
+    : name_(path == "-" ? "<stdin>" : path), component_(std::move(component)) {
+  int fd = -1;
+  if (path == "-") {
+    fd = readable_in_place(0) ? reopen(0) : reopen(spooled(path, name_, component_, check));
+  } else {
+    // Told apart before it is opened: a named pipe opened twice loses its writer.
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+      throw Error(component_ + path + ": is a directory");
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+      fd = reopen(spooled(path, name_, component_, check));
+    } else {
+      fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+      if (fd < 0) throw Error(component_ + path + ": cannot open: " + reason(errno));
+    }
+  }
+  if (fd < 0 || !(file_ = ::fdopen(fd, "rb"))) {
+    if (fd >= 0) ::close(fd);
+    throw Error(component_ + name_ + ": cannot open: " + reason(errno));
+  }
+  owned_ = true;
+  open(path);
+}
+
+void ByteSource::open(const std::string& path) {
   struct stat st {};
-  if (::fstat(fileno(file_), &st) == 0) directory_ = S_ISDIR(st.st_mode);
+  if (::fstat(fileno(file_), &st) != 0) return;
+  if (S_ISDIR(st.st_mode)) {
+    std::fclose(file_);
+    file_ = nullptr;
+    throw Error(component_ + path + ": is a directory");
+  }
   if (S_ISREG(st.st_mode) && st.st_size > 0)  // (files of /proc claim 0 bytes: size unknown)
     size_ = static_cast<long long>(st.st_size);
 }
@@ -42,8 +195,9 @@ int ByteSource::regular_fd() const {
 }
 
 void ByteSource::read_error() const {
-  throw Error(component_.empty() && file_ == stdin ? std::string("cannot read standard input")
-                                                   : component_ + name_ + ": read error");
+  const std::string why = errno ? ": " + reason(errno) : "";
+  throw Error(component_.empty() && file_ == stdin ? "cannot read standard input" + why
+                                                   : component_ + name_ + ": read error" + why);
 }
 
 std::size_t ByteSource::fetch(std::size_t n) {
@@ -61,28 +215,42 @@ std::size_t ByteSource::fetch(std::size_t n) {
   base_ = buf_.get();
   start_ = 0;
   end_ = keep;
+  errno = 0;
   const std::size_t got = std::fread(buf_.get() + end_, 1, n, file_);
   end_ += got;
   if (got == 0 && std::ferror(file_)) read_error();
   return got;
 }
 
-bool ByteSource::next_line(std::string_view& line) {
+bool ByteSource::next_line(std::string_view& line, std::size_t max_line) {
   constexpr std::size_t block = std::size_t(1) << 20;
+  std::size_t searched = 0;  // bytes at hand known to hold no '\n'
   while (true) {
     const std::string_view at = bytes();
-    const char* nl = at.empty() ? nullptr : static_cast<const char*>(std::memchr(at.data(), '\n', at.size()));
+    const char* nl =
+        at.size() > searched
+            ? static_cast<const char*>(std::memchr(at.data() + searched, '\n', at.size() - searched))
+            : nullptr;
+    if (!nl && at.size() >= max_line) {
+      line = at.substr(0, max_line);
+      consume(line.size());
+      return true;
+    }
     if (nl || eof_) {
       if (at.empty()) return false;
       line = at.substr(0, nl ? std::size_t(nl - at.data()) + 1 : at.size());
       consume(line.size());
       return true;
     }
-    if (fetch(block) == 0) eof_ = true;
+    searched = at.size();
+    if (fetch(std::min(block, max_line)) == 0) eof_ = true;
   }
 }
 
 std::string ByteSource::read_all() {
+  const std::size_t limit = max_input_bytes();
+  if (size_ >= 0 && static_cast<unsigned long long>(size_) - consumed_ > limit)
+    refuse_size(component_ + name_, limit);
   std::string data(bytes());
   consume(data.size());
   if (!file_) return data;
@@ -90,11 +258,16 @@ std::string ByteSource::read_all() {
   // std::cin took twice as long as parsing a stream).
   std::size_t size = data.size(), n;
   data.resize(std::max(size, std::size_t(1) << 20));
+  errno = 0;
   while (true) {
-    if (size == data.size()) data.resize(2 * data.size());
+    if (size == data.size()) {
+      if (size > limit) refuse_size(component_ + name_, limit);
+      data.resize(std::min(2 * data.size(), limit + 1));
+    }
     if ((n = std::fread(&data[size], 1, data.size() - size, file_)) == 0) break;
     size += n;
   }
+  if (size > limit) refuse_size(component_ + name_, limit);
   data.resize(size);
   consumed_ += size;
   if (std::ferror(file_)) read_error();
@@ -113,39 +286,102 @@ std::size_t pread_full(int fd, void* buf, std::size_t want, unsigned long long a
   return got_all;
 }
 
-ByteSink::ByteSink(const std::string& path, std::string component, const std::string& open_as)
+namespace {
+
+// The permissions a new file gets (0666 less the umask), read once.
+mode_t new_file_mode() {
+  static const mode_t mode = [] {
+    const mode_t mask = ::umask(022);
+    ::umask(mask);
+    return 0666 & ~mask;
+  }();
+  return mode;
+}
+
+// A unique file created next to `path` (PATH.XXXXXX.partialSUFFIX), with the permissions of
+// the file it replaces, or those of a new file. Returns its descriptor and name, or -1.
+int make_temporary(const std::string& path, const std::string& suffix, std::string& name) {
+  const std::string tail = ".partial" + suffix;
+  name = path + ".XXXXXX" + tail;
+  const int fd = ::mkstemps(name.data(), static_cast<int>(tail.size()));
+  if (fd < 0) return -1;
+  struct stat st {};
+  ::fchmod(fd,
+           ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) ? (st.st_mode & 07777) : new_file_mode());
+  return fd;
+}
+
+}  // namespace
+
+ByteSink::ByteSink(const std::string& path, std::string component, const std::string& suffix)
     : path_(path), component_(std::move(component)) {
   if (path == "-") {
     std::cout.flush();  // anything written through std::cout before goes first
     file_ = stdout;
     return;
   }
-  file_ = std::fopen((open_as.empty() ? path : open_as).c_str(), "wb");
-  if (!file_) throw Error(component_ + path + ": cannot open for writing: " + std::strerror(errno));
+  struct stat st {};
+  const bool exists = ::stat(path.c_str(), &st) == 0;
+  if (exists && S_ISDIR(st.st_mode)) throw Error(component_ + path + ": is a directory");
+  if (!exists || S_ISREG(st.st_mode)) {
+    const int fd = make_temporary(path, suffix, temporary_);
+    if (fd >= 0) {
+      slot_ = register_temporary(temporary_);
+      if (!(file_ = ::fdopen(fd, "wb"))) {
+        const int e = errno;
+        ::close(fd);
+        ::unlink(temporary_.c_str());
+        unregister_temporary(slot_);
+        throw Error(component_ + path + ": cannot open for writing: " + reason(e));
+      }
+      return;
+    }
+    temporary_.clear();
+    // A directory that takes no new file may still let the file itself be written.
+    if (!exists) throw Error(component_ + path + ": cannot open for writing: " + reason(errno));
+  }
+  file_ = std::fopen(path.c_str(), "wb");
+  if (!file_) throw Error(component_ + path + ": cannot open for writing: " + reason(errno));
 }
 
 ByteSink::~ByteSink() {
   if (file_ && file_ != stdout) std::fclose(file_);
+  if (!temporary_.empty()) {
+    ::unlink(temporary_.c_str());
+    unregister_temporary(slot_);
+  }
 }
 
-void ByteSink::write_error() const {
-  throw Error(component_.empty() && path_ == "-" ? std::string("cannot write standard output")
-                                                 : component_ + path_ + ": write error");
+void ByteSink::write_error(int error) const {
+  const std::string why = error ? ": " + reason(error) : "";
+  throw Error(component_.empty() && path_ == "-" ? "cannot write standard output" + why
+                                                 : component_ + path_ + ": write error" + why);
 }
 
 void ByteSink::write(std::string_view bytes) {
-  if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) write_error();
+  errno = 0;
+  if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) write_error(errno);
 }
 
 void ByteSink::flush() {
-  if (std::fflush(file_) != 0) write_error();
+  errno = 0;
+  if (std::fflush(file_) != 0) write_error(errno);
 }
 
 void ByteSink::close() {
   if (file_ == stdout) return flush();
+  errno = 0;
   const bool bad = std::fclose(file_) != 0;
+  const int error = errno;
   file_ = nullptr;
-  if (bad) write_error();
+  if (bad) write_error(error);
+  if (temporary_.empty()) return;
+  if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
+    const int e = errno;
+    throw Error(component_ + path_ + ": cannot give the written file its name: " + reason(e));
+  }
+  unregister_temporary(slot_);
+  temporary_.clear();
 }
 
 }  // namespace section::detail

@@ -1,5 +1,6 @@
 #include "section/io/cloud_io.h"
 
+#include "detail/parallel.h"
 #include "io/cloud_readers.h"
 #include "io/formats.h"
 #include "io/text.h"
@@ -49,11 +50,22 @@ namespace {
 
 using detail::ByteSource;
 
-// A cloud file ("-" = standard input) opened for reading.
-std::unique_ptr<ByteSource> open_cloud(const std::string& path) {
-  auto src = std::make_unique<ByteSource>(path, "read_cloud: ");
-  if (src->is_directory()) throw Error("read_cloud: " + path + ": is a directory");
-  return src;
+// The check read_source makes of a text cloud's first bytes, made on a pipe's before it is
+// copied (ByteSource's spool): the same message, before the rest of an endless input.
+void check_head(const std::string& path, const std::string& name, std::string_view head,
+                const CloudReadOptions& options) {
+  if (head.empty()) return;
+  if (detail::cloud_format(path, head, options.format).text)
+    if (const char* why = detail::text_encoding_problem(head))
+      throw Error("read_cloud: " + name + ": " + why);
+}
+
+// A cloud file ("-" = standard input) opened for reading: a pipe is copied to a temporary
+// file first, so that every reader reads it as a file (and it can be read twice).
+std::unique_ptr<ByteSource> open_cloud(const std::string& path, const CloudReadOptions& options) {
+  const std::string name = path == "-" ? "<stdin>" : path;
+  return std::make_unique<ByteSource>(
+      path, "read_cloud: ", [&](std::string_view head) { check_head(path, name, head, options); });
 }
 
 // The points of `src` (named `path`) through the reader of its format, each chunk checked
@@ -109,8 +121,7 @@ public:
 
   void run(const ChunkWorkFn& work, const IndexedChunkFn& merge, int threads) {
     const std::size_t workers = std::min<std::size_t>(chunks_, detail::worker_count(threads));
-    std::vector<std::thread> pool;
-    for (std::size_t w = 1; w < workers; ++w) pool.emplace_back([&] { worker(work, merge); });
+    std::vector<std::thread> pool = detail::start_threads(workers - 1, [&] { worker(work, merge); });
     worker(work, merge);
     for (auto& t : pool) t.join();
     if (error_) std::rethrow_exception(error_);
@@ -183,19 +194,15 @@ private:
 
 std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_chunk,
                               const CloudReadOptions& options) {
-  const auto src = open_cloud(path);
+  const auto src = open_cloud(path, options);
   return read_source(*src, path, on_chunk, options);
 }
 
 std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work,
                                        const IndexedChunkFn& merge, const CloudReadOptions& options) {
   // Packed doubles in a regular file: pread anywhere, no conversion.
-  std::unique_ptr<ByteSource> src;
-  std::optional<detail::BinaryVertices> layout;
-  if (path != "-") {
-    src = open_cloud(path);
-    layout = detail::binary_vertices(*src, path, options);
-  }
+  const std::unique_ptr<ByteSource> src = open_cloud(path, options);
+  const std::optional<detail::BinaryVertices> layout = detail::binary_vertices(*src, path, options);
   if (!layout || !layout->packed()) {
     // Anything else (its errors included) as read_cloud_chunks reads it.
     std::size_t index = 0;
@@ -214,9 +221,9 @@ std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkF
 
 CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudReadOptions& options) {
   CloudPeek out;
-  if (path == "-" || count == 0) return out;
+  if (count == 0) return out;
   try {
-    const auto src = open_cloud(path);
+    const auto src = open_cloud(path, options);
     const auto v = detail::binary_vertices(*src, path, options);
     if (!v || v->record > 4096) return out;
     const unsigned long long m = std::min<unsigned long long>(count, v->count);

@@ -38,6 +38,9 @@ struct VertexLayout {
   }
 };
 
+void check_binary_size(const PlyHeader& h, const VertexLayout& l, unsigned long long body,
+                       const std::string& name);
+
 // The vertex element of `h` (it must come first, hold x, y and z and no lists), checked
 // against the limits and against the size of the file when it is known.
 VertexLayout vertex_layout(const PlyHeader& h, const ByteSource& src, const CloudReadOptions& opt) {
@@ -78,12 +81,52 @@ VertexLayout vertex_layout(const PlyHeader& h, const ByteSource& src, const Clou
       throw Error("read_cloud: " + name + ": PLY header declares " + std::to_string(ve.count) +
                   " vertices but the file holds " +
                   (ascii ? "far fewer" : "only " + std::to_string(body / l.record)) + " (truncated file?)");
+    if (!ascii) check_binary_size(h, l, body, name);
   }
   return l;
 }
 
+// A binary file longer than its header says (a vertex count written too small) is refused,
+// not read in part: the elements after the vertices must fill the rest exactly. Elements
+// with lists (faces) are not checked.
+void check_binary_size(const PlyHeader& h, const VertexLayout& l, unsigned long long body,
+                       const std::string& name) {
+  unsigned long long declared = l.vertex->count * l.record;
+  for (std::size_t e = 1; e < h.elements.size(); ++e) {
+    unsigned long long record = 0;
+    for (const PlyProperty& p : h.elements[e].props) {
+      if (p.list() && h.elements[e].count > 0) return;
+      record += static_cast<unsigned long long>(p.size);
+    }
+    declared += h.elements[e].count * record;
+  }
+  if (body <= declared) return;
+  throw Error("read_cloud: " + name + ": the file holds " + std::to_string(body - declared) +
+              " bytes more than its PLY header declares (" + std::to_string(l.vertex->count) + " vertices" +
+              (h.elements.size() > 1 ? " and the elements after them" : std::string()) + ", " +
+              std::to_string(body / l.record) + " would fit): a wrong vertex count?");
+}
+
+// The lines after the vertices of an ascii file, from line `line_no` on: one per element
+// the header declares after the vertices (blank lines skipped), and nothing more, so that a
+// vertex count written too small is refused rather than read in part.
+void check_ascii_rest(ByteSource& src, const PlyHeader& h, std::size_t line_no) {
+  unsigned long long declared = 0;
+  for (std::size_t e = 1; e < h.elements.size(); ++e) declared += h.elements[e].count;
+  std::string_view line;
+  unsigned long long lines = 0;
+  while (src.next_line(line, max_line)) {
+    ++line_no;
+    if (!trim(line).empty() && ++lines > declared)
+      fail_line(src.name(), line_no,
+                "more lines than the PLY header declares (" + std::to_string(h.elements[0].count) +
+                    " vertices" + (declared ? " and " + std::to_string(declared) + " more elements" : "") +
+                    "): a wrong vertex count?");
+  }
+}
+
 // Ascii vertices, one a line (blank lines skipped); line numbers count from the header's.
-void read_ascii(ByteSource& src, const PlyHeader& h, const VertexLayout& l, Chunker& out) {
+std::size_t read_ascii(ByteSource& src, const PlyHeader& h, const VertexLayout& l, Chunker& out) {
   const std::string& name = src.name();
   const unsigned long long count = l.vertex->count;
   std::size_t line_no = h.lines;
@@ -137,6 +180,8 @@ void read_ascii(ByteSource& src, const PlyHeader& h, const VertexLayout& l, Chun
     out.add(x, y, z);
     ++done;
   }
+  src.consume(last.empty() ? start : src.bytes().size());
+  return line_no;
 }
 
 // Packed little-endian doubles x, y, z in a regular file, from the source's offset on:
@@ -289,7 +334,7 @@ std::size_t read_ply_cloud(ByteSource& src, const CloudReadOptions& opt, const P
   if (h.format != PlyFormat::ascii && l.packed(h.swap())) return read_packed(src, l.vertex->count, opt, raw);
   Chunker out(fn, opt.chunk_points);
   if (h.format == PlyFormat::ascii)
-    read_ascii(src, h, l, out);
+    check_ascii_rest(src, h, read_ascii(src, h, l, out));
   else
     read_binary(src, h, l, out);
   out.flush();
@@ -345,9 +390,11 @@ std::optional<BinaryVertices> binary_vertices(ByteSource& src, const std::string
         }
       v.record += static_cast<std::size_t>(p.size);
     }
+    // Only a file its vertices fill exactly: the reader proper words what is wrong with another.
     const unsigned long long body = static_cast<unsigned long long>(src.size()) - h.bytes;
     if (!found[0] || !found[1] || !found[2] || v.record == 0 || ve.count == 0 ||
-        ve.count > options.max_points || body / v.record < ve.count)
+        ve.count > options.max_points || h.elements.size() != 1 || body / v.record != ve.count ||
+        body % v.record != 0)
       return std::nullopt;
     v.start = h.bytes;
     v.count = ve.count;

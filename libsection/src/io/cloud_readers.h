@@ -71,8 +71,8 @@ std::size_t read_csv_cloud(ByteSource& src, const CloudReadOptions& opt, const P
 std::size_t read_ply_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);
 
-/// Where x, y and z lie in the vertex records of a binary PLY file whose vertices come
-/// first and fill the file as its header says (what pread can read anywhere).
+/// Where x, y and z lie in the vertex records of a binary PLY file whose vertices are its
+/// only element and fill it exactly (what pread can read anywhere).
 struct BinaryVertices {
   unsigned long long start = 0, count = 0;  ///< first vertex's file offset, vertices
   std::size_t record = 0;                   ///< bytes per vertex

@@ -5,6 +5,7 @@
 #include "io/text.h"
 #include "section/error.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace section {
@@ -52,6 +53,8 @@ Table parse_csv(std::string_view text, const std::string& source) {
     if (!header) {
       for (const auto& f : fields) {
         if (trim(f).empty()) stream_fail(source, line_no, "empty column name in the header");
+        if (t.find_column(std::string(trim(f))) >= 0)
+          stream_fail(source, line_no, "column '" + std::string(trim(f)) + "' appears twice in the header");
         t.columns.emplace_back(trim(f));
       }
       header = true;
@@ -80,16 +83,26 @@ std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::str
   if (const char* why = detail::text_encoding_problem(text)) throw Error("pipe: " + source + ": " + why);
   detail::skip_bom(text);
   bool data = false;
+  std::size_t cx = 0, cy = 1;  // x and y: the first two columns, unless a header names them
   for_each_line(text, [&](std::string_view line, std::size_t line_no) {
     const auto fields = fields_of(line);
     double x = 0, y = 0;
-    const bool numeric =
-        fields.size() >= 2 && parse_double(trim(fields[0]), x) && parse_double(trim(fields[1]), y);
+    const bool numeric = fields.size() > std::max(cx, cy) && parse_double(trim(fields[cx]), x) &&
+                         parse_double(trim(fields[cy]), y);
     if (!numeric) {
-      if (!data) return;  // a title line
+      if (!data) {  // a title line, or a header naming the columns x and y
+        std::size_t hx = fields.size(), hy = fields.size();
+        for (std::size_t c = 0; c < fields.size(); ++c) {
+          const std::string name = detail::lower(std::string(trim(fields[c])));
+          if (name == "x" || name == "\"x\"") hx = c;
+          if (name == "y" || name == "\"y\"") hy = c;
+        }
+        if (hx < fields.size() && hy < fields.size()) cx = hx, cy = hy;
+        return;
+      }
       stream_fail(source, line_no,
-                  fields.size() < 2
-                      ? "expected x and y, found one value"
+                  fields.size() <= std::max(cx, cy)
+                      ? "expected x and y, found " + std::to_string(fields.size()) + " value(s)"
                       : "expected two numbers x, y, found '" + std::string(line.substr(0, 40)) + "'");
     }
     data = true;

@@ -7,6 +7,7 @@
 #include "section/error.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 namespace section::detail {
@@ -42,6 +43,39 @@ const InputFormat* format_of_extension(const std::string& path) {
   if (ext.empty()) return nullptr;
   for (const InputFormat& f : input_formats())
     if (has(f.extensions) || has(f.also)) return &f;
+  return nullptr;
+}
+
+const InputFormat* mesh_format_of_content(std::string_view head, long long size) {
+  const auto named = [](std::string_view ext) {
+    for (const InputFormat& f : input_formats())
+      if (!f.extensions.empty() && f.extensions[0] == ext) return &f;
+    return static_cast<const InputFormat*>(nullptr);
+  };
+  if (head.compare(0, 3, "ply") == 0) return named("ply");
+  if (size >= 84 && head.size() >= 84) {
+    std::uint32_t count = 0;
+    std::memcpy(&count, head.data() + 80, 4);  // little endian, as the host
+    if (static_cast<unsigned long long>(size) == 84 + 50ULL * count) return named("stl");
+  }
+  skip_bom(head);
+  std::vector<std::string_view> words;
+  std::size_t at = 0;
+  while (at < head.size()) {  // the first line holding a word that is not a comment
+    const std::size_t nl = std::min(head.find('\n', at), head.size());
+    split_words(head.substr(at, nl - at), words);
+    at = nl + 1;
+    if (!words.empty() && words[0][0] != '#') break;
+    words.clear();
+  }
+  if (words.empty()) return nullptr;
+  const std::string first = lower(std::string(words[0]));
+  if (first == "solid" && head.find("facet") != std::string_view::npos) return named("stl");
+  if (first.size() >= 3 && first.size() <= 8 && words[0].substr(words[0].size() - 3) == "OFF" &&
+      words[0].find_first_not_of("STCN4nOF") == std::string_view::npos)
+    return named("off");
+  for (const char* s : {"v", "vn", "vt", "f", "o", "g", "s", "mtllib", "usemtl"})
+    if (words[0] == s) return named("obj");
   return nullptr;
 }
 

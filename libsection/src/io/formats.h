@@ -42,6 +42,13 @@ std::string extension(const std::string& path);
 /// The format of a file by its extension, or nullptr.
 const InputFormat* format_of_extension(const std::string& path);
 
+/// The mesh format of an input with no extension (standard input, a process substitution)
+/// by its first bytes `head` and its size: PLY (by its magic; a mesh when its header
+/// declares faces, told by the caller), STL (binary: 84 + 50 x its count bytes; ascii:
+/// `solid` then `facet`), OFF (its keyword) or OBJ (its first statement); nullptr for
+/// anything else (a cloud).
+const InputFormat* mesh_format_of_content(std::string_view head, long long size);
+
 /// The format of a cloud: `forced` unless automatic, else by `path`'s extension, else (standard
 /// input, no extension) by its first bytes `head`, else XYZ. Throws section::Error for a mesh
 /// or an unknown extension.

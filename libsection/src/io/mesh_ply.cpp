@@ -56,6 +56,15 @@ public:
         at_(h.bytes) {}
 
   void element(const PlyElement& e, Mesh& mesh);
+  /// Throws when data follow the elements the header declares (a count written too small).
+  void end() {
+    if (binary_ ? at_ < text_.size() : ascii_.next())
+      throw Error(
+          (binary_ ? where_ : where_ + "line " + std::to_string(header_lines_ + ascii_.line_no()) + ": ") +
+          "more data than the PLY header declares (" +
+          (binary_ ? std::to_string(text_.size() - at_) + " bytes" : std::string("a line")) +
+          " after its last element): a wrong element count?");
+  }
   long long vertices() const { return nv_; }
   void faces(Mesh& mesh) const;
 
@@ -186,6 +195,7 @@ Mesh read_ply_mesh(const std::string& path, const std::string& text) {
   PlyBody body(text, h, where);
   for (const PlyElement& e : h.elements) body.element(e, mesh);
   if (body.vertices() < 0) throw Error(where + "PLY file without a vertex element");
+  body.end();
   body.faces(mesh);
   return mesh;
 }

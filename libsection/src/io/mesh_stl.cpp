@@ -161,11 +161,14 @@ Mesh read_stl(const std::string& path, const std::string& text) {
   if (text.size() < 84)
     throw Error(where + "neither an ascii STL (no 'solid') nor a binary one (" + std::to_string(text.size()) +
                 " bytes, shorter than the 84-byte header)");
-  if (text.size() < need)
+  if (text.size() != need)  // shorter: cut; longer: a count written too small, not read in part
     throw Error(where + "the binary STL header declares " + std::to_string(count) + " triangles (" +
-                std::to_string(need) + " bytes) but the file has only " + std::to_string(text.size()) +
-                " bytes (corrupt or truncated file?)");
-  return read_stl_binary(where, text, count);  // bytes after the last triangle are ignored
+                std::to_string(need) + " bytes) but the file has " + (text.size() < need ? "only " : "") +
+                std::to_string(text.size()) + " bytes (" +
+                (text.size() < need ? std::string("corrupt or truncated file?)")
+                                    : "room for " + std::to_string((text.size() - 84) / 50) +
+                                          " triangles: a wrong triangle count?)"));
+  return read_stl_binary(where, text, count);
 }
 
 }  // namespace section::detail

@@ -92,6 +92,9 @@ public:
     } else if (w[0] == "property") {
       if (h.elements.empty()) throw at(line_no, "property before any element");
       h.elements.back().props.push_back(property(w, line_no));
+    } else if (std::any_of(w[0].begin(), w[0].end(), [](char c) { return c < 0x20 || c > 0x7e; })) {
+      // (not the bytes themselves: they are no use to read, and they garble a terminal)
+      throw at(line_no, "binary data where a PLY header line should be (a header without end_header?)");
     } else {
       throw at(line_no, "unexpected PLY header line starting " + quoted(w[0]));
     }

@@ -1,7 +1,12 @@
 #include "section/io/slice_file.h"
 
 #include "section/error.h"
+#include "section/io/csv.h"
+#include "section/io/file.h"
+#include "section/io/limits.h"
 #include "detail/parallel.h"
+#include "io/byte_source.h"
+#include "io/text.h"
 #include "detail/slab_scan.h"
 #include "detail/slice_steps.h"
 
@@ -9,6 +14,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <random>
 
 namespace section {
@@ -95,7 +101,8 @@ std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, c
 // order (add_near_points), chunks read side by side.
 std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& path,
                                                            const std::vector<Plane>& planes, double reach,
-                                                           const CloudReadOptions& read) {
+                                                           const CloudReadOptions& read,
+                                                           detail::HeldBytes& held) {
   const auto groups = detail::group_planes(planes, 2 * reach);
   const auto frame = detail::frames_of(planes);
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
@@ -107,8 +114,10 @@ std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& pa
         return f;
       },
       [&](std::vector<std::vector<Eigen::Vector3d>>& f, const Eigen::Vector3d*, std::size_t) {
-        for (std::size_t k = 0; k < planes.size(); ++k)
+        for (std::size_t k = 0; k < planes.size(); ++k) {
+          held.add(sizeof(Eigen::Vector3d) * f[k].size());
           near[k].insert(near[k].end(), f[k].begin(), f[k].end());
+        }
       });
   return near;
 }
@@ -259,13 +268,15 @@ struct FirstPass {
   double lo = INFINITY, hi = -INFINITY, largest = 0;  // extent along the normal, largest coordinate
   std::size_t total = 0;                              // points
   Reservoir sample;                                   // filled when `sampled`
+  std::size_t hold = 0;                               // when `sampled`: the first this many points are kept
+  std::vector<Eigen::Vector3d> first;                 // those, in file order (their sampling: sampling_of)
 };
 
 // Pass 1: the extent along the normal and, when `sampled`, a uniform random sample for the
 // spacing; the points near the guessed planes are kept in `guess` on the way. Chunks are
 // read and scanned side by side, and taken in file order.
 void first_pass(const std::string& path, const CloudReadOptions& read, const Eigen::Vector3d& n, bool sampled,
-                Guess& guess, FirstPass& pass) {
+                Guess& guess, FirstPass& pass, detail::HeldBytes& held) {
   pass.total = scan_chunks(
       path, read,
       [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
@@ -275,10 +286,13 @@ void first_pass(const std::string& path, const CloudReadOptions& read, const Eig
         pass.lo = std::min(pass.lo, r.lo);
         pass.hi = std::max(pass.hi, r.hi);
         pass.largest = std::max(pass.largest, r.big);
-        for (std::size_t k = 0; k < r.kept.size(); ++k)
+        for (std::size_t k = 0; k < r.kept.size(); ++k) {
+          held.add(sizeof(Eigen::Vector3d) * r.kept[k].size());
           if (!r.kept[k].empty()) guess.kept[k].push_back(std::move(r.kept[k]));
+        }
         if (!sampled) return;
         pass.sample.take(p, count);
+        pass.first.insert(pass.first.end(), p, p + std::min(count, pass.hold - pass.first.size()));
       });
 }
 
@@ -286,7 +300,7 @@ void first_pass(const std::string& path, const CloudReadOptions& read, const Eig
 // near enough to them: the same slab points, in the same order, as pass 2 would give.
 SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes, double slab, Guess& guess,
                        std::size_t total, const SliceOptions& options, const CloudReadOptions& read_chunks,
-                       const SectionSink& sink) {
+                       const SectionSink& sink, detail::HeldBytes& held) {
   std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
   const double reach = detail::fill_reach(options, slab);
   detail::parallel_for(planes.size(), options.threads, [&](std::size_t k) {
@@ -305,7 +319,7 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
   std::once_flag near_read;
   const detail::NearFn near_of = [&](std::size_t k) {
     if (!(reach > 0)) return std::vector<Eigen::Vector3d>{};
-    std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks); });
+    std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks, held); });
     return std::move(near[k]);
   };
   SliceResult result;
@@ -320,7 +334,7 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
 // side and their points appended in file order.
 SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes, double slab, int passes,
                        const SliceOptions& options, const CloudReadOptions& read_chunks,
-                       const SectionSink& sink) {
+                       const SectionSink& sink, detail::HeldBytes& held) {
   const auto groups = detail::group_planes(planes, slab);
   const auto frame = detail::frames_of(planes);
   std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
@@ -347,6 +361,7 @@ SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes
       },
       [&](Found& f, const Eigen::Vector3d*, std::size_t) {
         for (std::size_t k = 0; k < planes.size(); ++k) {
+          held.add(sizeof(Eigen::Vector2d) * f.slabs[k].size() + sizeof(Eigen::Vector3d) * f.near[k].size());
           slabs[k].insert(slabs[k].end(), f.slabs[k].begin(), f.slabs[k].end());
           near[k].insert(near[k].end(), f.near[k].begin(), f.near[k].end());
         }
@@ -358,14 +373,120 @@ SliceResult slice_pass(const std::string& path, const std::vector<Plane>& planes
   return result;
 }
 
+// The slab from pass 1: a dense scan's spacing from the random sample scaled back to the
+// full density (as mean_spacing scales a subset's), unless exact copies inflate that
+// density; lines' spacing along the normal (detail::sampled_slab).
+double sampled_slab(const FirstPass& first, const Sampling& sampling) {
+  if (sampling.kind == SamplingKind::dense && 100 * sampling.duplicates <= sampling.measured) {
+    const std::vector<Eigen::Vector3d>& sample = first.sample.points;
+    double slab = mean_spacing(sample);
+    if (sample.size() < first.total) slab *= std::sqrt(double(sample.size()) / double(first.total)) / 0.47;
+    if (slab > 0) return slab;
+  }
+  return detail::sampled_slab(first.first, sampling);
+}
+
+// Sparse rows (the planes through them take them as they lie: detail::slice_through_rows)
+// and lines whose rows pass 1 found (interpolated between them: detail::slice_between_lines),
+// from the whole cloud in memory (read again when pass 1 kept only its first points).
+SliceResult slice_held(const std::string& path, const std::vector<Plane>& planes, const SliceOptions& options,
+                       const CloudReadOptions& read, const SectionSink& sink, FirstPass first,
+                       Sampling sampling, const SamplingSink& on_sampling) {
+  SliceResult result;
+  result.points = first.total;
+  result.file_passes = 1;
+  std::vector<Eigen::Vector3d> points = std::move(first.first);
+  if (points.size() < first.total) {
+    points = read_cloud(path, read).points;
+    sampling = detail::sample_all(points, planes[0].normal, options.sampling);
+    result.file_passes = 2;
+  }
+  result.sampling = std::move(sampling);
+  if (on_sampling) on_sampling(result.sampling);
+  if (result.sampling.kind == SamplingKind::rows) {
+    detail::slice_through_rows(points, planes, options, result, sink);
+    return result;
+  }
+  if (result.sampling.kind == SamplingKind::lines && !result.sampling.rows.empty() &&
+      result.sampling.points == points.size()) {
+    result.slab = result.sampling.slab;
+    detail::slice_between_lines(points, planes, options, result, sink);
+    return result;
+  }
+  // All the points are no rows after all (the first ones looked like rows).
+  Cloud cloud{std::move(points)};
+  SliceResult lines = slice(cloud, planes, options);
+  lines.file_passes = result.file_passes;
+  if (sink)
+    for (const auto& s : lines.sections) sink(s);
+  return lines;
+}
+
 void check_slab_width(double slab) {
   if (!(slab > 0) || !std::isfinite(slab)) throw Error("slice: the slab width must be positive and finite");
 }
 
+// The bytes a section's result holds (its loops and skeleton), for the memory limit.
+std::size_t bytes_of(const SectionSlice& s) {
+  std::size_t bytes = sizeof(SectionSlice) + 24 * s.morphology.skeleton.size();
+  for (const Loop& l : s.morphology.loops)
+    bytes += 16 * (l.points.size() + l.normals.size() + l.boundary.size()) + 8 * l.index.size();
+  return bytes;
+}
+
 }  // namespace
 
+bool looks_like_profile(std::string_view head) {
+  if (head.substr(0, 3) == "ply") return false;
+  int titles = 0, rows = 0;
+  for (std::size_t pos = 0; pos < head.size() && rows < 16;) {
+    const std::size_t nl = head.find('\n', pos);
+    if (nl == std::string_view::npos && rows > 0) break;  // a line cut by the end of the look
+    const std::string_view line = detail::trim(head.substr(pos, std::min(nl, head.size()) - pos));
+    pos = std::min(nl, head.size()) + 1;
+    if (line.empty() || line[0] == '#' || line.substr(0, 2) == "//") continue;
+    std::vector<std::string_view> fields;
+    detail::split_fields(line, [&](std::string_view f) {
+      fields.push_back(detail::trim(f));
+      return fields.size() < 3;
+    });
+    double x = 0, y = 0;
+    if (rows == 0 && (fields.empty() || !detail::parse_double(fields[0], x))) {
+      if (++titles > 8) return false;  // a title line, as in airfoil .dat files
+      continue;
+    }
+    // Two numbers on every data line looked at (a count such as `241 21` over rows of
+    // three is a header, not a profile).
+    if (fields.size() != 2 || !detail::parse_double(fields[0], x) || !detail::parse_double(fields[1], y))
+      return false;
+    ++rows;
+  }
+  return rows > 0;
+}
+
+std::optional<Cloud> profile_cloud(std::string_view text, const std::string& name) {
+  if (!looks_like_profile(text.substr(0, std::size_t(1) << 16))) return std::nullopt;
+  Cloud cloud;
+  for (const Eigen::Vector2d& p : parse_profile(text, name)) cloud.points.emplace_back(p.x(), p.y(), 0.0);
+  return cloud;
+}
+
+std::optional<Cloud> read_profile_cloud(const std::string& path) {
+  // Spooled: a pipe looked at here is read again, whole, by read_cloud.
+  const auto any = [](std::string_view) {};
+  {
+    detail::ByteSource src(path, "read_cloud: ", any);
+    if (src.is_directory()) return std::nullopt;
+    src.fetch(std::size_t(1) << 16);
+    if (!looks_like_profile(src.bytes())) return std::nullopt;
+  }
+  detail::ByteSource src(path, "read_cloud: ", any);
+  return profile_cloud(src.read_all(), src.name());
+}
+
 SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
-                       const CloudReadOptions& read, const SectionSink& sink) {
+                       const CloudReadOptions& read, const SectionSink& given_sink,
+                       const SamplingSink& on_sampling) {
   detail::check_slab(options.slab);
   if (options.fill_gaps) check_gap_fill_options(options.fill);
   detail::check_band_options(options);
@@ -377,10 +498,23 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     const Cloud cloud = read_cloud(path, read);
     const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
     SliceResult result = slice(cloud, planes, options);
-    if (sink)
-      for (const auto& s : result.sections) sink(s);
+    if (on_sampling && options.slab == 0) on_sampling(result.sampling);
+    if (given_sink)
+      for (const auto& s : result.sections) given_sink(s);
     return result;
   }
+  // The points held for the planes (slabs, the points beside them, the sections made) stay
+  // within half the memory limit: about 4 kB a plane before any point, refused at once.
+  const std::size_t plane_count = spec.count > 0 ? std::size_t(spec.count) : spec.planes.size();
+  detail::HeldBytes held(memory_limit() / 2,
+                         "slice: the points held for " + std::to_string(plane_count) +
+                             " planes pass the memory limit: give fewer planes, a smaller "
+                             "--fill-reach or --band-max, or --no-fill");
+  held.add(4096 * plane_count);
+  const SectionSink sink = [&](const SectionSlice& s) {
+    held.add(bytes_of(s));
+    if (given_sink) given_sink(s);
+  };
   // Chunks of at most 64k points (1.5 MB): each stays in a core's cache from its read to its
   // scan, and the workers end the file together.
   CloudReadOptions read_chunks = read;
@@ -388,29 +522,39 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   if (read_chunks.threads == 0) read_chunks.threads = options.threads;
   std::vector<Plane> planes = spec.planes;
   double slab = options.slab;
+  Sampling found;
   if (spec.count > 0 || slab == 0) {
     // Points near planes guessed from a first look at the file are kept on the way: when
     // the planes and slab found are near enough to the guess, pass 2 is not needed.
     Guess guess = guess_planes(path, spec, options, read);
     FirstPass first;
-    first_pass(path, read_chunks, spec.normal.normalized(), slab == 0, guess, first);
+    first.hold = options.sampling.max_points;
+    first_pass(path, read_chunks, spec.normal.normalized(), slab == 0, guess, first, held);
     if (spec.count > 0) planes = spread(spec.normal, first.lo, first.hi, spec.count);
     if (slab == 0) {
-      // mean_spacing scales a subset's spacing back to the full density the same way.
-      const std::vector<Eigen::Vector3d>& sample = first.sample.points;
-      slab = mean_spacing(sample);
-      if (sample.size() < first.total) slab *= std::sqrt(double(sample.size()) / double(first.total)) / 0.47;
-      if (!(slab > 0))
-        throw Error(
-            "slice: cannot estimate the point spacing (fewer than two distinct points); give the slab width");
+      Sampling sampling = sampling_of(first.first, planes[0].normal, options.sampling);
+      const bool all_held = first.first.size() == first.total;
+      if (sampling.kind == SamplingKind::rows ||
+          (sampling.kind == SamplingKind::lines && !sampling.rows.empty() && all_held))
+        return slice_held(path, planes, options, read, sink, std::move(first), std::move(sampling),
+                          on_sampling);
+      slab = sampled_slab(first, sampling);
+      if (on_sampling) on_sampling(sampling);
+      found = std::move(sampling);
+      found.rows.clear();
     }
     check_slab_width(slab);
-    if (guess.active && guess.covers(planes, slab, first.largest))
-      return slice_kept(path, planes, slab, guess, first.total, options, read_chunks, sink);
+    if (guess.active && guess.covers(planes, slab, first.largest)) {
+      SliceResult r = slice_kept(path, planes, slab, guess, first.total, options, read_chunks, sink, held);
+      r.sampling = std::move(found);
+      return r;
+    }
   }
   check_slab_width(slab);
-  return slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options, read_chunks,
-                    sink);
+  SliceResult r = slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options,
+                             read_chunks, sink, held);
+  r.sampling = std::move(found);
+  return r;
 }
 
 }  // namespace section

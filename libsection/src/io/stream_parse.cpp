@@ -69,10 +69,23 @@ inline bool small_integer(std::string_view cell, double& value) {
   return true;
 }
 
+// What a row's ids must be: per column 0 (not an id), 1 (an id: an integer, 0 or more) or 2
+// (the section id, equal to `section` in a part of a stream split into parts).
+struct IdRules {
+  std::vector<char> column;
+  double section = -1;  // the part's section, -1 outside parts
+  // True when `value` in column `col` is a valid id there.
+  bool ok(std::size_t col, double value) const {
+    if (!column[col]) return true;
+    if (value != std::floor(value) || value < 0 || value > 2147483647.0) return false;
+    return column[col] != 2 || section < 0 || value == section;
+  }
+};
+
 // One data row of `columns` cells appended to `out`; false on anything the line-by-line
 // parse refuses (it then finds and names the problem).
-bool parse_row(std::string_view line, const std::vector<char>& id_column, std::vector<double>& out) {
-  const std::size_t columns = id_column.size();
+bool parse_row(std::string_view line, const IdRules& ids, std::vector<double>& out) {
+  const std::size_t columns = ids.column.size();
   std::size_t start = 0, col = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
@@ -83,7 +96,7 @@ bool parse_row(std::string_view line, const std::vector<char>& id_column, std::v
     if (!small_integer(cell, value) &&
         (!parse_double(cell, value) || !std::isfinite(value) || std::abs(value) > max_coordinate))
       return false;
-    if (id_column[col] && (value != std::floor(value) || std::abs(value) > 2147483647.0)) return false;
+    if (!ids.ok(col, value)) return false;
     out.push_back(value);
     ++col;
     if (comma == std::string_view::npos) break;
@@ -94,7 +107,7 @@ bool parse_row(std::string_view line, const std::vector<char>& id_column, std::v
 
 // The data rows of `text` (whole lines, blank ones skipped) into `out`; false when any row
 // is refused.
-bool parse_rows(std::string_view text, const std::vector<char>& id_column, std::vector<double>& out) {
+bool parse_rows(std::string_view text, const IdRules& ids, std::vector<double>& out) {
   std::size_t pos = 0;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
@@ -103,7 +116,7 @@ bool parse_rows(std::string_view text, const std::vector<char>& id_column, std::
     pos = end + 1;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (trim(line).empty()) continue;
-    if (!parse_row(line, id_column, out)) return false;
+    if (!parse_row(line, ids, out)) return false;
   }
   return true;
 }
@@ -148,7 +161,7 @@ private:
   std::vector<std::string> continued_columns_;  // header a continued table must repeat (empty: a new table)
   std::size_t pos_ = 0;
   std::vector<double> row_;
-  std::vector<char> id_column_;  // per column of the current table: holds integer ids
+  IdRules ids_;  // the ids of the current table's columns
 };
 
 Stream StreamParser::parse() {
@@ -205,6 +218,10 @@ void StreamParser::meta(std::string_view line) {
     if (part_.is_part && parts_ > 0) fail("two parts in one");
     ++parts_;
     in_part_.clear();
+    // A part is one section's: its label is the section id its rows and issues carry.
+    int id = -1;
+    if (!parse_integer(rest, id) || id < 0) fail("part label '" + printable(rest) + "' is not a section id");
+    ids_.section = id;
   } else if (key == "end") {
     if (!rest.empty()) fail("'# end' takes nothing after it");
     ended_ = true;
@@ -215,6 +232,11 @@ void StreamParser::meta(std::string_view line) {
     stream_.history.emplace_back(rest);
   } else if (key == "issue") {
     stream_.issues.push_back(parse_issue(rest, source_, line_no_));
+    const SectionIssue& issue = stream_.issues.back();
+    if (issue.section < 0 || issue.loop < -1) fail("issue line with a negative id");
+    if (ids_.section >= 0 && issue.section != ids_.section)
+      fail("an issue of section " + std::to_string(issue.section) + " in the part of section " +
+           format_number(ids_.section));
   } else {
     stream_.notes.emplace_back(body);
   }
@@ -247,10 +269,13 @@ void StreamParser::header(std::string_view line) {
   current_->columns = names;
   for (const auto& c : current_->columns)
     if (c.empty()) fail("empty column name in the header of table '" + current_->name + "'");
-  id_column_.assign(current_->columns.size(), 0);
+  ids_.column.assign(current_->columns.size(), 0);
   for (std::size_t c = 0; c < current_->columns.size(); ++c) {
     const std::string& n = current_->columns[c];
-    id_column_[c] = n == "section" || n == "loop" || n == "index";
+    if (std::find(current_->columns.begin(), current_->columns.begin() + long(c), n) !=
+        current_->columns.begin() + long(c))
+      fail("column '" + n + "' appears twice in the header of table '" + current_->name + "'");
+    ids_.column[c] = n == "section" ? 2 : is_id_column(n) ? 1 : 0;
   }
   expect_header_ = false;
 }
@@ -280,7 +305,7 @@ void StreamParser::block() {
   std::vector<char> ok(parts, 0);
   detail::parallel_for(parts, 0, [&](std::size_t k) {
     piece[k].reserve((cut[k + 1] - cut[k]) / 8);
-    ok[k] = parse_rows(block.substr(cut[k], cut[k + 1] - cut[k]), id_column_, piece[k]);
+    ok[k] = parse_rows(block.substr(cut[k], cut[k + 1] - cut[k]), ids_, piece[k]);
   });
   if (!std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) return;
   std::size_t total = 0;
@@ -332,8 +357,13 @@ void StreamParser::row(std::string_view line) {
     if (!std::isfinite(value)) bad("non-finite value '" + text() + "'");
     if (std::abs(value) > max_coordinate) bad("value " + text() + " is beyond +-1e15 (corrupt stream?)");
     // Ids become ints in every stage: a fraction or a value beyond int would be cast silently.
-    if (id_column_[col - 1] && (value != std::floor(value) || std::abs(value) > 2147483647.0))
-      bad("'" + text() + "' is not an integer id");
+    if (!ids_.ok(col - 1, value)) {
+      if (value != std::floor(value) || std::abs(value) > 2147483647.0)
+        bad("'" + text() + "' is not an integer id");
+      if (value < 0) bad("'" + text() + "' is a negative id");
+      bad("section " + text() + " in the part of section " + format_number(ids_.section) +
+          " (a part holds its own section only)");
+    }
     row_.push_back(value);
     if (comma == std::string_view::npos) break;
     start = comma + 1;

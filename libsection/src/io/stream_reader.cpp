@@ -3,7 +3,9 @@
 
 #include "io/byte_source.h"
 #include "io/stream_text.h"
+#include "io/text.h"
 #include "section/error.h"
+#include "section/io/limits.h"
 
 namespace section {
 
@@ -26,23 +28,42 @@ Stream parse_stream_part(const StreamPart& part, const std::string& source) {
 
 PartReader::PartReader(const std::string& path) : in_(std::make_unique<detail::ByteSource>(path, "")) {
   source_ = in_->name();
+  // Binary data, UTF-16 or CR-only line ends are told at once, not after a line of
+  // max_text_line bytes (an endless /dev/zero).
+  in_->fetch(1 << 16);
+  if (const char* why = detail::text_encoding_problem(in_->bytes()))
+    throw Error("pipe: " + source_ + ": " + why);
   // The preamble: the lines before the first `# part`, `# table` or data line.
   std::string_view line;
-  while (in_->next_line(line)) {
-    ++line_no_;
+  while (next_line(line)) {
     const std::string_view key = key_of(line);
     if (key == "part" || key == "table" || (!blank(line) && line[0] != '#')) {
       text_ = std::string(line);
       break;
     }
     head_ += line;
+    held(head_, "its preamble");
   }
   parted_ = key_of(text_) == "part";
   if (parted_) label_ = std::string(detail::meta_line(text_).rest);
+  if (parted_) labels_.insert(label_);
   first_line_ = line_no_;
 }
 
 PartReader::~PartReader() = default;
+
+bool PartReader::next_line(std::string_view& line) {
+  if (!in_->next_line(line, max_text_line)) return false;
+  ++line_no_;
+  if (line.size() >= max_text_line && line.back() != '\n')
+    detail::stream_fail(source_, line_no_, "line longer than " + format_bytes(double(max_text_line)));
+  return true;
+}
+
+void PartReader::held(const std::string& text, const std::string& what) const {
+  if (text.size() > max_input_bytes())
+    detail::refuse_size("pipe: " + source_ + ": " + what, max_input_bytes());
+}
 
 Stream PartReader::preamble() const {
   Stream head = parse_stream(head_, source_);
@@ -54,6 +75,7 @@ std::string PartReader::whole() {
   std::string text = std::move(head_);
   text += text_;
   text += in_->read_all();
+  held(text, "the stream");
   return text;
 }
 
@@ -61,26 +83,27 @@ bool PartReader::next(StreamPart& part) {
   if (end_error_line_) detail::stream_fail(source_, end_error_line_, "'# end' takes nothing after it");
   std::string_view line;
   if (ended_) {
-    while (in_->next_line(line)) {
-      ++line_no_;
+    while (next_line(line))
       if (!blank(line)) detail::stream_fail(source_, line_no_, "a line after '# end'");
-    }
     return false;
   }
-  while (in_->next_line(line)) {
-    ++line_no_;
+  while (next_line(line)) {
     const std::string_view key = key_of(line);
     if (key == "part" || key == "end") {
       part = StreamPart{label_, std::make_shared<const std::string>(std::move(text_)), first_line_};
       text_.clear();
       first_line_ = line_no_;
       label_ = std::string(detail::meta_line(line).rest);
+      if (key == "part" && !labels_.insert(label_).second)
+        detail::stream_fail(source_, line_no_,
+                            "a second part of section " + label_ + " (each section is one part)");
       if (key == "part") text_ += line;
       ended_ = key == "end";
       if (ended_ && !label_.empty()) end_error_line_ = line_no_;  // reported once this part is staged
       return true;
     }
     text_ += line;
+    held(text_, "part " + label_);
   }
   throw detail::truncated_parts(source_);
 }

@@ -24,6 +24,11 @@ MetaLine meta_line(std::string_view line);
 /// The error for a stream split into parts that lacks its `# end`.
 Error truncated_parts(const std::string& source);
 
+/// True for the columns that hold ids (integers, 0 or more): section, loop, side, index.
+inline bool is_id_column(std::string_view name) {
+  return name == "section" || name == "loop" || name == "side" || name == "index";
+}
+
 /// `s` with its line ends made spaces, for a `#` line.
 std::string one_line(std::string s);
 

@@ -44,7 +44,13 @@ const char* text_encoding_problem(std::string_view head) {
     return "UTF-16 text (save it as UTF-8 or ASCII)";
   head = head.substr(0, 1 << 16);
   const auto nul = head.find('\0');
-  if (nul == std::string_view::npos) return nullptr;
+  if (nul == std::string_view::npos) {
+    // Line ends of classic Mac OS: one endless line to every reader.
+    const auto cr = head.find('\r');
+    if (cr != std::string_view::npos && cr + 1 < head.size() && head.find('\n') == std::string_view::npos)
+      return "CR-only line ends (classic Mac OS; convert them to LF)";
+    return nullptr;
+  }
   const bool le = head.size() >= 4 && head[1] == '\0' && head[3] == '\0' && head[0] && head[2];
   const bool be = head.size() >= 4 && head[0] == '\0' && head[2] == '\0' && head[1] && head[3];
   if (le || be) return "UTF-16 text (save it as UTF-8 or ASCII)";

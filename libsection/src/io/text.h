@@ -86,7 +86,8 @@ inline bool skip_bom(std::string_view& s) {
 }
 
 /// Why the start of a text file cannot be text we read, or nullptr: UTF-16 (by its byte-order
-/// mark or NUL bytes between ASCII characters) or other binary data (a NUL byte).
+/// mark or NUL bytes between ASCII characters), other binary data (a NUL byte), or CR-only
+/// line ends (a '\r' and no '\n' in the first 64 KiB).
 const char* text_encoding_problem(std::string_view head);
 
 }  // namespace section::detail

@@ -46,6 +46,18 @@ void clear_issues(Stream& stream, const std::string& stage) {
       issues.end());
 }
 
+void vanished_sections(Stream& stream, const std::set<int>& present, const std::string& stage,
+                       const std::string& what) {
+  const Table* frames = schema::frames.find(stream);
+  if (!frames || frames->find_column(schema::col::section) < 0) return;
+  const std::size_t cs = frames->column(schema::col::section);
+  for (std::size_t r = 0; r < frames->rows(); ++r) {
+    const int section = static_cast<int>(frames->at(r, cs));
+    if (!present.count(section) && !stream.failed(section))
+      stream.issues.push_back({section, -1, stage, "no " + what + " in the stream for this section"});
+  }
+}
+
 void run_slots(std::size_t count, int threads, const std::vector<Table*>& tables,
                std::vector<SectionIssue>& issues, const std::string& component,
                const std::function<void(std::size_t item, Slot& slot)>& make,

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,12 @@ std::map<std::pair<int, int>, LoopRows> loop_rows(const Table& t, const std::str
 
 /// Removes the issues `stage` recorded before: a rerun replaces them along with its tables.
 void clear_issues(Stream& stream, const std::string& stage);
+
+/// Adds the issue `no WHAT in the stream for this section` (stage `stage`) for each section
+/// the frames table lists that is not in `present` and has no issue yet: a section does not
+/// vanish from the stream unremarked (a part whose points table is empty).
+void vanished_sections(Stream& stream, const std::set<int>& present, const std::string& stage,
+                       const std::string& what);
 
 /// What a stage made of one item (a loop, a section): its rows of each table it writes, and
 /// its issues.

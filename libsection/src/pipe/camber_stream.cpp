@@ -9,11 +9,13 @@
 #include "section/io/stream.h"
 #include "section/pipe/schema.h"
 #include "section/pipe/fit_spline_stream.h"
+#include "detail/local_origin.h"
 #include "pipe/adapter.h"
 #include "pipe/camber_issues.h"
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 
 namespace section {
@@ -28,9 +30,9 @@ std::map<int, std::vector<Eigen::Vector2d>> skeletons(const Stream& stream) {
   std::map<int, std::vector<Eigen::Vector2d>> out;
   const Table* t = schema::skeleton.find(stream);
   if (!t) return out;
-  const long cs = t->find_column(col::section), cl = t->find_column(col::loop),
-             ci = t->find_column(col::index), cu = t->find_column(col::u), cv = t->find_column(col::v);
-  if (cs < 0 || cu < 0 || cv < 0) return out;
+  // A table without the columns it needs is refused, not left out unremarked.
+  const long cs = long(t->column(col::section)), cl = t->find_column(col::loop),
+             ci = t->find_column(col::index), cu = long(t->column(col::u)), cv = long(t->column(col::v));
   std::map<int, std::map<int, Eigen::Vector2d>> rows;
   for (std::size_t r = 0; r < t->rows(); ++r) {
     if (cl >= 0 && t->at(r, cl) != 0) continue;
@@ -47,9 +49,11 @@ std::map<int, Measured> measured_points(const Stream& stream) {
   std::map<int, Measured> out;
   const Table* t = schema::points.find(stream);
   if (!t) return out;
-  const long cs = t->find_column(col::section), cl = t->find_column(col::loop), cu = t->find_column(col::u),
-             cv = t->find_column(col::v), co = t->find_column(col::offset);
-  if (cs < 0 || cl < 0 || cu < 0 || cv < 0) return out;
+  // A table without the columns it needs is refused: the edges would silently be fitted to
+  // the spline alone.
+  const std::size_t cs = t->column(col::section), cl = t->column(col::loop), cu = t->column(col::u),
+                    cv = t->column(col::v);
+  const long co = t->find_column(col::offset);
   for (std::size_t r = 0; r < t->rows(); ++r) {
     if (t->at(r, cl) != 0) continue;
     Measured& m = out[static_cast<int>(t->at(r, cs))];
@@ -169,7 +173,27 @@ void add_rows(int section, const Frame& f, const SectionCamber& m, std::uint32_t
   }
 }
 
-// Loop 0 of a section into its slot: rows and issues.
+// `m`'s points moved by `by` (the positions the rows hold; lengths and angles stay).
+void move(SectionCamber& m, const Eigen::Vector2d& by) {
+  for (auto& p : m.camber.points) p += by;
+  for (Edge* e : {&m.camber.le, &m.camber.te}) e->point += by, e->center += by;
+  for (Eigen::Vector2d* p : {&m.params.centroid, &m.params.le_point, &m.params.te_point, &m.params.caliper_le,
+                             &m.params.caliper_te})
+    *p += by;
+  for (auto& t : m.stations) t.point += by, t.pressure += by, t.suction += by;
+  for (auto* side : {&m.sides.pressure, &m.sides.suction})
+    for (auto& p : *side) p += by;
+}
+
+// The measured points moved by -origin.
+Measured moved(const Measured& q, const Eigen::Vector2d& origin) {
+  Measured out = q;
+  for (auto* list : {&out.all, &out.in_slab, &out.carried}) *list = detail::moved(*list, origin);
+  return out;
+}
+
+// Loop 0 of a section into its slot: rows and issues. Far from the origin of its (u, v)
+// (a stream not written by slice), it is measured about a local origin and moved back.
 void camber_section(int section, const BSpline& curve, const CamberInput& in, const CamberOptions& options,
                     pipe::Slot& slot) {
   if (in.loops.at(section) > 1)
@@ -181,13 +205,18 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   CamberOptions opt = section_options(options, in, section, f);
   const auto points = in.measured.find(section);
   const Measured none;
-  const Measured& q = points != in.measured.end() ? points->second : none;
-  const SectionCamber m = measure(curve, opt, q);
+  const Eigen::Vector2d origin = detail::local_origin(curve.control);
+  BSpline local = curve;
+  local.control = detail::moved(curve.control, origin);
+  opt.medial.seed = detail::moved(opt.medial.seed, origin);
+  const Measured q = moved(points != in.measured.end() ? points->second : none, origin);
+  SectionCamber m = measure(local, opt, q);
   CheckOptions checks;
   checks.noise = opt.profile_noise;
-  const SectionCheck check = check_section(curve, m.camber, m.params, checks);
-  const std::uint32_t flags = pipe::describe_issues({section, curve, m.camber, m.params, m.le, m.te, q, opt},
+  const SectionCheck check = check_section(local, m.camber, m.params, checks);
+  const std::uint32_t flags = pipe::describe_issues({section, local, m.camber, m.params, m.le, m.te, q, opt},
                                                     check.findings, slot.issues);
+  if (origin != Eigen::Vector2d::Zero()) move(m, origin);
   add_rows(section, f, m, flags, slot);
 }
 
@@ -293,8 +322,12 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   Table camber = schema::camber.table(), params = schema::params.table(),
         thickness = schema::thickness.table(), sides = schema::sides.table();
   std::vector<std::pair<int, const BSpline*>> work;
-  for (const auto& [key, curve] : in.curves)
+  std::set<int> present;
+  for (const auto& [key, curve] : in.curves) {
+    present.insert(key.first);
     if (key.second == 0) work.push_back({key.first, &curve});
+  }
+  pipe::vanished_sections(stream, present, "camber", "spline");
   pipe::run_slots(
       work.size(), options.threads, {&camber, &params, &thickness, &sides}, stream.issues, "camber",
       [&](std::size_t w, pipe::Slot& slot) {

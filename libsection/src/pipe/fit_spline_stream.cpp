@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -96,8 +97,12 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
   std::vector<Table> tables = {schema::splines.table(), schema::spline_knots.table(),
                                schema::spline_ctrl.table(), schema::gaps.table(), schema::samples.table()};
   std::vector<std::pair<std::pair<int, int>, const pipe::LoopRows*>> work;
-  for (const auto& [key, rows] : in.measured)
+  std::set<int> present;
+  for (const auto& [key, rows] : in.measured) {
+    present.insert(key.first);
     if (!stream.failed(key.first, key.second)) work.push_back({key, &rows});
+  }
+  pipe::vanished_sections(stream, present, "fitspline", "points");
   std::vector<Table*> out;
   for (auto& t : tables) out.push_back(&t);
   pipe::run_slots(

@@ -2,10 +2,12 @@
 // several at a time, each written as soon as it and the parts before it are done.
 #include "section/pipe/run_stage.h"
 
+#include "detail/parallel.h"
 #include "section/error.h"
 #include "section/io/stream_reader.h"
 #include "section/pipe/schema.h"
 #include "section/units.h"
+#include "section/pipe/validate.h"
 
 #include <condition_variable>
 #include <deque>
@@ -35,6 +37,7 @@ void run_whole(const StageRun& run, PartReader& reader) {
                       ? run.other_input(text, reader.source())
                       : parse_stream(std::make_shared<const std::string>(std::move(text)), reader.source());
   check_units(stream.units, reader.source());
+  validate_stream(stream, reader.source());
   convert_to_mm(stream);
   if (run.preamble) run.preamble(stream);
   run.stage(stream, run.threads);
@@ -58,8 +61,8 @@ public:
                                  : std::max<std::size_t>(1, std::thread::hardware_concurrency())) {}
 
   void run() {
-    std::vector<std::thread> pool;
-    for (std::size_t w = 0; w < workers_; ++w) pool.emplace_back([this] { work(); });
+    std::vector<std::thread> pool = detail::start_threads(workers_, [this] { work(); });
+    if (pool.empty()) return run_alone();  // no thread could start (a low ulimit -v)
     try {
       StreamPart part;
       while (reader_.next(part))
@@ -88,6 +91,35 @@ private:
     bool done = false;
   };
 
+  // Parses and stages a job's part (its text is then released).
+  void stage(Job& job) {
+    Stream part = parse_stream_part(job.part, reader_.source());
+    validate_stream(part, reader_.source());
+    part.units = units_;
+    convert_to_mm(part);
+    run_.stage(part, 1);
+    job.part.text = nullptr;
+    job.result = std::move(part);
+  }
+
+  // Each part read, staged and written in turn, on this thread alone.
+  void run_alone() {
+    StreamPart part;
+    while (reader_.next(part)) {
+      Job job{std::move(part), {}, false};
+      stage(job);
+      if (run_.hold) {
+        held_.push_back(std::move(job));
+        continue;
+      }
+      if (run_.written) run_.written(job.result);
+      writer_.part(job.part.label, job.result);
+    }
+    write_held();
+    if (run_.before_end) run_.before_end();
+    writer_.finish();
+  }
+
   // A worker: stages the parts in turn until the input is done or a part has failed.
   void work() {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -98,12 +130,7 @@ private:
       Job& job = jobs_[next_to_stage_++ - first_job_];
       lock.unlock();
       try {
-        Stream part = parse_stream_part(job.part, reader_.source());
-        part.units = units_;
-        convert_to_mm(part);
-        run_.stage(part, 1);
-        job.part.text = nullptr;
-        job.result = std::move(part);
+        stage(job);
         lock.lock();
         job.done = true;
       } catch (...) {

@@ -36,6 +36,12 @@ void add_notes(const SectionSlice& s, std::vector<std::string>& notes) {
                   s.fill.gaps, s.fill.gaps_filled, s.fill.points, s.fill.largest_gap, s.fill.max_offset);
     notes.push_back(buf);
   }
+  if (s.row >= 0) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "row section=%d row=%d height=%.6g spread=%.6g points=%zu", s.id, s.row,
+                  s.row_height, s.row_spread, s.slab_points);
+    notes.push_back(buf);
+  }
   if (s.morphology.loops.size() > 1)
     notes.push_back("loops section=" + std::to_string(s.id) +
                     " count=" + std::to_string(s.morphology.loops.size()) + " profile=0");
@@ -58,6 +64,15 @@ void add_rows(const SectionSlice& s, Table& loops, Table& points, Table& skeleto
 }
 
 }  // namespace
+
+std::string sampling_note(const Sampling& sampling) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "sampling kind=%s spacing=%.6g normal_spacing=%.6g slab=%.6g rows=%zu row_gap=%.6g",
+                sampling_kind_name(sampling.kind), sampling.spacing, sampling.normal_spacing, sampling.slab,
+                sampling.rows.size(), sampling.row_gap);
+  return buf;
+}
 
 Stream to_stream(const SliceResult& result, const std::string& command, const std::string& units) {
   Stream stream;

@@ -6,6 +6,7 @@
 #include "pipe/adapter.h"
 
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,8 +34,12 @@ void smooth_stream(Stream& stream, const SmoothOptions& options) {
   pipe::clear_issues(stream, "smooth");
   Table smoothed = schema::smoothed.table(), stats = schema::smooth_stats.table();
   std::vector<std::pair<std::pair<int, int>, const pipe::LoopRows*>> work;
-  for (const auto& [key, rows] : loops)
+  std::set<int> present;
+  for (const auto& [key, rows] : loops) {
+    present.insert(key.first);
     if (!stream.failed(key.first, key.second)) work.push_back({key, &rows});
+  }
+  pipe::vanished_sections(stream, present, "smooth", "points");
   pipe::run_slots(
       work.size(), options.threads, {&smoothed, &stats}, stream.issues, "smooth",
       [&](std::size_t w, pipe::Slot& slot) {

@@ -112,9 +112,10 @@ void write_stream(const std::string& path, const Stream& stream);
 /// Writes a stream split into parts as they come (docs/FORMAT.md, "Parts"): the preamble
 /// (version, units, history, notes) at once, each part when given, and the closing
 /// `# end` at finish(), so that the next tool of a pipe can work on a part while this one
-/// makes the next. Standard output is written as it goes; a file is written under a
-/// temporary name (`FILE.partial`) and renamed at finish(), so that a failure leaves no
-/// file; a path that is not a regular file (/dev/null, a named pipe) is written as it
+/// makes the next. Standard output is written as it goes; a file is written under a unique
+/// temporary name in its directory (`FILE.XXXXXX.partial`, created anew) and renamed at
+/// finish(), so that a failure or a signal leaves no file and two runs do not mix their
+/// bytes; a path that is not a regular file (/dev/null, a named pipe) is written as it
 /// goes. A stream that is not finished lacks `# end`, and every reader refuses it.
 class StreamWriter {
 public:
@@ -132,7 +133,7 @@ public:
   void finish();
 
 private:
-  std::string path_, temporary_;
+  std::string path_;
   std::unique_ptr<detail::ByteSink> out_;
   bool finished_ = false;
 };

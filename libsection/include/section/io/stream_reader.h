@@ -6,7 +6,9 @@
 
 #include <cstddef>
 #include <memory>
+#include <set>
 #include <string>
+#include <string_view>
 
 namespace section {
 
@@ -29,7 +31,9 @@ Stream parse_stream_part(const StreamPart& part, const std::string& source);
 class PartReader {
 public:
   /// Opens `path` ("-" = standard input) and reads up to the first `# part`, `# table` or
-  /// data line. Throws section::Error when it cannot be opened or read.
+  /// data line. Throws section::Error when it cannot be opened or read, holds binary data,
+  /// UTF-16 or CR-only line ends; later reads throw for a line longer than max_text_line and
+  /// for a part (or a stream not split into parts) larger than max_input_bytes() (io/limits.h).
   explicit PartReader(const std::string& path);
   ~PartReader();
   PartReader(const PartReader&) = delete;
@@ -46,15 +50,22 @@ public:
   std::string whole();
   /// The next part, read up to the next `# part` or `# end`; false once `# end` is passed
   /// and the rest of the input is found blank. Throws section::Error naming the line for
-  /// anything after `# end`, and when the input ends before it (a truncated stream).
+  /// anything after `# end`, a second part of one section, and when the input ends before
+  /// `# end` (a truncated stream).
   bool next(StreamPart& part);
 
 private:
+  // The next line (counted); throws for one longer than max_text_line.
+  bool next_line(std::string_view& line);
+  // Throws when `text` (WHAT of the input) is larger than max_input_bytes().
+  void held(const std::string& text, const std::string& what) const;
+
   std::unique_ptr<detail::ByteSource> in_;
   std::string source_, head_, text_, label_;
   std::size_t line_no_ = 0, first_line_ = 0;
   bool parted_ = false, ended_ = false;
   std::size_t end_error_line_ = 0;  // a `# end` line with words after it, reported after the last part
+  std::set<std::string> labels_;    // of the parts so far
 };
 
 }  // namespace section

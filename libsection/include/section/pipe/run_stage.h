@@ -40,9 +40,12 @@ struct StageRun {
 ///   `threads` parts at a time, each written with StreamWriter as soon as it and the parts
 ///   before it are done, so that the tools of a pipe work side by side;
 /// - any other stream is read, staged and written whole (write_stream).
-/// Throws section::Error naming the input and its line on malformed input (a stream split
-/// into parts must end with `# end`), and whatever the callbacks throw; the output then
-/// lacks its `# end` line, or is not written.
+/// Every part (or the whole stream) is checked against the schema (validate_stream) before
+/// it is staged. Throws section::Error naming the input and its line (or table and section)
+/// on malformed input (a stream split into parts must end with `# end`), and whatever the
+/// callbacks throw; the output then lacks its `# end` line, or is not written. Threads that
+/// cannot start (a low `ulimit -v`) are done without: with none, the parts are staged one
+/// by one on the calling thread.
 void run_stage(const StageRun& run);
 
 }  // namespace section

@@ -1,0 +1,87 @@
+// The stream held to its schema: unique ids, counts and flags in range.
+#include "section/pipe/validate.h"
+
+#include "section/error.h"
+#include "section/pipe/schema.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <vector>
+
+namespace section {
+
+namespace {
+
+// The units of the single columns of every table the schema declares, by table and column.
+const std::map<std::string, std::map<std::string, std::string>>& units() {
+  static const auto table = [] {
+    std::map<std::string, std::map<std::string, std::string>> out;
+    for (const schema::TableDoc& t : schema::tables())
+      for (const schema::ColumnDoc& c : t.columns) out[t.name][c.name] = c.unit;
+    return out;
+  }();
+  return table;
+}
+
+// Throws when two rows of `t` have the same ids: each row of a table is one thing.
+void check_unique_ids(const Table& t, const std::string& source) {
+  std::vector<std::size_t> key;
+  for (const char* name : {"section", "loop", "side", "index"})
+    if (const long c = t.find_column(name); c >= 0) key.push_back(static_cast<std::size_t>(c));
+  const std::size_t rows = t.rows();
+  if (key.empty() || rows < 2) return;
+  const auto less = [&](std::size_t a, std::size_t b) {
+    for (const std::size_t c : key)
+      if (t.at(a, c) != t.at(b, c)) return t.at(a, c) < t.at(b, c);
+    return false;
+  };
+  // Tables are written in the order of their ids: one pass then; sorted ids otherwise.
+  std::size_t r = 1;
+  while (r < rows && less(r - 1, r)) ++r;
+  if (r == rows) return;
+  std::vector<std::size_t> order(rows);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), less);
+  for (std::size_t k = 1; k < rows; ++k) {
+    if (less(order[k - 1], order[k])) continue;
+    std::string ids;
+    for (const std::size_t c : key) ids += " " + t.columns[c] + " " + format_number(t.at(order[k], c));
+    throw Error("pipe: " + source + ": table '" + t.name + "' has two rows (data rows " +
+                std::to_string(order[k - 1] + 1) + " and " + std::to_string(order[k] + 1) + ") for" + ids +
+                " (each row of a table is one thing: a duplicated row?)");
+  }
+}
+
+// Throws for a count that is not a whole number of 0 or more, or a flag that is not 0 or 1.
+void check_values(const Table& t, const std::map<std::string, std::string>& unit, const std::string& source) {
+  const long cs = t.find_column("section");
+  for (std::size_t c = 0; c < t.columns.size(); ++c) {
+    const auto u = unit.find(t.columns[c]);
+    if (u == unit.end() || (u->second != "count" && u->second != "flag")) continue;
+    const bool flag = u->second == "flag";
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      const double v = t.at(r, c);
+      if (flag ? (v == 0 || v == 1) : (v >= 0 && v == std::floor(v))) continue;
+      throw Error("pipe: " + source + ": table '" + t.name + "' data row " + std::to_string(r + 1) +
+                  (cs >= 0 ? " (section " + format_number(t.at(r, std::size_t(cs))) + ")" : std::string()) +
+                  ": column '" + t.columns[c] + "' is " + format_number(v) + ", " +
+                  (flag ? "a flag must be 0 or 1" : "a count must be a whole number of 0 or more"));
+    }
+  }
+}
+
+}  // namespace
+
+void validate_stream(const Stream& stream, const std::string& source) {
+  const auto& known = units();
+  for (const Table& t : stream.tables) {
+    const auto unit = known.find(t.name);
+    if (unit == known.end()) continue;
+    check_unique_ids(t, source);
+    check_values(t, unit->second, source);
+  }
+}
+
+}  // namespace section

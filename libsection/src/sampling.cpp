@@ -1,0 +1,317 @@
+#include "section/sampling.h"
+
+#include "section/error.h"
+#include "section/frame.h"
+#include "detail/flann_nearest.h"
+#include "detail/parallel.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+
+namespace section {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+// Neighbours of a point looked at: the 16 nearest distinct others, from a search for 24
+// (exact copies of the point, itself included, are skipped).
+constexpr int wanted = 16, searched = 24;
+// The first look: this many points (at most), this many of them measured.
+constexpr std::size_t first_look = 50'000, first_queries = 5'000;
+// Within 45 degrees of the normal a neighbour is above or below; within 30 degrees of the
+// plane it is beside, in the same row.
+const double above = std::sqrt(0.5), beside = 0.5;
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const std::size_t i = std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5));
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(i), v.end());
+  return v[i];
+}
+
+// The distinct neighbours of point i, nearest first (indices into `first`), and whether
+// it has an exact copy.
+struct Near {
+  int index[searched];
+  int count = 0;
+  bool copied = false;
+};
+
+Near near_of(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, std::size_t i) {
+  int idx[searched];
+  double d2[searched];
+  std::fill(d2, d2 + searched, -1.0);  // FLANN leaves the entries it does not find
+  const int k = int(std::min<std::size_t>(searched, first.size()));
+  tree.k_nearest(first[i], k, idx, d2);
+  Near n;
+  for (int j = 0; j < k && n.count < wanted; ++j) {
+    if (d2[j] < 0 || idx[j] < 0) continue;
+    if (d2[j] == 0) {
+      n.copied = n.copied || std::size_t(idx[j]) != i;
+      continue;
+    }
+    n.index[n.count++] = idx[j];
+  }
+  return n;
+}
+
+// The spacing in the surface and along the normal, medians over every step-th point.
+void measure_spacings(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, const Vec3& n,
+                      const SamplingOptions& options, Sampling& s, std::vector<double>& heights) {
+  const std::size_t step = std::max<std::size_t>(1, first.size() / std::max<std::size_t>(1, options.queries));
+  const std::size_t count = (first.size() + step - 1) / step;
+  std::vector<double> nearest(count, std::numeric_limits<double>::infinity());
+  heights.assign(count, std::numeric_limits<double>::infinity());
+  std::vector<char> copied(count, 0);
+  detail::parallel_for(count, options.threads, [&](std::size_t q) {
+    const std::size_t i = q * step;
+    const Near near = near_of(tree, first, i);
+    copied[q] = near.copied;
+    for (int j = 0; j < near.count; ++j) {
+      const Vec3 d = first[std::size_t(near.index[j])] - first[i];
+      const double length = d.norm(), up = std::abs(d.dot(n));
+      nearest[q] = std::min(nearest[q], length);
+      if (up >= above * length) heights[q] = std::min(heights[q], up);
+    }
+  });
+  s.measured = count;
+  s.duplicates = std::size_t(std::count(copied.begin(), copied.end(), 1));
+  std::vector<double> finite;
+  for (double x : nearest)
+    if (std::isfinite(x)) finite.push_back(x);
+  s.spacing = quantile(finite, 0.5);
+  s.normal_spacing = quantile(heights, 0.5);
+  s.normal_low = quantile(heights, 0.25);
+  s.normal_high = quantile(heights, 0.75);
+}
+
+std::size_t root(std::vector<std::size_t>& parent, std::size_t a) {
+  while (parent[a] != a) a = parent[a] = parent[parent[a]];
+  return a;
+}
+
+// Pieces of points joined to their neighbours beside them: across the normal (within 30
+// degrees of the plane) and within 3 times the point's second nearest neighbour (along a
+// row, its neighbours before and after it), so that where a row's points lie sparse a row
+// beside it is not joined.
+std::vector<std::vector<std::size_t>> pieces(const detail::NearestPoints<3>& tree,
+                                             const std::vector<Vec3>& first, const Vec3& n, int threads) {
+  const std::size_t m = first.size();
+  std::vector<std::array<int, wanted>> link(m);
+  detail::parallel_for((m + 4095) / 4096, threads, [&](std::size_t block) {
+    for (std::size_t i = block * 4096; i < std::min(m, (block + 1) * 4096); ++i) {
+      const Near near = near_of(tree, first, i);
+      link[i].fill(-1);
+      if (near.count < 2) continue;
+      const double reach = 3 * (first[std::size_t(near.index[1])] - first[i]).norm();
+      for (int j = 0; j < near.count; ++j) {
+        const Vec3 d = first[std::size_t(near.index[j])] - first[i];
+        if (std::abs(d.dot(n)) < beside * d.norm() && d.norm() <= reach)
+          link[i][std::size_t(j)] = near.index[j];
+      }
+    }
+  });
+  std::vector<std::size_t> parent(m);
+  std::iota(parent.begin(), parent.end(), std::size_t(0));
+  for (std::size_t i = 0; i < m; ++i)
+    for (int j : link[i])
+      if (j >= 0) parent[root(parent, i)] = root(parent, std::size_t(j));
+  std::vector<std::vector<std::size_t>> out;
+  std::vector<std::size_t> slot(m, m);
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::size_t r = root(parent, i);
+    if (slot[r] == m) slot[r] = out.size(), out.emplace_back();
+    out[slot[r]].push_back(i);
+  }
+  return out;
+}
+
+// The best plane of a row (heights above the plane of `n` fitted as a + b u + c v), its
+// spread about it and its size.
+PointRow fit_row(std::vector<std::size_t> points, const std::vector<Vec3>& first, const Vec3& n,
+                 double flatness) {
+  PointRow row;
+  row.points = std::move(points);
+  const Frame f = make_frame(Vec3::Zero(), n);
+  Vec3 centre = Vec3::Zero();
+  row.low = INFINITY, row.high = -INFINITY;
+  for (std::size_t i : row.points) {
+    centre += first[i];
+    row.low = std::min(row.low, n.dot(first[i])), row.high = std::max(row.high, n.dot(first[i]));
+  }
+  centre /= double(row.points.size());
+  row.height = n.dot(centre);
+  Eigen::Matrix2d a = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  for (std::size_t i : row.points) {
+    const Vec3 d = first[i] - centre;
+    const Eigen::Vector2d uv(d.dot(f.u), d.dot(f.v));
+    a += uv * uv.transpose();
+    b += uv * d.dot(n);
+  }
+  Eigen::Vector2d slope = Eigen::Vector2d::Zero();
+  if (std::abs(a.determinant()) > 1e-12 * a.squaredNorm()) slope = a.ldlt().solve(b);
+  row.normal = (n - slope.x() * f.u - slope.y() * f.v).normalized();
+  row.origin = row.normal.dot(centre) * row.normal;
+  const Frame own = make_frame(row.origin, row.normal);
+  Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+  for (std::size_t i : row.points) {
+    row.spread = std::max(row.spread, std::abs(own.height(first[i])));
+    lo = lo.cwiseMin(own.to_plane(first[i])), hi = hi.cwiseMax(own.to_plane(first[i]));
+  }
+  row.size = (hi - lo).norm();
+  row.planar = row.spread <= flatness * row.size;
+  return row;
+}
+
+// A smaller piece joins a larger one it lies in (a row split where its spacing jumps):
+// their heights overlap and its points lie within twice the larger one's spread (or
+// the spacing) of its best plane. Pieces of fewer than 8 points are strays.
+std::vector<PointRow> join_pieces(std::vector<std::vector<std::size_t>> parts, const std::vector<Vec3>& first,
+                                  const Vec3& n, double spacing, double flatness) {
+  std::sort(parts.begin(), parts.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  std::vector<PointRow> rows;
+  for (auto& part : parts) {
+    if (part.size() < 8) break;
+    PointRow piece = fit_row(std::move(part), first, n, flatness);
+    PointRow* into = nullptr;
+    for (PointRow& row : rows) {
+      if (piece.low > row.high || piece.high < row.low) continue;
+      const double reach = 2 * std::max(row.spread, spacing);
+      bool inside = true;
+      for (std::size_t i : piece.points)
+        if (!(std::abs(row.normal.dot(first[i] - row.origin)) <= reach)) inside = false;
+      if (inside) into = &row;
+      if (inside) break;
+    }
+    if (!into) {
+      rows.push_back(std::move(piece));
+      continue;
+    }
+    std::vector<std::size_t> joined = std::move(into->points);
+    joined.insert(joined.end(), piece.points.begin(), piece.points.end());
+    std::sort(joined.begin(), joined.end());
+    *into = fit_row(std::move(joined), first, n, flatness);
+  }
+  return rows;
+}
+
+// The rows of the points, when rows of at least 8 points hold 90 % of them and at least
+// half of the rows are planar; else none.
+std::vector<PointRow> find_rows(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first,
+                                const Vec3& n, double spacing, const SamplingOptions& options) {
+  auto parts = pieces(tree, first, n, options.threads);
+  if (8 * parts.size() > first.size()) return {};  // mostly strays: no rows
+  std::vector<PointRow> rows = join_pieces(std::move(parts), first, n, spacing, options.flatness);
+  std::size_t covered = 0, planar = 0;
+  for (const PointRow& row : rows) covered += row.points.size(), planar += row.planar;
+  if (rows.empty() || double(covered) < 0.9 * double(first.size()) || 2 * planar < rows.size()) return {};
+  return rows;
+}
+
+// Sorted by height: the median gap between neighbours and the slab of lines (the gap that
+// nine in ten of them keep within).
+void classify_rows(const SamplingOptions& options, Sampling& s) {
+  std::sort(s.rows.begin(), s.rows.end(),
+            [](const PointRow& a, const PointRow& b) { return a.height < b.height; });
+  std::vector<double> gaps, sizes;
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    sizes.push_back(s.rows[k].size);
+    if (k > 0) gaps.push_back(s.rows[k].height - s.rows[k - 1].height);
+  }
+  s.row_gap = quantile(gaps, 0.5);
+  if (gaps.empty() || s.row_gap > options.sparse * quantile(sizes, 0.5)) {
+    s.kind = SamplingKind::rows;
+    return;
+  }
+  s.kind = SamplingKind::lines;
+  s.slab = quantile(gaps, 0.9);
+}
+
+std::string length(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
+
+}  // namespace
+
+const char* sampling_kind_name(SamplingKind kind) {
+  switch (kind) {
+    case SamplingKind::lines:
+      return "lines";
+    case SamplingKind::rows:
+      return "rows";
+    default:
+      return "dense";
+  }
+}
+
+std::string Sampling::describe() const {
+  const std::string along = std::isfinite(normal_spacing)
+                                ? ", along the normal " + length(normal_spacing) + " mm"
+                                : ", none near above or below";
+  const std::string spacings = "spacing " + length(spacing) + " mm" + along;
+  const std::string copies = duplicates > 0
+                                 ? ", " + std::to_string(duplicates) + " of " + std::to_string(measured) +
+                                       " points measured have an exact copy"
+                                 : "";
+  if (kind == SamplingKind::dense) return "a dense scan (" + spacings + copies + ")";
+  if (kind == SamplingKind::lines)
+    return "lines of points across the normal (" + spacings +
+           (rows.empty() ? ""
+                         : ", " + std::to_string(rows.size()) + " lines " + length(row_gap) + " mm apart") +
+           copies + "): slab " + length(slab) + " mm";
+  if (rows.size() == 1) return "one row of points, a single section (" + spacings + copies + ")";
+  return std::to_string(rows.size()) + " rows of points " + length(row_gap) + " mm apart, each a section (" +
+         spacings + copies + ")";
+}
+
+Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+                     const SamplingOptions& options) {
+  if (!normal.allFinite() || !(normal.norm() > 0))
+    throw Error("slice: the plane normal must be finite and non-zero");
+  const Vec3 n = normal.normalized();
+  const std::size_t all = std::min(points.size(), std::max<std::size_t>(options.max_points, 1));
+  // A first look at fewer points settles a dense scan for a fraction of the cost; the rest
+  // only when they are not one.
+  for (const std::size_t m : {std::min(all, first_look), all}) {
+    Sampling s;
+    s.points = m;
+    if (m < 2) return s;
+    const std::vector<Vec3> first(points.begin(), points.begin() + std::ptrdiff_t(m));
+    const detail::NearestPoints<3> tree(first);
+    std::vector<double> heights;
+    SamplingOptions o = options;
+    if (m < all) o.queries = std::min(o.queries, first_queries);
+    measure_spacings(tree, first, n, o, s, heights);
+    // Heights on levels (the quartiles of the gaps along the normal close together, where
+    // a dense scan's spread over a factor of two) wider apart than the spacing are lines
+    // too: a slab of the spacing would fall between them.
+    const bool levels = s.normal_low >= 0.8 * s.normal_high && s.normal_spacing > s.spacing;
+    if (!(s.spacing > 0) || !(levels || s.normal_spacing > options.anisotropy * s.spacing)) return s;
+    if (m < all) continue;
+    s.kind = SamplingKind::lines;
+    s.rows = find_rows(tree, first, n, s.spacing, options);
+    if (!s.rows.empty()) {
+      classify_rows(options, s);
+      return s;
+    }
+    // Lines that do not come apart into rows (slanted, or crossing): the slab bridges the
+    // gap along the normal that nine in ten points see.
+    std::vector<double> finite;
+    for (double h : heights)
+      if (std::isfinite(h)) finite.push_back(h);
+    s.slab = quantile(finite, 0.9);
+    if (!(s.slab > 0)) s.kind = SamplingKind::dense;
+    return s;
+  }
+  return Sampling{};
+}
+
+}  // namespace section

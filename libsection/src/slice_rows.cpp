@@ -1,0 +1,269 @@
+// slice on rows of points and the slab from the sampling (docs/SAMPLING.md): a plane
+// through a sparse row takes it, a plane between rows says which rows lie beside it, and
+// each row can be taken as a section as it lies.
+#include "section/slice.h"
+
+#include "section/error.h"
+#include "detail/parallel.h"
+#include "detail/segment.h"
+#include "detail/slice_steps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace section {
+
+namespace {
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
+
+// How the points of a row lie against a plane (unit normal n through o).
+struct Against {
+  double low = INFINITY, high = -INFINITY, mean = 0;
+};
+
+Against against(const std::vector<Eigen::Vector3d>& points, const PointRow& row, const Eigen::Vector3d& o,
+                const Eigen::Vector3d& n) {
+  Against a;
+  for (std::size_t i : row.points) {
+    const double d = n.dot(points[i] - o);
+    a.low = std::min(a.low, d), a.high = std::max(a.high, d), a.mean += d;
+  }
+  a.mean /= double(row.points.size());
+  return a;
+}
+
+// Why a plane takes no row: the rows beside it (or the nearest, beyond them all).
+std::string between(const Sampling& s, const std::vector<double>& mean, double height) {
+  int below = -1, above = -1;
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    if (mean[k] < 0 && (below < 0 || mean[k] > mean[std::size_t(below)])) below = int(k);
+    if (mean[k] > 0 && (above < 0 || mean[k] < mean[std::size_t(above)])) above = int(k);
+  }
+  const std::string rows = s.rows.size() == 1 ? "a single row of points"
+                                              : std::to_string(s.rows.size()) + " sparse rows of points " +
+                                                    num(s.row_gap) + " apart, each a section's worth";
+  const std::string take = "; take the rows as they lie (slice --rows) or a plane through one (";
+  const auto at = [&](int k) { return "--at " + num(s.rows[std::size_t(k)].height); };
+  const std::string plane = "the plane at height " + num(height);
+  if (below >= 0 && above >= 0)
+    return plane + " falls between the rows at heights " + num(s.rows[std::size_t(below)].height) + " and " +
+           num(s.rows[std::size_t(above)].height) + " (" + rows +
+           "): no section is made between rows, too far apart to bridge" + take + at(below) + " or " +
+           at(above) + ")";
+  const int k = below >= 0 ? below : above;
+  return plane + " lies " + (below >= 0 ? "above the highest" : "below the lowest") + " row, at height " +
+         num(s.rows[std::size_t(k)].height) + " (" + rows + ")" + take + at(k) + ")";
+}
+
+// The options for rows: a row is all there is (no band, no fill).
+SliceOptions as_they_lie(const SliceOptions& options) {
+  SliceOptions o = options;
+  o.band_spacing = 0;
+  o.fill_gaps = false;
+  return o;
+}
+
+// The nearest point to p on the closed curve through `curve`'s points: on the circle through
+// the nearest vertex and its two neighbours (exact on a circular arc such as a round edge,
+// where the chords would cut the corner), or on the nearest chord where they are in line.
+Eigen::Vector2d nearest_on(const std::vector<Eigen::Vector2d>& curve, const Eigen::Vector2d& p) {
+  const std::size_t m = curve.size();
+  std::size_t k = 0;
+  for (std::size_t j = 1; j < m; ++j)
+    if ((curve[j] - p).squaredNorm() < (curve[k] - p).squaredNorm()) k = j;
+  const Eigen::Vector2d &a = curve[(k + m - 1) % m], &b = curve[k], &c = curve[(k + 1) % m];
+  const Eigen::Vector2d ab = b - a, ac = c - a;
+  const double d = 2 * (ab.x() * ac.y() - ab.y() * ac.x());
+  if (d != 0) {
+    const Eigen::Vector2d o = a + Eigen::Vector2d(ac.y() * ab.squaredNorm() - ab.y() * ac.squaredNorm(),
+                                                  ab.x() * ac.squaredNorm() - ac.x() * ab.squaredNorm()) /
+                                      d;
+    const double r = (b - o).norm(), q = (p - o).norm();
+    if (q > 0 && r < 100 * (ab.norm() + ac.norm())) return o + r / q * (p - o);
+  }
+  const detail::SegmentFoot f1 = detail::segment_foot(a, b, p), f2 = detail::segment_foot(b, c, p);
+  return f1.d2 < f2.d2 ? Eigen::Vector2d(a + f1.t * ab) : Eigen::Vector2d(b + f2.t * (c - b));
+}
+
+// The points of `from` each carried the fraction w of the way to its nearest point on the
+// closed curve through `curve`, appended to `out`.
+void carry_toward(const std::vector<Eigen::Vector2d>& from, const std::vector<Eigen::Vector2d>& curve,
+                  double w, std::vector<Eigen::Vector2d>& out) {
+  for (const Eigen::Vector2d& p : from) out.push_back(p + w * (nearest_on(curve, p) - p));
+}
+
+// The section between the lines below and above a plane (their points' mean heights off
+// it `below` < 0 <= `above`): each line's points in the plane, carried toward the other's
+// curve by the other's share of the height.
+std::vector<Eigen::Vector2d> between_lines(const std::vector<Eigen::Vector3d>& points, const PointRow& low,
+                                           const PointRow& high, double below, double above,
+                                           const Frame& frame, const MorphologyOptions& morphology) {
+  std::vector<Eigen::Vector2d> a, b, out;
+  for (std::size_t i : low.points) a.push_back(frame.to_plane(points[i]));
+  for (std::size_t i : high.points) b.push_back(frame.to_plane(points[i]));
+  const double w = -below / (above - below);
+  carry_toward(a, detail::order_row(b, morphology).loops.at(0).points, w, out);
+  carry_toward(b, detail::order_row(a, morphology).loops.at(0).points, 1 - w, out);
+  return out;
+}
+
+}  // namespace
+
+namespace detail {
+
+Sampling sample_all(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+                    const SamplingOptions& options) {
+  Sampling s = sampling_of(points, normal, options);
+  if (s.kind == SamplingKind::rows && points.size() > s.points) {
+    SamplingOptions all = options;
+    all.max_points = points.size();
+    s = sampling_of(points, normal, all);
+  }
+  return s;
+}
+
+double sampled_slab(const std::vector<Eigen::Vector3d>& points, const Sampling& sampling) {
+  double slab = sampling.kind == SamplingKind::lines ? sampling.slab : 0;
+  if (sampling.kind == SamplingKind::dense) {
+    // mean_spacing's random subset scales its spacing by the density, which copies inflate.
+    slab = 100 * sampling.duplicates > sampling.measured ? sampling.spacing : mean_spacing(points);
+    if (!(slab > 0)) slab = sampling.spacing;
+  }
+  if (!(slab > 0))
+    throw Error("slice: cannot estimate the point spacing (fewer than two distinct points); give --slab");
+  return slab;
+}
+
+void slice_through_rows(const std::vector<Eigen::Vector3d>& points, const std::vector<Plane>& planes,
+                        const SliceOptions& options, SliceResult& result, const SectionFn& sink) {
+  const Sampling& s = result.sampling;
+  std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
+  result.sections.assign(planes.size(), SectionSlice{});
+  for (std::size_t p = 0; p < planes.size(); ++p) {
+    const Eigen::Vector3d n = planes[p].normal.normalized();
+    const Frame frame = make_frame(planes[p].origin, planes[p].normal);
+    SectionSlice& section = result.sections[p];
+    std::vector<double> mean(s.rows.size());
+    int taken = -1;
+    Against best;
+    for (std::size_t k = 0; k < s.rows.size(); ++k) {
+      const Against a = against(points, s.rows[k], planes[p].origin, n);
+      mean[k] = a.mean;
+      const bool through = a.low <= s.spacing && a.high >= -s.spacing;
+      if (through && (taken < 0 || std::abs(a.mean) < std::abs(best.mean))) taken = int(k), best = a;
+    }
+    if (taken < 0) {
+      section.error = between(s, mean, n.dot(planes[p].origin));
+      continue;
+    }
+    const PointRow& row = s.rows[std::size_t(taken)];
+    section.row = taken;
+    section.row_height = row.height;
+    section.row_spread = std::max(std::abs(best.low), std::abs(best.high));
+    if (section.row_spread > options.sampling.flatness * row.size) {
+      section.error = "the plane crosses the row at height " + num(row.height) +
+                      " at an angle: its points lie " + num(best.low) + " to " + num(best.high) +
+                      " off the plane, more than " + num(100 * options.sampling.flatness) +
+                      " % of its size " + num(row.size) + "; take the rows as they lie (slice --rows)";
+      continue;
+    }
+    for (std::size_t i : row.points) slabs[p].push_back(frame.to_plane(points[i]));
+  }
+  order_slabs(slabs, {}, planes, s.spacing, as_they_lie(options), result, sink, order_row);
+}
+
+void slice_between_lines(const std::vector<Eigen::Vector3d>& points, const std::vector<Plane>& planes,
+                         const SliceOptions& options, SliceResult& result, const SectionFn& sink) {
+  const Sampling& s = result.sampling;
+  std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
+  result.sections.assign(planes.size(), SectionSlice{});
+  detail::parallel_for(planes.size(), options.threads, [&](std::size_t p) {
+    const Eigen::Vector3d n = planes[p].normal.normalized();
+    const Frame frame = make_frame(planes[p].origin, planes[p].normal);
+    int below = -1, above = -1;
+    std::vector<double> mean(s.rows.size());
+    for (std::size_t k = 0; k < s.rows.size(); ++k) {
+      mean[k] = against(points, s.rows[k], planes[p].origin, n).mean;
+      if (mean[k] <= 0 && (below < 0 || mean[k] > mean[std::size_t(below)])) below = int(k);
+      if (mean[k] > 0 && (above < 0 || mean[k] < mean[std::size_t(above)])) above = int(k);
+    }
+    SectionSlice& section = result.sections[p];
+    if (below < 0 || above < 0) {
+      section.error =
+          "the plane at height " + num(n.dot(planes[p].origin)) + " lies beyond the lines of points";
+      return;
+    }
+    const double gap = mean[std::size_t(above)] - mean[std::size_t(below)];
+    if (gap > 2.5 * s.row_gap) {
+      section.error = "the plane at height " + num(n.dot(planes[p].origin)) + " falls in a gap of " +
+                      num(gap) + " between the lines of points beside it (" + num(s.row_gap) +
+                      " apart elsewhere)";
+      return;
+    }
+    try {
+      slabs[p] = between_lines(points, s.rows[std::size_t(below)], s.rows[std::size_t(above)],
+                               mean[std::size_t(below)], mean[std::size_t(above)], frame, options.morphology);
+    } catch (const Error& e) {
+      section.error = std::string("the lines beside the plane: ") + e.what();
+    }
+  });
+  order_slabs(slabs, {}, planes, s.slab, as_they_lie(options), result, sink);
+}
+
+void rows_as_sections(const std::vector<Eigen::Vector3d>& points, const SliceOptions& options,
+                      SliceResult& result, const SectionFn& sink) {
+  const Sampling& s = result.sampling;
+  std::vector<Plane> planes;
+  std::vector<std::vector<Eigen::Vector2d>> slabs(s.rows.size());
+  result.sections.assign(s.rows.size(), SectionSlice{});
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    const PointRow& row = s.rows[k];
+    planes.push_back({row.origin, row.normal});
+    SectionSlice& section = result.sections[k];
+    section.row = int(k);
+    section.row_height = row.height;
+    section.row_spread = row.spread;
+    if (!row.planar) {
+      section.error = "the row at height " + num(row.height) + " is not planar: its points lie up to " +
+                      num(row.spread) + " from its best plane, more than " +
+                      num(100 * options.sampling.flatness) + " % of its size " + num(row.size) +
+                      " (a row on a curved surface, such as one at constant radius, is no plane section)";
+      continue;
+    }
+    const Frame frame = make_frame(row.origin, row.normal);
+    for (std::size_t i : row.points) slabs[k].push_back(frame.to_plane(points[i]));
+  }
+  order_slabs(slabs, {}, planes, s.spacing, as_they_lie(options), result, sink, order_row);
+}
+
+}  // namespace detail
+
+SliceResult slice_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options) {
+  if (cloud.points.empty()) throw Error("slice: the cloud has no points");
+  SamplingOptions all = options.sampling;  // a row is a section only with all its points
+  all.max_points = std::max(all.max_points, cloud.points.size());
+  return slice_rows(cloud, sampling_of(cloud.points, normal, all), options);
+}
+
+SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const SliceOptions& options) {
+  if (sampling.points < cloud.points.size())
+    throw Error("slice: the rows were found on the first " + std::to_string(sampling.points) + " of " +
+                std::to_string(cloud.points.size()) + " points only");
+  SliceResult result;
+  result.points = cloud.points.size();
+  result.sampling = sampling;
+  if (result.sampling.rows.empty())
+    throw Error("slice: the points are not rows of points, each a section's worth, but " +
+                result.sampling.describe() + ": give section planes (--at, --count or --planes)");
+  detail::rows_as_sections(cloud.points, options, result, {});
+  return result;
+}
+
+}  // namespace section
