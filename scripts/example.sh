@@ -17,3 +17,9 @@ if [ -x "$BIN/camber" ]; then
   "$BIN/camber" "$OUT/splines.csv" --params "$OUT/params.csv" > "$OUT/camber.csv"
   echo "camber: $OUT/camber.csv"; echo; column -s, -t "$OUT/params.csv" 2>/dev/null || cat "$OUT/params.csv"
 fi
+# The Python module, installed for the user (python3 -c "import libsection"), and the same
+# pipe in Python (examples/pipe.py).
+if [ "${SECTION_PYTHON:-1}" != 0 ]; then
+  bash scripts/python.sh install
+  echo; "${PYTHON:-$(command -v /usr/bin/python3 || command -v python3)}" examples/pipe.py data/example_blade.ply
+fi
