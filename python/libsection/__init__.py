@@ -16,15 +16,15 @@ lists them); the same options give the same numbers as the tools. On one curve i
 import numpy as _np
 
 from . import _libsection
-from ._libsection import Error, Spline, Stream, generate, parse_stream, read_cloud, read_stream
+from ._libsection import Cancelled, Error, Spline, Stream, generate, parse_stream, read_cloud, read_stream
 from .tables import format_number, read_tables, table, to_csv
 
-__all__ = ["slice", "smooth", "fit_spline", "camber", "Stream", "Spline", "Error", "read_stream",
+__all__ = ["slice", "smooth", "fit_spline", "camber", "Stream", "Spline", "Error", "Cancelled", "read_stream",
            "parse_stream", "read_cloud", "read_tables", "table", "format_number", "to_csv", "generate"]
 __version__ = "0.1.0"
 
 
-def slice(cloud, planes=None, **flags):
+def slice(cloud, planes=None, progress=None, **flags):
     """Cuts a cloud by planes into ordered section profiles (the slice tool).
 
     cloud: an (N, 3) array of points, or the path of a cloud file (sliced as it is read) or a
@@ -32,8 +32,9 @@ def slice(cloud, planes=None, **flags):
     flags normal=(x, y, z) with at=[offsets] or count=N. Other flags as the tool's (slab,
     cell, band_spacing, no_fill, units, threads, ...). Returns a Stream (tables frames, loops,
     points, skeleton); failed sections are in its issues. Raises ValueError when no section
-    can be sliced or a flag is bad."""
-    return _libsection.slice_stream(cloud, planes, **flags)
+    can be sliced or a flag is bad. progress(stage, done, total), for a file, is told each
+    section done; returning False cancels the call (raises Cancelled)."""
+    return _libsection.slice_stream(cloud, planes, progress, **flags)
 
 
 def smooth(x, closed=True, **flags):

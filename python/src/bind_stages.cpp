@@ -9,6 +9,7 @@
 #include "section/error.h"
 #include "section/io/cloud_io.h"
 #include "section/io/mesh_io.h"
+#include "section/io/progress_io.h"
 #include "section/io/slice_file.h"
 #include "section/pipe/camber_stream.h"
 #include "section/pipe/fit_spline_stream.h"
@@ -82,7 +83,8 @@ SliceInput slice_input(const py::object& cloud) {
 
 // slice as the tool runs it: the input's unit (given or guessed) converted to mm, the planes
 // from `planes` or the flags, a cloud file sliced as it is read.
-Stream slice_stream(const py::object& cloud, const py::object& planes, const py::kwargs& kwargs) {
+Stream slice_stream(const py::object& cloud, const py::object& planes, const py::object& progress,
+                    const py::kwargs& kwargs) {
   // With `planes` the tool's "one of --at, --count or --planes" is met by a placeholder --at.
   const tool::SliceArgs given = tool_args<tool::SliceArgs>(
       kwargs, planes.is_none() ? std::vector<std::string>{} : std::vector<std::string>{"--at", "0"});
@@ -93,6 +95,7 @@ Stream slice_stream(const py::object& cloud, const py::object& planes, const py:
   const tool::SliceArgs a = given.in_mm(units.mm);
   const Eigen::Vector3d n(a.normal[0], a.normal[1], a.normal[2]);
   const std::vector<Plane> chosen = planes.is_none() ? planes_at(n, a.at) : planes_of(planes, units.mm);
+  const ProgressFn fn = progress_fn(progress);
   SliceResult result;
   {
     py::gil_scoped_release unlocked;
@@ -106,7 +109,7 @@ Stream slice_stream(const py::object& cloud, const py::object& planes, const py:
     } else if (in.path) {
       CloudReadOptions read;
       read.scale = units.mm;
-      result = slice_file(*in.path, PlaneSpec{chosen, n, count}, a.options, read);
+      result = slice_file(*in.path, PlaneSpec{chosen, n, count}, a.options, read, {}, fn);
     } else {
       result =
           section::slice(in.cloud, count > 0 ? planes_across(in.cloud.points, n, count) : chosen, a.options);
@@ -166,7 +169,8 @@ void bind_curve_functions(py::module_& m) {
 }  // namespace
 
 void bind_stages(py::module_& m) {
-  m.def("slice_stream", &slice_stream, py::arg("cloud"), py::arg("planes") = py::none());
+  m.def("slice_stream", &slice_stream, py::arg("cloud"), py::arg("planes") = py::none(),
+        py::arg("progress") = py::none());
   m.def("smooth_stream", [](const Stream& s, const py::kwargs& kw) {
     return stage<tool::SmoothArgs, SmoothOptions>("smooth", s, kw, smooth_stream);
   });

@@ -3,6 +3,7 @@
 
 #include "section/io/cloud_io.h"
 #include "section/io/csv.h"
+#include "section/io/progress_io.h"
 #include "section/io/stream.h"
 #include "section/pipe/fit_spline_stream.h"
 
@@ -130,15 +131,18 @@ void bind_stream(py::module_& m) {
       py::arg("text"), py::arg("source") = "<string>", "Parses a stream held in a string.");
   m.def(
       "read_cloud",
-      [](const std::string& path) {
+      [](const std::string& path, const py::object& progress) {
+        const ProgressFn fn = progress_fn(progress);
         Cloud c;
         {
           py::gil_scoped_release unlocked;
-          c = read_cloud(path);
+          c = fn ? read_cloud(path, {}, fn) : read_cloud(path);
         }
         return array3(c.points);
       },
-      py::arg("path"), "Reads a point cloud file (.xyz .asc .txt .csv .ply) as an (N, 3) array.");
+      py::arg("path"), py::arg("progress") = py::none(),
+      "Reads a point cloud file (.xyz .asc .txt .csv .ply) as an (N, 3) array; progress(stage, done, total) "
+      "is told the points read and cancels the reading by returning False.");
 }
 
 }  // namespace section::python

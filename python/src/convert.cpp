@@ -88,6 +88,15 @@ void add_flag(std::vector<std::string>& words, const std::string& name, const py
   words.push_back(joined);
 }
 
+ProgressFn progress_fn(const py::object& fn) {
+  if (fn.is_none()) return {};
+  return [fn](const ProgressEvent& e) {
+    py::gil_scoped_acquire locked;
+    const py::object answer = fn(e.stage, e.done, e.total);
+    return answer.is_none() || answer.cast<bool>();
+  };
+}
+
 py::dict table_dict(const Table& t) {
   py::dict out;
   const std::size_t rows = t.rows(), cols = t.columns.size();

@@ -4,6 +4,7 @@
 #include "common/tool.h"
 #include "section/bspline.h"
 #include "section/io/stream.h"
+#include "section/progress.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -55,6 +56,10 @@ Args tool_args(const py::kwargs& kwargs, std::vector<std::string> words = {}) {
   }
   return args;
 }
+
+/// A Python callable fn(stage, done, total) as a ProgressFn (None: none); it runs with the
+/// GIL held, and a return value of False cancels the call (section::Cancelled).
+ProgressFn progress_fn(const py::object& fn);
 
 /// The stream's tables as Python sees them.
 py::dict table_dict(const Table& table);

@@ -3,6 +3,7 @@
 #include "convert.h"
 
 #include "section/error.h"
+#include "section/progress.h"
 
 namespace section::python {
 void bind_stream(py::module_& m);
@@ -12,7 +13,8 @@ void bind_generate(py::module_& m);
 
 PYBIND11_MODULE(_libsection, m) {
   m.doc() = "libsection: blade section inspection (slice, smooth, fit_spline, camber) on numpy arrays";
-  pybind11::register_exception<section::Error>(m, "Error", PyExc_ValueError);
+  const auto& error = pybind11::register_exception<section::Error>(m, "Error", PyExc_ValueError);
+  pybind11::register_exception<section::Cancelled>(m, "Cancelled", error.ptr());
   section::python::bind_stream(m);
   section::python::bind_stages(m);
   section::python::bind_generate(m);

@@ -63,3 +63,16 @@ def test_bad_input_raises_a_clear_error():
         ls.Stream()["params"]
     with pytest.raises(ValueError, match="cannot read|No such file|example_none"):
         ls.read_cloud("example_none.ply")
+
+
+def test_progress_reports_and_cancels():
+    seen = []
+    cloud = ls.read_cloud(EXAMPLE, progress=lambda stage, done, total: seen.append((stage, done, total)))
+    assert seen[-1] == ("read", len(cloud), len(cloud))  # a binary PLY declares its count
+    sections = []
+    s = ls.slice(EXAMPLE, normal=(0, 0, 1), at=[12, 20, 28], progress=lambda *e: sections.append(e))
+    assert sections == [("slice", 1, 3), ("slice", 2, 3), ("slice", 3, 3)]
+    assert len(s.table("frames")["section"]) == 3
+    with pytest.raises(ls.Cancelled, match="slice: cancelled"):
+        ls.slice(EXAMPLE, normal=(0, 0, 1), at=[12, 20, 28], progress=lambda stage, done, total: done < 2)
+    assert issubclass(ls.Cancelled, ls.Error)
