@@ -16,7 +16,7 @@ import sys
 
 MAX_FILE = 600
 MAX_FUNCTION = 80
-SOURCE_DIRS = ["libsection", "tools", "bench", "tests", "examples", "fuzz"]
+SOURCE_DIRS = ["libsection", "tools", "bench", "tests", "examples", "fuzz", "python"]
 
 ROOT = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), ".."))
 LIB = "libsection/"

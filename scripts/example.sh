@@ -28,3 +28,9 @@ if [ -x "$BIN/compare" ]; then
   [ "$code" -eq 0 ] || [ "$code" -eq 4 ] || [ "$code" -eq 5 ] || exit "$code"
   echo; echo "compare: $OUT/compared.csv (exit $code), report: $OUT/report.txt"; cat "$OUT/report.txt"
 fi
+# The Python module, installed for the user (python3 -c "import libsection"), and the same
+# pipe in Python (examples/pipe.py).
+if [ "${SECTION_PYTHON:-1}" != 0 ]; then
+  bash scripts/python.sh install
+  echo; "${PYTHON:-$(command -v /usr/bin/python3 || command -v python3)}" examples/pipe.py data/example_blade.ply
+fi

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Installs every build and test dependency from Debian's packages (Debian 12).
+# Installs every build and test dependency from Debian's packages (Debian 12); the Python
+# module's few from PyPI are scripts/python.sh's.
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PKGS=(build-essential cmake ninja-build ccache pkg-config
       libcgal-dev libeigen3-dev libopenmesh-dev libflann-dev liblz4-dev
-      libsuitesparse-dev libtbb-dev catch2 libcli11-dev python3 clang-format)
+      libsuitesparse-dev libtbb-dev catch2 libcli11-dev python3 clang-format
+      python3-dev python3-pip python3-pybind11 python3-numpy python3-pandas python3-pytest help2man)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -84,4 +84,20 @@ double arc_length(const BSpline& curve, double a, double b);
 /// Parameters of `per_span` samples evenly spaced in every knot span of `curve`.
 std::vector<double> span_samples(const BSpline& curve, int per_span);
 
+/// The same curve as an open curve with a clamped knot vector (each end knot degree + 1
+/// times), the form CAD formats (DXF SPLINE, IGES 126) read most widely. A closed curve is
+/// cut at its first knot t_0 by knot insertion (Boehm), which leaves the curve and its
+/// parameter unchanged: point(t) agrees for every t in [t_0, t_0 + period], and the first
+/// and last control points are the point at t_0. An open curve is returned as it is.
+/// Throws section::Error for a curve bspline.h does not accept (degree, knot counts).
+BSpline clamped(const BSpline& curve);
+
+/// Parameters of a polyline through the curve that stays within `tolerance` (in the
+/// control points' units) of it: every knot span is bisected (into 2 pieces at least)
+/// until the curve at each piece's midpoint and quarter points in parameter lies within
+/// half the tolerance of the piece's chord.
+/// Ascending from t_min(); closed curves do not repeat the end (t_max() is t_min()).
+/// Throws section::Error when the tolerance is not above 0.
+std::vector<double> flatten(const BSpline& curve, double tolerance);
+
 }  // namespace section

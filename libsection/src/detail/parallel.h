@@ -41,13 +41,17 @@ void parallel_for(std::size_t count, int threads, F&& body) {
   std::atomic<std::size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
+  // After an error no further item is started: the call fails anyway (a cancelled call
+  // returns sooner).
+  std::atomic<bool> failed{false};
   auto run = [&] {
-    for (std::size_t i; (i = next++) < count;) {
+    for (std::size_t i; !failed && (i = next++) < count;) {
       try {
         body(i);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
+        failed = true;
       }
     }
   };

@@ -1,0 +1,139 @@
+// Other forms of a B-spline: the clamped open form CAD formats read, and a polyline within
+// a tolerance of the curve.
+#include "section/bspline.h"
+
+#include "section/error.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace section {
+
+namespace {
+
+// A curve in the plain form of Piegl and Tiller: knots u_0..u_m and control points
+// q_0..q_{m-p-1}, basis function i over [u_i, u_{i+p+1}).
+struct OpenForm {
+  int degree = 3;
+  std::vector<double> knots;
+  std::vector<Eigen::Vector2d> control;
+};
+
+// The closed curve as an unclamped open curve over the same parameter: with n control
+// points and breakpoints t_0..t_n, u_k = t_{k-p} (extended by the period) for k = 0..n+2p and
+// q_k = P_{(k-p) mod n}; on [u_p, u_{n+p}] = [t_0, t_n] it is the closed curve.
+OpenForm unwrap(const BSpline& c) {
+  const int n = static_cast<int>(c.control.size()), p = c.degree;
+  const double period = c.knots.back() - c.knots.front();
+  OpenForm f;
+  f.degree = p;
+  for (int k = 0; k <= n + 2 * p; ++k) {
+    const int i = k - p;
+    if (i < 0)
+      f.knots.push_back(c.knots[static_cast<std::size_t>(i + n)] - period);
+    else if (i > n)
+      f.knots.push_back(c.knots[static_cast<std::size_t>(i - n)] + period);
+    else
+      f.knots.push_back(c.knots[static_cast<std::size_t>(i)]);
+  }
+  for (int k = 0; k < n + p; ++k)
+    f.control.push_back(c.control[static_cast<std::size_t>(((k - p) % n + n) % n)]);
+  return f;
+}
+
+// Inserts the knot u once (Boehm; Piegl and Tiller, A5.1 with r = 1). u must lie in
+// [u_p, u_{m-p}].
+void insert_knot(OpenForm& f, double u) {
+  const int p = f.degree;
+  const int m = static_cast<int>(f.knots.size()) - 1;
+  // The span k with u_k <= u < u_{k+1}, among the spans p..m-p-1.
+  int k = static_cast<int>(std::upper_bound(f.knots.begin(), f.knots.end(), u) - f.knots.begin()) - 1;
+  k = std::clamp(k, p, m - p - 1);
+  std::vector<Eigen::Vector2d> q;
+  q.reserve(f.control.size() + 1);
+  for (int i = 0; i <= k - p; ++i) q.push_back(f.control[i]);
+  for (int i = k - p + 1; i <= k; ++i) {
+    const double span = f.knots[i + p] - f.knots[i];
+    const double a = span > 0 ? (u - f.knots[i]) / span : 0;
+    q.push_back(a * f.control[i] + (1 - a) * f.control[i - 1]);
+  }
+  for (int i = k; i < static_cast<int>(f.control.size()); ++i) q.push_back(f.control[i]);
+  f.control = std::move(q);
+  f.knots.insert(f.knots.begin() + k + 1, u);
+}
+
+// Index of the first knot equal to u.
+std::size_t first_knot(const OpenForm& f, double u) {
+  return static_cast<std::size_t>(std::lower_bound(f.knots.begin(), f.knots.end(), u) - f.knots.begin());
+}
+
+// Distance of q from the segment a-b.
+double off_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& q) {
+  const Eigen::Vector2d chord = b - a;
+  const double len2 = chord.squaredNorm();
+  const double s = len2 > 0 ? std::clamp((q - a).dot(chord) / len2, 0.0, 1.0) : 0.0;
+  return (q - (a + s * chord)).norm();
+}
+
+// Chordal bisection of [a, b]: appends the parameters after a up to b (b excluded). A piece
+// is kept when the curve at its quarter points and midpoint lies within half the tolerance
+// of its chord: the quarter points catch an inflection that puts the midpoint on the chord,
+// and the half covers the curve between the points checked.
+void bisect(const BSpline& c, double a, double b, const Eigen::Vector2d& pa, const Eigen::Vector2d& pb,
+            double tolerance, int depth, std::vector<double>& out) {
+  const double mid = 0.5 * (a + b);
+  const Eigen::Vector2d pm = c.point(mid);
+  if (depth > 0) {
+    const double off = std::max({off_chord(pa, pb, pm), off_chord(pa, pb, c.point(0.5 * (a + mid))),
+                                 off_chord(pa, pb, c.point(0.5 * (mid + b)))});
+    if (off <= 0.5 * tolerance || depth >= 40) return;
+  }
+  bisect(c, a, mid, pa, pm, tolerance, depth + 1, out);
+  out.push_back(mid);
+  bisect(c, mid, b, pm, pb, tolerance, depth + 1, out);
+}
+
+}  // namespace
+
+BSpline clamped(const BSpline& curve) {
+  (void)curve.point(0);  // checks the curve (degree, counts) before its knots are read
+  if (!curve.closed) return curve;
+  const int p = curve.degree;
+  OpenForm f = unwrap(curve);
+  const double t0 = curve.knots.front(), tn = curve.knots.back();
+  for (int r = 0; r < p; ++r) insert_knot(f, t0);
+  for (int r = 0; r < p; ++r) insert_knot(f, tn);
+  const std::size_t a = first_knot(f, t0);
+  const std::size_t b = first_knot(f, tn) + static_cast<std::size_t>(p);
+  BSpline out;
+  out.degree = p;
+  out.closed = false;
+  out.knots.assign(f.knots.begin() + a, f.knots.begin() + b + 1);
+  const std::size_t count = out.knots.size() - p - 1;
+  out.control.assign(f.control.begin() + a, f.control.begin() + a + count);
+  out.control.back() = out.control.front();  // both are the point at t_0 (equal up to rounding)
+  return out;
+}
+
+std::vector<double> flatten(const BSpline& curve, double tolerance) {
+  if (!(tolerance > 0))
+    throw Error("bspline: a polyline's tolerance must be above 0, got " + std::to_string(tolerance));
+  (void)curve.point(0);
+  std::vector<double> breaks;
+  for (double k : curve.knots)
+    if (k >= curve.t_min() && k <= curve.t_max() && (breaks.empty() || k > breaks.back()))
+      breaks.push_back(k);
+  std::vector<double> out;
+  for (std::size_t j = 0; j + 1 < breaks.size(); ++j) {
+    out.push_back(breaks[j]);
+    bisect(curve, breaks[j], breaks[j + 1], curve.point(breaks[j]), curve.point(breaks[j + 1]), tolerance, 0,
+           out);
+  }
+  if (!curve.closed) out.push_back(breaks.back());
+  return out;
+}
+
+}  // namespace section

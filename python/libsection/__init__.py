@@ -1,0 +1,71 @@
+"""libsection: blade section inspection from 3D scans, on numpy arrays.
+
+The pipe of the tools (slice | smooth | fitspline | camber) in Python:
+
+    import libsection as ls
+    s = ls.slice(cloud, normal=(0, 0, 1), at=[12, 20, 28])   # cloud: (N, 3) array, or a file
+    s = ls.camber(ls.fit_spline(ls.smooth(s)))
+    s.params["chord"]                                         # one value per section (mm)
+
+Each stage takes a Stream and returns a new one, as its tool does, with the tool's flags as
+keywords (`slab=0.05` for `--slab 0.05`, `no_fill=True` for `--no-fill`; `TOOL --help`
+lists them); the same options give the same numbers as the tools. On one curve instead:
+`smooth(points)` -> points, `fit_spline(points)` -> Spline, `camber(spline)` -> dict.
+`read_tables(path)` reads a stream written by the tools into pandas DataFrames.
+"""
+import numpy as _np
+
+from . import _libsection
+from ._libsection import Cancelled, Error, Spline, Stream, generate, parse_stream, read_cloud, read_stream
+from .tables import format_number, read_tables, table, to_csv
+
+__all__ = ["slice", "smooth", "fit_spline", "camber", "Stream", "Spline", "Error", "Cancelled", "read_stream",
+           "parse_stream", "read_cloud", "read_tables", "table", "format_number", "to_csv", "generate"]
+__version__ = "0.1.0"
+
+
+def slice(cloud, planes=None, progress=None, **flags):
+    """Cuts a cloud by planes into ordered section profiles (the slice tool).
+
+    cloud: an (N, 3) array of points, or the path of a cloud file (sliced as it is read) or a
+    mesh file. planes: an optional (P, 6) array, each row an origin and a normal; else the
+    flags normal=(x, y, z) with at=[offsets] or count=N. Other flags as the tool's (slab,
+    cell, band_spacing, no_fill, units, threads, ...). Returns a Stream (tables frames, loops,
+    points, skeleton); failed sections are in its issues. Raises ValueError when no section
+    can be sliced or a flag is bad. progress(stage, done, total), for a file, is told each
+    section done; returning False cancels the call (raises Cancelled)."""
+    return _libsection.slice_stream(cloud, planes, progress, **flags)
+
+
+def smooth(x, closed=True, **flags):
+    """Energy-minimising smoothing (the smooth tool): a Stream -> a Stream with the table
+    'smoothed'; an (N, 2) array of ordered points -> the smoothed (M, 2) array."""
+    if isinstance(x, Stream):
+        return _libsection.smooth_stream(x, **flags)
+    return _libsection.smooth_points(x, closed, **flags)
+
+
+def fit_spline(x, measured=None, **flags):
+    """Closed cubic B-spline refined by distance minimisation (the fitspline tool): a Stream
+    -> a Stream with the tables 'splines', 'spline_knots', 'spline_ctrl', 'gaps'; an (N, 2)
+    array of ordered points (refined against `measured`, default the points) -> a Spline."""
+    if isinstance(x, Stream):
+        return _libsection.fit_spline_stream(x, **flags)
+    return _libsection.fit_spline_points(x, measured, **flags)
+
+
+def camber(x, **flags):
+    """Mean-camber line and section parameters (the camber tool): a Stream -> a Stream with
+    the tables 'camber', 'params', 'thickness', 'sides'; a closed Spline (a profile) -> a
+    dict: 'params' (name -> float: mm, degrees), 'camber', 'thickness', 'sides' (column ->
+    array) and 'issues'. Raises ValueError when the profile fails."""
+    if isinstance(x, Stream):
+        return _libsection.camber_stream(x, **flags)
+    s = _libsection.camber_stream(_libsection.profile_stream(x), **flags)
+    params = s.table("params")
+    if len(params["section"]) == 0:
+        raise Error("camber: " + "; ".join(i["message"] for i in s.issues))
+    out = {name: s.table(name) for name in ("camber", "thickness", "sides")}
+    out["params"] = {k: float(v[0]) for k, v in params.items() if k != "section"}
+    out["issues"] = [i["message"] for i in s.issues]
+    return out

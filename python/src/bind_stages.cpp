@@ -1,0 +1,186 @@
+// The stages of the pipe as Python functions: on a stream (as the tools run them) and on
+// one curve's points. Options are the tools' flags as keywords (tools/args/).
+#include "convert.h"
+
+#include "args/camber_args.h"
+#include "args/fitspline_args.h"
+#include "args/slice_args.h"
+#include "args/smooth_args.h"
+#include "section/error.h"
+#include "section/io/cloud_io.h"
+#include "section/io/mesh_io.h"
+#include "section/io/progress_io.h"
+#include "section/io/slice_file.h"
+#include "section/pipe/camber_stream.h"
+#include "section/pipe/fit_spline_stream.h"
+#include "section/pipe/schema.h"
+#include "section/pipe/slice_stream.h"
+#include "section/pipe/smooth_stream.h"
+#include "section/smooth.h"
+#include "section/units.h"
+
+#include <Eigen/Geometry>
+
+#include <optional>
+
+namespace section::python {
+
+namespace {
+
+double extent_of(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::AlignedBox3d box;
+  for (const auto& p : points) box.extend(p);
+  return points.empty() ? 0 : box.sizes().maxCoeff();
+}
+
+// The history line of a stage run from Python: its name and the flags given.
+std::string history(const char* name, const py::kwargs& kwargs) {
+  std::vector<std::string> words;
+  for (const auto& [key, value] : kwargs) add_flag(words, py::cast<std::string>(key), value);
+  std::string line = std::string("libsection.") + name;
+  for (const auto& w : words) line += " " + w;
+  return line;
+}
+
+// Planes from an (P, 6) array: origin x, y, z, normal x, y, z per row.
+std::vector<Plane> planes_of(const py::object& planes, double mm) {
+  const Array a = planes.cast<Array>();
+  if (a.ndim() != 2 || a.shape(1) != 6)
+    throw py::value_error(
+        "slice: planes: expected an array of shape (P, 6): origin x, y, z and normal x, y, z");
+  std::vector<Plane> out;
+  for (py::ssize_t i = 0; i < a.shape(0); ++i)
+    out.push_back({Eigen::Vector3d(a.at(i, 0), a.at(i, 1), a.at(i, 2)) * mm,
+                   Eigen::Vector3d(a.at(i, 3), a.at(i, 4), a.at(i, 5))});
+  return out;
+}
+
+// What slice reads: a cloud array, or a file (a cloud is sliced as it is read, a mesh whole).
+struct SliceInput {
+  std::optional<std::string> path;
+  Cloud cloud;
+  std::optional<Mesh> mesh;
+  double extent = 0;
+};
+
+SliceInput slice_input(const py::object& cloud) {
+  SliceInput in;
+  if (py::isinstance<py::str>(cloud) || py::hasattr(cloud, "__fspath__")) {
+    in.path = py::str(py::module_::import("os").attr("fspath")(cloud)).cast<std::string>();
+    py::gil_scoped_release unlocked;
+    if (is_mesh_file(*in.path)) {
+      in.mesh = read_mesh(*in.path);
+      in.extent = extent_of(in.mesh->vertices);
+    } else {
+      in.extent = sample_extent(*in.path);
+    }
+  } else {
+    in.cloud.points = points3(cloud.cast<Array>(), "slice: cloud");
+    in.extent = extent_of(in.cloud.points);
+  }
+  return in;
+}
+
+// slice as the tool runs it: the input's unit (given or guessed) converted to mm, the planes
+// from `planes` or the flags, a cloud file sliced as it is read.
+Stream slice_stream(const py::object& cloud, const py::object& planes, const py::object& progress,
+                    const py::kwargs& kwargs) {
+  // With `planes` the tool's "one of --at, --count or --planes" is met by a placeholder --at.
+  const tool::SliceArgs given = tool_args<tool::SliceArgs>(
+      kwargs, planes.is_none() ? std::vector<std::string>{} : std::vector<std::string>{"--at", "0"});
+  if (!given.views.empty() || !given.planes_file.empty())
+    throw py::value_error("slice: view and planes files are the tool's; pass planes as an array");
+  SliceInput in = slice_input(cloud);
+  const InputUnits units = input_units(given.units, in.extent);
+  const tool::SliceArgs a = given.in_mm(units.mm);
+  const Eigen::Vector3d n(a.normal[0], a.normal[1], a.normal[2]);
+  const std::vector<Plane> chosen = planes.is_none() ? planes_at(n, a.at) : planes_of(planes, units.mm);
+  const ProgressFn fn = progress_fn(progress);
+  SliceResult result;
+  {
+    py::gil_scoped_release unlocked;
+    for (auto& p : in.cloud.points) p *= units.mm;
+    if (in.mesh)
+      for (auto& v : in.mesh->vertices) v *= units.mm;
+    const int count = planes.is_none() ? a.count : 0;
+    if (in.mesh) {
+      result = section::slice(*in.mesh, count > 0 ? planes_across(in.mesh->vertices, n, count) : chosen,
+                              a.options);
+    } else if (in.path) {
+      CloudReadOptions read;
+      read.scale = units.mm;
+      result = slice_file(*in.path, PlaneSpec{chosen, n, count}, a.options, read, {}, fn);
+    } else {
+      result =
+          section::slice(in.cloud, count > 0 ? planes_across(in.cloud.points, n, count) : chosen, a.options);
+    }
+  }
+  if (!units.warning.empty()) PyErr_WarnEx(PyExc_UserWarning, ("slice: " + units.warning).c_str(), 1);
+  Stream out = to_stream(result, history("slice", kwargs), "mm");
+  if (!units.note.empty()) out.notes.push_back(units.note);
+  if (!result.sections.empty() && out.issues.size() >= result.sections.size())
+    throw py::value_error("slice: no section could be sliced: " + out.issues.front().message);
+  return out;
+}
+
+// A stage of the pipe on a copy of `in`, as its tool runs it on a whole stream.
+template <class Args, class Options>
+Stream stage(const char* name, const Stream& in, const py::kwargs& kwargs,
+             void (*run)(Stream&, const Options&)) {
+  const Args a = tool_args<Args>(kwargs);
+  Stream out = in;
+  {
+    py::gil_scoped_release unlocked;
+    convert_to_mm(out);
+    run(out, a.options);
+  }
+  out.history.push_back(history(name, kwargs));
+  return out;
+}
+
+void bind_curve_functions(py::module_& m) {
+  m.def(
+      "smooth_points",
+      [](const Array& points, bool closed, const py::kwargs& kwargs) {
+        SmoothOptions o = tool_args<tool::SmoothArgs>(kwargs).options;
+        o.closed = closed;
+        const auto p = points2(points, "smooth: points");
+        SmoothResult r;
+        {
+          py::gil_scoped_release unlocked;
+          r = smooth(p, o);
+        }
+        return array2(r.points);
+      },
+      py::arg("points"), py::arg("closed") = true);
+  m.def(
+      "fit_spline_points",
+      [](const Array& points, const py::object& measured, const py::kwargs& kwargs) {
+        const FitSplineOptions o = tool_args<tool::FitsplineArgs>(kwargs).options;
+        const auto p = points2(points, "fit_spline: points");
+        const auto q = measured.is_none() ? p : points2(measured.cast<Array>(), "fit_spline: measured");
+        py::gil_scoped_release unlocked;
+        return fit_spline(p, q, o).spline;
+      },
+      py::arg("points"), py::arg("measured") = py::none());
+  m.def("profile_stream", &profile_stream, py::arg("spline"), py::arg("rms") = 0.0);
+}
+
+}  // namespace
+
+void bind_stages(py::module_& m) {
+  m.def("slice_stream", &slice_stream, py::arg("cloud"), py::arg("planes") = py::none(),
+        py::arg("progress") = py::none());
+  m.def("smooth_stream", [](const Stream& s, const py::kwargs& kw) {
+    return stage<tool::SmoothArgs, SmoothOptions>("smooth", s, kw, smooth_stream);
+  });
+  m.def("fit_spline_stream", [](const Stream& s, const py::kwargs& kw) {
+    return stage<tool::FitsplineArgs, FitSplineOptions>("fit_spline", s, kw, fit_spline_stream);
+  });
+  m.def("camber_stream", [](const Stream& s, const py::kwargs& kw) {
+    return stage<tool::CamberArgs, CamberOptions>("camber", s, kw, camber_stream);
+  });
+  bind_curve_functions(m);
+}
+
+}  // namespace section::python

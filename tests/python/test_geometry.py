@@ -1,0 +1,80 @@
+"""The Python API against exact truth: an ellipse, a noisy circle, and generated blades
+(libsection.generate: the exact sections bladegen writes), within the accuracy targets of
+docs/ACCURACY.md (chord 10 um, max thickness 5 um, LE radius 3 %, TE radius 10 %, angles 0.5 deg)."""
+import numpy as np
+import pytest
+
+import libsection as ls
+
+
+def ellipse(a, b, n, phase=0.0):
+    t = phase + 2 * np.pi * np.arange(n) / n
+    return np.column_stack([a * np.cos(t), b * np.sin(t)])
+
+
+def test_fit_spline_runs_on_the_ellipse():
+    spline = ls.fit_spline(ellipse(20, 3, 800))
+    assert isinstance(spline, ls.Spline) and spline.closed and spline.degree == 3
+    t = np.linspace(spline.t_min, spline.t_max, 3001)
+    p = spline(t)
+    assert p.shape == (3001, 2)
+    # |(x/a)^2 + (y/b)^2 - 1| * b / 2 ~ distance off the ellipse near its flat sides: under 1 um
+    off = np.abs((p[:, 0] / 20) ** 2 + (p[:, 1] / 3) ** 2 - 1)
+    assert off.max() * 3 / 2 < 1e-3
+    assert spline(spline.t_min).shape == (2,)
+    assert np.allclose(spline(spline.t_max), spline(spline.t_min))
+    assert spline.clamped().knots[0] == spline.knots[0]
+
+
+def test_camber_of_the_ellipse_gives_its_chord_and_thickness():
+    r = ls.camber(ls.fit_spline(ellipse(20, 3, 800)), le_direction=[-1, 0])
+    p = r["params"]
+    assert abs(p["chord"] - 40) < 1e-3
+    assert abs(p["max_thickness"] - 6) < 1e-3
+    assert abs(p["max_thickness_pos"] - 0.5) < 1e-3
+    mid = np.argmin(np.abs(r["thickness"]["fraction"] - 0.5))
+    assert abs(r["thickness"]["thickness"][mid] - 6) < 1e-3
+    assert r["camber"]["u"].shape == r["camber"]["v"].shape
+
+
+def test_smooth_moves_noisy_points_toward_the_circle():
+    rng = np.random.default_rng(3)
+    clean = ellipse(5, 5, 400)
+    noisy = clean + rng.normal(0, 0.01, clean.shape)
+    smoothed = ls.smooth(noisy, length=0.5)
+    before = np.abs(np.linalg.norm(noisy, axis=1) - 5).std()
+    after = np.abs(np.linalg.norm(smoothed, axis=1) - 5).std()
+    assert smoothed.shape == noisy.shape
+    assert after < before / 2
+
+
+@pytest.mark.parametrize("kind,z", [("turbine", 20.0), ("compressor", 35.0), ("thick-root", 5.0)])
+def test_generated_section_profile_gives_the_true_params(kind, z):
+    truth = ls.generate.truth(kind, z)
+    profile = truth["profile"][::10]  # 2000 exact points, counterclockwise from the LE
+    p = ls.camber(ls.fit_spline(profile))["params"]
+    check_params(p, truth)
+
+
+def test_generated_scan_through_the_pipe_gives_the_true_params():
+    cloud = ls.generate.scan("compressor", noise=0.003, z_min=16, z_max=24, seed=4)
+    assert cloud.ndim == 2 and cloud.shape[1] == 3 and len(cloud) > 10000
+    s = ls.camber(ls.fit_spline(ls.smooth(ls.slice(cloud, normal=(0, 0, 1), at=[20]))))
+    assert not s.issues, s.issues
+    params = {k: v[0] for k, v in s.params.items()}
+    check_params(params, ls.generate.truth("compressor", 20.0))
+
+
+def check_params(p, truth):
+    assert abs(p["chord"] - truth["chord"]) < 0.010
+    assert abs(p["max_thickness"] - truth["max_thickness"]) < 0.005
+    assert abs(p["le_radius"] / truth["le_radius"] - 1) < 0.03
+    assert abs(p["te_radius"] / truth["te_radius"] - 1) < 0.10
+    for angle in ("stagger", "inlet_angle", "outlet_angle"):
+        assert abs(p[angle] - truth[angle]) < 0.5, angle
+
+
+def test_generate_refuses_an_unknown_kind():
+    assert "turbine" in ls.generate.kinds()
+    with pytest.raises(ValueError, match="unknown kind 'rotor'.*known: turbine"):
+        ls.generate.truth("rotor", 10)

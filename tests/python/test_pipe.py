@@ -1,0 +1,78 @@
+"""The Python pipe gives the same params as the tools, byte for byte in CSV (numbers
+formatted in Python as the tools format them), from an array and from a file."""
+import numpy as np
+import pytest
+
+import libsection as ls
+from conftest import EXAMPLE, PLANES, pipe, tool
+
+
+def tools_params(tmp_path, slice_words, stdin=None, fit=(), cam=()):
+    params = tmp_path / "params.csv"
+    pipe([slice_words, [tool("smooth")], [tool("fitspline"), *fit], [tool("camber"), "--params", str(params), *cam]],
+         stdin=stdin)
+    return params.read_text()
+
+
+def python_params(cloud, fit={}, cam={}):
+    s = ls.slice(cloud, normal=(0, 0, 1), at=[12, 20, 28])
+    s = ls.camber(ls.fit_spline(ls.smooth(s), **fit), **cam)
+    return s
+
+
+def test_array_pipe_equals_the_tools_on_standard_input(tmp_path):
+    # The tools read standard input whole and slice it in memory, as ls.slice does an array.
+    expected = tools_params(tmp_path, [tool("slice"), "-"] + PLANES, stdin=EXAMPLE)
+    s = python_params(ls.read_cloud(EXAMPLE))
+    assert ls.to_csv(s.params) == expected
+    assert s.csv("params") == expected
+    assert len(s.params["chord"]) == 3
+
+
+def test_file_pipe_equals_the_tools_on_a_file(tmp_path):
+    # A file is sliced as it is read, by ls.slice as by the tool; flags are the tools'.
+    expected = tools_params(tmp_path, [tool("slice"), EXAMPLE] + PLANES, fit=["--smoothing-length", "0.2"],
+                            cam=["--stations", "0.1,0.5,0.9"])
+    s = python_params(EXAMPLE, fit={"smoothing_length": 0.2}, cam={"stations": [0.1, 0.5, 0.9]})
+    assert ls.to_csv(s.params) == expected
+    assert list(s.table("thickness")["fraction"][:3]) == [0.1, 0.5, 0.9]
+
+
+def test_stream_round_trip_and_history():
+    s = ls.slice(ls.read_cloud(EXAMPLE), normal=(0, 0, 1), at=[20])
+    assert s.history == ["libsection.slice --normal 0,0,1 --at 20"]
+    again = ls.parse_stream(s.text())
+    assert again.tables == s.tables
+    for name in s.tables:
+        for column, values in s.table(name).items():
+            assert np.array_equal(again.table(name)[column], values)
+
+
+def test_bad_input_raises_a_clear_error():
+    with pytest.raises(ValueError, match=r"expected an array of shape \(N, 3\)"):
+        ls.slice(np.zeros((10, 2)), normal=(0, 0, 1), at=[1])
+    with pytest.raises(ValueError, match="row 3 holds a value that is not finite"):
+        ls.slice(np.array([[0, 0, 0]] * 3 + [[np.nan, 0, 0]]), normal=(0, 0, 1), at=[1])
+    with pytest.raises(ValueError, match="slice: usage error: .*--slab"):
+        ls.slice(ls.read_cloud(EXAMPLE), at=[20], slab=-1)
+    with pytest.raises(ValueError, match="one of --at, --count or --planes"):
+        ls.slice(ls.read_cloud(EXAMPLE))
+    with pytest.raises(ValueError, match="no section could be sliced"):
+        ls.slice(ls.read_cloud(EXAMPLE), normal=(0, 0, 1), at=[500])
+    with pytest.raises(KeyError, match="no 'params' table"):
+        ls.Stream()["params"]
+    with pytest.raises(ValueError, match="cannot read|No such file|example_none"):
+        ls.read_cloud("example_none.ply")
+
+
+def test_progress_reports_and_cancels():
+    seen = []
+    cloud = ls.read_cloud(EXAMPLE, progress=lambda stage, done, total: seen.append((stage, done, total)))
+    assert seen[-1] == ("read", len(cloud), len(cloud))  # a binary PLY declares its count
+    sections = []
+    s = ls.slice(EXAMPLE, normal=(0, 0, 1), at=[12, 20, 28], progress=lambda *e: sections.append(e))
+    assert sections == [("slice", 1, 3), ("slice", 2, 3), ("slice", 3, 3)]
+    assert len(s.table("frames")["section"]) == 3
+    with pytest.raises(ls.Cancelled, match="slice: cancelled"):
+        ls.slice(EXAMPLE, normal=(0, 0, 1), at=[12, 20, 28], progress=lambda stage, done, total: done < 2)
+    assert issubclass(ls.Cancelled, ls.Error)
