@@ -181,7 +181,7 @@ printf 'origin_x,origin_y,origin_z,normal_x,normal_y,normal_z,normal_z\n0,0,12,0
 run "6: a column twice in a planes CSV" 1 "dup_planes.csv:1: column 'normal_z' appears twice" "" -- \
   "$B/slice blade.xyz --planes dup_planes.csv"
 $H edit s.csv empty-points.csv empty-points
-run "6: a section without points" 0 "smooth: warning: section 1: no points" "" -- \
+run "6: a section without points (exit 3: incomplete)" 3 "smooth: warning: section 1: no points" "" -- \
   "$B/smooth empty-points.csv | $B/fitspline | $B/camber > out.csv"
 check "6: ... is an issue at the end of the pipe" -- grep -q '^# issue section=1 loop=-1 stage=smooth' out.csv
 $H edit f.csv no-v.csv no-v

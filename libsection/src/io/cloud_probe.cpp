@@ -32,7 +32,7 @@ std::string_view whole_lines(std::string_view block, bool at_start, bool at_end)
 // header line); empty when any block does not parse as the format's lines.
 std::vector<Eigen::Vector3d> text_sample(const std::string& path, const detail::InputFormat& format,
                                          const CloudReadOptions& options) {
-  detail::ByteSource src(path, "read_cloud");
+  detail::ByteSource src(path, "read_cloud: ", [](std::string_view) {});  // a pipe: its spooled copy
   const int fd = src.regular_fd();
   if (fd < 0 || src.size() <= 0) return {};
   const unsigned long long size = static_cast<unsigned long long>(src.size());
@@ -64,7 +64,7 @@ double sample_extent(const std::string& path, const CloudReadOptions& options) {
   std::vector<Eigen::Vector3d> points = peek_cloud(path, 4096, options).points;
   try {
     if (points.empty()) {
-      detail::ByteSource src(path, "read_cloud");
+      detail::ByteSource src(path, "read_cloud: ", [](std::string_view) {});
       src.fetch(block_bytes);
       const detail::InputFormat& format = detail::cloud_format(path, src.bytes(), options.format);
       if (format.text) points = text_sample(path, format, options);

@@ -476,7 +476,6 @@ std::optional<Cloud> read_profile_cloud(const std::string& path) {
   const auto any = [](std::string_view) {};
   {
     detail::ByteSource src(path, "read_cloud: ", any);
-    if (src.is_directory()) return std::nullopt;
     src.fetch(std::size_t(1) << 16);
     if (!looks_like_profile(src.bytes())) return std::nullopt;
   }
