@@ -5,6 +5,8 @@
 # 2D profiles in metres, unordered (parablade Aachen_2D, Impulse_2D, STD10_2D). Prints per
 # data set what slice took the points for, how many sections gave params, and per
 # section: chord, max thickness, stagger, inlet and outlet angles (mm, degrees).
+# This is a census of the sampling; the parablade values against references (and APU_rotor)
+# are checked by scripts/validate_parablade.py.
 # Usage: scripts/validate_sampling.sh [tool directory] [data directory]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
