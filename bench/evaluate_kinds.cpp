@@ -1,7 +1,7 @@
 // evaluate_kinds: the kinds of data users have (docs/GENERATOR.md) through the real tools
 // with their default options, as a user runs them:
-//   slice FILE --count N | smooth | fitspline | camber [--le-direction ...] --params P
-// (--le-direction only for the mirror-symmetric blade, whose LE cannot be told), 5 runs
+//   slice FILE [--count N: not for sparse rows] | smooth | fitspline | camber --params P
+// (--le-direction too for the mirror-symmetric blade, whose LE cannot be told), 5 runs
 // (seeds) per kind, each section's parameters scored against the generator's exact truth.
 // Per kind: the planes that gave params (%), and per quantity the worst error against its
 // target (issue 5's, as evaluate_pipeline prints them, where the data are dense; on sparse
@@ -32,7 +32,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -372,13 +371,14 @@ struct Run {
   std::string dir;
 };
 
-// Runs the pipe; its exit status. The stream goes to S, the params to P, stderr to E.
+// Runs the pipe (sparse rows: one section a row); its exit status. Stream S, params P, stderr E.
 int run_pipe(const Run& r, const std::string& data, int planes) {
   const std::string t = r.o.tools + "/";
-  const std::string cmd = "set -o pipefail; " + quoted(t + "slice") + " " + quoted(data) + " --count " +
-                          std::to_string(planes) + " | " + quoted(t + "smooth") + " | " +
-                          quoted(t + "fitspline") + " | " + quoted(t + "camber") + " " + r.kind.camber_args +
-                          " --params " + quoted(r.dir + "/P.csv") + " -o " + quoted(r.dir + "/S.txt");
+  const std::string count = sparse(r.kind) ? "" : " --count " + std::to_string(planes);
+  const std::string cmd = "set -o pipefail; " + quoted(t + "slice") + " " + quoted(data) + count + " | " +
+                          quoted(t + "smooth") + " | " + quoted(t + "fitspline") + " | " +
+                          quoted(t + "camber") + " " + r.kind.camber_args + " --params " +
+                          quoted(r.dir + "/P.csv") + " -o " + quoted(r.dir + "/S.txt");
   const std::string shell = "bash -c " + quoted(cmd) + " 2> " + quoted(r.dir + "/E.txt");
   const int status = std::system(shell.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128;

@@ -39,21 +39,27 @@ enum class Check : std::uint32_t {
   jump_le_radius = 1u << 20,  ///< LE radius jumps
   jump_te_radius = 1u << 21,  ///< TE radius jumps
   units = 1u << 22,           ///< the input's unit is doubtful (read as mm though it looks like inches or um)
+  layers = 1u << 23,  ///< the points lie in two layers (views merged misregistered): the profile runs between
 };
 
-/// A check's name (the word the issues use) and the params columns whose values it flags.
+/// A check's name (the word the issues use) and the params columns whose values it flags. An
+/// edge whose circle is doubtful flags its metal angle too: the camber line is extended to
+/// that edge's point along its circle, so its end direction rests on the same points; one
+/// whose point is doubtful (not circular, not measured) flags the chord and stagger it ends.
 struct CheckName {
   Check check;
   const char* name;
   const char* columns;  ///< the params columns it flags, space-separated
 };
 inline constexpr CheckName check_names[] = {
-    {Check::le_radius, "le_radius", "le_radius le_center"},
-    {Check::te_radius, "te_radius", "te_radius te_center"},
-    {Check::le_circle, "le_circle", "le_radius le_center le_point"},
-    {Check::te_circle, "te_circle", "te_radius te_center te_point"},
-    {Check::le_measured, "le_measured", "le_radius le_center le_point"},
-    {Check::te_measured, "te_measured", "te_radius te_center te_point"},
+    {Check::le_radius, "le_radius", "le_radius le_center inlet_angle camber_angle"},
+    {Check::te_radius, "te_radius", "te_radius te_center outlet_angle camber_angle"},
+    {Check::le_circle, "le_circle", "le_radius le_center le_point inlet_angle camber_angle chord stagger"},
+    {Check::te_circle, "te_circle", "te_radius te_center te_point outlet_angle camber_angle chord stagger"},
+    {Check::le_measured, "le_measured",
+     "le_radius le_center le_point inlet_angle camber_angle chord stagger"},
+    {Check::te_measured, "te_measured",
+     "te_radius te_center te_point outlet_angle camber_angle chord stagger"},
     {Check::le_point, "le_point", "le_point chord stagger"},
     {Check::te_point, "te_point", "te_point chord stagger"},
     {Check::chord, "chord", "chord stagger le_point te_point"},
@@ -71,6 +77,9 @@ inline constexpr CheckName check_names[] = {
     {Check::jump_le_radius, "jump_le_radius", "le_radius"},
     {Check::jump_te_radius, "jump_te_radius", "te_radius"},
     {Check::units, "units", "every length column (and, through the defaults, every value)"},
+    {Check::layers, "layers",
+     "max_thickness max_thickness_pos thickness camber_line le_radius te_radius inlet_angle outlet_angle "
+     "camber_angle"},
 };
 
 /// The bit of a check in a flags mask.

@@ -251,6 +251,13 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
                     "(at most %.3g)",
                     p.caliper_chord, name, k.value, k.limit);
       break;
+    case Check::layers:  // value: the layers' distance, limit: the profile length they cover
+      std::snprintf(text, sizeof text,
+                    "the measured points lie in two layers %.3g apart over %.3g of the profile (fitspline: "
+                    "views merged with a misregistration?): the profile runs between them, so its thickness, "
+                    "edges, camber line and angles may be off by up to half that (check %s)",
+                    k.value, k.limit, name);
+      break;
     default: {
       const bool in = k.check == Check::inlet_angle;
       std::snprintf(

@@ -81,6 +81,19 @@ std::map<int, double> profile_noise(const Stream& stream) {
   return noise;
 }
 
+// Two layers of points found by fitspline (distance, profile length over which), by section.
+std::map<int, std::pair<double, double>> point_layers(const Stream& stream) {
+  std::map<int, std::pair<double, double>> layers;
+  const Table* t = schema::splines.find(stream);
+  if (!t || t->find_column(col::layers) < 0 || t->find_column(col::layers_length) < 0) return layers;
+  const std::size_t cs = t->column(col::section), cl = t->column(col::loop), cd = t->column(col::layers),
+                    cn = t->column(col::layers_length);
+  for (std::size_t i = 0; i < t->rows(); ++i)
+    if (t->at(i, cl) == 0 && t->at(i, cd) > 0)
+      layers[static_cast<int>(t->at(i, cs))] = {t->at(i, cd), t->at(i, cn)};
+  return layers;
+}
+
 // What camber_stream measures the sections with, gathered from the stream.
 struct CamberInput {
   std::map<std::pair<int, int>, BSpline> curves;
@@ -88,6 +101,7 @@ struct CamberInput {
   std::map<int, std::vector<Eigen::Vector2d>> seeds;
   std::map<int, Measured> measured;
   std::map<int, double> noise;
+  std::map<int, std::pair<double, double>> layers;
   std::map<int, int> loops;  // loops per section
 };
 
@@ -98,6 +112,7 @@ CamberInput gather(const Stream& stream) {
   in.seeds = skeletons(stream);
   in.measured = measured_points(stream);
   in.noise = profile_noise(stream);
+  in.layers = point_layers(stream);
   for (const auto& [key, curve] : in.curves) ++in.loops[key.first];
   return in;
 }
@@ -213,7 +228,9 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   SectionCamber m = measure(local, opt, q);
   CheckOptions checks;
   checks.noise = opt.profile_noise;
-  const SectionCheck check = check_section(local, m.camber, m.params, checks);
+  SectionCheck check = check_section(local, m.camber, m.params, checks);
+  if (const auto l = in.layers.find(section); l != in.layers.end())
+    check.findings.push_back({Check::layers, l->second.first, l->second.second});
   const std::uint32_t flags = pipe::describe_issues({section, local, m.camber, m.params, m.le, m.te, q, opt},
                                                     check.findings, slot.issues);
   if (origin != Eigen::Vector2d::Zero()) move(m, origin);
