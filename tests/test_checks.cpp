@@ -255,3 +255,43 @@ TEST_CASE("checks: the stream's params rows carry the blade check's flags and is
   CHECK(stream.issues[0].message.find("chord 28 fails check jump_chord: it jumps by -12") !=
         std::string::npos);
 }
+
+namespace {
+
+// A slab 10 thick: a round LE (radius 5 about the origin), flat sides to x = 30, and a
+// sharp TE at (30 + c, 0) whose flanks meet at a wedge of 2 atan(5 / c); points about every 0.05.
+std::vector<Vector2d> wedge_slab(double c) {
+  const Vector2d top(30, 5), v(30 + c, 0), bottom(30, -5);
+  std::vector<Vector2d> pts;
+  const auto line = [&](const Vector2d& a, const Vector2d& b) {
+    const int n = int((b - a).norm() / 0.05);
+    for (int i = 0; i < n; ++i) pts.push_back(a + (b - a) * (double(i) / n));
+  };
+  line(Vector2d(0, -5), bottom);
+  line(bottom, v);
+  line(v, top);
+  line(top, Vector2d(0, 5));
+  for (int i = 0, n = int(5 * M_PI / 0.05); i < n; ++i) {
+    const double a = M_PI / 2 + M_PI * i / n;
+    pts.emplace_back(5 * std::cos(a), 5 * std::sin(a));
+  }
+  return pts;
+}
+
+}  // namespace
+
+TEST_CASE("checks: a sharp vertex at a thin wedge is flagged te_vertex, at a wide one not", "[checks]") {
+  // Noise 2 um: the vertex moves by 8 um / sin(half wedge) along the edge.
+  for (const double d : {4.0, 40.0}) {
+    const std::vector<Vector2d> pts = wedge_slab(d);
+    const Checked c = measure(dense_spline(pts, int(pts.size() / 2)), 0.002, pts);
+    const double half = std::atan(5 / d);
+    INFO("vertex at " << d << ", wedge " << 2 * half * 180 / M_PI << " deg: " << names(c.check.flags));
+    REQUIRE(c.camber.te.vertex);
+    CHECK((c.camber.te.point - Vector2d(30 + d, 0)).norm() < 0.05);
+    const bool flagged = (c.check.flags & section::bit(Check::te_vertex)) != 0;
+    CHECK(flagged == (d == 40.0));  // 14 deg: flagged; 103 deg: not
+    for (const auto& f : c.check.findings)
+      if (f.check == Check::te_vertex) CHECK(f.value == Approx(f.limit / 2 / std::sin(half)).epsilon(0.15));
+  }
+}

@@ -122,10 +122,32 @@ struct Checker {
     if (worst > arc_limit) fail(c, worst, arc_limit);
   }
 
-  void edge_point(const Edge& e, Check c) {
+  void edge_point(const Edge& e, Check c, Check vertex) {
     const double d = foot(pr, e.point).distance;
     const double limit = options.noise_factor * options.noise + options.floor * pr.scale;
     if (d > limit) fail(c, d, limit);
+    if (!e.vertex) return;
+    // A sharp edge's flanks meet at a wedge of 2a: a shift of the profile by `limit` moves
+    // the vertex by limit / sin(a) along the edge (a thin wedge: far).
+    const double sine = wedge_sine(e.point, options.vertex_reach * camber.length);
+    if (sine > 0 && limit / sine > 2 * limit) fail(vertex, limit / sine, 2 * limit);
+  }
+
+  // The sine of the half angle between the profile's two flanks seen from `vertex`, each
+  // taken `reach` away from it along the profile; 0 when the profile is too short for it.
+  double wedge_sine(const Eigen::Vector2d& vertex, double reach) const {
+    const int n = static_cast<int>(pr.samples.size());
+    const int at = pr.nearest(vertex);
+    Eigen::Vector2d flank[2];
+    for (int side = 0; side < 2; ++side) {
+      int k = 1, i = at;
+      for (; k < n / 2 && (pr.samples[i] - vertex).norm() < reach; ++k)
+        i = ((at + (side ? k : -k)) % n + n) % n;
+      if (k >= n / 2) return 0;
+      flank[side] = (pr.samples[i] - vertex).normalized();
+    }
+    const double cosine = std::clamp(flank[0].dot(flank[1]), -1.0, 1.0);
+    return std::sin(0.5 * std::acos(cosine));
   }
 
   // How far the profile near an edge reaches beyond its edge point along the camber's
@@ -183,8 +205,8 @@ SectionCheck check_section(const BSpline& profile, const CamberResult& camber, c
   Checker k{pr, camber, params, options, options.noise_factor * options.noise + options.floor * pr.scale, {}};
   k.edge_circle(camber.le, Check::le_radius);
   k.edge_circle(camber.te, Check::te_radius);
-  k.edge_point(camber.le, Check::le_point);
-  k.edge_point(camber.te, Check::te_point);
+  k.edge_point(camber.le, Check::le_point, Check::le_vertex);
+  k.edge_point(camber.te, Check::te_point, Check::te_vertex);
   k.chord();
   k.end_angle(params.inlet_angle, camber.ext_le, 1, Check::inlet_angle);
   k.end_angle(params.outlet_angle, camber.length - camber.ext_te, -1, Check::outlet_angle);

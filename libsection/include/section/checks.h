@@ -40,6 +40,8 @@ enum class Check : std::uint32_t {
   jump_te_radius = 1u << 21,  ///< TE radius jumps
   units = 1u << 22,           ///< the input's unit is doubtful (read as mm though it looks like inches or um)
   layers = 1u << 23,  ///< the points lie in two layers (views merged misregistered): the profile runs between
+  le_vertex = 1u << 24,  ///< a sharp LE's vertex at a wedge so thin that the noise moves it far along it
+  te_vertex = 1u << 25,  ///< the same at the TE
 };
 
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
@@ -80,6 +82,10 @@ inline constexpr CheckName check_names[] = {
     {Check::layers, "layers",
      "max_thickness max_thickness_pos thickness camber_line le_radius te_radius inlet_angle outlet_angle "
      "camber_angle"},
+    {Check::le_vertex, "le_vertex",
+     "le_point chord stagger camber_line camber_length inlet_angle camber_angle"},
+    {Check::te_vertex, "te_vertex",
+     "te_point chord stagger camber_line camber_length outlet_angle camber_angle"},
 };
 
 /// The bit of a check in a flags mask.
@@ -97,6 +103,7 @@ struct CheckOptions {
   double floor = 1e-5;           ///< ... plus this fraction of the profile's size
   double tangent_length = 0.05;  ///< camber-length fraction over which the end directions are taken
   double angle_floor = 1;        ///< degrees: least angle tolerance
+  double vertex_reach = 0.02;    ///< camber-length fraction over which a sharp edge's wedge is taken
 };
 
 /// One failed check: what was measured and the most it may be (same unit).
@@ -120,6 +127,9 @@ struct SectionCheck {
 ///   largest distance of the edge arc from the circle, limit 2 x noise_factor x
 ///   max(noise, 1e-4 R);
 /// - edge point: its distance to the profile, limit noise_factor x noise + floor x size;
+///   a sharp edge's vertex (le_vertex/te_vertex): that limit / sin(a), a the wedge's half
+///   angle over vertex_reach x the camber length (how far the noise moves the vertex along
+///   the edge), limit twice that limit (flagged below a 60 deg wedge);
 /// - chord: the profile's extent along the chord line minus the chord, limit
 ///   sum of R (1 - cos a) over both edges (a: the end tangent against the chord line) +
 ///   the distance limit; also flagged when negative beyond that limit;

@@ -251,6 +251,15 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
                     "(at most %.3g)",
                     p.caliper_chord, name, k.value, k.limit);
       break;
+    case Check::le_vertex:
+    case Check::te_vertex:
+      std::snprintf(
+          text, sizeof text,
+          "%s vertex fails check %s: its flanks meet at so thin a wedge that a shift of the profile "
+          "within its noise moves it by %.3g along the edge (at most %.3g): the edge point, chord and "
+          "the camber line's end are uncertain by that much",
+          k.check == Check::le_vertex ? "sharp leading-edge" : "sharp trailing-edge", name, k.value, k.limit);
+      break;
     case Check::layers:  // value: the layers' distance, limit: the profile length they cover
       std::snprintf(text, sizeof text,
                     "the measured points lie in two layers %.3g apart over %.3g of the profile (fitspline: "
