@@ -8,6 +8,9 @@
 #include "section/params.h"
 #include "section/pipe/camber_stream.h"
 #include "section/pipe/schema.h"
+#include "section/pipe/slice_stream.h"
+#include "section/slice.h"
+#include "pipe_stages.h"
 
 #include <catch2/catch.hpp>
 
@@ -293,5 +296,41 @@ TEST_CASE("checks: a sharp vertex at a thin wedge is flagged te_vertex, at a wid
     CHECK(flagged == (d == 40.0));  // 14 deg: flagged; 103 deg: not
     for (const auto& f : c.check.findings)
       if (f.check == Check::te_vertex) CHECK(f.value == Approx(f.limit / 2 / std::sin(half)).epsilon(0.15));
+  }
+}
+
+TEST_CASE("checks: a TE round but under the sharp threshold is flagged te_sharp, a vertex not", "[checks]") {
+  // The slab's TE wedge (14 deg) as a vertex, and with a fillet of radius 0.05 (under 1 % of
+  // the 10 thick slab: taken as sharp, radius 0); points every 0.02 on both, through the pipe.
+  const double c = 40, half = std::atan(5 / c), rf = 0.05;
+  for (const bool fillet : {false, true}) {
+    std::vector<Vector2d> pts;
+    const auto line = [&](const Vector2d& a, const Vector2d& b) {
+      const int n = std::max(1, int((b - a).norm() / 0.02));
+      for (int i = 0; i < n; ++i) pts.push_back(a + (b - a) * (double(i) / n));
+    };
+    const Vector2d top(30, 5), bottom(30, -5), centre(30 + c - rf / std::sin(half), 0);
+    const double t = M_PI / 2 - half;  // the fillet's tangent points at +-t about +x
+    const Vector2d lo = centre + rf * Vector2d(std::cos(t), -std::sin(t)), hi(lo.x(), -lo.y());
+    line(Vector2d(0, -5), bottom);
+    line(bottom, fillet ? lo : Vector2d(30 + c, 0));
+    if (fillet)
+      for (int i = 0, n = int(rf * 2 * t / 0.02) + 1; i < n; ++i)
+        pts.push_back(centre + rf * Vector2d(std::cos(-t + 2 * t * i / n), std::sin(-t + 2 * t * i / n)));
+    line(fillet ? hi : Vector2d(30 + c, 0), top);
+    line(top, Vector2d(0, 5));
+    for (int i = 0, n = int(5 * M_PI / 0.02); i < n; ++i)
+      pts.emplace_back(5 * std::cos(M_PI / 2 + M_PI * i / n), 5 * std::sin(M_PI / 2 + M_PI * i / n));
+    section::Cloud cloud;
+    for (const Vector2d& p : pts) cloud.points.emplace_back(p.x(), p.y(), 0.0);
+    const section::SliceResult r = section::slice_rows(cloud, {0, 0, 1});
+    const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
+    const section::Table* params = s.find("params");
+    REQUIRE(params);
+    REQUIRE(params->rows() == 1);
+    const auto flags = std::uint32_t(params->at(0, std::size_t(params->find_column("flags"))));
+    INFO((fillet ? "fillet: " : "vertex: ") << names(flags));
+    CHECK(params->at(0, std::size_t(params->find_column("te_radius"))) == 0);
+    CHECK(((flags & section::bit(Check::te_sharp)) != 0) == fillet);
   }
 }

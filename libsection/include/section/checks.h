@@ -42,6 +42,8 @@ enum class Check : std::uint32_t {
   layers = 1u << 23,  ///< the points lie in two layers (views merged misregistered): the profile runs between
   le_vertex = 1u << 24,  ///< a sharp LE's vertex at a wedge so thin that the noise moves it far along it
   te_vertex = 1u << 25,  ///< the same at the TE
+  le_sharp = 1u << 26,   ///< LE taken as sharp (radius 0), but the points resolve a small round edge there
+  te_sharp = 1u << 27,   ///< the same at the TE
 };
 
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
@@ -86,6 +88,8 @@ inline constexpr CheckName check_names[] = {
      "le_point chord stagger camber_line camber_length inlet_angle camber_angle"},
     {Check::te_vertex, "te_vertex",
      "te_point chord stagger camber_line camber_length outlet_angle camber_angle"},
+    {Check::le_sharp, "le_sharp", "le_radius le_center"},
+    {Check::te_sharp, "te_sharp", "te_radius te_center"},
 };
 
 /// The bit of a check in a flags mask.

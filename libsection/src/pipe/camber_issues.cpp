@@ -295,11 +295,38 @@ std::string jump_note(const Jump& j) {
   return text;
 }
 
+// A sharp edge (its end circle under sharp_ratio of the thickness, radius reported 0) where
+// the profile turns over a radius the measured points resolve: more than 4 x the noise, and
+// 5 or more points within twice it of the edge point. "" when not.
+std::string sharp_but_round(const SectionFacts& f, const Edge& e, const char* which, const char* check) {
+  const double r = e.curvature_radius;
+  if (e.shape != EdgeShape::sharp || !(r > 4 * f.options.profile_noise) || !(f.options.profile_noise > 0))
+    return "";
+  int near = 0;
+  for (const auto& q : f.measured.all) near += (q - e.point).norm() <= 2 * r;
+  if (near < 5) return "";
+  char text[320];
+  std::snprintf(
+      text, sizeof text,
+      "%s radius 0 fails check %s: the edge was taken as sharp (under %.3g of the largest "
+      "inscribed diameter), but the profile turns there over a radius of %.3g that %d measured points "
+      "resolve: a small round edge",
+      which, check, f.options.sharp_ratio, r, near);
+  return text;
+}
+
 std::uint32_t describe_issues(const SectionFacts& f, const std::vector<Finding>& findings,
                               std::vector<SectionIssue>& issues) {
   const CamberResult& r = f.camber;
   const CamberOptions& opt = f.options;
   std::uint32_t flags = edge_flags(f, r.le, f.le, true) | edge_flags(f, r.te, f.te, false);
+  for (const bool le : {true, false}) {
+    const std::string note = sharp_but_round(f, le ? r.le : r.te, le ? "leading-edge" : "trailing-edge",
+                                             le ? "le_sharp" : "te_sharp");
+    if (note.empty()) continue;
+    issues.push_back({f.section, 0, "camber", note});
+    flags |= bit(le ? Check::le_sharp : Check::te_sharp);
+  }
   const std::string le_msg = edge_note(f, r.le, f.le, "leading edge"),
                     te_msg = edge_note(f, r.te, f.te, "trailing edge");
   if (!le_msg.empty() || !te_msg.empty())
