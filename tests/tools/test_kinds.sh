@@ -8,7 +8,7 @@
 source "$(dirname "$0")/lib.sh"
 E="$BIN/../bench/evaluate_kinds"
 if [ ! -x "$E" ]; then echo "skipped: no $E (built with SECTION_BUILD_BENCH=OFF)"; exit 0; fi
-EXPECTED="scan-mm,scan-m,scan-in,rows-radius,sharp-te,symmetric,thick-root,misregistered"
+EXPECTED="scan-mm,scan-m,scan-in,rows-height,rows-radius,sharp-te,symmetric,thick-root,misregistered"
 [ "${KINDS_STRICT:-0}" = 1 ] && EXPECTED=all
 
 expect 0 "--help" -- "$E" --help
