@@ -3,6 +3,7 @@
 // hundred times too large, a chord short of the profile, an edge point off it, a metal
 // angle off the camber line, a section that jumps from its neighbours) fail them.
 #include "section/checks.h"
+#include "section/extras/generate.h"
 
 #include "camber_fixtures.h"
 #include "section/params.h"
@@ -332,5 +333,27 @@ TEST_CASE("checks: a TE round but under the sharp threshold is flagged te_sharp,
     INFO((fillet ? "fillet: " : "vertex: ") << names(flags));
     CHECK(params->at(0, std::size_t(params->find_column("te_radius"))) == 0);
     CHECK(((flags & section::bit(Check::te_sharp)) != 0) == fillet);
+  }
+}
+
+TEST_CASE("checks: two views merged 15 um apart flag the thickness and camber line (layers)", "[checks]") {
+  // The generated compressor scanned in two views, the second moved by 15 um (the
+  // example's fault): the profile runs between the layers, every section's max thickness
+  // is off by about that, so each params row carries `layers`; one view alone does not.
+  for (const double apart : {0.0, 0.015}) {
+    section::ScanOptions so = section::inspection_scan();
+    so.seed = 3;
+    so.misregistration = apart;
+    const section::Cloud cloud = section::scan_bands(section::compressor_blade(), {20.0, 40.0}, so);
+    const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, {20.0, 40.0}));
+    const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
+    const section::Table* params = s.find("params");
+    REQUIRE(params);
+    REQUIRE(params->rows() == 2);
+    for (std::size_t row = 0; row < 2; ++row) {
+      const auto flags = std::uint32_t(params->at(row, std::size_t(params->find_column("flags"))));
+      INFO("views " << apart << " apart, row " << row << ": " << names(flags));
+      CHECK(((flags & section::bit(Check::layers)) != 0) == (apart > 0));
+    }
   }
 }
