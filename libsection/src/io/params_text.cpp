@@ -97,7 +97,8 @@ std::string wrapped(const std::string& label, const std::string& text, std::size
   std::size_t start = 0;
   while (start < text.size()) {
     std::size_t end = text.find(", ", start);
-    const std::string word = text.substr(start, end == std::string::npos ? std::string::npos : end - start + 1);
+    const std::string word =
+        text.substr(start, end == std::string::npos ? std::string::npos : end - start + 1);
     if (!line.empty() && indent.size() + line.size() + 1 + word.size() > width) {
       out += line + "\n" + indent;
       line.clear();
@@ -137,8 +138,8 @@ std::string value_rows(const RowView& p, double mm) {
       cell("area", fixed(p("area") * mm * mm, 4), "mm^2"));
   row(cell("stagger", angle("stagger"), "deg"), cell("inlet angle", angle("inlet_angle"), "deg"),
       cell("outlet angle", angle("outlet_angle"), "deg"));
-  row(cell("camber angle", angle("camber_angle"), "deg"), cell("caliper stagger", angle("caliper_stagger"), "deg"),
-      "");
+  row(cell("camber angle", angle("camber_angle"), "deg"),
+      cell("caliper stagger", angle("caliper_stagger"), "deg"), "");
   return out;
 }
 

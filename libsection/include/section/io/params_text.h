@@ -11,7 +11,7 @@ namespace section {
 
 /// Options of format_params_text.
 struct ParamsTextOptions {
-  int width = 120;  ///< columns no line is longer than (issues are shortened to fit)
+  int width = 120;     ///< columns no line is longer than (issues are shortened to fit)
   int max_issues = 4;  ///< issue lines per section; more are counted in one line
 };
 
