@@ -16,7 +16,9 @@ if [ -x "$BIN/smooth" ]; then "$BIN/smooth" "$OUT/sections.csv" > "$OUT/smoothed
 if [ -x "$BIN/fitspline" ]; then "$BIN/fitspline" "$OUT/smoothed.csv" --samples 400 > "$OUT/splines.csv"; echo "splines: $OUT/splines.csv"; fi
 if [ -x "$BIN/camber" ]; then
   "$BIN/camber" "$OUT/splines.csv" --params "$OUT/params.csv" > "$OUT/camber.csv"
-  echo "camber: $OUT/camber.csv"; echo; column -s, -t "$OUT/params.csv" 2>/dev/null || cat "$OUT/params.csv"
+  # The params for people (full precision: params.csv); its warnings were printed above.
+  echo "camber: $OUT/camber.csv, params: $OUT/params.csv"; echo
+  "$BIN/camber" "$OUT/splines.csv" --format table 2>/dev/null
 fi
 # The inspection: the sections against the blade's nominal (its exact design as a mesh)
 # with data/example_tolerances.csv; exit 4 = a value failed, 5 = one was not measured.

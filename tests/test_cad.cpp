@@ -237,4 +237,11 @@ TEST_CASE("format_json: tables by section, rows as objects or columns", "[cad][j
   params.add_row({1, 3, 4});
   REQUIRE(thrown([&] { section::format_json(s, {&params}); }) ==
           "json: table 'params' has 2 rows for section 1, one was expected");
+  // Rows keyed by a zone or a compared item (compare's tables): an array of row objects.
+  section::Table zones("zones", {"section", "zone", "max"});
+  zones.add_row({3, 0, 0.5});
+  zones.add_row({3, 1, 0.25});
+  REQUIRE(section::format_json(s, {&zones})
+              .find("\"zones\": [{\"zone\": 0, \"max\": 0.5}, {\"zone\": 1, \"max\": 0.25}]") !=
+          std::string::npos);
 }

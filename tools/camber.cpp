@@ -6,6 +6,8 @@
 #include "section/io/stream.h"
 #include "section/io/csv.h"
 #include "section/io/file.h"
+#include "section/io/json.h"
+#include "section/io/params_text.h"
 #include "section/pipe/run_stage.h"
 #include "section/pipe/camber_stream.h"
 #include "section/pipe/schema.h"
@@ -19,9 +21,24 @@ namespace {
 
 using section::tool::CamberArgs;
 
+// The params (and the issues, frames and units) of every section, as --format asks for
+// them instead of the stream: table, csv or json.
+std::string params_output(const std::string& format, section::Stream summary, section::Table params) {
+  if (params.columns.empty()) params = section::Table("params", {"section"});  // no section measured
+  if (format == "csv") return section::format_csv(params);
+  summary.put(params);
+  if (format == "json") return section::format_json(summary, {summary.find("params")});
+  return section::format_params_text(summary);
+}
+
 void run_camber(const CamberArgs& a, const std::string& history) {
-  section::Table params, thickness;
+  section::Table params, thickness, frames;
+  const std::string format = !a.format.empty()                                    ? a.format
+                             : section::tool::output_is_terminal(a.common.output) ? "table"
+                                                                                  : "stream";
   section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::camber_stream);
+  if (format != "stream") run.output = "/dev/null";  // the stream's place takes the params
+  section::Stream summary;  // units and issues of every section, for the params output
   // A plain profile (x y per line): its spline is fitted to its points.
   run.other_input = [&](const std::string& text, const std::string& source) {
     auto points = section::parse_profile(text, source);
@@ -40,7 +57,12 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   };
   // A doubtful unit (slice's or the plain profile's note) flags every row.
   bool doubtful_units = false;
-  run.preamble = [&](const section::Stream& head) { doubtful_units = section::units_doubtful(head); };
+  run.preamble = [&](const section::Stream& head) {
+    doubtful_units = section::units_doubtful(head);
+    summary.units = head.units;
+    summary.history = head.history;
+    summary.history.push_back(history);
+  };
   // The check across the blade needs every section: the parts are held until all are measured.
   run.hold = [&](const std::vector<section::Stream*>& parts) {
     section::check_blade_stream(parts);
@@ -53,10 +75,16 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     tally.add(stream);
     section::append_rows(params, section::schema::params.get(stream));
     section::append_rows(thickness, section::schema::thickness.get(stream));
+    if (const section::Table* f = stream.find("frames")) section::append_rows(frames, *f);
+    summary.issues.insert(summary.issues.end(), stream.issues.begin(), stream.issues.end());
   };
   section::run_stage(run);
   if (!a.params_file.empty()) section::write_file(a.params_file, section::format_csv(params));
   if (!a.thickness_file.empty()) section::write_file(a.thickness_file, section::format_csv(thickness));
+  if (format != "stream") {
+    if (!frames.columns.empty()) summary.put(frames);
+    section::write_file(a.common.output, params_output(format, summary, params));
+  }
   tally.check(a.allow_partial);
 }
 

@@ -5,6 +5,7 @@
 #include "section/extras/report.h"
 #include "section/io/csv.h"
 #include "section/io/file.h"
+#include "section/io/json.h"
 #include "section/io/mesh_io.h"
 #include "section/io/stream.h"
 #include "section/io/tolerances.h"
@@ -68,9 +69,15 @@ int run_compare(const CompareArgs& a, const std::string& history) {
     section::tool::with_input(a.nominal, [&] { n = section::nominal_stream(nominal->source, frames, part); });
     section::tool::with_input(a.common.input, [&] { section::compare_stream(s, n, part); });
   };
+  const std::string format = !a.format.empty()                                    ? a.format
+                             : section::tool::output_is_terminal(a.common.output) ? "table"
+                                                                                  : "stream";
+  const std::string output = format == "stream" ? a.common.output : "/dev/null";  // or the table, json
   section::Stream all;  // the verdicts, zones and compared values, gathered over the parts
   auto gather = [&](const section::Stream& s) {
     section::tool::warn_issues("compare", s, false);
+    all.units = s.units;
+    all.issues.insert(all.issues.end(), s.issues.begin(), s.issues.end());
     for (const char* name : {"verdicts", "zones", "compared"}) {
       if (!all.find(name)) all.put(section::Table(name, {}));
       section::append_rows(*all.find(name), s.get(name, "compare"));
@@ -82,11 +89,11 @@ int run_compare(const CompareArgs& a, const std::string& history) {
     stage(s, o.threads);
     s.history.push_back(history);
     gather(s);
-    section::write_stream(a.common.output, s);
+    section::write_stream(output, s);
   } else {
     section::StageRun run;
     run.input = a.common.input;
-    run.output = a.common.output;
+    run.output = output;
     run.history = history;
     run.threads = o.threads;
     run.stage = stage;
@@ -100,6 +107,10 @@ int run_compare(const CompareArgs& a, const std::string& history) {
     else
       section::write_file(a.report, text);
   }
+  if (format == "table") section::write_file(a.common.output, section::compare_report(all));
+  if (format == "json")
+    section::write_file(a.common.output, section::format_json(all, {all.find("verdicts"), all.find("zones"),
+                                                                    all.find("compared")}));
   const int verdict = section::stream_verdict(all);
   return verdict == 1 ? section::tool::exit_failed : verdict == 2 ? section::tool::exit_not_measured : 0;
 }

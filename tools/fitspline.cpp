@@ -32,6 +32,7 @@ void warn_layers(const section::Stream& stream, const section::Table& splines) {
 }
 
 void run_fitspline(const FitsplineArgs& a, const std::string& history) {
+  section::tool::refuse_terminal_output(a.common, "camber");
   std::size_t fitted = 0, measured = 0;
   section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::fit_spline_stream);
   run.written = [&](const section::Stream& stream) {

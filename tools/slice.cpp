@@ -156,6 +156,7 @@ section::InputUnits units_of(const SliceArgs& a, double extent, SectionWriter& o
 }
 
 void run_slice(const SliceArgs& given, const std::string& history) {
+  section::tool::refuse_terminal_output(given.common, "smooth");
   const std::string& input = given.common.input;
   SectionWriter out(given, history);
   // Held in memory (views, standard input, a mesh): the extent from all the points; a cloud

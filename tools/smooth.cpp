@@ -15,6 +15,7 @@ namespace {
 using section::tool::SmoothArgs;
 
 void run_smooth(const SmoothArgs& a, const std::string& history) {
+  section::tool::refuse_terminal_output(a.common, "fitspline");
   section::Table stats;
   section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::smooth_stream);
   run.written = [&](const section::Stream& part) {

@@ -38,6 +38,21 @@ done
 check "the stream ends" -- test "$(tail -n 1 "$TMP/compared.csv")" = "# end"
 check "the report opens with the verdict" -- grep -q "^blade: PASS" "$TMP/report.txt"
 check "the report lists the values" -- grep -q "max_thickness .* pass" "$TMP/report.txt"
+# At a terminal (forced: SECTION_ASSUME_TTY) the report takes the stream's place; --format
+# json gives the verdicts, zones and compared values per section at full precision.
+expect 0 "compare at a terminal" -- env SECTION_ASSUME_TTY=stdout "$compare" "$TMP/measured.csv" \
+  --nominal "$TMP/nominal.stl" --tolerances "$TMP/tol.csv"
+check "the terminal gets the report" -- cmp -s "$TMP/out" "$TMP/report.txt"
+expect 0 "compare --format json" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal.stl" \
+  --tolerances "$TMP/tol.csv" --format json
+if command -v python3 >/dev/null; then
+  check "the json parses, a section with its verdict, zones and compared values" -- python3 -c '
+import json, sys
+doc = json.load(open(sys.argv[1]))
+s = doc["sections"][0]
+assert "verdict" in s["verdicts"] and len(s["zones"]) >= 1 and len(s["compared"]) >= 1, s.keys()
+' "$TMP/out"
+fi
 
 # A tolerance too tight for the scan's noise fails: exit 4, the report says which.
 sed 's/^profile,\*,-0.03,0.03/profile,*,-0.002,0.002/' "$TMP/tol.csv" > "$TMP/tight.csv"

@@ -22,6 +22,8 @@ const char* const CamberArgs::description =
     "Exit status: 0 every section has params (flags or not), 1 bad data, 2 bad usage,\n"
     "3 the stream is written but some sections have no params (see their issues; exit 0\n"
     "with --allow-partial).\n\n"
+    "On a terminal (no -o, no --format) camber prints the params as a table for people\n"
+    "instead of the stream; --format chooses (stream, table, csv, json).\n\n"
     "Example: slice blade.ply --count 9 | smooth | fitspline | camber --params params.csv";
 
 std::vector<double> numbers(const std::string& text, const std::string& flag) {
@@ -132,6 +134,12 @@ void CamberArgs::declare(CLI::App& app) {
                      "): converted to mm, the stream's unit; default mm, or m for a profile under 1 "
                      "across (with a warning). A stream says its own unit.")
       ->check(length_unit);
+  app.add_option("--format", format,
+                 "What to write to the output: stream (the pipe stream, docs/FORMAT.md), table (the "
+                 "params for people: mm to 4 decimals, degrees to 3, words for shapes and checks), csv "
+                 "(the params table, full precision) or json (params and issues per section, full "
+                 "precision); default table when the output is a terminal, else stream")
+      ->check(CLI::IsMember({"stream", "table", "csv", "json"}));
   add_allow_partial(app, allow_partial);
   app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
       ->check(CLI::NonNegativeNumber);

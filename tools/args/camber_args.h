@@ -20,7 +20,11 @@ struct CamberArgs {
   std::string stations, le_direction, edge = "round";  ///< those flags as given
   bool edge_on_spline = false;
   bool allow_partial = false;  ///< --allow-partial: exit 0 when some sections have no params
-  std::string units;           ///< --units: a plain profile's length unit ("" = mm, or m by its extent)
+  /// --format: what goes to the output: "stream" (the pipe stream), "table" (params for
+  /// people), "csv" (the params table), "json" (params and issues); "" = table when the
+  /// output is a terminal, else stream.
+  std::string format;
+  std::string units;  ///< --units: a plain profile's length unit ("" = mm, or m by its extent)
   /// Declares the options on `app`, bound to these fields.
   void declare(CLI::App& app);
 };

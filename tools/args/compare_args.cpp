@@ -103,6 +103,11 @@ void CompareArgs::declare(CLI::App& app) {
   app.add_option("--tolerances", tolerances,
                  "Tolerance file (CSV: item,section,low,high,on; docs/COMPARE.md)");
   app.add_option("--report", report, "Write the verdicts as text to FILE (- = standard error)");
+  app.add_option("--format", format,
+                 "What to write to the output: stream (the pipe stream, docs/FORMAT.md), table (the "
+                 "report, as --report writes it) or json (verdicts, zones, compared values and issues per "
+                 "section, full precision); default table when the output is a terminal, else stream")
+      ->check(CLI::IsMember({"stream", "table", "json"}));
   add_checked(app, "--fit", method, "Best fit: least-squares, minimum-zone or weighted",
               CLI::IsMember({"least-squares", "minimum-zone", "weighted"}));
   add_checked(app, "--freedom", freedom,

@@ -20,6 +20,9 @@ struct CompareArgs {
   std::string nominal;           ///< --nominal: a mesh, a stream or a CSV of section points
   std::string tolerances;        ///< --tolerances: the tolerance file (CSV)
   std::string report;            ///< --report: the verdicts as text to FILE ("-" = standard error)
+  /// --format: what goes to the output: "stream", "table" (the report) or "json" (verdicts,
+  /// zones, compared values and issues per section); "" = table at a terminal, else stream.
+  std::string format;
   std::string method = "least-squares", freedom = "all";  ///< --fit, --freedom as given
   std::string direction, center, weights, le_direction;   ///< those flags as given
   bool keep_outliers = false;

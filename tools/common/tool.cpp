@@ -11,12 +11,14 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <new>
 #include <utility>
 #include <vector>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #if __has_include(<malloc.h>)
 #include <malloc.h>  // mallopt (glibc)
@@ -141,10 +143,20 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
     std::cerr << name << ": usage error: " << clash << "\n";
     return 2;
   }
+  const CLI::Option* input = app.get_option_no_throw("--input");
+  if (input && (input->count() == 0 || input->as<std::string>() == "-") && input_is_terminal("-")) {
+    // Waiting on a terminal's keyboard without a word looks like a hang.
+    std::cerr << name << ": usage error: no input: give a file (" << name << " FILE) or pipe one in (... | "
+              << name << ")\n";
+    return exit_bad_usage;
+  }
   remove_outputs_on_signals();
   try {
     body();
     return exit_ok;
+  } catch (const UsageError& e) {
+    std::cerr << name << ": usage error: " << e.what() << "\n";
+    return exit_bad_usage;
   } catch (const Incomplete& e) {
     std::cerr << name << ": incomplete: " << e.what() << "\n";
     return exit_incomplete;
@@ -154,6 +166,28 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
     std::cerr << name << ": error: " << tidy_message(name, e.what()) << "\n";
   }
   return 1;
+}
+
+namespace {
+// SECTION_ASSUME_TTY names the standard stream (`stream`: "stdout" or "stdin") taken as a
+// terminal, or "1" for both.
+bool assumed_terminal(const char* stream) {
+  const char* v = std::getenv("SECTION_ASSUME_TTY");
+  return v && (std::string(v) == "1" || std::string(v) == stream);
+}
+}  // namespace
+
+bool output_is_terminal(const std::string& output) {
+  return output == "-" && (::isatty(STDOUT_FILENO) || assumed_terminal("stdout"));
+}
+
+bool input_is_terminal(const std::string& input) {
+  return input == "-" && (::isatty(STDIN_FILENO) || assumed_terminal("stdin"));
+}
+
+void refuse_terminal_output(const Common& common, const std::string& next) {
+  if (output_is_terminal(common.output))
+    throw UsageError("the stream would go to the terminal: redirect it (> FILE) or pipe it (| " + next + ")");
 }
 
 void add_allow_partial(CLI::App& app, bool& allow) {

@@ -30,6 +30,21 @@ struct Incomplete : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Thrown by a tool's body on a command line that cannot work (a stream to or from a
+/// terminal): run_tool prints `NAME: usage error: message` and returns exit_bad_usage.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// True when the output `output` ("-" = standard output) is a terminal: isatty(1), or the
+/// environment variable SECTION_ASSUME_TTY is "1" or "stdout" (tests force it: ctest has no
+/// terminal). A named file is never one.
+bool output_is_terminal(const std::string& output);
+
+/// True when the input `input` ("-" = standard input) is a terminal: isatty(0), or
+/// SECTION_ASSUME_TTY is "1" or "stdin".
+bool input_is_terminal(const std::string& input);
+
 /// Declares --allow-partial bound to `allow` (accept a result without some sections: exit 0).
 void add_allow_partial(CLI::App& app, bool& allow);
 
@@ -57,6 +72,11 @@ struct Common {
   std::string input = "-";   ///< -i/--input, "-" = standard input
   std::string output = "-";  ///< -o/--output, "-" = standard output
 };
+
+/// Throws UsageError when the stream a tool writes would go to a terminal (420 KB of
+/// numbers nobody reads): `the stream would go to the terminal: redirect it (> FILE) or
+/// pipe it (| NEXT)`.
+void refuse_terminal_output(const Common& common, const std::string& next);
 
 /// Declares -i/--input (also as the first positional argument), -o/--output and
 /// --max-memory (section::set_memory_limit).

@@ -58,7 +58,8 @@ std::string table_value(const Table& t, const std::vector<std::size_t>& rows, st
     }
     return out + "}";
   }
-  if (t.find_column("loop") >= 0) {
+  // Rows keyed by more than the section: a loop (splines), a zone or a compared value (compare).
+  if (t.find_column("loop") >= 0 || t.find_column("zone") >= 0 || t.find_column("item") >= 0) {
     std::string out = "[";
     for (std::size_t i = 0; i < rows.size(); ++i) out += (i ? ", " : "") + row_object(t, rows[i], cs);
     return out + "]";
