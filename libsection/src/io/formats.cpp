@@ -21,9 +21,12 @@ const std::vector<InputFormat>& input_formats() {
       {{"stl"}, {}, C::automatic, nullptr, false, nullptr, read_stl, nullptr},
       {{"obj"}, {}, C::automatic, nullptr, false, nullptr, read_obj, nullptr},
       {{"off"}, {}, C::automatic, nullptr, false, nullptr, read_off, nullptr},
-      {{"xyz", "asc", "txt", "pts"}, {"xyzn"}, C::xyz, read_xyz_cloud, true, nullptr, nullptr, nullptr},
+      {{"xyz", "asc", "txt"}, {"xyzn"}, C::xyz, read_xyz_cloud, true, nullptr, nullptr, nullptr},
+      {{"pts"}, {}, C::pts, read_pts_cloud, true, nullptr, nullptr, nullptr},
       {{"csv"}, {}, C::csv, read_csv_cloud, true, nullptr, nullptr, nullptr},
       {{"ply"}, {}, C::ply, read_ply_cloud, false, "ply", read_ply_mesh, ply_declares_faces},
+      {{"pcd"}, {}, C::pcd, read_pcd_cloud, false, "# .PCD", nullptr, nullptr},
+      {{"las"}, {"laz"}, C::las, read_las_cloud, false, "LASF", nullptr, nullptr},
   };
   return formats;
 }
