@@ -34,7 +34,8 @@ std::string cloud_error(const std::string& bytes, const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("formats: PTS, LAS, ascii PCD, ';' and tab text give blade.xyz's points exactly", "[formats]") {
+TEST_CASE("formats: PTS, LAS, ascii PCD, semicolon and tab text give blade.xyz's points exactly",
+          "[formats]") {
   const Cloud xyz = read_cloud(dir + "blade.xyz");
   REQUIRE(xyz.points.size() > 4000);
   for (const char* name : {"blade.pts", "blade_12_f3.las", "blade_14_f6.las", "blade_ascii.pcd",
@@ -48,7 +49,8 @@ TEST_CASE("formats: PTS, LAS, ascii PCD, ';' and tab text give blade.xyz's point
   }
 }
 
-TEST_CASE("formats: binary float PCD gives the points to float precision, its NaN points dropped", "[formats]") {
+TEST_CASE("formats: binary float PCD gives the points to float precision, its NaN points dropped",
+          "[formats]") {
   const Cloud xyz = read_cloud(dir + "blade.xyz");
   const Cloud c = read_cloud(dir + "blade_binary.pcd");  // 5 NaN points among them
   REQUIRE(c.points.size() == xyz.points.size());
@@ -58,7 +60,7 @@ TEST_CASE("formats: binary float PCD gives the points to float precision, its Na
   CHECK(differ == 0);
 }
 
-TEST_CASE("formats: ';' text reads decimal commas; PTS count lines are counted", "[formats]") {
+TEST_CASE("formats: semicolon text reads decimal commas, PTS count lines are counted", "[formats]") {
   const Cloud a = parse_cloud("1,5;2,25;-3,0\n4;5;6\n", "a.txt", {});
   REQUIRE(a.points.size() == 2);
   CHECK(a.points[0] == Eigen::Vector3d(1.5, 2.25, -3.0));
@@ -70,7 +72,8 @@ TEST_CASE("formats: ';' text reads decimal commas; PTS count lines are counted",
   CHECK(p.points.size() == 3);
   CHECK_THAT(cloud_error("3\n1 2 3\n4 5 6\n", "c.pts"),
              Catch::Contains("c.pts: its PTS count lines declare 3 points, the file holds 2"));
-  CHECK_THAT(cloud_error("2\n1 2 3\n4 5\n", "d.pts"), Catch::Contains("d.pts:3: expected at least 3 columns"));
+  CHECK_THAT(cloud_error("2\n1 2 3\n4 5\n", "d.pts"),
+             Catch::Contains("d.pts:3: expected at least 3 columns"));
   CHECK_THAT(cloud_error("1;2;x\n", "e.txt"), Catch::Contains("e.txt:1: expected a number in column 3"));
 }
 
@@ -78,13 +81,16 @@ TEST_CASE("formats: bad PCD files are refused by name", "[formats]") {
   CHECK_THAT(cloud_error(bytes_of(dir + "compressed.pcd"), "c.pcd"),
              Catch::Contains("c.pcd: PCD DATA binary_compressed is not supported"));
   const std::string bin = bytes_of(dir + "blade_binary.pcd");
-  CHECK_THAT(cloud_error(bin.substr(0, bin.size() - 10), "t.pcd"),
-             Catch::Contains("t.pcd: PCD header declares 4403 points but the file holds only 4402 (truncated"));
-  CHECK_THAT(cloud_error(bin + "abcd", "l.pcd"), Catch::Contains("4 bytes more than its PCD header declares"));
+  CHECK_THAT(
+      cloud_error(bin.substr(0, bin.size() - 10), "t.pcd"),
+      Catch::Contains("t.pcd: PCD header declares 4403 points but the file holds only 4402 (truncated"));
+  CHECK_THAT(cloud_error(bin + "abcd", "l.pcd"),
+             Catch::Contains("4 bytes more than its PCD header declares"));
   const std::string head = "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
   const std::string two = "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n";
   CHECK(parse_cloud(head + two + "1 2 3\nnan nan nan\n", "a.pcd", {}).points.size() == 1);
-  CHECK_THAT(cloud_error(head + two + "1 2 3\n4 5\n", "a.pcd"), Catch::Contains("a.pcd:11: expected 3 values, found 2"));
+  CHECK_THAT(cloud_error(head + two + "1 2 3\n4 5\n", "a.pcd"),
+             Catch::Contains("a.pcd:11: expected 3 values, found 2"));
   CHECK_THAT(cloud_error(head + two + "1 2 3\n", "a.pcd"), Catch::Contains("ends after 1 of 2 points"));
   CHECK_THAT(cloud_error(head + two + "1 2 3\n1 2 3\n1 2 3\n", "a.pcd"),
              Catch::Contains("a.pcd:12: more points than the PCD header declares (2)"));
@@ -92,9 +98,11 @@ TEST_CASE("formats: bad PCD files are refused by name", "[formats]") {
              Catch::Contains("a.pcd: point 2 has an infinite coordinate"));
   CHECK_THAT(cloud_error(head + "WIDTH 3\nHEIGHT 1\nPOINTS 2\nDATA ascii\n", "a.pcd"),
              Catch::Contains("PCD POINTS 2 is not WIDTH x HEIGHT = 3"));
-  CHECK_THAT(cloud_error("VERSION 0.7\nFIELDS a b\nSIZE 4 4\nTYPE F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2\n", "n.pcd"),
+  CHECK_THAT(cloud_error("VERSION 0.7\nFIELDS a b\nSIZE 4 4\nTYPE F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2\n",
+                         "n.pcd"),
              Catch::Contains("n.pcd: PCD FIELDS lack x, y or z"));
-  CHECK_THAT(cloud_error(head + "WIDTH 1\nDATA xyz\n", "h.pcd"), Catch::Contains("h.pcd:7: PCD DATA must be ascii"));
+  CHECK_THAT(cloud_error(head + "WIDTH 1\nDATA xyz\n", "h.pcd"),
+             Catch::Contains("h.pcd:7: PCD DATA must be ascii"));
 }
 
 TEST_CASE("formats: bad LAS files and LAZ are refused by name", "[formats]") {
@@ -103,18 +111,22 @@ TEST_CASE("formats: bad LAS files and LAZ are refused by name", "[formats]") {
              Catch::Contains("t.las: LAS header declares 4398 points but the file holds only"));
   std::string laz = las;
   laz[104] = static_cast<char>(laz[104] | 0x80);  // what LASzip marks a compressed file with
-  CHECK_THAT(cloud_error(laz, "c.laz"), Catch::Contains("c.laz: LAZ (LASzip-compressed LAS) is not supported"));
+  CHECK_THAT(cloud_error(laz, "c.laz"),
+             Catch::Contains("c.laz: LAZ (LASzip-compressed LAS) is not supported"));
   std::string short_record = las;
   short_record[105] = 20;  // a record shorter than format 6's 30 bytes
   short_record[106] = 0;
-  CHECK_THAT(cloud_error(short_record, "r.las"), Catch::Contains("point record length 20 is shorter than format 6"));
+  CHECK_THAT(cloud_error(short_record, "r.las"),
+             Catch::Contains("point record length 20 is shorter than format 6"));
   std::string v2 = las;
   v2[24] = 2;
   CHECK_THAT(cloud_error(v2, "v.las"), Catch::Contains("v.las: LAS version 2.4 is not supported"));
-  CHECK_THAT(cloud_error(las.substr(0, 100), "h.las"), Catch::Contains("h.las: LAS header ends after 100 bytes"));
+  CHECK_THAT(cloud_error(las.substr(0, 100), "h.las"),
+             Catch::Contains("h.las: LAS header ends after 100 bytes"));
   std::string zero = las;
   std::memset(&zero[131], 0, 8);  // x scale 0
-  CHECK_THAT(cloud_error(zero, "z.las"), Catch::Contains("LAS x scale factor or offset is zero or not finite"));
+  CHECK_THAT(cloud_error(zero, "z.las"),
+             Catch::Contains("LAS x scale factor or offset is zero or not finite"));
 }
 
 TEST_CASE("formats: LAS takes its record length and offset from the header", "[formats]") {

@@ -38,9 +38,11 @@ done
 expect 0 "pipe on blade.xyz" -- params "$D/blade.xyz" "$TMP/ref.csv"
 expect 0 "pipe on blade_binary.pcd" -- params "$D/blade_binary.pcd" "$TMP/bin.csv"
 check "float PCD gives the same chord, thickness, camber length, stagger to 1e-4" -- close "$TMP/ref.csv" "$TMP/bin.csv"
-# Standard input: LAS by its magic.
+# Standard input: LAS and PCD by their first bytes.
 "$BIN/slice" - "${AT[@]}" < "$D/blade_12_f3.las" | grep -v '^# history' > "$TMP/stdin.out"
 check "LAS on standard input gives the same sections" -- cmp -s "$TMP/ref" "$TMP/stdin.out"
+"$BIN/slice" - "${AT[@]}" < "$D/blade_ascii.pcd" | grep -v '^# history' > "$TMP/stdin.out"
+check "PCD (starting with VERSION) on standard input gives the same sections" -- cmp -s "$TMP/ref" "$TMP/stdin.out"
 
 expect 1 "binary_compressed PCD is refused" -- "$BIN/slice" "$D/compressed.pcd" "${AT[@]}"
 check "its message names the file and the way out" -- \

@@ -46,8 +46,10 @@ LasHeader read_header(ByteSource& src, const CloudReadOptions& opt) {
   while (src.bytes().size() < 375 && src.fetch(375 - src.bytes().size()) > 0) {
   }
   const std::string_view b = src.bytes();
-  if (b.size() < 4 || b.compare(0, 4, "LASF") != 0) fail(name, "not a LAS file (it does not start with LASF)");
-  if (b.size() < 227) fail(name, "LAS header ends after " + std::to_string(b.size()) + " bytes (truncated file?)");
+  if (b.size() < 4 || b.compare(0, 4, "LASF") != 0)
+    fail(name, "not a LAS file (it does not start with LASF)");
+  if (b.size() < 227)
+    fail(name, "LAS header ends after " + std::to_string(b.size()) + " bytes (truncated file?)");
   const char* p = b.data();
   LasHeader h;
   h.major = static_cast<unsigned char>(p[24]);
@@ -75,7 +77,8 @@ LasHeader read_header(ByteSource& src, const CloudReadOptions& opt) {
   if (h.header_size < 227 || h.data_offset < h.header_size)
     fail(name, "LAS header size " + std::to_string(h.header_size) + " or point data offset " +
                    std::to_string(h.data_offset) + " is impossible (corrupt file?)");
-  if (h.format > 10) fail(name, "LAS point data format " + std::to_string(h.format) + " is not supported (0 to 10 are)");
+  if (h.format > 10)
+    fail(name, "LAS point data format " + std::to_string(h.format) + " is not supported (0 to 10 are)");
   if (h.record < min_record[h.format])
     fail(name, "LAS point record length " + std::to_string(h.record) + " is shorter than format " +
                    std::to_string(h.format) + "'s " + std::to_string(min_record[h.format]) + " bytes");
@@ -106,8 +109,8 @@ struct Axis {
   Axis(double s, double o) : scale(s), offset(o) {
     inv = std::round(1 / s);
     shift = std::round(o * inv);
-    exact = inv >= 1 && inv <= 1e9 && std::abs(1 / s - inv) <= 1e-9 * inv && std::abs(o * inv - shift) <= 1e-6 &&
-            std::abs(shift) < 1e15;
+    exact = inv >= 1 && inv <= 1e9 && std::abs(1 / s - inv) <= 1e-9 * inv &&
+            std::abs(o * inv - shift) <= 1e-6 && std::abs(shift) < 1e15;
   }
   double operator()(std::int32_t v) const {
     return exact ? (static_cast<double>(v) + shift) / inv : v * scale + offset;

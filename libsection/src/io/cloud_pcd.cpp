@@ -24,12 +24,12 @@ struct PcdHeader {
   std::vector<char> kind;  // 'f', 'i' or 'u' (ply_scalar's kinds)
   unsigned long long points = 0;
   bool binary = false;
-  std::size_t lines = 0;  // header lines, the DATA line included
-  int column[3] = {-1, -1, -1};   // value index of x, y, z in an ascii line
+  std::size_t lines = 0;              // header lines, the DATA line included
+  int column[3] = {-1, -1, -1};       // value index of x, y, z in an ascii line
   std::size_t offset[3] = {0, 0, 0};  // byte offset of x, y, z in a binary record
   std::size_t field[3] = {0, 0, 0};   // field index of x, y, z
-  std::size_t record = 0;  // bytes per binary record
-  std::size_t values = 0;  // values per ascii line
+  std::size_t record = 0;             // bytes per binary record
+  std::size_t values = 0;             // values per ascii line
 };
 
 [[noreturn]] void fail(const std::string& name, const std::string& what) {
@@ -43,7 +43,8 @@ std::vector<int> header_numbers(const std::vector<std::string_view>& w, const st
   for (std::size_t i = 1; i < w.size(); ++i) {
     int v = 0;
     if (!parse_integer(w[i], v) || v <= 0)
-      fail_line(name, line, "PCD " + std::string(w[0]) + " value " + quoted(w[i]) + " is not a positive integer");
+      fail_line(name, line,
+                "PCD " + std::string(w[0]) + " value " + quoted(w[i]) + " is not a positive integer");
     out.push_back(v);
   }
   return out;
@@ -96,7 +97,9 @@ bool header_line(PcdHeader& h, const std::vector<std::string_view>& w, const std
   } else if (key == "data") {
     const std::string kind = w.size() == 2 ? lower(std::string(w[1])) : "";
     if (kind == "binary_compressed")
-      fail(name, "PCD DATA binary_compressed is not supported: save it as binary or ascii (pcl_convert_pcd_ascii_binary)");
+      fail(name,
+           "PCD DATA binary_compressed is not supported: save it as binary or ascii "
+           "(pcl_convert_pcd_ascii_binary)");
     if (kind != "ascii" && kind != "binary")
       fail_line(name, line, "PCD DATA must be ascii or binary, found " + quoted(w.size() > 1 ? w[1] : ""));
     h.binary = kind == "binary";
@@ -126,8 +129,8 @@ PcdHeader read_header(ByteSource& src, const CloudReadOptions& opt) {
   locate_xyz(h, name);
   if (h.points == 0) h.points = width * height;
   if (h.points != width * height)
-    fail(name, "PCD POINTS " + std::to_string(h.points) + " is not WIDTH x HEIGHT = " +
-                   std::to_string(width * height));
+    fail(name, "PCD POINTS " + std::to_string(h.points) +
+                   " is not WIDTH x HEIGHT = " + std::to_string(width * height));
   if (h.points == 0) fail(name, "no points (PCD header declares 0 points)");
   if (h.points > opt.max_points)
     fail(name, "PCD header declares " + std::to_string(h.points) + " points, more than the limit of " +
@@ -163,7 +166,8 @@ void read_ascii(ByteSource& src, const PcdHeader& h, Chunker& out) {
     double v[3];
     for (int c = 0; c < 3; ++c)
       if (!parse_double(w[static_cast<std::size_t>(h.column[c])], v[c]))
-        fail_line(name, line_no, "expected a number, found " + quoted(w[static_cast<std::size_t>(h.column[c])]));
+        fail_line(name, line_no,
+                  "expected a number, found " + quoted(w[static_cast<std::size_t>(h.column[c])]));
     add_point(out, v, done++, name);
   }
   if (done < h.points)
@@ -180,13 +184,14 @@ void read_binary(ByteSource& src, const PcdHeader& h, Chunker& out) {
       fail(name, "PCD header declares " + std::to_string(h.points) + " points but the file holds only " +
                      std::to_string(body / h.record) + " (truncated file?)");
     if (body > bytes)
-      fail(name, "the file holds " + std::to_string(body - bytes) + " bytes more than its PCD header declares (" +
-                     std::to_string(h.points) + " points): a wrong point count?");
+      fail(name, "the file holds " + std::to_string(body - bytes) +
+                     " bytes more than its PCD header declares (" + std::to_string(h.points) +
+                     " points): a wrong point count?");
   }
   unsigned long long done = 0;
   while (done < h.points) {
-    std::size_t n = static_cast<std::size_t>(std::min<unsigned long long>(src.bytes().size() / h.record,
-                                                                          h.points - done));
+    std::size_t n = static_cast<std::size_t>(
+        std::min<unsigned long long>(src.bytes().size() / h.record, h.points - done));
     if (n == 0) {
       if (src.fetch(std::max<std::size_t>(h.record, block_size)) == 0)
         fail(name, "PCD file ends after " + std::to_string(done) + " of " + std::to_string(h.points) +
