@@ -21,6 +21,9 @@ seeds_for() {
     fuzz_xyz) ls tests/robustness/*.xyz tests/robustness/*.txt 2>/dev/null ;;
     fuzz_csv_cloud) ls tests/robustness/*.csv 2>/dev/null | grep -v stream ;;
     fuzz_ply) ls tests/robustness/*.ply data/*.ply 2>/dev/null ;;
+    fuzz_pts) ls tests/data/formats/*.pts 2>/dev/null ;;
+    fuzz_pcd) ls tests/data/formats/*.pcd 2>/dev/null ;;
+    fuzz_las) ls tests/data/formats/*.las 2>/dev/null ;;
     fuzz_stl) ls tests/robustness/*.stl 2>/dev/null ;;
     fuzz_obj_off) ls tests/robustness/*.obj tests/robustness/*.off 2>/dev/null ;;
     fuzz_pipe) ls tests/robustness/*stream* tests/robustness/*.dat 2>/dev/null ;;

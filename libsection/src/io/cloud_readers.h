@@ -1,5 +1,6 @@
 #pragma once
-// The point cloud readers (XYZ and CSV text, PLY) and what they share; io/formats.h lists them.
+// The point cloud readers (XYZ, PTS and CSV text, PLY, PCD, LAS) and what they share; io/formats.h lists
+// them.
 #include "io/byte_source.h"
 #include "section/io/cloud_io.h"
 
@@ -67,6 +68,12 @@ void check_vertices(const Eigen::Vector3d* v, std::size_t m, unsigned long long 
 std::size_t read_xyz_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);
 std::size_t read_csv_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
+                           const PointChunkFn& raw);
+std::size_t read_pts_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
+                           const PointChunkFn& raw);
+std::size_t read_pcd_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
+                           const PointChunkFn& raw);
+std::size_t read_las_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);
 std::size_t read_ply_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);

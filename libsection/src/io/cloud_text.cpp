@@ -5,6 +5,7 @@
 #include "io/text.h"
 #include "section/error.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -19,11 +20,23 @@ struct TextState {
   int cx = 0, cy = 1, cz = 2;  // columns of x, y, z
   int needed = 3;              // columns a row must have at least
   bool require_header = false;
+  bool pts = false;        // a line holding one integer is a PTS count line
+  bool semicolon = false;  // ';' separates the cells and ',' is a decimal comma (first data line holds a ';')
 };
 
-// Splits a line into at most `max_fields` fields (split_fields); returns the count.
-int split_row(std::string_view line, std::string_view* fields, int max_fields) {
+// Splits a line into at most `max_fields` fields (split_fields, or at each ';' when
+// `semicolon`); returns the count.
+int split_row(std::string_view line, std::string_view* fields, int max_fields, bool semicolon) {
   int n = 0;
+  if (semicolon) {
+    for (std::size_t at = 0; n < max_fields;) {
+      const std::size_t end = std::min(line.find(';', at), line.size());
+      fields[n++] = trim(line.substr(at, end - at));
+      if (end == line.size()) break;
+      at = end + 1;
+    }
+    return n;
+  }
   split_fields(line, [&](std::string_view f) {
     fields[n++] = f;
     return n < max_fields;
@@ -38,9 +51,19 @@ std::string unquote(std::string_view s) {
   return lower(std::string(s));
 }
 
+// Parses a cell; with `semicolon`, a ',' in it is the decimal point ("1,5" is 1.5).
+bool parse_cell(std::string_view cell, double& v, bool semicolon) {
+  if (!semicolon || cell.find(',') == std::string_view::npos || cell.size() > 64)
+    return parse_double(cell, v);
+  char buf[64];
+  std::copy(cell.begin(), cell.end(), buf);
+  std::replace(buf, buf + cell.size(), ',', '.');
+  return parse_double({buf, cell.size()}, v);
+}
+
 bool try_header(std::string_view line, TextState& st) {
   std::string_view f[64];
-  const int n = split_row(line, f, 64);
+  const int n = split_row(line, f, 64, st.semicolon);
   int cx = -1, cy = -1, cz = -1;
   for (int i = 0; i < n; ++i) {
     const std::string name = unquote(f[i]);
@@ -62,23 +85,29 @@ void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, 
                      Out& out, bool& first_data) {
   line = trim(line);
   if (line.empty() || line[0] == '#' || (line.size() > 1 && line[0] == '/' && line[1] == '/')) return;
+  unsigned long long count = 0;
+  if (st.pts && line.find_first_of(" \t,;") == std::string_view::npos && parse_integer(line, count)) {
+    out.declare(count);
+    return;
+  }
   if (first_data) {
     first_data = false;
+    st.semicolon = line.find(';') != std::string_view::npos;
     double tmp;
     std::string_view f[64];
-    const int n = split_row(line, f, 64);
-    if (n == 0 || !parse_double(trim(f[0]), tmp) || st.require_header) {
+    const int n = split_row(line, f, 64, st.semicolon);
+    if (n == 0 || !parse_cell(trim(f[0]), tmp, st.semicolon) || st.require_header) {
       if (try_header(line, st)) return;
       if (st.require_header)
         fail_line(name, line_no, "a CSV cloud needs a header row naming the x, y and z columns");
-      if (n > 0 && !parse_double(trim(f[0]), tmp))
+      if (n > 0 && !parse_cell(trim(f[0]), tmp, st.semicolon))
         fail_line(name, line_no,
                   "expected a number in column 1, found '" + std::string(trim(f[0]).substr(0, 40)) +
                       "' (a header row must name x, y and z columns)");
     }
   }
   std::string_view f[64];
-  const int n = split_row(line, f, std::min(64, st.needed));
+  const int n = split_row(line, f, std::min(64, st.needed), st.semicolon);
   if (n < st.needed)
     fail_line(name, line_no,
               "expected at least " + std::to_string(st.needed) + " columns, found " + std::to_string(n));
@@ -86,7 +115,7 @@ void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, 
   const int cols[3] = {st.cx, st.cy, st.cz};
   for (int k = 0; k < 3; ++k) {
     const std::string_view cell = trim(f[cols[k]]);
-    if (!parse_double(cell, v[k]))
+    if (!parse_cell(cell, v[k], st.semicolon))
       fail_line(name, line_no,
                 "expected a number in column " + std::to_string(cols[k] + 1) + ", found '" +
                     std::string(cell.substr(0, 40)) + "'");
@@ -125,7 +154,7 @@ inline bool parse_xyz_fast(const char* p, const char* e, double* v) {
 template <class Out>
 void parse_text_lines(std::string_view buf, std::size_t begin, std::size_t end, std::size_t& line_no,
                       TextState& st, const std::string& name, Out& out) {
-  const bool plain = st.cx == 0 && st.cy == 1 && st.cz == 2;
+  const bool plain = st.cx == 0 && st.cy == 1 && st.cz == 2 && !st.semicolon;
   const char* p = buf.data() + begin;
   const char* const stop = buf.data() + end;
   bool first_data = false;
@@ -148,7 +177,21 @@ struct PieceOut {
   std::vector<Eigen::Vector3d> points;
   std::size_t lines = 0;  // lines of the piece (all of them unless it failed)
   bool failed = false;    // a line is malformed: the piece is parsed again, in order, for the message
+  unsigned long long declared = 0;  // points the PTS count lines of the piece declare
   void add(double x, double y, double z) { points.emplace_back(x, y, z); }
+  void declare(unsigned long long n) { declared += n; }
+};
+
+// The points of a text cloud in chunks, and the points its PTS count lines declare.
+struct TextOut {
+  Chunker chunks;
+  unsigned long long declared = 0;
+  bool counted = false;  // a count line was seen
+  void add(double x, double y, double z) { chunks.add(x, y, z); }
+  void declare(unsigned long long n) {
+    declared += n;
+    counted = true;
+  }
 };
 
 // Parses the complete lines buf[begin, end) (end just after a '\n'; the first data line
@@ -157,7 +200,7 @@ struct PieceOut {
 // if parsed line by line: `line_no` is the number of lines before `begin`.
 // `parts` is kept from block to block so that its buffers are reused, not faulted in anew.
 void parse_text_block(std::string_view buf, std::size_t begin, std::size_t end, std::size_t& line_no,
-                      const TextState& st, const std::string& name, const CloudReadOptions& opt, Chunker& out,
+                      const TextState& st, const std::string& name, const CloudReadOptions& opt, TextOut& out,
                       std::vector<PieceOut>& parts) {
   const std::size_t bytes = end - begin;
   std::size_t pieces = worker_count(opt.threads);
@@ -180,6 +223,7 @@ void parse_text_block(std::string_view buf, std::size_t begin, std::size_t end, 
     part.points.clear();
     part.lines = 0;
     part.failed = false;
+    part.declared = 0;
     part.points.reserve((cut[k + 1] - cut[k]) / 24);
     TextState local = st;
     try {
@@ -194,17 +238,20 @@ void parse_text_block(std::string_view buf, std::size_t begin, std::size_t end, 
       TextState local = st;
       parse_text_lines(buf, cut[k], cut[k + 1], line_no, local, name, again);  // throws
     }
-    if (out.total() + parts[k].points.size() > opt.max_points)
+    if (out.chunks.total() + parts[k].points.size() > opt.max_points)
       throw Error("read_cloud: " + name + ": more than " + std::to_string(opt.max_points) + " points");
-    out.add_many(parts[k].points.data(), parts[k].points.size());
+    out.chunks.add_many(parts[k].points.data(), parts[k].points.size());
+    if (parts[k].declared) out.declare(parts[k].declared);
     line_no += parts[k].lines;
   }
 }
 
-std::size_t read_text(ByteSource& src, bool csv, const CloudReadOptions& opt, const PointChunkFn& fn) {
-  Chunker out(fn, opt.chunk_points);
+std::size_t read_text(ByteSource& src, bool csv, bool pts, const CloudReadOptions& opt,
+                      const PointChunkFn& fn) {
+  TextOut out{Chunker(fn, opt.chunk_points)};
   TextState st;
   st.require_header = csv;
+  st.pts = pts;
   bool first_data = true;
   std::size_t line_no = 0;
   std::vector<PieceOut> parts;
@@ -217,7 +264,7 @@ std::size_t read_text(ByteSource& src, bool csv, const CloudReadOptions& opt, co
       if (nl - used > max_line)
         fail_line(src.name(), line_no, "line longer than " + std::to_string(max_line) + " characters");
       parse_text_line(b.substr(used, nl - used), line_no, st, src.name(), out, first_data);
-      if (out.total() > opt.max_points)
+      if (out.chunks.total() > opt.max_points)
         throw Error("read_cloud: " + src.name() + ": more than " + std::to_string(opt.max_points) +
                     " points");
       used = nl + 1;
@@ -243,21 +290,31 @@ std::size_t read_text(ByteSource& src, bool csv, const CloudReadOptions& opt, co
     last.push_back('\n');
     parse(last);
   }
-  out.flush();
-  if (out.total() == 0) throw Error("read_cloud: " + src.name() + ": no points");
-  return out.total();
+  out.chunks.flush();
+  const std::size_t total = out.chunks.total();
+  if (out.counted && out.declared != total)
+    throw Error("read_cloud: " + src.name() + ": its PTS count lines declare " +
+                std::to_string(out.declared) + " points, the file holds " + std::to_string(total) +
+                " (truncated file or wrong count?)");
+  if (total == 0) throw Error("read_cloud: " + src.name() + ": no points");
+  return total;
 }
 
 }  // namespace
 
 std::size_t read_xyz_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn&) {
-  return read_text(src, false, opt, fn);
+  return read_text(src, false, false, opt, fn);
+}
+
+std::size_t read_pts_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
+                           const PointChunkFn&) {
+  return read_text(src, false, true, opt, fn);
 }
 
 std::size_t read_csv_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn&) {
-  return read_text(src, true, opt, fn);
+  return read_text(src, true, false, opt, fn);
 }
 
 }  // namespace section::detail

@@ -21,9 +21,12 @@ const std::vector<InputFormat>& input_formats() {
       {{"stl"}, {}, C::automatic, nullptr, false, nullptr, read_stl, nullptr},
       {{"obj"}, {}, C::automatic, nullptr, false, nullptr, read_obj, nullptr},
       {{"off"}, {}, C::automatic, nullptr, false, nullptr, read_off, nullptr},
-      {{"xyz", "asc", "txt", "pts"}, {"xyzn"}, C::xyz, read_xyz_cloud, true, nullptr, nullptr, nullptr},
+      {{"xyz", "asc", "txt"}, {"xyzn"}, C::xyz, read_xyz_cloud, true, nullptr, nullptr, nullptr},
+      {{"pts"}, {}, C::pts, read_pts_cloud, true, nullptr, nullptr, nullptr},
       {{"csv"}, {}, C::csv, read_csv_cloud, true, nullptr, nullptr, nullptr},
       {{"ply"}, {}, C::ply, read_ply_cloud, false, "ply", read_ply_mesh, ply_declares_faces},
+      {{"pcd"}, {}, C::pcd, read_pcd_cloud, false, "# .PCD|VERSION 0.7|VERSION .7", nullptr, nullptr},
+      {{"las"}, {"laz"}, C::las, read_las_cloud, false, "LASF", nullptr, nullptr},
   };
   return formats;
 }
@@ -93,8 +96,16 @@ const InputFormat& cloud_format(const std::string& path, std::string_view head, 
       return *f;
     }
   }
+  const auto starts = [&](std::string_view magic) {  // one of magic's '|'-separated prefixes
+    for (std::size_t at = 0; at <= magic.size();) {
+      const std::size_t bar = std::min(magic.find('|', at), magic.size());
+      if (head.substr(0, bar - at) == magic.substr(at, bar - at)) return true;
+      at = bar + 1;
+    }
+    return false;
+  };
   for (const InputFormat& f : all)
-    if (f.read_cloud && f.magic && head.compare(0, std::strlen(f.magic), f.magic) == 0) return f;
+    if (f.read_cloud && f.magic && starts(f.magic)) return f;
   if (path != "-" && !extension(path).empty())
     throw Error("read_cloud: " + path + ": unknown point cloud extension '." + extension(path) + "' (use " +
                 named_extensions(false) + ")");

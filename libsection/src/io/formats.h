@@ -25,8 +25,9 @@ struct InputFormat {
   std::vector<std::string_view> also;          ///< further extensions, read but not named in messages
   CloudFormat cloud = CloudFormat::automatic;  ///< its name for CloudReadOptions; automatic: no clouds
   CloudReader read_cloud = nullptr;            ///< nullptr when it holds no clouds
-  bool text = false;               ///< a text format: its encoding is checked and a UTF-8 BOM skipped
-  const char* magic = nullptr;     ///< how its content starts, for input with no extension (stdin)
+  bool text = false;  ///< a text format: its encoding is checked and a UTF-8 BOM skipped
+  const char* magic =
+      nullptr;  ///< how its content starts (prefixes separated by '|'), for input with no extension (stdin)
   MeshReader read_mesh = nullptr;  ///< nullptr when it holds no meshes
   /// For a format of clouds and meshes: true when the file holds a mesh.
   bool (*holds_mesh)(ByteSource& src) = nullptr;

@@ -1,0 +1,6 @@
+// libFuzzer target: the LAS point-cloud reader (parse_cloud).
+#include "common.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return fuzz_parse_cloud(data, size, section::CloudFormat::las, "fuzz.las");
+}

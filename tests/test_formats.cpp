@@ -1,0 +1,141 @@
+// The input formats read from files written by other tools (tests/data/formats/, made by
+// scripts/make_format_fixtures.py with laspy, pypcd4, Python's csv module and numpy): each
+// gives the points of blade.xyz, exactly or to its format's precision; and bad files are
+// refused with a message naming the file and what is wrong.
+#include "section/cloud.h"
+#include "section/error.h"
+#include "section/io/cloud_io.h"
+
+#include "thrown.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+using namespace section;
+
+namespace {
+
+const std::string dir = std::string(SECTION_TEST_DATA) + "/formats/";
+
+std::string bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::string cloud_error(const std::string& bytes, const std::string& name) {
+  return thrown([&] { parse_cloud(bytes, name, {}); });
+}
+
+}  // namespace
+
+TEST_CASE("formats: PTS, LAS, ascii PCD, semicolon and tab text give blade.xyz's points exactly",
+          "[formats]") {
+  const Cloud xyz = read_cloud(dir + "blade.xyz");
+  REQUIRE(xyz.points.size() > 4000);
+  for (const char* name : {"blade.pts", "blade_12_f3.las", "blade_14_f6.las", "blade_ascii.pcd",
+                           "blade_semicolon.csv", "blade_semicolon.txt", "blade_tab.txt"}) {
+    INFO(name);
+    const Cloud c = read_cloud(dir + name);
+    REQUIRE(c.points.size() == xyz.points.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < c.points.size(); ++i) differ += c.points[i] != xyz.points[i];
+    CHECK(differ == 0);
+  }
+}
+
+TEST_CASE("formats: binary float PCD gives the points to float precision, its NaN points dropped",
+          "[formats]") {
+  const Cloud xyz = read_cloud(dir + "blade.xyz");
+  const Cloud c = read_cloud(dir + "blade_binary.pcd");  // 5 NaN points among them
+  REQUIRE(c.points.size() == xyz.points.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < c.points.size(); ++i)
+    for (int k = 0; k < 3; ++k) differ += c.points[i][k] != double(float(xyz.points[i][k]));
+  CHECK(differ == 0);
+}
+
+TEST_CASE("formats: semicolon text reads decimal commas, PTS count lines are counted", "[formats]") {
+  const Cloud a = parse_cloud("1,5;2,25;-3,0\n4;5;6\n", "a.txt", {});
+  REQUIRE(a.points.size() == 2);
+  CHECK(a.points[0] == Eigen::Vector3d(1.5, 2.25, -3.0));
+  const Cloud b = parse_cloud("x;y;z\n1,5;2;3\n", "b.csv", {});
+  CHECK(b.points[0] == Eigen::Vector3d(1.5, 2, 3));
+  const Cloud t = parse_cloud("1\t2\t3\n", "t.txt", {});
+  CHECK(t.points[0] == Eigen::Vector3d(1, 2, 3));
+  const Cloud p = parse_cloud("2\n1 2 3 0 1 2 3\n4 5 6 0 1 2 3\n1\n7 8 9\n", "p.pts", {});
+  CHECK(p.points.size() == 3);
+  CHECK_THAT(cloud_error("3\n1 2 3\n4 5 6\n", "c.pts"),
+             Catch::Contains("c.pts: its PTS count lines declare 3 points, the file holds 2"));
+  CHECK_THAT(cloud_error("2\n1 2 3\n4 5\n", "d.pts"),
+             Catch::Contains("d.pts:3: expected at least 3 columns"));
+  CHECK_THAT(cloud_error("1;2;x\n", "e.txt"), Catch::Contains("e.txt:1: expected a number in column 3"));
+}
+
+TEST_CASE("formats: bad PCD files are refused by name", "[formats]") {
+  CHECK_THAT(cloud_error(bytes_of(dir + "compressed.pcd"), "c.pcd"),
+             Catch::Contains("c.pcd: PCD DATA binary_compressed is not supported"));
+  const std::string bin = bytes_of(dir + "blade_binary.pcd");
+  CHECK_THAT(
+      cloud_error(bin.substr(0, bin.size() - 10), "t.pcd"),
+      Catch::Contains("t.pcd: PCD header declares 4403 points but the file holds only 4402 (truncated"));
+  CHECK_THAT(cloud_error(bin + "abcd", "l.pcd"),
+             Catch::Contains("4 bytes more than its PCD header declares"));
+  const std::string head = "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  const std::string two = "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n";
+  CHECK(parse_cloud(head + two + "1 2 3\nnan nan nan\n", "a.pcd", {}).points.size() == 1);
+  CHECK_THAT(cloud_error(head + two + "1 2 3\n4 5\n", "a.pcd"),
+             Catch::Contains("a.pcd:11: expected 3 values, found 2"));
+  CHECK_THAT(cloud_error(head + two + "1 2 3\n", "a.pcd"), Catch::Contains("ends after 1 of 2 points"));
+  CHECK_THAT(cloud_error(head + two + "1 2 3\n1 2 3\n1 2 3\n", "a.pcd"),
+             Catch::Contains("a.pcd:12: more points than the PCD header declares (2)"));
+  CHECK_THAT(cloud_error(head + two + "1 2 3\n1 inf 3\n", "a.pcd"),
+             Catch::Contains("a.pcd: point 2 has an infinite coordinate"));
+  CHECK_THAT(cloud_error(head + "WIDTH 3\nHEIGHT 1\nPOINTS 2\nDATA ascii\n", "a.pcd"),
+             Catch::Contains("PCD POINTS 2 is not WIDTH x HEIGHT = 3"));
+  CHECK_THAT(cloud_error("VERSION 0.7\nFIELDS a b\nSIZE 4 4\nTYPE F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2\n",
+                         "n.pcd"),
+             Catch::Contains("n.pcd: PCD FIELDS lack x, y or z"));
+  CHECK_THAT(cloud_error(head + "WIDTH 1\nDATA xyz\n", "h.pcd"),
+             Catch::Contains("h.pcd:7: PCD DATA must be ascii"));
+}
+
+TEST_CASE("formats: bad LAS files and LAZ are refused by name", "[formats]") {
+  const std::string las = bytes_of(dir + "blade_14_f6.las");
+  CHECK_THAT(cloud_error(las.substr(0, las.size() - 100), "t.las"),
+             Catch::Contains("t.las: LAS header declares 4398 points but the file holds only"));
+  std::string laz = las;
+  laz[104] = static_cast<char>(laz[104] | 0x80);  // what LASzip marks a compressed file with
+  CHECK_THAT(cloud_error(laz, "c.laz"),
+             Catch::Contains("c.laz: LAZ (LASzip-compressed LAS) is not supported"));
+  std::string short_record = las;
+  short_record[105] = 20;  // a record shorter than format 6's 30 bytes
+  short_record[106] = 0;
+  CHECK_THAT(cloud_error(short_record, "r.las"),
+             Catch::Contains("point record length 20 is shorter than format 6"));
+  std::string v2 = las;
+  v2[24] = 2;
+  CHECK_THAT(cloud_error(v2, "v.las"), Catch::Contains("v.las: LAS version 2.4 is not supported"));
+  CHECK_THAT(cloud_error(las.substr(0, 100), "h.las"),
+             Catch::Contains("h.las: LAS header ends after 100 bytes"));
+  std::string zero = las;
+  std::memset(&zero[131], 0, 8);  // x scale 0
+  CHECK_THAT(cloud_error(zero, "z.las"),
+             Catch::Contains("LAS x scale factor or offset is zero or not finite"));
+}
+
+TEST_CASE("formats: LAS takes its record length and offset from the header", "[formats]") {
+  // blade_14_f6.las: format 6 with 4 extra bytes a record (34, not 30) and offsets (10, -5, 30).
+  const std::string las = bytes_of(dir + "blade_14_f6.las");
+  std::uint16_t record = 0;
+  std::memcpy(&record, las.data() + 105, 2);
+  CHECK(record == 34);
+  double offset = 0;
+  std::memcpy(&offset, las.data() + 163, 8);
+  CHECK(offset == -5);
+}

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Black-box tests of the input formats (tests/data/formats/, written by laspy, pypcd4,
+# Python's csv module and numpy: scripts/make_format_fixtures.py): slice gives the same
+# sections from each file as from the same points in XYZ, byte for byte where the format
+# holds the decimals exactly; float PCD the same parameters to 1e-4 (its coordinates are
+# rounded to float, ~1e-6 mm); compressed files are refused by name.
+source "$(dirname "$0")/lib.sh"
+D="$SRC/tests/data/formats"
+AT=(--at 15,30,45)
+
+sections() {  # sections INPUT OUT: slice's stream without its history line
+  "$BIN/slice" "$1" "${AT[@]}" | grep -v '^# history' > "$2"
+}
+# params INPUT OUT: the params of the whole pipe on INPUT.
+params() {
+  "$BIN/slice" "$1" "${AT[@]}" | "$BIN/smooth" | "$BIN/fitspline" | "$BIN/camber" --params "$2" > /dev/null
+}
+# close A B: chord, max thickness, camber length (mm) and stagger (deg) of two params files
+# agree within 1e-4 on every section.
+close() {
+  python3 - "$1" "$2" <<'PY'
+import csv, sys
+a, b = (list(csv.DictReader(l for l in open(p) if not l.startswith("#"))) for p in sys.argv[1:])
+assert len(a) == len(b) == 3, (len(a), len(b))
+for ra, rb in zip(a, b):
+    for k in ("chord", "max_thickness", "camber_length", "stagger"):
+        assert abs(float(ra[k]) - float(rb[k])) <= 1e-4, (k, ra[k], rb[k])
+PY
+}
+
+expect 0 "slice blade.xyz" -- sections "$D/blade.xyz" "$TMP/ref"
+check "the XYZ gives 3 sections" -- test "$(grep -c '^# part' "$TMP/ref")" -eq 3
+for f in blade.pts blade_12_f3.las blade_14_f6.las blade_ascii.pcd blade_semicolon.csv blade_semicolon.txt \
+  blade_tab.txt; do
+  expect 0 "slice $f" -- sections "$D/$f" "$TMP/$f.out"
+  check "$f gives the same sections as the XYZ" -- cmp -s "$TMP/ref" "$TMP/$f.out"
+done
+expect 0 "pipe on blade.xyz" -- params "$D/blade.xyz" "$TMP/ref.csv"
+expect 0 "pipe on blade_binary.pcd" -- params "$D/blade_binary.pcd" "$TMP/bin.csv"
+check "float PCD gives the same chord, thickness, camber length, stagger to 1e-4" -- close "$TMP/ref.csv" "$TMP/bin.csv"
+# Standard input: LAS and PCD by their first bytes.
+"$BIN/slice" - "${AT[@]}" < "$D/blade_12_f3.las" | grep -v '^# history' > "$TMP/stdin.out"
+check "LAS on standard input gives the same sections" -- cmp -s "$TMP/ref" "$TMP/stdin.out"
+"$BIN/slice" - "${AT[@]}" < "$D/blade_ascii.pcd" | grep -v '^# history' > "$TMP/stdin.out"
+check "PCD (starting with VERSION) on standard input gives the same sections" -- cmp -s "$TMP/ref" "$TMP/stdin.out"
+
+expect 1 "binary_compressed PCD is refused" -- "$BIN/slice" "$D/compressed.pcd" "${AT[@]}"
+check "its message names the file and the way out" -- \
+  grep -q "compressed.pcd: PCD DATA binary_compressed is not supported: save it as binary or ascii" "$TMP/err"
+check "nothing on stdout" -- test ! -s "$TMP/out"
+python3 -c "import sys; b = bytearray(open(sys.argv[1], 'rb').read()); b[104] |= 0x80; open(sys.argv[2], 'wb').write(b)" \
+  "$D/blade_12_f3.las" "$TMP/blade.laz"
+expect 1 "LAZ is refused" -- "$BIN/slice" "$TMP/blade.laz" "${AT[@]}"
+check "its message names the file and says decompress" -- grep -q "blade.laz: LAZ (LASzip-compressed LAS) is not supported: decompress" "$TMP/err"
+printf '3\n1 2 3\n4 5 6\n' > "$TMP/short.pts"
+expect 1 "a PTS count line larger than its points is refused" -- "$BIN/slice" "$TMP/short.pts" --at 1
+check "its message names the file and both counts" -- grep -q "short.pts: its PTS count lines declare 3 points, the file holds 2" "$TMP/err"
+finish
