@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // bench_compare: compare's best fit on generated sections moved by known rigid motions, its
 // time per section, and the files engeom's alignment runs on (scripts/compare_engeom.sh).
 #include "common/tool.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // bench_read [--threads N] FILE...: reads each cloud with the library's chunked reader and
 // prints the point count, wall time and throughput (points per second). --threads sets the
 // text parser's worker threads (0 = all cores, the default).

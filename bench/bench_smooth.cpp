@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // bench_smooth: time per section of smooth() with CHOLMOD and with Gauss-Seidel.
 #include "common/tool.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // evaluate_kinds: the kinds of data users have (docs/GENERATOR.md) through the real tools
 // with their default options, as a user runs them:
 //   slice FILE [--count N: not for sparse rows] | smooth | fitspline | camber --params P
@@ -6,9 +7,8 @@
 // Per kind: the planes that gave params (%), and per quantity the worst error against its
 // target (issue 5's, as evaluate_pipeline prints them, where the data are dense; on sparse
 // rows a sanity bound of 2 % (lengths) and 1 degree (angles), issue 21's real-data check).
-// A value beyond it is "flagged" when its params row's `flags` column or an issue of its
-// section names it, else SILENT WRONG. Exit 1 when a kind (of --expect, if given) has a
-// silent wrong value or fewer than 95 % of its planes with params; 2 on bad usage.
+// Beyond it a value is "flagged" (its row's `flags` or an issue names it) or SILENT WRONG.
+// Exit 1 when a kind (of --expect) has one, or params on under 95 % of its planes; 2: usage.
 // Usage: evaluate_kinds [--quick] [--seeds N] [--kinds K1,K2] [--expect K1,K2|all]
 //                       [--tools DIR] [--keep DIR] [--verbose]
 #include "section/checks.h"

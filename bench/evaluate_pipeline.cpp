@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // evaluate_pipeline: runs slice | smooth | fitspline | camber (through the stream text, as
 // the tools do) on generated blades and prints, per section, the fitted curve's distance to
 // the exact profile and the camber line and section parameters against section_truth.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Finds SuiteSparse's CHOLMOD (SuiteSparse 5.x ships no CMake config).
 # Defines Cholmod::Cholmod.
 find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Man pages and bash completion of the tools, made from each tool's --help at build time:
 # share/man/man1/TOOL.1 (help2man: scripts/man_page.sh) and
 # share/bash-completion/completions/TOOL (scripts/bash_completion.py) in the build tree,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """slice | smooth | fitspline | camber in Python: each section's parameters of a scan.
 
     python3 examples/pipe.py [CLOUD] (default: the example blade; needs scripts/python.sh install)

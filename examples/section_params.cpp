@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // section_params: blade section parameters from a mesh through libsection's public API.
 //
 //   section_params [MESH [Z...]]

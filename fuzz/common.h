@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Shared by the fuzz targets: each runs one reader on the input and checks what it promises.
 #include "section/cloud.h"

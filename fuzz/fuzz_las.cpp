@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: the LAS point-cloud reader (parse_cloud).
 #include "common.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: OBJ and OFF meshes through read_mesh; the first byte picks the format.
 #include "common.h"
 

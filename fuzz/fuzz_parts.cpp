@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: a stream read part by part (PartReader, parse_stream_part) and held to
 // its schema (validate_stream), as run_stage reads one; a stream not split into parts is
 // parsed whole. What parses must hold finite values, each part its own section only.

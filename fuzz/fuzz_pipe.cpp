@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: the pipe parser. Each input goes to parse_stream, parse_csv and
 // parse_profile; a stream that parses must format and parse back to the same tables.
 #include "section/error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: the planes CSV of slice --planes (parse_planes). What parses must be
 // planes with finite origins and non-zero finite normals.
 #include "common.h"

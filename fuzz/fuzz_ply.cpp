@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: the ply point-cloud reader (parse_cloud). Inputs whose header mentions
 // faces also go through read_mesh (the PLY mesh reader), as slice does.
 #include "common.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target: STL meshes (ascii and binary) through read_mesh.
 #include "common.h"
 

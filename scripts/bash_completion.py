@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """A tool's bash completion from its --help (CLI11's layout), for the build
 (cmake/ToolDocs.cmake): its flags after '-', the choices of a flag that lists them
 (`TEXT:{a,b}`), nothing after a flag taking a number, file names elsewhere.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Benchmark driver: libsection against the Python a user would write instead, on the
 # same generated files. For each cloud size (millions of points; the full turbine blade
 # at 0.08 mm spacing is ~0.94 M points, so spacing = 0.08 sqrt(0.94 / M)) it times, with

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Checks that two builds give byte-identical outputs at every stage of the pipe: the
 # bundled example, a generated mesh, a plain profile, the benchmark's scan (BIG=1: the
 # 21 M point scan of scripts/bench.sh; default a 1 M point one) and evaluate_pipeline

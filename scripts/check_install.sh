@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs libsection into a temporary prefix and uses it as an embedding project would:
 # the installed tools run, examples/ configures with find_package(libsection CONFIG) and
 # runs on a synthetic blade (its errors against the exact design must stay below 10 um)

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Checks the rooms of the tree (docs/ARCHITECTURE.md):
 
 - no C++ source file over MAX_FILE lines, no function over MAX_FUNCTION lines;

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Renders the example blade's drawings (plot: one SVG per section and the HTML page) with
 # headless Chromium and checks the screenshots are not blank: each element's colour must
 # cover enough pixels (measured points, curve, camber line, stations, LE and TE circles).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # compare against engeom's 2D alignment (docs/ACCURACY.md, docs/PERFORMANCE.md): the same
 # generated sections, moved by known rigid motions with 5 um of noise, fitted by
 # `compare_section` (least squares, minimum zone) and by engeom.align2.points_to_curve

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Compares our pipe with what a user could do without it, on the same slab points.
 
 Fit: our fitspline against scipy's periodic smoothing spline. scipy gets the points

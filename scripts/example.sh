@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Sets up, builds, and runs the whole pipe on the bundled example blade:
 # slice -> smooth -> fitspline -> camber, printing each section's parameters, then compare
 # against the blade's nominal with tolerances, printing the report. The example

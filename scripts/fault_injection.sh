@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # CI stage: the robustness suite (tests/tools/test_robustness.sh and test_hostile.sh) run
 # again under hostile limits of its environment, on a built tree (docs/ROBUSTNESS.md):
 #   1. a low address space (ulimit -v 2 GB): the tools' memory limit shrinks with it,

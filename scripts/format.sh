@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Formats the C++ sources with clang-format (.clang-format at the root); with --check,
 # lists the files that are not formatted and exits 1 when any. Needs clang-format (Debian:
 # apt install clang-format).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Builds the libFuzzer targets (fuzz/) with clang + ASan + UBSan into build-fuzz/ and runs
 # them. CI does not run this; see docs/ROBUSTNESS.md.
 #

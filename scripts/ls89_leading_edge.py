@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """How much the VKI LS89 points say about the leading-edge radius (reference 4.127 mm).
 
 Reads ../shared/data/real/ls89/point_cloud_LS89.txt (not part of the repository) and

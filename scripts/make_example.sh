@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerates the bundled example blade and its ground truth with bladegen:
 #   data/example_blade.ply  noisy turbine scan, z 10..30 (binary little-endian PLY)
 #   data/example_truth.csv  exact section parameters at z = 12, 20, 28

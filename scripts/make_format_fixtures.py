@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes the input-format fixtures under tests/data/formats/ with writers independent of
 libsection: laspy (LAS), pypcd4 (PCD), Python's csv module and numpy (PTS, ';' and tab
 text). Run once by hand; the files are committed and CI does not run this script.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # A tool's man page from its --help and --version (help2man), for the build (cmake/ToolDocs.cmake).
 # Usage: scripts/man_page.sh HELP2MAN TOOL VERSION OUT.1
 set -euo pipefail

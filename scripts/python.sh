@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Builds the Python module libsection with pip (pyproject.toml: scikit-build-core runs CMake
 # into build-python/ for the module alone; ccache hands over the library's objects when
 # scripts/build.sh compiled them already) for Debian's python3, then:

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Builds the library, tools and tests with AddressSanitizer + UndefinedBehaviorSanitizer
 # into build-asan/ (benchmarks off, -O1 to keep the build short) and runs every test
 # with ctest, then the robustness suite again under a memory and a file size cap. Any

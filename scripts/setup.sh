@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs every build and test dependency from Debian's packages (Debian 12); the Python
 # module's few from PyPI are scripts/python.sh's.
 set -euo pipefail

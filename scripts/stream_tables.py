@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Reads one table of a libsection pipe stream (docs/FORMAT.md) for the validation
 scripts: a list of dicts, column name -> float."""
 

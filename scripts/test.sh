@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Sets up the dependencies, builds, and runs every test: Catch2 and the tool tests with ctest,
 # then the Python module's with pytest.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Runs the camber tool on the VKI LS89 vane section (../shared/data/real/ls89, not part of
 # the repository) and prints our parameters next to the published reference values
 # (Mueller and Verstraete 2016, Table 1; see /work/shared/data/real/README.md).

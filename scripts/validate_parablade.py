@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Runs the four parablade geometries (../shared/data/real/parablade, not part of the
 repository; README there) through the whole pipe with default options, as a new user
 would, and checks every value camber prints against a reference: each value is within its

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Runs the camber tool on the 13 sections of NASA Rotor 37 (NASA TP-1337 Table IV, in
 ../shared/data/real/rotor37, not part of the repository) and prints the section
 parameters, once with the leading edge chosen by thickness (the default) and once with

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Runs the whole pipe with default options, as a user would, on the real data of other
 # projects in ../shared/data/real (not part of the repository; README there): sparse rows
 # (NASA Rotor 37, 13 rows on surfaces of revolution; T-Blade3 Case7-28-8, 21 rows), single

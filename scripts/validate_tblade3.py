@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Runs the camber tool on the 21 sections of the T-Blade3 compressor rotor Case7-28-8
 (../shared/data/real/tblade3-case7-28-8, not part of the repository) and compares our
 camber lines and edge points with the generator's exact mean lines.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Fixtures of the camber tests (test_medial_axis, test_edge, test_camber, test_params):
 // exact sections built as envelopes of circles and dense splines through them, noisy

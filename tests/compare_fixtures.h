@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Fixtures of the compare tests (test_compare, test_compare_stream): exact generated
 // sections as nominals, their points moved, thickened, cut, dented or holed by known

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The stages after slice run in process on a stream, each stage's output read back from its
 // text as the next tool reads it: for the tests that run the whole pipe.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/bspline.h"
 #include "section/io/cad.h"
 #include "section/io/json.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the camber line (section/camber.h) against exact ground truth (sections built
 // as envelopes of circles), its orientation, profiles that are not blades, and the stream
 // stage's tables and issues.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the consistency checks (section/checks.h): correct values of exact and noisy
 // generated sections pass them; the wrong values seen on real data (an edge circle a
 // hundred times too large, a chord short of the profile, an edge point off it, a metal

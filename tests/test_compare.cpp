@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of compare (the stage): the fits recover known rigid moves, the deviations equal
 // known changes made to generated sections (a thickened pressure side, a shortened chord,
 // a blunted LE, a local dent) and zero elsewhere, minimum zone against least squares and

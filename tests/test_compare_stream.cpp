@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of compare on the stream: a blade mesh moved rigidly against its nominal (per
 // section and whole-blade fits), nominals from a stream and from points, verdicts over a
 // dent and a hole, sections that cannot be compared, and the tolerance file.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the edges (section/edge.h) as camber_line measures them: circle fits on exact
 // and noisy profiles, the refit on the measured points, blunt and sharp edges, circularity
 // and edges in holes of the measured points (through the stream stage).

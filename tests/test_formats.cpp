@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The input formats read from files written by other tools (tests/data/formats/, made by
 // scripts/make_format_fixtures.py with laspy, pypcd4, Python's csv module and numpy): each
 // gives the points of blade.xyz, exactly or to its format's precision; and bad files are

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/drift_band.h"
 #include "section/gap_fill.h"
 #include "section/extras/generate.h"

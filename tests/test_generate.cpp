@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the synthetic blade generator: the ground truth is self-consistent and the
 // scans and meshes agree with it.
 #include "section/error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the generator's data kinds (generate.h): sharp trailing edges, the symmetric
 // impulse blade, the thick root, structured grids and sparse rows, each against the exact
 // truth: the points lie on the true surface, the lines and rows where they should be.

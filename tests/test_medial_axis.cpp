@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the medial axis (section/medial_axis.h) against exact ground truth: an
 // ellipse's medial axis and inscribed circles.
 #include "section/medial_axis.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the morphology step (ordering unordered section points into closed loops).
 // Shapes are analytic closed curves sampled as a scanner would (random spacing, varying
 // density, holes, noise, a misregistered half, outliers) with exact ground truth.

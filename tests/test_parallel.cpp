@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Sections are processed in parallel; results are stored by index, so every stage's output
 // must be byte-identical whatever the thread count.
 #include "section/camber.h"

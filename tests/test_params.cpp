@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the section parameters (section/params.h): thickness stations against the
 // true inscribed diameters, the enclosed area of a circle.
 #include "section/params.h"

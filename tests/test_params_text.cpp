@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The params table as text for people (io/params_text.h): widths, digits, words, units.
 #include "section/io/params_text.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/error.h"
 #include "section/io/stream.h"
 #include "section/io/csv.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Acceptance of the whole pipe (slice | smooth | fitspline | camber, through the stream
 // text as the tools pass it) on noisy generated blades against their exact truth
 // (docs/ACCURACY.md). Two sections of each preset, sigma 5 um, holes, 25-100% density,

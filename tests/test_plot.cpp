@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the plot module: the SVG is well formed, holds every element of what the stream
 // carries, and draws it to scale with v up (the drawn curve lies on the true profile).
 #include "section/camber.h"

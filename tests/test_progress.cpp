@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The progress and cancel hook (progress.h, io/progress_io.h): the same results as without
 // it, counts that grow to the total, and a cancel that stops the call with Cancelled.
 #include "section/extras/generate.h"

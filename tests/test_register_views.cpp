@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of register_views: scanner views moved by known rigid motions are brought back.
 #include "section/error.h"
 #include "section/extras/generate.h"

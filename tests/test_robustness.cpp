@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Hostile input to the readers and the pipe parser (docs/ROBUSTNESS.md): each is refused
 // with a section::Error naming the file and the problem, never a crash or an allocation
 // failure. The tool-level cases are in tests/tools/test_robustness.sh.

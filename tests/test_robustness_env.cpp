@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Hostile environments at the library level (issue 26, docs/ROBUSTNESS.md): geometry far
 // from the origin, the resource policy, outputs written whole, streams held to their
 // schema, files longer than their headers say. The tool-level cases, with pipes, signals

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What slice makes of each kind of sampling (docs/SAMPLING.md), on generated blades with
 // exact truth: dense scans, structured surface grids (lines along the chord or along the
 // span), sparse rows (at constant height, between planes, tilted, at a constant radius),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the stream's schema: docs/FORMAT.md lists every table and column as the schema
 // declares them, and the stages write the tables the schema declares.
 #include "section/edge.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // tocad's command line without the binary (tools/args/tocad_args.h): the format from the
 // flag or the output's extension, and usage errors (exit code 2) when neither gives one.
 #if __has_include("args/tocad_args.h")  // the tools are built (SECTION_BUILD_TOOLS)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the tools' command lines without the binaries (tools/args/): a flag maps to its
 // option, a bad value is refused as bad usage (exit code 2), --help answers with exit 0.
 #if __has_include("args/slice_args.h")  // the tools are built (SECTION_BUILD_TOOLS)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What a call throws, for the tests of error messages.
 #include "section/error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // bladegen: synthetic blade scans and meshes with exact ground truth.
 #include "args/bladegen_args.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // camber: mean-camber line and blade section parameters of every section of a pipe stream.
 #include "args/camber_args.h"
 

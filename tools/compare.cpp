@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // compare: the measured sections of a pipe stream against their nominal, with tolerances.
 #include "args/compare_args.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // fitspline: fit a closed cubic B-spline to every section loop of a pipe stream.
 #include "args/fitspline_args.h"
 

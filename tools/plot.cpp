@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // plot: SVG drawings of the sections of a pipe stream, or one HTML page of them all.
 #include "args/plot_args.h"
 

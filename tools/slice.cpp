@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // slice: cut a blade scan (point cloud or mesh) by section planes into ordered profiles.
 #include "args/slice_args.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // smooth: energy-minimising smoothing of every section loop of a pipe stream.
 #include "args/smooth_args.h"
 

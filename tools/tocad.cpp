@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // tocad: the sections of a pipe stream as CAD curves (DXF, IGES) or as JSON.
 #include "args/tocad_args.h"
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Tries the batch recipe: three generated scans (bladegen) in a folder, the workflow run,
 # then one scan changed and the workflow run again, which redoes that scan and the summary
 # only. Needs the tools (scripts/build.sh) and Snakemake (apt install snakemake).

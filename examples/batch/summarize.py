@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """One table of every blade: the params.csv of each scan (camber --params) stacked, with the
 scan's name first.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Other forms of a B-spline: the clamped open form CAD formats read, and a polyline within
 // a tolerance of the curve.
 #include "section/bspline.h"

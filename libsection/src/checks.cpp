@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/checks.h"
 
 #include "detail/sampled_profile.h"

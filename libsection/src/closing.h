@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // One pass of the morphology step (src/morphology.cpp): the raster of a point subset, the
 // closing radius, the closed fill and its components; a component's boundary, normals

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // compare: a measured section against its nominal; the steps are in compare_*.cpp.
 #include "section/compare.h"
 

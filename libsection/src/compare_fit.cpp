@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The rigid fits of compare over one section or many (a blade): least squares (weighted by
 // zone or not) by Gauss-Newton on the point-to-tangent distances, and minimum zone by
 // sequential linear programs in a trust region. Each step is composed exactly with the

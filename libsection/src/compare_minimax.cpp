@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The linear program of a minimum-zone step: min z subject to |r_i + g_i . x| <= z and
 // |x_j| <= box, solved by the revised simplex method on its dual.
 //

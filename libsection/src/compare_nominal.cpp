@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The nominal of compare prepared for foot points: arc length along it and its zones.
 #include "compare_steps.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The steps of compare (src/compare.cpp): the nominal prepared for foot points, arc length
 // and zones (compare_nominal.cpp), the rigid fits over one or more sections

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/drift_band.h"
 
 #include "drift_fit.h"

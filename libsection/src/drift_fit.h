@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What gap filling (src/gap_fill.cpp) and the drift-corrected band (src/drift_band.cpp)
 // share: a hash grid over 2D points, the slab's ordered points, the span of the slab's

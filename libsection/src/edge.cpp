@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/edge.h"
 
 #include "detail/edge_fit.h"

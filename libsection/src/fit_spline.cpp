@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/fit_spline.h"
 
 #include "detail/local_origin.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One Gauss-Newton step of squared-distance minimisation: each measured point q_k with
 // foot C(t_k), unit tangent T and outward normal N contributes
 //   ((C(t_k) - q_k) . N)^2 + alpha ((C(t_k) - q_k) . T)^2,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The steps of fit_spline (src/fit_spline.cpp): the feet of the measured points on the
 // curve (fit_spline_feet.cpp), one distance-minimisation step (fit_spline_step.cpp), knot

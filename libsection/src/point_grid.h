@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Uniform hash grids of the morphology step (src/morphology.cpp): over a subset of 2D points
 // (spacing, isolated points) and over the segments of closed polylines (nearest boundary

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The raster of the morphology step (src/morphology.cpp) and the transforms on it: exact
 // Euclidean distance transform, bottleneck (widest path) from the border, boundary trace.

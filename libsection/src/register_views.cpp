@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/register_views.h"
 
 #include "detail/flann_nearest.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The order of a row's points along its profile (slice --rows, docs/SAMPLING.md): the
 // morphology where it closes one loop, else along the chord, side by side.
 #include "section/error.h"

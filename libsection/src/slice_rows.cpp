@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // slice on rows of points and the slab from the sampling (docs/SAMPLING.md): a plane
 // through a sparse row takes it, a plane between rows says which rows lie beside it, and
 // each row can be taken as a section as it lies.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """libsection: blade section inspection from 3D scans, on numpy arrays.
 
 The pipe of the tools (slice | smooth | fitspline | camber) in Python:

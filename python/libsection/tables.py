@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Reading the pipe stream (docs/FORMAT.md) without the compiled module: each table as a
 pandas DataFrame or as rows of dicts, and numbers formatted as the tools write them."""
 import math

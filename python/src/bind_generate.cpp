@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The blade generator (section/extras/generate.h) as the submodule libsection.generate: blades
 // with exact ground truth, for tests and trials.
 #include "convert.h"

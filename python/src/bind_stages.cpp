@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stages of the pipe as Python functions: on a stream (as the tools run them) and on
 // one curve's points. Options are the tools' flags as keywords (tools/args/).
 #include "convert.h"

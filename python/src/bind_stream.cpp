@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stream, the B-spline and the file readers as Python objects.
 #include "convert.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What the bindings share: numpy arrays to and from Eigen points, Python keywords to a
 // tool's command line (tools/args/), and the stream as a Python object.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The Python module libsection._libsection: the pipe's stages on numpy arrays and streams.
 // python/libsection/__init__.py builds the public functions on it.
 #include "convert.h"

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """engeom's 2D alignment on the cases bench_compare exported: what a user would run instead of
 `compare` to fit measured section points onto a nominal profile.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The Python a user would write to cut a mesh by parallel planes: trimesh
 section_multiplane. Planes as `slice --count N --normal 0,0,1`: spread evenly over the
 mesh's z extent, offsets min + (max - min) (k + 1) / (N + 1).

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The Python pipeline a user would write instead of `slice | smooth | fitspline`:
 numpy slab mask per plane, nearest-neighbour chaining (scipy cKDTree) to order the
 section, scipy.interpolate.splprep periodic smoothing spline per section.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Fixtures of the Python tests: the tools (SECTION_BIN, default build/tools) and the
 example blade's stream through them, made once per session."""
 import os

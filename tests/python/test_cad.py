@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """tocad's DXF and IGES read back by readers that share no code with the writers (ezdxf; an
 IGES parser written here), and their curves checked against the stream's spline within 0.1 um
 at the 400 parameters of the stream's samples table (docs/EXPORT.md)."""

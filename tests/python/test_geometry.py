@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The Python API against exact truth: an ellipse, a noisy circle, and generated blades
 (libsection.generate: the exact sections bladegen writes), within the accuracy targets of
 docs/ACCURACY.md (chord 10 um, max thickness 5 um, LE radius 3 %, TE radius 10 %, angles 0.5 deg)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The Python pipe gives the same params as the tools, byte for byte in CSV (numbers
 formatted in Python as the tools format them), from an array and from a file."""
 import numpy as np

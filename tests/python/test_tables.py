@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The pandas reader of the stream, the stream_tables-style reader and the number format."""
 import importlib.util
 import math

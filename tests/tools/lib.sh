@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Helpers for the black-box tool tests: run a tool, check its exit code and output.
 set -u
 BIN="${SECTION_BIN:?SECTION_BIN must point at the tool directory}"

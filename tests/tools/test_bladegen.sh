@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box test of bladegen: help, usage errors, a small scan, a mesh and a truth table.
 source "$(dirname "$0")/lib.sh"
 G="$BIN/bladegen"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box tests of the camber tool: help, usage errors, bad data, a plain profile, a
 # non-blade section, and the full pipe when the other tools are built.
 source "$(dirname "$0")/lib.sh"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box tests of the compare tool: help and exit codes, usage errors, bad data naming
 # the file and line, and the inspection pipe on a generated blade against its nominal mesh
 # (pass, fail on a tightened tolerance, not measured over a plane the nominal misses).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box tests of the fitspline tool: help, usage errors, malformed input, a real fit.
 set -u
 BIN="${SECTION_BIN:?}/fitspline"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box tests of the input formats (tests/data/formats/, written by laspy, pypcd4,
 # Python's csv module and numpy: scripts/make_format_fixtures.py): slice gives the same
 # sections from each file as from the same points in XYZ, byte for byte where the format

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Hostile environments (issue 26, docs/ROBUSTNESS.md): each numbered case of the issue
 # reproduced against the tools, every run under `timeout` (a hang fails it) and, where the
 # case is unbounded memory, under `ulimit -v` (skipped where it cannot be set, e.g. under

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box test of bench/evaluate_kinds (docs/ACCURACY.md, "Data kinds"): the kinds of data
 # users have through the real tools with default options, scored against the exact truth.
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box tests of the plot tool: help, usage errors, bad data, a stream that stops after
 # slice, a full camber stream as SVG, as a directory of SVGs and as one HTML page.
 source "$(dirname "$0")/lib.sh"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Hostile input (tests/robustness/, docs/ROBUSTNESS.md): every tool that reads a broken
 # file exits 1 with one line on stderr naming the file (and line, point or section) and
 # the problem, and writes nothing to stdout; a failing section is listed (a '# issue' line

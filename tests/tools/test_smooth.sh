@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box test of the smooth tool: help, usage errors, malformed data, a small stream.
 set -euo pipefail
 BIN=${SECTION_BIN:?SECTION_BIN must point to the tool directory}/smooth

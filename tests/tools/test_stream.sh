@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box test of the stream between the tools: split into parts, one per section, and
 # closed by '# end'; a cut stream is refused; an output file appears only whole.
 . "$(dirname "$0")/lib.sh"

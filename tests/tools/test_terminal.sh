@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box tests of the tools at a terminal (forced with SECTION_ASSUME_TTY: ctest has
 # none): a stream is not sent to a terminal nor read from one; camber prints its params for
 # people there, and --format chooses what camber writes (table, csv, json, stream).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The tools' output is byte-identical with --threads 1 and --threads 2 (sections are
 # processed in parallel but stored by index), through slice | smooth | fitspline | camber.
 set -euo pipefail

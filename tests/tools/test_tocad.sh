@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box tests of the tocad tool: help, usage errors, bad data, and an ellipse profile
 # written as DXF, IGES and JSON (tests/python/test_cad.py reads them back with ezdxf and an
 # IGES parser and checks the curves within 0.1 um).

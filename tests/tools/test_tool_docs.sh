@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The man pages and bash completion the build makes from each tool's --help
 # (cmake/ToolDocs.cmake): every tool has both, the pages render with their NAME and
 # options, and the completion completes flags and a flag's choices.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Black-box tests of length units: the same blade scanned in mm, written in metres and in
 # inches, gives the same parameters (to 1e-6 relative) once slice converts it to mm, given
 # --units or, for metres, guessed from the extent; a plain profile likewise through camber;

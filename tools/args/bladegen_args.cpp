@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "args/bladegen_args.h"
 
 #include <stdexcept>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // fitspline's command line: its options and help text (tools/fitspline.cpp runs them).
 #include "common/tool.h"

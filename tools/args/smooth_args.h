@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // smooth's command line: its options and help text (tools/smooth.cpp runs them).
 #include "common/tool.h"

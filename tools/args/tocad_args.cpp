@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "args/tocad_args.h"
 
 #include "section/pipe/schema.h"

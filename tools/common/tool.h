@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Shared plumbing of the command-line tools: common flags, the single top-level catch,
 // exit codes (0 success or --help, 1 bad data, 2 bad usage, 3 some sections without a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file bspline.h
 /// Planar cubic (or any degree) B-spline curves, open (clamped) or closed (periodic):

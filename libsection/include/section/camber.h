@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file camber.h
 /// Mean-camber line of a blade section: the medial axis of the closed profile (the locus

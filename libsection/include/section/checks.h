@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file checks.h
 /// Consistency checks of the measured parameters (docs/CAMBER.md, "Checks"): every value of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file cloud.h
 /// Point clouds in memory (their readers and writers: io/cloud_io.h).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file compare.h
 /// A measured section against its nominal (docs/COMPARE.md): a rigid best fit of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file drift_band.h
 /// A band of scan points around a section plane, wider than the slab, for more points on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file edge.h
 /// Leading and trailing edges of a blade section: their model, shapes and measures

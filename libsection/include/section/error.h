@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file error.h
 /// The one exception type libsection throws for bad input or failed geometry.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file fit_spline.h
 /// The `fitspline` stage (Li et al. 2014, section 2.4): a closed cubic B-spline fitted by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file frame.h
 /// A section plane's frame: maps in-plane (u, v) coordinates to 3D (x, y, z) and back.

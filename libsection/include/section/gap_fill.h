@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file gap_fill.h
 /// Filling a section's gaps with scan points from beside the plane. Where the slab has a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file medial_axis.h
 /// Medial axis of a closed blade profile: the main branch of the locus of the centres of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file mesh.h
 /// Triangle meshes in memory (their readers and writers: io/mesh_io.h).

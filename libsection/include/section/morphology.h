@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file morphology.h
 /// The morphology step of `slice` (Li et al. 2014, section 2.2): the unordered 2D points of

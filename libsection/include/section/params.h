@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file params.h
 /// Blade section parameters measured on a profile and its mean-camber line: chord,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file progress.h
 /// An optional progress and cancel hook for long calls (reading a large scan, slicing many

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file register_views.h
 /// Fine registration of scanner views: the views of one part, roughly aligned already (as

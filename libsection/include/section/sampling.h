@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file sampling.h
 /// What a point cloud is, as far as slicing it goes: a dense scan, lines of points close

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file slice.h
 /// Step 1 of the method: section planes cut a point cloud (a slab of width d around each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file smooth.h
 /// Energy-minimising smoothing of an ordered section polyline (Li et al. 2014, sec. 2.3).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file units.h
 /// Length units. The stream's lengths are in mm: input in another unit is converted on

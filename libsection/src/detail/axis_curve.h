@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The medial axis as a curve, shared by the camber stages: an open spline through the
 // inscribed circles' centres, extended straight beyond its ends, and its arc-length table.

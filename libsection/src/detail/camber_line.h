@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The camber line at an arc length from its LE point, shared by camber_line's samples and
 // the thickness stations (src/camber.cpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The library's only doors to CGAL: its headers stay inside src/detail/cgal_*.cpp.
 #include "section/mesh.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "detail/cgal_medial_axis.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>

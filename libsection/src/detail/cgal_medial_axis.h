@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Seed of the medial axis of a closed polygon from a CGAL constrained Delaunay
 // triangulation (the only place camber touches CGAL).

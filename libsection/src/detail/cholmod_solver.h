@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Sparse symmetric positive definite solves through CHOLMOD (simplicial LL'): the library's
 // one door to CHOLMOD. The pattern is analysed once; each solve refills the values and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Nearest-neighbour queries through a FLANN kd-tree (single tree, exact search): the
 // library's one door to FLANN, for 2D points (curve feet) and 3D points (spacing, ICP).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The inscribed-circle solver of the camber stages: a circle centred on a given line that
 // touches the profile on both sides, solved on the exact spline, and its validity tests.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A local origin for geometry far from the origin: integrals and fits subtract it first.
 #include <Eigen/Core>

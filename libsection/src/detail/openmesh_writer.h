@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // OpenMesh behind one function: the mesh writer (STL, OBJ, OFF, PLY by extension).
 #include "section/mesh.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A minimal parallel loop over independent items: results are written by index, so the
 // output does not depend on the thread count.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A B-spline converted to one polynomial per knot span, for the loops that evaluate the
 // same curve hundreds of thousands of times (foot points of every measured point in

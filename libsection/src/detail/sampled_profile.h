@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A closed blade profile with dense samples, shared by the camber stages (medial axis,
 // edges, camber line, thickness stations): the samples give initial guesses and global

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The foot of a point on a line segment, for the nearest-segment searches of the stages.
 #include <Eigen/Core>

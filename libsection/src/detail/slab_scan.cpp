@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "detail/slab_scan.h"
 
 #include "detail/cgal.h"

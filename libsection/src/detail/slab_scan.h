@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Slab scanning, shared by slice(Cloud) (src/slice.cpp) and slice_file (src/io/slice_file.cpp):
 // which points of a cloud lie in the slab of each section plane, or near it, in cloud order.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The steps of slice that slice(Cloud) (src/slice.cpp, where they are defined) and
 // slice_file (src/io/slice_file.cpp) share: option checks and the ordering of the slabs.

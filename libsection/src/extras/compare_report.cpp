@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // compare --report: the verdicts of a compared stream as text.
 #include "section/extras/report.h"
 

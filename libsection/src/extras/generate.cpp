@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Synthetic blades with exact ground truth (generate.h): the designs and each section's
 // truth. The exact section is generate_section.h; scans, meshes and locate() have their own
 // files (generate_scan.cpp, generate_mesh.cpp, generate_locate.cpp).

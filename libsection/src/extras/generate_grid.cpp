@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // CFD-like structured grids and sparse rows of a generated blade (generate.h): points
 // placed exactly on the section at their height through an arc-length table.
 #include "generate_sample.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Nearest-segment search over a polyline: see generate_index.h.
 #include "generate_index.h"
 

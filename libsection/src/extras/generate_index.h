@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Nearest-segment search over a polyline, for locate() and camber_distance() (generate.h);
 // internal to section_extras.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Where a point lies relative to a section's truth (generate.h): locate() and
 // camber_distance(), on the polyline index, refined on the exact curve.
 #include "generate_index.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Closed triangle meshes of a generated blade (generate.h): rings of exact profile points
 // along the span, end caps by ear clipping.
 #include "generate_section.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What the generator's samplers share (scans, grids, rows; generate.h), internal to
 // section_extras: a seeded random source with our own transforms, and an approximate

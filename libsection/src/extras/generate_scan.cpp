@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Synthetic scans of a generated blade (generate.h): rows of candidate points on the exact
 // surface, thinned by a density field and holes, some replaced by outliers, in two views.
 #include "detail/parallel.h"

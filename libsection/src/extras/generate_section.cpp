@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The generator's exact section: see generate_section.h.
 #include "generate_section.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The generator's exact section (generate.h), internal to section_extras: the envelope of
 // circles r(s) on a cubic Bezier camber c(s), closed by the end circles' arcs, held as 7

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SVG and HTML drawings of the sections of a pipe stream (plot.h): the public functions and
 // the HTML page. The parts of a section's drawing are in plot_parts.h.
 #include "section/extras/plot.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // compare's layer of the plots: whiskers (each measured point's deviation along the
 // nominal's normal, magnified, coloured by the share of its zone's tolerance it uses), the
 // zones' tolerance bands, and the verdicts of the section and of the blade.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the stream holds of a section, in the plot's terms, and the text helpers of the
 // drawing: see plot_parts.h.
 #include "plot_parts.h"

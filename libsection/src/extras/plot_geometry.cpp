@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The geometry of a section's drawing: its curves as polylines and path data, and the
 // windows of the edge insets; see plot_parts.h.
 #include "plot_parts.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The parts of the plot module (plot.h), internal to section_extras: what the stream holds
 // of a section (plot_data.cpp), its geometry and edge insets (plot_geometry.cpp), the SVG

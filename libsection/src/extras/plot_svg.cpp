@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The SVG drawing of one section: the main view, the legend, the edge insets and the
 // parameter table, laid out top to bottom; see plot_parts.h.
 #include "plot_parts.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The one way the readers get bytes (a file, standard input or memory) and the writers put them.
 #include <atomic>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What the DXF and IGES writers share: numbers as CAD readers take them, unit codes, and
 // each curve's clamped form in 3D.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The sections' curves as an ASCII DXF file (AutoCAD 2000, AC1015): the sections and
 // tables every reader of DXF R13 and later requires (HEADER with $ACADVER and $HANDSEED,
 // CLASSES, TABLES with VPORT *Active, the line types ByBlock, ByLayer and Continuous, layer

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The sections' curves as an IGES 5.3 file (US PRO/IPO-100, fixed 80-column ASCII):
 // Start, Global, Directory Entry, Parameter Data and Terminate sections, one entity 126
 // (rational B-spline curve) per curve.

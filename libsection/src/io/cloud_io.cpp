@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/io/cloud_io.h"
 
 #include "detail/parallel.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The LAS cloud reader: ASPRS LAS 1.0-1.4, point data record formats 0-10, uncompressed.
 // Read from the ASPRS LAS 1.4 specification (R15) directly: no LAS library is packaged for
 // Debian 12. The public header block gives where the points start, their record format and

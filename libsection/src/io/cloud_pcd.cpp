@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The PCD cloud reader: PCL's Point Cloud Data format, version 0.7 (ascii and binary; a
 // binary_compressed file is refused). Read from the format's documentation
 // (pointclouds.org, "The PCD (Point Cloud Data) file format"): a text header of

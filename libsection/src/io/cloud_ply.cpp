@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The PLY cloud reader: the vertices of an ascii or binary (little or big endian) PLY file.
 #include "io/cloud_readers.h"
 

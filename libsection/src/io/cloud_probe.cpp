@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A first look at a cloud file's extent, from points spread over it (for its likely unit).
 #include "section/io/cloud_io.h"
 

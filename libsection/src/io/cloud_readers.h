@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The point cloud readers (XYZ, PTS and CSV text, PLY, PCD, LAS) and what they share; io/formats.h lists
 // them.

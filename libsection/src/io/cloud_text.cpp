@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The XYZ and CSV cloud readers: one point a line, parsed in pieces by all cores.
 #include "io/cloud_readers.h"
 

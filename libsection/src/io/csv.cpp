@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Plain text tables outside the stream: CSV tables, 2D profiles, section planes.
 #include "section/io/csv.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The input formats in one place: their extensions, how their content is told apart, their
 // readers. A new input format is one entry in input_formats() (formats.cpp) plus its reader.

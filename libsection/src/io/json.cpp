@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stream tables as JSON, grouped by section.
 #include "section/io/json.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The resource policy: the memory limit and what it bounds, and the registry of the
 // temporary files of outputs (removed by a signal handler).
 #include "section/io/limits.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The PLY mesh reader (ascii, binary little or big endian): the x, y, z of the 'vertex'
 // element and the 'vertex_indices' (or 'vertex_index') list of the 'face' element; other
 // elements and properties are read past.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The mesh readers (STL, OBJ, OFF, PLY) and what they share; io/formats.h lists them.
 #include "section/mesh.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The STL mesh reader: ascii and binary.
 #include "io/mesh_readers.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The OFF and OBJ mesh readers (ascii), and the line splitter every mesh reader uses.
 #include "io/mesh_readers.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The params table as text for people: aligned blocks, chosen digits, words for codes.
 #include "section/io/params_text.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The PLY header and its binary scalars, decoded once for the cloud and the mesh readers.
 #include "io/byte_source.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reading and slicing a scan file with a progress and cancel hook.
 #include "section/io/progress_io.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stream model: tables and their lookups, and the small pieces of its text form.
 #include "section/io/stream.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stream formatter: numbers in their shortest round-trip form, tables passed through as
 // they were read, large tables formatted in pieces by all cores.
 #include "section/io/stream.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stream parser: `#` lines, table headers and numeric rows, with the line of any error.
 #include "section/io/stream.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // PartReader: a stream read part by part as it comes, for the part scheduler (run_stage).
 #include "section/io/stream_reader.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What the stream's parser, formatter, writer and part reader share (the stream's text form).
 #include "section/error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // StreamWriter: a stream split into parts, written part by part as the parts come.
 #include "section/io/stream.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Number and token parsing shared by the readers and the stream parser (no locale, no streams).
 #include <charconv>

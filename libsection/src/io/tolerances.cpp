@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // compare's tolerance file: item, section, low, high, on.
 #include "section/io/tolerances.h"
 

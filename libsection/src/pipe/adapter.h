@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What the stream stages (smooth_stream, fit_spline_stream, camber_stream) share: a table's
 // rows by loop, a rerun's issues cleared, and items run in parallel into slots merged in order.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The curves of a stream for the CAD writers.
 #include "section/pipe/cad_stream.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The issues camber_stream reports on a section, and the edge coverage they rest on.
 #include "pipe/camber_issues.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What camber_stream says of a section beside its rows: where the other loops of a refused
 // section lie, and the issues of a measured one (edges not round, not measured, measured

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stream stage of camber: splines in, camber line and section parameters out.
 #include "section/pipe/camber_stream.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // compare's nominal on the stream: a mesh sliced on the measured planes, a stream's
 // sections matched by plane, or sections of points, each through the same fitspline and
 // camber code as the measurement.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stream stage of compare: measured sections and their nominals in; fit, deviations, zones,
 // compared values and verdicts out.
 #include "section/pipe/compare_stream.h"

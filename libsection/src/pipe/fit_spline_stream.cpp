@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stream stage of fitspline: points (and smoothed points) in, splines, holes and samples out.
 #include "section/pipe/fit_spline_stream.h"
 

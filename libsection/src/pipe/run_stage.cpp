@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The part scheduler: a stage of the pipe run over the parts of a stream as they are read,
 // several at a time, each written as soon as it and the parts before it are done.
 #include "section/pipe/run_stage.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stream's tables and their columns: the one place that names them (docs/FORMAT.md).
 #include "section/pipe/schema.h"
 

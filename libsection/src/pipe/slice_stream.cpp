@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stream written by slice: frames, loops, points and skeleton of each section.
 #include "section/pipe/slice_stream.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Stream stage of smooth: points in, smoothed points and their statistics out.
 #include "section/pipe/smooth_stream.h"
 

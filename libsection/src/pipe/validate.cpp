@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stream held to its schema: unique ids, counts and flags in range.
 #include "section/pipe/validate.h"
 

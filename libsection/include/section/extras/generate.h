@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file extras/generate.h
 /// Synthetic blades with exact ground truth, for tests, examples and benchmarks.

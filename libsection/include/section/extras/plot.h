@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file extras/plot.h
 /// Drawings of the sections of a pipe stream, to scale: SVG per section, or one HTML page

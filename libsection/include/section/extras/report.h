@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file extras/report.h
 /// The verdicts of a compared stream as text (compare --report): the blade's verdict, then

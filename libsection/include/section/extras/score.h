@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file extras/score.h
 /// Errors of measured results against the exact truth of a generated section

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/cad.h
 /// The sections' curves in the files a CAD system imports: DXF (SPLINE entities with the

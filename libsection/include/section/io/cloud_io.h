@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/cloud_io.h
 /// Point cloud readers and writers: XYZ/ASC text, CSV with an x,y,z header, PLY (ascii,

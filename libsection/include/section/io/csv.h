@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/csv.h
 /// Plain text tables outside the stream: CSV tables, ordered 2D profiles, section planes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/file.h
 /// Whole files in and out ("-" = standard input or output).

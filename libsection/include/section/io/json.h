@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/json.h
 /// Stream tables as JSON for scripts (`tocad`, `camber`, `compare --format json`): numbers at full precision,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/limits.h
 /// The readers' resource policy (docs/ROBUSTNESS.md, "Resource policy"): how much of an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/mesh_io.h
 /// Triangle mesh readers and writers: STL (ascii and binary), OBJ, ascii OFF, PLY (ascii and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/params_text.h
 /// The params table as text for people (camber on a terminal): one block per section,

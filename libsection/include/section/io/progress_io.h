@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/progress_io.h
 /// Reading and slicing a scan file with a progress and cancel hook (progress.h).

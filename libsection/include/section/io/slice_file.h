@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/slice_file.h
 /// Slicing a cloud file as it is read, without holding the whole cloud.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/stream.h
 /// The pipe stream that `slice | smooth | fitspline | camber` pass along: named numeric

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/stream_reader.h
 /// Reading a stream part by part as it comes (docs/FORMAT.md, "Parts"): the preamble, each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file io/tolerances.h
 /// The tolerance file of compare (docs/COMPARE.md): a CSV table with the columns item

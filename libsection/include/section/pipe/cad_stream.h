@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file pipe/cad_stream.h
 /// The curves of a stream for the CAD writers (io/cad.h): each fitted loop's spline with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file pipe/camber_stream.h
 /// The camber stage on the stream: splines -> tables "camber", "params", "thickness", "sides".

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file pipe/compare_stream.h
 /// The compare stage on the stream (docs/COMPARE.md): each section of a measured stream

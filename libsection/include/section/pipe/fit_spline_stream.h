@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file pipe/fit_spline_stream.h
 /// The fitspline stage on the stream: tables "points" (and "smoothed") -> "splines",

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file pipe/run_stage.h
 /// The part scheduler: runs a stage of the pipe (smooth, fitspline, camber) over a stream

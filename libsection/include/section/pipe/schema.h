@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file pipe/schema.h
 /// The stream's tables, each declared once (libsection/src/pipe/schema.cpp): its name, the

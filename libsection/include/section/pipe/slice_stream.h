@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file pipe/slice_stream.h
 /// The stream written by slice.

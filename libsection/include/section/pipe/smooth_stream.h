@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file pipe/smooth_stream.h
 /// The smooth stage on the stream: tables "points" -> "smoothed", "smooth_stats".

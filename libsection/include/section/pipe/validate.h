@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file pipe/validate.h
 /// The stream held to its schema (pipe/schema.h) once read: what the parser, which knows no
