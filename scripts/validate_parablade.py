@@ -104,7 +104,9 @@ def check_bits():
     text = open(os.path.join(root, "libsection", "include", "section", "checks.h")).read()
     value = {m[0]: 1 << int(m[1]) for m in re.findall(r"(\w+) = 1u << (\d+),", text)}
     bits = {}
-    for check, name, columns in re.findall(r'\{Check::(\w+), "(\w+)", "([^"]*)"\}', text):
+    # An entry may be wrapped over lines, its columns split into adjacent string literals.
+    for check, name, literals in re.findall(r'\{Check::(\w+),\s*"(\w+)",\s*((?:"[^"]*"\s*)+)\}', text):
+        columns = "".join(re.findall(r'"([^"]*)"', literals))
         cols = None if columns.startswith("every") else set(columns.split())
         bits[value[check]] = (name, cols)
     return bits
