@@ -71,28 +71,27 @@ std::map<int, Measured> measured_points(const Stream& stream) {
   return out;
 }
 
-// The profile's noise: the rms distance of the measured points to the fitted curve, by section.
-std::map<int, double> profile_noise(const Stream& stream) {
-  std::map<int, double> noise;
-  if (const Table* t = schema::splines.find(stream); t && t->find_column(col::rms) >= 0) {
-    const std::size_t cs = t->column(col::section), cl = t->column(col::loop), cr = t->column(col::rms);
-    for (std::size_t i = 0; i < t->rows(); ++i)
-      if (t->at(i, cl) == 0 && t->at(i, cr) > 0) noise[static_cast<int>(t->at(i, cs))] = t->at(i, cr);
-  }
-  return noise;
-}
+// What fitspline found of each section's loop 0: the rms distance of the measured points
+// to the curve (the profile's noise), and two layers of points (distance, profile length).
+struct LoopFit {
+  double noise = 0, layers = 0, layers_length = 0;
+};
 
-// Two layers of points found by fitspline (distance, profile length over which), by section.
-std::map<int, std::pair<double, double>> point_layers(const Stream& stream) {
-  std::map<int, std::pair<double, double>> layers;
+std::map<int, LoopFit> loop_fits(const Stream& stream) {
+  std::map<int, LoopFit> fits;
   const Table* t = schema::splines.find(stream);
-  if (!t || t->find_column(col::layers) < 0 || t->find_column(col::layers_length) < 0) return layers;
-  const std::size_t cs = t->column(col::section), cl = t->column(col::loop), cd = t->column(col::layers),
-                    cn = t->column(col::layers_length);
-  for (std::size_t i = 0; i < t->rows(); ++i)
-    if (t->at(i, cl) == 0 && t->at(i, cd) > 0)
-      layers[static_cast<int>(t->at(i, cs))] = {t->at(i, cd), t->at(i, cn)};
-  return layers;
+  if (!t) return fits;
+  const long cr = t->find_column(col::rms), cd = t->find_column(col::layers),
+             cn = t->find_column(col::layers_length);
+  const std::size_t cs = t->column(col::section), cl = t->column(col::loop);
+  const auto at = [&](std::size_t i, long c) { return c >= 0 ? t->at(i, std::size_t(c)) : 0.0; };
+  for (std::size_t i = 0; i < t->rows(); ++i) {
+    if (t->at(i, cl) != 0) continue;
+    LoopFit& f = fits[static_cast<int>(t->at(i, cs))];
+    f.noise = std::max(at(i, cr), 0.0);
+    if (cn >= 0 && at(i, cd) > 0) f.layers = at(i, cd), f.layers_length = at(i, cn);
+  }
+  return fits;
 }
 
 // What camber_stream measures the sections with, gathered from the stream.
@@ -101,8 +100,7 @@ struct CamberInput {
   std::map<int, Frame> frames;
   std::map<int, std::vector<Eigen::Vector2d>> seeds;
   std::map<int, Measured> measured;
-  std::map<int, double> noise;
-  std::map<int, std::pair<double, double>> layers;
+  std::map<int, LoopFit> fits;
   std::map<int, int> loops;  // loops per section
 };
 
@@ -112,8 +110,7 @@ CamberInput gather(const Stream& stream) {
   if (schema::frames.find(stream)) in.frames = frames(stream);
   in.seeds = skeletons(stream);
   in.measured = measured_points(stream);
-  in.noise = profile_noise(stream);
-  in.layers = point_layers(stream);
+  in.fits = loop_fits(stream);
   for (const auto& [key, curve] : in.curves) ++in.loops[key.first];
   return in;
 }
@@ -132,8 +129,9 @@ CamberOptions section_options(const CamberOptions& options, const CamberInput& i
                   ") is normal to the plane of section " + std::to_string(section) +
                   ": it cannot tell the edges apart there");
   }
-  if (const auto n = in.noise.find(section); n != in.noise.end() && opt.profile_noise <= 0)
-    opt.profile_noise = n->second;
+  if (const auto n = in.fits.find(section);
+      n != in.fits.end() && n->second.noise > 0 && opt.profile_noise <= 0)
+    opt.profile_noise = n->second.noise;
   const auto seed = in.seeds.find(section);
   if (seed != in.seeds.end() && seed->second.size() >= 4) opt.medial.seed = seed->second;
   return opt;
@@ -230,8 +228,8 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   CheckOptions checks;
   checks.noise = opt.profile_noise;
   SectionCheck check = check_section(local, m.camber, m.params, checks);
-  if (const auto l = in.layers.find(section); l != in.layers.end())
-    check.findings.push_back({Check::layers, l->second.first, l->second.second});
+  if (const auto l = in.fits.find(section); l != in.fits.end() && l->second.layers > 0)
+    check.findings.push_back({Check::layers, l->second.layers, l->second.layers_length});
   const std::uint32_t flags = pipe::describe_issues({section, local, m.camber, m.params, m.le, m.te, q, opt},
                                                     check.findings, slot.issues);
   if (origin != Eigen::Vector2d::Zero()) move(m, origin);
