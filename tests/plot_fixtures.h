@@ -179,18 +179,21 @@ inline bool all_numbers_finite(const std::string& svg) {
          svg.find("NaN") == std::string::npos;
 }
 
-// The px centres of the measured points' dots: "M x yh0" subpaths of class "points".
+// The px centres of the measured points' dots: "M x yh0" then "m dx dyh0" subpaths of
+// class "points".
 inline std::vector<Vector2d> dots(const std::vector<Element>& es) {
   std::vector<Vector2d> out;
   for (const auto& e : es) {
     if (e.tag != "path" || !e.has_class("points")) continue;
     const std::string& d = e.attr.at("d");
-    for (std::size_t m = d.find('M'); m != std::string::npos; m = d.find('M', m + 1)) {
+    Vector2d at(0, 0);
+    for (std::size_t m = d.find_first_of("Mm"); m != std::string::npos; m = d.find_first_of("Mm", m + 1)) {
       char* end = nullptr;
       const double x = std::strtod(d.c_str() + m + 1, &end);
       const double y = std::strtod(end, &end);
       REQUIRE(std::string(end, 2) == "h0");
-      out.emplace_back(x, y);
+      at = d[m] == 'M' ? Vector2d(x, y) : Vector2d(at + Vector2d(x, y));
+      out.push_back(at);
     }
   }
   return out;

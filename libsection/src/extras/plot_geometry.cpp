@@ -85,13 +85,44 @@ std::vector<V2> refined(const std::vector<V2>& pts, double step) {
 }
 
 std::vector<V2> thinned(const std::vector<V2>& pts, const View& v, double tolerance) {
-  if (pts.size() < 3) return pts;
-  std::vector<V2> out{pts.front()};
+  // Douglas-Peucker on each run of finite points: a vertex is kept when the chord between
+  // the kept ones around it would pass farther than `tolerance` px from it.
+  const std::size_t n = pts.size();
+  if (n < 3) return pts;
   const double limit = tolerance / v.scale;
-  for (std::size_t i = 1; i + 1 < pts.size(); ++i)
-    if (!finite(pts[i]) || !finite(out.back()) || (pts[i] - out.back()).norm() >= limit)
-      out.push_back(pts[i]);
-  out.push_back(pts.back());
+  std::vector<char> keep(n, 0);
+  std::vector<std::pair<std::size_t, std::size_t>> todo;
+  for (std::size_t i = 0; i < n;) {
+    if (!finite(pts[i])) {
+      keep[i++] = 1;  // a break in the curve stays a break
+      continue;
+    }
+    std::size_t j = i;
+    while (j + 1 < n && finite(pts[j + 1])) ++j;
+    keep[i] = keep[j] = 1;
+    if (j > i + 1) todo.push_back({i, j});
+    i = j + 1;
+  }
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    const V2 a = pts[i], ab = pts[j] - a;
+    const double len = ab.norm();
+    double worst = -1;
+    std::size_t at = i;
+    for (std::size_t k = i + 1; k < j; ++k) {
+      const V2 ap = pts[k] - a;
+      const double dist = len > 0 ? std::abs(ab.x() * ap.y() - ab.y() * ap.x()) / len : ap.norm();
+      if (dist > worst) worst = dist, at = k;
+    }
+    if (worst <= limit) continue;
+    keep[at] = 1;
+    if (at > i + 1) todo.push_back({i, at});
+    if (j > at + 1) todo.push_back({at, j});
+  }
+  std::vector<V2> out;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i]) out.push_back(pts[i]);
   return out;
 }
 

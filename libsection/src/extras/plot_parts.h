@@ -208,8 +208,9 @@ std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const P
 /// sampled curve (the camber table) drawn smooth where an inset magnifies it.
 std::vector<V2> refined(const std::vector<V2>& pts, double step);
 
-/// The vertices of a polyline thinned to the screen: a vertex closer than `tolerance` px
-/// (in view `v`) to the last one kept is dropped; the first and last are kept.
+/// The vertices of a polyline thinned to the screen (Douglas-Peucker): the thinned line
+/// stays within `tolerance` px (in view `v`) of every vertex; the ends of each run of
+/// finite points are kept.
 std::vector<V2> thinned(const std::vector<V2>& pts, const View& v, double tolerance);
 
 // ---------------------------------------------------------------- dimensions (plot_dimensions.cpp)

@@ -80,6 +80,7 @@ void draw_points(std::string& s, const SectionData& d, const View& v, const Box&
   const double cell = std::max(1.0, r);
   std::set<std::pair<long, long>> taken;
   std::string data;
+  long X = 0, Y = 0;  // the last dot, in tenths of a px: each dot moves from it (m dx dy)
   for (const auto& [loop, pts] : d.points)
     for (const auto& p : pts) {
       if (!near.contains(p)) continue;
@@ -87,7 +88,12 @@ void draw_points(std::string& s, const SectionData& d, const View& v, const Box&
       bool edge = false;
       for (const auto& e : keep) edge |= (p - e.center).cwiseAbs().maxCoeff() <= e.half;
       if (whole && !edge && !taken.insert({std::lround(x / cell), std::lround(y / cell)}).second) continue;
-      data += "M" + px(x) + " " + px(y) + "h0";
+      const long x10 = std::lround(10 * x), y10 = std::lround(10 * y);
+      data += (data.empty() ? "M" + trimmed(0.1 * x10, 1) + " " + trimmed(0.1 * y10, 1)
+                            : "m" + trimmed(0.1 * (x10 - X), 1) + " " + trimmed(0.1 * (y10 - Y), 1)) +
+              "h0";
+      X = x10;
+      Y = y10;
     }
   if (!data.empty()) s += "<path class=\"points\" stroke-width=\"" + px(2 * r) + "\" d=\"" + data + "\"/>";
   // Carried points ringed on top of their dots: the slab had no point there.
@@ -120,7 +126,7 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
   if (o.points && !d.points.empty()) draw_points(s, d, v, near, whole, o, edges);
   if (whole) draw_compare(s, d, v);
   for (int loop : curve_loops(d)) {
-    const auto pts = thinned(curve_of(d, loop, o, density), v, 0.7);
+    const auto pts = thinned(curve_of(d, loop, o, density), v, 0.2);
     const std::string data = path_data(pts, closed_loop(d, loop), v, near, whole);
     if (!data.empty())
       s += "<path class=\"curve\" data-loop=\"" + std::to_string(loop) + "\" data-source=\"" +
@@ -129,7 +135,7 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
   // The camber table is a sampled curve: refined to 2 px steps, it stays smooth magnified.
   const auto& mean = d.camber.size() >= 2 ? d.camber : d.skeleton;
   if (mean.size() >= 2) {
-    const std::string data = path_data(thinned(refined(mean, 2 / v.scale), v, 0.7), false, v, near, whole);
+    const std::string data = path_data(thinned(refined(mean, 2 / v.scale), v, 0.2), false, v, near, whole);
     if (!data.empty())
       s += std::string("<path class=\"") + (d.camber.size() >= 2 ? "camber" : "skeleton") + "\" d=\"" + data +
            "\"/>";
