@@ -72,10 +72,11 @@ void circle(std::string& s, const std::string& cls, const View& v, const V2& c, 
 }
 
 // The measured points as one path of dots (round caps on zero-length segments: a tenth of
-// the text of circles). In the main view they are thinned to one per dot-sized cell of the
-// screen, except inside the insets' windows (`keep`): the edges stay whole.
+// the text of circles), thinned to one per dot-sized cell of the view's screen: every
+// point lies within a dot's width of a drawn one; the insets, magnified, show the edges'
+// points one by one.
 void draw_points(std::string& s, const SectionData& d, const View& v, const Box& near, bool whole,
-                 const PlotOptions& o, const std::vector<EdgeInset>& keep) {
+                 const PlotOptions& o) {
   const double r = whole ? o.point_radius : 1.5 * o.point_radius;
   const double cell = std::max(1.0, r);
   std::set<std::pair<long, long>> taken;
@@ -85,9 +86,7 @@ void draw_points(std::string& s, const SectionData& d, const View& v, const Box&
     for (const auto& p : pts) {
       if (!near.contains(p)) continue;
       const double x = v.x(p.x()), y = v.y(p.y());
-      bool edge = false;
-      for (const auto& e : keep) edge |= (p - e.center).cwiseAbs().maxCoeff() <= e.half;
-      if (whole && !edge && !taken.insert({std::lround(x / cell), std::lround(y / cell)}).second) continue;
+      if (!taken.insert({std::lround(x / cell), std::lround(y / cell)}).second) continue;
       const long x10 = std::lround(10 * x), y10 = std::lround(10 * y);
       data += (data.empty() ? "M" + trimmed(0.1 * x10, 1) + " " + trimmed(0.1 * y10, 1)
                             : "m" + trimmed(0.1 * (x10 - X), 1) + " " + trimmed(0.1 * (y10 - Y), 1)) +
@@ -123,7 +122,7 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
     }
     s += "</g>";
   }
-  if (o.points && !d.points.empty()) draw_points(s, d, v, near, whole, o, edges);
+  if (o.points && !d.points.empty()) draw_points(s, d, v, near, whole, o);
   if (whole) draw_compare(s, d, v);
   for (int loop : curve_loops(d)) {
     const auto pts = thinned(curve_of(d, loop, o, density), v, 0.2);
