@@ -99,7 +99,7 @@ document.querySelectorAll('svg.section-plot').forEach(function (svg) {
   }, {passive: false});
   svg.addEventListener('pointerdown', function (e) {
     drag = {x: e.clientX, y: e.clientY, box: box.slice()};
-    if (svg.setPointerCapture) svg.setPointerCapture(e.pointerId);
+    try { svg.setPointerCapture(e.pointerId); } catch (err) {}  // a pointer the page did not see
   });
   svg.addEventListener('pointermove', function (e) {
     if (!drag) return;

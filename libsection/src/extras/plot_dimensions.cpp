@@ -147,20 +147,28 @@ std::vector<V2> draw_dimensions(std::string& s, const std::vector<Dimension>& di
       const double lift = perp(dir.x() < 0 ? V2(-dir) : dir).dot(outward) > 0 ? 13 : -5;
       s += label("dim-label", dim.label, mid, dir, "middle", lift);
       anchors.push_back(mid);
-    } else if (dim.level) {  // beside b, kept within the frame
-      const double w = text_width(dim.label, 12);
-      double x = dir.x() >= 0 ? pb.x() + 6 : pb.x() - 6 - w;
-      x = std::clamp(x, frame.u0 + 4, std::max(frame.u0 + 4, frame.u1 - 4 - w));
-      const double y = std::clamp(pb.y() + 4, frame.v0 + 14, frame.v1 - 4);
-      s += "<text class=\"dim-label\" x=\"" + px(x) + "\" y=\"" + px(y) + "\">" + escape(dim.label) +
-           "</text>";
-      anchors.emplace_back(x, y);
-    } else {  // beyond the end b along the line, else beyond a, where the label fits the frame
+    } else {
+      // Along the line beyond b, else beyond a, where the label fits the frame; else level
+      // beside b, kept within the frame.
       const double w = text_width(dim.label, 12) + 6;
-      const bool fits_b = frame.contains(pb + w * dir), fits_a = frame.contains(pa - w * dir);
-      const V2 end = fits_b || !fits_a ? pb : pa, out = fits_b || !fits_a ? dir : V2(-dir);
-      s += label("dim-label", dim.label, end + 6 * out, out, "start", 4);
-      anchors.push_back(end + 5 * out);
+      auto fits = [&](const V2& end, const V2& out) {
+        const V2 tip = end + w * out, side = 7 * perp(out);
+        return !dim.level && frame.contains(tip + side) && frame.contains(tip - side) &&
+               frame.contains(end + side) && frame.contains(end - side);
+      };
+      if (fits(pb, dir) || fits(pa, -dir)) {
+        const bool at_b = fits(pb, dir);
+        const V2 end = at_b ? pb : pa, out = at_b ? dir : V2(-dir);
+        s += label("dim-label", dim.label, end + 6 * out, out, "start", 4);
+        anchors.push_back(end + 5 * out);
+      } else {
+        double x = dir.x() >= 0 ? pb.x() + 6 : pb.x() - w;
+        x = std::clamp(x, frame.u0 + 4, std::max(frame.u0 + 4, frame.u1 - w));
+        const double y = std::clamp(pb.y() + 4, frame.v0 + 14, frame.v1 - 4);
+        s += "<text class=\"dim-label\" x=\"" + px(x) + "\" y=\"" + px(y) + "\">" + escape(dim.label) +
+             "</text>";
+        anchors.emplace_back(x, y);
+      }
     }
     s += "</g>";
   }
