@@ -142,10 +142,16 @@ std::vector<V2> draw_dimensions(std::string& s, const std::vector<Dimension>& di
     if (dim.arrow_a) s += arrow(pa, -dir);
     s += arrow(pb, dir);
     const V2 mid = 0.5 * (pa + pb);
-    if (dim.offset.norm() > 0) {  // along the line, on its outer side
+    const std::string value = fixed(dim.value, 4);  // the short label: the number alone
+    if (dim.offset.norm() > 0) {                    // along the line, on its outer side
       const V2 outward = pa - a;
       const double lift = perp(dir.x() < 0 ? V2(-dir) : dir).dot(outward) > 0 ? 13 : -5;
       s += label("dim-label", dim.label, mid, dir, "middle", lift);
+      anchors.push_back(mid);
+    } else if (!dim.level && (pb - pa).norm() >= text_width(value, 12) + 24) {
+      // Along the line between its arrows, the whole label when it fits, else the number.
+      const bool whole = (pb - pa).norm() >= text_width(dim.label, 12) + 24;
+      s += label("dim-label", whole ? dim.label : value, mid, dir, "middle", -4);
       anchors.push_back(mid);
     } else {
       // Along the line beyond b, else beyond a, where the label fits the frame; else level
