@@ -57,5 +57,8 @@ if [ -x "$BIN/camber" ]; then
   rc=$?
   check "plot reads standard input (exit $rc)" -- test "$rc" -eq 0
   check "--no-insets draws no inset" -- test "$(grep -c 'id="s0-le"' "$TMP/stdin.svg")" = 0
+  check "dimension lines by default" -- grep -q 'class="dimension dim-chord"' "$TMP/full.svg"
+  expect 0 "plot --no-dimensions" -- "$plot" "$TMP/camber.txt" --no-dimensions -o "$TMP/nodim.svg"
+  check "--no-dimensions draws none" -- test "$(grep -c 'class="dimension' "$TMP/nodim.svg")" = 0
 fi
 finish

@@ -293,7 +293,8 @@ void legend(Page& p, const std::vector<EdgeInset>& edges) {
   if (std::isfinite(param(d, "chord"))) items.push_back({"chord", "chord line"});
   for (const auto& e : edges)
     if (e.circle) items.push_back({e.key + "-circle", e.label + " circle"});
-  if (std::isfinite(param(d, "chord"))) items.push_back({"dim-line", "dimensions (" + d.units + ")"});
+  if (o.dimensions && std::isfinite(param(d, "chord")))
+    items.push_back({"dim-line", "dimensions (" + d.units + ")"});
   if (o.stations && !d.stations.empty()) items.push_back({"station-value", "thickness at the stations"});
   p.body += "<g class=\"legend\">";
   double x = p.margin;
@@ -342,7 +343,7 @@ void inset(Page& p, const View& main, const EdgeInset& e, double x, double lower
   body += "<g clip-path=\"url(#" + gid + "-clip)\">";
   const std::vector<EdgeInset> marks{e};
   draw_geometry(body, p.d, v, window, false, p.o, marks, std::max(1.0, 0.5 * magnification),
-                edge_dimensions(p.d, e));
+                p.o.dimensions ? edge_dimensions(p.d, e) : std::vector<Dimension>{});
   body += "</g>";
   scale_bar(body, gid + "-scale", v, x, top + side, side, p.d.units);
   body += "</g>";
@@ -437,7 +438,7 @@ std::string svg_of(const SectionData& d, const PlotOptions& o) {
     for (const auto& q : curve_of(d, loop, o, 1)) outline.push_back(q);
   if (outline.empty())
     for (const auto& [loop, pts] : d.points) outline.insert(outline.end(), pts.begin(), pts.end());
-  const auto dims = profile.empty() ? std::vector<Dimension>{} : main_dimensions(d, outline);
+  const auto dims = profile.empty() || !o.dimensions ? std::vector<Dimension>{} : main_dimensions(d, outline);
   Box all = profile;
   for (const auto& dim : dims) {
     all.add(V2(dim.a + dim.offset));
