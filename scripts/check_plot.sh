@@ -4,8 +4,14 @@
 # headless Chromium and checks the screenshots are not blank: each element's colour must
 # cover enough pixels (measured points, curve, camber line, stations, LE and TE circles).
 # Installs Debian's chromium when missing. Screenshots land in $OUT/plot/.
+# With --real: also draws the real sections of $REAL_DATA (default ../shared/data/real
+# beside the checkout: the LS89 vane through camber, parablade's 2D cases and the APU rotor
+# (5 planes) through slice | smooth | fitspline | camber, default options) and measures
+# every element's box in the browser (tests/tools/plot_boxes.js); the data stay outside the
+# repository, the drawings land in $OUT/plot/real/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+REAL=0; [ "${1:-}" = "--real" ] && REAL=1
 BUILD_DIR="${BUILD_DIR:-build}"
 OUT="${OUT:-example-out}"
 BIN="$BUILD_DIR/tools"
@@ -36,6 +42,36 @@ for svg in "$OUT"/plot/section-*.svg; do
 done
 shot "$OUT/plot/sections.html" 1100 1500 "$OUT/plot/sections.png"
 pngs+=("$OUT/plot/sections.png")
+
+if [ "$REAL" = 1 ]; then
+  data="${REAL_DATA:-$(cd .. && pwd)/shared/data/real}"
+  [ -d "$data" ] || data="$(cd ../.. && pwd)/shared/data/real"   # from a worktree under wt/
+  [ -d "$data" ] || { echo "check_plot: no real data at $data (set REAL_DATA)" >&2; exit 2; }
+  real="$OUT/plot/real"; rm -rf "$real"; mkdir -p "$real"
+  pipe() { "$BIN/slice" "$@" 2>/dev/null | "$BIN/smooth" 2>/dev/null | "$BIN/fitspline" 2>/dev/null | "$BIN/camber" 2>/dev/null; }
+  awk 'NF >= 4 && $1 <= 206 { printf "%.6f %.6f\n", $4 * 1000, $3 * 1000 }' "$data/ls89/point_cloud_LS89.txt" > "$real/ls89.xy"
+  awk 'NF >= 4 && $1 > 207 && $1 < 405 { printf "%.6f %.6f\n", $4 * 1000, $3 * 1000 }' "$data/ls89/point_cloud_LS89.txt" | tac >> "$real/ls89.xy"
+  "$BIN/camber" "$real/ls89.xy" 2>/dev/null > "$real/ls89.txt" || true
+  for case in Aachen_2D Impulse_2D STD10_2D; do
+    cut -f2,3 "$data/parablade/$case"/MoveSurface*.txt > "$real/$case.xy"
+    pipe "$real/$case.xy" > "$real/$case.txt" || true
+  done
+  cut -f2,3,4 "$data/parablade/APU_rotor/MoveSurface.txt" > "$real/APU_rotor.xyz"
+  pipe "$real/APU_rotor.xyz" --count 5 > "$real/APU_rotor.txt" || true
+  cp tests/tools/plot_boxes.js "$real/"
+  for stream in "$real"/*.txt; do
+    name="$(basename "$stream" .txt)"
+    "$BIN/plot" "$stream" --html -o "$real/$name.html" 2>/dev/null || continue
+    sed -e 's|<body>|<body data-page="html">|' -e 's|</body>|<script src="plot_boxes.js"></script></body>|' \
+      "$real/$name.html" > "$real/$name-check.html"
+    chromium --headless --disable-gpu "${SANDBOX[@]}" --window-size=1200,900 --dump-dom \
+      "file://$(realpath "$real/$name-check.html")" 2>/dev/null | sed -n '/<pre id="report">/,/<\/pre>/p' > "$real/$name.report"
+    echo "check_plot: $name: $(grep -c '^ok' "$real/$name.report") boxes ok, $(grep -c '^FAIL' "$real/$name.report") failed, $(wc -c < "$real/$name.html") bytes"
+    grep '^FAIL' "$real/$name.report" | sed 's/^/  /' || true
+    ! grep -q '^FAIL' "$real/$name.report" && grep -q '^ok' "$real/$name.report" || real_failed=1
+  done
+  [ -z "${real_failed:-}" ] || { echo "check_plot: a real section's drawing failed its box checks" >&2; exit 1; }
+fi
 
 # Decodes each PNG (8-bit RGB/RGBA, as Chromium writes) and counts the pixels near each
 # element's colour (plot_svg.cpp's style).

@@ -10,8 +10,11 @@
 #include "section/pipe/camber_stream.h"
 #include "section/extras/plot.h"
 
+#include "plot_fixtures.h"
+
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -23,162 +26,7 @@ using Eigen::Vector2d;
 
 namespace {
 
-// ------------------------------------------------------------------ a tiny SVG reader
-
-struct Element {
-  std::string tag;
-  std::map<std::string, std::string> attr;
-  double num(const std::string& name) const {
-    const auto it = attr.find(name);
-    REQUIRE(it != attr.end());
-    char* end = nullptr;
-    const double v = std::strtod(it->second.c_str(), &end);
-    REQUIRE(end != it->second.c_str());
-    return v;
-  }
-  bool has_class(const std::string& c) const {
-    const auto it = attr.find("class");
-    if (it == attr.end()) return false;
-    return (" " + it->second + " ").find(" " + c + " ") != std::string::npos;
-  }
-};
-
-// Opening tags in document order; checks on the way that tags nest properly.
-std::vector<Element> parse(const std::string& text, bool* balanced) {
-  std::vector<Element> out;
-  std::vector<std::string> open;
-  *balanced = true;
-  std::size_t pos = 0;
-  while ((pos = text.find('<', pos)) != std::string::npos) {
-    const std::size_t end = text.find('>', pos);
-    REQUIRE(end != std::string::npos);
-    const std::string tag = text.substr(pos + 1, end - pos - 1);
-    pos = end + 1;
-    if (tag.empty() || tag[0] == '!' || tag[0] == '?') continue;
-    if (tag[0] == '/') {
-      if (open.empty() || open.back() != tag.substr(1)) *balanced = false;
-      if (!open.empty()) open.pop_back();
-      continue;
-    }
-    Element e;
-    const bool self_closing = tag.back() == '/';
-    const std::size_t name_end = tag.find_first_of(" /");
-    e.tag = tag.substr(0, name_end);
-    // name="value" pairs (no std::regex: it recurses per character on long path data).
-    std::size_t q = name_end;
-    while (q != std::string::npos && (q = tag.find('=', q)) != std::string::npos) {
-      std::size_t n0 = tag.rfind(' ', q);
-      const std::size_t v0 = q + 2, v1 = tag.find('"', v0);
-      REQUIRE(tag[q + 1] == '"');
-      REQUIRE(v1 != std::string::npos);
-      e.attr[tag.substr(n0 + 1, q - n0 - 1)] = tag.substr(v0, v1 - v0);
-      q = v1 + 1;
-    }
-    if (!self_closing) open.push_back(e.tag);
-    out.push_back(std::move(e));
-  }
-  if (!open.empty()) *balanced = false;
-  return out;
-}
-
-// Elements between the opening of the element with id `id` and its closing: found by
-// nesting depth on the raw text.
-std::string subtree(const std::string& svg, const std::string& id) {
-  const std::size_t start = svg.find("id=\"" + id + "\"");
-  REQUIRE(start != std::string::npos);
-  const std::size_t open = svg.rfind('<', start);
-  int depth = 0;
-  std::size_t pos = open;
-  while ((pos = svg.find('<', pos)) != std::string::npos) {
-    const std::size_t end = svg.find('>', pos);
-    if (svg[pos + 1] == '/')
-      --depth;
-    else if (svg[end - 1] != '/')
-      ++depth;
-    pos = end + 1;
-    if (depth == 0) return svg.substr(open, pos - open);
-  }
-  FAIL("unterminated element " << id);
-  return {};
-}
-
-std::vector<const Element*> with_class(const std::vector<Element>& es, const std::string& c) {
-  std::vector<const Element*> out;
-  for (const auto& e : es)
-    if (e.has_class(c)) out.push_back(&e);
-  return out;
-}
-
-// Vertices of a path's d attribute ("M x y L x y ... Z").
-std::vector<Vector2d> vertices(const std::string& d) {
-  std::vector<Vector2d> out;
-  std::vector<double> numbers;
-  const char* p = d.c_str();
-  while (*p) {
-    if (*p == '-' || (*p >= '0' && *p <= '9') || *p == '.') {
-      char* end = nullptr;
-      numbers.push_back(std::strtod(p, &end));
-      p = end;
-    } else {
-      ++p;
-    }
-  }
-  REQUIRE(numbers.size() % 2 == 0);
-  for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) out.emplace_back(numbers[i], numbers[i + 1]);
-  return out;
-}
-
-// The px mapping of a view group: x = s u + tx, y = -s v + ty.
-struct Mapping {
-  double s, tx, ty;
-  Vector2d world(const Vector2d& p) const { return {(p.x() - tx) / s, (ty - p.y()) / s}; }
-  Vector2d pixel(const Vector2d& w) const { return {s * w.x() + tx, -s * w.y() + ty}; }
-};
-
-Mapping mapping(const Element& group) {
-  return {group.num("data-scale"), group.num("data-tx"), group.num("data-ty")};
-}
-
-const Element& by_id(const std::vector<Element>& es, const std::string& id) {
-  for (const auto& e : es) {
-    const auto it = e.attr.find("id");
-    if (it != e.attr.end() && it->second == id) return e;
-  }
-  FAIL("no element with id " << id);
-  return es.front();
-}
-
-// ------------------------------------------------------------------ streams
-
-section::Table table(const std::string& name, std::vector<std::string> columns) {
-  section::Table t;
-  t.name = name;
-  t.columns = std::move(columns);
-  return t;
-}
-
-// A full stream of one section (id `id`, frame at height z): measured points on the exact
-// profile, the spline fitted to them, and the camber stage's tables.
-section::Stream full_stream(const section::SectionTruth& truth, int points, int control_points) {
-  std::vector<Vector2d> measured;
-  const std::size_t step = truth.profile.size() / points;
-  for (std::size_t i = 0; i < truth.profile.size(); i += step) measured.push_back(truth.profile[i]);
-  section::FitSplineOptions fo;
-  fo.control_points = control_points;
-  section::Stream stream = section::profile_stream(section::fit_spline(measured, measured, fo).spline);
-  section::camber_stream(stream);
-  section::Table pts = table("points", {"section", "loop", "index", "u", "v", "nu", "nv"});
-  for (std::size_t i = 0; i < measured.size(); ++i)
-    pts.add_row({0, 0, double(i), measured[i].x(), measured[i].y(), 0, 0});
-  stream.put(pts);
-  section::put_frames(stream, {{0, section::make_frame({0, 0, 12}, {0, 0, 1})}});
-  return stream;
-}
-
-bool all_numbers_finite(const std::string& svg) {
-  return svg.find("nan") == std::string::npos && svg.find("inf\"") == std::string::npos &&
-         svg.find("NaN") == std::string::npos;
-}
+using namespace plot_test;
 
 // Every element of a full stream is there, with its id or class.
 void check_full_elements(const std::string& svg, const std::vector<Element>& es) {
@@ -230,15 +78,29 @@ void check_le_circle(const std::string& svg, const std::vector<Element>& main_es
   CHECK(cy + r <= fy + fw);
 }
 
-// The drawn curve lies on the true profile (fit ~ 1 um, px rounding 0.005 px).
+// The drawn curve lies on the true profile (fit ~ 1 um, px rounding 0.005 px), and the
+// true profile on the drawn curve: thinned to the screen, it departs from it by at most
+// 0.2 px between its vertices.
 void check_curve(const std::vector<Element>& main_es, const Mapping& m, const section::SectionTruth& truth) {
   const auto curves = with_class(main_es, "curve");
   REQUIRE(curves.size() == 1);
   const auto px = vertices(curves[0]->attr.at("d"));
-  REQUIRE(px.size() >= 1000);
+  REQUIRE(px.size() >= 50);
   double worst = 0;
   for (const auto& p : px) worst = std::max(worst, section::locate(truth, m.world(p)).distance);
   CHECK(worst < 0.005 + 0.01 / m.s);
+  double away = 0;  // px, from a true point to the drawn polyline
+  for (std::size_t i = 0; i < truth.profile.size(); i += 7) {
+    const Vector2d q = m.pixel(truth.profile[i]);
+    double nearest = 1e300;
+    for (std::size_t k = 0; k < px.size(); ++k) {
+      const Vector2d a = px[k], ab = px[(k + 1) % px.size()] - a;
+      const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, (a + t * ab - q).norm());
+    }
+    away = std::max(away, nearest);
+  }
+  CHECK(away < 0.2 + 0.01 + 0.005 * m.s);
 }
 
 // The scale bar is as long as it says: data-length (1, 2 or 5 times a power of ten) * scale.
@@ -251,6 +113,25 @@ void check_scale_bar(const std::string& svg, const Mapping& m) {
   const auto line = with_class(bar, "scale-bar-line");
   REQUIRE(line.size() == 1);
   CHECK(std::abs(line[0]->num("x2") - line[0]->num("x1") - length * m.s) < 0.02);
+}
+
+// Every measured point lies within `reach` px of a drawn dot, no two dots share a cell
+// outside the edges, and fewer dots than points are drawn only where they crowd.
+void check_dots_cover(const std::vector<Element>& main_es, const Mapping& m, const section::Stream& stream,
+                      double reach) {
+  const auto drawn = dots(main_es);
+  const section::Table& t = *stream.find("points");
+  const long cu = t.find_column("u"), cv = t.find_column("v");
+  REQUIRE(!drawn.empty());
+  double worst = 0;
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    const Vector2d p = m.pixel({t.at(r, cu), t.at(r, cv)});
+    double nearest = 1e300;
+    for (const auto& q : drawn) nearest = std::min(nearest, (q - p).norm());
+    worst = std::max(worst, nearest);
+  }
+  CHECK(worst <= reach);
+  CHECK(drawn.size() <= t.rows());
 }
 
 }  // namespace
@@ -271,11 +152,10 @@ TEST_CASE("plot: a full section is drawn to scale with v up and the curve on the
     bool inner = false;
     const auto main_es = parse(subtree(svg, "s0-main"), &inner);
     REQUIRE(inner);
-    // The main view shows every thickness station and every measured point once.
+    // The main view shows every thickness station, and every measured point within a dot's
+    // width of a drawn dot (thinned to the screen), the edges' points all drawn.
     CHECK(with_class(main_es, "station").size() == stream.find("thickness")->rows());
-    std::size_t dots = 0;
-    for (const auto& e : main_es) dots += e.tag == "circle" && !e.attr.count("class");
-    CHECK(dots == stream.find("points")->rows());
+    check_dots_cover(main_es, m, stream, 2 * 1.6 * std::sqrt(0.5) + 0.01);
 
     check_chord(main_es, m, truth);
     check_le_circle(svg, main_es, m, truth);
@@ -306,9 +186,7 @@ TEST_CASE("plot: a stream that stops after slice draws its points and no more", 
     CHECK(with_class(es, c).empty());
   bool inner = false;
   const auto main_es = parse(subtree(svg, "s4-main"), &inner);
-  std::size_t dots = 0;
-  for (const auto& e : main_es) dots += e.tag == "circle" && !e.attr.count("class");
-  CHECK(dots == static_cast<std::size_t>(n));
+  check_dots_cover(main_es, mapping(by_id(es, "s4-main")), stream, 2 * 1.6 * std::sqrt(0.5) + 0.01);
   // Ends found on the principal axis: each ellipse vertex (+-15, 0) lies in one inset.
   for (const Vector2d vertex : {Vector2d(-15, 0), Vector2d(15, 0)}) {
     int inside = 0;

@@ -23,7 +23,7 @@ expect 2 "plot --no-such-flag" -- "$plot" --no-such-flag
 } > "$TMP/slice.txt"
 expect 0 "plot --section 1" -- "$plot" "$TMP/slice.txt" --section 1 -o "$TMP/slice1.svg"
 check "an SVG is written" -- grep -q "<svg" <(head -c 5 "$TMP/slice1.svg")
-check "the 300 points of section 1 are drawn" -- test "$(grep -o '<circle cx=' "$TMP/slice1.svg" | wc -l)" -ge 300
+check "the 300 points of section 1 are drawn" -- test "$(grep -o "h0" "$TMP/slice1.svg" | wc -l)" -ge 300
 check "a slice stream has no camber line to draw" -- test "$(grep -c 'class="camber"' "$TMP/slice1.svg")" = 0
 # Several sections and no --section, --html or -o DIR: a clear error.
 expect 1 "plot on several sections without a target" -- "$plot" "$TMP/slice.txt"
@@ -57,5 +57,8 @@ if [ -x "$BIN/camber" ]; then
   rc=$?
   check "plot reads standard input (exit $rc)" -- test "$rc" -eq 0
   check "--no-insets draws no inset" -- test "$(grep -c 'id="s0-le"' "$TMP/stdin.svg")" = 0
+  check "dimension lines by default" -- grep -q 'class="dimension dim-chord"' "$TMP/full.svg"
+  expect 0 "plot --no-dimensions" -- "$plot" "$TMP/camber.txt" --no-dimensions -o "$TMP/nodim.svg"
+  check "--no-dimensions draws none" -- test "$(grep -c 'class="dimension' "$TMP/nodim.svg")" = 0
 fi
 finish

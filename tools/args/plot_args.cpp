@@ -7,8 +7,11 @@ const char* const PlotArgs::description =
     "plot: draw the sections of a pipe stream to scale (SVG or HTML).\n\n"
     "Reads a stream from any stage (docs/FORMAT.md) and draws, per section, what it holds:\n"
     "measured points, fitted curve, mean-camber line, inscribed circles at the thickness\n"
-    "stations, LE and TE circles, chord line, parameter table, scale bar and a magnified\n"
-    "inset of each edge; v points up, both axes at one scale.\n\n"
+    "stations with their thickness, LE and TE circles, chord line, dimension lines (chord,\n"
+    "maximum thickness, edge radii), parameter table, scale bar and a magnified inset of\n"
+    "each edge; v points up, both axes at one scale. Sections are named by their plane\n"
+    "(z = 12 mm). The HTML page pans and zooms (wheel, drag; double click: whole) without\n"
+    "fetching anything; points and curves are thinned to the screen (docs/PLOT.md).\n\n"
     "Output:\n"
     "  --section N -o file.svg   one section as SVG (-o - = standard output)\n"
     "  --html -o page.html       one HTML page with every section (implied by .html)\n"
@@ -29,10 +32,12 @@ void PlotArgs::declare(CLI::App& app) {
   app.add_flag("--no-points", no_points, "Do not draw the measured points");
   app.add_flag("--no-stations", no_stations, "Do not draw the thickness-station circles");
   app.add_flag("--no-insets", no_insets, "Do not draw the edge insets");
+  app.add_flag("--no-dimensions", no_dimensions, "Do not draw the dimension lines");
   app.callback([this, section_flag] {
     options.points = !no_points;
     options.stations = !no_stations;
     if (no_insets) options.inset_size = 0;
+    options.dimensions = !no_dimensions;
     one = section_flag->count() > 0;
     if (!one && ends_with(common.output, ".html")) html = true;
   });

@@ -44,7 +44,11 @@ std::string html_head(const Stream& stream, std::size_t sections, const std::str
       "table.summary{border-collapse:collapse;margin:8px 0 16px}\n"
       "table.summary td,table.summary th{border:1px solid #ccc;padding:3px 8px;text-align:right}\n"
       "pre.history{background:#f4f4f4;padding:6px;font-size:12px}\n.issue{color:#c00}\n"
-      "section{margin-bottom:24px}\n</style>\n</head>\n<body>\n<h1>Blade sections</h1>\n" +
+      "section{margin-bottom:24px}\nsvg.section-plot{cursor:grab;touch-action:none;max-width:100%;height:"
+      "auto}\n"
+      "p.hint{color:#666;font-size:13px}\n</style>\n</head>\n<body>\n<h1>Blade sections</h1>\n"
+      "<p class=\"hint\">On a drawing: the wheel zooms about the pointer, dragging pans, a double click "
+      "shows it whole.</p>\n" +
       verdict;
   if (!stream.history.empty()) {
     h += "<pre class=\"history\">";
@@ -57,7 +61,7 @@ std::string html_head(const Stream& stream, std::size_t sections, const std::str
 // The summary table: the main parameters of every section, linked to its drawing.
 std::string summary_table(const std::vector<SectionData>& data, const std::string& units) {
   const std::string u = escape(units);
-  std::string h = "<table class=\"summary\">\n<tr><th>section</th><th>chord (" + u +
+  std::string h = "<table class=\"summary\">\n<tr><th>plane</th><th>section</th><th>chord (" + u +
                   ")</th><th>max thickness (" + u + ")</th><th>LE radius (" + u + ")</th><th>TE radius (" +
                   u +
                   ")</th><th>stagger (\xC2\xB0)</th><th>camber angle (\xC2\xB0)</th><th>issues</th></tr>\n";
@@ -66,13 +70,47 @@ std::string summary_table(const std::vector<SectionData>& data, const std::strin
       const double x = param(d, key);
       return "<td>" + (std::isfinite(x) ? fixed(x, decimals) : std::string("&ndash;")) + "</td>";
     };
-    h += "<tr><td><a href=\"#section-" + std::to_string(d.id) + "\">" + std::to_string(d.id) + "</a></td>" +
-         cell("chord", 4) + cell("max_thickness", 4) + cell("le_radius", 4) + cell("te_radius", 4) +
-         cell("stagger", 3) + cell("camber_angle", 3) + "<td class=\"issue\">" +
-         (d.issues.empty() ? "" : std::to_string(d.issues.size())) + "</td></tr>\n";
+    const std::string link = "<a href=\"#section-" + std::to_string(d.id) + "\">";
+    const std::string plane = plane_name(d);
+    h += "<tr><td>" + (plane.empty() ? "&ndash;" : link + escape(plane) + "</a>") + "</td><td>" + link +
+         std::to_string(d.id) + "</a></td>" + cell("chord", 4) + cell("max_thickness", 4) +
+         cell("le_radius", 4) + cell("te_radius", 4) + cell("stagger", 3) + cell("camber_angle", 3) +
+         "<td class=\"issue\">" + (d.issues.empty() ? "" : std::to_string(d.issues.size())) + "</td></tr>\n";
   }
   return h + "</table>\n";
 }
+
+// Pan and zoom of every drawing, inline (nothing is fetched when the page is viewed): the
+// wheel scales the SVG's viewBox about the pointer, a drag moves it, a double click
+// restores it.
+const char* const pan_zoom = R"(<script>
+document.querySelectorAll('svg.section-plot').forEach(function (svg) {
+  var home = svg.getAttribute('viewBox').split(' ').map(Number), box = home.slice(), drag = null;
+  function show(b) { box = b; svg.setAttribute('viewBox', b.map(function (x) { return x.toFixed(2); }).join(' ')); }
+  function user(e) {
+    var r = svg.getBoundingClientRect();
+    return [box[0] + (e.clientX - r.left) / r.width * box[2], box[1] + (e.clientY - r.top) / r.height * box[3]];
+  }
+  svg.addEventListener('wheel', function (e) {
+    e.preventDefault();
+    var p = user(e), k = Math.exp(0.0015 * e.deltaY);
+    k = Math.min(Math.max(k, home[2] / 400 / box[2]), home[2] / box[2]);
+    show([p[0] - (p[0] - box[0]) * k, p[1] - (p[1] - box[1]) * k, box[2] * k, box[3] * k]);
+  }, {passive: false});
+  svg.addEventListener('pointerdown', function (e) {
+    drag = {x: e.clientX, y: e.clientY, box: box.slice()};
+    try { svg.setPointerCapture(e.pointerId); } catch (err) {}  // a pointer the page did not see
+  });
+  svg.addEventListener('pointermove', function (e) {
+    if (!drag) return;
+    var r = svg.getBoundingClientRect(), b = drag.box;
+    show([b[0] - (e.clientX - drag.x) / r.width * b[2], b[1] - (e.clientY - drag.y) / r.height * b[3], b[2], b[3]]);
+  });
+  svg.addEventListener('pointerup', function () { drag = null; });
+  svg.addEventListener('dblclick', function () { show(home.slice()); });
+});
+</script>
+)";
 
 }  // namespace
 
@@ -118,6 +156,7 @@ std::string plot_html(const Stream& stream, const PlotOptions& options) {
     }
     h += "</section>\n";
   }
+  h += pan_zoom;
   h += "</body>\n</html>\n";
   return h;
 }

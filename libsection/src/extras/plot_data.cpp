@@ -54,6 +54,44 @@ std::string escape(const std::string& text) {
   return out;
 }
 
+double text_width(const std::string& text, double font) {
+  std::size_t glyphs = 0;
+  for (unsigned char c : text) glyphs += (c & 0xC0) != 0x80;  // UTF-8 lead bytes
+  return 0.62 * font * static_cast<double>(glyphs);
+}
+
+std::vector<std::string> wrap(const std::string& text, double width, double font) {
+  const auto most = static_cast<std::size_t>(std::max(8.0, width / (0.62 * font)));
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    std::string word = text.substr(start, end - start);
+    start = end + 1;
+    while (text_width(word, font) > width + 1e-9 && word.size() > most) {  // a word longer than a line
+      if (!line.empty()) lines.push_back(std::move(line));
+      line.clear();
+      lines.push_back(word.substr(0, most));
+      word.erase(0, most);
+    }
+    const std::string joined = line.empty() ? word : line + " " + word;
+    if (!line.empty() && text_width(joined, font) > width) {
+      lines.push_back(std::move(line));
+      line = word;
+    } else {
+      line = joined;
+    }
+  }
+  if (!line.empty()) lines.push_back(std::move(line));
+  return lines;
+}
+
+std::string length_text(double length, const std::string& units) {
+  return fixed(length, 4) + " " + units;
+}
+
 // Rows of table `name` for `section`, the wanted columns in order (NaN where the column
 // is absent), sorted by (loop or side, index) when those columns exist.
 std::vector<std::vector<double>> rows_of(const Stream& stream, const std::string& name, int section,
@@ -134,6 +172,8 @@ SectionData collect(const Stream& stream, int section, const Curves& curves) {
     } catch (const Error&) {
       // A malformed frames table only costs the title its plane.
     }
+    for (const auto& row : rows_of(stream, "frames", section, {"radius"}))
+      if (std::isfinite(row[0])) d.radius = row[0];
   }
   d.points = loops_of(stream, "points", section);
   for (const auto& row : rows_of(stream, "points", section, {"u", "v", "offset"}))
@@ -155,13 +195,18 @@ SectionData collect(const Stream& stream, int section, const Curves& curves) {
   for (const auto& row : rows_of(stream, "skeleton", section, {"loop", "u", "v"}))
     if ((!std::isfinite(row[0]) || row[0] == 0) && finite(V2(row[1], row[2])))
       d.skeleton.emplace_back(row[1], row[2]);
-  for (const auto& row : rows_of(stream, "camber", section, {"u", "v"}))
-    if (finite(V2(row[0], row[1]))) d.camber.emplace_back(row[0], row[1]);
-  for (const auto& row : rows_of(stream, "thickness", section, {"fraction", "u", "v", "thickness"})) {
+  for (const auto& row : rows_of(stream, "camber", section, {"u", "v", "s"}))
+    if (finite(V2(row[0], row[1]))) {
+      d.camber.emplace_back(row[0], row[1]);
+      d.camber_s.push_back(row[2]);
+    }
+  for (const auto& row :
+       rows_of(stream, "thickness", section, {"fraction", "u", "v", "thickness", "suction_u", "suction_v"})) {
     Station s;
     s.fraction = row[0];
     s.center = {row[1], row[2]};
     s.thickness = row[3];
+    s.suction = {row[4], row[5]};
     if (finite(s.center) && std::isfinite(s.thickness) && s.thickness > 0) d.stations.push_back(s);
   }
   d.params = row_map(stream, "params", section, 0);
@@ -244,6 +289,17 @@ std::string frame_text(const SectionData& d) {
   };
   return "plane through " + v3(d.frame.origin) + ", normal " + v3(d.frame.n) + "; u = " + v3(d.frame.u) +
          ", v up";
+}
+
+std::string plane_name(const SectionData& d) {
+  if (std::isfinite(d.radius)) return "r = " + trimmed(d.radius, 4) + " " + d.units;
+  if (!d.has_frame) return "";
+  const Eigen::Vector3d& n = d.frame.n;
+  for (int axis = 0; axis < 3; ++axis)
+    if (std::abs(n[axis]) > 1 - 1e-9)
+      return std::string(1, "xyz"[axis]) + " = " + trimmed(d.frame.origin[axis], 4) + " " + d.units;
+  return "h = " + trimmed(d.frame.origin.dot(n), 4) + " " + d.units + " along (" + trimmed(n.x(), 4) + ", " +
+         trimmed(n.y(), 4) + ", " + trimmed(n.z(), 4) + ")";
 }
 
 }  // namespace section::detail::plot

@@ -66,6 +66,66 @@ std::string path_data(const std::vector<V2>& pts, bool closed, const View& v, co
   return d;
 }
 
+std::vector<V2> refined(const std::vector<V2>& pts, double step) {
+  const std::size_t n = pts.size();
+  if (n < 3 || !(step > 0)) return pts;
+  std::vector<V2> out{pts.front()};
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const V2 &p0 = pts[i > 0 ? i - 1 : i], &p1 = pts[i], &p2 = pts[i + 1],
+             &p3 = pts[i + 2 < n ? i + 2 : i + 1];
+    const int k = static_cast<int>(std::min(1000.0, std::ceil((p2 - p1).norm() / step)));
+    for (int j = 1; j < k; ++j) {  // uniform Catmull-Rom between p1 and p2
+      const double t = double(j) / k, t2 = t * t, t3 = t2 * t;
+      out.push_back(0.5 * (2 * p1 + (p2 - p0) * t + (2 * p0 - 5 * p1 + 4 * p2 - p3) * t2 +
+                           (3 * p1 - p0 - 3 * p2 + p3) * t3));
+    }
+    out.push_back(p2);
+  }
+  return out;
+}
+
+std::vector<V2> thinned(const std::vector<V2>& pts, const View& v, double tolerance) {
+  // Douglas-Peucker on each run of finite points: a vertex is kept when the chord between
+  // the kept ones around it would pass farther than `tolerance` px from it.
+  const std::size_t n = pts.size();
+  if (n < 3) return pts;
+  const double limit = tolerance / v.scale;
+  std::vector<char> keep(n, 0);
+  std::vector<std::pair<std::size_t, std::size_t>> todo;
+  for (std::size_t i = 0; i < n;) {
+    if (!finite(pts[i])) {
+      keep[i++] = 1;  // a break in the curve stays a break
+      continue;
+    }
+    std::size_t j = i;
+    while (j + 1 < n && finite(pts[j + 1])) ++j;
+    keep[i] = keep[j] = 1;
+    if (j > i + 1) todo.push_back({i, j});
+    i = j + 1;
+  }
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    const V2 a = pts[i], ab = pts[j] - a;
+    const double len = ab.norm();
+    double worst = -1;
+    std::size_t at = i;
+    for (std::size_t k = i + 1; k < j; ++k) {
+      const V2 ap = pts[k] - a;
+      const double dist = len > 0 ? std::abs(ab.x() * ap.y() - ab.y() * ap.x()) / len : ap.norm();
+      if (dist > worst) worst = dist, at = k;
+    }
+    if (worst <= limit) continue;
+    keep[at] = 1;
+    if (at > i + 1) todo.push_back({i, at});
+    if (j > at + 1) todo.push_back({at, j});
+  }
+  std::vector<V2> out;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i]) out.push_back(pts[i]);
+  return out;
+}
+
 namespace {
 
 // Farthest pair along the principal axis of some points: the two ends of a profile.
@@ -87,9 +147,10 @@ std::pair<V2, V2> principal_ends(const std::vector<V2>& pts) {
 
 }  // namespace
 
-std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const PlotOptions& o) {
+std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const PlotOptions& o,
+                                   double max_half) {
   const double extent = std::max(all.u1 - all.u0, all.v1 - all.v0);
-  const double min_half = std::max(o.inset_min_fraction * extent, 1e-9);
+  const double min_half = std::min(std::max(o.inset_min_fraction * extent, 1e-9), max_half);
   std::vector<EdgeInset> out;
   if (!d.params.empty()) {
     for (const std::string key : {"le", "te"}) {
@@ -101,12 +162,15 @@ std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const P
       e.circle_center = {param(d, key + "_center_u"), param(d, key + "_center_v")};
       e.radius = param(d, key + "_radius");
       e.circle = finite(e.circle_center) && std::isfinite(e.radius) && e.radius > 0;
-      if (e.circle) {
+      if (e.circle && o.inset_radii * e.radius <= max_half) {
         e.center = e.circle_center;
         e.half = std::max(o.inset_radii * e.radius, min_half);
-      } else if (e.point) {
+      } else if (e.point) {  // no circle, or one too large to show the edge magnified
         e.center = e.edge_point;
-        e.half = 2.5 * min_half;
+        e.half = std::min(2.5 * min_half, max_half);
+      } else if (e.circle) {
+        e.center = e.circle_center;
+        e.half = max_half;
       } else {
         continue;
       }
@@ -117,7 +181,7 @@ std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const P
   // No parameters: the ends of the camber line, else the profile's extremes along its
   // principal axis, each window moved inward so that it shows the edge, not the outside.
   std::pair<V2, V2> ends;
-  double half = 2.5 * min_half;
+  double half = std::min(2.5 * min_half, max_half);
   if (d.camber.size() >= 2) {
     ends = {d.camber.front(), d.camber.back()};
   } else {
@@ -127,7 +191,7 @@ std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const P
     if (pts.size() < 3) return out;
     ends = principal_ends(pts);
     const V2 axis = (ends.second - ends.first).normalized();
-    half = 3 * min_half;
+    half = std::min(3 * min_half, max_half);
     if (finite(axis)) {
       ends.first += 0.6 * half * axis;
       ends.second -= 0.6 * half * axis;

@@ -33,6 +33,15 @@ inline std::string px(double v) {
 }
 /// Text for XML: & < > " escaped.
 std::string escape(const std::string& text);
+/// An upper estimate of the width in px of `text` at font size `font` (DejaVu Sans or Arial:
+/// no glyph of the plot's text is wider on average than 0.62 em); the browser check
+/// (tests/tools/test_plot_layout.sh) measures the real boxes.
+double text_width(const std::string& text, double font);
+/// `text` broken at spaces into lines of at most `width` px at font size `font` (a word
+/// longer than a line is cut).
+std::vector<std::string> wrap(const std::string& text, double width, double font);
+/// A length with its unit for a label: 4 decimals in the stream's unit ("62.7511 mm").
+std::string length_text(double length, const std::string& units);
 
 inline bool finite(const V2& p) {
   return std::isfinite(p.x()) && std::isfinite(p.y());
@@ -43,6 +52,7 @@ inline bool finite(const V2& p) {
 struct Station {
   double fraction = 0, thickness = 0;
   V2 center{0, 0};
+  V2 suction{nan, nan};  // where the inscribed circle touches the suction side, when known
 };
 
 // compare's deviation of one measured point (plot_compare.cpp).
@@ -66,6 +76,7 @@ struct SectionData {
   std::string units = "mm";
   bool has_frame = false;
   Frame frame;
+  double radius = nan;  // the section surface's radius (frames' "radius" column), when given
   std::map<int, std::vector<V2>> points;    // measured, by loop, in loop order
   std::vector<V2> carried;                  // those the gap fill carried onto the plane (offset != 0)
   std::map<int, BSpline> splines;           // fitted curves by loop (spline tables)
@@ -73,6 +84,7 @@ struct SectionData {
   std::string curve_source;                 // "spline", "samples", "smoothed" or ""
   std::vector<V2> skeleton;
   std::vector<V2> camber;
+  std::vector<double> camber_s;  // arc length of each camber point from the LE (NaN when absent)
   std::vector<Station> stations;
   std::map<std::string, double> params;  // the section's params row
   std::map<std::string, double> fit;     // loop 0's splines row
@@ -105,6 +117,10 @@ double param(const SectionData& d, const std::string& name);
 
 /// "plane through (x, y, z), normal (...); u = (...), v up", or "" without a frame.
 std::string frame_text(const SectionData& d);
+/// The section's name by its plane: "r = 120 mm" on a surface of revolution, "z = 12.5 mm"
+/// for a plane normal to an axis, "h = 3 mm along (0.6, 0, 0.8)" otherwise (h = origin . n);
+/// "" without a frame.
+std::string plane_name(const SectionData& d);
 
 struct Row {
   std::string name, value;
@@ -182,8 +198,48 @@ struct EdgeInset {
 };
 
 /// The edges' insets: around the LE and TE circles (or points) of the params row, else
-/// around the ends of the camber line or of the profile; `all` bounds the main view.
-std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const PlotOptions& o);
+/// around the ends of the camber line or of the profile; `all` bounds the main view. No
+/// window is wider than 2 `max_half`: an edge circle too large for it (a wrong fit) is
+/// drawn clipped, the window centred on the edge point, so the inset always magnifies.
+std::vector<EdgeInset> edge_insets(const SectionData& d, const Box& all, const PlotOptions& o,
+                                   double max_half);
+
+/// The polyline through `pts` refined (Catmull-Rom) so that no step exceeds `step`: a
+/// sampled curve (the camber table) drawn smooth where an inset magnifies it.
+std::vector<V2> refined(const std::vector<V2>& pts, double step);
+
+/// The vertices of a polyline thinned to the screen (Douglas-Peucker): the thinned line
+/// stays within `tolerance` px (in view `v`) of every vertex; the ends of each run of
+/// finite points are kept.
+std::vector<V2> thinned(const std::vector<V2>& pts, const View& v, double tolerance);
+
+// ---------------------------------------------------------------- dimensions (plot_dimensions.cpp)
+
+/// A dimension line between two points (world), drawn at the px offset of its own.
+struct Dimension {
+  std::string key;      // "chord", "max-thickness", "le-radius", "te-radius"
+  V2 a{0, 0}, b{0, 0};  // what is measured: from a to b
+  V2 offset{0, 0};      // world offset of the dimension line from a-b (extension lines)
+  double value = 0;     // the value printed (stream units)
+  std::string label;    // "chord 62.7511 mm"
+  bool arrow_a = true;  // an arrow head at a (a radius has one at b only)
+  bool level = false;   // the label level beside b (else along the line)
+};
+
+/// The main view's dimensions: chord (offset beyond the profile, on the side of the chord
+/// line the profile leaves least) and maximum thickness (across the largest inscribed
+/// circle, normal to the camber line); none without params.
+std::vector<Dimension> main_dimensions(const SectionData& d, const std::vector<V2>& profile);
+/// The radius dimension of an inset's edge circle (none without a circle or when the
+/// circle does not fit the window).
+std::vector<Dimension> edge_dimensions(const SectionData& d, const EdgeInset& e);
+/// Draws dimensions in view `v` (class "dimension dim-<key>", label class "dim-label"); a
+/// level label is kept within the px box `frame`. Returns the px anchors of the labels.
+std::vector<V2> draw_dimensions(std::string& s, const std::vector<Dimension>& dims, const View& v,
+                                const Box& frame);
+/// The thickness value of each station beside it, outside the suction side, in view `v`;
+/// a label closer than a line's height to one placed before or to `taken` is left out.
+void draw_station_labels(std::string& s, const SectionData& d, const View& v, std::vector<V2> taken);
 
 // ---------------------------------------------------------------- drawing (plot_svg.cpp)
 

@@ -3,6 +3,8 @@
 // parameter table, laid out top to bottom; see plot_parts.h.
 #include "plot_parts.h"
 
+#include <set>
+
 namespace section::detail::plot {
 
 namespace {
@@ -11,7 +13,6 @@ const char* const style =
     "text{font-family:'DejaVu Sans',Arial,sans-serif;font-size:13px;fill:#222}"
     ".title{font-size:17px;font-weight:bold}.subtitle{fill:#555}"
     ".view-frame{fill:#fff;stroke:#aaa;stroke-width:1}"
-    ".points circle{fill:#1f77b4;fill-opacity:.6}"
     ".carried circle{fill:none;stroke:#ff7f0e;stroke-width:1}"
     ".curve{fill:none;stroke:#111;stroke-width:1.3}"
     ".camber{fill:none;stroke:#d62728;stroke-width:1.5}"
@@ -29,7 +30,10 @@ const char* const style =
     ".param-name{fill:#444}.param-value{font-weight:bold;text-anchor:end}"
     ".param-head{font-weight:bold;font-size:14px}"
     ".issue{fill:#c00}.empty{fill:#888;font-style:italic}"
-    ".legend line{stroke-width:2.5}";
+    ".legend line{stroke-width:2.5}"
+    ".points{fill:none;stroke:#1f77b4;stroke-opacity:.6;stroke-linecap:round}"
+    ".dim-line,.dim-ext{stroke:#0b5394;stroke-width:1}.dim-ext{stroke-width:.7}.dim-arrow{fill:#0b5394}"
+    ".dim-label{font-size:12px;fill:#0b5394}.station-value{font-size:10px;fill:#1a7a1a}";
 
 // 1, 2 or 5 times a power of ten, at most `target`.
 double nice_length(double target) {
@@ -67,9 +71,45 @@ void circle(std::string& s, const std::string& cls, const View& v, const V2& c, 
        px(r_px) + "\"/>";
 }
 
-// The section's geometry in view `v`, restricted to `window` unless `whole`.
+// The measured points as one path of dots (round caps on zero-length segments: a tenth of
+// the text of circles), thinned to one per dot-sized cell of the view's screen: every
+// point lies within a dot's width of a drawn one; the insets, magnified, show the edges'
+// points one by one.
+void draw_points(std::string& s, const SectionData& d, const View& v, const Box& near, bool whole,
+                 const PlotOptions& o) {
+  const double r = whole ? o.point_radius : 1.5 * o.point_radius;
+  const double cell = std::max(1.0, r);
+  std::set<std::pair<long, long>> taken;
+  std::string data;
+  long X = 0, Y = 0;  // the last dot, in tenths of a px: each dot moves from it (m dx dy)
+  for (const auto& [loop, pts] : d.points)
+    for (const auto& p : pts) {
+      if (!near.contains(p)) continue;
+      const double x = v.x(p.x()), y = v.y(p.y());
+      if (!taken.insert({std::lround(x / cell), std::lround(y / cell)}).second) continue;
+      const long x10 = std::lround(10 * x), y10 = std::lround(10 * y);
+      data += (data.empty() ? "M" + trimmed(0.1 * x10, 1) + " " + trimmed(0.1 * y10, 1)
+                            : "m" + trimmed(0.1 * (x10 - X), 1) + " " + trimmed(0.1 * (y10 - Y), 1)) +
+              "h0";
+      X = x10;
+      Y = y10;
+    }
+  if (!data.empty()) s += "<path class=\"points\" stroke-width=\"" + px(2 * r) + "\" d=\"" + data + "\"/>";
+  // Carried points ringed on top of their dots: the slab had no point there.
+  if (!d.carried.empty()) {
+    s += "<g class=\"carried\">";
+    for (const auto& p : d.carried)
+      if (near.contains(p))
+        s += "<circle cx=\"" + px(v.x(p.x())) + "\" cy=\"" + px(v.y(p.y())) + "\" r=\"" + px(2 * r) + "\"/>";
+    s += "</g>";
+  }
+}
+
+// The section's geometry in view `v`, restricted to `window` unless `whole`; `dims` the
+// dimension lines drawn on top.
 void draw_geometry(std::string& s, const SectionData& d, const View& v, const Box& window, bool whole,
-                   const PlotOptions& o, const std::vector<EdgeInset>& edges, double density) {
+                   const PlotOptions& o, const std::vector<EdgeInset>& edges, double density,
+                   const std::vector<Dimension>& dims) {
   const Box near = whole ? everything() : window.grown(0.05 * (window.u1 - window.u0));
   if (o.stations && !d.stations.empty()) {
     s += "<g class=\"stations\">";
@@ -82,37 +122,22 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
     }
     s += "</g>";
   }
-  if (o.points && !d.points.empty()) {
-    s += "<g class=\"points\">";
-    const double r = whole ? o.point_radius : 1.5 * o.point_radius;
-    for (const auto& [loop, pts] : d.points)
-      for (const auto& p : pts)
-        if (near.contains(p))
-          s += "<circle cx=\"" + px(v.x(p.x())) + "\" cy=\"" + px(v.y(p.y())) + "\" r=\"" + px(r) + "\"/>";
-    s += "</g>";
-    // Carried points ringed on top of their dots: the slab had no point there.
-    if (!d.carried.empty()) {
-      s += "<g class=\"carried\">";
-      for (const auto& p : d.carried)
-        if (near.contains(p))
-          s +=
-              "<circle cx=\"" + px(v.x(p.x())) + "\" cy=\"" + px(v.y(p.y())) + "\" r=\"" + px(2 * r) + "\"/>";
-      s += "</g>";
-    }
-  }
+  if (o.points && !d.points.empty()) draw_points(s, d, v, near, whole, o);
   if (whole) draw_compare(s, d, v);
   for (int loop : curve_loops(d)) {
-    const std::string data = path_data(curve_of(d, loop, o, density), closed_loop(d, loop), v, near, whole);
+    const auto pts = thinned(curve_of(d, loop, o, density), v, 0.2);
+    const std::string data = path_data(pts, closed_loop(d, loop), v, near, whole);
     if (!data.empty())
       s += "<path class=\"curve\" data-loop=\"" + std::to_string(loop) + "\" data-source=\"" +
            d.curve_source + "\" d=\"" + data + "\"/>";
   }
-  if (d.camber.size() >= 2) {
-    const std::string data = path_data(d.camber, false, v, near, whole);
-    if (!data.empty()) s += "<path class=\"camber\" d=\"" + data + "\"/>";
-  } else if (d.skeleton.size() >= 2) {
-    const std::string data = path_data(d.skeleton, false, v, near, whole);
-    if (!data.empty()) s += "<path class=\"skeleton\" d=\"" + data + "\"/>";
+  // The camber table is a sampled curve: refined to 2 px steps, it stays smooth magnified.
+  const auto& mean = d.camber.size() >= 2 ? d.camber : d.skeleton;
+  if (mean.size() >= 2) {
+    const std::string data = path_data(thinned(refined(mean, 2 / v.scale), v, 0.2), false, v, near, whole);
+    if (!data.empty())
+      s += std::string("<path class=\"") + (d.camber.size() >= 2 ? "camber" : "skeleton") + "\" d=\"" + data +
+           "\"/>";
   }
   const V2 le(param(d, "le_u"), param(d, "le_v")), te(param(d, "te_u"), param(d, "te_v"));
   if (finite(le) && finite(te))
@@ -122,6 +147,9 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
     if (e.circle) circle(s, e.key + "-circle", v, e.circle_center, e.radius * v.scale);
     if (e.point) circle(s, e.key + "-point", v, e.edge_point, 3.5);
   }
+  const Box frame{v.x(window.u0), v.y(window.v1), v.x(window.u1), v.y(window.v0)};
+  const auto anchors = draw_dimensions(s, dims, v, frame);
+  if (whole && o.stations && !d.stations.empty()) draw_station_labels(s, d, v, anchors);
 }
 
 // One section's drawing as it is laid out: the SVG body so far and where the next part goes.
@@ -138,6 +166,16 @@ struct Page {
       : d(data), o(options), id("s" + std::to_string(data.id)), W(options.width), y(margin + 18) {}
 };
 
+// The world box seen through the px box `b` of view `v`.
+Box frame_world(const View& v, const Box& b) {
+  return {(b.u0 - v.tx) / v.scale, (v.ty - b.v1) / v.scale, (b.u1 - v.tx) / v.scale, (v.ty - b.v0) / v.scale};
+}
+
+// The px kept around the main view's profile for the labels outside it (station values).
+double labels_pad(const SectionData& d, const PlotOptions& o) {
+  return o.stations && !d.stations.empty() ? 44 : 0;
+}
+
 // Bounds of everything drawn in the main view.
 Box drawn_bounds(const SectionData& d, const PlotOptions& o) {
   Box all;
@@ -150,23 +188,34 @@ Box drawn_bounds(const SectionData& d, const PlotOptions& o) {
   return all;
 }
 
+// Lines of text at the left margin, each `step` px below the last, wrapped to the width.
+void lines(Page& p, const std::string& cls, const std::string& text, double font, double step,
+           const std::string& style = "") {
+  for (const auto& l : wrap(text, p.W - 2 * p.margin, font)) {
+    p.body += "<text class=\"" + cls + "\" x=\"" + px(p.margin) + "\" y=\"" + px(p.y) + "\"" +
+              (style.empty() ? "" : " style=\"" + style + "\"") + ">" + escape(l) + "</text>";
+    p.y += step;
+  }
+}
+
+// The section's name by its plane (plane_name), its id, and the frame.
 void title(Page& p) {
   const SectionData& d = p.d;
-  p.body += "<text class=\"title\" x=\"" + px(p.margin) + "\" y=\"" + px(p.y) + "\">Section " +
-            std::to_string(d.id) + "</text>";
+  const std::string plane = plane_name(d);
+  lines(p, "title", (plane.empty() ? "" : plane + "  \xC2\xB7  ") + "section " + std::to_string(d.id), 17,
+        18);
   const std::string sub = frame_text(d);
-  p.body += "<text class=\"subtitle\" x=\"" + px(p.margin + 110) + "\" y=\"" + px(p.y) + "\">" +
-            escape(sub.empty() ? "units " + d.units : sub + "; units " + d.units) + "</text>";
-  p.y += 12;
+  lines(p, "subtitle", sub.empty() ? "units " + d.units : sub + "; units " + d.units, 13, 16);
+  p.y -= 4;
   // compare's verdict and what its whiskers show (plot_compare.cpp).
   const char* colour = d.verdict == 1 ? "#c00" : d.verdict == 2 ? "#b07800" : "#080";
   for (const auto& [text, style] :
        {std::pair{verdict_line(d), std::string("font-weight:bold;fill:") + colour},
         std::pair{whisker_legend(d), std::string("font-size:11px;fill:#555")}}) {
     if (text.empty()) continue;
-    p.body += "<text class=\"verdict\" x=\"" + px(p.margin) + "\" y=\"" + px(p.y + 8) + "\" style=\"" +
-              style + "\">" + escape(text) + "</text>";
-    p.y += 18;
+    p.y += 8;
+    lines(p, "verdict", text, 13, 18, style);
+    p.y -= 8;
   }
 }
 
@@ -183,7 +232,8 @@ void inset_frames(Page& p, const View& main, const std::vector<EdgeInset>& edges
 }
 
 // The main view: everything in `all` to scale, within the width and max_main_height.
-View main_view(Page& p, const Box& all, const std::vector<EdgeInset>& edges) {
+View main_view(Page& p, const Box& all, const std::vector<EdgeInset>& edges,
+               const std::vector<Dimension>& dims) {
   const SectionData& d = p.d;
   const PlotOptions& o = p.o;
   const double margin = p.margin, y = p.y;
@@ -192,12 +242,13 @@ View main_view(Page& p, const Box& all, const std::vector<EdgeInset>& edges) {
   const double view_w = p.W - 2 * margin;
   double view_h = 60;
   if (drawable) {
+    const double pad = labels_pad(d, o);  // px kept for the labels outside the profile
     const double extent = std::max({all.u1 - all.u0, all.v1 - all.v0, 1e-9});
     const Box padded = all.grown(0.04 * extent);
     const double du = padded.u1 - padded.u0, dv = padded.v1 - padded.v0;
-    view_h = std::min(o.max_main_height, view_w * dv / du);
+    view_h = std::min(o.max_main_height, (view_w - 2 * pad) * dv / du + 2 * pad);
     view_h = std::max(view_h, 60.0);
-    main = View::fit(padded, margin, y, view_w, view_h);
+    main = View::fit(padded, margin + pad, y + pad, view_w - 2 * pad, view_h - 2 * pad);
   }
   std::string& body = p.body;
   body += "<g id=\"" + p.id + "-main\" class=\"view main\" data-scale=\"" + trimmed(main.scale, 6) +
@@ -208,7 +259,8 @@ View main_view(Page& p, const Box& all, const std::vector<EdgeInset>& edges) {
   body += "<rect class=\"view-frame\" " + frame_rect + "/>";
   if (drawable) {
     body += "<g clip-path=\"url(#" + p.id + "-main-clip)\">";
-    draw_geometry(body, d, main, everything(), true, o, edges, 1);
+    const Box frame{margin, y, margin + view_w, y + view_h};
+    draw_geometry(body, d, main, frame_world(main, frame), true, o, edges, 1, dims);
     if (o.inset_size > 0) inset_frames(p, main, edges);
     body += "</g>";
     scale_bar(body, p.id + "-main-scale", main, margin, y + view_h, view_w, d.units);
@@ -241,18 +293,31 @@ void legend(Page& p, const std::vector<EdgeInset>& edges) {
   if (std::isfinite(param(d, "chord"))) items.push_back({"chord", "chord line"});
   for (const auto& e : edges)
     if (e.circle) items.push_back({e.key + "-circle", e.label + " circle"});
+  if (o.dimensions && std::isfinite(param(d, "chord")))
+    items.push_back({"dim-line", "dimensions (" + d.units + ")"});
+  if (o.stations && !d.stations.empty()) items.push_back({"station-value", "thickness at the stations"});
   p.body += "<g class=\"legend\">";
   double x = p.margin;
   for (const auto& [cls, label] : items) {
+    const double item = 44 + text_width(label, 13);
+    if (x > p.margin && x + item > p.W - p.margin) {  // next row
+      x = p.margin;
+      p.y += 20;
+    }
     const double ly = p.y + 10;
-    if (cls == "points" || cls == "carried")
+    if (cls == "points")
+      p.body += "<path class=\"points\" stroke-width=\"6\" d=\"M" + px(x + 10) + " " + px(ly) + "h0\"/>";
+    else if (cls == "carried")
       p.body +=
           "<g class=\"" + cls + "\"><circle cx=\"" + px(x + 10) + "\" cy=\"" + px(ly) + "\" r=\"3\"/></g>";
+    else if (cls == "station-value")
+      p.body += "<text class=\"station-value\" x=\"" + px(x) + "\" y=\"" + px(ly + 4) + "\">1.234</text>";
     else
       p.body += "<line class=\"" + cls + "\" x1=\"" + px(x) + "\" y1=\"" + px(ly) + "\" x2=\"" + px(x + 22) +
                 "\" y2=\"" + px(ly) + "\"/>";
-    p.body += "<text x=\"" + px(x + 28) + "\" y=\"" + px(ly + 4) + "\">" + escape(label) + "</text>";
-    x += 36 + 7.2 * static_cast<double>(label.size());
+    const double gap = cls == "station-value" ? 36 : 28;
+    p.body += "<text x=\"" + px(x + gap) + "\" y=\"" + px(ly + 4) + "\">" + escape(label) + "</text>";
+    x += item;
   }
   p.body += "</g>";
   p.y += 26;
@@ -277,7 +342,8 @@ void inset(Page& p, const View& main, const EdgeInset& e, double x, double lower
           "\" height=\"" + px(side) + "\"/>";
   body += "<g clip-path=\"url(#" + gid + "-clip)\">";
   const std::vector<EdgeInset> marks{e};
-  draw_geometry(body, p.d, v, window, false, p.o, marks, std::max(1.0, 0.5 * magnification));
+  draw_geometry(body, p.d, v, window, false, p.o, marks, std::max(1.0, 0.5 * magnification),
+                p.o.dimensions ? edge_dimensions(p.d, e) : std::vector<Dimension>{});
   body += "</g>";
   scale_bar(body, gid + "-scale", v, x, top + side, side, p.d.units);
   body += "</g>";
@@ -309,50 +375,84 @@ TablePlace insets(Page& p, const View& main, const std::vector<EdgeInset>& edges
   return at;
 }
 
-// The parameter table and the section's issues at `at`; returns the bottom of the drawing.
+// The parameter table at `at`; returns the bottom of the row. A value too long to stand
+// beside its name goes on the line below it.
 double param_table(Page& p, const TablePlace& at) {
   const SectionData& d = p.d;
-  if (!p.o.table && d.issues.empty()) return at.row_bottom;
+  if (!p.o.table) return at.row_bottom;
   double ty = at.y + 13;
   const double table_x = at.x, value_x = std::min(p.W - p.margin, table_x + 360);
   std::string& body = p.body;
   body += "<g id=\"" + p.id + "-params\" class=\"param-table\">";
-  if (p.o.table) {
-    body += "<text class=\"param-head\" x=\"" + px(table_x) + "\" y=\"" + px(ty) + "\">Parameters</text>";
-    ty += 20;
-    const auto rows = parameter_rows(d);
-    for (const auto& r : rows) {
-      body += "<text class=\"param-name\" x=\"" + px(table_x) + "\" y=\"" + px(ty) + "\">" + escape(r.name) +
-              "</text><text class=\"param-value\" x=\"" + px(value_x) + "\" y=\"" + px(ty) + "\">" +
-              escape(r.value) + "</text>";
-      ty += 18;
-    }
-    if (rows.empty()) {
-      body += "<text class=\"empty\" x=\"" + px(table_x) + "\" y=\"" + px(ty) +
-              "\">no parameters in the stream</text>";
-      ty += 18;
-    }
+  body += "<text class=\"param-head\" x=\"" + px(table_x) + "\" y=\"" + px(ty) + "\">Parameters</text>";
+  ty += 20;
+  const auto rows = parameter_rows(d);
+  for (const auto& r : rows) {
+    body += "<text class=\"param-name\" x=\"" + px(table_x) + "\" y=\"" + px(ty) + "\">" + escape(r.name) +
+            "</text>";
+    if (text_width(r.name, 13) + text_width(r.value, 13) + 12 > value_x - table_x) ty += 16;
+    body += "<text class=\"param-value\" x=\"" + px(value_x) + "\" y=\"" + px(ty) + "\">" + escape(r.value) +
+            "</text>";
+    ty += 18;
   }
-  for (const auto& issue : d.issues) {
-    body +=
-        "<text class=\"issue\" x=\"" + px(table_x) + "\" y=\"" + px(ty) + "\">" + escape(issue) + "</text>";
+  if (rows.empty()) {
+    body += "<text class=\"empty\" x=\"" + px(table_x) + "\" y=\"" + px(ty) +
+            "\">no parameters in the stream</text>";
     ty += 18;
   }
   body += "</g>";
   return std::max(at.row_bottom, ty - 13);
 }
 
+// The section's issues under everything, across the width, each wrapped to it.
+void issues(Page& p) {
+  if (p.d.issues.empty()) return;
+  p.y += 22;
+  p.body += "<g id=\"" + p.id + "-issues\" class=\"issues\">";
+  for (const auto& issue : p.d.issues) lines(p, "issue", issue, 13, 17);
+  p.body += "</g>";
+  p.y -= 17;
+}
+
+// The largest inset half-width (world) for a main view of `all`: the inset magnifies at
+// least twice.
+double largest_half(const Box& all, const SectionData& d, const PlotOptions& o) {
+  const double pad = labels_pad(d, o), view_w = o.width - 2 * 16 - 2 * pad;
+  const double extent = std::max({all.u1 - all.u0, all.v1 - all.v0, 1e-9});
+  const Box padded = all.grown(0.04 * extent);
+  const double scale = std::min(view_w / (padded.u1 - padded.u0), std::max(o.max_main_height - 2 * pad, 1.0) /
+                                                                      std::max(padded.v1 - padded.v0, 1e-12));
+  return o.inset_size > 0 ? o.inset_size / (2 * 2.2 * scale) : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 std::string svg_of(const SectionData& d, const PlotOptions& o) {
   Page p(d, o);
-  const Box all = drawn_bounds(d, o);
-  const auto edges = all.empty() ? std::vector<EdgeInset>{} : edge_insets(d, all, o);
+  const Box profile = drawn_bounds(d, o);
+  const auto edges =
+      profile.empty() ? std::vector<EdgeInset>{} : edge_insets(d, profile, o, largest_half(profile, d, o));
+  // The main view holds the dimension lines and the insets' windows too.
+  std::vector<V2> outline;
+  for (int loop : curve_loops(d))
+    for (const auto& q : curve_of(d, loop, o, 1)) outline.push_back(q);
+  if (outline.empty())
+    for (const auto& [loop, pts] : d.points) outline.insert(outline.end(), pts.begin(), pts.end());
+  const auto dims = profile.empty() || !o.dimensions ? std::vector<Dimension>{} : main_dimensions(d, outline);
+  Box all = profile;
+  for (const auto& dim : dims) {
+    all.add(V2(dim.a + dim.offset));
+    all.add(V2(dim.b + dim.offset));
+  }
+  if (o.inset_size > 0)
+    for (const auto& e : edges) all.add(e.center, e.half);
   title(p);
-  const View main = main_view(p, all, edges);
+  const View main = main_view(p, all, edges, dims);
   legend(p, edges);
   const TablePlace at = insets(p, main, edges);
-  const double H = std::ceil(param_table(p, at) + p.margin);
+  p.y = param_table(p, at);
+  issues(p);
+  const double H = std::ceil(p.y + p.margin);
   const double W = p.W;
   std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"" + p.id +
                   "\" class=\"section-plot\" width=\"" + px(W) + "\" height=\"" + px(H) +
