@@ -202,11 +202,42 @@ std::vector<PointRow> join_pieces(std::vector<std::vector<std::size_t>> parts, c
   return rows;
 }
 
+// Points on levels (a structured grid's lines at constant height, however their spacing
+// along a line compares with the gap between lines): the points sorted by height, cut
+// where the next height lies over half the lowest quartile `gap` of the heights to a
+// neighbour above or below. Empty unless every level is thinner than a quarter of the gaps
+// beside it (levels that overlap, such as slanted lines, are left to the pieces).
+std::vector<std::vector<std::size_t>> levels_of(const std::vector<Vec3>& first, const Vec3& n, double gap) {
+  std::vector<std::size_t> order(first.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::vector<double> h(first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) h[i] = n.dot(first[i]);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return h[a] < h[b]; });
+  std::vector<std::vector<std::size_t>> out(1);
+  std::vector<std::array<double, 2>> span;  // each level's lowest and highest height
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k > 0 && h[order[k]] - h[order[k - 1]] > 0.5 * gap) out.emplace_back();
+    if (out.back().empty()) span.push_back({h[order[k]], h[order[k]]});
+    out.back().push_back(order[k]);
+    span.back()[1] = h[order[k]];
+  }
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const double thick = span[k][1] - span[k][0];
+    if (k > 0 && 4 * thick > span[k][0] - span[k - 1][1]) return {};
+    if (k + 1 < out.size() && 4 * thick > span[k + 1][0] - span[k][1]) return {};
+    std::sort(out[k].begin(), out[k].end());
+  }
+  return out;
+}
+
 // The rows of the points, when rows of at least 8 points hold 90 % of them and at least
-// half of the rows are planar; else none.
+// half of the rows are planar; else none. Points on levels are split by height first.
 std::vector<PointRow> find_rows(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first,
-                                const Vec3& n, double spacing, const SamplingOptions& options) {
-  auto parts = pieces(tree, first, n, options.threads);
+                                const Vec3& n, double spacing, double level_gap,
+                                const SamplingOptions& options) {
+  std::vector<std::vector<std::size_t>> parts;
+  if (level_gap > 0) parts = levels_of(first, n, level_gap);
+  if (parts.size() < 2) parts = pieces(tree, first, n, options.threads);
   if (8 * parts.size() > first.size()) return {};  // mostly strays: no rows
   std::vector<PointRow> rows = join_pieces(std::move(parts), first, n, spacing, options.flatness);
   std::size_t covered = 0, planar = 0;
@@ -294,13 +325,20 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
     // Heights on levels (the quartiles of the gaps along the normal close together, where
     // a dense scan's spread over a factor of two) wider apart than the spacing are lines
     // too: a slab of the spacing would fall between them.
-    const bool levels = s.normal_low >= 0.8 * s.normal_high && s.normal_spacing > s.spacing;
-    if (!(s.spacing > 0) || !(levels || s.normal_spacing > options.anisotropy * s.spacing)) return s;
+    // Levels closer than the spacing along them (a chordwise grid's lines, denser in
+    // height than along the chord) are lines too when they come apart by height.
+    const bool on_levels = s.normal_low >= 0.8 * s.normal_high && s.normal_low > 0;
+    const bool levels = on_levels && s.normal_spacing > s.spacing;
+    if (!(s.spacing > 0) || !(on_levels || s.normal_spacing > options.anisotropy * s.spacing)) return s;
     if (m < all) continue;
     s.kind = SamplingKind::lines;
-    s.rows = find_rows(tree, first, n, s.spacing, options);
+    s.rows = find_rows(tree, first, n, s.spacing, on_levels ? s.normal_low : 0, options);
     if (!s.rows.empty()) {
       classify_rows(options, s);
+      return s;
+    }
+    if (!levels && !(s.normal_spacing > options.anisotropy * s.spacing)) {
+      s.kind = SamplingKind::dense;  // close levels that do not come apart: a slab as for a scan
       return s;
     }
     // Lines that do not come apart into rows (slanted, or crossing): the slab bridges the

@@ -215,7 +215,7 @@ void slice_between_lines(const std::vector<Eigen::Vector3d>& points, const std::
       section.error = std::string("the lines beside the plane: ") + e.what();
     }
   });
-  order_slabs(slabs, {}, planes, s.slab, as_they_lie(options), result, sink);
+  order_slabs(slabs, {}, planes, s.slab, as_they_lie(options), result, sink, order_row);
 }
 
 void rows_as_sections(const std::vector<Eigen::Vector3d>& points, const SliceOptions& options,
