@@ -375,3 +375,33 @@ TEST_CASE("sampling: a section that does not close names the option that helps",
   CHECK(e.find("a wider slab holds more points (--slab, now 0.004 mm)") != std::string::npos);
   CHECK(e.find("max_dilation") == std::string::npos);
 }
+
+TEST_CASE("sampling: a loop that leaves much of the section's points far off is refused", "[sampling]") {
+  // A thin closed piece (an ellipse 8 x 0.8 mm) and, beside it, an open sheet cut across (a
+  // single layer of sparse points along 20 mm, as a plane cuts a radial rotor's blade where
+  // its surface runs nearly along the plane): before, the loop closed round the piece alone
+  // and its params (chord 8 of a 30 mm cut) came out with no issue.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> turn(0, 2 * M_PI), height(0, 10), along(-25, -5);
+  Cloud piece;
+  for (int k = 0; k < 20000; ++k) {
+    const double t = turn(rng);
+    piece.points.emplace_back(4 * std::cos(t), 0.4 * std::sin(t), height(rng));
+  }
+  Cloud cut = piece;
+  for (int k = 0; k < 4000; ++k) {
+    const double x = along(rng);
+    cut.points.emplace_back(x, 0.05 * x + 0.3, height(rng));
+  }
+  const SliceResult r = slice(cut, planes_at({0, 0, 1}, {5.0}));
+  INFO(r.sections[0].error);
+  CHECK(r.sections[0].error.find("the loop holds only part of the section") != std::string::npos);
+  // The piece alone, and with a few far outliers, is a profile.
+  for (int outliers : {0, 5}) {
+    Cloud c = piece;
+    for (int k = 0; k < outliers; ++k) c.points.emplace_back(-10 - k, 3, 5.0);
+    const SliceResult p = slice(c, planes_at({0, 0, 1}, {5.0}));
+    INFO(p.sections[0].error);
+    CHECK(p.sections[0].error.empty());
+  }
+}
