@@ -6,6 +6,8 @@
 #include "detail/flann_nearest.h"
 #include "detail/parallel.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -230,16 +232,50 @@ std::vector<std::vector<std::size_t>> levels_of(const std::vector<Vec3>& first, 
   return out;
 }
 
+// The normal of levels tilted from `n` (a grid's lines at constant height, sliced by planes
+// a few degrees off them): the direction across the steps from each of up to `queries`
+// points to its nearest neighbour within 6 degrees of the plane (on a level, its neighbour
+// along the line), the least eigenvector of their scatter; `n` when that is over 30
+// degrees from it.
+Vec3 level_normal(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, const Vec3& n,
+                  const SamplingOptions& options) {
+  const std::size_t step = std::max<std::size_t>(1, first.size() / std::max<std::size_t>(1, options.queries));
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < first.size(); i += step) {
+    const Near near = near_of(tree, first, i);
+    for (int j = 0; j < near.count; ++j) {
+      const Vec3 d = (first[std::size_t(near.index[j])] - first[i]).normalized();
+      if (std::abs(d.dot(n)) >= 0.1) continue;
+      scatter += d * d.transpose();
+      break;
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  Vec3 m = eig.eigenvectors().col(0);
+  if (m.dot(n) < 0) m = -m;
+  return m.dot(n) > std::sqrt(0.75) ? m : n;
+}
+
 // The rows of the points, when rows of at least 8 points hold 90 % of them and at least
-// half of the rows are planar; else none. Points on levels are split by height first.
+// half of the rows are planar; else none. Points on levels are split by height first:
+// along `n`, else along the levels' own normal (level_normal).
 std::vector<PointRow> find_rows(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first,
                                 const Vec3& n, double spacing, double level_gap,
                                 const SamplingOptions& options) {
   std::vector<std::vector<std::size_t>> parts;
   if (level_gap > 0) parts = levels_of(first, n, level_gap);
-  if (parts.size() < 2) parts = pieces(tree, first, n, options.threads);
-  if (8 * parts.size() > first.size()) return {};  // mostly strays: no rows
-  std::vector<PointRow> rows = join_pieces(std::move(parts), first, n, spacing, options.flatness);
+  if (level_gap > 0 && parts.size() < 2)
+    parts = levels_of(first, level_normal(tree, first, n, options), level_gap);
+  std::vector<PointRow> rows;
+  if (parts.size() >= 2) {
+    // Levels are whole lines: none joins another (tilted ones overlap in height along n).
+    for (auto& part : parts)
+      if (part.size() >= 8) rows.push_back(fit_row(std::move(part), first, n, options.flatness));
+  } else {
+    parts = pieces(tree, first, n, options.threads);
+    if (8 * parts.size() > first.size()) return {};  // mostly strays: no rows
+    rows = join_pieces(std::move(parts), first, n, spacing, options.flatness);
+  }
   std::size_t covered = 0, planar = 0;
   for (const PointRow& row : rows) covered += row.points.size(), planar += row.planar;
   if (rows.empty() || double(covered) < 0.9 * double(first.size()) || 2 * planar < rows.size()) return {};
