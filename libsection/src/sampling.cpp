@@ -258,9 +258,10 @@ Vec3 level_normal(const detail::NearestPoints<3>& tree, const std::vector<Vec3>&
 
 // The rows of the points, when rows of at least 8 points hold 90 % of them and at least
 // half of the rows are planar; else none. Points on levels are split by height first:
-// along `n`, else along the levels' own normal (level_normal).
+// along `n`, else along the levels' own normal (level_normal); `only_levels`: no rows
+// but levels (points no sparser along the normal than across it are rows only so).
 std::vector<PointRow> find_rows(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first,
-                                const Vec3& n, double spacing, double level_gap,
+                                const Vec3& n, double spacing, double level_gap, bool only_levels,
                                 const SamplingOptions& options) {
   std::vector<std::vector<std::size_t>> parts;
   if (level_gap > 0) parts = levels_of(first, n, level_gap);
@@ -272,6 +273,7 @@ std::vector<PointRow> find_rows(const detail::NearestPoints<3>& tree, const std:
     for (auto& part : parts)
       if (part.size() >= 8) rows.push_back(fit_row(std::move(part), first, n, options.flatness));
   } else {
+    if (only_levels) return {};
     parts = pieces(tree, first, n, options.threads);
     if (8 * parts.size() > first.size()) return {};  // mostly strays: no rows
     rows = join_pieces(std::move(parts), first, n, spacing, options.flatness);
@@ -364,16 +366,18 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
     // Levels closer than the spacing along them (a chordwise grid's lines, denser in
     // height than along the chord) are lines too when they come apart by height.
     const bool on_levels = s.normal_low >= 0.8 * s.normal_high && s.normal_low > 0;
-    const bool levels = on_levels && s.normal_spacing > s.spacing;
-    if (!(s.spacing > 0) || !(on_levels || s.normal_spacing > options.anisotropy * s.spacing)) return s;
+    const bool levels = on_levels && s.normal_spacing > s.spacing,
+               sparse_up = s.normal_spacing > options.anisotropy * s.spacing;
+    if (!(s.spacing > 0) || !(on_levels || sparse_up)) return s;
     if (m < all) continue;
     s.kind = SamplingKind::lines;
-    s.rows = find_rows(tree, first, n, s.spacing, on_levels ? s.normal_low : 0, options);
+    s.rows =
+        find_rows(tree, first, n, s.spacing, on_levels ? s.normal_low : 0, !levels && !sparse_up, options);
     if (!s.rows.empty()) {
       classify_rows(options, s);
       return s;
     }
-    if (!levels && !(s.normal_spacing > options.anisotropy * s.spacing)) {
+    if (!levels && !sparse_up) {
       s.kind = SamplingKind::dense;  // close levels that do not come apart: a slab as for a scan
       return s;
     }

@@ -141,13 +141,23 @@ void step_across(const std::vector<Eigen::Vector3d>& points, const PointRow& fro
 // where the step crosses the plane (step_across).
 std::vector<Eigen::Vector2d> across_lines(const std::vector<Eigen::Vector3d>& points, const Sampling& s,
                                           const Frame& plane, const MorphologyOptions& morphology) {
+  // Part of the section beyond the lines (the plane below part of the lowest, above part
+  // of the highest) would be left out: a partial profile posing as the section.
+  const bool below = against(points, s.rows.front(), plane.origin, plane.n).high > 0;
+  if (below || against(points, s.rows.back(), plane.origin, plane.n).low < 0)
+    throw Error("the plane at height " + num(plane.n.dot(plane.origin)) +
+                " leaves the lines of points: part of its section lies beyond the " +
+                (below ? "lowest" : "highest") + " line");
   std::vector<Eigen::Vector2d> out;
   for (std::size_t k = 0; k + 1 < s.rows.size(); ++k) {
     const PointRow &a = s.rows[k], &b = s.rows[k + 1];
     const Against ha = against(points, a, plane.origin, plane.n),
                   hb = against(points, b, plane.origin, plane.n);
     if (std::min(ha.low, hb.low) > 0 || std::max(ha.high, hb.high) < 0) continue;
-    if (b.height - a.height > 2.5 * s.row_gap) continue;
+    if (b.height - a.height > 2.5 * s.row_gap)
+      throw Error("the plane at height " + num(plane.n.dot(plane.origin)) + " crosses a gap of " +
+                  num(b.height - a.height) + " between the lines at heights " + num(a.height) + " and " +
+                  num(b.height) + " (" + num(s.row_gap) + " apart elsewhere)");
     const Frame f = make_frame(a.origin, (a.normal + b.normal).normalized());
     step_across(points, a, b, f, plane, morphology, out);
     step_across(points, b, a, f, plane, morphology, out);
@@ -249,7 +259,7 @@ void slice_between_lines(const std::vector<Eigen::Vector3d>& points, const std::
       try {
         slabs[p] = across_lines(points, s, frame, options.morphology);
       } catch (const Error& e) {
-        section.error = std::string("the lines across the plane: ") + e.what();
+        section.error = e.what();
       }
       return;
     }
