@@ -33,7 +33,10 @@ target, or flagged in its row (`flags`, the bits of section/checks.h), or a SILE
   axial extent against the cfg's x_trailing - x_leading (a check of the frame).
 - APU_rotor (3D radial rotor, sections on surfaces of revolution: no reference for planar
   sections): `slice FILE` (no planes) and `slice FILE --count 5` (default normal 0,0,1, the
-  machine axis here), through the pipe; what comes out is printed as it is, not judged.
+  machine axis here), through the pipe; what comes out is printed as it is, and each
+  section's chord is judged against the raw points within the band of its plane (a loop
+  closed on part of an open cut shows as a chord far short of them; slice now refuses
+  such a section: "the loop holds only part of the section").
 
 Usage: scripts/validate_parablade.py [--bin DIR] [--data DIR] [--keep DIR] [-- camber options]
 Exit 1 when any value is a silent wrong, 0 otherwise; 0 with a message when the data are

@@ -6,6 +6,8 @@
 #include "detail/flann_nearest.h"
 #include "detail/parallel.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -202,13 +204,80 @@ std::vector<PointRow> join_pieces(std::vector<std::vector<std::size_t>> parts, c
   return rows;
 }
 
+// Points on levels (a structured grid's lines at constant height, however their spacing
+// along a line compares with the gap between lines): the points sorted by height, cut
+// where the next height lies over half the lowest quartile `gap` of the heights to a
+// neighbour above or below. Empty unless every level is thinner than a quarter of the gaps
+// beside it (levels that overlap, such as slanted lines, are left to the pieces).
+std::vector<std::vector<std::size_t>> levels_of(const std::vector<Vec3>& first, const Vec3& n, double gap) {
+  std::vector<std::size_t> order(first.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::vector<double> h(first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) h[i] = n.dot(first[i]);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return h[a] < h[b]; });
+  std::vector<std::vector<std::size_t>> out(1);
+  std::vector<std::array<double, 2>> span;  // each level's lowest and highest height
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k > 0 && h[order[k]] - h[order[k - 1]] > 0.5 * gap) out.emplace_back();
+    if (out.back().empty()) span.push_back({h[order[k]], h[order[k]]});
+    out.back().push_back(order[k]);
+    span.back()[1] = h[order[k]];
+  }
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const double thick = span[k][1] - span[k][0];
+    if (k > 0 && 4 * thick > span[k][0] - span[k - 1][1]) return {};
+    if (k + 1 < out.size() && 4 * thick > span[k + 1][0] - span[k][1]) return {};
+    std::sort(out[k].begin(), out[k].end());
+  }
+  return out;
+}
+
+// The normal of levels tilted from `n` (a grid's lines at constant height, sliced by planes
+// a few degrees off them): the direction across the steps from each of up to `queries`
+// points to its nearest neighbour within 6 degrees of the plane (on a level, its neighbour
+// along the line), the least eigenvector of their scatter; `n` when that is over 30
+// degrees from it.
+Vec3 level_normal(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, const Vec3& n,
+                  const SamplingOptions& options) {
+  const std::size_t step = std::max<std::size_t>(1, first.size() / std::max<std::size_t>(1, options.queries));
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < first.size(); i += step) {
+    const Near near = near_of(tree, first, i);
+    for (int j = 0; j < near.count; ++j) {
+      const Vec3 d = (first[std::size_t(near.index[j])] - first[i]).normalized();
+      if (std::abs(d.dot(n)) >= 0.1) continue;
+      scatter += d * d.transpose();
+      break;
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  Vec3 m = eig.eigenvectors().col(0);
+  if (m.dot(n) < 0) m = -m;
+  return m.dot(n) > std::sqrt(0.75) ? m : n;
+}
+
 // The rows of the points, when rows of at least 8 points hold 90 % of them and at least
-// half of the rows are planar; else none.
+// half of the rows are planar; else none. Points on levels are split by height first:
+// along `n`, else along the levels' own normal (level_normal); `only_levels`: no rows
+// but levels (points no sparser along the normal than across it are rows only so).
 std::vector<PointRow> find_rows(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first,
-                                const Vec3& n, double spacing, const SamplingOptions& options) {
-  auto parts = pieces(tree, first, n, options.threads);
-  if (8 * parts.size() > first.size()) return {};  // mostly strays: no rows
-  std::vector<PointRow> rows = join_pieces(std::move(parts), first, n, spacing, options.flatness);
+                                const Vec3& n, double spacing, double level_gap, bool only_levels,
+                                const SamplingOptions& options) {
+  std::vector<std::vector<std::size_t>> parts;
+  if (level_gap > 0) parts = levels_of(first, n, level_gap);
+  if (level_gap > 0 && parts.size() < 2)
+    parts = levels_of(first, level_normal(tree, first, n, options), level_gap);
+  std::vector<PointRow> rows;
+  if (parts.size() >= 2) {
+    // Levels are whole lines: none joins another (tilted ones overlap in height along n).
+    for (auto& part : parts)
+      if (part.size() >= 8) rows.push_back(fit_row(std::move(part), first, n, options.flatness));
+  } else {
+    if (only_levels) return {};
+    parts = pieces(tree, first, n, options.threads);
+    if (8 * parts.size() > first.size()) return {};  // mostly strays: no rows
+    rows = join_pieces(std::move(parts), first, n, spacing, options.flatness);
+  }
   std::size_t covered = 0, planar = 0;
   for (const PointRow& row : rows) covered += row.points.size(), planar += row.planar;
   if (rows.empty() || double(covered) < 0.9 * double(first.size()) || 2 * planar < rows.size()) return {};
@@ -294,13 +363,22 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
     // Heights on levels (the quartiles of the gaps along the normal close together, where
     // a dense scan's spread over a factor of two) wider apart than the spacing are lines
     // too: a slab of the spacing would fall between them.
-    const bool levels = s.normal_low >= 0.8 * s.normal_high && s.normal_spacing > s.spacing;
-    if (!(s.spacing > 0) || !(levels || s.normal_spacing > options.anisotropy * s.spacing)) return s;
+    // Levels closer than the spacing along them (a chordwise grid's lines, denser in
+    // height than along the chord) are lines too when they come apart by height.
+    const bool on_levels = s.normal_low >= 0.8 * s.normal_high && s.normal_low > 0;
+    const bool levels = on_levels && s.normal_spacing > s.spacing,
+               sparse_up = s.normal_spacing > options.anisotropy * s.spacing;
+    if (!(s.spacing > 0) || !(on_levels || sparse_up)) return s;
     if (m < all) continue;
     s.kind = SamplingKind::lines;
-    s.rows = find_rows(tree, first, n, s.spacing, options);
+    s.rows =
+        find_rows(tree, first, n, s.spacing, on_levels ? s.normal_low : 0, !levels && !sparse_up, options);
     if (!s.rows.empty()) {
       classify_rows(options, s);
+      return s;
+    }
+    if (!levels && !sparse_up) {
+      s.kind = SamplingKind::dense;  // close levels that do not come apart: a slab as for a scan
       return s;
     }
     // Lines that do not come apart into rows (slanted, or crossing): the slab bridges the

@@ -3,6 +3,7 @@
 
 #include "section/error.h"
 #include "detail/cgal.h"
+#include "detail/flann_nearest.h"
 #include "detail/local_origin.h"
 #include "detail/parallel.h"
 #include "detail/slab_scan.h"
@@ -160,6 +161,34 @@ std::string with_hint(const std::string& what, const SectionSlice& s, double sla
   return what + hint;
 }
 
+// A loop that holds only part of its section's points: where a tenth of the slab's points
+// (8 at least) lie farther than `far` from every loop, the plane cuts the part in an open
+// sheet (a radial rotor's blade cut across) or a piece the loop left out, and the loop,
+// closed across them, is no profile of the section: throws, saying how many and how far.
+void check_loops_hold(const std::vector<Eigen::Vector2d>& points, const MorphologyResult& m, double far) {
+  if (m.dropped < 8) return;  // nothing left out, or a few outliers
+  std::vector<Eigen::Vector2d> on;
+  for (const Loop& loop : m.loops) on.insert(on.end(), loop.points.begin(), loop.points.end());
+  if (on.empty()) return;
+  const detail::NearestPoints<2> tree(on);
+  const std::vector<int> nearest = tree.nearest(points);
+  std::size_t off = 0;
+  double farthest = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double d = (points[k] - on[std::size_t(nearest[k])]).norm();
+    off += d > far;
+    farthest = std::max(farthest, d);
+  }
+  if (off < 8 || 10 * off < points.size()) return;
+  char what[320];
+  std::snprintf(what, sizeof what,
+                "the loop holds only part of the section: %zu of the slab's %zu points lie farther than "
+                "%.3g mm from it (up to %.3g mm); the plane cuts the part in an open sheet, or the loop "
+                "closes across a gap: no profile here",
+                off, points.size(), far, farthest);
+  throw Error(what);
+}
+
 }  // namespace
 
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
@@ -228,6 +257,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         r.filled = MorphologyResult{};
         s.fill = std::move(r);
       }
+      check_loops_hold(slabs[i], s.morphology, std::max(3 * slab, 10 * s.morphology.cell));
     } catch (const std::bad_alloc&) {
       throw;  // out of memory fails the run: a section left out for it would pass unnoticed
     } catch (const std::exception& e) {

@@ -115,6 +115,56 @@ std::vector<Eigen::Vector2d> between_lines(const std::vector<Eigen::Vector3d>& p
   return out;
 }
 
+// Each point of line `from` followed to its nearest point on line `to`'s curve (both
+// taken in the frame f of their mean plane, `to` at its mean height in it), cut where that
+// step crosses the plane: the crossings, in the plane's frame, appended to `out`.
+void step_across(const std::vector<Eigen::Vector3d>& points, const PointRow& from, const PointRow& to,
+                 const Frame& f, const Frame& plane, const MorphologyOptions& morphology,
+                 std::vector<Eigen::Vector2d>& out) {
+  std::vector<Eigen::Vector2d> in_f;
+  double h = 0;
+  for (std::size_t i : to.points) in_f.push_back(f.to_plane(points[i])), h += f.height(points[i]);
+  h /= double(to.points.size());
+  const std::vector<Eigen::Vector2d> curve = detail::order_row(in_f, morphology).loops.at(0).points;
+  for (std::size_t i : from.points) {
+    const Eigen::Vector3d& p = points[i];
+    const Eigen::Vector3d q = f.to_world(nearest_on(curve, f.to_plane(p))) + h * f.n;
+    const double sp = plane.height(p), sq = plane.height(q);
+    if ((sp <= 0 && sq > 0) || (sp >= 0 && sq < 0))
+      out.push_back(plane.to_plane(p + sp / (sp - sq) * (q - p)));
+  }
+}
+
+// The section where a plane tilted to the lines of points crosses them: between every two
+// neighbouring lines whose points lie on both sides of it (and no farther apart than 2.5
+// times the lines' spacing), each line's points stepped toward the other's curve and cut
+// where the step crosses the plane (step_across).
+std::vector<Eigen::Vector2d> across_lines(const std::vector<Eigen::Vector3d>& points, const Sampling& s,
+                                          const Frame& plane, const MorphologyOptions& morphology) {
+  // Part of the section beyond the lines (the plane below part of the lowest, above part
+  // of the highest) would be left out: a partial profile posing as the section.
+  const bool below = against(points, s.rows.front(), plane.origin, plane.n).high > 0;
+  if (below || against(points, s.rows.back(), plane.origin, plane.n).low < 0)
+    throw Error("the plane at height " + num(plane.n.dot(plane.origin)) +
+                " leaves the lines of points: part of its section lies beyond the " +
+                (below ? "lowest" : "highest") + " line");
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t k = 0; k + 1 < s.rows.size(); ++k) {
+    const PointRow &a = s.rows[k], &b = s.rows[k + 1];
+    const Against ha = against(points, a, plane.origin, plane.n),
+                  hb = against(points, b, plane.origin, plane.n);
+    if (std::min(ha.low, hb.low) > 0 || std::max(ha.high, hb.high) < 0) continue;
+    if (b.height - a.height > 2.5 * s.row_gap)
+      throw Error("the plane at height " + num(plane.n.dot(plane.origin)) + " crosses a gap of " +
+                  num(b.height - a.height) + " between the lines at heights " + num(a.height) + " and " +
+                  num(b.height) + " (" + num(s.row_gap) + " apart elsewhere)");
+    const Frame f = make_frame(a.origin, (a.normal + b.normal).normalized());
+    step_across(points, a, b, f, plane, morphology, out);
+    step_across(points, b, a, f, plane, morphology, out);
+  }
+  return out;
+}
+
 }  // namespace
 
 namespace detail {
@@ -201,6 +251,18 @@ void slice_between_lines(const std::vector<Eigen::Vector3d>& points, const std::
           "the plane at height " + num(n.dot(planes[p].origin)) + " lies beyond the lines of points";
       return;
     }
+    // A plane tilted to the lines (their points spread in height off it over a tenth of
+    // their spacing) is cut where it crosses them, not between the two beside it.
+    const Against lo = against(points, s.rows[std::size_t(below)], planes[p].origin, n),
+                  hi = against(points, s.rows[std::size_t(above)], planes[p].origin, n);
+    if (std::max(lo.high - lo.low, hi.high - hi.low) > 0.1 * s.row_gap) {
+      try {
+        slabs[p] = across_lines(points, s, frame, options.morphology);
+      } catch (const Error& e) {
+        section.error = e.what();
+      }
+      return;
+    }
     const double gap = mean[std::size_t(above)] - mean[std::size_t(below)];
     if (gap > 2.5 * s.row_gap) {
       section.error = "the plane at height " + num(n.dot(planes[p].origin)) + " falls in a gap of " +
@@ -215,7 +277,7 @@ void slice_between_lines(const std::vector<Eigen::Vector3d>& points, const std::
       section.error = std::string("the lines beside the plane: ") + e.what();
     }
   });
-  order_slabs(slabs, {}, planes, s.slab, as_they_lie(options), result, sink);
+  order_slabs(slabs, {}, planes, s.slab, as_they_lie(options), result, sink, order_row);
 }
 
 void rows_as_sections(const std::vector<Eigen::Vector3d>& points, const SliceOptions& options,

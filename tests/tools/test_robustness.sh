@@ -170,10 +170,12 @@ degenerate "$R/line.xyz" "do not close into a loop" 2 --normal 0,1,0 --at 0 --sl
 degenerate "$R/one_point.xyz" "cannot estimate the point spacing" 1 "${S[@]}"
 degenerate "$R/one_point.xyz" "the points are all equal" 2 --at 3 --slab 0.1
 degenerate "$R/three_points.xyz" "3 points, at least 8 are needed" 2 --at 0 --slab 0.1
-degenerate "$R/good.xyz" "no points in the slab" 2 --at 1000
-# A raster that would need gigabytes: a dense ring of radius 5 m cut with 0.5 mm cells.
+# good.xyz lies on levels (lines of points, docs/SAMPLING.md: a line above the refusal says so)
+degenerate "$R/good.xyz" "lies beyond the lines of points" 3 --at 1000
+# A raster that would need gigabytes: a dense ring of radius 5 m cut with 0.5 mm cells
+# (its heights spread, not on levels: those would be lines, interpolated without a raster).
 awk 'BEGIN { pi = atan2(0, -1); for (i = 0; i < 40000; i++) { t = 2 * pi * i / 40000;
-     for (k = -1; k <= 1; k++) printf "%.6f %.6f %.3f\n", 5000 * cos(t), 5000 * sin(t), 5 + 0.2 * k } }' \
+     for (k = -1; k <= 1; k++) printf "%.6f %.6f %.3f\n", 5000 * cos(t), 5000 * sin(t), 5 + 0.2 * k + 0.2 * ((i * 7919 + k * 104729) % 1009) / 1009 } }' \
   >"$TMP/ring.xyz"
 degenerate "$TMP/ring.xyz" "exceeds max_cells" 2 --at 5 --cell 0.5
 # A plane that misses the part among good ones fails alone.

@@ -11,6 +11,7 @@
 // Exit 1 when a kind (of --expect) has one, or params on under 95 % of its planes; 2: usage.
 // Usage: evaluate_kinds [--quick] [--seeds N] [--kinds K1,K2] [--expect K1,K2|all]
 //                       [--tools DIR] [--keep DIR] [--verbose]
+#include "kinds.h"
 #include "section/checks.h"
 #include "section/extras/generate.h"
 #include "section/extras/score.h"
@@ -37,6 +38,7 @@
 
 using namespace section;
 namespace fs = std::filesystem;
+using namespace kind_score;
 
 namespace {
 
@@ -131,195 +133,6 @@ int write_data(const Kind& k, const BladeDesign& blade, int seed, const Options&
   for (auto& p : cloud.points) p /= k.mm_per_unit;
   write_cloud(path, cloud);
   return planes;
-}
-
-// ---------------------------------------------------------------------------------------
-// The quantities scored, their targets and the words that flag them.
-
-enum Q { cam_rms, cam_max, chord, stagger, tmax, rle, rte, inlet, outlet, cam_angle, le_pt, te_pt, nq };
-
-struct Quantity {
-  const char* name;
-  const char* unit;                      // of the error shown: um, %, deg
-  double target;                         // dense data: issue 5's targets
-  std::vector<const char*> issue_words;  // an issue naming the quantity (lower case)
-  std::vector<const char*> flag_words;   // a flags token naming it
-};
-
-const Quantity quantities[nq] = {
-    {"camber rms", "um", 3, {"camber line"}, {"camber", "camber_line"}},
-    {"camber max", "um", 15, {"camber line"}, {"camber", "camber_line"}},
-    {"chord", "um", 10, {"chord"}, {"chord", "caliper_chord"}},
-    {"stagger", "deg", 0.5, {"stagger"}, {"stagger"}},
-    {"max thickness", "um", 5, {"thickness"}, {"max_thickness", "thickness"}},
-    {"LE radius", "%", 3, {"leading edge", "le radius"}, {"le_radius", "le", "edge_radius", "edges"}},
-    {"TE radius", "%", 10, {"trailing edge", "te radius"}, {"te_radius", "te", "edge_radius", "edges"}},
-    {"inlet angle", "deg", 0.5, {"inlet", "metal angle"}, {"inlet_angle", "metal_angles", "angles"}},
-    {"outlet angle", "deg", 0.5, {"outlet", "metal angle"}, {"outlet_angle", "metal_angles", "angles"}},
-    {"camber angle", "deg", 0.5, {"camber angle", "metal angle"}, {"camber_angle", "metal_angles", "angles"}},
-    {"LE point", "um", 15, {"leading edge", "edge point"}, {"le_point", "edge_points", "le"}},
-    {"TE point", "um", 15, {"trailing edge", "edge point"}, {"te_point", "edge_points", "te"}},
-};
-
-// A sharp edge (true radius 0): the measured radius may be this large (um) on dense data.
-constexpr double sharp_allowance_um = 20, sharp_allowance_sparse_um = 100;
-
-struct Value {
-  double error = 0;    // in the quantity's unit (um, %, deg); signed where it has a sign
-  double limit = 0;    // |error| <= limit is within
-  bool sharp = false;  // a radius whose truth is 0: error in um
-};
-
-// ---------------------------------------------------------------------------------------
-// Reading what the pipe wrote.
-
-// A CSV file as text cells (the params file: a flags column may hold words).
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
-  long column(const std::string& name) const {
-    const auto it = std::find(header.begin(), header.end(), name);
-    return it == header.end() ? -1 : long(it - header.begin());
-  }
-};
-
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> cells;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, sep)) cells.push_back(cell);
-  return cells;
-}
-
-Csv read_csv(const std::string& path) {
-  Csv csv;
-  std::istringstream in(read_file(path));
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (csv.header.empty())
-      csv.header = split(line, ',');
-    else
-      csv.rows.push_back(split(line, ','));
-  }
-  return csv;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-// What flags the values of one section: its issues' messages and its params row's flags.
-struct SectionFlags {
-  std::string issues;            // every issue message of the section, lower case, "; "-joined
-  std::set<std::string> tokens;  // the flags cell's words
-  bool row_flag = false;         // a non-zero number in the flags cell: the whole row (not decoded)
-  bool names(Q q) const {
-    if (row_flag) return true;
-    for (const char* w : quantities[q].issue_words)
-      if (issues.find(w) != std::string::npos) return true;
-    for (const char* w : quantities[q].flag_words)
-      if (tokens.count(w)) return true;
-    return false;
-  }
-};
-
-SectionFlags flags_of(const Stream& stream, const Csv& params, std::size_t row, int section) {
-  SectionFlags f;
-  for (const auto& is : stream.issues)
-    if (is.section == section) f.issues += lower(is.stage + ": " + is.message) + "; ";
-  const long c = params.column("flags");
-  if (c < 0 || std::size_t(c) >= params.rows[row].size()) return f;
-  const std::string cell = lower(params.rows[row][std::size_t(c)]);
-  char* end = nullptr;
-  const double number = std::strtod(cell.c_str(), &end);
-  if (!cell.empty() && end && *end == '\0') {
-    // Each set bit flags its check's columns; "every ..." (a doubtful unit) the whole row.
-    const auto mask = static_cast<std::uint32_t>(number);
-    for (const auto& check : section::check_names) {
-      if (!(mask & section::bit(check.check))) continue;
-      if (std::string(check.columns).rfind("every", 0) == 0) f.row_flag = true;
-      std::istringstream words(check.columns);
-      for (std::string column; words >> column;) f.tokens.insert(column);
-    }
-    return f;
-  }
-  std::string word;
-  for (char ch : cell + " ") {
-    if (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_') {
-      word += ch;
-    } else if (!word.empty()) {
-      f.tokens.insert(word);
-      word.clear();
-    }
-  }
-  return f;
-}
-
-// ---------------------------------------------------------------------------------------
-// Scoring one section.
-
-// A section's frame: an in-plane direction at angle a (degrees against u) as an angle in xy.
-struct Frame {
-  Eigen::Vector3d origin, u, v, n;
-  double xy_angle(double a) const {
-    const Eigen::Vector3d d = std::cos(a * M_PI / 180) * u + std::sin(a * M_PI / 180) * v;
-    return std::atan2(d.y(), d.x()) * 180 / M_PI;
-  }
-};
-
-std::map<int, Frame> frames_of(const Stream& stream) {
-  std::map<int, Frame> frames;
-  const Table* t = stream.find("frames");
-  if (!t) return frames;
-  auto vec = [&](std::size_t r, const std::string& p) {
-    return Eigen::Vector3d(t->at(r, t->column(p + "_x")), t->at(r, t->column(p + "_y")),
-                           t->at(r, t->column(p + "_z")));
-  };
-  for (std::size_t r = 0; r < t->rows(); ++r)
-    frames[int(t->at(r, 0))] = {vec(r, "origin"), vec(r, "u"), vec(r, "v"), vec(r, "n")};
-  return frames;
-}
-
-// The errors of one params row (lengths scaled by `mm` to mm) against the truth.
-std::array<Value, nq> score_row(const Csv& params, std::size_t row, const Frame& frame, const Stream& stream,
-                                int section, double mm, const SectionTruth& t, bool dense) {
-  auto get = [&](const char* c) {
-    const long i = params.column(c);
-    return i < 0 ? NAN : std::strtod(params.rows[row][std::size_t(i)].c_str(), nullptr);
-  };
-  std::array<Value, nq> v;
-  const double chord_um = 1e3 * t.chord, angle = dense ? 0.5 : 1;
-  double sum = 0, worst = 0;
-  int count = 0;
-  if (const Table* cam = stream.find("camber"))
-    for (std::size_t r = 0; r < cam->rows(); ++r)
-      if (int(cam->at(r, 0)) == section) {
-        const Eigen::Vector2d p(cam->at(r, cam->column("x")) * mm, cam->at(r, cam->column("y")) * mm);
-        const double d = camber_distance(t, p);
-        sum += d * d, worst = std::max(worst, d), ++count;
-      }
-  v[cam_rms] = {count ? 1e3 * std::sqrt(sum / count) : NAN, dense ? 3 : 0.02 * chord_um};
-  v[cam_max] = {count ? 1e3 * worst : NAN, dense ? 15 : 0.02 * chord_um};
-  v[chord] = {1e3 * (get("chord") * mm - t.chord), dense ? 10 : 0.02 * chord_um};
-  const Eigen::Vector2d le(get("le_x") * mm, get("le_y") * mm), te(get("te_x") * mm, get("te_y") * mm);
-  const Eigen::Vector2d ch = te - le;
-  v[stagger] = {wrap_degrees(std::atan2(ch.y(), ch.x()) * 180 / M_PI - t.stagger), angle};
-  v[tmax] = {1e3 * (get("max_thickness") * mm - t.max_thickness), dense ? 5 : 20 * t.max_thickness};
-  auto radius = [&](double measured, double truth, double target) {
-    if (truth > 0) return Value{100 * (measured * mm / truth - 1), dense ? target : 2};
-    return Value{1e3 * measured * mm, dense ? sharp_allowance_um : sharp_allowance_sparse_um, true};
-  };
-  v[rle] = radius(get("le_radius"), t.le_radius, 3);
-  v[rte] = radius(get("te_radius"), t.te_radius, 10);
-  const double in = frame.xy_angle(get("inlet_angle")), out = frame.xy_angle(get("outlet_angle"));
-  v[inlet] = {wrap_degrees(in - t.inlet_angle), angle};
-  v[outlet] = {wrap_degrees(out - t.outlet_angle), angle};
-  v[cam_angle] = {wrap_degrees(get("camber_angle") - (t.inlet_angle - t.outlet_angle)), angle};
-  v[le_pt] = {1e3 * (le - t.le_point).norm(), dense ? 15 : 0.02 * chord_um};
-  v[te_pt] = {1e3 * (te - t.te_point).norm(), dense ? 15 : 0.02 * chord_um};
-  return v;
 }
 
 // ---------------------------------------------------------------------------------------
