@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Slicing a cloud by surfaces of revolution: the cloud unrolled onto each surface, then cut
+// by the plane w = 0 as slice(Cloud, planes) cuts it (docs/REVOLUTION.md).
+#include "section/revolution.h"
+
+#include "section/error.h"
+#include "revolution_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <new>
+
+namespace section {
+
+namespace {
+
+// The surface with its defaults filled from the points: the reference direction (a zero
+// one) and r_ref (0: the mean radius of the points' feet nearest to the surface).
+Revolution completed(Revolution s, const std::vector<Eigen::Vector3d>& points,
+                     const Eigen::Vector3d& reference) {
+  if (s.reference.isZero()) s.reference = reference;
+  if (s.r_ref > 0) return s;
+  s.r_ref = 1;  // w and the feet do not depend on it
+  const detail::RevolutionMap map(s);
+  std::vector<std::pair<double, double>> near;  // |w|, foot radius
+  near.reserve(points.size());
+  for (const auto& p : points) {
+    const detail::MeridianFoot f = map.foot(map.cylindrical(p).head<2>());
+    if (std::isfinite(f.w)) near.emplace_back(std::abs(f.w), f.ar.y());
+  }
+  const std::size_t k = std::min(near.size(), std::max<std::size_t>(16, near.size() / 200));
+  if (k == 0) throw Error("slice: no points to choose the surface's reference radius from");
+  std::nth_element(near.begin(), near.begin() + (k - 1), near.end());
+  double sum = 0;
+  for (std::size_t i = 0; i < k; ++i) sum += near[i].second;
+  s.r_ref = sum / static_cast<double>(k);
+  if (!(s.r_ref > 0)) throw Error("slice: the points nearest to the surface lie on the axis (give --r-ref)");
+  return s;
+}
+
+// The points as (u, v, w scale) of the surface; those where the map is undefined left out.
+Cloud unrolled_cloud(const detail::RevolutionMap& map, const std::vector<Eigen::Vector3d>& points) {
+  Cloud out;
+  out.points.reserve(points.size());
+  for (const auto& p : points) {
+    const SurfacePlace q = map.place(p);
+    if (q.valid) out.points.emplace_back(q.uv.x(), q.uv.y(), q.w * q.scale);
+  }
+  return out;
+}
+
+}  // namespace
+
+Frame surface_frame(const Revolution& surface) {
+  Frame f = tangent_frame(surface, {0, 0});
+  f.surface = std::make_shared<const Revolution>(surface);
+  return f;
+}
+
+SliceResult slice(const Cloud& cloud, const std::vector<Revolution>& surfaces, const SliceOptions& options) {
+  if (surfaces.empty()) throw Error("slice: no surfaces given");
+  if (cloud.points.empty()) throw Error("slice: the cloud has no points");
+  SliceResult result;
+  result.points = cloud.points.size();
+  result.sections.resize(surfaces.size());
+  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    SectionSlice& section = result.sections[k];
+    if (surfaces[k].reference.isZero() && reference.isZero())
+      reference = reference_of(cloud.points, surfaces[k].axis_point, surfaces[k].axis);
+    Revolution surface = completed(surfaces[k], cloud.points, reference);
+    const detail::RevolutionMap map(surface);
+    const Cloud unrolled = unrolled_cloud(map, cloud.points);
+    try {
+      SliceResult one = slice(unrolled, {Plane{}}, options);
+      if (k == 0) {
+        result.slab = one.slab;
+        result.sampling = std::move(one.sampling);
+      }
+      section = std::move(one.sections[0]);
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const Error& e) {
+      section.error = e.what();
+    }
+    // The plane's frame moved to the section (local_origin): the shift of its (u, v).
+    surface.shift += section.frame.origin.head<2>();
+    section.id = static_cast<int>(k);
+    section.frame = surface_frame(surface);
+  }
+  return result;
+}
+
+std::vector<double> row_radii(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& axis_point,
+                              const Eigen::Vector3d& axis, const SamplingOptions& options) {
+  if (points.size() < 8) throw Error("slice: too few points to find rows at constant radius");
+  std::vector<double> radius;
+  Revolution probe = cylinder_surface(axis_point, axis, 1);
+  const detail::RevolutionMap unit(probe);
+  for (const auto& p : points) radius.push_back(unit.cylindrical(p).y());
+  std::nth_element(radius.begin(), radius.begin() + radius.size() / 2, radius.end());
+  const double median = radius[radius.size() / 2];
+  if (!(median > 0)) throw Error("slice: the points lie on the axis");
+  probe = cylinder_surface(axis_point, axis, median);
+  probe.reference = reference_of(points, axis_point, axis);
+  const Cloud unrolled = unrolled_cloud(detail::RevolutionMap(probe), points);
+  SamplingOptions all = options;  // a row is a section only with all its points
+  all.max_points = std::max(all.max_points, unrolled.points.size());
+  const Sampling sampling = sampling_of(unrolled.points, Eigen::Vector3d::UnitZ(), all);
+  if (sampling.kind != SamplingKind::rows)
+    throw Error("slice: no radius given, and the points are not rows at constant radius but " +
+                sampling.describe() + " (across the radius): give --radius or --count");
+  std::vector<double> out;
+  for (const auto& row : sampling.rows) out.push_back(median + row.height);
+  return out;
+}
+
+}  // namespace section
