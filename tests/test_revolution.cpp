@@ -3,6 +3,8 @@
 // cylinders and cones cut on their own surfaces against the generator's exact sections.
 #include "pipe_stages.h"
 
+#include "args/slice_args.h"
+
 #include "section/error.h"
 #include "section/extras/generate_rotor.h"
 #include "section/extras/score.h"
@@ -15,6 +17,9 @@
 #include <cmath>
 #include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
+#include <vector>
 
 using namespace section;
 
@@ -271,4 +276,36 @@ TEST_CASE("revolution: a rotor cut by a plane differs from its design section, a
   WARN("planar cut of the cylinder rotor at r = " << rotor.hub_radius + z << ": up to " << worst
                                                   << " mm from the design section");
   CHECK(worst > 0.05);
+}
+
+TEST_CASE("revolution: slice's --axis options make the surfaces, in mm", "[revolution][tools]") {
+  const auto parsed = [](std::vector<std::string> words, tool::SliceArgs& args) {
+    words.insert(words.begin(), "slice");
+    std::vector<char*> argv;
+    for (auto& w : words) argv.push_back(w.data());
+    std::ostringstream out, err;
+    return tool::parse(static_cast<int>(argv.size()), argv.data(), args, out, err);
+  };
+  tool::SliceArgs a;
+  REQUIRE(parsed({"rotor.xyz", "--axis", "0,0,-0.2,1,0,0", "--radius", "0.21,0.23", "--cone",
+                  "0,0.2,0.01,0.21", "--unroll", "arclength", "--units", "m"},
+                 a) == -1);
+  const tool::SliceArgs mm = a.in_mm(1000);
+  const std::vector<Eigen::Vector3d> points = {{0, 0, 0.01}, {1, 0, 0.02}};
+  const auto surfaces = mm.surfaces(points, 1000);
+  REQUIRE(surfaces.size() == 3);
+  CHECK(surfaces[0].kind == SurfaceKind::cylinder);
+  CHECK_THAT(surfaces[1].meridian[0].y(), Catch::WithinAbs(230, 1e-9));
+  CHECK(surfaces[2].kind == SurfaceKind::cone);
+  CHECK_THAT(surfaces[2].meridian[1].x(), Catch::WithinAbs(10, 1e-9));
+  CHECK_THAT(surfaces[0].axis_point.z(), Catch::WithinAbs(-200, 1e-9));
+  for (const auto& s : surfaces) {
+    CHECK(s.unrolling == Unrolling::arclength);
+    CHECK((s.reference - Eigen::Vector3d::UnitZ()).norm() < 1e-12);  // the points' radial direction
+  }
+  tool::SliceArgs b;
+  CHECK(parsed({"rotor.xyz", "--radius", "3"}, b) == 2);
+  CHECK(parsed({"rotor.xyz", "--axis", "0,0,0,1,0,0", "--rows"}, b) == 2);
+  CHECK(parsed({"rotor.xyz", "--axis", "0,0,0,1,0", "--radius", "3"}, b) == 2);
+  CHECK(parsed({"rotor.xyz", "--axis", "0,0,0,1,0,0", "--unroll", "flat"}, b) == 2);
 }

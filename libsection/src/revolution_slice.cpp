@@ -7,6 +7,8 @@
 #include "revolution_map.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 #include <cmath>
 #include <memory>
 #include <new>
@@ -50,6 +52,33 @@ Cloud unrolled_cloud(const detail::RevolutionMap& map, const std::vector<Eigen::
   return out;
 }
 
+// Why a surface between sparse rows takes none, in the surface's terms (slice_rows speaks of
+// planes and heights): the rows' distances from it (their radii for a cylinder).
+std::string between_rows(const Revolution& surface, const Sampling& sampling) {
+  double below = -INFINITY, above = INFINITY;
+  for (const auto& row : sampling.rows) {
+    if (row.height < 0) below = std::max(below, row.height);
+    if (row.height > 0) above = std::min(above, row.height);
+  }
+  const bool cylinder = surface.kind == SurfaceKind::cylinder;
+  const double r = cylinder ? surface.meridian[0].y() : 0;
+  const auto place = [&](double w) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, cylinder ? "r = %.6g" : "w = %.6g", r + w);
+    return std::string(buf);
+  };
+  std::string where = std::isfinite(below) && std::isfinite(above)
+                          ? "between the rows at " + place(below) + " and " + place(above)
+                      : std::isfinite(below) ? "beyond the last row, at " + place(below)
+                      : std::isfinite(above) ? "before the first row, at " + place(above)
+                                             : "off every row";
+  return std::string("the ") + surface_kind_name(surface.kind) +
+         (cylinder ? " r = " + place(0).substr(4) : "") + " lies " + where + " (" +
+         std::to_string(sampling.rows.size()) +
+         " sparse rows of points, each a section's worth): no section is made between rows; cut through a "
+         "row (slice --axis with no radius cuts each row at constant radius on its cylinder)";
+}
+
 }  // namespace
 
 Frame surface_frame(const Revolution& surface) {
@@ -74,11 +103,13 @@ SliceResult slice(const Cloud& cloud, const std::vector<Revolution>& surfaces, c
     const Cloud unrolled = unrolled_cloud(map, cloud.points);
     try {
       SliceResult one = slice(unrolled, {Plane{}}, options);
+      section = std::move(one.sections[0]);
+      if (section.slab_points == 0 && one.sampling.kind == SamplingKind::rows && !section.error.empty())
+        section.error = between_rows(surface, one.sampling);
       if (k == 0) {
         result.slab = one.slab;
         result.sampling = std::move(one.sampling);
       }
-      section = std::move(one.sections[0]);
     } catch (const std::bad_alloc&) {
       throw;
     } catch (const Error& e) {
