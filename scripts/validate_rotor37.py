@@ -26,6 +26,7 @@ import argparse, os, subprocess, sys, tempfile
 import numpy as np
 
 from stream_tables import table
+from surface_pipe import surface_pipe
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -58,7 +59,6 @@ def m_prime(z, r):
 
 
 def run_surfaces(tmp):
-    tools = os.path.dirname(args.camber)
     points, files = [], []
     for k, rows in enumerate(sections):
         a = np.array(rows)
@@ -66,15 +66,11 @@ def run_surfaces(tmp):
         points += [np.c_[z, r * np.sin(t1), r * np.cos(t1)], np.c_[z, r * np.sin(t2), r * np.cos(t2)][1:-1]]
         name = os.path.join(tmp, f"meridian{k}.txt")
         np.savetxt(name, np.c_[z, r], fmt="%.9f")
-        files += ["--streamline", name]
+        files.append(name)
     cloud = os.path.join(tmp, "rotor37.xyz")
     np.savetxt(cloud, np.vstack(points), fmt="%.9f")
     out = os.path.join(tmp, "surfaces.stream")
-    cmd = (f"{tools}/slice {cloud} --axis 0,0,0,1,0,0 {' '.join(files)} | {tools}/smooth | {tools}/fitspline"
-           f" | {tools}/camber --le-direction=-1,0 > {out}")
-    p = subprocess.run(cmd, shell=True, capture_output=True, text=True)
-    if p.returncode != 0:
-        sys.exit(f"validate_rotor37: the pipe on the surfaces failed: {p.stderr.strip()}")
+    surface_pipe("validate_rotor37", args.camber, cloud, files, out)
     params = {int(r["section"]): r for r in table(out, "params")}
     r_ref = {int(f["section"]): f["r_ref"] for f in table(out, "frames")}
     print("sections cut on their own surfaces (slice --streamline, conformal), against the published section:")

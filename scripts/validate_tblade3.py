@@ -26,6 +26,7 @@ import argparse, csv, os, subprocess, sys, tempfile
 import numpy as np
 
 from stream_tables import table
+from surface_pipe import surface_pipe
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -127,7 +128,6 @@ def densified(meridian, a_range, points=2000):
 
 
 def run_surfaces(tmp, extra):
-    tools = os.path.dirname(args.camber)
     cloud = os.path.join(tmp, "blade.xyz")
     np.savetxt(cloud, data, fmt="%.12f")
     files = []
@@ -136,13 +136,9 @@ def run_surfaces(tmp, extra):
         sec = data[s * per_section:(s + 1) * per_section]
         name = os.path.join(tmp, f"streamline{s}.txt")
         np.savetxt(name, densified(m, (sec[:, 0].min() - margin, sec[:, 0].max() + margin)), fmt="%.12f")
-        files += ["--streamline", name]
+        files.append(name)
     out = os.path.join(tmp, "surfaces.stream")
-    cmd = (f"{tools}/slice {cloud} --axis 0,0,0,1,0,0 {' '.join(files)} | {tools}/smooth | {tools}/fitspline"
-           f" | {tools}/camber --le-direction=-1,0 {' '.join(extra)} > {out}")
-    p = subprocess.run(cmd, shell=True, capture_output=True, text=True)
-    if p.returncode != 0:
-        sys.exit(f"validate_tblade3: the pipe on the surfaces failed: {p.stderr.strip()}")
+    surface_pipe("validate_tblade3", args.camber, cloud, files, out, extra)
     print("sections cut on their own streamline surfaces (slice --streamline, conformal), camber in 3D:")
     print(f"{'sec':>3} {'LE pt um':>9} {'TE pt um':>9} {'camber rms um':>14} {'max um':>7} {'LE r':>7} {'TE r':>7}")
     params = {int(r["section"]): r for r in table(out, "params")}

@@ -79,14 +79,10 @@ void require_targets(const RotorDesign& rotor, const std::vector<double>& zs, co
               << " um, chord " << e.chord * 1e3 << " um, max thickness " << e.max_thickness * 1e3
               << " um, LE radius " << e.le_radius * 100 << " %, TE radius " << e.te_radius * 100
               << " %, inlet " << e.inlet_angle << ", outlet " << e.outlet_angle << " deg");
-    CHECK(e.camber_rms <= 0.003);
-    CHECK(e.camber_max <= 0.015);
-    CHECK(std::abs(e.chord) <= 0.010);
-    CHECK(std::abs(e.max_thickness) <= 0.005);
-    CHECK(std::abs(e.le_radius) <= 0.03);
-    CHECK(std::abs(e.te_radius) <= 0.10);
-    CHECK(std::abs(e.inlet_angle) <= 0.5);
-    CHECK(std::abs(e.outlet_angle) <= 0.5);
+    const std::pair<double, double> error_bound[] = {
+        {e.camber_rms, 0.003}, {e.camber_max, 0.015}, {e.chord, 0.010},     {e.max_thickness, 0.005},
+        {e.le_radius, 0.03},   {e.te_radius, 0.10},   {e.inlet_angle, 0.5}, {e.outlet_angle, 0.5}};
+    for (const auto& [error, bound] : error_bound) CHECK(std::abs(error) <= bound);
   }
 }
 

@@ -51,4 +51,9 @@ private:
   std::vector<Eigen::Vector2d> t_;       // unit tangent per segment
 };
 
+/// The surfaces, a zero reference (theta = 0) replaced by reference_of the points (made
+/// once for all); throws section::Error when there are none.
+std::vector<Revolution> with_references(const std::vector<Revolution>& surfaces,
+                                        const std::vector<Eigen::Vector3d>& points);
+
 }  // namespace section::detail

@@ -97,18 +97,13 @@ std::vector<std::vector<Eigen::Vector3d>> cut_mesh(const Mesh& mesh, const detai
 }  // namespace
 
 SliceResult slice(const Mesh& mesh, const std::vector<Revolution>& surfaces, const SliceOptions&) {
-  if (surfaces.empty()) throw Error("slice: no surfaces given");
+  const std::vector<Revolution> given = detail::with_references(surfaces, mesh.vertices);
   if (mesh.triangles.empty()) throw Error("slice: the mesh has no triangles");
   SliceResult result;
   result.points = mesh.vertices.size();
-  result.sections.resize(surfaces.size());
-  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < surfaces.size(); ++k) {
-    Revolution surface = surfaces[k];
-    if (surface.reference.isZero()) {
-      if (reference.isZero()) reference = reference_of(mesh.vertices, surface.axis_point, surface.axis);
-      surface.reference = reference;
-    }
+  result.sections.resize(given.size());
+  for (std::size_t k = 0; k < given.size(); ++k) {
+    Revolution surface = given[k];
     const bool mean_radius = !(surface.r_ref > 0);
     if (mean_radius) surface.r_ref = 1;  // the cut does not depend on it
     const auto lines = cut_mesh(mesh, detail::RevolutionMap(surface));

@@ -17,11 +17,9 @@ namespace section {
 
 namespace {
 
-// The surface with its defaults filled from the points: the reference direction (a zero
-// one) and r_ref (0: the mean radius of the points' feet nearest to the surface).
-Revolution completed(Revolution s, const std::vector<Eigen::Vector3d>& points,
-                     const Eigen::Vector3d& reference) {
-  if (s.reference.isZero()) s.reference = reference;
+// The surface with its r_ref filled from the points when 0: the mean radius of the feet of
+// the points nearest to the surface.
+Revolution completed(Revolution s, const std::vector<Eigen::Vector3d>& points) {
   if (s.r_ref > 0) return s;
   s.r_ref = 1;  // w and the feet do not depend on it
   const detail::RevolutionMap map(s);
@@ -87,18 +85,32 @@ Frame surface_frame(const Revolution& surface) {
   return f;
 }
 
-SliceResult slice(const Cloud& cloud, const std::vector<Revolution>& surfaces, const SliceOptions& options) {
+namespace detail {
+
+std::vector<Revolution> with_references(const std::vector<Revolution>& surfaces,
+                                        const std::vector<Eigen::Vector3d>& points) {
   if (surfaces.empty()) throw Error("slice: no surfaces given");
+  std::vector<Revolution> out = surfaces;
+  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
+  for (auto& s : out) {
+    if (!s.reference.isZero()) continue;
+    if (reference.isZero()) reference = reference_of(points, s.axis_point, s.axis);
+    s.reference = reference;
+  }
+  return out;
+}
+
+}  // namespace detail
+
+SliceResult slice(const Cloud& cloud, const std::vector<Revolution>& surfaces, const SliceOptions& options) {
+  const std::vector<Revolution> given = detail::with_references(surfaces, cloud.points);
   if (cloud.points.empty()) throw Error("slice: the cloud has no points");
   SliceResult result;
   result.points = cloud.points.size();
-  result.sections.resize(surfaces.size());
-  Eigen::Vector3d reference = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+  result.sections.resize(given.size());
+  for (std::size_t k = 0; k < given.size(); ++k) {
     SectionSlice& section = result.sections[k];
-    if (surfaces[k].reference.isZero() && reference.isZero())
-      reference = reference_of(cloud.points, surfaces[k].axis_point, surfaces[k].axis);
-    Revolution surface = completed(surfaces[k], cloud.points, reference);
+    Revolution surface = completed(given[k], cloud.points);
     const detail::RevolutionMap map(surface);
     const Cloud unrolled = unrolled_cloud(map, cloud.points);
     try {
