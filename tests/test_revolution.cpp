@@ -305,3 +305,28 @@ TEST_CASE("revolution: slice's --axis options make the surfaces, in mm", "[revol
   CHECK(parsed({"rotor.xyz", "--axis", "0,0,0,1,0", "--radius", "3"}, b) == 2);
   CHECK(parsed({"rotor.xyz", "--axis", "0,0,0,1,0,0", "--unroll", "flat"}, b) == 2);
 }
+
+TEST_CASE("revolution: a long meridian's foot is the nearest point of every piece", "[revolution]") {
+  // 300 pieces of a wavy meridian: the tree of boxes finds what looking at every piece finds.
+  std::vector<Eigen::Vector2d> meridian;
+  for (int k = 0; k <= 300; ++k) meridian.emplace_back(0.3 * k, 100 + 3 * std::sin(0.05 * k) + 0.01 * k);
+  Revolution s = streamline_surface({0, 0, 0}, {0, 0, 1}, meridian);
+  s.r_ref = 100;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> a(-20, 110), r(90, 112), t(-1, 1);
+  for (int i = 0; i < 3000; ++i) {
+    const double ai = a(rng), ri = r(rng), ti = t(rng);
+    const Eigen::Vector3d p =
+        ri * std::cos(ti) * s.reference + ri * std::sin(ti) * s.axis.cross(s.reference) + ai * s.axis;
+    double nearest = INFINITY;
+    const std::size_t last = meridian.size() - 2;
+    for (std::size_t k = 0; k <= last; ++k) {
+      const Eigen::Vector2d q(ai, ri), d = meridian[k + 1] - meridian[k];
+      double x = (q - meridian[k]).dot(d) / d.squaredNorm();
+      if (k > 0) x = std::max(x, 0.0);
+      if (k < last) x = std::min(x, 1.0);
+      nearest = std::min(nearest, (q - meridian[k] - x * d).norm());
+    }
+    REQUIRE_THAT(std::abs(surface_place(s, p).w), Catch::WithinAbs(nearest, 1e-9));
+  }
+}

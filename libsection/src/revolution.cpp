@@ -136,6 +136,8 @@ RevolutionMap::RevolutionMap(const Revolution& surface) : s_(surface) {
   }
   for (std::size_t k = 0; k + 1 < q.size(); ++k)
     mp_.push_back(mp_.back() + segment_prime(length_[k], q[k].y(), t_[k].y()));
+  // A tree of boxes over the pieces between the two end ones (depth log2(pieces / 4)).
+  if (t_.size() > 2) build(1, static_cast<int>(t_.size()) - 1);
 }
 
 int RevolutionMap::segment_of(const std::vector<double>& running, double x) const {
@@ -150,27 +152,70 @@ Eigen::Vector3d RevolutionMap::cylindrical(const Eigen::Vector3d& p) const {
   return {a, radial.norm(), std::atan2(radial.dot(e2_), radial.dot(s_.reference))};
 }
 
+void RevolutionMap::consider(int k, const Eigen::Vector2d& ar, MeridianFoot& best, double& best_d2,
+                             int& best_k) const {
+  const int last = static_cast<int>(t_.size()) - 1;
+  const Eigen::Vector2d d = ar - s_.meridian[k];
+  double x = d.dot(t_[k]);
+  bool clamped = false;
+  if (k > 0 && x < 0) x = 0, clamped = true;
+  if (k < last && x > length_[k]) x = length_[k], clamped = true;
+  const Eigen::Vector2d p = s_.meridian[k] + x * t_[k];
+  const Eigen::Vector2d off = ar - p;
+  const double d2 = off.squaredNorm();
+  if (!(d2 < best_d2) && !(d2 == best_d2 && k < best_k)) return;  // ties: the first piece
+  best_d2 = d2;
+  best_k = k;
+  const double cross = t_[k].x() * off.y() - t_[k].y() * off.x();  // left of the meridian: +
+  best.m = m_[k] + x;
+  best.w = clamped ? std::copysign(std::sqrt(d2), cross) : cross;
+  best.ar = clamped && x == 0 ? s_.meridian[k] : p;
+}
+
 MeridianFoot RevolutionMap::foot(const Eigen::Vector2d& ar) const {
   MeridianFoot best;
   double best_d2 = std::numeric_limits<double>::infinity();
+  int best_k = std::numeric_limits<int>::max();
   const int last = static_cast<int>(t_.size()) - 1;
-  for (int k = 0; k <= last; ++k) {
-    const Eigen::Vector2d d = ar - s_.meridian[k];
-    double x = d.dot(t_[k]);
-    bool clamped = false;
-    if (k > 0 && x < 0) x = 0, clamped = true;
-    if (k < last && x > length_[k]) x = length_[k], clamped = true;
-    const Eigen::Vector2d p = s_.meridian[k] + x * t_[k];
-    const Eigen::Vector2d off = ar - p;
-    const double d2 = off.squaredNorm();
-    if (!(d2 < best_d2)) continue;
-    best_d2 = d2;
-    const double cross = t_[k].x() * off.y() - t_[k].y() * off.x();  // left of the meridian: +
-    best.m = m_[k] + x;
-    best.w = clamped ? std::copysign(std::sqrt(d2), cross) : cross;
-    best.ar = clamped && x == 0 ? s_.meridian[k] : p;
+  consider(0, ar, best, best_d2, best_k);  // the end pieces extend without bound: always looked at
+  if (last > 0) consider(last, ar, best, best_d2, best_k);
+  if (nodes_.empty()) return best;
+  // The pieces between, by their boxes: a box farther than the best foot so far is skipped.
+  int stack[64], top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[std::size_t(stack[--top])];
+    if (n.box.squaredExteriorDistance(ar) > best_d2) continue;
+    if (n.left < 0) {
+      for (int k = n.lo; k < n.hi; ++k) consider(k, ar, best, best_d2, best_k);
+    } else if (top + 2 <= 64) {
+      // The nearer child first: its foot prunes the other's pieces.
+      const bool left_first = nodes_[std::size_t(n.left)].box.squaredExteriorDistance(ar) <=
+                              nodes_[std::size_t(n.right)].box.squaredExteriorDistance(ar);
+      stack[top++] = left_first ? n.right : n.left;
+      stack[top++] = left_first ? n.left : n.right;
+    }
   }
   return best;
+}
+
+int RevolutionMap::build(int lo, int hi) {
+  const int at = static_cast<int>(nodes_.size());
+  nodes_.push_back({});
+  Node n;
+  n.lo = lo;
+  n.hi = hi;
+  for (int k = lo; k < hi; ++k) {
+    n.box.extend(s_.meridian[std::size_t(k)]);
+    n.box.extend(s_.meridian[std::size_t(k) + 1]);
+  }
+  if (hi - lo > 4) {
+    const int mid = (lo + hi) / 2;
+    n.left = build(lo, mid);
+    n.right = build(mid, hi);
+  }
+  nodes_[std::size_t(at)] = n;
+  return at;
 }
 
 Eigen::Vector2d RevolutionMap::at(double m) const {

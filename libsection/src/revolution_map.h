@@ -5,6 +5,7 @@
 #include "section/revolution.h"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <vector>
 
 namespace section::detail {
@@ -43,12 +44,20 @@ public:
   const Revolution& surface() const { return s_; }
 
 private:
+  // A box over the pieces [lo, hi) of the meridian; leaves hold up to 4 pieces.
+  struct Node {
+    Eigen::AlignedBox2d box;
+    int lo = 0, hi = 0, left = -1, right = -1;
+  };
+  int build(int lo, int hi);
+  void consider(int k, const Eigen::Vector2d& ar, MeridianFoot& best, double& best_d2, int& best_k) const;
   int segment_of(const std::vector<double>& running, double x) const;
   static double segment_prime(double x, double r, double dr);
   Revolution s_;
   Eigen::Vector3d e2_;                   // axis x reference: theta = 90 degrees
   std::vector<double> length_, m_, mp_;  // per segment; running m and m' at each point
   std::vector<Eigen::Vector2d> t_;       // unit tangent per segment
+  std::vector<Node> nodes_;              // the tree of boxes (empty for up to 2 pieces)
 };
 
 /// The surfaces, a zero reference (theta = 0) replaced by reference_of the points (made
