@@ -330,3 +330,20 @@ TEST_CASE("revolution: a long meridian's foot is the nearest point of every piec
     REQUIRE_THAT(std::abs(surface_place(s, p).w), Catch::WithinAbs(nearest, 1e-9));
   }
 }
+
+TEST_CASE("revolution: theta = 0 lies mid-blade, the branch cut between blades", "[revolution]") {
+  const Eigen::Vector3d axis(0, 0, 1);
+  const auto at = [](double degrees, double r) {
+    const double t = degrees * M_PI / 180;
+    return Eigen::Vector3d(r * std::cos(t), r * std::sin(t), 0.1 * degrees);
+  };
+  std::vector<Eigen::Vector3d> blade, rotor;
+  for (double d = 165; d <= 195; d += 0.5) blade.push_back(at(d, 100 + 0.01 * d));  // across +-180
+  REQUIRE(reference_of(blade, {0, 0, 0}, axis).isApprox(Eigen::Vector3d(-1, 0, 0), 1e-9));
+  for (double centre : {20.0, 140.0, 260.0})
+    for (double d = -10; d <= 10; d += 0.5) rotor.push_back(at(centre + d, 100));
+  Revolution c = cylinder_surface({0, 0, 0}, axis, 100);
+  c.reference = reference_of(rotor, {0, 0, 0}, axis);
+  for (const auto& p : rotor)  // no blade runs across the cut: every point 25 degrees or more from it
+    CHECK(std::abs(surface_place(c, p).uv.x()) / 100 < M_PI - 25 * M_PI / 180);
+}

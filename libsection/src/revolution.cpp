@@ -325,16 +325,22 @@ Frame tangent_frame(const Revolution& surface, const Eigen::Vector2d& uv) {
 
 Eigen::Vector3d reference_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& axis_point,
                              const Eigen::Vector3d& axis) {
-  const Eigen::Vector3d n = unit_axis(axis_point, axis);
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d n = unit_axis(axis_point, axis), e1 = normal_to(n), e2 = n.cross(e1);
+  std::vector<double> theta;
+  theta.reserve(points.size());
   for (const auto& p : points) {
     const Eigen::Vector3d d = p - axis_point;
-    const Eigen::Vector3d radial = d - d.dot(n) * n;
-    const double r = radial.norm();
-    if (r > 0 && std::isfinite(r)) sum += radial / r;
+    const double x = d.dot(e1), y = d.dot(e2);
+    if ((x != 0 || y != 0) && std::isfinite(x) && std::isfinite(y)) theta.push_back(std::atan2(y, x));
   }
-  if (sum.norm() > 1e-6 * static_cast<double>(points.size()) && sum.allFinite()) return sum.normalized();
-  return normal_to(n);
+  if (theta.empty()) return e1;
+  std::sort(theta.begin(), theta.end());
+  // The largest empty gap of angles (the one across +-pi included) holds the branch cut.
+  double gap = theta.front() + 2 * M_PI - theta.back(), after = theta.front();
+  for (std::size_t k = 1; k < theta.size(); ++k)
+    if (theta[k] - theta[k - 1] > gap) gap = theta[k] - theta[k - 1], after = theta[k];
+  const double middle = after + 0.5 * (2 * M_PI - gap);  // the middle of the occupied angles
+  return std::cos(middle) * e1 + std::sin(middle) * e2;
 }
 
 Eigen::Vector2d radius_range(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& axis_point,

@@ -96,8 +96,10 @@ Frame tangent_frame(const Revolution& surface, const Eigen::Vector2d& uv);
 /// The frame of a section on `surface`: its tangent frame at (0, 0) carrying the surface.
 Frame surface_frame(const Revolution& surface);
 
-/// The reference direction (theta = 0) that puts `points` about theta = 0: the mean of their
-/// unit radial directions, or, when that vanishes, the world axis least aligned with `axis`.
+/// The reference direction (theta = 0) that puts `points` about theta = 0: the middle of
+/// the angles they cover about the axis, opposite the largest empty gap of angles (so the
+/// branch cut theta = +-pi falls in it, between blades of a whole rotor); with no point off
+/// the axis, the world axis least aligned with `axis`.
 Eigen::Vector3d reference_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& axis_point,
                              const Eigen::Vector3d& axis);
 
