@@ -9,6 +9,7 @@
 #include "section/pipe/compare_stream.h"
 #include "section/pipe/fit_spline_stream.h"
 #include "section/pipe/schema.h"
+#include "section/revolution.h"
 #include "section/pipe/smooth_stream.h"
 
 #include <catch2/catch.hpp>
@@ -134,7 +135,9 @@ TEST_CASE("schema: the stages write each table with the schema's columns", "[sch
   // One section: loop 0 a blade profile, 240 points of it.
   const section::SectionTruth truth = section::section_truth(section::design_family()[0], 2400);
   section::Stream stream;
-  section::put_frames(stream, {{3, section::make_frame({0, 0, 5}, {0, 0, 1})}});
+  // On a cylinder: the frames table with every column, and the meridians table.
+  section::put_frames(stream,
+                      {{3, section::surface_frame(section::cylinder_surface({0, 0, -100}, {1, 0, 0}, 105))}});
   section::Table points = schema::points.table();
   for (std::size_t i = 0; i < truth.profile.size(); i += 10)
     schema::points.add(points, {3, 0, i / 10, truth.profile[i], truth.profile_normal[i], 0.0});

@@ -5,6 +5,7 @@
 #include "section/cloud.h"
 #include "section/error.h"
 #include "section/extras/generate.h"
+#include "section/extras/generate_rotor.h"
 #include "section/mesh.h"
 #include "section/io/cloud_io.h"
 #include "section/io/mesh_io.h"
@@ -59,8 +60,9 @@ void write_truth(const std::string& path, const section::BladeDesign& blade, con
   if (std::fclose(f) != 0 || !ok) throw section::Error("bladegen: " + path + ": write error");
 }
 
-// The coordinates in --units (the generator's are in mm).
-section::Cloud in_units(section::Cloud cloud, double scale) {
+// The coordinates in --units (the generator's are in mm), on the rotor's surfaces with --rotor.
+section::Cloud in_units(const BladegenArgs& a, section::Cloud cloud, double scale) {
+  if (!a.rotor.empty()) cloud = section::rotor_cloud(a.rotor_design(), cloud);
   if (scale != 1)
     for (auto& p : cloud.points) p *= scale;
   return cloud;
@@ -70,18 +72,19 @@ void run_bladegen(const BladegenArgs& a) {
   const section::BladeDesign blade = a.blade();
   const double scale = 1 / section::tool::mm_per_unit(a.units);
   if (a.points && a.second_view.empty())
-    section::write_cloud(a.output, in_units(section::generate_scan(blade, a.scan).cloud, scale));
+    section::write_cloud(a.output, in_units(a, section::generate_scan(blade, a.scan).cloud, scale));
   if (a.points && !a.second_view.empty()) {
     const std::vector<section::Cloud> views = section::views_of(section::generate_scan(blade, a.scan));
-    section::write_cloud(a.output, in_units(views[0], scale));
-    section::write_cloud(a.second_view, in_units(views[1], scale));
+    section::write_cloud(a.output, in_units(a, views[0], scale));
+    section::write_cloud(a.second_view, in_units(a, views[1], scale));
   }
   if (!a.grid.empty())
-    section::write_cloud(a.output, in_units(section::generate_grid(blade, a.grid_settings()), scale));
+    section::write_cloud(a.output, in_units(a, section::generate_grid(blade, a.grid_settings()), scale));
   if (a.rows > 0)
-    section::write_cloud(a.output, in_units(section::generate_rows(blade, a.rows_settings()), scale));
+    section::write_cloud(a.output, in_units(a, section::generate_rows(blade, a.rows_settings()), scale));
   if (a.mesh) {
-    section::Mesh mesh = section::generate_mesh(blade, a.profile_points, a.layers);
+    section::Mesh mesh = a.rotor.empty() ? section::generate_mesh(blade, a.profile_points, a.layers)
+                                         : section::rotor_mesh(a.rotor_design(), a.profile_points, a.layers);
     if (scale != 1)
       for (auto& v : mesh.vertices) v *= scale;
     section::write_mesh(a.output, mesh);

@@ -13,6 +13,7 @@
 #include "section/io/slice_file.h"
 #include "section/pipe/slice_stream.h"
 #include "section/register_views.h"
+#include "section/revolution.h"
 #include "section/slice.h"
 #include "section/units.h"
 
@@ -171,7 +172,8 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   if (is_mesh) {
     mesh = section::read_mesh(input);
     extent = extent_of(mesh->vertices);
-  } else if (!given.views.empty() || input == "-" || given.by_rows() || section::read_profile_cloud(input)) {
+  } else if (!given.views.empty() || input == "-" || given.by_rows() || !given.axis.empty() ||
+             section::read_profile_cloud(input)) {
     clouds = read_views(given);
     extent = extent_of(clouds[0].points);
   } else {
@@ -194,14 +196,19 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   section::SliceResult result;
   if (!clouds.empty()) {
     const section::Cloud merged = a.views.empty() ? std::move(clouds[0]) : merged_views(a, clouds, out);
-    if (a.count > 0) planes = section::planes_across(merged.points, n, a.count);
+    if (a.count > 0 && a.axis.empty()) planes = section::planes_across(merged.points, n, a.count);
     section::tool::with_input(input, [&] {
-      result = a.by_rows() ? slice_by_rows(a, merged, n) : section::slice(merged, planes, a.options);
+      result = !a.axis.empty() ? section::slice(merged, a.surfaces(merged.points, units.mm), a.options)
+               : a.by_rows()   ? slice_by_rows(a, merged, n)
+                               : section::slice(merged, planes, a.options);
     });
     if (a.options.slab == 0) say_sampling(result.sampling, out);
   } else if (mesh) {
-    if (a.count > 0) planes = section::planes_across(mesh->vertices, n, a.count);
-    section::tool::with_input(input, [&] { result = section::slice(*mesh, planes, a.options); });
+    if (a.count > 0 && a.axis.empty()) planes = section::planes_across(mesh->vertices, n, a.count);
+    section::tool::with_input(input, [&] {
+      result = a.axis.empty() ? section::slice(*mesh, planes, a.options)
+                              : section::slice(*mesh, a.surfaces(mesh->vertices, units.mm), a.options);
+    });
   } else {
     // Streamed: only the slab points are held, not the cloud, and each section is written
     // as it comes. Read errors name the file already, so with_input leaves them as they are.

@@ -313,6 +313,52 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
   return result;
 }
 
+namespace detail {
+
+void mesh_loops(const std::vector<std::vector<Eigen::Vector3d>>& lines,
+                const std::function<Eigen::Vector2d(const Eigen::Vector3d&)>& to_plane, SectionSlice& s) {
+  std::vector<Loop> loops;
+  std::size_t open = 0;
+  for (const auto& line : lines) {
+    if (line.size() < 4 || (line.front() - line.back()).norm() > 1e-12 * (1 + line.front().norm())) {
+      ++open;
+      continue;
+    }
+    Loop loop;
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) loop.points.push_back(to_plane(line[k]));
+    double area = 0, length = 0;
+    const std::size_t n = loop.points.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& a = loop.points[k];
+      const auto& b = loop.points[(k + 1) % n];
+      area += 0.5 * (a.x() * b.y() - b.x() * a.y());
+      length += (b - a).norm();
+    }
+    if (area < 0) {
+      std::reverse(loop.points.begin(), loop.points.end());
+      area = -area;
+    }
+    loop.area = area;
+    loop.length = length;
+    loop.normals.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Eigen::Vector2d t = loop.points[(k + 1) % n] - loop.points[(k + n - 1) % n];
+      const Eigen::Vector2d nrm(t.y(), -t.x());
+      loop.normals[k] = nrm.norm() > 0 ? Eigen::Vector2d(nrm.normalized()) : Eigen::Vector2d(0, 0);
+    }
+    loop.boundary = loop.points;
+    loops.push_back(std::move(loop));
+    s.slab_points += n;
+  }
+  std::stable_sort(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) { return a.area > b.area; });
+  s.morphology.loops = std::move(loops);
+  if (open > 0)
+    s.error =
+        std::to_string(open) + " open intersection polyline(s): the mesh is not closed around this plane";
+}
+
+}  // namespace detail
+
 SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options) {
   detail::check_planes(planes);
   if (mesh.triangles.empty()) throw Error("slice: the mesh has no triangles");
@@ -336,47 +382,9 @@ SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const Slic
       for (const auto& p : line) cut.push_back(s.frame.to_plane(p));
     const Eigen::Vector2d local = detail::local_origin(cut);
     if (local != Eigen::Vector2d::Zero()) s.frame.origin = s.frame.to_world(local);
-    std::vector<Loop> loops;
-    std::size_t open = 0;
-    for (const auto& line : cuts[i]) {
-      if (line.size() < 4 || (line.front() - line.back()).norm() > 1e-12 * (1 + line.front().norm())) {
-        ++open;
-        continue;
-      }
-      Loop loop;
-      for (std::size_t k = 0; k + 1 < line.size(); ++k) loop.points.push_back(s.frame.to_plane(line[k]));
-      double area = 0, length = 0;
-      const std::size_t n = loop.points.size();
-      for (std::size_t k = 0; k < n; ++k) {
-        const auto& a = loop.points[k];
-        const auto& b = loop.points[(k + 1) % n];
-        area += 0.5 * (a.x() * b.y() - b.x() * a.y());
-        length += (b - a).norm();
-      }
-      if (area < 0) {
-        std::reverse(loop.points.begin(), loop.points.end());
-        area = -area;
-      }
-      loop.area = area;
-      loop.length = length;
-      loop.normals.resize(n);
-      for (std::size_t k = 0; k < n; ++k) {
-        const Eigen::Vector2d t = loop.points[(k + 1) % n] - loop.points[(k + n - 1) % n];
-        const Eigen::Vector2d nrm(t.y(), -t.x());
-        loop.normals[k] = nrm.norm() > 0 ? Eigen::Vector2d(nrm.normalized()) : Eigen::Vector2d(0, 0);
-      }
-      loop.boundary = loop.points;
-      loops.push_back(std::move(loop));
-      s.slab_points += n;
-    }
-    std::stable_sort(loops.begin(), loops.end(),
-                     [](const Loop& a, const Loop& b) { return a.area > b.area; });
-    s.morphology.loops = std::move(loops);
-    if (open > 0)
-      s.error =
-          std::to_string(open) + " open intersection polyline(s): the mesh is not closed around this plane";
-    else if (s.morphology.loops.empty())
-      s.error = "the plane does not cut the mesh";
+    detail::mesh_loops(
+        cuts[i], [&](const Eigen::Vector3d& p) { return s.frame.to_plane(p); }, s);
+    if (s.error.empty() && s.morphology.loops.empty()) s.error = "the plane does not cut the mesh";
   }
   return result;
 }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "args/bladegen_args.h"
 
+#include <map>
+
 #include <stdexcept>
 
 namespace section::tool {
@@ -27,6 +29,10 @@ const char* const BladegenArgs::description =
     "            moved to z = -R: the rows lie on cylinders of radius R + z_row).\n"
     "--units m|in|um writes the coordinates in that unit (scaled from mm); the --at\n"
     "heights, the other options and the truth file stay in mm.\n\n"
+    "--rotor cylinder|cone lays each section on a surface of revolution about the x axis (a\n"
+    "rotor: docs/REVOLUTION.md): the section of height z on the cylinder of radius\n"
+    "--rotor-radius + z, or on the cone through it at --cone-angle, its design (u, v) the\n"
+    "surface's unrolled coordinates (--unroll); the truth is then that of the unrolled section.\n\n"
     "--truth FILE --at Z1,Z2,... writes the exact section parameters at those heights (mm;\n"
     "with --rows, --at defaults to the rows' heights) as CSV, one row per height, columns\n"
     "(mm, degrees, whatever --units):\n"
@@ -99,6 +105,32 @@ void declare_grid_rows(CLI::App& app, BladegenArgs& a) {
       ->needs(o_rows);
 }
 
+// --rotor and its surfaces.
+void declare_rotor(CLI::App& app, BladegenArgs& a) {
+  auto* o_rotor =
+      add_checked(app, "--rotor", a.rotor,
+                  "A rotor: each section designed on a cylinder (cylinder) or a cone (cone) about "
+                  "the x axis, in its unrolled coordinates (docs/REVOLUTION.md); --points, --mesh, "
+                  "--grid and --rows are carried onto the surfaces (rows: on their cylinders)",
+                  CLI::IsMember({"cylinder", "cone"}));
+  add_checked(app, "--rotor-radius", a.rotor_options.hub_radius,
+              "Rotor: radius of the section z = 0 at axial position 0, mm (the section z at this + z)",
+              positive)
+      ->needs(o_rotor);
+  add_checked(app, "--cone-angle", a.rotor_options.cone_angle,
+              "Rotor cone: the meridians' slope against the axis, degrees", CLI::Range(-80.0, 80.0))
+      ->needs(o_rotor);
+  app.add_option(
+         "--unroll", a.rotor_options.unrolling,
+         "Rotor: how the designs lie on the surfaces: cylinder (r theta, axial), conformal (r_ref m', "
+         "r_ref theta) or arclength (m, r_ref theta); default cylinder on cylinders, conformal on cones")
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, Unrolling>{{"cylinder", Unrolling::cylinder},
+                                                                   {"conformal", Unrolling::conformal},
+                                                                   {"arclength", Unrolling::arclength}}))
+      ->needs(o_rotor);
+}
+
 }  // namespace
 
 void BladegenArgs::declare(CLI::App& app) {
@@ -115,6 +147,7 @@ void BladegenArgs::declare(CLI::App& app) {
                  "Output file (.ply .xyz; .stl .obj .off .ply for --mesh), - = stdout (points)");
   declare_scan(app, scan);
   declare_grid_rows(app, *this);
+  declare_rotor(app, *this);
   add_checked(app, "--profile-points", profile_points, "Mesh: points per section ring",
               CLI::Range(16, 1000000));
   add_checked(app, "--layers", layers, "Mesh: number of section rings along the span", CLI::Range(2, 100000));
@@ -145,6 +178,13 @@ void BladegenArgs::declare(CLI::App& app) {
         if (app.count(range) > 0)
           throw CLI::ValidationError(std::string(range) +
                                      " does not apply to --rows (--first-row, --row-pitch)");
+    if (!rotor.empty() && rows_options.hub_radius > 0)
+      throw CLI::ValidationError("--hub-radius (a planar blade's rows on cylinders) excludes --rotor");
+    if (rotor == "cone" && app.count("--unroll") == 0) rotor_options.unrolling = Unrolling::conformal;
+    if (rotor == "cylinder")
+      rotor_options.cone_angle = 0;
+    else if (rotor == "cone" && app.count("--cone-angle") == 0)
+      rotor_options.cone_angle = 20;
     if (!grid.empty() && spacing_given)
       throw CLI::ValidationError("--spacing does not apply to --grid (--lines, --line-points)");
   });
@@ -156,6 +196,12 @@ BladeDesign BladegenArgs::blade() const {
     if (kind == p.name) b = p.blade();
   if (span > 0) b.span = span;
   return b;
+}
+
+RotorDesign BladegenArgs::rotor_design() const {
+  RotorDesign r = rotor_options;
+  r.blade = blade();
+  return r;
 }
 
 GridOptions BladegenArgs::grid_settings() const {

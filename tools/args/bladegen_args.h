@@ -4,6 +4,7 @@
 #include "common/tool.h"
 
 #include "section/extras/generate.h"
+#include "section/extras/generate_rotor.h"
 
 #include <string>
 #include <vector>
@@ -44,6 +45,8 @@ struct BladegenArgs {
   int profile_points = 400;            ///< --profile-points (mesh)
   int layers = 60;                     ///< --layers (mesh)
   std::vector<double> at;              ///< --at: heights of the --truth sections
+  std::string rotor;                   ///< --rotor cylinder|cone: the sections on surfaces of revolution
+  RotorDesign rotor_options;           ///< --rotor-radius, --cone-angle, --unroll
   /// Declares the options on `app`, bound to these fields.
   void declare(CLI::App& app);
   /// The blade of --kind and --span.
@@ -51,6 +54,8 @@ struct BladegenArgs {
   /// The grid's options from the shared and grid flags (chordwise: --lines heights of
   /// --line-points places; spanwise: --lines places of --line-points heights).
   GridOptions grid_settings() const;
+  /// The rotor of --rotor (its blade: blade()).
+  RotorDesign rotor_design() const;
   /// The rows' options from the shared and rows flags.
   RowsOptions rows_settings() const;
 };

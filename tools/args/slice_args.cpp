@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "args/slice_args.h"
 
+#include "section/error.h"
+#include "section/io/csv.h"
+#include "section/io/file.h"
+
 #include <algorithm>
 #include <utility>
 
@@ -31,6 +35,15 @@ const char* const SliceArgs::description =
     "few micrometres otherwise shifts every section it alone covers by that much.\n\n"
     "Planes: --normal with --at offsets or --count planes spread over the part, or --planes FILE\n"
     "(CSV with origin_x,origin_y,origin_z,normal_x,normal_y,normal_z).\n\n"
+    "Surfaces of revolution (docs/REVOLUTION.md): --axis PX,PY,PZ,DX,DY,DZ (a point of the\n"
+    "machine axis and its direction) with cylinders (--radius R,R,... or --count N over the\n"
+    "part's radii), cones (--cone A0,R0,A1,R1: two (axial, radius) points; repeat or give\n"
+    "4 numbers per cone) or meridional streamlines (--streamline FILE of axial radius rows;\n"
+    "repeat). With --axis alone, rows of points at constant radius (a CMM's passes) are each\n"
+    "cut on their cylinder. A cloud's points within a shell around the surface (the slab's\n"
+    "width) are taken, a mesh is cut exactly; each section is unrolled (--unroll: cylinder\n"
+    "(r theta, axial), conformal (r_ref m', r_ref theta), arclength (m, r_ref theta)) and the\n"
+    "frames table carries the surface, so samples, camber and params map back onto it in 3D.\n\n"
     "Sampling (docs/SAMPLING.md): with no --slab the points tell it. A dense scan: the slab is\n"
     "its point spacing. Lines of points close together (a structured surface grid): their\n"
     "spacing along the normal. Sparse rows, each a section's worth (a CMM pass, a scanner\n"
@@ -40,6 +53,7 @@ const char* const SliceArgs::description =
     "(x y) is one profile at z = 0 and needs no planes. The stream notes what was found\n"
     "('# sampling ...', '# row ...').\n\n"
     "Example: slice blade.ply --normal 0,0,1 --at 12,20,28 | smooth | fitspline | camber\n"
+    "         slice rotor.xyz --axis 0,0,0,1,0,0 --radius 210,230,250 | smooth | fitspline | camber\n"
     "         slice profile.xy | smooth | fitspline | camber";
 
 namespace {
@@ -50,7 +64,48 @@ std::vector<std::pair<const char*, double*>> length_options(SliceArgs& a) {
           {"--cell", &a.options.morphology.cell},
           {"--band-spacing", &a.options.band_spacing},
           {"--fill-reach", &a.options.fill.reach},
-          {"--view-reach", &a.register_options.reach}};
+          {"--view-reach", &a.register_options.reach},
+          {"--r-ref", &a.r_ref}};
+}
+
+// --axis and the surfaces of revolution about it.
+void declare_surfaces(CLI::App& app, SliceArgs& a) {
+  app.add_option("--axis", a.axis,
+                 "Machine axis PX,PY,PZ,DX,DY,DZ: cut by surfaces of revolution about it (cylinders "
+                 "by --radius or --count, --cone, --streamline; alone: rows at constant radius)")
+      ->delimiter(',');
+  app.add_option("--radius", a.radii, "Cylinder radii about --axis, comma-separated")->delimiter(',');
+  app.add_option("--cone", a.cones,
+                 "Cones about --axis through two (axial, radius) points A0,R0,A1,R1 each (repeat, or 4 "
+                 "numbers per cone)")
+      ->delimiter(',');
+  app.add_option("--streamline", a.streamlines,
+                 "File of a meridional streamline about --axis, one (axial radius) point a line; repeat");
+  app.add_option("--unroll", a.unroll,
+                 "Unrolling of the surfaces: cylinder (r theta, axial), conformal (r_ref m', r_ref theta) "
+                 "or arclength (m, r_ref theta); default cylinder for cylinders, conformal for the others")
+      ->check(CLI::IsMember({"cylinder", "conformal", "arclength"}));
+  add_checked(app, "--r-ref", a.r_ref,
+              "Reference radius of the unrolled plane; 0 = the cylinder's radius, or the mean radius of "
+              "the points nearest to the surface",
+              CLI::NonNegativeNumber);
+}
+
+// The surface options' consistency (CLI11 cannot say it).
+void check_surfaces(const SliceArgs& a) {
+  if (a.axis.empty()) {
+    if (!a.radii.empty() || !a.cones.empty() || !a.streamlines.empty() || !a.unroll.empty())
+      throw CLI::ValidationError("--radius, --cone, --streamline and --unroll need --axis");
+    return;
+  }
+  if (a.axis.size() != 6) throw CLI::ValidationError("--axis takes six comma-separated numbers");
+  if (a.axis[3] == 0 && a.axis[4] == 0 && a.axis[5] == 0)
+    throw CLI::ValidationError("--axis", "its direction must not be 0,0,0");
+  if (a.cones.size() % 4 != 0) throw CLI::ValidationError("--cone takes four numbers per cone: A0,R0,A1,R1");
+  if (!a.at.empty() || !a.planes_file.empty() || a.rows)
+    throw CLI::ValidationError("--axis cuts by surfaces: it excludes --at, --planes and --rows");
+  for (double r : a.radii)
+    if (!(r > 0)) throw CLI::ValidationError("--radius", "radii must be positive");
 }
 
 // --normal, --at, --count, --planes: the planes.
@@ -102,6 +157,7 @@ void declare_slab(CLI::App& app, SliceOptions& options) {
 void SliceArgs::declare(CLI::App& app) {
   add_common(app, common);
   declare_planes(app, *this);
+  declare_surfaces(app, *this);
   declare_slab(app, options);
   app.add_option("--view", views,
                  "Another view of the same part (a point cloud), registered onto the input "
@@ -123,6 +179,7 @@ void SliceArgs::declare(CLI::App& app) {
     if (normal.size() != 3) throw CLI::ValidationError("--normal takes three comma-separated numbers");
     if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0)
       throw CLI::ValidationError("--normal", "must not be 0,0,0 (a plane needs a direction)");
+    check_surfaces(*this);
   });
 }
 
@@ -131,7 +188,43 @@ SliceArgs SliceArgs::in_mm(double mm) const {
   for (const auto& [flag, value] : length_options(a))
     if (std::find(lengths_given.begin(), lengths_given.end(), flag) != lengths_given.end()) *value *= mm;
   for (double& at : a.at) at *= mm;
+  for (double& r : a.radii) r *= mm;
+  for (double& c : a.cones) c *= mm;
+  for (std::size_t k = 0; k < 3 && k < a.axis.size(); ++k) a.axis[k] *= mm;
   return a;
+}
+
+std::vector<Revolution> SliceArgs::surfaces(const std::vector<Eigen::Vector3d>& points, double mm) const {
+  const Eigen::Vector3d p(axis[0], axis[1], axis[2]), d(axis[3], axis[4], axis[5]);
+  std::vector<double> r = radii;
+  if (r.empty() && count > 0) {
+    const Eigen::Vector2d range = radius_range(points, p, d);
+    for (int k = 0; k < count; ++k) r.push_back(range.x() + (range.y() - range.x()) * (k + 1) / (count + 1));
+  }
+  if (r.empty() && cones.empty() && streamlines.empty()) r = row_radii(points, p, d, options.sampling);
+  std::vector<Revolution> out;
+  for (double radius : r) out.push_back(cylinder_surface(p, d, radius));
+  for (std::size_t k = 0; k + 3 < cones.size(); k += 4)
+    out.push_back(cone_surface(p, d, {cones[k], cones[k + 1]}, {cones[k + 2], cones[k + 3]}));
+  for (const auto& file : streamlines) {
+    std::vector<Eigen::Vector2d> meridian = parse_profile(read_file(file), file);
+    for (auto& q : meridian) q *= mm;
+    try {
+      out.push_back(streamline_surface(p, d, std::move(meridian)));
+      Revolution checked = out.back();  // its r_ref is chosen when slicing
+      checked.r_ref = 1;
+      check_surface(checked);
+    } catch (const Error& e) {
+      throw Error(file + ": " + e.what());
+    }
+  }
+  const Eigen::Vector3d reference = reference_of(points, p, d);
+  for (auto& s : out) {
+    if (!unroll.empty()) s.unrolling = unrolling_named(unroll);
+    if (r_ref > 0) s.r_ref = r_ref;
+    s.reference = reference;
+  }
+  return out;
 }
 
 }  // namespace section::tool

@@ -1,30 +1,48 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file frame.h
-/// A section plane's frame: maps in-plane (u, v) coordinates to 3D (x, y, z) and back.
+/// A section plane's frame: maps in-plane (u, v) coordinates to 3D (x, y, z) and back; a
+/// section on a surface of revolution maps its unrolled (u, v) through the surface.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <memory>
+
 namespace section {
 
-/// Orthonormal right-handed frame of a section plane: u x v = n.
+struct Revolution;  // section/revolution.h
+/// The 3D point of unrolled coordinates uv on a surface (revolution.h).
+Eigen::Vector3d surface_point(const Revolution& surface, const Eigen::Vector2d& uv);
+/// Unrolled coordinates of a point's foot on a surface, and its signed distance from it.
+Eigen::Vector2d surface_uv(const Revolution& surface, const Eigen::Vector3d& p);
+double surface_distance(const Revolution& surface, const Eigen::Vector3d& p);
+
+/// Orthonormal right-handed frame of a section plane: u x v = n. For a section on a surface
+/// of revolution (`surface` set), (u, v) are its unrolled coordinates and origin, u, v, n
+/// the tangent plane at (0, 0); to_world, to_plane and height go through the surface.
 struct Frame {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< a point of the plane
   Eigen::Vector3d u = Eigen::Vector3d::UnitX();      ///< first in-plane axis (unit)
   Eigen::Vector3d v = Eigen::Vector3d::UnitY();      ///< second in-plane axis (unit)
   Eigen::Vector3d n = Eigen::Vector3d::UnitZ();      ///< plane normal (unit)
+  std::shared_ptr<const Revolution> surface;         ///< the surface of revolution; null: the plane
 
   /// 3D point of in-plane coordinates (u, v).
-  Eigen::Vector3d to_world(const Eigen::Vector2d& p) const { return origin + p.x() * u + p.y() * v; }
-  /// 3D direction of an in-plane direction.
+  Eigen::Vector3d to_world(const Eigen::Vector2d& p) const {
+    return surface ? surface_point(*surface, p) : Eigen::Vector3d(origin + p.x() * u + p.y() * v);
+  }
+  /// 3D direction of an in-plane direction (on a surface: in the tangent plane at (0, 0)).
   Eigen::Vector3d direction_to_world(const Eigen::Vector2d& d) const { return d.x() * u + d.y() * v; }
   /// In-plane coordinates of the orthogonal projection of a 3D point.
   Eigen::Vector2d to_plane(const Eigen::Vector3d& p) const {
+    if (surface) return surface_uv(*surface, p);
     const Eigen::Vector3d d = p - origin;
     return {d.dot(u), d.dot(v)};
   }
   /// Signed distance of a 3D point from the plane along n.
-  double height(const Eigen::Vector3d& p) const { return (p - origin).dot(n); }
+  double height(const Eigen::Vector3d& p) const {
+    return surface ? surface_distance(*surface, p) : (p - origin).dot(n);
+  }
 };
 
 /// The frame of the plane through `origin` with normal `normal` (need not be unit length).

@@ -76,4 +76,10 @@ void slice_between_lines(const std::vector<Eigen::Vector3d>& points, const std::
 void rows_as_sections(const std::vector<Eigen::Vector3d>& points, const SliceOptions& options,
                       SliceResult& result, const SectionFn& sink);
 
+/// The closed polylines of a mesh's cut (each ending on its first point) as a section's
+/// loops through `to_plane`: counterclockwise, loop 0 the largest, normals across their
+/// chords; an open polyline counts in the section's error.
+void mesh_loops(const std::vector<std::vector<Eigen::Vector3d>>& lines,
+                const std::function<Eigen::Vector2d(const Eigen::Vector3d&)>& to_plane, SectionSlice& s);
+
 }  // namespace section::detail

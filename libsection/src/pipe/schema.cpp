@@ -2,6 +2,7 @@
 // The stream's tables and their columns: the one place that names them (docs/FORMAT.md).
 #include "section/pipe/schema.h"
 
+#include "section/revolution.h"
 #include "section/units.h"
 
 #include "section/error.h"
@@ -66,6 +67,32 @@ constexpr auto frame_columns = by_section<FrameRow>({
     {"u_", xyz, "1", "the first in-plane axis u (a unit vector)", [](auto& r) { return r.frame.u; }},
     {"v_", xyz, "1", "the second in-plane axis v (a unit vector)", [](auto& r) { return r.frame.v; }},
     {"n_", xyz, "1", "the plane's unit normal n = u x v", [](auto& r) { return r.frame.n; }},
+    // A section on a surface of revolution (docs/REVOLUTION.md): written only then.
+    {"surface", "code",
+     "the section's surface of revolution, 1 cylinder, 2 cone, 3 streamline (the columns from here on and "
+     "the meridians table are written only for such sections; origin, u, v, n are then its tangent plane at "
+     "u = v = 0)",
+     [](auto& r) { return r.frame.surface ? double(r.frame.surface->kind) : 0.0; }},
+    {"unrolling", "code",
+     "how (u, v) unroll it: 1 cylinder (r_ref theta, m), 2 conformal (r_ref m', r_ref theta), "
+     "3 arclength (m, r_ref theta)",
+     [](auto& r) { return r.frame.surface ? double(r.frame.surface->unrolling) : 0.0; }},
+    {"axis_", xyz, "length", "a point of the machine axis (axial position 0)",
+     [](auto& r) { return r.frame.surface ? r.frame.surface->axis_point : Eigen::Vector3d::Zero(); }},
+    {"axis_d", xyz, "1", "the axis direction (a unit vector)",
+     [](auto& r) { return r.frame.surface ? r.frame.surface->axis : Eigen::Vector3d::Zero(); }},
+    {"theta0_", xyz, "1", "the radial direction where theta = 0 (a unit vector)",
+     [](auto& r) { return r.frame.surface ? r.frame.surface->reference : Eigen::Vector3d::Zero(); }},
+    {"r_ref", "length", "the reference radius of the unrolled plane",
+     [](auto& r) { return r.frame.surface ? r.frame.surface->r_ref : 0.0; }},
+    {"shift_", uv, "length", "the unrolled coordinates of u = v = 0",
+     [](auto& r) { return r.frame.surface ? r.frame.surface->shift : Eigen::Vector2d::Zero(); }},
+});
+
+constexpr auto meridian_columns = by_section<MeridianRow>({
+    index_of<MeridianRow>("order along the meridian (m grows with it)"),
+    {"axial", "length", "the point's axial position a along the axis", [](auto& r) { return r.point.x(); }},
+    {"radius", "length", "its radius r", [](auto& r) { return r.point.y(); }},
 });
 
 const Loop& loop_of(const LoopRow& r) {
@@ -438,6 +465,7 @@ template struct TableSchema<SmoothStatsRow>;
 template struct TableSchema<SplineRow>;
 template struct TableSchema<KnotRow>;
 template struct TableSchema<GapRow>;
+template struct TableSchema<MeridianRow>;
 template struct TableSchema<SampleRow>;
 template struct TableSchema<CamberRow>;
 template struct TableSchema<ParamsRow>;
@@ -450,6 +478,10 @@ template struct TableSchema<ComparedRow>;
 template struct TableSchema<VerdictRow>;
 
 const TableSchema<FrameRow> frames{"frames", "slice", "the plane frame of each section", frame_columns};
+const TableSchema<MeridianRow> meridians{
+    "meridians", "slice",
+    "the meridian (axial, radius) polyline of each section on a surface of revolution (docs/REVOLUTION.md)",
+    meridian_columns};
 const TableSchema<LoopRow> loops{"loops", "slice", "one row per loop of each section", loop_columns};
 const TableSchema<PointRow> points{"points", "slice",
                                    "the measured points projected onto the plane, ordered along their loop",
@@ -503,9 +535,10 @@ const TableSchema<VerdictRow> verdicts{"verdicts", "compare", "one row per secti
 
 // The tables of slice, smooth, fitspline and camber.
 static std::vector<TableDoc> stage_tables() {
-  return {frames.doc(),       loops.doc(),   points.doc(),       skeleton.doc(),    smoothed.doc(),
-          smooth_stats.doc(), splines.doc(), spline_knots.doc(), spline_ctrl.doc(), gaps.doc(),
-          samples.doc(),      camber.doc(),  params.doc(),       thickness.doc(),   sides.doc()};
+  return {frames.doc(),       meridians.doc(),   loops.doc(),        points.doc(),
+          skeleton.doc(),     smoothed.doc(),    smooth_stats.doc(), splines.doc(),
+          spline_knots.doc(), spline_ctrl.doc(), gaps.doc(),         samples.doc(),
+          camber.doc(),       params.doc(),      thickness.doc(),    sides.doc()};
 }
 
 std::vector<TableDoc> tables() {
@@ -516,36 +549,6 @@ std::vector<TableDoc> tables() {
 }
 
 }  // namespace schema
-
-std::map<int, Frame> frames(const Stream& stream) {
-  const Table& t = schema::frames.get(stream);
-  std::vector<std::size_t> c;
-  for (const auto& name : schema::frames.names()) c.push_back(t.column(name));
-  std::map<int, Frame> out;
-  for (std::size_t r = 0; r < t.rows(); ++r) {
-    Frame f;
-    const auto v3 = [&](int k) {
-      return Eigen::Vector3d(t.at(r, c[k]), t.at(r, c[k + 1]), t.at(r, c[k + 2]));
-    };
-    f.origin = v3(1);
-    f.u = v3(4);
-    f.v = v3(7);
-    f.n = v3(10);
-    const auto unit = [](const Eigen::Vector3d& a) { return std::abs(a.norm() - 1) < 1e-6; };
-    if (!unit(f.u) || !unit(f.v) || !unit(f.n) || std::abs(f.u.dot(f.v)) > 1e-6 ||
-        (f.u.cross(f.v) - f.n).norm() > 1e-6)
-      throw Error("pipe: the frame of section " + format_number(t.at(r, c[0])) +
-                  " is not a right-handed orthonormal frame");
-    out[static_cast<int>(t.at(r, c[0]))] = f;
-  }
-  return out;
-}
-
-void put_frames(Stream& stream, const std::map<int, Frame>& frames) {
-  Table t = schema::frames.table();
-  for (const auto& [id, f] : frames) schema::frames.add(t, {id, f});
-  stream.put(std::move(t));
-}
 
 }  // namespace section
 

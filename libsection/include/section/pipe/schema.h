@@ -25,11 +25,14 @@
 
 namespace section {
 
-/// Section frames of a stream (table "frames"), by section id. Throws section::Error when
-/// the table is missing or a frame is not right-handed orthonormal.
+/// Section frames of a stream (table "frames"), by section id; a section on a surface of
+/// revolution (its `surface` column set) gets its surface, with its meridian from the
+/// "meridians" table. Throws section::Error when the table is missing, a frame is not
+/// right-handed orthonormal or a surface is incomplete.
 std::map<int, Frame> frames(const Stream& stream);
 
-/// Adds or replaces the "frames" table from frames by section id.
+/// Adds or replaces the "frames" table from frames by section id (and the "meridians" table
+/// when a frame lies on a surface of revolution; planes alone write neither its columns nor it).
 void put_frames(Stream& stream, const std::map<int, Frame>& frames);
 
 /// Converts a stream in another length unit (`# units`, units.h) to mm, the unit every
@@ -143,6 +146,11 @@ struct TableSchema {
 struct FrameRow {
   int section;
   const Frame& frame;
+};
+struct MeridianRow {
+  int section;
+  std::size_t index;
+  Eigen::Vector2d point;  ///< (axial, radius)
 };
 struct LoopRow {
   int section;
@@ -262,6 +270,7 @@ struct VerdictRow {
 
 // The tables, in the order the tools write them.
 extern const TableSchema<FrameRow> frames;
+extern const TableSchema<MeridianRow> meridians;
 extern const TableSchema<LoopRow> loops;
 extern const TableSchema<PointRow> points;
 extern const TableSchema<SkeletonRow> skeleton;
