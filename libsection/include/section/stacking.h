@@ -30,22 +30,28 @@ enum class StackCheck : std::uint32_t {
   curve = 1u << 8,      ///< the stacking line is a straight line (2 sections) or the section lies off it
 };
 
-/// A blade check's name and the blade columns it flags.
+/// A blade check's name, why it fails and the blade columns it flags.
 struct StackCheckName {
   StackCheck check;
   const char* name;
+  const char* why;      ///< in the issue's words
   const char* columns;  ///< space-separated
 };
 inline constexpr StackCheckName stack_check_names[] = {
-    {StackCheck::twist, "twist", "stagger twist"},
-    {StackCheck::position, "position", "centroid lean sweep bow axial_bow off_line"},
-    {StackCheck::le, "le", "le"},
-    {StackCheck::te, "te", "te"},
-    {StackCheck::chord, "chord", "chord"},
-    {StackCheck::thickness, "thickness", "max_thickness"},
-    {StackCheck::bow, "bow", "bow axial_bow"},
-    {StackCheck::order, "order", "span bow axial_bow off_line"},
-    {StackCheck::curve, "curve", "off_line"},
+    {StackCheck::twist, "twist", "camber flagged the stagger here or at the reference section",
+     "stagger twist"},
+    {StackCheck::position, "position",
+     "the centroid here or at the reference section is doubtful (an edge not measured, or the units)",
+     "centroid lean sweep bow axial_bow off_line"},
+    {StackCheck::le, "le", "camber flagged the LE point", "le"},
+    {StackCheck::te, "te", "camber flagged the TE point", "te"},
+    {StackCheck::chord, "chord", "camber flagged the chord", "chord"},
+    {StackCheck::thickness, "thickness", "camber flagged the max thickness", "max_thickness"},
+    {StackCheck::bow, "bow", "fewer than 3 sections, or a doubtful hub or tip centroid", "bow axial_bow"},
+    {StackCheck::order, "order", "the section ids are not in span order, or two sections share a span",
+     "span bow axial_bow off_line"},
+    {StackCheck::curve, "curve", "the stacking line is straight (2 sections) or the centroid lies off it",
+     "off_line"},
 };
 
 /// One measured section as the stacking sees it.

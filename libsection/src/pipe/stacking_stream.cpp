@@ -11,41 +11,12 @@
 
 namespace section {
 
-namespace {
-
-// Why each blade check fails, in the words.
-const char* why(StackCheck c) {
-  switch (c) {
-    case StackCheck::twist:
-      return "camber flagged the stagger here or at the reference section";
-    case StackCheck::position:
-      return "the centroid here or at the reference section is doubtful (an edge not measured, or the units)";
-    case StackCheck::le:
-      return "camber flagged the LE point";
-    case StackCheck::te:
-      return "camber flagged the TE point";
-    case StackCheck::chord:
-      return "camber flagged the chord";
-    case StackCheck::thickness:
-      return "camber flagged the max thickness";
-    case StackCheck::bow:
-      return "fewer than 3 sections, or a doubtful hub or tip centroid";
-    case StackCheck::order:
-      return "the section ids are not in span order, or two sections share a span";
-    case StackCheck::curve:
-      return "the stacking line is straight (2 sections) or the centroid lies off it";
-  }
-  return "";
-}
-
-}  // namespace
-
 std::string stack_flags_text(std::uint32_t flags) {
   std::string out;
   for (const auto& c : stack_check_names)
     if (flags & static_cast<std::uint32_t>(c.check))
-      out += std::string(out.empty() ? "its values fail blade checks " : ", ") + c.name + " (" +
-             why(c.check) + ": " + c.columns + ")";
+      out += std::string(out.empty() ? "its values fail blade checks " : ", ") + c.name + " (" + c.why +
+             ": " + c.columns + ")";
   return out;
 }
 
