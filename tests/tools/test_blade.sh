@@ -58,6 +58,17 @@ expect 0 "blade --format stream" -- "$blade" "$TMP/camber.txt" --format stream -
 check "the stream holds the blade and stacking tables" -- grep -q "^# table stacking$" "$TMP/stream.txt"
 expect 0 "blade from standard input" -- sh -c "\"$blade\" < \"$TMP/camber.txt\""
 
+# A rotor: sparse rows on cylinders about the x axis moved to z = -150; --axis takes the
+# span as the radius (the rows' 160..200 mm), axial along x. The rows do not resolve the
+# compressor's thin edges (1 mm apart): camber flags them, and so the blade's values are.
+"$BIN/bladegen" --kind compressor --rows 5 --row-pitch 10 --hub-radius 150 -o "$TMP/rows.xyz" >/dev/null 2>&1
+"$BIN/slice" "$TMP/rows.xyz" 2>/dev/null | "$BIN/smooth" | "$BIN/fitspline" | "$BIN/camber" -o "$TMP/rows.txt" 2>/dev/null
+expect 0 "blade --axis on rotor rows" -- "$blade" "$TMP/rows.txt" --axis 0,0,-150,1,0,0 --format csv
+check "rotor: the span is the radius" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { r = 150 + 10 * (NR - 2) + 10; d = $c["span"] - r; if (d < -0.5 || d > 0.5) exit 1 }' "$TMP/out"
+check "rotor: unresolved edges flag the twist" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { if ($c["flags"] % 2 != 1) exit 1 }' "$TMP/out"
+
 # One section: no stacking line (exit 1, says why).
 "$BIN/slice" "$TMP/blade.ply" --at 30 2>/dev/null | "$BIN/smooth" | "$BIN/fitspline" |
   "$BIN/camber" -o "$TMP/one.txt" 2>/dev/null
