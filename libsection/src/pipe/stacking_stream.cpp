@@ -5,6 +5,7 @@
 #include "section/error.h"
 #include "section/pipe/schema.h"
 
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -52,7 +53,18 @@ std::vector<StackedSection> stacked_sections(const Stream& stream) {
 
 StackingResult stacking_stream(Stream& stream, const StackingOptions& options) {
   convert_to_mm(stream);
-  const StackingResult r = stacking(stacked_sections(stream), options);
+  // A section whose values are not all finite is left out with an issue; the others go on.
+  std::vector<StackedSection> sections;
+  for (const StackedSection& s : stacked_sections(stream)) {
+    const SectionParams& p = s.params;
+    if (p.centroid.allFinite() && p.le_point.allFinite() && p.te_point.allFinite() &&
+        std::isfinite(p.stagger) && std::isfinite(p.chord) && std::isfinite(p.max_thickness))
+      sections.push_back(s);
+    else
+      stream.issues.push_back(
+          {s.id, 0, "blade", "its params hold a value that is not finite: left out of the blade"});
+  }
+  const StackingResult r = stacking(sections, options);
   Table blade = schema::blade.table();
   for (const StackedValues& v : r.sections) {
     schema::blade.add(blade, {v.id, v});

@@ -16,7 +16,8 @@ namespace section {
 std::vector<StackedSection> stacked_sections(const Stream& stream);
 
 /// Stream stage: converts the stream to mm, measures the blade from every section that has
-/// params (stacking.h) and puts the tables "blade" and "stacking"; each section whose
+/// params (stacking.h; a section whose centroid, edge points, stagger, chord or thickness
+/// is not finite is left out with an issue) and puts the tables "blade" and "stacking"; each section whose
 /// values are flagged gets an issue (stage "blade") naming the checks and why. Returns the
 /// result. Throws section::Error as stacking() does (fewer than 2 sections, ...).
 StackingResult stacking_stream(Stream& stream, const StackingOptions& options = {});
