@@ -35,6 +35,7 @@ expect 0 "blade on four sections" -- "$blade" "$TMP/camber.txt" -o "$TMP/blade.c
 check "the blade table has a header and 4 rows" -- test "$(wc -l < "$TMP/blade.csv")" = 5
 check "the stacking lines have 41 rows" -- test "$(wc -l < "$TMP/lines.csv")" = 42
 check "the plot is an SVG" -- grep -q "<svg" "$TMP/blade.svg"
+check "the plot shows the blade seen along the span" -- grep -q 'class="top-view"' "$TMP/blade.svg"
 # The truth by the definitions (docs/BLADE.md): twist, lean, sweep against z = 12, bow
 # against the line through z = 12 and z = 48.
 check "twist within 0.05 deg, lean, sweep and bow within 10 um of the truth" -- awk -F, '
@@ -78,9 +79,10 @@ check "one section: the message says 2 are needed" -- grep -q "at least 2 are ne
 # Two sections: a line, the bow flagged (never bare) and named in a warning.
 "$BIN/slice" "$TMP/blade.ply" --at 12,48 2>/dev/null | "$BIN/smooth" | "$BIN/fitspline" |
   "$BIN/camber" -o "$TMP/two.txt" 2>/dev/null
-expect 0 "blade on two sections" -- "$blade" "$TMP/two.txt" --format table
+expect 0 "blade on two sections" -- "$blade" "$TMP/two.txt" --format table --plot "$TMP/two.svg"
 check "two sections: the bow is flagged" -- grep -q "bow" <(grep -E "^ +[01]\*? " "$TMP/out" | awk '{ print $NF }')
 check "two sections: a warning names the check" -- grep -q "blade check" "$TMP/err"
+check "two sections: the plot rings the flagged bows" -- grep -q 'class="flagged"' "$TMP/two.svg"
 
 # A section without params (its plane misses the blade): exit 3, 0 with --allow-partial.
 "$BIN/slice" "$TMP/blade.ply" --at 12,36,48,80 2>/dev/null | "$BIN/smooth" 2>/dev/null |

@@ -83,6 +83,38 @@ Series dots(const StackingResult& b, const std::string& name, const std::string&
   return s;
 }
 
+// The blade seen along the span (axial right, tangential up, equal scales) at column `k`:
+// each section's chord line LE to TE and its centroid, the fitted centroid line.
+std::string top_view(int k, const StackingResult& b) {
+  const auto at = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector2d(p.dot(b.axial), p.dot(b.tangential));
+  };
+  detail::plot::Box box;
+  for (const auto& v : b.sections) box.add(at(v.le)), box.add(at(v.te)), box.add(at(v.centroid));
+  const double x0 = left + k * (panel_w + gap);
+  const detail::plot::View view = detail::plot::View::fit(box.grown(1e-9), x0, top, panel_h, panel_h);
+  std::string out = "<g class=\"top-view\"><rect x=\"" + px(x0) + "\" y=\"" + px(top) + "\" width=\"" +
+                    px(panel_h) + "\" height=\"" + px(panel_h) + "\" fill=\"none\" stroke=\"#999\"/>\n";
+  out += "<text x=\"" + px(x0) + "\" y=\"" + px(top - 24) +
+         "\" font-size=\"13\">seen along the span: chords, centroids (axial right)</text>\n";
+  for (const auto& v : b.sections) {
+    const Eigen::Vector2d l = at(v.le), t = at(v.te), c = at(v.centroid);
+    const bool flagged =
+        v.flags & (static_cast<std::uint32_t>(StackCheck::le) | static_cast<std::uint32_t>(StackCheck::te));
+    out += "<line x1=\"" + px(view.x(l.x())) + "\" y1=\"" + px(view.y(l.y())) + "\" x2=\"" +
+           px(view.x(t.x())) + "\" y2=\"" + px(view.y(t.y())) + "\" stroke=\"" + (flagged ? "#d00" : "#888") +
+           "\"/>\n";
+    out += "<circle cx=\"" + px(view.x(c.x())) + "\" cy=\"" + px(view.y(c.y())) +
+           "\" r=\"2.5\" fill=\"#1f77b4\"/>\n";
+  }
+  std::string d;
+  for (const auto& p : b.samples) {
+    const Eigen::Vector2d c = at(p.centroid);
+    d += (d.empty() ? "M" : " L") + px(view.x(c.x())) + "," + px(view.y(c.y()));
+  }
+  return out + "<path class=\"line\" d=\"" + d + "\" fill=\"none\" stroke=\"#1f77b4\"/>\n</g>\n";
+}
+
 }  // namespace
 
 std::string plot_blade_svg(const StackingResult& b, const std::string& units) {
@@ -95,7 +127,7 @@ std::string plot_blade_svg(const StackingResult& b, const std::string& units) {
     sweep_line.value.push_back(p.sweep), sweep_line.span.push_back(p.span);
   }
   using V = const StackedValues&;
-  const double width = left + 4 * panel_w + 3 * gap + 30, height = top + panel_h + 60;
+  const double width = left + 4 * panel_w + 4 * gap + panel_h + 30, height = top + panel_h + 60;
   std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + px(width) + "\" height=\"" +
                     px(height) +
                     "\" font-family=\"sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
@@ -124,7 +156,7 @@ std::string plot_blade_svg(const StackingResult& b, const std::string& units) {
              dots(
                  b, "max thickness", "#e377c2", [](V v) { return v.max_thickness; }, StackCheck::thickness)},
             s0, s1);
-  return out + "</svg>\n";
+  return out + top_view(4, b) + "</svg>\n";
 }
 
 }  // namespace section
