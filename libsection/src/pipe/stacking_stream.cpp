@@ -69,6 +69,11 @@ StackingResult stacking_stream(Stream& stream, const StackingOptions& options) {
   for (const StackedValues& v : r.sections) {
     schema::blade.add(blade, {v.id, v});
     if (v.flags) stream.issues.push_back({v.id, 0, "blade", stack_flags_text(v.flags)});
+    if (v.reference && (v.flags & static_cast<std::uint32_t>(StackCheck::twist)))
+      stream.issues.push_back(
+          {v.id, 0, "blade",
+           "the reference section's stagger is flagged, and so every twist: --reference N "
+           "measures the twist from another section"});
   }
   Table line = schema::stacking.table();
   for (std::size_t k = 0; k < r.samples.size(); ++k) schema::stacking.add(line, {k, r.samples[k]});
