@@ -165,7 +165,7 @@ TEST_CASE("schema: the stages write each table with the schema's columns", "[sch
     CHECK(t->columns == names);
     if (std::string(doc.name) != "gaps") CHECK(t->rows() > 0);  // the profile has no hole
   }
-  CHECK(found == schema::tables().size() - 2);  // all but slice's loops and skeleton
+  CHECK(found == schema::tables().size() - 4);  // all but slice's loops and skeleton, and blade's two
   CHECK(schema::params.find(stream)->rows() == 1);
 }
 

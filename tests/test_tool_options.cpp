@@ -2,6 +2,7 @@
 // Tests of the tools' command lines without the binaries (tools/args/): a flag maps to its
 // option, a bad value is refused as bad usage (exit code 2), --help answers with exit 0.
 #if __has_include("args/slice_args.h")  // the tools are built (SECTION_BUILD_TOOLS)
+#include "args/blade_args.h"
 #include "args/bladegen_args.h"
 #include "args/camber_args.h"
 #include "args/compare_args.h"
@@ -163,3 +164,28 @@ TEST_CASE("tool options: compare reads its fit, freedom and zones into the stage
   CHECK(parsed<CompareArgs>({"--help"}).out.find("Exit status") != std::string::npos);
 }
 #endif
+
+TEST_CASE("tool options: blade reads its reference, axis and format, bladegen its stacking law", "[tools]") {
+  const auto p = parsed<BladeArgs>({"c.txt", "--reference", "2", "--axis", "0,0,-100,1,0,0", "--format",
+                                    "csv", "--plot", "b.svg", "--samples", "11"});
+  REQUIRE(p.code == -1);
+  CHECK(p.args.common.input == "c.txt");
+  CHECK(p.args.options.reference == 2);
+  CHECK(p.args.options.rotor);
+  CHECK(p.args.options.axis_point == Eigen::Vector3d(0, 0, -100));
+  CHECK(p.args.options.axis_direction == Eigen::Vector3d(1, 0, 0));
+  CHECK(p.args.options.samples == 11);
+  CHECK(p.args.plot_file == "b.svg");
+  CHECK(!parsed<BladeArgs>({}).args.options.rotor);
+  CHECK(parsed<BladeArgs>({"--axis", "0,0,0,1,0"}).code == 2);
+  CHECK(parsed<BladeArgs>({"--axis", "0,0,0,0,0,0"}).code == 2);
+  CHECK(parsed<BladeArgs>({"--format", "xml"}).code == 2);
+  CHECK(parsed<BladeArgs>({"--help"}).code == 0);
+  const auto g =
+      parsed<BladegenArgs>({"--points", "-o", "b.ply", "--lean", "1.5", "--sweep", "-0.5", "--bow", "0.2"});
+  REQUIRE(g.code == -1);
+  const section::BladeDesign b = g.args.blade();
+  CHECK(b.stacking.lean == 1.5);
+  CHECK(b.stacking.sweep == -0.5);
+  CHECK(b.stacking.bow == 0.2);
+}

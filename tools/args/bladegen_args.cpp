@@ -27,6 +27,8 @@ const char* const BladegenArgs::description =
     "            --spacing (default 1 mm) apart along each, at constant height or, with\n"
     "            --hub-radius R, at constant radius about the machine axis (the x axis\n"
     "            moved to z = -R: the rows lie on cylinders of radius R + z_row).\n"
+    "--lean L, --sweep S, --bow B (mm) move each section at t = z / span by S t along +x and\n"
+    "L t + 4 B t (1 - t) along +y (docs/BLADE.md); twist comes from the hub and tip stagger.\n"
     "--units m|in|um writes the coordinates in that unit (scaled from mm); the --at\n"
     "heights, the other options and the truth file stay in mm.\n\n"
     "--rotor cylinder|cone lays each section on a surface of revolution about the x axis (a\n"
@@ -138,6 +140,14 @@ void BladegenArgs::declare(CLI::App& app) {
   for (const auto& p : blade_presets) kinds.emplace_back(p.name);
   add_checked(app, "--kind", kind, "Blade preset", CLI::IsMember(kinds));
   add_checked(app, "--span", span, "Blade height, mm; 0 = the preset's (60)", CLI::NonNegativeNumber);
+  app.add_option("--lean", stacking.lean,
+                 "Stacking: tangential (+y) move of the tip section, mm, linear in z")
+      ->capture_default_str();
+  app.add_option("--sweep", stacking.sweep, "Stacking: axial (+x) move of the tip section, mm, linear in z")
+      ->capture_default_str();
+  app.add_option("--bow", stacking.bow,
+                 "Stacking: tangential move at mid-span, mm, parabolic (0 at hub and tip)")
+      ->capture_default_str();
   add_checked(app, "--units", units, "Unit of the written coordinates",
               CLI::IsMember({"mm", "m", "in", "um"}));
   auto* o_points = app.add_flag("--points", points, "Write a scanned point cloud");
@@ -195,6 +205,7 @@ BladeDesign BladegenArgs::blade() const {
   for (const auto& p : blade_presets)
     if (kind == p.name) b = p.blade();
   if (span > 0) b.span = span;
+  b.stacking = stacking;
   return b;
 }
 

@@ -34,6 +34,7 @@ struct BladegenArgs {
   std::string second_view;             ///< --second-view: the second view's points to this file
   std::string units = "mm";            ///< --units: the unit the coordinates are written in
   double span = 0;                     ///< --span: blade height, mm; 0 = the preset's (60)
+  StackingLaw stacking;                ///< --lean, --sweep, --bow: the sections' moves along the span (mm)
   bool points = false, mesh = false;   ///< --points, --mesh
   std::string grid;                    ///< --grid chordwise|spanwise: a structured surface grid
   int rows = 0;                        ///< --rows N: sparse rows (0 = none)

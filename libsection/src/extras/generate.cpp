@@ -31,6 +31,8 @@ SectionDesign BladeDesign::at(double z) const {
   d.max_thickness = mix(hub.max_thickness, tip.max_thickness);
   d.max_thickness_pos = mix(hub.max_thickness_pos, tip.max_thickness_pos);
   d.offset = hub.offset + w * (tip.offset - hub.offset);
+  if (stacking.lean != 0 || stacking.sweep != 0 || stacking.bow != 0)  // linear in t, not smoothstep
+    d.offset += Eigen::Vector2d(stacking.sweep * t, stacking.lean * t + 4 * stacking.bow * t * (1 - t));
   return d;
 }
 

@@ -476,6 +476,8 @@ template struct TableSchema<DeviationRow>;
 template struct TableSchema<ZoneRow>;
 template struct TableSchema<ComparedRow>;
 template struct TableSchema<VerdictRow>;
+template struct TableSchema<BladeRow>;
+template struct TableSchema<StackRow>;
 
 const TableSchema<FrameRow> frames{"frames", "slice", "the plane frame of each section", frame_columns};
 const TableSchema<MeridianRow> meridians{
@@ -544,7 +546,8 @@ static std::vector<TableDoc> stage_tables() {
 std::vector<TableDoc> tables() {
   std::vector<TableDoc> out = stage_tables();
   for (TableDoc d : {fits.doc(), deviations.doc(), zones.doc(), compared.doc(), verdicts.doc()})
-    out.push_back(std::move(d));  // compare's tables
+    out.push_back(std::move(d));                                                 // compare's tables
+  for (TableDoc d : {blade.doc(), stacking.doc()}) out.push_back(std::move(d));  // blade's
   return out;
 }
 

@@ -35,11 +35,21 @@ struct SectionDesign {
   Eigen::Vector2d offset{0, 0};     ///< position of c(0)
 };
 
+/// How a blade's sections are moved along the span on top of the hub-to-tip blend, in mm
+/// (docs/BLADE.md): at t = z / span each section moves by sweep t along +u (axial) and by
+/// lean t + 4 bow t (1 - t) along +v (tangential). Zero: no move.
+struct StackingLaw {
+  double lean = 0;   ///< tangential move at the tip, linear in t
+  double sweep = 0;  ///< axial move at the tip, linear in t
+  double bow = 0;    ///< tangential move at mid-span of the parabola 4 t (1 - t), 0 at hub and tip
+};
+
 /// A blade: section designs at the hub (z = 0) and the tip (z = span), blended smoothly.
 struct BladeDesign {
   SectionDesign hub;                 ///< design at z = 0
   SectionDesign tip;                 ///< design at z = span
   double span = 60;                  ///< blade height along z
+  StackingLaw stacking;              ///< lean, sweep and bow of the sections (twist: hub/tip stagger)
   SectionDesign at(double z) const;  ///< the design of the section at height z
 };
 

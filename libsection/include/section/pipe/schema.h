@@ -13,6 +13,7 @@
 #include "section/morphology.h"
 #include "section/params.h"
 #include "section/smooth.h"
+#include "section/stacking.h"
 
 #include <Eigen/Core>
 
@@ -268,6 +269,16 @@ struct VerdictRow {
   int passed, failed, not_measured;
 };
 
+// blade's rows (docs/BLADE.md).
+struct BladeRow {
+  int section;
+  const StackedValues& values;
+};
+struct StackRow {
+  std::size_t index;
+  const StackSample& sample;
+};
+
 // The tables, in the order the tools write them.
 extern const TableSchema<FrameRow> frames;
 extern const TableSchema<MeridianRow> meridians;
@@ -291,6 +302,9 @@ extern const TableSchema<DeviationRow> deviations;
 extern const TableSchema<ZoneRow> zones;
 extern const TableSchema<ComparedRow> compared;
 extern const TableSchema<VerdictRow> verdicts;
+// blade's tables (src/pipe/schema_blade.cpp).
+extern const TableSchema<BladeRow> blade;
+extern const TableSchema<StackRow> stacking;
 
 /// Every table above as docs/FORMAT.md lists it, in that order.
 std::vector<TableDoc> tables();
