@@ -101,23 +101,6 @@ LasHeader read_header(ByteSource& src, const CloudReadOptions& opt) {
   return h;
 }
 
-// X * scale + offset for one axis. With a decimal scale (0.001, 0.0001: 1 / scale an
-// integer) and an offset on its grid, (X + offset / scale) / (1 / scale) is the coordinate
-// correctly rounded: the double that parsing the same decimal from text gives.
-struct Axis {
-  double scale, offset, inv = 0, shift = 0;
-  bool exact = false;
-  Axis(double s, double o) : scale(s), offset(o) {
-    inv = std::round(1 / s);
-    shift = std::round(o * inv);
-    exact = inv >= 1 && inv <= 1e9 && std::abs(1 / s - inv) <= 1e-9 * inv &&
-            std::abs(o * inv - shift) <= 1e-6 && std::abs(shift) < 1e15;
-  }
-  double operator()(std::int32_t v) const {
-    return exact ? (static_cast<double>(v) + shift) / inv : v * scale + offset;
-  }
-};
-
 }  // namespace
 
 std::size_t read_las_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
@@ -132,7 +115,8 @@ std::size_t read_las_cloud(ByteSource& src, const CloudReadOptions& opt, const P
     skip -= n;
   }
   Chunker out(fn, opt.chunk_points);
-  const Axis axis[3] = {{h.scale[0], h.offset[0]}, {h.scale[1], h.offset[1]}, {h.scale[2], h.offset[2]}};
+  const ScaledAxis axis[3] = {
+      {h.scale[0], h.offset[0]}, {h.scale[1], h.offset[1]}, {h.scale[2], h.offset[2]}};
   unsigned long long done = 0;
   while (done < h.count) {
     std::size_t n =
