@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The input formats read from files written by other tools (tests/data/formats/, made by
-// scripts/make_format_fixtures.py with laspy, pypcd4, Python's csv module and numpy): each
+// scripts/make_format_fixtures.py with laspy, pypcd4, pye57, Python's csv module and numpy): each
 // gives the points of blade.xyz, exactly or to its format's precision; and bad files are
 // refused with a message naming the file and what is wrong.
 #include "section/cloud.h"
@@ -35,12 +35,15 @@ std::string cloud_error(const std::string& bytes, const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("formats: PTS, LAS, ascii PCD, semicolon and tab text give blade.xyz's points exactly",
-          "[formats]") {
+TEST_CASE(
+    "formats: PTS, LAS, ascii PCD, E57 (ScaledInteger), semicolon and tab text give blade.xyz's "
+    "points exactly",
+    "[formats]") {
   const Cloud xyz = read_cloud(dir + "blade.xyz");
   REQUIRE(xyz.points.size() > 4000);
-  for (const char* name : {"blade.pts", "blade_12_f3.las", "blade_14_f6.las", "blade_ascii.pcd",
-                           "blade_semicolon.csv", "blade_semicolon.txt", "blade_tab.txt"}) {
+  for (const char* name :
+       {"blade.pts", "blade_12_f3.las", "blade_14_f6.las", "blade_ascii.pcd", "blade_scaled.e57",
+        "blade_semicolon.csv", "blade_semicolon.txt", "blade_tab.txt"}) {
     INFO(name);
     const Cloud c = read_cloud(dir + name);
     REQUIRE(c.points.size() == xyz.points.size());
@@ -139,4 +142,63 @@ TEST_CASE("formats: LAS takes its record length and offset from the header", "[f
   double offset = 0;
   std::memcpy(&offset, las.data() + 163, 8);
   CHECK(offset == -5);
+}
+
+TEST_CASE("formats: E57 scans with poses, double, float, scaled and spherical, give blade.xyz's points",
+          "[formats][e57]") {
+  // blade_scans.e57 (pye57): the points in four scans, each in its own frame and posed back
+  // into the file's: doubles with 5 invalid points among them, floats, ScaledInteger (1e-6),
+  // spherical (range, azimuth, elevation). Read: merged in file order, invalid points dropped.
+  const Cloud xyz = read_cloud(dir + "blade.xyz");
+  const Cloud c = read_cloud(dir + "blade_scans.e57");
+  REQUIRE(c.points.size() == xyz.points.size());
+  const std::size_t quarter = (xyz.points.size() + 3) / 4;
+  double worst[4] = {0, 0, 0, 0};
+  for (std::size_t i = 0; i < c.points.size(); ++i) {
+    double& w = worst[std::min<std::size_t>(i / quarter, 3)];
+    w = std::max(w, (c.points[i] - xyz.points[i]).norm());
+  }
+  CHECK(worst[0] < 1e-9);  // double
+  CHECK(worst[1] < 1e-5);  // float: coordinates up to ~70 mm in the scan's frame, ulp 8e-6 mm
+  CHECK(worst[2] < 2e-6);  // 1e-6 mm steps
+  CHECK(worst[3] < 1e-9);  // double range and angles
+  // Standard input: by its first bytes.
+  const std::string bytes = bytes_of(dir + "blade_scans.e57");
+  CHECK(parse_cloud(bytes, "-", {}).points.size() == xyz.points.size());
+}
+
+TEST_CASE("formats: bad E57 files are refused by name and place", "[formats][e57]") {
+  CHECK_THAT(cloud_error(bytes_of(dir + "codec.e57"), "c.e57"),
+             Catch::Contains("c.e57: E57 scan 1 ('tiny'): its points use the codec 'zLibCodec', which is not "
+                             "supported (only bitPackCodec is)"));
+  CHECK_THAT(cloud_error(bytes_of(dir + "no_z.e57"), "z.e57"),
+             Catch::Contains("z.e57: E57 scan 1 ('tiny'): its points have neither cartesianX, Y and Z"));
+  CHECK_THAT(cloud_error(bytes_of(dir + "packet.e57"), "p.e57"),
+             Catch::Contains("p.e57: E57 scan 1 ('tiny')'s data packet at byte 80 holds 7 bytestreams, its "
+                             "prototype 3 fields"));
+  const std::string e57 = bytes_of(dir + "blade_scans.e57");
+  CHECK_THAT(
+      cloud_error(e57.substr(0, 50000), "t.e57"),
+      Catch::Contains("t.e57: E57 header declares 82944 bytes but the file holds only 50000 (truncated"));
+  std::string flipped = e57;
+  flipped[5000] = static_cast<char>(flipped[5000] ^ 4);
+  CHECK_THAT(cloud_error(flipped, "f.e57"),
+             Catch::Contains("f.e57: E57 page 4 (bytes 4096 to 5119) fails its CRC-32C checksum (corrupt"));
+  std::string v2 = e57;
+  v2[8] = 2;
+  CHECK_THAT(cloud_error(v2, "v.e57"), Catch::Contains("v.e57: E57 version 2.0 is not supported"));
+  CHECK_THAT(cloud_error(e57.substr(0, 20), "h.e57"),
+             Catch::Contains("h.e57: E57 header ends after 20 bytes"));
+}
+
+TEST_CASE("formats: a truncated or corrupt E57 file is refused, never crashes", "[formats][e57]") {
+  const std::string e57 = bytes_of(dir + "blade_scans.e57");
+  for (std::size_t cut = 8; cut < e57.size(); cut += 997)
+    CHECK_THAT(cloud_error(e57.substr(0, cut), "t.e57"), Catch::Contains("t.e57: E57 "));
+  for (std::size_t at = 0; at < e57.size(); at += 1231) {
+    std::string bad = e57;
+    bad[at] = static_cast<char>(bad[at] ^ 0x5A);
+    INFO(at);
+    CHECK_THAT(cloud_error(bad, "b.e57"), Catch::Contains("b.e57: E57 "));
+  }
 }
