@@ -117,6 +117,14 @@ TEST_CASE("formats: bad LAS files and LAZ are refused by name", "[formats]") {
   laz[104] = static_cast<char>(laz[104] | 0x80);  // what LASzip marks a compressed file with
   CHECK_THAT(cloud_error(laz, "c.laz"),
              Catch::Contains("c.laz: LAZ (LASzip-compressed LAS) is not supported"));
+  for (const char* real : {"blade_12_f3.laz", "blade_14_f6.laz"}) {  // written by laspy with lazrs
+    INFO(real);
+    CHECK_THAT(cloud_error(bytes_of(dir + real), real),
+               Catch::Contains(std::string(real) +
+                               ": LAZ (LASzip-compressed LAS) is not supported: decompress it to "
+                               "LAS first (laszip -i " +
+                               real + " -o FILE.las; pdal translate"));
+  }
   std::string short_record = las;
   short_record[105] = 20;  // a record shorter than format 6's 30 bytes
   short_record[106] = 0;
