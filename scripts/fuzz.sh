@@ -14,7 +14,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR="${FUZZ_BUILD_DIR:-build-fuzz}"
-TARGETS=(fuzz_xyz fuzz_csv_cloud fuzz_ply fuzz_stl fuzz_obj_off fuzz_pipe fuzz_parts fuzz_planes)
+TARGETS=(fuzz_xyz fuzz_csv_cloud fuzz_ply fuzz_e57 fuzz_stl fuzz_obj_off fuzz_pipe fuzz_parts fuzz_planes)
 
 # Seed files from the robustness corpus (and the example data) by target.
 seeds_for() {

@@ -59,6 +59,7 @@ std::uint32_t crc32c_table(const unsigned char* p, std::size_t n) {
 }
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define SECTION_CRC32C_SSE42 1
 __attribute__((target("sse4.2"))) std::uint32_t crc32c_sse42(const unsigned char* p, std::size_t n) {
   std::uint64_t c = 0xFFFFFFFFu;
   for (; n >= 8; p += 8, n -= 8)
@@ -68,14 +69,6 @@ __attribute__((target("sse4.2"))) std::uint32_t crc32c_sse42(const unsigned char
   return c32 ^ 0xFFFFFFFFu;
 }
 
-std::uint32_t crc32c(const unsigned char* p, std::size_t n) {
-  static const bool sse42 = __builtin_cpu_supports("sse4.2");
-  return sse42 ? crc32c_sse42(p, n) : crc32c_table(p, n);
-}
-#else
-std::uint32_t crc32c(const unsigned char* p, std::size_t n) {
-  return crc32c_table(p, n);
-}
 #endif
 
 // The logical bytes of an E57 file: its pages without their checksums, each page's
@@ -140,7 +133,7 @@ private:
       const auto* p = reinterpret_cast<const unsigned char*>(block_ + k * page_);
       const std::uint32_t stored = std::uint32_t(p[page_ - 4]) << 24 | std::uint32_t(p[page_ - 3]) << 16 |
                                    std::uint32_t(p[page_ - 2]) << 8 | p[page_ - 1];
-      if (crc32c(p, page_ - 4) != stored)
+      if (e57_crc32c(p, page_ - 4) != stored)
         fail(name_, "page " + std::to_string(first_ + k) + " (bytes " + std::to_string((first_ + k) * page_) +
                         " to " + std::to_string((first_ + k + 1) * page_ - 1) +
                         ") fails its CRC-32C checksum (corrupt file?)");
@@ -336,6 +329,14 @@ void ScanReader::decode(Chunker& out) {
 }
 
 }  // namespace
+
+std::uint32_t e57_crc32c(const unsigned char* p, std::size_t n) {
+#ifdef SECTION_CRC32C_SSE42
+  static const bool sse42 = __builtin_cpu_supports("sse4.2");
+  if (sse42) return crc32c_sse42(p, n);
+#endif
+  return crc32c_table(p, n);
+}
 
 std::size_t read_e57_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn&) {

@@ -4,6 +4,7 @@
 // through tinyxml2) and the binary sections holding its points (cloud_e57.cpp).
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -36,6 +37,10 @@ struct E57Scan {
   int invalid = -1;             ///< field of cartesianInvalidState (or sphericalInvalidState); -1: none
   bool spherical = false;       ///< coordinates are range, azimuth, elevation (radians)
 };
+
+/// The CRC-32C (Castagnoli) of `n` bytes: what an E57 page holds after its logical bytes,
+/// big endian.
+std::uint32_t e57_crc32c(const unsigned char* p, std::size_t n);
 
 /// The scans of an E57 file from its XML section `xml` (of the file `name`, for messages):
 /// each child of /data3D with its pose and its points' prototype. Throws section::Error
