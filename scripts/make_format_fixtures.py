@@ -138,7 +138,8 @@ def e57_scan(e57, name, fields, pose):
 
 def write_e57(pts):
     """blade_scaled.e57: one scan, no pose, ScaledInteger coordinates on the 0.1 um grid (the
-    points exactly). blade_scans.e57: the points in four scans, each in its own frame with a
+    points exactly). blade_metres.e57: the points in metres, E2807's unit (the other files
+    hold millimetres, as blade.xyz). blade_scans.e57: the points in four scans, each in its own frame with a
     pose (rotation and translation) taking it to the file's: double coordinates with invalid
     points (cartesianInvalidState 2) among them, single floats, ScaledInteger (scale 1e-6
     mm, an offset), and spherical coordinates (range, azimuth, elevation)."""
@@ -154,6 +155,15 @@ def write_e57(pts):
     imf = e57.image_file
     e57_scan(e57, "scaled", {f"cartesian{a}": (pts[:, k], scaled(imf, pts[:, k], 1e-4, 0.0))
                              for k, a in enumerate("XYZ")}, None)
+    e57.close()
+
+    # E2807's unit, metres: one scan of doubles, pose a translation.
+    path = OUT / "blade_metres.e57"
+    e57 = pye57.E57(str(path), mode="w")
+    imf = e57.image_file
+    m = pts / 1000 - [0.001, 0.002, 0.003]
+    e57_scan(e57, "metres", {f"cartesian{c}": (m[:, k].copy(), libe57.FloatNode(imf, 0.0))
+                             for k, c in enumerate("XYZ")}, ((1, 0, 0, 0), (0.001, 0.002, 0.003)))
     e57.close()
 
     path = OUT / "blade_scans.e57"

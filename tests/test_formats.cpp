@@ -33,6 +33,12 @@ std::string cloud_error(const std::string& bytes, const std::string& name) {
   return thrown([&] { parse_cloud(bytes, name, {}); });
 }
 
+// `bytes` with the byte at `at` set to `value`.
+std::string with_byte(std::string bytes, std::size_t at, int value) {
+  bytes.at(at) = static_cast<char>(value);
+  return bytes;
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -188,13 +194,10 @@ TEST_CASE("formats: bad E57 files are refused by name and place", "[formats][e57
   CHECK_THAT(
       cloud_error(e57.substr(0, 50000), "t.e57"),
       Catch::Contains("t.e57: E57 header declares 82944 bytes but the file holds only 50000 (truncated"));
-  std::string flipped = e57;
-  flipped[5000] = static_cast<char>(flipped[5000] ^ 4);
-  CHECK_THAT(cloud_error(flipped, "f.e57"),
+  CHECK_THAT(cloud_error(with_byte(e57, 5000, e57[5000] ^ 4), "f.e57"),
              Catch::Contains("f.e57: E57 page 4 (bytes 4096 to 5119) fails its CRC-32C checksum (corrupt"));
-  std::string v2 = e57;
-  v2[8] = 2;
-  CHECK_THAT(cloud_error(v2, "v.e57"), Catch::Contains("v.e57: E57 version 2.0 is not supported"));
+  CHECK_THAT(cloud_error(with_byte(e57, 8, 2), "v.e57"),
+             Catch::Contains("v.e57: E57 version 2.0 is not supported"));
   CHECK_THAT(cloud_error(e57.substr(0, 20), "h.e57"),
              Catch::Contains("h.e57: E57 header ends after 20 bytes"));
 }
@@ -204,9 +207,7 @@ TEST_CASE("formats: a truncated or corrupt E57 file is refused, never crashes", 
   for (std::size_t cut = 8; cut < e57.size(); cut += 997)
     CHECK_THAT(cloud_error(e57.substr(0, cut), "t.e57"), Catch::Contains("t.e57: E57 "));
   for (std::size_t at = 0; at < e57.size(); at += 1231) {
-    std::string bad = e57;
-    bad[at] = static_cast<char>(bad[at] ^ 0x5A);
     INFO(at);
-    CHECK_THAT(cloud_error(bad, "b.e57"), Catch::Contains("b.e57: E57 "));
+    CHECK_THAT(cloud_error(with_byte(e57, at, e57[at] ^ 0x5A), "b.e57"), Catch::Contains("b.e57: E57 "));
   }
 }

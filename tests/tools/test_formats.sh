@@ -66,6 +66,12 @@ expect 0 "pipe on blade_binary.pcd" -- params "$D/blade_binary.pcd" "$TMP/bin.cs
 check "float PCD gives the same chord, thickness, camber length, stagger to 1e-4" -- close "$TMP/ref.csv" "$TMP/bin.csv"
 expect 0 "slice blade_scans.e57" -- sections "$D/blade_scans.e57" "$TMP/scans.out"
 check "E57 in four posed scans gives the same sections, their points to 1e-5 mm" -- near "$TMP/ref" "$TMP/scans.out"
+# E57's unit is the metre (E2807): a part under 1 m across is read as metres, its --at too.
+"$BIN/slice" "$D/blade_metres.e57" --at 0.015,0.03,0.045 2> "$TMP/metres.err" | grep -v '^# history' > "$TMP/metres.out"
+check "its stream notes the unit" -- grep -q "^# units_from m " "$TMP/metres.out"
+grep -v '^# units_from' "$TMP/metres.out" > "$TMP/metres.mm"
+check "E57 in metres gives the same sections in mm, their points to 1e-5 mm" -- near "$TMP/ref" "$TMP/metres.mm"
+check "and says on stderr it read metres" -- grep -q "taken to be in metres" "$TMP/metres.err"
 expect 0 "pipe on blade_scans.e57" -- params "$D/blade_scans.e57" "$TMP/e57.csv"
 check "E57 in four posed scans gives the same chord, thickness, camber length, stagger to 1e-4" -- \
   close "$TMP/ref.csv" "$TMP/e57.csv"

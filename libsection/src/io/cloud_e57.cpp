@@ -33,13 +33,6 @@ namespace {
   throw Error("read_cloud: " + name + ": E57 " + what);
 }
 
-template <class T>
-T le(const char* p) {
-  T v;
-  std::memcpy(&v, p, sizeof v);  // little endian, as the host
-  return v;
-}
-
 // CRC-32C (Castagnoli, reflected polynomial 0x82F63B78): a table a byte at a time, or the
 // SSE 4.2 instruction where the processor has it (50 times faster: the checksums of a
 // 100 MB file take 10 ms, not 0.5 s).
@@ -325,7 +318,12 @@ void ScanReader::decode(Chunker& out) {
     out.add(q.x(), q.y(), q.z());
   }
   done_ += ready;
-  for (Reading& r : read_) r.compact();
+  for (Reading& r : read_) {
+    r.compact();
+    if (r.stream.bytes.size() > (std::size_t(1) << 26))  // writers fill each packet with every field
+      fail(name_, scan_.label + "'s bytestreams are out of step: 64 MiB of its field " + r.field->name +
+                      " wait for the others (corrupt file?)");
+  }
 }
 
 }  // namespace

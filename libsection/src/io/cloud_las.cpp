@@ -27,13 +27,6 @@ namespace {
   throw Error("read_cloud: " + name + ": " + what);
 }
 
-template <class T>
-T le(const char* p) {
-  T v;
-  std::memcpy(&v, p, sizeof v);  // little endian, as the host
-  return v;
-}
-
 struct LasHeader {
   int major = 0, minor = 0;
   unsigned header_size = 0;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -53,6 +54,14 @@ private:
   std::vector<Eigen::Vector3d> buf_;
   std::size_t total_ = 0;
 };
+
+/// The value of type T at `p`, little endian (as the host: the binary readers' formats).
+template <class T>
+T le(const char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
 
 /// One axis of integer coordinates: x = raw * scale + offset (LAS records, E57 ScaledInteger
 /// fields). With a decimal scale (0.001, 0.0001: 1 / scale an integer) and an offset on its

@@ -81,8 +81,9 @@ CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudRead
 
 /// The largest side of the bounding box of a cloud file, estimated from points spread over
 /// it (a binary PLY's as peek_cloud reads them; a text file's from blocks read at evenly
-/// spaced places), in the file's numbers times options.scale: enough to tell its likely unit
-/// (units.h). 0 when no sample can be read (standard input, an unreadable file).
+/// spaced places; an E57 file's from all its points, read once more), in the file's numbers
+/// times options.scale: enough to tell its likely unit (units.h). 0 when no sample can be
+/// read (standard input, an unreadable file, LAS).
 double sample_extent(const std::string& path, const CloudReadOptions& options = {});
 
 /// Reads the whole cloud of `path` ("-" = standard input). Throws as read_cloud_chunks.
