@@ -24,7 +24,7 @@ seeds_for() {
     fuzz_ply) ls tests/robustness/*.ply data/*.ply 2>/dev/null ;;
     fuzz_pts) ls tests/data/formats/*.pts 2>/dev/null ;;
     fuzz_pcd) ls tests/data/formats/*.pcd 2>/dev/null ;;
-    fuzz_las) ls tests/data/formats/*.las 2>/dev/null ;;
+    fuzz_las) ls tests/data/formats/*.las tests/data/formats/*.laz 2>/dev/null ;;
     fuzz_e57) ls tests/data/formats/*.e57 2>/dev/null ;;
     fuzz_stl) ls tests/robustness/*.stl 2>/dev/null ;;
     fuzz_obj_off) ls tests/robustness/*.obj tests/robustness/*.off 2>/dev/null ;;

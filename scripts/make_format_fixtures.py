@@ -256,16 +256,50 @@ def write_bad_e57(pts):
 
 
 def write_laz(pts):
-    """The LAS fixtures' points compressed by lazrs (LASzip's format): point format 3 (LAS
-    1.2) and 6 (LAS 1.4, layered chunks)."""
-    for version, point_format, name in (("1.2", 3, "blade_12_f3.laz"), ("1.4", 6, "blade_14_f6.laz")):
-        header = laspy.LasHeader(version=version, point_format=point_format)
-        header.scales = np.array([1e-4, 1e-4, 1e-4])
-        header.offsets = np.array([0.0, 0.0, 0.0])
-        las = laspy.LasData(header)
-        las.x, las.y, las.z = pts[:, 0], pts[:, 1], pts[:, 2]
-        las.intensity = np.arange(len(pts)) % 65536
-        las.write(str(OUT / name), laz_backend=laspy.LazBackend.Lazrs)
+    """The blade's points compressed by lazrs (LASzip's format). blade_12_f3.laz: point format
+    3 (LAS 1.2) with 4 extra bytes a record, in chunks of 1000 points (lazrs's VLR edited: its
+    default is 50000), intensity, returns, classification, scan angle, GPS time (steps and
+    jumps) and colour varying, so that every item's decoder and each chunk's restart is
+    exercised. blade_14_f6.laz: point format 6 (LAS 1.4, layered chunks)."""
+    import lazrs
+    rng = np.random.default_rng(24)
+    n = len(pts)
+    new_vlr = lazrs.LazVlr.new_for_compression
+
+    def chunks_of_1000(point_format, extra_bytes):
+        data = bytearray(new_vlr(point_format, extra_bytes).record_data())
+        struct.pack_into("<I", data, 12, 1000)
+        return lazrs.LazVlr(bytes(data))
+
+    header = laspy.LasHeader(version="1.2", point_format=3)
+    header.scales = np.array([1e-4, 1e-4, 1e-4])
+    header.offsets = np.array([0.0, 0.0, 0.0])
+    header.add_extra_dim(laspy.ExtraBytesParams(name="deviation", type=np.float32))
+    las = laspy.LasData(header)
+    las.x, las.y, las.z = pts[:, 0], pts[:, 1], pts[:, 2]
+    las.intensity = (rng.random(n) * 65535).astype(np.uint16) * (rng.random(n) < 0.5)
+    las.return_number = rng.integers(1, 4, n)
+    las.number_of_returns = np.maximum(las.return_number, rng.integers(1, 6, n))
+    las.classification = rng.integers(0, 10, n) * (rng.random(n) < 0.3)
+    las.scan_angle_rank = rng.integers(-90, 90, n) * (rng.random(n) < 0.2)
+    las.scan_direction_flag = rng.random(n) < 0.5
+    las.gps_time = 4e5 + np.cumsum(rng.choice([0, 1e-5, 2e-5, 1.0, 1e6, -3e-5], n, p=[.3, .3, .2, .1, .05, .05]))
+    las.red = rng.integers(0, 65535, n) * (rng.random(n) < 0.3)
+    las.green = las.red // 2
+    las.blue = rng.integers(0, 65535, n)
+    las.deviation = rng.normal(0, 1, n).astype(np.float32)
+    lazrs.LazVlr.new_for_compression = chunks_of_1000
+    try:
+        las.write(str(OUT / "blade_12_f3.laz"), laz_backend=laspy.LazBackend.Lazrs)
+    finally:
+        lazrs.LazVlr.new_for_compression = new_vlr
+    header = laspy.LasHeader(version="1.4", point_format=6)
+    header.scales = np.array([1e-4, 1e-4, 1e-4])
+    header.offsets = np.array([0.0, 0.0, 0.0])
+    las = laspy.LasData(header)
+    las.x, las.y, las.z = pts[:, 0], pts[:, 1], pts[:, 2]
+    las.intensity = np.arange(n) % 65536
+    las.write(str(OUT / "blade_14_f6.laz"), laz_backend=laspy.LazBackend.Lazrs)
 
 
 def main():

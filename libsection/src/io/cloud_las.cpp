@@ -1,16 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The LAS cloud reader: ASPRS LAS 1.0-1.4, point data record formats 0-10, uncompressed.
+// The LAS cloud reader: ASPRS LAS 1.0-1.4, point data record formats 0-10, uncompressed,
+// and LAZ (LASzip marks its record format with bit 7) of formats 0-3 through cloud_laz.cpp.
 // Read from the ASPRS LAS 1.4 specification (R15) directly: no LAS library is packaged for
 // Debian 12. The public header block gives where the points start, their record format and
 // length (taken from the header, never assumed: records may carry extra bytes), their count
 // (the 64-bit count of LAS 1.4 when set, else the legacy 32-bit one) and the scale and
 // offset that turn each record's 32-bit integers X, Y, Z (the first 12 bytes of every
-// record format) into coordinates: x = X * x_scale + x_offset. A LAZ file (LASzip marks its
-// record format with bit 7) is refused: decompress it first. No LAZ decoder is a Debian 12
-// package (LASzip and laz-perf are not; the PyPI sdist of LASzip's bindings holds its 35k
-// lines of C++), and its arithmetic-coded point compressors (point10 for formats 0-5, the
-// layered point14 for 6-10: some 3000 lines in LASzip) are a reader of their own, not yet
-// written.
+// record format) into coordinates: x = X * x_scale + x_offset.
+#include "io/cloud_laz.h"
 #include "io/cloud_readers.h"
 
 #include "section/error.h"
@@ -26,15 +23,6 @@ namespace {
 [[noreturn]] void fail(const std::string& name, const std::string& what) {
   throw Error("read_cloud: " + name + ": " + what);
 }
-
-struct LasHeader {
-  int major = 0, minor = 0;
-  unsigned header_size = 0;
-  unsigned long long data_offset = 0, count = 0;
-  int format = 0;
-  std::size_t record = 0;
-  double scale[3] = {1, 1, 1}, offset[3] = {0, 0, 0};
-};
 
 // The smallest record of each point data format (LAS 1.4, tables 7-24).
 constexpr std::size_t min_record[11] = {20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67};
@@ -58,11 +46,8 @@ LasHeader read_header(ByteSource& src, const CloudReadOptions& opt) {
   h.header_size = le<std::uint16_t>(p + 94);
   h.data_offset = le<std::uint32_t>(p + 96);
   const int id = static_cast<unsigned char>(p[104]);
-  if (id & 0xC0)
-    fail(name, "LAZ (LASzip-compressed LAS) is not supported: decompress it to LAS first (laszip -i " + name +
-                   " -o FILE.las; pdal translate " + name +
-                   " FILE.las; or Python's laspy with lazrs: laspy.read('" + name + "').write('FILE.las'))");
-  h.format = id;
+  h.compressed = (id & 0xC0) != 0;  // LASzip's mark
+  h.format = id & 0x3F;
   h.record = le<std::uint16_t>(p + 105);
   h.count = le<std::uint32_t>(p + 107);
   for (int c = 0; c < 3; ++c) {
@@ -88,7 +73,7 @@ LasHeader read_header(ByteSource& src, const CloudReadOptions& opt) {
   if (h.count > opt.max_points)
     fail(name, "LAS header declares " + std::to_string(h.count) + " points, more than the limit of " +
                    std::to_string(opt.max_points));
-  if (src.size() >= 0) {
+  if (src.size() >= 0 && !h.compressed) {
     const auto size = static_cast<unsigned long long>(src.size());
     const unsigned long long body = size > h.data_offset ? size - h.data_offset : 0;
     // Bytes after the points are allowed: LAS 1.3 and 1.4 put waveforms and extended VLRs there.
@@ -105,6 +90,7 @@ std::size_t read_las_cloud(ByteSource& src, const CloudReadOptions& opt, const P
                            const PointChunkFn&) {
   const std::string& name = src.name();
   const LasHeader h = read_header(src, opt);
+  if (h.compressed) return read_laz_points(src, h, opt, fn);
   // Skip to the points, past the variable length records.
   for (unsigned long long skip = h.data_offset; skip > 0;) {
     if (src.bytes().empty() && src.fetch(block_size) == 0) fail(name, "LAS file ends before its points");
