@@ -260,7 +260,7 @@ def write_laz(pts):
     3 (LAS 1.2) with 4 extra bytes a record, in chunks of 1000 points (lazrs's VLR edited: its
     default is 50000), intensity, returns, classification, scan angle, GPS time (steps and
     jumps) and colour varying, so that every item's decoder and each chunk's restart is
-    exercised. blade_14_f6.laz: point format 6 (LAS 1.4, layered chunks)."""
+    exercised. blade_14_f6.laz: point format 6 (LAS 1.4, LASzip's layered compression)."""
     import lazrs
     rng = np.random.default_rng(24)
     n = len(pts)

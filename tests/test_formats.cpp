@@ -123,10 +123,14 @@ TEST_CASE("formats: bad LAS files and LAZ are refused by name", "[formats]") {
   laz[104] = static_cast<char>(laz[104] | 0x80);  // what LASzip marks a compressed file with
   CHECK_THAT(cloud_error(laz, "c.laz"),
              Catch::Contains("c.laz: LAZ file without its LASzip VLR (corrupt file?)"));
-  // LAS 1.4 layered compression (point14 items), written by laspy with lazrs, is refused.
-  CHECK_THAT(cloud_error(bytes_of(dir + "blade_14_f6.laz"), "f6.laz"),
-             Catch::Contains("f6.laz: LAZ of point format 6 (LAS 1.4 layered compression) is not supported: "
-                             "decompress it to LAS first (laszip -i f6.laz -o FILE.las; pdal translate"));
+  // An item version LASzip's version-2 decoders do not read (version 1: LASzip 1.x) is refused.
+  std::string v1 = bytes_of(dir + "blade_12_f3.laz");
+  const std::size_t vlr = v1.find("laszip encoded");
+  REQUIRE(vlr != std::string::npos);
+  v1[vlr - 2 + 54 + 38] = 1;  // the first item's version
+  CHECK_THAT(cloud_error(v1, "v1.laz"),
+             Catch::Contains("v1.laz: LAZ item version 1 is not supported (2 is): decompress it to LAS first "
+                             "(laszip -i v1.laz -o FILE.las; pdal translate"));
   std::string short_record = las;
   short_record[105] = 20;  // a record shorter than format 6's 30 bytes
   short_record[106] = 0;
@@ -146,6 +150,14 @@ TEST_CASE("formats: bad LAS files and LAZ are refused by name", "[formats]") {
 TEST_CASE("formats: a truncated or corrupt LAZ file is refused or read, never crashes", "[formats][laz]") {
   // blade_12_f3.laz (lazrs): point format 3 with 4 extra bytes, 5 chunks of up to 1000 points.
   const std::string laz = bytes_of(dir + "blade_12_f3.laz");
+  const std::string f6 = bytes_of(dir + "blade_14_f6.laz");  // layered, one chunk
+  CHECK_THAT(cloud_error(f6.substr(0, f6.size() - 3000), "t6.laz"),
+             Catch::Contains("t6.laz: LAZ file ends inside its points (truncated file?)"));
+  for (std::size_t at = 400; at < f6.size(); at += 1111) {
+    INFO(at);
+    const std::string e = cloud_error(with_byte(f6, at, f6[at] ^ 0x5A), "b6.laz");
+    CHECK((e == "no error" || e.find("b6.laz: ") != std::string::npos));
+  }
   CHECK_THAT(cloud_error(laz.substr(0, 40000), "t.laz"),
              Catch::Contains("t.laz: LAZ file ends inside its points (truncated file?)"));
   std::uint32_t count = 0;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The LAS cloud reader: ASPRS LAS 1.0-1.4, point data record formats 0-10, uncompressed,
-// and LAZ (LASzip marks its record format with bit 7) of formats 0-3 through cloud_laz.cpp.
+// and LAZ (LASzip marks its record format with bit 7) of formats 0-3 and 6-8 through
+// cloud_laz.cpp.
 // Read from the ASPRS LAS 1.4 specification (R15) directly: no LAS library is packaged for
 // Debian 12. The public header block gives where the points start, their record format and
 // length (taken from the header, never assumed: records may carry extra bytes), their count

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The LAZ reader: LASzip-compressed LAS, point formats 0-3 (items point10, gpstime11,
-// rgb12 and extra bytes, each of LASzip's version 2), written again from LASzip's sources
-// (lasreadpoint.cpp, lasreaditemcompressed_v2.cpp, laszip_common_v2.hpp; rapidlasso GmbH,
-// Apache License 2.0): LAZ has no specification beside them, and no LAZ library is a Debian
-// 12 package. The LASzip VLR ("laszip encoded", 22204) lists the items of a record and the
-// chunk size; the points follow in chunks (after the 8-byte offset of the chunk table when
-// chunked), each its first point raw, then the others arithmetic-coded as differences from
-// the point before, in one stream for every item. Layered compression (LAS 1.4 formats
-// 6-10, LASzip's point14 items) and wave packets are refused, saying how to decompress.
+// The LAZ reader: LASzip-compressed LAS, point formats 0-3 (items point10, gpstime11, rgb12
+// and extra bytes, each of LASzip's version 2) and 6-8 (layered: point14, rgb14, rgbnir14
+// and extra bytes, version 3; cloud_laz14.cpp decodes the coordinates' layers), written
+// again from LASzip's sources (lasreadpoint.cpp, lasreaditemcompressed_v2.cpp and _v3.cpp,
+// laszip_common_v2.hpp and _v3.hpp; rapidlasso GmbH, Apache License 2.0): LAZ has no
+// specification beside them, and no LAZ library is a Debian 12 package. The LASzip VLR
+// ("laszip encoded", 22204) lists the items of a record and the chunk size; the points
+// follow in chunks (after the 8-byte offset of the chunk table when chunked), each its
+// first point raw, then the others arithmetic-coded as differences from the point before:
+// in one stream for every item (formats 0-3), or in one stream a field (layered, 6-8).
+// Wave packets (formats 4, 5, 9, 10), item versions 1 and 4 and variable chunks are refused,
+// saying how to decompress.
 #include "io/cloud_laz.h"
 
 #include "io/cloud_laz_codec.h"
@@ -25,6 +28,7 @@ namespace {
 
 using laz::Decoder;
 using laz::Integers;
+using laz::Median5;
 using laz::Model;
 
 [[noreturn]] void fail(const std::string& name, const std::string& what) {
@@ -50,64 +54,6 @@ struct Item {
   virtual void init(const unsigned char* item) = 0;
   virtual void read(Decoder& d, unsigned char* item) = 0;
 };
-
-// A streaming median of the last five values (LASzip's StreamingMedian5).
-struct Median5 {
-  std::array<std::int32_t, 5> v{};
-  bool high = true;
-  void add(std::int32_t x);
-  std::int32_t get() const { return v[2]; }
-};
-
-void Median5::add(std::int32_t x) {
-  if (high) {
-    if (x < v[2]) {
-      v[4] = v[3];
-      v[3] = v[2];
-      if (x < v[0]) {
-        v[2] = v[1];
-        v[1] = v[0];
-        v[0] = x;
-      } else if (x < v[1]) {
-        v[2] = v[1];
-        v[1] = x;
-      } else {
-        v[2] = x;
-      }
-    } else {
-      if (x < v[3]) {
-        v[4] = v[3];
-        v[3] = x;
-      } else {
-        v[4] = x;
-      }
-      high = false;
-    }
-  } else {
-    if (v[2] < x) {
-      v[0] = v[1];
-      v[1] = v[2];
-      if (v[4] < x) {
-        v[2] = v[3];
-        v[3] = v[4];
-        v[4] = x;
-      } else if (v[3] < x) {
-        v[2] = v[3];
-        v[3] = x;
-      } else {
-        v[2] = x;
-      }
-    } else {
-      if (v[1] < x) {
-        v[0] = v[1];
-        v[1] = x;
-      } else {
-        v[0] = x;
-      }
-      high = true;
-    }
-  }
-}
 
 // laszip_common_v2.hpp: by number of returns n and return number r.
 constexpr std::uint8_t return_map[8][8] = {{15, 14, 13, 12, 11, 10, 9, 8},  {14, 0, 1, 3, 6, 10, 10, 9},
@@ -416,17 +362,42 @@ LazVlr laszip_vlr(const std::string& head, const LasHeader& h, const std::string
   fail(name, "LAZ file without its LASzip VLR (corrupt file?)");
 }
 
+// The layers of each item of a layered (LAS 1.4) record, checked: point14 first, then
+// rgb14, rgbnir14 or byte14 (a layer a byte), each of LASzip's version 3 (wave packets are
+// refused).
+std::vector<unsigned> layered_items(const LazVlr& z, const LasHeader& h, const std::string& name) {
+  const std::string why = decompress_hint(name);
+  std::vector<unsigned> layers;
+  std::size_t record = 0;
+  for (const auto& [type, size, version] : z.items) {
+    static constexpr unsigned sizes[5] = {30, 6, 8, 29, 0};  // types 10-14
+    if (type < 10 || type > 14 || (type != 14 && size != sizes[type - 10]) || size == 0)
+      fail(name, "LAZ item " + std::to_string(type) + " of " + std::to_string(size) +
+                     " bytes in layered compression (corrupt file?)");
+    if (type == 13) fail(name, "LAZ of wave packets (point formats 9, 10) is not supported" + why);
+    if (version != 3)
+      fail(name, "LAZ layered item version " + std::to_string(version) + " is not supported (3 is)" + why);
+    layers.push_back(type == 10 ? 9 : type == 12 ? 2 : type == 14 ? size : 1);
+    record += size;
+  }
+  if (z.items.empty() || z.items[0][0] != 10 || record != h.record)
+    fail(name,
+         "LAZ items do not make its " + std::to_string(h.record) + "-byte point records (corrupt file?)");
+  return layers;
+}
+
 // The item readers of a record, checked against what is read here.
 std::vector<std::unique_ptr<Item>> item_readers(const LazVlr& z, const LasHeader& h,
                                                 const std::string& name) {
   const std::string why = decompress_hint(name);
-  if (z.compressor == 3 || h.format > 5)
-    fail(name, "LAZ of point format " + std::to_string(h.format) +
-                   " (LAS 1.4 layered compression) is not supported" + why);
-  if (z.compressor != 1 && z.compressor != 2)
+  if (h.format > 5 && z.compressor != 3)
+    fail(name,
+         "LAZ of point format " + std::to_string(h.format) + " without layered compression (corrupt file?)");
+  if (z.compressor != 1 && z.compressor != 2 && z.compressor != 3)
     fail(name, "LAZ compressor " + std::to_string(z.compressor) + " is unknown" + why);
-  if (z.compressor == 2 && (z.chunk == 0 || z.chunk == 0xFFFFFFFFu))
+  if (z.compressor >= 2 && (z.chunk == 0 || z.chunk == 0xFFFFFFFFu))
     fail(name, "LAZ with variable chunks is not supported" + why);
+  if (z.compressor == 3) return {};  // layered_items' items
   std::vector<std::unique_ptr<Item>> out;
   std::size_t record = 0;
   for (const auto& [type, size, version] : z.items) {
@@ -474,6 +445,45 @@ void check_chunk_table(ByteSource& src, std::int64_t at, std::uint64_t chunks) {
                          " chunks, its header's points make " + std::to_string(chunks) + " (corrupt file?)");
 }
 
+// The points of a layered LAZ file, chunk by chunk: the first record raw, the chunk's point
+// count, every item's layer sizes, then the layers (point14's XY and Z kept, the rest skipped).
+void read_layered(const std::function<unsigned char()>& byte, const LasHeader& h, const LazVlr& z,
+                  const std::vector<unsigned>& layers, const std::function<void(const std::int32_t*)>& emit) {
+  laz::Point14Xyz points;
+  std::vector<unsigned char> record(h.record);
+  std::string xy, zs;
+  const auto u32 = [&] {
+    std::uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v |= std::uint32_t(byte()) << (8 * i);
+    return v;
+  };
+  for (std::uint64_t done = 0; done < h.count;) {
+    const std::uint64_t want = std::min<std::uint64_t>(z.chunk, h.count - done);
+    for (unsigned char& b : record) b = byte();
+    if (u32() != want) throw Error("LAZ: a chunk's point count is not its header's");
+    std::vector<std::uint32_t> sizes;
+    for (const unsigned n : layers)
+      for (unsigned i = 0; i < n; ++i) sizes.push_back(u32());
+    for (std::size_t i = 0; i < sizes.size(); ++i) {
+      std::string* keep = i == 0 ? &xy : i == 1 ? &zs : nullptr;
+      if (keep) keep->assign(sizes[i], '\0');
+      for (std::uint32_t k = 0; k < sizes[i]; ++k) {
+        const unsigned char b = byte();
+        if (keep) (*keep)[k] = static_cast<char>(b);
+      }
+    }
+    points.init(record.data(), xy, zs);
+    const char* p = reinterpret_cast<const char*>(record.data());
+    std::int32_t xyz[3] = {le<std::int32_t>(p), le<std::int32_t>(p + 4), le<std::int32_t>(p + 8)};
+    emit(xyz);
+    for (std::uint64_t i = 1; i < want; ++i) {
+      points.next(xyz);
+      emit(xyz);
+    }
+    done += want;
+  }
+}
+
 }  // namespace
 
 std::size_t read_laz_points(ByteSource& src, const LasHeader& h, const CloudReadOptions& opt,
@@ -482,6 +492,8 @@ std::size_t read_laz_points(ByteSource& src, const LasHeader& h, const CloudRead
   const std::string head = head_bytes(src, h);
   const LazVlr z = laszip_vlr(head, h, name);
   std::vector<std::unique_ptr<Item>> items = item_readers(z, h, name);
+  const std::vector<unsigned> layers =
+      z.compressor == 3 ? layered_items(z, h, name) : std::vector<unsigned>();
   const auto byte = [&]() -> unsigned char {
     if (src.bytes().empty() && src.fetch(block_size) == 0)
       fail(name, "LAZ file ends inside its points (truncated file?)");
@@ -489,8 +501,8 @@ std::size_t read_laz_points(ByteSource& src, const LasHeader& h, const CloudRead
     src.consume(1);
     return b;
   };
-  const std::uint64_t chunk = z.compressor == 2 ? z.chunk : h.count;
-  if (z.compressor == 2) {  // the chunk table's offset: the chunks are read in order, without it
+  const std::uint64_t chunk = z.compressor >= 2 ? z.chunk : h.count;
+  if (z.compressor >= 2) {  // the chunk table's offset: the chunks are read in order, without it
     char offset[8];
     for (char& c : offset) c = static_cast<char>(byte());
     check_chunk_table(src, le<std::int64_t>(offset), (h.count + chunk - 1) / chunk);
@@ -501,7 +513,10 @@ std::size_t read_laz_points(ByteSource& src, const LasHeader& h, const CloudRead
       {h.scale[0], h.offset[0]}, {h.scale[1], h.offset[1]}, {h.scale[2], h.offset[2]}};
   std::vector<unsigned char> record(h.record);
   try {
-    for (std::uint64_t done = 0; done < h.count; ++done) {
+    if (z.compressor == 3)
+      read_layered(byte, h, z, layers,
+                   [&](const std::int32_t* q) { out.add(axis[0](q[0]), axis[1](q[1]), axis[2](q[2])); });
+    for (std::uint64_t done = 0; z.compressor != 3 && done < h.count; ++done) {
       unsigned char* at = record.data();
       if (done % chunk == 0) {
         for (unsigned char& b : record) b = byte();

@@ -22,11 +22,12 @@ struct LasHeader {
 };
 
 /// Reads the points of a LAZ file whose header `h` was read from `src` (nothing consumed
-/// yet): its LASzip VLR, then its chunks, decoded as LASzip does (point10, gpstime11,
-/// rgb12 and byte items, version 2: point formats 0-3 with extra bytes). Each point's
-/// coordinates go to `fn` through the header's scales and offsets. Throws section::Error
-/// for what it cannot read (layered LAS 1.4 compression of formats 6-10, wave packets,
-/// item version 1, variable chunks) and for a truncated or corrupt file.
+/// yet): its LASzip VLR, then its chunks, decoded as LASzip does (point formats 0-3:
+/// point10, gpstime11, rgb12 and byte items of version 2; 6-8: the layered point14's
+/// coordinates, version 3, its other layers and items skipped). Each point's coordinates go
+/// to `fn` through the header's scales and offsets. Throws section::Error for what it cannot
+/// read (wave packets, other item versions, variable chunks) and for a truncated or corrupt
+/// file.
 std::size_t read_laz_points(ByteSource& src, const LasHeader& h, const CloudReadOptions& opt,
                             const PointChunkFn& fn);
 

@@ -8,6 +8,7 @@
 // numbers come out bit for bit.
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace section::detail::laz {
@@ -29,6 +30,14 @@ struct Model {
   std::vector<std::uint32_t>
       table;  ///< more than 16 symbols: where to start the search, by the value's top bits
   std::uint32_t total = 0, update_cycle = 0, until_update = 0, table_shift = 0;
+};
+
+/// A streaming median of the last five values (LASzip's StreamingMedian5).
+struct Median5 {
+  std::int32_t v[5] = {0, 0, 0, 0, 0};
+  bool high = true;
+  void add(std::int32_t x);
+  std::int32_t get() const { return v[2]; }
 };
 
 /// The arithmetic decoder over a byte source (`next_byte` throws at the end of the input).
@@ -71,6 +80,36 @@ private:
   std::vector<Model> k_models_;    // per context
   BitModel zero_;                  // k = 0
   std::vector<Model> correctors_;  // k = 1 .. corr_bits (index k - 1)
+};
+
+}  // namespace section::detail::laz
+
+namespace section::detail::laz {
+
+/// LASzip's layered point14 items (version 3: LAS 1.4 point formats 6-10), decoded for the
+/// coordinates only (lasreaditemcompressed_v3.cpp): each chunk holds its first record raw,
+/// then every field in its own arithmetic-coded layer; X and Y share a layer with the
+/// scanner channel and the returns (their contexts), Z has its own. The other layers are
+/// skipped.
+class Point14Xyz {
+public:
+  Point14Xyz();
+  ~Point14Xyz();
+  /// Starts a chunk from its raw first record `raw` (30 bytes) and the bytes of its XY and
+  /// Z layers (kept by the caller until the chunk is read).
+  void init(const unsigned char* raw, const std::string& xy, const std::string& z);
+  /// Decodes the next point's X, Y and Z.
+  void next(std::int32_t xyz[3]);
+
+private:
+  struct Context;
+  void start(unsigned channel, const Context& from);
+  std::vector<Context> contexts_;
+  unsigned current_ = 0;
+  std::size_t xy_at_ = 0, z_at_ = 0;
+  const std::string* xy_ = nullptr;
+  const std::string* z_ = nullptr;
+  Decoder xy_decoder_, z_decoder_;
 };
 
 }  // namespace section::detail::laz

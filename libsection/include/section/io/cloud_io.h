@@ -3,7 +3,7 @@
 /// @file io/cloud_io.h
 /// Point cloud readers and writers: XYZ/ASC text, CSV with an x,y,z header, PLY (ascii,
 /// binary little and big endian, float or double), Leica PTS, PCD (ascii, binary), LAS, LAZ
-/// (point formats 0-3), E57.
+/// (point formats 0-3, 6-8), E57.
 #include "section/cloud.h"
 
 #include <Eigen/Core>
@@ -24,7 +24,7 @@ enum class CloudFormat {
   ply,  ///< PLY vertices (ascii or binary, float or double)
   pts,  ///< Leica PTS: lines of one integer count the points after them, then x y z [i [r g b]]
   pcd,  ///< PCL's PCD (ascii or binary; not binary_compressed); NaN points are dropped
-  las,  ///< ASPRS LAS 1.0-1.4, point formats 0-10; LAZ (LASzip-compressed) of point formats 0-3
+  las,  ///< ASPRS LAS 1.0-1.4, point formats 0-10; LAZ (LASzip-compressed) of point formats 0-3, 6-8
   e57   ///< ASTM E2807 (E57): every scan's points, in the file's frame (each scan's pose applied)
 };
 
