@@ -142,6 +142,11 @@ void Point10::read(Decoder& d, unsigned char* item) {
   std::copy(last_, last_ + 20, item);
 }
 
+// t + d wrapping around, as LASzip's 64-bit sums do (a corrupt file's may overflow).
+void add(std::int64_t& t, std::int64_t d) {
+  t = static_cast<std::int64_t>(static_cast<std::uint64_t>(t) + static_cast<std::uint64_t>(d));
+}
+
 // gpstime11 (a double, coded as its 64 bits' integer differences in up to 4 sequences).
 class GpsTime : public Item {
 public:
@@ -199,7 +204,7 @@ void GpsTime::read(Decoder& d, unsigned char* item) {
       const int multi = static_cast<int>(d.symbol(zero_diff_));
       if (multi == 1) {
         diff_[last_] = ic_.decompress(d, 0, 0);
-        time_[last_] += diff_[last_];
+        add(time_[last_], diff_[last_]);
         extreme_[last_] = 0;
       } else if (multi == 2) {
         full(d);
@@ -211,7 +216,7 @@ void GpsTime::read(Decoder& d, unsigned char* item) {
     }
     int multi = static_cast<int>(d.symbol(multi_));
     if (multi == 1) {
-      time_[last_] += ic_.decompress(d, diff_[last_], 1);
+      add(time_[last_], ic_.decompress(d, diff_[last_], 1));
       extreme_[last_] = 0;
     } else if (multi < unchanged) {
       std::int32_t diff;
@@ -238,7 +243,7 @@ void GpsTime::read(Decoder& d, unsigned char* item) {
                                       static_cast<std::int32_t>(static_cast<std::uint32_t>(multi_minus) *
                                                                 static_cast<std::uint32_t>(last)),
                                       6));
-      time_[last_] += diff;
+      add(time_[last_], diff);
     } else if (multi == code_full) {
       full(d);
     } else if (multi > code_full) {
