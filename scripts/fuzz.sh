@@ -14,7 +14,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR="${FUZZ_BUILD_DIR:-build-fuzz}"
-TARGETS=(fuzz_xyz fuzz_csv_cloud fuzz_ply fuzz_stl fuzz_obj_off fuzz_pipe fuzz_parts fuzz_planes)
+TARGETS=(fuzz_xyz fuzz_csv_cloud fuzz_ply fuzz_e57 fuzz_stl fuzz_obj_off fuzz_pipe fuzz_parts fuzz_planes)
 
 # Seed files from the robustness corpus (and the example data) by target.
 seeds_for() {
@@ -24,7 +24,8 @@ seeds_for() {
     fuzz_ply) ls tests/robustness/*.ply data/*.ply 2>/dev/null ;;
     fuzz_pts) ls tests/data/formats/*.pts 2>/dev/null ;;
     fuzz_pcd) ls tests/data/formats/*.pcd 2>/dev/null ;;
-    fuzz_las) ls tests/data/formats/*.las 2>/dev/null ;;
+    fuzz_las) ls tests/data/formats/*.las tests/data/formats/*.laz 2>/dev/null ;;
+    fuzz_e57) ls tests/data/formats/*.e57 2>/dev/null ;;
     fuzz_stl) ls tests/robustness/*.stl 2>/dev/null ;;
     fuzz_obj_off) ls tests/robustness/*.obj tests/robustness/*.off 2>/dev/null ;;
     fuzz_pipe) ls tests/robustness/*stream* tests/robustness/*.dat 2>/dev/null ;;

@@ -7,7 +7,7 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PKGS=(build-essential cmake ninja-build ccache pkg-config
       libcgal-dev libeigen3-dev libopenmesh-dev libflann-dev liblz4-dev
-      libsuitesparse-dev libtbb-dev catch2 libcli11-dev python3 clang-format
+      libsuitesparse-dev libtbb-dev libtinyxml2-dev catch2 libcli11-dev python3 clang-format
       python3-dev python3-pip python3-pybind11 python3-numpy python3-pandas python3-pytest help2man)
 missing=()
 for p in "${PKGS[@]}"; do

@@ -201,10 +201,9 @@ TEST_CASE("formats: the extension picks the reader, the content when there is no
   CHECK(parse_cloud("4 5 6\n", "scan").points.at(0) == Eigen::Vector3d(4, 5, 6));  // else XYZ
   CHECK(parse_cloud("7,8,9\n", "SCAN.XYZN").points.at(0) == Eigen::Vector3d(7, 8, 9));
   CHECK(error_of("1 2 3\n", "part.stl") == "read_cloud: part.stl: is a mesh, not a point cloud");
-  CHECK(error_of("1 2 3\n", "d.x/scan.e57") ==
-        "read_cloud: d.x/scan.e57: unknown point cloud extension '.e57' (use .xyz .asc .txt .pts .csv .ply "
-        ".pcd "
-        ".las)");
+  CHECK(error_of("1 2 3\n", "d.x/scan.fls") ==
+        "read_cloud: d.x/scan.fls: unknown point cloud extension '.fls' (use .xyz .asc .txt .pts .csv .ply "
+        ".pcd .las .laz .e57)");
   CHECK(error_of("1 2 3\n", "d.x/scan") == "no error");  // a dot in a directory is no extension
   // A PLY file is a mesh when its header declares faces.
   const std::string mesh = temp_path(".ply"), cloud = temp_path(".ply");

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The input formats read from files written by other tools (tests/data/formats/, made by
-// scripts/make_format_fixtures.py with laspy, pypcd4, Python's csv module and numpy): each
+// scripts/make_format_fixtures.py with laspy, pypcd4, pye57, Python's csv module and numpy): each
 // gives the points of blade.xyz, exactly or to its format's precision; and bad files are
 // refused with a message naming the file and what is wrong.
 #include "section/cloud.h"
@@ -33,14 +33,23 @@ std::string cloud_error(const std::string& bytes, const std::string& name) {
   return thrown([&] { parse_cloud(bytes, name, {}); });
 }
 
+// `bytes` with the byte at `at` set to `value`.
+std::string with_byte(std::string bytes, std::size_t at, int value) {
+  bytes.at(at) = static_cast<char>(value);
+  return bytes;
+}
+
 }  // namespace
 
-TEST_CASE("formats: PTS, LAS, ascii PCD, semicolon and tab text give blade.xyz's points exactly",
-          "[formats]") {
+TEST_CASE(
+    "formats: PTS, LAS, ascii PCD, E57 (ScaledInteger), semicolon and tab text give blade.xyz's "
+    "points exactly",
+    "[formats]") {
   const Cloud xyz = read_cloud(dir + "blade.xyz");
   REQUIRE(xyz.points.size() > 4000);
-  for (const char* name : {"blade.pts", "blade_12_f3.las", "blade_14_f6.las", "blade_ascii.pcd",
-                           "blade_semicolon.csv", "blade_semicolon.txt", "blade_tab.txt"}) {
+  for (const char* name :
+       {"blade.pts", "blade_12_f3.las", "blade_14_f6.las", "blade_ascii.pcd", "blade_scaled.e57",
+        "blade_semicolon.csv", "blade_semicolon.txt", "blade_tab.txt"}) {
     INFO(name);
     const Cloud c = read_cloud(dir + name);
     REQUIRE(c.points.size() == xyz.points.size());
@@ -113,7 +122,15 @@ TEST_CASE("formats: bad LAS files and LAZ are refused by name", "[formats]") {
   std::string laz = las;
   laz[104] = static_cast<char>(laz[104] | 0x80);  // what LASzip marks a compressed file with
   CHECK_THAT(cloud_error(laz, "c.laz"),
-             Catch::Contains("c.laz: LAZ (LASzip-compressed LAS) is not supported"));
+             Catch::Contains("c.laz: LAZ file without its LASzip VLR (corrupt file?)"));
+  // An item version LASzip's version-2 decoders do not read (version 1: LASzip 1.x) is refused.
+  std::string v1 = bytes_of(dir + "blade_12_f3.laz");
+  const std::size_t vlr = v1.find("laszip encoded");
+  REQUIRE(vlr != std::string::npos);
+  v1[vlr - 2 + 54 + 38] = 1;  // the first item's version
+  CHECK_THAT(cloud_error(v1, "v1.laz"),
+             Catch::Contains("v1.laz: LAZ item version 1 is not supported (2 is): decompress it to LAS first "
+                             "(laszip -i v1.laz -o FILE.las; pdal translate"));
   std::string short_record = las;
   short_record[105] = 20;  // a record shorter than format 6's 30 bytes
   short_record[106] = 0;
@@ -130,6 +147,38 @@ TEST_CASE("formats: bad LAS files and LAZ are refused by name", "[formats]") {
              Catch::Contains("LAS x scale factor or offset is zero or not finite"));
 }
 
+TEST_CASE("formats: a truncated or corrupt LAZ file is refused or read, never crashes", "[formats][laz]") {
+  // blade_12_f3.laz (lazrs): point format 3 with 4 extra bytes, 5 chunks of up to 1000 points.
+  const std::string laz = bytes_of(dir + "blade_12_f3.laz");
+  const std::string f6 = bytes_of(dir + "blade_14_f6.laz");  // layered, one chunk
+  CHECK_THAT(cloud_error(f6.substr(0, f6.size() - 3000), "t6.laz"),
+             Catch::Contains("t6.laz: LAZ file ends inside its points (truncated file?)"));
+  for (std::size_t at = 400; at < f6.size(); at += 1111) {
+    INFO(at);
+    const std::string e = cloud_error(with_byte(f6, at, f6[at] ^ 0x5A), "b6.laz");
+    CHECK((e == "no error" || e.find("b6.laz: ") != std::string::npos));
+  }
+  CHECK_THAT(cloud_error(laz.substr(0, 40000), "t.laz"),
+             Catch::Contains("t.laz: LAZ file ends inside its points (truncated file?)"));
+  std::uint32_t count = 0;
+  std::memcpy(&count, laz.data() + 107, 4);
+  REQUIRE(count == 4398);
+  std::string more = laz;
+  count = 44000;
+  std::memcpy(&more[107], &count, 4);
+  CHECK_THAT(
+      cloud_error(more, "m.laz"),
+      Catch::Contains("m.laz: LAZ chunk table lists 5 chunks, its header's points make 44 (corrupt file?)"));
+  for (std::size_t cut = 100; cut < laz.size(); cut += 1777)
+    CHECK_THAT(cloud_error(laz.substr(0, cut), "t.laz"), Catch::Contains("t.laz: "));
+  // A flipped byte in the compressed points decodes to other points or is refused; nothing else.
+  for (std::size_t at = 500; at < laz.size(); at += 1231) {
+    INFO(at);
+    const std::string e = cloud_error(with_byte(laz, at, laz[at] ^ 0x5A), "b.laz");
+    CHECK((e == "no error" || e.find("b.laz: ") != std::string::npos));
+  }
+}
+
 TEST_CASE("formats: LAS takes its record length and offset from the header", "[formats]") {
   // blade_14_f6.las: format 6 with 4 extra bytes a record (34, not 30) and offsets (10, -5, 30).
   const std::string las = bytes_of(dir + "blade_14_f6.las");
@@ -139,4 +188,58 @@ TEST_CASE("formats: LAS takes its record length and offset from the header", "[f
   double offset = 0;
   std::memcpy(&offset, las.data() + 163, 8);
   CHECK(offset == -5);
+}
+
+TEST_CASE("formats: E57 scans with poses, double, float, scaled and spherical, give blade.xyz's points",
+          "[formats][e57]") {
+  // blade_scans.e57 (pye57): the points in four scans, each in its own frame and posed back
+  // into the file's: doubles with 5 invalid points among them, floats, ScaledInteger (1e-6),
+  // spherical (range, azimuth, elevation). Read: merged in file order, invalid points dropped.
+  const Cloud xyz = read_cloud(dir + "blade.xyz");
+  const Cloud c = read_cloud(dir + "blade_scans.e57");
+  REQUIRE(c.points.size() == xyz.points.size());
+  const std::size_t quarter = (xyz.points.size() + 3) / 4;
+  double worst[4] = {0, 0, 0, 0};
+  for (std::size_t i = 0; i < c.points.size(); ++i) {
+    double& w = worst[std::min<std::size_t>(i / quarter, 3)];
+    w = std::max(w, (c.points[i] - xyz.points[i]).norm());
+  }
+  CHECK(worst[0] < 1e-9);  // double
+  CHECK(worst[1] < 1e-5);  // float: coordinates up to ~70 mm in the scan's frame, ulp 8e-6 mm
+  CHECK(worst[2] < 2e-6);  // 1e-6 mm steps
+  CHECK(worst[3] < 1e-9);  // double range and angles
+  // Standard input: by its first bytes.
+  const std::string bytes = bytes_of(dir + "blade_scans.e57");
+  CHECK(parse_cloud(bytes, "-", {}).points.size() == xyz.points.size());
+}
+
+TEST_CASE("formats: bad E57 files are refused by name and place", "[formats][e57]") {
+  CHECK_THAT(cloud_error(bytes_of(dir + "codec.e57"), "c.e57"),
+             Catch::Contains("c.e57: E57 scan 1 ('tiny'): its points use the codec 'zLibCodec', which is not "
+                             "supported (only bitPackCodec is)"));
+  CHECK_THAT(cloud_error(bytes_of(dir + "no_z.e57"), "z.e57"),
+             Catch::Contains("z.e57: E57 scan 1 ('tiny'): its points have neither cartesianX, Y and Z"));
+  CHECK_THAT(cloud_error(bytes_of(dir + "packet.e57"), "p.e57"),
+             Catch::Contains("p.e57: E57 scan 1 ('tiny')'s data packet at byte 80 holds 7 bytestreams, its "
+                             "prototype 3 fields"));
+  const std::string e57 = bytes_of(dir + "blade_scans.e57");
+  CHECK_THAT(
+      cloud_error(e57.substr(0, 50000), "t.e57"),
+      Catch::Contains("t.e57: E57 header declares 82944 bytes but the file holds only 50000 (truncated"));
+  CHECK_THAT(cloud_error(with_byte(e57, 5000, e57[5000] ^ 4), "f.e57"),
+             Catch::Contains("f.e57: E57 page 4 (bytes 4096 to 5119) fails its CRC-32C checksum (corrupt"));
+  CHECK_THAT(cloud_error(with_byte(e57, 8, 2), "v.e57"),
+             Catch::Contains("v.e57: E57 version 2.0 is not supported"));
+  CHECK_THAT(cloud_error(e57.substr(0, 20), "h.e57"),
+             Catch::Contains("h.e57: E57 header ends after 20 bytes"));
+}
+
+TEST_CASE("formats: a truncated or corrupt E57 file is refused, never crashes", "[formats][e57]") {
+  const std::string e57 = bytes_of(dir + "blade_scans.e57");
+  for (std::size_t cut = 8; cut < e57.size(); cut += 997)
+    CHECK_THAT(cloud_error(e57.substr(0, cut), "t.e57"), Catch::Contains("t.e57: E57 "));
+  for (std::size_t at = 0; at < e57.size(); at += 1231) {
+    INFO(at);
+    CHECK_THAT(cloud_error(with_byte(e57, at, e57[at] ^ 0x5A), "b.e57"), Catch::Contains("b.e57: E57 "));
+  }
 }

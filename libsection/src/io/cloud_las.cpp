@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The LAS cloud reader: ASPRS LAS 1.0-1.4, point data record formats 0-10, uncompressed.
+// The LAS cloud reader: ASPRS LAS 1.0-1.4, point data record formats 0-10, uncompressed,
+// and LAZ (LASzip marks its record format with bit 7) of formats 0-3 and 6-8 through
+// cloud_laz.cpp.
 // Read from the ASPRS LAS 1.4 specification (R15) directly: no LAS library is packaged for
 // Debian 12. The public header block gives where the points start, their record format and
 // length (taken from the header, never assumed: records may carry extra bytes), their count
 // (the 64-bit count of LAS 1.4 when set, else the legacy 32-bit one) and the scale and
 // offset that turn each record's 32-bit integers X, Y, Z (the first 12 bytes of every
-// record format) into coordinates: x = X * x_scale + x_offset. A LAZ file (LASzip marks its
-// record format with bit 7) is refused: decompress it first.
+// record format) into coordinates: x = X * x_scale + x_offset.
+#include "io/cloud_laz.h"
 #include "io/cloud_readers.h"
 
 #include "section/error.h"
@@ -22,22 +24,6 @@ namespace {
 [[noreturn]] void fail(const std::string& name, const std::string& what) {
   throw Error("read_cloud: " + name + ": " + what);
 }
-
-template <class T>
-T le(const char* p) {
-  T v;
-  std::memcpy(&v, p, sizeof v);  // little endian, as the host
-  return v;
-}
-
-struct LasHeader {
-  int major = 0, minor = 0;
-  unsigned header_size = 0;
-  unsigned long long data_offset = 0, count = 0;
-  int format = 0;
-  std::size_t record = 0;
-  double scale[3] = {1, 1, 1}, offset[3] = {0, 0, 0};
-};
 
 // The smallest record of each point data format (LAS 1.4, tables 7-24).
 constexpr std::size_t min_record[11] = {20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67};
@@ -61,10 +47,8 @@ LasHeader read_header(ByteSource& src, const CloudReadOptions& opt) {
   h.header_size = le<std::uint16_t>(p + 94);
   h.data_offset = le<std::uint32_t>(p + 96);
   const int id = static_cast<unsigned char>(p[104]);
-  if (id & 0xC0)
-    fail(name, "LAZ (LASzip-compressed LAS) is not supported: decompress it to LAS first (laszip -i " + name +
-                   " -o FILE.las, or pdal translate)");
-  h.format = id;
+  h.compressed = (id & 0xC0) != 0;  // LASzip's mark
+  h.format = id & 0x3F;
   h.record = le<std::uint16_t>(p + 105);
   h.count = le<std::uint32_t>(p + 107);
   for (int c = 0; c < 3; ++c) {
@@ -90,7 +74,7 @@ LasHeader read_header(ByteSource& src, const CloudReadOptions& opt) {
   if (h.count > opt.max_points)
     fail(name, "LAS header declares " + std::to_string(h.count) + " points, more than the limit of " +
                    std::to_string(opt.max_points));
-  if (src.size() >= 0) {
+  if (src.size() >= 0 && !h.compressed) {
     const auto size = static_cast<unsigned long long>(src.size());
     const unsigned long long body = size > h.data_offset ? size - h.data_offset : 0;
     // Bytes after the points are allowed: LAS 1.3 and 1.4 put waveforms and extended VLRs there.
@@ -101,29 +85,13 @@ LasHeader read_header(ByteSource& src, const CloudReadOptions& opt) {
   return h;
 }
 
-// X * scale + offset for one axis. With a decimal scale (0.001, 0.0001: 1 / scale an
-// integer) and an offset on its grid, (X + offset / scale) / (1 / scale) is the coordinate
-// correctly rounded: the double that parsing the same decimal from text gives.
-struct Axis {
-  double scale, offset, inv = 0, shift = 0;
-  bool exact = false;
-  Axis(double s, double o) : scale(s), offset(o) {
-    inv = std::round(1 / s);
-    shift = std::round(o * inv);
-    exact = inv >= 1 && inv <= 1e9 && std::abs(1 / s - inv) <= 1e-9 * inv &&
-            std::abs(o * inv - shift) <= 1e-6 && std::abs(shift) < 1e15;
-  }
-  double operator()(std::int32_t v) const {
-    return exact ? (static_cast<double>(v) + shift) / inv : v * scale + offset;
-  }
-};
-
 }  // namespace
 
 std::size_t read_las_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn&) {
   const std::string& name = src.name();
   const LasHeader h = read_header(src, opt);
+  if (h.compressed) return read_laz_points(src, h, opt, fn);
   // Skip to the points, past the variable length records.
   for (unsigned long long skip = h.data_offset; skip > 0;) {
     if (src.bytes().empty() && src.fetch(block_size) == 0) fail(name, "LAS file ends before its points");
@@ -132,7 +100,8 @@ std::size_t read_las_cloud(ByteSource& src, const CloudReadOptions& opt, const P
     skip -= n;
   }
   Chunker out(fn, opt.chunk_points);
-  const Axis axis[3] = {{h.scale[0], h.offset[0]}, {h.scale[1], h.offset[1]}, {h.scale[2], h.offset[2]}};
+  const ScaledAxis axis[3] = {
+      {h.scale[0], h.offset[0]}, {h.scale[1], h.offset[1]}, {h.scale[2], h.offset[2]}};
   unsigned long long done = 0;
   while (done < h.count) {
     std::size_t n =

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// A first look at a cloud file's extent, from points spread over it (for its likely unit).
+// A first look at a cloud file's extent, from points spread over it (for its likely unit);
+// an E57 file's from all its points (its standard fixes metres: a part under 1 m across is
+// then read as metres).
 #include "section/io/cloud_io.h"
 
 #include "section/error.h"
@@ -69,6 +71,16 @@ double sample_extent(const std::string& path, const CloudReadOptions& options) {
       src.fetch(block_bytes);
       const detail::InputFormat& format = detail::cloud_format(path, src.bytes(), options.format);
       if (format.text) points = text_sample(path, format, options);
+      if (format.cloud == CloudFormat::e57) {  // metres by its standard: read whole, for an exact extent
+        Eigen::AlignedBox3d box;
+        read_cloud_chunks(
+            path,
+            [&](const Eigen::Vector3d* p, std::size_t n) {
+              std::for_each(p, p + n, [&](auto& q) { box.extend(q); });
+            },
+            options);
+        return box.isEmpty() ? 0 : box.sizes().maxCoeff();
+      }
     }
   } catch (const Error&) {
     return 0;  // the reader proper reports what is wrong with the file

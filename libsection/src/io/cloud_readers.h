@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// The point cloud readers (XYZ, PTS and CSV text, PLY, PCD, LAS) and what they share; io/formats.h lists
+// The point cloud readers (XYZ, PTS and CSV text, PLY, PCD, LAS, E57) and what they share; io/formats.h lists
 // them.
 #include "io/byte_source.h"
 #include "section/io/cloud_io.h"
@@ -8,6 +8,9 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -52,6 +55,33 @@ private:
   std::size_t total_ = 0;
 };
 
+/// The value of type T at `p`, little endian (as the host: the binary readers' formats).
+template <class T>
+T le(const char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// One axis of integer coordinates: x = raw * scale + offset (LAS records, E57 ScaledInteger
+/// fields). With a decimal scale (0.001, 0.0001: 1 / scale an integer) and an offset on its
+/// grid, (raw + offset / scale) / (1 / scale) is the coordinate correctly rounded: the double
+/// that parsing the same decimal from text gives.
+struct ScaledAxis {
+  double scale, offset, inv = 0, shift = 0;
+  bool exact = false;
+  ScaledAxis(double s, double o) : scale(s), offset(o) {
+    inv = std::round(1 / s);
+    shift = std::round(o * inv);
+    exact = inv >= 1 && inv <= 1e9 && std::abs(1 / s - inv) <= 1e-9 * inv &&
+            std::abs(o * inv - shift) <= 1e-6 && std::abs(shift) < 1e15;
+  }
+  double operator()(std::int64_t v) const {
+    const double d = static_cast<double>(v);
+    return exact && std::abs(d) < 1e15 ? (d + shift) / inv : d * scale + offset;
+  }
+};
+
 /// Throws `read_cloud: NAME:LINE: what`.
 [[noreturn]] void fail_line(const std::string& name, std::size_t line, const std::string& what);
 
@@ -75,6 +105,8 @@ std::size_t read_pts_cloud(ByteSource& src, const CloudReadOptions& opt, const P
 std::size_t read_pcd_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);
 std::size_t read_las_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
+                           const PointChunkFn& raw);
+std::size_t read_e57_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);
 std::size_t read_ply_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);

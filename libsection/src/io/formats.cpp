@@ -27,7 +27,8 @@ const std::vector<InputFormat>& input_formats() {
       {{"csv"}, {}, C::csv, read_csv_cloud, true, nullptr, nullptr, nullptr},
       {{"ply"}, {}, C::ply, read_ply_cloud, false, "ply", read_ply_mesh, ply_declares_faces},
       {{"pcd"}, {}, C::pcd, read_pcd_cloud, false, "# .PCD|VERSION 0.7|VERSION .7", nullptr, nullptr},
-      {{"las"}, {"laz"}, C::las, read_las_cloud, false, "LASF", nullptr, nullptr},
+      {{"las", "laz"}, {}, C::las, read_las_cloud, false, "LASF", nullptr, nullptr},
+      {{"e57"}, {}, C::e57, read_e57_cloud, false, "ASTM-E57", nullptr, nullptr},
   };
   return formats;
 }

@@ -2,7 +2,8 @@
 #pragma once
 /// @file io/cloud_io.h
 /// Point cloud readers and writers: XYZ/ASC text, CSV with an x,y,z header, PLY (ascii,
-/// binary little and big endian, float or double), Leica PTS, PCD (ascii, binary), LAS.
+/// binary little and big endian, float or double), Leica PTS, PCD (ascii, binary), LAS, LAZ
+/// (point formats 0-3, 6-8), E57.
 #include "section/cloud.h"
 
 #include <Eigen/Core>
@@ -16,14 +17,15 @@ namespace section {
 
 /// Which reader a file goes to.
 enum class CloudFormat {
-  automatic,  ///< by the extension (.xyz .asc .txt .pts .csv .ply .pcd .las); with none, by content
+  automatic,  ///< by the extension (.xyz .asc .txt .pts .csv .ply .pcd .las .laz .e57); with none, by content
   xyz,  ///< text, one point a line, separated by space, tab or comma (or ';', with decimal commas); extra
         ///< columns ignored
   csv,  ///< text with a header row naming x, y and z columns
   ply,  ///< PLY vertices (ascii or binary, float or double)
   pts,  ///< Leica PTS: lines of one integer count the points after them, then x y z [i [r g b]]
   pcd,  ///< PCL's PCD (ascii or binary; not binary_compressed); NaN points are dropped
-  las   ///< ASPRS LAS 1.0-1.4, point formats 0-10, uncompressed (not LAZ)
+  las,  ///< ASPRS LAS 1.0-1.4, point formats 0-10; LAZ (LASzip-compressed) of point formats 0-3, 6-8
+  e57   ///< ASTM E2807 (E57): every scan's points, in the file's frame (each scan's pose applied)
 };
 
 /// Options of the cloud readers (read_cloud, read_cloud_chunks, parse_cloud).
@@ -80,8 +82,9 @@ CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudRead
 
 /// The largest side of the bounding box of a cloud file, estimated from points spread over
 /// it (a binary PLY's as peek_cloud reads them; a text file's from blocks read at evenly
-/// spaced places), in the file's numbers times options.scale: enough to tell its likely unit
-/// (units.h). 0 when no sample can be read (standard input, an unreadable file).
+/// spaced places; an E57 file's from all its points, read once more), in the file's numbers
+/// times options.scale: enough to tell its likely unit (units.h). 0 when no sample can be
+/// read (standard input, an unreadable file, LAS).
 double sample_extent(const std::string& path, const CloudReadOptions& options = {});
 
 /// Reads the whole cloud of `path` ("-" = standard input). Throws as read_cloud_chunks.
