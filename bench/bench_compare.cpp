@@ -28,9 +28,11 @@ const char* const description =
     "Each of the generator's five designs (section_truth, exact) is the nominal; the measured\n"
     "section is its profile every --spacing with --noise along the normal, moved by a rigid\n"
     "motion of up to 0.1 deg and 50 um. --export DIR writes, per case, the nominal polyline\n"
-    "(20000 exact points), the measured points, the true motion and our fit (least squares\n"
-    "and minimum zone, with the CPU time per section: the median of 5 runs, one thread). --score\n"
-    "DIR reads DIR/engeom.csv (case, angle, tx, ty, ms) and prints, for ours and engeom's:\n"
+    "(20000 exact points), its edge points, the measured points, the true motion and our fit\n"
+    "(least squares and minimum zone on the nominal prepared once, least squares preparing it in\n"
+    "each call; the CPU time per section: the median of 5 runs, one thread). --score DIR reads\n"
+    "DIR/engeom.csv (and DIR/python.csv when present; case, method, angle, tx, ty, ms) and prints,\n"
+    "for ours and theirs:\n"
     "how far the fit leaves the true move (the largest distance between a noise-free point\n"
     "moved and fitted back and where it was, um), the rms and largest exact distance of the\n"
     "fitted points to the true profile (um), and the CPU time per section (ms).\n\n"
@@ -115,13 +117,23 @@ void export_cases(const std::string& dir, int seeds, double spacing, double nois
     section::write_file(dir + "/" + c.name + "_nominal.csv", points_csv(c.truth.profile));
     section::write_file(dir + "/" + c.name + "_points.csv", points_csv(c.measured));
     const section::NominalSection n = nominal_of(c.truth);
-    for (auto m : {section::FitMethod::least_squares, section::FitMethod::minimum_zone}) {
+    section::write_file(
+        dir + "/" + c.name + "_edges.csv",
+        "le_u,le_v,te_u,te_v,pressure_side\n" + section::format_number(n.le_point.x()) + "," +
+            section::format_number(n.le_point.y()) + "," + section::format_number(n.te_point.x()) + "," +
+            section::format_number(n.te_point.y()) + "," + std::to_string(n.pressure_side) + "\n");
+    // ours_*: the nominal prepared once (prepare_nominal), as for blade after blade of one
+    // design; ours_ls_once: prepared in each call (compare_section on the NominalSection).
+    const section::PreparedNominal prepared = section::prepare_nominal(n);
+    for (const char* method : {"ours_ls", "ours_mz", "ours_ls_once"}) {
       section::CompareOptions o;
-      o.fit.method = m;
+      o.fit.method = method == std::string("ours_mz") ? section::FitMethod::minimum_zone
+                                                      : section::FitMethod::least_squares;
       section::SectionComparison r;
-      const double ms = median_ms([&] { r = section::compare_section(n, c.measured, o); });
-      ours += c.name + "," + (m == section::FitMethod::least_squares ? "ours_ls" : "ours_mz") + "," +
-              section::format_number(r.fit.motion.angle) + "," +
+      const double ms = method == std::string("ours_ls_once")
+                            ? median_ms([&] { r = section::compare_section(n, c.measured, o); })
+                            : median_ms([&] { r = section::compare_section(prepared, c.measured, o); });
+      ours += c.name + "," + method + "," + section::format_number(r.fit.motion.angle) + "," +
               section::format_number(r.fit.motion.translation.x()) + "," +
               section::format_number(r.fit.motion.translation.y()) + "," + section::format_number(ms) + "\n";
     }
@@ -145,8 +157,9 @@ void score(const std::string& dir, int seeds, double spacing, double noise) {
   for (const Case& c : all) by_name[c.name] = &c;
   std::printf("%-8s %-10s %10s %10s %10s %9s\n", "case", "method", "move_um", "rms_um", "max_um", "ms");
   std::map<std::string, std::vector<double>> ms, move, rms, mx;
-  for (const char* file : {"ours.csv", "engeom.csv"}) {
+  for (const char* file : {"ours.csv", "engeom.csv", "python.csv"}) {
     const std::string path = dir + "/" + file;
+    if (file == std::string("python.csv") && !std::filesystem::exists(path)) continue;  // python_speed.sh's
     const std::string text = section::read_file(path);
     std::size_t pos = text.find('\n') + 1;
     while (pos < text.size()) {

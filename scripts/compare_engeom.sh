@@ -13,13 +13,9 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$here/build}"
 seeds="${2:-3}"
-venv="${ENGEOM_VENV:-$HOME/.cache/libsection-engeom}"
-if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import engeom, numpy" 2>/dev/null; then
-  python3 -m venv "$venv"
-  "$venv/bin/pip" install -q "engeom==0.5.0" numpy
-fi
+engeom="$(bash "$here/scripts/peers/engeom_venv.sh")"
 dir="$(mktemp -d)"
 trap 'rm -rf "$dir"' EXIT
 "$build/bench/bench_compare" --export "$dir" --seeds "$seeds" > /dev/null
-"$venv/bin/python" "$here/scripts/peers/compare_peer.py" "$dir" > /dev/null
+"$engeom" "$here/scripts/peers/compare_peer.py" "$dir" > /dev/null
 "$build/bench/bench_compare" --score "$dir" --seeds "$seeds"

@@ -129,7 +129,7 @@ TEST_CASE("flatten: a polyline within its tolerance of a thin ellipse", "[bsplin
     REQUIRE(worst <= tol);
   }
   REQUIRE(thrown([&] { section::flatten(c, 0); }) ==
-          "bspline: a polyline's tolerance must be above 0, got 0.000000");
+          "bspline: a polyline's tolerance must be above 0, got 0 mm");
 }
 
 TEST_CASE("format_dxf: one SPLINE per curve through its control points in 3D", "[cad]") {

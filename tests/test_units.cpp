@@ -87,3 +87,20 @@ TEST_CASE("units: a stream in metres converted to mm by its columns' units", "[u
   unknown.units = "furlong";
   CHECK_THROWS_AS(convert_to_mm(unknown), Error);
 }
+
+TEST_CASE("units: numbers in messages get three digits and their unit", "[units]") {
+  CHECK(format_length(0.025885718878794383) == "0.0259 mm");  // issue 24's example
+  CHECK(format_length(17.269) == "17.3 mm");
+  CHECK(format_length(1234.7) == "1235 mm");   // no exponent
+  CHECK(format_length(0.5) == "0.5 mm");       // no trailing zeros
+  CHECK(format_length(0.00001234) == "0 mm");  // 0.1 um is the finest length shown
+  CHECK(format_length(0.00012) == "0.0001 mm");
+  CHECK(format_length(-0.0123456) == "-0.0123 mm");
+  CHECK(format_length(0) == "0 mm");
+  CHECK(format_angle(0.178123) == "0.178 deg");
+  CHECK(format_angle(-72.8081) == "-72.8 deg");
+  CHECK(format_angle(0.0001) == "0 deg");
+  CHECK(format_share(0.05) == "5%");
+  CHECK(format_share(0.025886) == "2.59%");
+  CHECK(format_share(0.4512) == "45.1%");
+}

@@ -7,8 +7,8 @@
 #include "section/pipe/run_stage.h"
 #include "section/pipe/fit_spline_stream.h"
 #include "section/pipe/schema.h"
+#include "section/units.h"
 
-#include <iomanip>
 #include <iostream>
 
 namespace {
@@ -16,7 +16,7 @@ namespace {
 using section::tool::FitsplineArgs;
 
 // Points in two layers along a loop: views merged with a misregistration?
-void warn_layers(const section::Stream& stream, const section::Table& splines) {
+void warn_layers(const section::Table& splines) {
   namespace col = section::schema::col;
   const std::size_t cs = splines.column(col::section), cl = splines.column(col::loop),
                     cy = splines.column(col::layers), cyl = splines.column(col::layers_length);
@@ -24,11 +24,10 @@ void warn_layers(const section::Stream& stream, const section::Table& splines) {
     const double layers = splines.at(r, cy);
     if (!(layers > 0)) continue;
     std::cerr << "fitspline: warning: section " << splines.at(r, cs) << " loop " << splines.at(r, cl)
-              << std::setprecision(3) << ": the points lie in two layers about " << layers << " apart over "
-              << splines.at(r, cyl) << " of the profile (" << stream.units
-              << "), and the curve runs between them: views merged with a misregistration? (register "
-                 "them: slice --view, docs/REGISTRATION.md)\n"
-              << std::setprecision(6);
+              << ": the points lie in two layers about " << section::format_length(layers) << " apart over "
+              << section::format_length(splines.at(r, cyl))
+              << " of the profile, and the curve runs between them: views merged with a misregistration? "
+                 "(register them: slice --view, docs/REGISTRATION.md)\n";
   }
 }
 
@@ -39,7 +38,7 @@ void run_fitspline(const FitsplineArgs& a, const std::string& history) {
   run.written = [&](const section::Stream& stream) {
     section::tool::warn_issues("fitspline", stream, true);
     if (const section::Table* splines = section::schema::splines.find(stream)) {
-      warn_layers(stream, *splines);
+      warn_layers(*splines);
       fitted += splines->rows();
     }
     if (const section::Table* points = section::schema::points.find(stream)) measured += points->rows();

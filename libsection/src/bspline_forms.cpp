@@ -4,6 +4,7 @@
 #include "section/bspline.h"
 
 #include "section/error.h"
+#include "section/units.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -121,7 +122,7 @@ BSpline clamped(const BSpline& curve) {
 
 std::vector<double> flatten(const BSpline& curve, double tolerance) {
   if (!(tolerance > 0))
-    throw Error("bspline: a polyline's tolerance must be above 0, got " + std::to_string(tolerance));
+    throw Error("bspline: a polyline's tolerance must be above 0, got " + format_length(tolerance));
   (void)curve.point(0);
   std::vector<double> breaks;
   for (double k : curve.knots)

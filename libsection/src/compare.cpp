@@ -4,10 +4,12 @@
 
 #include "compare_steps.h"
 #include "section/error.h"
+#include "section/units.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <deque>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -92,6 +94,26 @@ std::vector<char> outliers(const Block& b, const CompareOptions& o, double& dist
   return out;
 }
 
+// Leaves the points marked `out` out of a placed block; the others keep their feet, which
+// the placing tracks (no full search again).
+void leave_out(Block& b, const std::vector<char>& out) {
+  std::vector<std::size_t> index(out.size());
+  std::vector<Eigen::Vector2d> kept;
+  fit::Feet feet;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    index[k] = kept.size();
+    if (out[k]) continue;
+    kept.push_back(b.points[k]);
+    feet.t.push_back(b.feet.t[k]);
+  }
+  for (std::size_t k : b.feet.order)
+    if (!out[k]) feet.order.push_back(index[k]);
+  feet.signed_distance.assign(kept.size(), 0);
+  b.points = std::move(kept);
+  b.feet = std::move(feet);
+  b.place();
+}
+
 // The fit of the blocks (all points placed at the start), outliers left out after a first
 // least-squares fit; `out[b]` marks block b's outliers, `distance[b]` the distance used.
 compare::FitRun best_fit(std::vector<Block>& blocks, const CompareOptions& o,
@@ -104,12 +126,7 @@ compare::FitRun best_fit(std::vector<Block>& blocks, const CompareOptions& o,
     out[i] = outliers(blocks[i], o, distance[i]);
     if (std::find(out[i].begin(), out[i].end(), 1) == out[i].end()) continue;
     any = true;
-    std::vector<Eigen::Vector2d> kept;
-    for (std::size_t k = 0; k < out[i].size(); ++k)
-      if (!out[i][k]) kept.push_back(blocks[i].points[k]);
-    blocks[i].points = std::move(kept);
-    blocks[i].feet = fit::Feet{};
-    blocks[i].place();
+    leave_out(blocks[i], out[i]);
   }
   auto add = [&](const compare::FitRun& r) {
     run.iterations += r.iterations;
@@ -216,25 +233,9 @@ SectionComparison results(const Geometry& g, const std::vector<Eigen::Vector2d>&
   return c;
 }
 
-}  // namespace
-
-const char* zone_name(Zone zone) {
-  static const char* const names[] = {"whole", "le", "te", "pressure", "suction"};
-  return names[static_cast<int>(zone)];
-}
-
-Eigen::Vector2d Motion2::apply(const Eigen::Vector2d& p) const {
-  const double a = angle * degree;
-  return Eigen::Vector2d(std::cos(a) * p.x() - std::sin(a) * p.y(),
-                         std::sin(a) * p.x() + std::cos(a) * p.y()) +
-         translation;
-}
-
-SectionComparison compare_section(const NominalSection& nominal, const std::vector<Eigen::Vector2d>& measured,
-                                  const CompareOptions& options) {
-  check(options);
-  check_points(measured, freedoms(options.fit.freedom));
-  const Geometry g(nominal, options.edge_zone);
+// compare_section on a nominal's geometry, options and points checked.
+SectionComparison compare_on(const Geometry& g, const std::vector<Eigen::Vector2d>& measured,
+                             const CompareOptions& options) {
   std::vector<Block> blocks(1);
   Block& b = blocks[0];
   b.nominal = &g;
@@ -255,14 +256,53 @@ SectionComparison compare_section(const NominalSection& nominal, const std::vect
   return c;
 }
 
+}  // namespace
+
+const char* zone_name(Zone zone) {
+  static const char* const names[] = {"whole", "le", "te", "pressure", "suction"};
+  return names[static_cast<int>(zone)];
+}
+
+Eigen::Vector2d Motion2::apply(const Eigen::Vector2d& p) const {
+  const double a = angle * degree;
+  return Eigen::Vector2d(std::cos(a) * p.x() - std::sin(a) * p.y(),
+                         std::sin(a) * p.x() + std::cos(a) * p.y()) +
+         translation;
+}
+
+SectionComparison compare_section(const NominalSection& nominal, const std::vector<Eigen::Vector2d>& measured,
+                                  const CompareOptions& options) {
+  check(options);
+  check_points(measured, freedoms(options.fit.freedom));
+  const Geometry g(nominal, options.edge_zone);
+  return compare_on(g, measured, options);
+}
+
+PreparedNominal prepare_nominal(const NominalSection& nominal, const CompareOptions& options) {
+  check(options);
+  return {std::make_shared<const compare::Prepared>(nominal, options.edge_zone), options.edge_zone};
+}
+
+SectionComparison compare_section(const PreparedNominal& nominal,
+                                  const std::vector<Eigen::Vector2d>& measured,
+                                  const CompareOptions& options) {
+  check(options);
+  if (!nominal.prepared) throw Error("compare: the nominal has not been prepared (prepare_nominal)");
+  if (nominal.edge_zone != options.edge_zone)
+    throw Error("compare: the nominal was prepared for an edge zone of " + format_share(nominal.edge_zone) +
+                " of the chord, the options ask for " + format_share(options.edge_zone) +
+                ": prepare it with the same options");
+  check_points(measured, freedoms(options.fit.freedom));
+  return compare_on(nominal.prepared->geometry, measured, options);
+}
+
 BladeComparison compare_blade(const std::vector<ComparedSection>& sections, const CompareOptions& options) {
   check(options);
   BladeComparison out;
   if (sections.empty()) return out;
   const Frame& f0 = sections.front().frame;
   out.axis = f0.n;
-  std::vector<Geometry> geos;
-  geos.reserve(sections.size());
+  std::deque<Geometry> geos;  // not moved as it grows: the blocks point at them
   for (const ComparedSection& s : sections) {
     check_points(*s.measured, freedoms(options.fit.freedom));
     if (std::abs(std::abs(s.frame.n.dot(f0.n)) - 1) > 1e-9)

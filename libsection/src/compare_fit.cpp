@@ -117,7 +117,7 @@ void Block::place() {
     constexpr std::size_t every = 4;
     std::vector<Eigen::Vector2d> some;
     for (std::size_t i = 0; i < n; i += every) some.push_back(moved[i]);
-    const fit::Feet coarse = fit::foot_points(nominal->curve, nominal->pc, some);
+    const fit::Feet coarse = fit::foot_points(nominal->curve, nominal->pc, some, nullptr, &nominal->search);
     feet = fit::Feet{};
     feet.t.resize(n);
     feet.signed_distance.assign(n, 0);
@@ -127,7 +127,7 @@ void Block::place() {
       for (std::size_t i = j * every; i < std::min(n, (j + 1) * every); ++i) feet.order.push_back(i);
   }
   const bool track = feet.t.size() == n;
-  feet = fit::foot_points(nominal->curve, nominal->pc, moved, track ? &feet : nullptr);
+  feet = fit::foot_points(nominal->curve, nominal->pc, moved, track ? &feet : nullptr, &nominal->search);
 }
 
 std::array<double, 2> spread(const std::vector<Block>& blocks) {

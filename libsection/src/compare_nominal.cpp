@@ -4,6 +4,7 @@
 
 #include "section/error.h"
 #include "section/params.h"
+#include "section/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,12 +44,17 @@ double crossing(const Geometry& g, const std::vector<double>& x, std::size_t sta
   throw Error("compare: the nominal profile has no point beyond its edge zones: check the edge points");
 }
 
+// The nominal's curve, once checked closed (before anything is built on it).
+const BSpline& checked(const BSpline& curve) {
+  if (!curve.closed || curve.control.size() < static_cast<std::size_t>(curve.degree + 1))
+    throw Error("compare: the nominal profile is not a closed curve");
+  return curve;
+}
+
 }  // namespace
 
 Geometry::Geometry(const NominalSection& nominal, double edge_zone)
-    : curve(nominal.curve), pc(nominal.curve) {
-  if (!curve.closed || curve.control.size() < static_cast<std::size_t>(curve.degree + 1))
-    throw Error("compare: the nominal profile is not a closed curve");
+    : curve(nominal.curve), pc(checked(nominal.curve)), search(curve, pc) {
   const double area = enclosed_area(curve, &centroid);
   orientation = area >= 0 ? 1.0 : -1.0;
   ts = span_samples(curve, 16);
@@ -78,7 +84,7 @@ Geometry::Geometry(const NominalSection& nominal, double edge_zone)
   };
   ends = {from_origin(le_end), from_origin(te_begin), from_origin(te_end)};
   if (!(0 < ends[0] && ends[0] < ends[1] && ends[1] < ends[2] && ends[2] < perimeter))
-    throw Error("compare: the edge zones (" + std::to_string(edge_zone) +
+    throw Error("compare: the edge zones (" + format_share(edge_zone) +
                 " of the chord from each edge point) overlap or leave no side between them");
   a_is_pressure = nominal.pressure_side == -static_cast<int>(orientation);
 }

@@ -21,6 +21,7 @@ struct Geometry {
 
   const BSpline& curve;
   detail::PiecewiseCurve pc;
+  fit::FootSearch search;          // the full search of the feet, built once
   double orientation = 1;          // +1 counterclockwise, -1 clockwise
   std::vector<double> ts, arc;     // dense samples: parameter, arc length from t_min
   double perimeter = 0;            // the curve's length
@@ -39,6 +40,13 @@ struct Geometry {
   std::array<double, 2> interval(Zone zone) const;
   /// Outward unit normal at parameter t.
   Eigen::Vector2d normal_at(double t) const;
+};
+
+/// What prepare_nominal keeps: the nominal and its Geometry (which refers to it).
+struct Prepared {
+  Prepared(const NominalSection& n, double edge_zone) : nominal(n), geometry(nominal, edge_zone) {}
+  NominalSection nominal;
+  Geometry geometry;
 };
 
 /// One section in a fit: its points, how the fit's parameters move it, where it stands.

@@ -135,20 +135,25 @@ std::vector<std::size_t> track_feet(const BSpline& c, const detail::PiecewiseCur
   return lost;
 }
 
+// The samples of a FootSearch.
+Points search_samples(const detail::PiecewiseCurve& pc, const std::vector<double>& ts) {
+  detail::PiecewiseCurve::Local at{0, 0};
+  Points pts(ts.size());
+  for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
+  return pts;
+}
+
 // The full search for the points `lost`: the nearest dense sample from a kd-tree; the foot
 // lies between its neighbours.
 void search_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
-                 const std::vector<std::size_t>& lost, Feet& f) {
+                 const std::vector<std::size_t>& lost, const FootSearch& search, Feet& f) {
   const double period = c.t_max() - c.t_min();
   detail::PiecewiseCurve::Local at{0, 0};
-  const std::vector<double> ts = span_samples(c, 8);
+  const std::vector<double>& ts = search.ts;
   const std::size_t m = ts.size();
-  Points pts(m);
-  for (std::size_t i = 0; i < m; ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
-  const detail::NearestPoints<2> tree(pts, 10);
   Points lost_points(lost.size());
   for (std::size_t l = 0; l < lost.size(); ++l) lost_points[l] = q[lost[l]];
-  const std::vector<int> idx = tree.nearest(lost_points);
+  const std::vector<int> idx = search.tree.nearest(lost_points);
   for (std::size_t l = 0; l < lost.size(); ++l) {
     const std::size_t k = lost[l];
     const std::size_t i = static_cast<std::size_t>(idx[l]);
@@ -194,12 +199,21 @@ void order_feet(std::size_t count, const Feet* previous, Feet& f) {
 
 }  // namespace
 
-Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet* previous) {
+FootSearch::FootSearch(const BSpline& c, const detail::PiecewiseCurve& pc)
+    : ts(span_samples(c, 8)), tree(search_samples(pc, ts), 10) {}
+
+Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet* previous,
+                 const FootSearch* search) {
   Feet f;
   f.t.assign(q.size(), std::numeric_limits<double>::quiet_NaN());
   f.signed_distance.resize(q.size());
   const std::vector<std::size_t> lost = track_feet(c, pc, q, previous, f);
-  if (!lost.empty()) search_feet(c, pc, q, lost, f);
+  if (!lost.empty()) {
+    if (search)
+      search_feet(c, pc, q, lost, *search, f);
+    else
+      search_feet(c, pc, q, lost, FootSearch(c, pc), f);
+  }
   order_feet(q.size(), previous, f);
   return f;
 }

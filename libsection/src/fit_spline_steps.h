@@ -4,6 +4,7 @@
 // curve (fit_spline_feet.cpp), one distance-minimisation step (fit_spline_step.cpp), knot
 // placement (fit_spline_knots.cpp) and the checks and measures of a fitted curve
 // (fit_spline_checks.cpp).
+#include "detail/flann_nearest.h"
 #include "detail/piecewise_curve.h"
 #include "section/fit_spline.h"
 
@@ -33,13 +34,22 @@ struct Feet {
   double noise_all = std::numeric_limits<double>::quiet_NaN();  // noise_sigma of all the points, once known
 };
 
+/// The full search of foot_points on one curve: its dense samples (8 per span) and their
+/// kd-tree. foot_points builds it per call; a curve searched many times (compare's nominal)
+/// keeps one.
+struct FootSearch {
+  FootSearch(const BSpline& c, const detail::PiecewiseCurve& pc);
+  std::vector<double> ts;  // sample parameters
+  detail::NearestPoints<2> tree;
+};
+
 /// Foot points of the measured points q on curve c (`pc`: c as polynomials): nearest dense
 /// curve sample from a kd-tree, then a local minimisation. With `previous` (the feet on a
 /// curve that moved a little since), each foot is tracked by Newton from its old
 /// parameter; a point whose Newton leaves the old foot's neighbourhood or meets a
-/// non-convex stretch gets the full search.
+/// non-convex stretch gets the full search. `search`: c's, when kept (else built here).
 Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
-                 const Feet* previous = nullptr);
+                 const Feet* previous = nullptr, const FootSearch* search = nullptr);
 
 /// Robust noise sigma: from differences of residuals consecutive along the curve, which
 /// cancel the smooth (model) part of the residual and keep the noise. Points of weight 0

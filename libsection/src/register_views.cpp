@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/register_views.h"
+#include "section/units.h"
 
 #include "detail/flann_nearest.h"
 #include "section/error.h"
@@ -247,7 +248,7 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
     pairs = pair_up(ref, moved, reach, o.trim);
     if (pairs.r.size() < o.min_pairs)
       throw Error(who + " shares too little surface with view 0: " + std::to_string(pairs.r.size()) +
-                  " point pairs within " + std::to_string(reach) + " (at least " +
+                  " point pairs within " + format_length(reach) + " (at least " +
                   std::to_string(o.min_pairs) + " are needed; are the views roughly aligned?)");
     if (it == 0) out.rms_before = rms(pairs.r);
     if (it == o.max_iterations) break;

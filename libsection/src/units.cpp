@@ -3,6 +3,8 @@
 
 #include "section/error.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace section {
@@ -61,6 +63,43 @@ InputUnits input_units(const std::string& given, double extent) {
               (inches ? "inches" : "micrometres") + ")";
   }
   return in;
+}
+
+namespace {
+
+// `value` to 3 significant digits and at most `decimals` after the point, without an
+// exponent or trailing zeros, then `unit`.
+std::string short_number(double value, int decimals, const char* unit) {
+  char text[64];
+  if (!std::isfinite(value)) {
+    std::snprintf(text, sizeof text, "%g%s", value, unit);
+    return text;
+  }
+  const double size = std::abs(value);
+  const int leading = size > 0 ? static_cast<int>(std::floor(std::log10(size))) : 0;
+  const int shown = std::max(0, std::min(decimals, 2 - leading));
+  std::snprintf(text, sizeof text, "%.*f", shown, value);
+  std::string out = text;
+  if (out.find('.') != std::string::npos) {
+    out.erase(out.find_last_not_of('0') + 1);
+    if (out.back() == '.') out.pop_back();
+  }
+  if (out == "-0") out = "0";
+  return out + unit;
+}
+
+}  // namespace
+
+std::string format_length(double mm) {
+  return short_number(mm, 4, " mm");
+}
+
+std::string format_angle(double degrees) {
+  return short_number(degrees, 3, " deg");
+}
+
+std::string format_share(double fraction) {
+  return short_number(100 * fraction, 2, "%");
 }
 
 }  // namespace section

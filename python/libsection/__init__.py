@@ -17,10 +17,11 @@ lists them); the same options give the same numbers as the tools. On one curve i
 import numpy as _np
 
 from . import _libsection
-from ._libsection import Cancelled, Error, Spline, Stream, generate, parse_stream, read_cloud, read_stream
+from ._libsection import Cancelled, Error, Nominal, Spline, Stream, generate, parse_stream, read_cloud, read_stream
 from .tables import format_number, read_tables, table, to_csv
 
-__all__ = ["slice", "smooth", "fit_spline", "camber", "Stream", "Spline", "Error", "Cancelled", "read_stream",
+__all__ = ["slice", "smooth", "fit_spline", "camber", "compare", "prepare_nominal", "Nominal", "Stream", "Spline",
+           "Error", "Cancelled", "read_stream",
            "parse_stream", "read_cloud", "read_tables", "table", "format_number", "to_csv", "generate"]
 __version__ = "0.1.0"
 
@@ -70,3 +71,35 @@ def camber(x, **flags):
     out["params"] = {k: float(v[0]) for k, v in params.items() if k != "section"}
     out["issues"] = [i["message"] for i in s.issues]
     return out
+
+
+def prepare_nominal(spline, le_point=None, te_point=None, pressure_side=None, **flags):
+    """A nominal profile prepared once for comparing many measured sections with it (compare):
+    a closed Spline, its edge points (u, v) and pressure side (+1: left of LE -> TE, -1:
+    right), by default those camber(spline) finds; flags: the compare tool's (fit, freedom,
+    edge_zone, hole, outlier_distance, keep_outliers, direction, center, weights). Returns a
+    Nominal. Raises ValueError for a profile that is not closed or bad flags."""
+    if le_point is None or te_point is None or pressure_side is None:
+        p = camber(spline)["params"]
+        le_point = (p["le_u"], p["le_v"]) if le_point is None else le_point
+        te_point = (p["te_u"], p["te_v"]) if te_point is None else te_point
+        pressure_side = int(p["pressure_side"]) if pressure_side is None else pressure_side
+    return Nominal(spline, le_point, te_point, pressure_side, **flags)
+
+
+def compare(nominal, points, **flags):
+    """The best fit of a measured section's points onto its nominal and their deviations (the
+    compare tool's fit, docs/COMPARE.md): nominal a Nominal (prepare_nominal: prepared once,
+    reused for blade after blade) or a closed Spline (prepared on each call); points an
+    (N, 2) array in the nominal's plane coordinates (mm). Flags as the compare tool's; with
+    none, a Nominal's own. Returns a dict: 'angle' (deg) and 'translation' (mm) moving the
+    points onto the nominal, 'iterations', 'converged', 'rms_before', 'max_before',
+    'rms_after', 'max_after', 'hole', 'outlier_distance', 'outliers'; 'points': arrays per
+    point ('point' moved, 'foot', 'normal', 't', 'before', 'after': signed deviations, positive
+    = material outside; 'zone': 0 whole, 1 le, 2 te, 3 pressure, 4 suction; 'outlier');
+    'zones': name -> dict (points, min, max, form, length, unmeasured, measured). Raises
+    ValueError as the tool reports a section it cannot compare."""
+    if not isinstance(nominal, Nominal):
+        nominal = prepare_nominal(nominal, **flags)
+        flags = {}
+    return _libsection.compare_points(nominal, points, **flags)

@@ -10,6 +10,7 @@ namespace section::python {
 void bind_stream(py::module_& m);
 void bind_stages(py::module_& m);
 void bind_generate(py::module_& m);
+void bind_compare(py::module_& m);
 }  // namespace section::python
 
 PYBIND11_MODULE(_libsection, m) {
@@ -19,4 +20,5 @@ PYBIND11_MODULE(_libsection, m) {
   section::python::bind_stream(m);
   section::python::bind_stages(m);
   section::python::bind_generate(m);
+  section::python::bind_compare(m);
 }

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -139,6 +140,31 @@ struct SectionComparison {
 /// (`compare: ...`) with fewer points than the fit's degrees of freedom + 1, a nominal that
 /// is not a closed curve, edge points that do not leave room for the sides, or bad options.
 SectionComparison compare_section(const NominalSection& nominal, const std::vector<Eigen::Vector2d>& measured,
+                                  const CompareOptions& options = {});
+
+namespace compare {
+struct Prepared;  // src/compare_steps.h
+}
+
+/// A nominal prepared once for many measured sections (blade after blade of one design):
+/// its arc length, zones and the search structure of the points' feet, built by
+/// prepare_nominal instead of by every compare_section call. Read only once prepared, so
+/// that concurrent compare_section calls may share one; copies share it too.
+struct PreparedNominal {
+  std::shared_ptr<const compare::Prepared> prepared;  ///< what prepare_nominal built (null before)
+  double edge_zone = 0;                               ///< CompareOptions::edge_zone it was built for
+};
+
+/// Prepares `nominal` for compare_section with `options` (only edge_zone matters). Throws
+/// section::Error as compare_section does for a nominal that is not a closed curve or edge
+/// points that leave no room for the sides, or bad options.
+PreparedNominal prepare_nominal(const NominalSection& nominal, const CompareOptions& options = {});
+
+/// compare_section on a prepared nominal: the same results, without preparing it again
+/// (docs/PERFORMANCE.md, "compare"). Throws section::Error as compare_section does, and when
+/// `nominal` was not prepared or was prepared for another edge zone.
+SectionComparison compare_section(const PreparedNominal& nominal,
+                                  const std::vector<Eigen::Vector2d>& measured,
                                   const CompareOptions& options = {});
 
 /// One section of a blade for compare_blade.

@@ -49,4 +49,15 @@ struct InputUnits {
 /// read as mm, with a warning, and marked doubtful (the params rows are then flagged).
 InputUnits input_units(const std::string& given, double extent);
 
+/// Numbers in messages (warnings, issues, errors) for people: three significant digits,
+/// no exponent, trailing zeros dropped, and the unit. The stream and CSV keep every digit.
+/// A length in mm to at most 4 decimals (0.1 um): 0.025885718 -> "0.0259 mm", 17.269 ->
+/// "17.3 mm", 1234.7 -> "1235 mm".
+std::string format_length(double mm);
+/// An angle in degrees to at most 3 decimals: 0.17812 -> "0.178 deg".
+std::string format_angle(double degrees);
+/// A fraction (of the chord, the profile, the camber line) as a percentage to at most 2
+/// decimals: 0.05 -> "5%", 0.025886 -> "2.59%".
+std::string format_share(double fraction);
+
 }  // namespace section

@@ -3,6 +3,7 @@
 #include "pipe/camber_issues.h"
 
 #include "section/edge.h"
+#include "section/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +32,7 @@ std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
            (e.vertex ? ": the profile closes at a vertex" : "") + " (radius reported as 0)";
   if (e.face > 0)
     return std::string(which) + " is " + edge_shape_name(EdgeShape::blunt) + ": a flat face " +
-           format_number(e.face) + " wide (radius reported as 0)";
+           format_length(e.face) + " wide (radius reported as 0)";
   return std::string(which) + " looks " + edge_shape_name(e.shape) +
          (model == EdgeModel::round
               ? std::string(" (fitted as ") + edge_shape_name(EdgeShape::round) + " anyway)"
@@ -44,14 +45,14 @@ std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* whic
   if (!(size > 0)) return std::string();  // a vertex, or an edge given radius 0: no scale to judge by
   if (!(unmeasured > size)) {
     if (!(cover.hole > 0 && cover.hole >= edge_hole * size)) return std::string();
-    return std::string(which) + " partly not measured: " + format_number(cover.hole) +
-           " of the profile without a measured point begins " + format_number(cover.hole_distance) +
-           " from the edge point (edge " + (e.radius > 0 ? "radius " : "face ") + format_number(size) +
+    return std::string(which) + " partly not measured: " + format_length(cover.hole) +
+           " of the profile without a measured point begins " + format_length(cover.hole_distance) +
+           " from the edge point (edge " + (e.radius > 0 ? "radius " : "face ") + format_length(size) +
            "); its radius and point rest partly on the curve bridging that hole";
   }
-  return std::string(which) + " not measured: " + format_number(unmeasured) +
+  return std::string(which) + " not measured: " + format_length(unmeasured) +
          " of the profile around it has no measured point (edge " + (e.radius > 0 ? "radius " : "face ") +
-         format_number(size) + "); its point and radius bridge a hole in the data";
+         format_length(size) + "); its point and radius bridge a hole in the data";
 }
 
 // An edge covered only thanks to points the gap fill carried onto the plane: say so, with
@@ -69,9 +70,9 @@ std::string carried_note(const SectionFacts& f, const Edge& e, const std::string
     if ((q.carried[i] - at).norm() <= 3 * size + own.around) far = std::max(far, q.carried_offset[i]);
   char text[256];
   std::snprintf(text, sizeof text,
-                "%s measured with points carried onto the plane from up to %.3g off it (slice's gap fill: "
-                "the slab alone leaves %.3g of the profile there without a point)",
-                which, far, std::max(own.around, own.hole));
+                "%s measured with points carried onto the plane from up to %s off it (slice's gap fill: "
+                "the slab alone leaves %s of the profile there without a point)",
+                which, format_length(far).c_str(), format_length(std::max(own.around, own.hole)).c_str());
   return std::string(text);
 }
 
@@ -81,9 +82,9 @@ std::string circularity_note(const Edge& e, const char* which, double profile_no
   char text[256];
   std::snprintf(
       text, sizeof text,
-      "%s is not circular: the circle fitted to its %.0f-degree arc leaves it by %.3g rms, %.0f times "
+      "%s is not circular: the circle fitted to its %.0f-degree arc leaves it by %s rms, %.0f times "
       "the points' rms distance to the profile; its radius and point depend on the arc taken",
-      which, e.arc, e.fit_rms, e.fit_rms / profile_noise);
+      which, e.arc, format_length(e.fit_rms).c_str(), e.fit_rms / profile_noise);
   return std::string(text);
 }
 
@@ -121,8 +122,8 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
     for (const auto& a : p)
       for (const auto& b : p0) gap = std::min(gap, (a - b).norm());
     char text[160];
-    std::snprintf(text, sizeof text, "%sloop %d: area %.3g against %.3g, %.3g from loop 0",
-                  out.empty() ? "" : "; ", key.second, area(p), area(p0), gap);
+    std::snprintf(text, sizeof text, "%sloop %d: area %.3g against %.3g mm2, %s from loop 0",
+                  out.empty() ? "" : "; ", key.second, area(p), area(p0), format_length(gap).c_str());
     out += text;
     cut = cut || (area(p) < 0.2 * area(p0) && gap < 0.1 * (high - low).norm());
   }
@@ -228,54 +229,57 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
     case Check::te_radius: {
       const bool le = k.check == Check::le_radius;
       std::snprintf(text, sizeof text,
-                    "%s radius %.4g fails check %s: its circle passes or leaves the profile by %.3g (at most "
-                    "%.3g): it does not fit the blade there",
-                    le ? "leading-edge" : "trailing-edge", le ? p.le_radius : p.te_radius, name, k.value,
-                    k.limit);
+                    "%s radius %s fails check %s: its circle passes or leaves the profile by %s (at most "
+                    "%s): it does not fit the blade there",
+                    le ? "leading-edge" : "trailing-edge",
+                    format_length(le ? p.le_radius : p.te_radius).c_str(), name,
+                    format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
     }
     case Check::le_point:
     case Check::te_point:
-      std::snprintf(text, sizeof text, "%s point fails check %s: it lies %.3g off the profile (at most %.3g)",
-                    k.check == Check::le_point ? "leading-edge" : "trailing-edge", name, k.value, k.limit);
+      std::snprintf(text, sizeof text, "%s point fails check %s: it lies %s off the profile (at most %s)",
+                    k.check == Check::le_point ? "leading-edge" : "trailing-edge", name,
+                    format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
     case Check::chord:
       std::snprintf(
           text, sizeof text,
-          "chord %.6g fails check %s: the profile reaches %.3g beyond an edge point along the camber "
-          "line's end direction (at most %.3g): the edge points are not at the ends of the profile",
-          p.chord, name, k.value, k.limit);
+          "chord %.6g mm fails check %s: the profile reaches %s beyond an edge point along the camber "
+          "line's end direction (at most %s): the edge points are not at the ends of the profile",
+          p.chord, name, format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
     case Check::caliper:
       std::snprintf(text, sizeof text,
-                    "caliper chord %.6g fails check %s: the profile's extent along its line differs by %.3g "
-                    "(at most %.3g)",
-                    p.caliper_chord, name, k.value, k.limit);
+                    "caliper chord %.6g mm fails check %s: the profile's extent along its line differs by %s "
+                    "(at most %s)",
+                    p.caliper_chord, name, format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
     case Check::le_vertex:
     case Check::te_vertex:
       std::snprintf(
           text, sizeof text,
           "%s vertex fails check %s: its flanks meet at so thin a wedge that a shift of the profile "
-          "within its noise moves it by %.3g along the edge (at most %.3g): the edge point, chord and "
+          "within its noise moves it by %s along the edge (at most %s): the edge point, chord and "
           "the camber line's end are uncertain by that much",
-          k.check == Check::le_vertex ? "sharp leading-edge" : "sharp trailing-edge", name, k.value, k.limit);
+          k.check == Check::le_vertex ? "sharp leading-edge" : "sharp trailing-edge", name,
+          format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
     case Check::layers:  // value: the layers' distance, limit: the profile length they cover
       std::snprintf(text, sizeof text,
-                    "the measured points lie in two layers %.3g apart over %.3g of the profile (fitspline: "
+                    "the measured points lie in two layers %s apart over %s of the profile (fitspline: "
                     "views merged with a misregistration?): the profile runs between them, so its thickness, "
                     "edges, camber line and angles may be off by up to half that (check %s)",
-                    k.value, k.limit, name);
+                    format_length(k.value).c_str(), format_length(k.limit).c_str(), name);
       break;
     default: {
       const bool in = k.check == Check::inlet_angle;
-      std::snprintf(
-          text, sizeof text,
-          "%s angle %.2f fails check %s: it is %.2f deg off the camber line's direction next to the "
-          "%s (at most %.2f): the camber line bends there",
-          in ? "inlet" : "outlet", in ? p.inlet_angle : p.outlet_angle, name, k.value,
-          in ? "leading edge" : "trailing edge", k.limit);
+      std::snprintf(text, sizeof text,
+                    "%s angle %s fails check %s: it is %s off the camber line's direction next to the "
+                    "%s (at most %s): the camber line bends there",
+                    in ? "inlet" : "outlet", format_angle(in ? p.inlet_angle : p.outlet_angle).c_str(), name,
+                    format_angle(k.value).c_str(), in ? "leading edge" : "trailing edge",
+                    format_angle(k.limit).c_str());
     }
   }
   return text;
@@ -309,10 +313,10 @@ std::string sharp_but_round(const SectionFacts& f, const Edge& e, const char* wh
   char text[320];
   std::snprintf(
       text, sizeof text,
-      "%s radius 0 fails check %s: the edge was taken as sharp (under %.3g of the largest "
-      "inscribed diameter), but the profile turns there over a radius of %.3g that %d measured points "
+      "%s radius 0 fails check %s: the edge was taken as sharp (under %s of the largest "
+      "inscribed diameter), but the profile turns there over a radius of %s that %d measured points "
       "resolve: a small round edge",
-      which, check, f.options.sharp_ratio, r, near);
+      which, check, format_share(f.options.sharp_ratio).c_str(), format_length(r).c_str(), near);
   return text;
 }
 
@@ -341,10 +345,11 @@ std::uint32_t describe_issues(const SectionFacts& f, const std::vector<Finding>&
     if (k < r.radius.size() && r.off_axis > opt.off_axis * r.radius[k]) {
       char text[256];
       std::snprintf(text, sizeof text,
-                    "the camber line strays from the medial axis by up to %.3g at %.2f of its length (no "
+                    "the camber line strays from the medial axis by up to %s at %s of its length (no "
                     "inscribed circle could be solved there): its shape and the thickness stations there are "
                     "interpolated",
-                    r.off_axis, r.off_axis_s / std::max(r.length, 1e-300));
+                    format_length(r.off_axis).c_str(),
+                    format_share(r.off_axis_s / std::max(r.length, 1e-300)).c_str());
       issues.push_back({f.section, 0, "camber", text});
       flags |= bit(Check::off_axis);
     }
@@ -354,9 +359,9 @@ std::uint32_t describe_issues(const SectionFacts& f, const std::vector<Finding>&
       std::abs(f.params.max_thickness_pos - 0.5) <= opt.le_thickness_margin) {
     char text[256];
     std::snprintf(text, sizeof text,
-                  "the leading edge was taken as the end nearer the maximum thickness, which lies at %.2f of "
+                  "the leading edge was taken as the end nearer the maximum thickness, which lies at %s of "
                   "the camber line: too near mid-chord to tell; give the leading-edge direction",
-                  f.params.max_thickness_pos);
+                  format_share(f.params.max_thickness_pos).c_str());
     issues.push_back({f.section, 0, "camber", text});
     flags |= bit(Check::le_choice);
   }
