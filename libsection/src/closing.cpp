@@ -153,6 +153,8 @@ void label_components(const std::vector<int>& out2, const std::vector<int>& b2, 
     Component comp;
     comp.label = int(pass.components.size()) + 1;
     comp.start = c0;
+    comp.i0 = r.w;
+    comp.j0 = r.h;
     const auto take = [&](std::size_t e) {
       if (!open[e]) return;
       open[e] = 0;
@@ -167,6 +169,10 @@ void label_components(const std::vector<int>& out2, const std::vector<int>& b2, 
       ++comp.area;
       if (b2[c] < d2[c]) ++comp.enclosed;
       const int i = int(c % r.w), j = int(c / r.w);
+      comp.i0 = std::min(comp.i0, i);
+      comp.i1 = std::max(comp.i1, i);
+      comp.j0 = std::min(comp.j0, j);
+      comp.j1 = std::max(comp.j1, j);
       if (i > 0 && j > 0 && i + 1 < r.w && j + 1 < r.h) {
         for (const std::ptrdiff_t o : around) take(std::size_t(std::ptrdiff_t(c) + o));
         continue;
