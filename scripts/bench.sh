@@ -27,7 +27,12 @@ BUILD="${BUILD_DIR:-build}"
 WORK="${BENCH_DIR:-/tmp/libsection-bench}"
 REPEAT="${REPEAT:-1}"
 PEER="${PEER:-1}"
-cmake --build "$BUILD" --target bladegen slice smooth fitspline camber bench_read >/dev/null
+# A build tree is brought up to date; a copy of built tools and libraries (tools/, bench/,
+# libsection/, as /work/baseline-*) is run as it is.
+if [ -f "$BUILD/CMakeCache.txt" ]; then
+  cmake --build "$BUILD" --target bladegen slice smooth fitspline camber bench_read >/dev/null
+fi
+export LD_LIBRARY_PATH="$BUILD/libsection:$BUILD/libsection/extras${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 T="$BUILD/tools"
 mkdir -p "$WORK"
 SIZES=("$@")
