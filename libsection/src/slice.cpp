@@ -160,6 +160,25 @@ std::string with_hint(const std::string& what, const SectionSlice& s, double sla
   return what + hint;
 }
 
+// Orders the drift-corrected band of half width `half` beside s's slab ordering into
+// s.morphology. False, s as it was, when the band holds no more points than the slab or
+// cannot be ordered.
+bool order_band(SectionSlice& s, const std::vector<Eigen::Vector3d>& near, std::size_t slab_points,
+                double slab, double half, const SliceOptions& options) {
+  std::vector<Eigen::Vector2d> band =
+      drift_band(s.morphology, near, slab, half, options.band_spacing, options.band_sparse_max * slab);
+  drop_copies(band);
+  if (band.size() <= slab_points) return false;
+  try {
+    s.morphology = order_section(band, options.morphology);
+  } catch (const Error&) {
+    return false;
+  }
+  s.band_points = band.size();
+  s.band_half_width = half;
+  return true;
+}
+
 }  // namespace
 
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
@@ -211,23 +230,10 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
       s.morphology = order ? order(slabs[i], options.morphology) : order_section(slabs[i], slab_options);
       std::size_t first = slabs[i].size();
       if (const double half = band_half(s.morphology); half > 0) {
-        std::vector<Eigen::Vector2d> band = drift_band(s.morphology, near(), slab, half, options.band_spacing,
-                                                       options.band_sparse_max * slab);
-        drop_copies(band);
-        bool banded = false;
-        if (band.size() > slabs[i].size()) {
-          // A band that cannot be ordered leaves the slab's ordering as it is.
-          try {
-            s.morphology = order_section(band, options.morphology);
-            first = band.size();
-            s.band_points = band.size();
-            s.band_half_width = half;
-            banded = true;
-          } catch (const Error&) {
-          }
-        }
-        // The slab's ordering stays: ordered again, with its skeleton this time.
-        if (!banded && slab_options.skeleton_if) s.morphology = order_section(slabs[i], options.morphology);
+        if (order_band(s, near(), slabs[i].size(), slab, half, options))
+          first = s.band_points;
+        else if (slab_options.skeleton_if)  // the slab's ordering stays: again, with its skeleton
+          s.morphology = order_section(slabs[i], options.morphology);
       }
       // The points beside the plane only for a profile with gaps (the look for gaps
       // needs none of them, and fill_gaps finds none then).
