@@ -8,10 +8,13 @@
 #include "section/pipe/smooth_stream.h"
 #include "section/slice.h"
 
+#include "drift_fit.h"  // libsection/src: the grid the fills and the band search
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 using namespace section;
@@ -156,6 +159,40 @@ TEST_CASE("gap fill: holes and sparse edges of noisy blade scans are filled with
   INFO(improved << " of " << with_gaps << " sections with a gap over 0.5 mm had it cut by 30 % or more");
   CHECK(with_gaps >= 4);
   CHECK(improved >= with_gaps * 3 / 4);
+}
+
+TEST_CASE("gap fill: the points grid finds what a search of every point finds", "[gap_fill]") {
+  // Points clustered and spread (negative coordinates, many per cell, far cells), some
+  // added one by one past the table's first size; every query against brute force.
+  std::mt19937 rng(7);
+  std::normal_distribution<double> near(0, 0.3);
+  std::uniform_real_distribution<double> far(-50, 50);
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < 300; ++i)
+    pts.emplace_back(i % 3 ? Eigen::Vector2d(near(rng), near(rng)) : Eigen::Vector2d(far(rng), far(rng)));
+  const std::size_t first = 100;
+  std::vector<Eigen::Vector2d> held(pts.begin(), pts.begin() + first);
+  drift::Grid grid(held, 0.25);
+  for (std::size_t i = first; i < pts.size(); ++i) {
+    held.push_back(pts[i]);
+    grid.add(int(i));
+  }
+  for (int q = 0; q < 400; ++q) {
+    const Eigen::Vector2d c =
+        q % 2 ? Eigen::Vector2d(near(rng), near(rng)) : Eigen::Vector2d(far(rng), far(rng));
+    const double r = q % 3 == 0 ? 0.1 : (q % 3 == 1 ? 0.6 : 8.0);
+    std::vector<int> want;
+    int best = -1;
+    for (std::size_t i = 0; i < held.size(); ++i) {
+      const double d = (held[i] - c).squaredNorm();
+      if (d > r * r) continue;
+      want.push_back(int(i));
+      if (best < 0 || d < (held[std::size_t(best)] - c).squaredNorm()) best = int(i);
+    }
+    CHECK(grid.within(c, r) == want);
+    CHECK(grid.nearest(c, r) == best);
+    CHECK(grid.any_within(c, r) == !want.empty());
+  }
 }
 
 TEST_CASE("gap fill: bad options are refused before any work", "[gap_fill]") {

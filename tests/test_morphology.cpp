@@ -362,6 +362,39 @@ TEST_CASE("morphology: skeleton of a stadium lies on its axis with the true radi
   CHECK(std::abs(m.skeleton.front().x() - m.skeleton.back().x()) > 18);  // from cap to cap
 }
 
+TEST_CASE("morphology: skeleton_if leaves the skeleton out and the loops as they are", "[morphology]") {
+  // Stadium of half length 10 grown by 2 mm: the skeleton, when asked for, is its axis.
+  Points p;
+  for (int i = 0; i < 1500; ++i) {
+    const double t = 2 * pi * i / 1500;
+    p.emplace_back(10 * (std::cos(t) > 0 ? 1 : -1) + 2 * std::cos(t), 2 * std::sin(t));
+  }
+  ScanSpec spec;
+  spec.seed = 9;
+  const Scan sc = scan(Curve(p), spec);
+  const MorphologyResult all = order_section(sc.points);
+  REQUIRE(all.skeleton.size() > 10);
+  for (const bool wanted : {false, true}) {
+    MorphologyOptions opt;
+    std::size_t asked = 0;
+    opt.skeleton_if = [&](const MorphologyResult& m) {
+      ++asked;
+      CHECK(m.loops.size() == 1);  // asked with the loops made
+      return wanted;
+    };
+    const MorphologyResult m = order_section(sc.points, opt);
+    CHECK(asked == 1);
+    REQUIRE(m.loops.size() == all.loops.size());
+    CHECK(m.loops[0].index == all.loops[0].index);
+    CHECK(m.loops[0].normals == all.loops[0].normals);
+    CHECK(m.skeleton.size() == (wanted ? all.skeleton.size() : 0));
+    for (std::size_t i = 0; wanted && i < m.skeleton.size(); ++i) {
+      CHECK(std::abs(m.skeleton[i].y()) < 2 * m.cell + 1e-9 + (std::abs(m.skeleton[i].x()) > 6 ? 2 : 0));
+      CHECK(m.skeleton[i] == all.skeleton[i]);
+    }
+  }
+}
+
 TEST_CASE("morphology: 1e5 dense points give one loop (time reported, not asserted)", "[morphology][speed]") {
   const Curve c = airfoil({0, 0}, 0.2, 0.25, 3.0, 3.0);
   ScanSpec spec;

@@ -203,3 +203,43 @@ TEST_CASE("slice: a generated blade mesh cuts to the true section", "[slice][gen
     worst = std::max(worst, locate(truth, p).distance);
   CHECK(worst < 1e-6);
 }
+
+TEST_CASE("slice: a band tried and not taken leaves the slab's ordering, skeleton and all", "[slice]") {
+  // A stadium (axis from (-10, 0) to (10, 0), half width 2 mm) scanned in the plane z = 0
+  // only: a band is tried (a tiny band spacing asks for the widest), but it holds nothing
+  // beside the slab's points, so the slab's ordering stays, with the skeleton its first
+  // ordering left out for the band.
+  Cloud cloud;
+  const double side = 20, cap = M_PI * 2, length = 2 * side + 2 * cap;
+  for (int i = 0; i < 2000; ++i) {
+    double s = length * i / 2000;  // arc length from (10, -2), counterclockwise
+    Eigen::Vector3d p;
+    if (s < cap) {
+      p = {10 + 2 * std::sin(s / 2), -2 * std::cos(s / 2), 0};
+    } else if ((s -= cap) < side) {
+      p = {10 - s, 2, 0};
+    } else if ((s -= side) < cap) {
+      p = {-10 - 2 * std::sin(s / 2), 2 * std::cos(s / 2), 0};
+    } else {
+      p = {-10 + (s - cap), -2, 0};
+    }
+    cloud.points.push_back(p);
+  }
+  SliceOptions with_band;
+  with_band.slab = 0.1;
+  with_band.band_spacing = 1e-4;
+  SliceOptions slab_alone = with_band;
+  slab_alone.band_spacing = 0;
+  const SliceResult a = slice(cloud, planes_at({0, 0, 1}, {0.0}), with_band);
+  const SliceResult b = slice(cloud, planes_at({0, 0, 1}, {0.0}), slab_alone);
+  REQUIRE(a.sections.size() == 1);
+  INFO(a.sections[0].error);
+  REQUIRE(a.sections[0].error.empty());
+  CHECK(a.sections[0].band_points == 0);
+  const MorphologyResult& m = a.sections[0].morphology;
+  REQUIRE(m.skeleton.size() > 10);
+  CHECK(m.skeleton == b.sections[0].morphology.skeleton);
+  CHECK(m.loops[0].index == b.sections[0].morphology.loops[0].index);
+  for (std::size_t i = 0; i < m.skeleton.size(); ++i)
+    if (std::abs(m.skeleton[i].x()) < 6) CHECK(std::abs(m.skeleton[i].y()) < 2 * m.cell);  // on the axis
+}

@@ -109,7 +109,8 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;
   std::vector<std::uint8_t>& outside = scratch.bytes;
-  for (std::size_t c = 0; c < r.size(); ++c) outside[c] = b2[c] > rr;
+  const std::size_t cells = r.size();  // once: a byte written may alias r, for the compiler
+  for (std::size_t c = 0; c < cells; ++c) outside[c] = b2[c] > rr;
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
   const int cap_out = int(std::min(far, double(1 << 30)));
   std::vector<int> nearest_out;
@@ -127,7 +128,7 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
     return float((c - seeds.mean[seeds.slot[s]]).norm());
   };
   pass.g = std::move(scratch.f);  // every cell written below
-  for (std::size_t c = 0; c < r.size(); ++c) {
+  for (std::size_t c = 0; c < cells; ++c) {
     const int y = nearest_out[c];
     pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
   }
@@ -144,15 +145,18 @@ void label_components(const std::vector<int>& out2, const std::vector<int>& b2, 
   pass.label = std::move(scratch.ints);
   std::fill(pass.label.begin(), pass.label.end(), 0);
   std::vector<std::uint8_t>& open = scratch.bytes;
-  for (std::size_t c = 0; c < r.size(); ++c) open[c] = out2[c] > rr;
+  const std::size_t cells = r.size();  // once: a byte written may alias r, for the compiler
+  for (std::size_t c = 0; c < cells; ++c) open[c] = out2[c] > rr;
   const std::ptrdiff_t W = r.w;
   const std::ptrdiff_t around[8] = {-W - 1, -W, -W + 1, -1, 1, W - 1, W, W + 1};
   std::vector<std::uint32_t> queue;
-  for (std::size_t c0 = 0; c0 < r.size(); ++c0) {
+  for (std::size_t c0 = 0; c0 < cells; ++c0) {
     if (!open[c0]) continue;
     Component comp;
     comp.label = int(pass.components.size()) + 1;
     comp.start = c0;
+    comp.i0 = r.w;
+    comp.j0 = r.h;
     const auto take = [&](std::size_t e) {
       if (!open[e]) return;
       open[e] = 0;
@@ -167,6 +171,10 @@ void label_components(const std::vector<int>& out2, const std::vector<int>& b2, 
       ++comp.area;
       if (b2[c] < d2[c]) ++comp.enclosed;
       const int i = int(c % r.w), j = int(c / r.w);
+      comp.i0 = std::min(comp.i0, i);
+      comp.i1 = std::max(comp.i1, i);
+      comp.j0 = std::min(comp.j0, j);
+      comp.j1 = std::max(comp.j1, j);
       if (i > 0 && j > 0 && i + 1 < r.w && j + 1 < r.h) {
         for (const std::ptrdiff_t o : around) take(std::size_t(std::ptrdiff_t(c) + o));
         continue;

@@ -16,9 +16,10 @@ namespace section::morph {
 /// A connected component of the closed fill.
 struct Component {
   int label = 0;
-  std::size_t start = 0;     // first cell in raster order
-  std::size_t area = 0;      // cells
-  std::size_t enclosed = 0;  // cells enclosed by the band at the closing radius
+  std::size_t start = 0;                 // first cell in raster order
+  std::size_t area = 0;                  // cells
+  std::size_t enclosed = 0;              // cells enclosed by the band at the closing radius
+  int i0 = 0, i1 = -1, j0 = 0, j1 = -1;  // bounding box of its cells (columns, rows)
 };
 
 /// What one pass made of a point subset.

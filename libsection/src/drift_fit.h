@@ -10,20 +10,25 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace section::drift {
 
 using Vec = Eigen::Vector2d;
 
-// Uniform hash grid over 2D points.
+// Uniform hash grid over 2D points: an open-addressed table of the occupied cells, each
+// the head of a list of its points threaded through `next_` (no allocation per cell; a
+// query probes a few table slots instead of hashing into a node-based map).
 class Grid {
 public:
   Grid(const std::vector<Vec>& points, double cell) : points_(points), cell_(cell) {
-    for (std::size_t i = 0; i < points.size(); ++i) bins_[key(points[i])].push_back(int(i));
+    rehash(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) insert(int(i));
   }
-  void add(int i) { bins_[key(points_[std::size_t(i)])].push_back(i); }
+  void add(int i) {
+    if (2 * (used_ + 1) > slots_.size()) rehash(2 * slots_.size());
+    insert(i);
+  }
   // Calls f(i) for every point within r of c, in no particular order.
   template <class F>
   void for_each_within(const Vec& c, double r, F&& f) const {
@@ -31,9 +36,9 @@ public:
                        y1 = coord(c.y() + r);
     for (std::int64_t x = x0; x <= x1; ++x)
       for (std::int64_t y = y0; y <= y1; ++y) {
-        const auto it = bins_.find(pack(x, y));
-        if (it == bins_.end()) continue;
-        for (int i : it->second)
+        const Slot* s = find(pack(x, y));
+        if (!s) continue;
+        for (int i = s->head; i >= 0; i = next_[std::size_t(i)])
           if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) f(i);
       }
   }
@@ -61,15 +66,62 @@ public:
   }
 
 private:
+  struct Slot {
+    std::int64_t key = 0;
+    int head = -1;  // -1: an empty slot
+  };
   // Clamped: a cell index must fit an int64 whatever the coordinates and cell.
   std::int64_t coord(double v) const { return std::int64_t(std::clamp(std::floor(v / cell_), -1e15, 1e15)); }
   static std::int64_t pack(std::int64_t x, std::int64_t y) {
     return std::int64_t((std::uint64_t(x) << 32) ^ (std::uint64_t(y) & 0xffffffffULL));
   }
   std::int64_t key(const Vec& p) const { return pack(coord(p.x()), coord(p.y())); }
+  std::size_t home(std::int64_t k) const {
+    const std::uint64_t h = std::uint64_t(k) * 0x9E3779B97F4A7C15ULL;
+    return std::size_t(h ^ (h >> 32)) & (slots_.size() - 1);
+  }
+  const Slot* find(std::int64_t k) const {
+    for (std::size_t h = home(k);; h = (h + 1) & (slots_.size() - 1)) {
+      const Slot& s = slots_[h];
+      if (s.head < 0) return nullptr;
+      if (s.key == k) return &s;
+    }
+  }
+  void insert(int i) {
+    if (next_.size() <= std::size_t(i)) next_.resize(std::size_t(i) + 1, -1);
+    const std::int64_t k = key(points_[std::size_t(i)]);
+    for (std::size_t h = home(k);; h = (h + 1) & (slots_.size() - 1)) {
+      Slot& s = slots_[h];
+      if (s.head >= 0 && s.key != k) continue;
+      if (s.head < 0) {
+        s.key = k;
+        ++used_;
+      }
+      next_[std::size_t(i)] = s.head;
+      s.head = i;
+      return;
+    }
+  }
+  // A table of at least 2 n slots (a power of two), the points' lists kept.
+  void rehash(std::size_t n) {
+    std::size_t size = 16;
+    while (size < 2 * n) size *= 2;
+    std::vector<Slot> old(size);
+    old.swap(slots_);
+    for (const Slot& s : old) {
+      if (s.head < 0) continue;
+      for (std::size_t h = home(s.key);; h = (h + 1) & (slots_.size() - 1))
+        if (slots_[h].head < 0) {
+          slots_[h] = s;
+          break;
+        }
+    }
+  }
   const std::vector<Vec>& points_;
   double cell_;
-  std::unordered_map<std::int64_t, std::vector<int>> bins_;
+  std::vector<Slot> slots_;
+  std::vector<int> next_;  // the next point of the same cell, -1 at a list's end
+  std::size_t used_ = 0;   // occupied slots
 };
 
 // The slab's ordered points, all loops, with their place in their loop.
@@ -115,11 +167,17 @@ bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std
   for (int pass = 0; pass < 3; ++pass) {
     Eigen::Matrix<double, N, N> A = Eigen::Matrix<double, N, N>::Zero();
     Eigen::Matrix<double, N, 1> b = Eigen::Matrix<double, N, 1>::Zero();
+    // The lower triangle only, mirrored after: each entry is the same sum of the same
+    // products as the full outer products give, at half the work.
     for (std::size_t r = 0; r < rows.size(); ++r)
       if (use[r]) {
-        A += rows[r] * rows[r].transpose();
-        b += rows[r] * rhs[r];
+        const Eigen::Matrix<double, N, 1>& x = rows[r];
+        for (int j = 0; j < N; ++j)
+          for (int i = j; i < N; ++i) A(i, j) += x(i) * x(j);
+        b += x * rhs[r];
       }
+    for (int j = 1; j < N; ++j)
+      for (int i = 0; i < j; ++i) A(i, j) = A(j, i);
     const double weight = A(0, 0) + A(1, 1);
     for (int j = 0; j < ridged; ++j) A(j, j) += (j < firm ? 1e-3 : firm_ridge) * weight + 1e-12;
     sol = A.ldlt().solve(b);

@@ -201,6 +201,8 @@ void make_loops(const Points& points, Search& s, double h, double outlier, std::
   std::vector<std::vector<std::pair<double, std::size_t>>> members(s.found.size());
   std::vector<Vec> fallback(points.size());
   std::size_t dropped = 0;
+  const morph::Component* first = nullptr;  // loop 0's component and pass
+  const Pass* first_pass = nullptr;
   for (std::size_t k = 0, next = 0; k < points.size(); ++k) {
     const bool known = next < s.footed.size() && s.footed[next] == k;
     const Foot foot = known ? s.feet[next++] : segs.nearest(points[k]);
@@ -225,11 +227,14 @@ void make_loops(const Points& points, Search& s, double h, double outlier, std::
     Loop loop = make_loop(points, f, pass, comp.label, mem, fallback, opt.normal_sigma);
     if (result.loops.empty()) {
       result.dilation = pass.radius;
-      if (opt.skeleton) morph::skeleton_of(pass, comp, result);
+      first = &comp;
+      first_pass = &pass;
     }
     result.loops.push_back(std::move(loop));
   }
   result.dropped = dropped;
+  if (first && opt.skeleton && (!opt.skeleton_if || opt.skeleton_if(result)))
+    morph::skeleton_of(*first_pass, *first, result);
 }
 
 }  // namespace

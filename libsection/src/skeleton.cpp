@@ -46,6 +46,9 @@ void thin(std::vector<std::uint8_t>& img, int w, int h) {
   for (std::size_t c = 0; c < img.size(); ++c)
     if (img[c] && (!img[c - 1] || !img[c + 1] || !img[c - W] || !img[c + W]))
       cand.push_back(std::uint32_t(c));
+  // The sub-steps (bit 0, bit 1) a cell was kept in since its neighbourhood last changed:
+  // kept in both, it is kept again until a neighbour goes, so it is not tested meanwhile.
+  std::vector<std::uint8_t> kept(img.size(), 0);
   std::vector<std::uint32_t> del, keep;
   int idle = 0;
   for (int step = 0; idle < 2; step ^= 1) {
@@ -56,14 +59,17 @@ void thin(std::vector<std::uint8_t>& img, int w, int h) {
       const std::uint8_t* q = img.data() + c;
       const int bits = q[-W] | q[1 - W] << 1 | q[1] << 2 | q[W + 1] << 3 | q[W] << 4 | q[W - 1] << 5 |
                        q[-1] << 6 | q[-W - 1] << 7;
-      if (table.remove[step][bits])
+      if (table.remove[step][bits]) {
         del.push_back(c);
-      else
-        keep.push_back(c);
+      } else {
+        kept[c] |= std::uint8_t(1 << step);
+        if (kept[c] != 3) keep.push_back(c);
+      }
     }
     for (std::uint32_t c : del) img[c] = 0;
     idle = del.empty() ? idle + 1 : 0;
-    // Next candidates: the surviving ones and the foreground neighbours of deleted cells.
+    // Next candidates: the surviving ones not yet kept in both sub-steps and the foreground
+    // neighbours of deleted cells.
     cand.clear();
     for (std::uint32_t c : keep)
       if (!mark[c]) {
@@ -73,7 +79,9 @@ void thin(std::vector<std::uint8_t>& img, int w, int h) {
     for (std::uint32_t c : del)
       for (const std::ptrdiff_t o : around) {
         const std::uint32_t e = std::uint32_t(std::ptrdiff_t(c) + o);
-        if (img[e] && !mark[e]) {
+        if (!img[e]) continue;
+        kept[e] = 0;
+        if (!mark[e]) {
           mark[e] = 1;
           cand.push_back(e);
         }
@@ -90,15 +98,7 @@ struct Crop {
 
 Crop crop(const Pass& pass, const Component& comp) {
   const Raster& r = pass.raster;
-  int i0 = r.w, i1 = -1, j0 = r.h, j1 = -1;
-  for (int j = 0; j < r.h; ++j)
-    for (int i = 0; i < r.w; ++i)
-      if (pass.label[std::size_t(j) * r.w + i] == comp.label) {
-        i0 = std::min(i0, i);
-        i1 = std::max(i1, i);
-        j0 = std::min(j0, j);
-        j1 = std::max(j1, j);
-      }
+  const int i0 = comp.i0, i1 = comp.i1, j0 = comp.j0, j1 = comp.j1;
   Crop c;
   if (i1 < 0) return c;
   c.i0 = i0;

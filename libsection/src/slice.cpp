@@ -189,6 +189,25 @@ void check_loops_hold(const std::vector<Eigen::Vector2d>& points, const Morpholo
   throw Error(what);
 }
 
+// Orders the drift-corrected band of half width `half` beside s's slab ordering into
+// s.morphology. False, s as it was, when the band holds no more points than the slab or
+// cannot be ordered.
+bool order_band(SectionSlice& s, const std::vector<Eigen::Vector3d>& near, std::size_t slab_points,
+                double slab, double half, const SliceOptions& options) {
+  std::vector<Eigen::Vector2d> band =
+      drift_band(s.morphology, near, slab, half, options.band_spacing, options.band_sparse_max * slab);
+  drop_copies(band);
+  if (band.size() <= slab_points) return false;
+  try {
+    s.morphology = order_section(band, options.morphology);
+  } catch (const Error&) {
+    return false;
+  }
+  s.band_points = band.size();
+  s.band_half_width = half;
+  return true;
+}
+
 }  // namespace
 
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
@@ -214,9 +233,6 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         for (auto& p : slabs[i]) p -= local;
         s.frame.origin = s.frame.to_world(local);
       }
-      s.morphology =
-          order ? order(slabs[i], options.morphology) : order_section(slabs[i], options.morphology);
-      std::size_t first = slabs[i].size();
       std::optional<std::vector<Eigen::Vector3d>> near_points;
       const auto near = [&]() -> const std::vector<Eigen::Vector3d>& {
         if (!near_points) {
@@ -226,27 +242,27 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         }
         return *near_points;
       };
-      if (options.band_spacing > 0 && !s.morphology.loops.empty()) {
-        const Loop& profile = s.morphology.loops[0];
+      // The band's half width when a band is to be tried, else 0. A band less than twice
+      // as wide as the slab is not worth a second ordering and the later stages' time for
+      // its points (the slab is dense enough then).
+      const auto band_half = [&](const MorphologyResult& m) {
+        if (!(options.band_spacing > 0) || m.loops.empty()) return 0.0;
+        const Loop& profile = m.loops[0];
         const double half = band_half_width(profile.points.size(), profile.length, slab, options.band_spacing,
                                             options.band_max);
-        // A band less than twice as wide as the slab is not worth a second ordering and
-        // the later stages' time for its points (the slab is dense enough then).
-        if (half >= slab && !near().empty()) {
-          std::vector<Eigen::Vector2d> band = drift_band(
-              s.morphology, near(), slab, half, options.band_spacing, options.band_sparse_max * slab);
-          drop_copies(band);
-          if (band.size() > slabs[i].size()) {
-            // A band that cannot be ordered leaves the slab's ordering as it is.
-            try {
-              s.morphology = order_section(band, options.morphology);
-              first = band.size();
-              s.band_points = band.size();
-              s.band_half_width = half;
-            } catch (const Error&) {
-            }
-          }
-        }
+        return half >= slab && !near().empty() ? half : 0.0;
+      };
+      // The slab's skeleton only when no band is tried (a band's ordering has its own).
+      MorphologyOptions slab_options = options.morphology;
+      if (slab_options.skeleton && !order)
+        slab_options.skeleton_if = [&](const MorphologyResult& m) { return band_half(m) == 0; };
+      s.morphology = order ? order(slabs[i], options.morphology) : order_section(slabs[i], slab_options);
+      std::size_t first = slabs[i].size();
+      if (const double half = band_half(s.morphology); half > 0) {
+        if (order_band(s, near(), slabs[i].size(), slab, half, options))
+          first = s.band_points;
+        else if (slab_options.skeleton_if)  // the slab's ordering stays: again, with its skeleton
+          s.morphology = order_section(slabs[i], options.morphology);
       }
       // The points beside the plane only for a profile with gaps (the look for gaps
       // needs none of them, and fill_gaps finds none then).

@@ -5,6 +5,8 @@ numpy slab mask per plane, nearest-neighbour chaining (scipy cKDTree) to order t
 section, scipy.interpolate.splprep periodic smoothing spline per section.
 
 Usage: slice_peer.py CLOUD.ply|CLOUD.xyz --count N [--normal-z]
+       slice_peer.py ROWS.ply --rows   (a scan in rows: each row, heights more than 1 mm
+                                        from the next, is one section)
 Prints one line: points, sections fitted, and the wall time of read / slab / order / fit.
 """
 import argparse
@@ -67,6 +69,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("cloud")
     ap.add_argument("--count", type=int, default=20)
+    ap.add_argument("--rows", action="store_true", help="each row of points (a height level) is a section")
     ap.add_argument("--noise", type=float, default=0.005, help="sigma for the splprep smoothing factor, mm")
     a = ap.parse_args()
     t0 = time.perf_counter()
@@ -76,6 +79,14 @@ def main():
     lo, hi = z.min(), z.max()
     heights = lo + (hi - lo) * (np.arange(a.count) + 1) / (a.count + 1)
     slab = spacing(p)
+    if a.rows:
+        # The rows' heights: sorted heights split where they jump by more than 1 mm; the
+        # slab takes a whole row.
+        zs = np.sort(z)
+        cut = np.flatnonzero(np.diff(zs) > 1.0)
+        starts, ends = np.r_[0, cut + 1], np.r_[cut, len(zs) - 1]
+        heights = 0.5 * (zs[starts] + zs[ends])
+        slab = 2 * float(np.max(zs[ends] - zs[starts])) + 1e-9
     t_slab = t_order = t_fit = 0.0
     fitted = 0
     for h in heights:

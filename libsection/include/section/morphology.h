@@ -7,22 +7,28 @@
 /// dilation, fill, erosion) and each component traced into a loop: docs/MORPHOLOGY.md.
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace section {
 
+struct MorphologyResult;
+
 /// Options of order_section (and of slice, through SliceOptions::morphology); each one's
 /// role in the method: docs/MORPHOLOGY.md.
 struct MorphologyOptions {
-  double cell = 0;                     ///< mm, raster cell h; 0 = the point spacing (at most `auto_cells`)
-  std::size_t auto_cells = 250'000;    ///< cells, raster budget when `cell` is 0
-  int max_dilation = 64;               ///< cells, largest dilation radius tried (closes gaps of 2 r)
-  double outlier_distance = 0;         ///< mm, points farther from every loop are dropped; 0 = 2.5 cells
-  double isolated_distance = 0;        ///< mm, a point with no other this close is left out; 0 = 6 cells
-  double normal_sigma = 1.5;           ///< cells, blur of the fill whose gradient gives the normals
-  std::size_t min_points = 8;          ///< points, fewest a loop (and the section) must have
-  int max_loops = 16;                  ///< loops, most reported per section
-  bool skeleton = true;                ///< compute the skeleton of loop 0
+  double cell = 0;                   ///< mm, raster cell h; 0 = the point spacing (at most `auto_cells`)
+  std::size_t auto_cells = 250'000;  ///< cells, raster budget when `cell` is 0
+  int max_dilation = 64;             ///< cells, largest dilation radius tried (closes gaps of 2 r)
+  double outlier_distance = 0;       ///< mm, points farther from every loop are dropped; 0 = 2.5 cells
+  double isolated_distance = 0;      ///< mm, a point with no other this close is left out; 0 = 6 cells
+  double normal_sigma = 1.5;         ///< cells, blur of the fill whose gradient gives the normals
+  std::size_t min_points = 8;        ///< points, fewest a loop (and the section) must have
+  int max_loops = 16;                ///< loops, most reported per section
+  bool skeleton = true;              ///< compute the skeleton of loop 0
+  /// With `skeleton`: asked with the loops made, before the skeleton; false leaves it out
+  /// (slice: a band's ordering will replace this one). Empty: always computed.
+  std::function<bool(const MorphologyResult&)> skeleton_if;
   std::size_t max_cells = 50'000'000;  ///< cells, a larger raster is refused with an error
 };
 
