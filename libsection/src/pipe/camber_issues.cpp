@@ -261,6 +261,14 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
           "the camber line's end are uncertain by that much",
           k.check == Check::le_vertex ? "sharp leading-edge" : "sharp trailing-edge", name, k.value, k.limit);
       break;
+    case Check::noise:
+      std::snprintf(
+          text, sizeof text,
+          "its lengths and angles fail check %s: the fit has about as many coefficients as measured "
+          "points and follows their noise, which its rms hides: the profile may stray %.3g from their "
+          "smooth curve (at most %.3g by that rms), and its thickness, edges and chord by as much",
+          name, k.value, k.limit);
+      break;
     case Check::layers:  // value: the layers' distance, limit: the profile length they cover
       std::snprintf(text, sizeof text,
                     "the measured points lie in two layers %.3g apart over %.3g of the profile (fitspline: "
