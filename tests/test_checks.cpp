@@ -383,7 +383,8 @@ TEST_CASE("checks: a grid's noise that the fit follows is flagged; an exact grid
         const auto flags = std::uint32_t(params->at(row, std::size_t(params->find_column("flags"))));
         INFO("noise " << noise << ", row " << row << ": " << names(flags));
         CHECK(((flags & section::bit(Check::noise)) != 0) == (noise > 0));
-        if (noise == 0) CHECK((flags & (section::bit(Check::le_circle) | section::bit(Check::te_circle))) == 0);
+        if (noise == 0)
+          CHECK((flags & (section::bit(Check::le_circle) | section::bit(Check::te_circle))) == 0);
       }
     }
 }
