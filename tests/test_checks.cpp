@@ -337,6 +337,21 @@ TEST_CASE("checks: a TE round but under the sharp threshold is flagged te_sharp,
   }
 }
 
+namespace {
+
+// The flags of the params rows the pipe after slice gives a cloud cut at z = 20 and 40.
+std::vector<std::uint32_t> flags_at_20_and_40(const section::Cloud& cloud) {
+  const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, {20.0, 40.0}));
+  const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
+  std::vector<std::uint32_t> out;
+  if (const section::Table* params = s.find("params"))
+    for (std::size_t row = 0; row < params->rows(); ++row)
+      out.push_back(std::uint32_t(params->at(row, std::size_t(params->find_column("flags")))));
+  return out;
+}
+
+}  // namespace
+
 TEST_CASE("checks: two views merged 15 um apart flag the thickness and camber line (layers)", "[checks]") {
   // The generated compressor scanned in two views, the second moved by 15 um (the
   // example's fault): the profile runs between the layers, every section's max thickness
@@ -346,13 +361,10 @@ TEST_CASE("checks: two views merged 15 um apart flag the thickness and camber li
     so.seed = 3;
     so.misregistration = apart;
     const section::Cloud cloud = section::scan_bands(section::compressor_blade(), {20.0, 40.0}, so);
-    const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, {20.0, 40.0}));
-    const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
-    const section::Table* params = s.find("params");
-    REQUIRE(params);
-    REQUIRE(params->rows() == 2);
+    const std::vector<std::uint32_t> rows = flags_at_20_and_40(cloud);
+    REQUIRE(rows.size() == 2);
     for (std::size_t row = 0; row < 2; ++row) {
-      const auto flags = std::uint32_t(params->at(row, std::size_t(params->find_column("flags"))));
+      const std::uint32_t flags = rows[row];
       INFO("views " << apart << " apart, row " << row << ": " << names(flags));
       CHECK(((flags & section::bit(Check::layers)) != 0) == (apart > 0));
     }
@@ -373,14 +385,10 @@ TEST_CASE("checks: a grid's noise that the fit follows is flagged; an exact grid
       g.around = 200;
       g.noise = noise;
       g.seed = 2;
-      const section::Cloud cloud = section::generate_grid(blade, g);
-      const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, {20.0, 40.0}));
-      const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
-      const section::Table* params = s.find("params");
-      REQUIRE(params);
-      REQUIRE(params->rows() == 2);
+      const std::vector<std::uint32_t> rows = flags_at_20_and_40(section::generate_grid(blade, g));
+      REQUIRE(rows.size() == 2);
       for (std::size_t row = 0; row < 2; ++row) {
-        const auto flags = std::uint32_t(params->at(row, std::size_t(params->find_column("flags"))));
+        const std::uint32_t flags = rows[row];
         INFO("noise " << noise << ", row " << row << ": " << names(flags));
         CHECK(((flags & section::bit(Check::noise)) != 0) == (noise > 0));
         if (noise == 0)
