@@ -231,7 +231,8 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   if (q.all.size() < 16 * local.control.size()) {
     const PointsNoise scatter = points_noise(local, q.all);
     checks.points_noise = scatter.rms, checks.points = scatter.points;
-    checks.noise = std::max(checks.noise, scatter.rms);  // the distance limits see the noise the rms hides
+    // The distance limits see the noise the rms hides (a noise left unknown stays so).
+    if (checks.noise > 0) checks.noise = std::max(checks.noise, scatter.rms);
   }
   SectionCheck check = check_section(local, m.camber, m.params, checks);
   if (const auto l = in.fits.find(section); l != in.fits.end() && l->second.layers > 0)
