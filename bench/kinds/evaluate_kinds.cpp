@@ -10,7 +10,7 @@
 // Beyond it a value is "flagged" (its row's `flags` or an issue names it) or SILENT WRONG.
 // Exit 1 when a kind (of --expect) has one, or params on under 95 % of its planes; 2: usage.
 // Usage: evaluate_kinds [--quick] [--seeds N] [--kinds K1,K2] [--expect K1,K2|all]
-//                       [--tools DIR] [--keep DIR] [--verbose]
+//                       [--grid-noise MM] [--tools DIR] [--keep DIR] [--verbose]
 #include "kinds.h"
 #include "section/checks.h"
 #include "section/extras/generate.h"
@@ -57,6 +57,7 @@ struct Kind {
   const char* ext;     // the file's extension
   double misregistration = 0;
   const char* camber_args = "";  // what the user adds: only --le-direction, where the issue allows it
+  double grid_noise = 0;         // mm, a grid's noise along the section's normal (0: exact, as CFD)
 };
 
 const Kind kinds[] = {
@@ -81,6 +82,12 @@ const Kind kinds[] = {
      Data::scan, "mm", 1, "ply"},
     {"misregistered", "compressor, inspection scan of two views merged 15 um apart", compressor_blade,
      Data::scan, "mm", 1, "ply", 0.015},
+    {"grid-noise-1um", "turbine, chordwise grid measured with 1 um noise (a digitised surface)",
+     turbine_blade, Data::grid_chordwise, "mm", 1, "xyz", 0, "", 0.001},
+    {"grid-noise-3um", "compressor, chordwise grid measured with 3 um noise", compressor_blade,
+     Data::grid_chordwise, "mm", 1, "xyz", 0, "", 0.003},
+    {"grid-noise-10um", "turbine, spanwise grid measured with 10 um noise", turbine_blade,
+     Data::grid_spanwise, "mm", 1, "xyz", 0, "", 0.010},
 };
 
 bool sparse(const Kind& k) {
@@ -90,6 +97,7 @@ bool sparse(const Kind& k) {
 struct Options {
   bool quick = false, verbose = false;
   int seeds = 5;
+  double grid_noise = -1;              // mm: --grid-noise, every grid kind's noise (< 0: the kind's own)
   std::set<std::string> only, expect;  // empty: every kind; every kind gates
   std::string tools, keep;
   bool temporary = false;  // no --keep: the files go to a folder removed at the end
@@ -119,6 +127,7 @@ int write_data(const Kind& k, const BladeDesign& blade, int seed, const Options&
     g.heights = chordwise ? lines : points;
     g.around = chordwise ? points : std::min(300, lines + 50);
     g.seed = std::uint64_t(seed);
+    g.noise = o.grid_noise >= 0 ? o.grid_noise : k.grid_noise;
     cloud = generate_grid(blade, g);
   } else {
     RowsOptions r;
@@ -319,11 +328,12 @@ void print_kind(const Kind& k, const KindResult& res, const Options& o) {
 
 const char* const usage =
     "usage: evaluate_kinds [--quick] [--seeds N] [--kinds K1,K2,...] [--expect K1,K2,...|all] [--tools DIR]\n"
-    "                      [--keep DIR] [--verbose]\n"
+    "                      [--grid-noise MM] [--keep DIR] [--verbose]\n"
     "Runs slice FILE --count N | smooth | fitspline | camber --params P (default options; camber\n"
     "--le-direction for the symmetric blade only) on each kind of generated data, --seeds runs\n"
     "(default 5) each, and scores every section against the exact truth. --quick: one run, 3\n"
-    "planes, a coarser scan (for ctest). --expect: only these kinds decide the exit status.\n"
+    "planes, a coarser scan (for ctest). --grid-noise MM: every grid kind measured with that noise.\n"
+    "--expect: only these kinds decide the exit status.\n"
     "--tools: the tools' folder (default: ../tools beside this program). --keep DIR: keep the\n"
     "data, streams and params there. Exit 0 when every kind that decides has no silent wrong\n"
     "value and params on >= 95 % of its planes, 1 otherwise, 2 on bad usage.\n"
@@ -348,6 +358,8 @@ int parse(int argc, char** argv, Options& o) {
     } else if (has_value && (a == "--kinds" || a == "--expect")) {
       for (const std::string& name : split(argv[++i], ','))
         if (!name.empty()) (a == "--kinds" ? o.only : o.expect).insert(name);
+    } else if (has_value && a == "--grid-noise") {
+      o.grid_noise = std::atof(argv[++i]);
     } else if (has_value && a == "--tools") {
       o.tools = argv[++i];
     } else if (has_value && a == "--keep") {

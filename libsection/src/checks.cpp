@@ -3,6 +3,8 @@
 
 #include "detail/sampled_profile.h"
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -119,7 +121,8 @@ struct Checker {
     for (int i = 0; i <= 60; ++i)
       worst = std::max(worst,
                        std::abs((pr.fast.jet(e.arc_t0 + span * i / 60).point - e.center).norm() - e.radius));
-    const double arc_limit = 2 * options.noise_factor * std::max(options.noise, 1e-4 * e.radius);
+    const double arc_limit =
+        2 * options.noise_factor * std::max({options.noise, 1e-4 * e.radius, e.sampling});
     if (worst > arc_limit) fail(c, worst, arc_limit);
   }
 
@@ -179,6 +182,17 @@ struct Checker {
     if (caliper_gap > tol) fail(Check::caliper, caliper_gap, tol);
   }
 
+  // The profile's own uncertainty: a fit with about as many coefficients as points follows
+  // their noise (its rms then hides it), and every length measured on it carries it.
+  void noise(std::size_t coefficients) {
+    if (!(options.points > 0) || !(options.points_noise > 0)) return;
+    const double share = std::min(1.0, double(coefficients) / options.points);
+    const double stray =
+        options.noise_factor * std::max(options.points_noise, options.noise) * std::sqrt(share);
+    const double limit = options.accuracy * pr.scale;
+    if (stray > limit) fail(Check::noise, stray, limit);
+  }
+
   // The end direction extrapolated from the camber line's two chords nearest the edge
   // (`sign` +1 from the LE inward, -1 from the TE), against the reported end tangent.
   void end_angle(double reported, double s0, double sign, Check c) {
@@ -200,6 +214,52 @@ struct Checker {
 
 }  // namespace
 
+PointsNoise points_noise(const BSpline& profile, const std::vector<Eigen::Vector2d>& points) {
+  std::size_t n = points.size();
+  if (n < 12) return {};
+  const SampledProfile pr(profile, 4000);
+  // The points in the profile's order (by their nearest sample's parameter).
+  std::vector<std::pair<double, std::size_t>> all(n);
+  for (std::size_t i = 0; i < n; ++i) all[i] = {pr.ts[pr.nearest(points[i])], i};
+  std::sort(all.begin(), all.end());
+  // Points much closer than the mean spacing share their noise (a grid cut between its
+  // lines gives two points per cell, both interpolated from the same vertices): one is kept.
+  double perimeter = 0;
+  for (std::size_t i = 0; i < pr.samples.size(); ++i)
+    perimeter += (pr.samples[(i + 1) % pr.samples.size()] - pr.samples[i]).norm();
+  const double least = 0.5 * perimeter / double(n);
+  std::vector<std::pair<double, std::size_t>> order;
+  for (const auto& p : all)
+    if (order.empty() || (points[p.second] - points[order.back().second]).norm() >= least) order.push_back(p);
+  n = order.size();
+  if (n < 12) return {};
+  std::vector<double> scatter;
+  scatter.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = order[k].second;
+    const detail::CurveJet j = pr.fast.jet(order[k].first);
+    const Eigen::Vector2d along = j.d1.normalized(), normal = detail::left_normal(along);
+    // The quadratic y(x) through the four neighbours (x along the profile's tangent, y
+    // along its normal), predicted at the point: the residual over its standard deviation
+    // in units of the noise (1 + the prediction's variance).
+    Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (const long off : {-2L, -1L, 1L, 2L}) {
+      const Eigen::Vector2d d = points[order[std::size_t((long(k + n) + off) % long(n))].second] - points[i];
+      const Eigen::Vector3d row(1, d.dot(along), d.dot(along) * d.dot(along));
+      a += row * row.transpose();
+      b += row * d.dot(normal);
+    }
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(a);
+    const Eigen::Vector3d c = ldlt.solve(b), e0 = ldlt.solve(Eigen::Vector3d::UnitX());
+    if (ldlt.info() != Eigen::Success || !c.allFinite() || !(e0.x() > 0) || e0.x() > 100) continue;
+    scatter.push_back(std::abs(c.x()) / std::sqrt(1 + e0.x()));
+  }
+  if (scatter.size() < 8) return {};
+  std::nth_element(scatter.begin(), scatter.begin() + long(scatter.size() / 2), scatter.end());
+  return {1.4826 * scatter[scatter.size() / 2], double(n)};
+}
+
 SectionCheck check_section(const BSpline& profile, const CamberResult& camber, const SectionParams& params,
                            const CheckOptions& options) {
   const SampledProfile pr(profile, 4000);
@@ -211,6 +271,7 @@ SectionCheck check_section(const BSpline& profile, const CamberResult& camber, c
   k.chord();
   k.end_angle(params.inlet_angle, camber.ext_le, 1, Check::inlet_angle);
   k.end_angle(params.outlet_angle, camber.length - camber.ext_te, -1, Check::outlet_angle);
+  k.noise(profile.control.size());
   std::sort(k.out.findings.begin(), k.out.findings.end(),
             [](const Finding& a, const Finding& b) { return bit(a.check) < bit(b.check); });
   return k.out;

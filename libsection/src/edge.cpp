@@ -468,6 +468,35 @@ Edge sharp_vertex(const SampledProfile& pr, const InscribedCircle& end, const Ei
   return e;
 }
 
+// The misfit a fit through sparse exact points leaves about an edge circle: an eighth of
+// the sagitta h^2 / (8 R) of the widest gap h between the measured points on the arc
+// (within a quarter radius of its circle, between its ends' angles). A smooth fit through
+// points on a circle leaves it by far less than the chords do: on exact grids 0.1-0.2 of
+// that sagitta, where the non-circular edges of real CFD sections (parablade's Aachen and
+// impulse blades) leave their circles by 0.4-1.3 of it. 0 when fewer than 8 points lie on
+// the arc or a gap exceeds the radius: such points cannot tell a circle from other curves.
+double arc_sagitta(const SampledProfile& pr, const Edge& e, const std::vector<Eigen::Vector2d>& measured) {
+  const Eigen::Vector2d d = (e.point - e.center).normalized();
+  auto angle = [&](const Eigen::Vector2d& q) {
+    const Eigen::Vector2d r = q - e.center;
+    return std::atan2(cross(d, r), d.dot(r));
+  };
+  const double a0 = angle(pr.fast.jet(e.arc_t0).point), a1 = angle(pr.fast.jet(e.arc_t1).point);
+  const double lo = std::min(a0, a1), hi = std::max(a0, a1);
+  std::vector<double> angles;
+  for (const auto& q : measured) {
+    if (std::abs((q - e.center).norm() - e.radius) > 0.25 * e.radius) continue;
+    const double a = angle(q);
+    if (a >= lo && a <= hi) angles.push_back(a);
+  }
+  if (angles.size() < 8) return 0;
+  std::sort(angles.begin(), angles.end());
+  double gap = 0;
+  for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+  const double h = 2 * e.radius * std::sin(0.5 * gap);
+  return h <= e.radius ? h * h / (8 * e.radius) / 8 : 0.0;
+}
+
 void classify_edge(Edge& e, double max_diameter, const CamberOptions& options) {
   if (e.radius < options.sharp_ratio * max_diameter)
     e.shape = EdgeShape::sharp;
@@ -530,8 +559,10 @@ Edge detect_edge(const SampledProfile& pr, const InscribedCircle& end, const Eig
     e.t = pr.ts[pr.nearest(face.mid)];
   }
   classify_edge(e, max_diameter, options);
+  if (e.radius > 0) e.sampling = arc_sagitta(pr, e, measured);
   if (options.profile_noise > 0 && e.radius > 0)
-    e.circular = e.fit_rms <= options.edge_circularity * std::max(options.profile_noise, 1e-4 * e.radius);
+    e.circular = e.fit_rms <=
+                 options.edge_circularity * std::max({options.profile_noise, 1e-4 * e.radius, e.sampling});
   if (face.found) {  // a face, not a circle: no radius, whatever the edge model
     e.shape = EdgeShape::blunt;
     e.face = face.width;

@@ -8,7 +8,7 @@
 source "$(dirname "$0")/lib.sh"
 E="$BIN/../bench/evaluate_kinds"
 if [ ! -x "$E" ]; then echo "skipped: no $E (built with SECTION_BUILD_BENCH=OFF)"; exit 0; fi
-EXPECTED="scan-mm,scan-m,scan-in,grid-chordwise,grid-spanwise,rows-height,rows-radius,sharp-te,symmetric,thick-root,misregistered"
+EXPECTED="scan-mm,scan-m,scan-in,grid-chordwise,grid-spanwise,rows-height,rows-radius,sharp-te,symmetric,thick-root,misregistered,grid-noise-1um,grid-noise-3um,grid-noise-10um"
 [ "${KINDS_STRICT:-0}" = 1 ] && EXPECTED=all
 
 expect 0 "--help" -- "$E" --help
@@ -19,7 +19,7 @@ expect 2 "an unknown flag" -- "$E" --bogus
 # The quick run: every kind once, the expected ones must pass.
 expect 0 "quick run, the expected kinds ($EXPECTED) pass" -- "$E" --quick --tools "$BIN" --expect "$EXPECTED"
 sed -n '/^summary/,$p' "$TMP/out"
-check "a summary line per kind" -- test "$(grep -cE '^(PASS|FAIL) ' "$TMP/out")" -eq 11
+check "a summary line per kind" -- test "$(grep -cE '^(PASS|FAIL) ' "$TMP/out")" -eq 14
 cp "$TMP/out" "$TMP/quick.txt"
 
 # The harness itself: a camber that writes a chord 1 % long is caught as a silent wrong

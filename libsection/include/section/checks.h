@@ -45,6 +45,7 @@ enum class Check : std::uint32_t {
   te_vertex = 1u << 25,  ///< the same at the TE
   le_sharp = 1u << 26,   ///< LE taken as sharp (radius 0), but the points resolve a small round edge there
   te_sharp = 1u << 27,   ///< the same at the TE
+  noise = 1u << 28,  ///< the fit follows the points' noise: its rms hides a scatter that every length carries
 };
 
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
@@ -95,6 +96,9 @@ inline constexpr CheckName check_names[] = {
      "te_point chord stagger camber_line camber_length outlet_angle camber_angle"},
     {Check::le_sharp, "le_sharp", "le_radius le_center"},
     {Check::te_sharp, "te_sharp", "te_radius te_center"},
+    {Check::noise, "noise",
+     "max_thickness max_thickness_pos thickness le_radius le_center te_radius te_center le_point te_point "
+     "chord stagger caliper_chord camber_line camber_length inlet_angle outlet_angle camber_angle"},
 };
 
 /// The bit of a check in a flags mask.
@@ -107,9 +111,12 @@ const char* check_name(Check check);
 
 /// Options of check_section (lengths in the profile's units, angles in degrees).
 struct CheckOptions {
-  double noise = 0;              ///< rms of the measured points about the profile (0 = unknown)
-  double noise_factor = 4;       ///< a distance is off beyond this many noise rms ...
-  double floor = 1e-5;           ///< ... plus this fraction of the profile's size
+  double noise = 0;          ///< rms of the measured points about the profile (0 = unknown)
+  double points_noise = 0;   ///< the points' own scatter (points_noise(); 0 = unknown) ...
+  double points = 0;         ///< ... over this many independent points (0: the check is not made)
+  double accuracy = 1.5e-4;  ///< fraction of the profile's size: a profile uncertain by more flags its values
+  double noise_factor = 4;   ///< a distance is off beyond this many noise rms ...
+  double floor = 1e-5;       ///< ... plus this fraction of the profile's size
   double tangent_length = 0.05;  ///< camber-length fraction over which the end directions are taken
   double angle_floor = 1;        ///< degrees: least angle tolerance
   double vertex_reach = 0.02;    ///< camber-length fraction over which a sharp edge's wedge is taken
@@ -148,6 +155,19 @@ struct SectionCheck {
 ///   turning between those chords) + the angle noise x noise / length subtends.
 SectionCheck check_section(const BSpline& profile, const CamberResult& camber, const SectionParams& params,
                            const CheckOptions& options = {});
+
+/// The scatter (rms, along the normal) of measured points about a smooth curve, from the
+/// points themselves: each point against the quadratic through its two neighbours either
+/// side along `profile` (the points ordered by their place on it), that residual divided by
+/// its standard deviation in noise units, robust (1.4826 x the median). Unlike a fit's
+/// rms it does not shrink when the fit follows the points (as many coefficients as points).
+/// Points much closer than half the mean spacing count once (`points`: those counted).
+/// 0 with fewer than 12 points.
+struct PointsNoise {
+  double rms = 0;     ///< the scatter, in the points' unit
+  double points = 0;  ///< the points it rests on (independent ones)
+};
+PointsNoise points_noise(const BSpline& profile, const std::vector<Eigen::Vector2d>& points);
 
 /// A section of a blade as check_blade sees it.
 struct BladeSection {

@@ -46,6 +46,10 @@ struct Edge {
   /// False when the circle leaves the edge arc by more than edge_circularity x the profile
   /// noise: the radius depends on the arc taken, and the camber line keeps its medial end.
   bool circular = true;
+  /// The misfit sampling leaves: an eighth of the sagitta h^2 / (8 R) of the widest gap h
+  /// between the measured points on the arc (0 with under 8 of them or h > R). The
+  /// circularity tolerance is at least edge_circularity x this.
+  double sampling = 0;
   double face = 0;         ///< blunt edge with a flat face: the face's width (0 otherwise)
   bool on_points = false;  ///< the circle was refitted to the measured points on the arc
   /// Sharp (closed) edge: the medial branch runs into a vertex of the profile, which is

@@ -265,6 +265,14 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
           k.check == Check::le_vertex ? "sharp leading-edge" : "sharp trailing-edge", name,
           format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
+    case Check::noise:
+      std::snprintf(
+          text, sizeof text,
+          "its lengths and angles fail check %s: the fit has about as many coefficients as measured "
+          "points and follows their noise, which its rms hides: the profile may stray %.3g from their "
+          "smooth curve (at most %.3g by that rms), and its thickness, edges and chord by as much",
+          name, k.value, k.limit);
+      break;
     case Check::layers:  // value: the layers' distance, limit: the profile length they cover
       std::snprintf(text, sizeof text,
                     "the measured points lie in two layers %s apart over %s of the profile (fitspline: "
