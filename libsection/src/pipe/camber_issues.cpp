@@ -269,9 +269,9 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
       std::snprintf(
           text, sizeof text,
           "its lengths and angles fail check %s: the fit has about as many coefficients as measured "
-          "points and follows their noise, which its rms hides: the profile may stray %.3g from their "
-          "smooth curve (at most %.3g by that rms), and its thickness, edges and chord by as much",
-          name, k.value, k.limit);
+          "points and follows their noise, which its rms hides: the profile may stray %s from their "
+          "smooth curve (at most %s), and its thickness, edges and chord by as much",
+          name, format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
     case Check::layers:  // value: the layers' distance, limit: the profile length they cover
       std::snprintf(text, sizeof text,
