@@ -8,6 +8,8 @@
 #include "section/error.h"
 #include "section/io/limits.h"
 
+#include <cstring>
+
 namespace section {
 
 namespace {
@@ -23,8 +25,9 @@ bool blank(std::string_view line) {
 
 }  // namespace
 
-Stream parse_stream_part(const StreamPart& part, const std::string& source) {
-  return detail::parse_stream_text(*part.text, source, part.text, detail::PartText{true, part.first_line});
+Stream parse_stream_part(const StreamPart& part, const std::string& source, int threads) {
+  return detail::parse_stream_text(*part.text, source, part.text,
+                                   detail::PartText{true, part.first_line, threads});
 }
 
 PartReader::PartReader(const std::string& path) : in_(std::make_unique<detail::ByteSource>(path, "")) {
@@ -61,6 +64,22 @@ bool PartReader::next_line(std::string_view& line) {
   return true;
 }
 
+void PartReader::take_rows() {
+  const std::string_view at = in_->bytes();
+  std::size_t taken = 0, lines = 0;
+  while (taken < at.size() && at[taken] != '#') {
+    const void* nl = std::memchr(at.data() + taken, '\n', at.size() - taken);
+    if (!nl) break;  // a line not all at hand: next_line reads on
+    taken = std::size_t(static_cast<const char*>(nl) - at.data()) + 1;
+    ++lines;
+  }
+  if (!taken) return;
+  text_.append(at.data(), taken);
+  in_->consume(taken);
+  line_no_ += lines;
+  held(text_, "part " + label_);
+}
+
 void PartReader::held(const std::string& text, const std::string& what) const {
   if (text.size() > max_input_bytes())
     detail::refuse_size("pipe: " + source_ + ": " + what, max_input_bytes());
@@ -88,11 +107,12 @@ bool PartReader::next(StreamPart& part) {
       if (!blank(line)) detail::stream_fail(source_, line_no_, "a line after '# end'");
     return false;
   }
-  while (next_line(line)) {
+  while (take_rows(), next_line(line)) {
     const std::string_view key = key_of(line);
     if (key == "part" || key == "end") {
       part = StreamPart{label_, std::make_shared<const std::string>(std::move(text_)), first_line_};
       text_.clear();
+      if (key == "part") text_.reserve(part.text->size() + part.text->size() / 8);  // the next is alike
       first_line_ = line_no_;
       label_ = std::string(detail::meta_line(line).rest);
       if (key == "part" && !labels_.insert(label_).second)

@@ -38,6 +38,7 @@ std::string one_line(std::string s);
 struct PartText {
   bool is_part = false;
   std::size_t first_line = 1;
+  int threads = 0;  ///< cores a large table's rows are parsed by (0: all)
 };
 
 /// parse_stream; the source rows of large tables are kept as parts of `owner` when it holds
