@@ -329,8 +329,7 @@ void StreamParser::block() {
   }
   const std::string_view block = text_.substr(block_start, block_end - block_start);
   if (block.size() < (std::size_t(1) << 12)) return;
-  const std::size_t lines =
-      std::size_t(std::count(block.begin(), block.end(), '\n')) + (block.back() != '\n' ? 1 : 0);
+  const std::size_t lines = count_lines(block) + (block.back() != '\n' ? 1 : 0);
   std::vector<double>& values = current_->values;
   const std::size_t before = values.size(), need = before + lines * current_->columns.size();
   if (values.capacity() < need) values.reserve(std::max(need, 2 * values.capacity()));  // (later parts)

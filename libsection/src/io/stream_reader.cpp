@@ -65,18 +65,26 @@ bool PartReader::next_line(std::string_view& line) {
 }
 
 void PartReader::take_rows() {
+  // The whole lines at hand, cut before the first line that starts with '#' (a '#' may also
+  // stand inside a row: those are passed over).
   const std::string_view at = in_->bytes();
-  std::size_t taken = 0, lines = 0;
-  while (taken < at.size() && at[taken] != '#') {
-    const void* nl = std::memchr(at.data() + taken, '\n', at.size() - taken);
-    if (!nl) break;  // a line not all at hand: next_line reads on
-    taken = std::size_t(static_cast<const char*>(nl) - at.data()) + 1;
-    ++lines;
+  if (at.empty() || at[0] == '#') return;
+  const std::size_t whole = at.rfind('\n') + 1;  // 0 when no line is whole
+  std::size_t taken = whole;
+  for (std::size_t from = 0; from < whole;) {
+    const void* hash = std::memchr(at.data() + from, '#', whole - from);
+    if (!hash) break;
+    const std::size_t k = std::size_t(static_cast<const char*>(hash) - at.data());
+    if (at[k - 1] == '\n') {
+      taken = k;
+      break;
+    }
+    from = k + 1;
   }
   if (!taken) return;
   text_.append(at.data(), taken);
   in_->consume(taken);
-  line_no_ += lines;
+  line_no_ += detail::count_lines(at.substr(0, taken));
   held(text_, "part " + label_);
 }
 
