@@ -114,16 +114,17 @@ bool parse_row(std::string_view line, const IdRules& ids, std::vector<double>& o
 // or `end` after them) appended to `out`: the end of its line, or nullptr for any other row
 // (then left to parse_row, with what was appended).
 inline const char* plain_row(const char* p, const char* end, const IdRules& ids, std::vector<double>& out) {
-  const std::size_t columns = ids.column.size();
-  for (std::size_t col = 0; col < columns; ++col) {
+  if (ids.column.empty()) return nullptr;
+  const std::size_t last = ids.column.size() - 1;
+  for (std::size_t col = 0;; ++col) {
     double value = 0;
     p = plain_number(p, end, value);
     if (!p || std::abs(value) > max_coordinate || !ids.ok(col, value)) return nullptr;
     out.push_back(value);
-    if (col + 1 < columns && (p == end || *p++ != ',')) return nullptr;
+    if (p == end) return col == last ? p : nullptr;
+    if (col == last) return *p == '\n' ? p + 1 : nullptr;
+    if (*p++ != ',') return nullptr;
   }
-  if (p == end) return p;
-  return *p == '\n' ? p + 1 : nullptr;
 }
 
 // The data rows of `text` (whole lines, blank ones skipped) into `out`; false when any row

@@ -31,8 +31,8 @@ inline bool is_id_column(std::string_view name) {
   return name == "section" || name == "loop" || name == "side" || name == "index";
 }
 
-/// The '\n' in `s`, found by memchr (three times faster than std::count on rows of a
-/// stream).
+/// The '\n' in `s`, found by memchr (a quarter of the instructions of std::count on the
+/// rows of a stream).
 inline std::size_t count_lines(std::string_view s) {
   std::size_t n = 0;
   const char* const end = s.data() + s.size();
