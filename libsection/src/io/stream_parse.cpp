@@ -3,6 +3,7 @@
 #include "section/io/stream.h"
 
 #include "detail/parallel.h"
+#include "io/plain_number.h"
 #include "io/stream_text.h"
 #include "io/text.h"
 #include "section/error.h"
@@ -11,6 +12,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace section {
 
@@ -78,7 +81,8 @@ struct IdRules {
   // True when `value` in column `col` is a valid id there.
   bool ok(std::size_t col, double value) const {
     if (!column[col]) return true;
-    if (value != std::floor(value) || value < 0 || value > 2147483647.0) return false;
+    // A whole number in [0, 2^31): in that range the cast is exact (std::floor was slower).
+    if (!(value >= 0 && value <= 2147483647.0) || double(std::int64_t(value)) != value) return false;
     return column[col] != 2 || section < 0 || value == section;
   }
 };
@@ -106,15 +110,39 @@ bool parse_row(std::string_view line, const IdRules& ids, std::vector<double>& o
   return col == columns;
 }
 
+// A row at `p` in the form the writers give (cells plain_number, ',' between them, '\n'
+// or `end` after them) appended to `out`: the end of its line, or nullptr for any other row
+// (then left to parse_row, with what was appended).
+inline const char* plain_row(const char* p, const char* end, const IdRules& ids, std::vector<double>& out) {
+  if (ids.column.empty()) return nullptr;
+  const std::size_t last = ids.column.size() - 1;
+  for (std::size_t col = 0;; ++col) {
+    double value = 0;
+    p = plain_number(p, end, value);
+    if (!p || std::abs(value) > max_coordinate || !ids.ok(col, value)) return nullptr;
+    out.push_back(value);
+    if (p == end) return col == last ? p : nullptr;
+    if (col == last) return *p == '\n' ? p + 1 : nullptr;
+    if (*p++ != ',') return nullptr;
+  }
+}
+
 // The data rows of `text` (whole lines, blank ones skipped) into `out`; false when any row
-// is refused.
+// is refused. Rows in the writers' form are read in one pass, their line ends with them.
 bool parse_rows(std::string_view text, const IdRules& ids, std::vector<double>& out) {
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  while (p < end) {
+    const std::size_t row_start = out.size();
+    if (const char* next = plain_row(p, end, ids, out)) {
+      p = next;
+      continue;
+    }
+    out.resize(row_start);
+    const void* nl = std::memchr(p, '\n', std::size_t(end - p));
+    const char* const line_end = nl ? static_cast<const char*>(nl) : end;
+    std::string_view line(p, std::size_t(line_end - p));
+    p = nl ? line_end + 1 : end;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (trim(line).empty()) continue;
     if (!parse_row(line, ids, out)) return false;
@@ -143,6 +171,7 @@ private:
   void table(std::string_view rest);
   void header(std::string_view line);
   void block();
+  bool parse_pieces(std::string_view block, std::size_t parts);
   void keep_source(std::string_view block);
   void row(std::string_view line);
 
@@ -288,14 +317,38 @@ void StreamParser::header(std::string_view line) {
 void StreamParser::block() {
   const std::size_t block_start =
       std::min(pos_, text_.size());  // pos is past the end after a last line without '\n'
+  // The first '#' that starts a line (one may stand inside a bad row).
   std::size_t block_end = block_start;
   while (block_end < text_.size() && text_[block_end] != '#') {
-    const std::size_t nl = text_.find('\n', block_end);
-    block_end = nl == std::string_view::npos ? text_.size() : nl + 1;
+    const std::size_t hash = text_.find('#', block_end);
+    if (hash == std::string_view::npos) {
+      block_end = text_.size();
+    } else if (text_[hash - 1] == '\n') {
+      block_end = hash;
+    } else {
+      const std::size_t nl = text_.find('\n', hash);
+      block_end = nl == std::string_view::npos ? text_.size() : nl + 1;
+    }
   }
   const std::string_view block = text_.substr(block_start, block_end - block_start);
   if (block.size() < (std::size_t(1) << 12)) return;
-  const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(64, block.size() >> 17));
+  const std::size_t lines = count_lines(block) + (block.back() != '\n' ? 1 : 0);
+  std::vector<double>& values = current_->values;
+  const std::size_t before = values.size(), need = before + lines * current_->columns.size();
+  if (values.capacity() < need) values.reserve(std::max(need, 2 * values.capacity()));  // (later parts)
+  const std::size_t parts =
+      part_.threads == 1 ? 1 : std::max<std::size_t>(1, std::min<std::size_t>(64, block.size() >> 17));
+  if (parts == 1 ? !parse_rows(block, ids_, values) : !parse_pieces(block, parts)) {
+    values.resize(before);
+    return;
+  }
+  keep_source(block);
+  line_no_ += lines;
+  pos_ = block_end;
+}
+
+// The rows of `block` in `parts` pieces, parsed by several cores and appended in order.
+bool StreamParser::parse_pieces(std::string_view block, std::size_t parts) {
   std::vector<std::size_t> cut(parts + 1, 0);
   cut[parts] = block.size();
   for (std::size_t k = 1; k < parts; ++k) {
@@ -304,19 +357,13 @@ void StreamParser::block() {
   }
   std::vector<std::vector<double>> piece(parts);
   std::vector<char> ok(parts, 0);
-  detail::parallel_for(parts, 0, [&](std::size_t k) {
+  detail::parallel_for(parts, part_.threads, [&](std::size_t k) {
     piece[k].reserve((cut[k + 1] - cut[k]) / 8);
     ok[k] = parse_rows(block.substr(cut[k], cut[k + 1] - cut[k]), ids_, piece[k]);
   });
-  if (!std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) return;
-  std::size_t total = 0;
-  for (const auto& v : piece) total += v.size();
-  current_->values.reserve(current_->values.size() + total);
+  if (!std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) return false;
   for (const auto& v : piece) current_->values.insert(current_->values.end(), v.begin(), v.end());
-  keep_source(block);
-  line_no_ += std::count(block.begin(), block.end(), '\n');
-  if (!block.empty() && block.back() != '\n') ++line_no_;  // the last line has no newline
-  pos_ = block_end;
+  return true;
 }
 
 // The rows of a new table kept to be written back as they are (Table::source); not with

@@ -8,6 +8,8 @@
 #include "section/error.h"
 #include "section/io/limits.h"
 
+#include <cstring>
+
 namespace section {
 
 namespace {
@@ -23,8 +25,9 @@ bool blank(std::string_view line) {
 
 }  // namespace
 
-Stream parse_stream_part(const StreamPart& part, const std::string& source) {
-  return detail::parse_stream_text(*part.text, source, part.text, detail::PartText{true, part.first_line});
+Stream parse_stream_part(const StreamPart& part, const std::string& source, int threads) {
+  return detail::parse_stream_text(*part.text, source, part.text,
+                                   detail::PartText{true, part.first_line, threads});
 }
 
 PartReader::PartReader(const std::string& path) : in_(std::make_unique<detail::ByteSource>(path, "")) {
@@ -61,6 +64,30 @@ bool PartReader::next_line(std::string_view& line) {
   return true;
 }
 
+void PartReader::take_rows() {
+  // The whole lines at hand, cut before the first line that starts with '#' (a '#' may also
+  // stand inside a row: those are passed over).
+  const std::string_view at = in_->bytes();
+  if (at.empty() || at[0] == '#') return;
+  const std::size_t whole = at.rfind('\n') + 1;  // 0 when no line is whole
+  std::size_t taken = whole;
+  for (std::size_t from = 0; from < whole;) {
+    const void* hash = std::memchr(at.data() + from, '#', whole - from);
+    if (!hash) break;
+    const std::size_t k = std::size_t(static_cast<const char*>(hash) - at.data());
+    if (at[k - 1] == '\n') {
+      taken = k;
+      break;
+    }
+    from = k + 1;
+  }
+  if (!taken) return;
+  text_.append(at.data(), taken);
+  in_->consume(taken);
+  line_no_ += detail::count_lines(at.substr(0, taken));
+  held(text_, "part " + label_);
+}
+
 void PartReader::held(const std::string& text, const std::string& what) const {
   if (text.size() > max_input_bytes())
     detail::refuse_size("pipe: " + source_ + ": " + what, max_input_bytes());
@@ -88,11 +115,12 @@ bool PartReader::next(StreamPart& part) {
       if (!blank(line)) detail::stream_fail(source_, line_no_, "a line after '# end'");
     return false;
   }
-  while (next_line(line)) {
+  while (take_rows(), next_line(line)) {
     const std::string_view key = key_of(line);
     if (key == "part" || key == "end") {
       part = StreamPart{label_, std::make_shared<const std::string>(std::move(text_)), first_line_};
       text_.clear();
+      if (key == "part") text_.reserve(part.text->size() + part.text->size() / 8);  // the next is alike
       first_line_ = line_no_;
       label_ = std::string(detail::meta_line(line).rest);
       if (key == "part" && !labels_.insert(label_).second)

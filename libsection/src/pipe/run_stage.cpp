@@ -94,7 +94,7 @@ private:
 
   // Parses and stages a job's part (its text is then released).
   void stage(Job& job) {
-    Stream part = parse_stream_part(job.part, reader_.source());
+    Stream part = parse_stream_part(job.part, reader_.source(), 1);  // (the parts are the parallel work)
     validate_stream(part, reader_.source());
     part.units = units_;
     convert_to_mm(part);

@@ -25,8 +25,9 @@ struct StreamPart {
 };
 
 /// Parses one part read by PartReader; its tables keep their rows in `part.text`
-/// (Table::source). Throws section::Error naming `source` and the line.
-Stream parse_stream_part(const StreamPart& part, const std::string& source);
+/// (Table::source). Large tables are parsed by `threads` cores (0: all; 1 where parts are
+/// parsed side by side). Throws section::Error naming `source` and the line.
+Stream parse_stream_part(const StreamPart& part, const std::string& source, int threads = 0);
 
 /// Reads a stream from a file or standard input, part by part when it is split into parts.
 class PartReader {
@@ -58,6 +59,9 @@ public:
 private:
   // The next line (counted); throws for one longer than max_text_line.
   bool next_line(std::string_view& line);
+  // Appends the whole lines at hand up to the next '#' line to text_ in one piece (a part's
+  // rows; next_line takes the '#' lines and a line not all at hand).
+  void take_rows();
   // Throws when `text` (WHAT of the input) is larger than max_input_bytes().
   void held(const std::string& text, const std::string& what) const;
 

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The numbers of the stream in the form its writers give them (`-?D+(.D+)?`), read without
+// std::from_chars where the result is provably the same double: half of a stage's time in
+// reading a stream went to from_chars.
+#include <cfloat>
+#include <cstdint>
+#include <cstring>
+
+namespace section::detail {
+
+/// Appends the run of decimal digits at `p` (up to `end`) to `m` (m * 10^count + them),
+/// moves `p` past it and returns its length. Eight bytes at a time where eight can be read:
+/// their leading digits are found and summed in a few multiplications (after fast_float's
+/// SWAR digits), the 16 digits after the point of most numbers of a stream being most of
+/// its bytes.
+inline long digit_run(const char*& p, const char* end, std::uint64_t& m) {
+  const char* const first = p;
+#if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  static constexpr std::uint64_t tens[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000};
+  while (end - p >= 8 && p - first <= 19) {
+    std::uint64_t x;
+    std::memcpy(&x, p, 8);
+    // The high bit of each byte that is not a digit; exact up to the first such byte
+    // (no carry or borrow reaches it from the digits before), which is all that is used.
+    const std::uint64_t other = ((x + 0x4646464646464646) | (x - 0x3030303030303030)) & 0x8080808080808080;
+    const int n = other ? __builtin_ctzll(other) / 8 : 8;  // leading digits
+    if (n == 0) break;
+    if (n < 8) x = (x << (8 * (8 - n))) | (0x3030303030303030 >> (8 * n));  // '0's before them
+    x -= 0x3030303030303030;
+    x = (x * 10) + (x >> 8);
+    x = (((x & 0x000000FF000000FF) * (100 + (1000000ULL << 32))) +
+         (((x >> 16) & 0x000000FF000000FF) * (1 + (10000ULL << 32)))) >>
+        32;
+    m = m * tens[n] + x;
+    p += n;
+    if (n < 8) return long(p - first);
+  }
+#endif
+  while (p < end && static_cast<unsigned>(*p - '0') < 10) m = 10 * m + std::uint64_t(*p++ - '0');
+  return long(p - first);
+}
+
+/// A number `-?D+(.D+)?` of at most 19 digits at `p` (before `end`): sets `value` to the
+/// double std::from_chars gives for it and returns its end (the caller checks what follows);
+/// nullptr for any other form, or where exactness is not certain (the caller then uses
+/// from_chars).
+inline const char* plain_number(const char* p, const char* end, double& value) {
+  const bool minus = p < end && *p == '-';
+  p += minus;
+  std::uint64_t m = 0;  // all the digits as one integer (wraps past 19 digits, refused then)
+  // The digits before the point one by one (ids, indices and coordinates have few).
+  const char* const first = p;
+  while (p < end && static_cast<unsigned>(*p - '0') < 10) m = 10 * m + std::uint64_t(*p++ - '0');
+  long digits = long(p - first);
+  if (digits == 0) return nullptr;
+  int scale = 0;  // digits after the point
+  if (p < end && *p == '.') {
+    ++p;
+    scale = int(digit_run(p, end, m));
+    if (scale == 0) return nullptr;  // "5." (from_chars' case)
+    digits += scale;
+  }
+  if (digits > 19) return nullptr;
+  constexpr std::uint64_t exact = std::uint64_t(1) << 53;  // every integer up to it is a double
+  double v;
+  if (m <= exact && scale == 0) {
+    v = double(m);  // (ids and counts: no division)
+  } else if (m <= exact && scale <= 22) {
+    // Both exact: one correctly rounded division (Clinger's fast path).
+    static constexpr double tens[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                      1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    v = double(m) / tens[scale];
+  } else {
+#if (defined(__x86_64__) || defined(__i386__)) && LDBL_MANT_DIG == 64
+    // 17 to 19 digits: m and 10^scale are exact in the 64-bit significand of
+    // x87's long double (scale <= 19 digits), so q is m / 10^scale correctly rounded to 64 bits, and rounding
+    // q to 53 bits gives the correctly rounded double unless q lies on a midpoint between two doubles (its 11
+    // low bits 10000000000), which is left to from_chars.
+    static constexpr long double tens[] = {1e0L,  1e1L,  1e2L,  1e3L,  1e4L,  1e5L,  1e6L,
+                                           1e7L,  1e8L,  1e9L,  1e10L, 1e11L, 1e12L, 1e13L,
+                                           1e14L, 1e15L, 1e16L, 1e17L, 1e18L, 1e19L};
+    const long double q = static_cast<long double>(m) / tens[scale];
+    std::uint64_t significand;
+    std::memcpy(&significand, &q, sizeof significand);  // the low 8 bytes of x87's format
+    if ((significand & 0x7FF) == 0x400) return nullptr;
+    v = static_cast<double>(q);
+#else
+    return nullptr;
+#endif
+  }
+  value = minus ? -v : v;
+  return p;
+}
+
+}  // namespace section::detail

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The stream's own number reader (io/plain_number.h) gives the double std::from_chars gives,
+// bit for bit, or leaves the text to it.
+#include "io/plain_number.h"
+#include "section/io/stream.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <string>
+
+namespace {
+
+// True when plain_number reads all of `s` as from_chars does, or declines it.
+bool agrees(const std::string& s) {
+  double mine = 0, theirs = 0;
+  const char* end = s.data() + s.size();
+  const char* at = section::detail::plain_number(s.data(), end, mine);
+  if (!at || at != end) return true;  // declined, or read a part: the caller falls back
+  const auto r = std::from_chars(s.data(), end, theirs);
+  return r.ptr == end && std::memcmp(&mine, &theirs, sizeof mine) == 0;
+}
+
+// True when plain_number reads all of `s`.
+bool reads(const std::string& s) {
+  double v = 0;
+  return section::detail::plain_number(s.data(), s.data() + s.size(), v) == s.data() + s.size();
+}
+
+}  // namespace
+
+TEST_CASE("stream numbers: plain_number reads what the writers write, as from_chars does", "[pipe]") {
+  for (const char* s : {"0", "-0", "-0.0", "5208", "0.05567185234345313", "19.619593363634294",
+                        "-0.9794720536585177", "9007199254740992", "9999999999999999999",
+                        "1.0000000000000002", "123456789.12345678", "0.000000000000000001"}) {
+    CAPTURE(s);
+    CHECK(reads(s));
+    CHECK(agrees(s));
+  }
+  double v = 1;
+  section::detail::plain_number("-0", "-0" + 2, v);
+  CHECK(std::signbit(v));
+  // Other forms are left to from_chars: a sign, an exponent, 20 digits, no digit before or
+  // after the point; and an exact midpoint between two doubles (2^53 + 1).
+  for (const char* s : {"+1", "1e5", "12345678901234567890", "0.0000000000000000001", ".5", "5.", "-", "",
+                        " 1", "inf", "nan", "9007199254740993"}) {
+    CAPTURE(s);
+    CHECK(!reads(s));
+  }
+  // Doubles in their shortest and fixed forms, and 17 to 19 digits near the midpoints
+  // between two doubles, where rounding twice could go wrong.
+  std::mt19937_64 rng(25);
+  std::uniform_real_distribution<double> unit(1, 10);
+  char buf[64];
+  long checked = 0;
+  for (int k = 0; k < 300000; ++k) {
+    const double d = (k % 2 ? -1 : 1) * unit(rng) * std::pow(10.0, int(rng() % 24) - 12);
+    const auto r = std::to_chars(buf, buf + sizeof buf, d);
+    checked += reads(std::string(buf, r.ptr));
+    REQUIRE(agrees(std::string(buf, r.ptr)));
+    const double up = std::nextafter(d, 2 * d);
+    const long double mid = (static_cast<long double>(d) + up) / 2;
+    std::snprintf(buf, sizeof buf, "%.*Lf", int(17 + rng() % 3 - std::floor(std::log10(std::abs(d))) - 1),
+                  mid);
+    REQUIRE(agrees(buf));
+  }
+  CHECK(checked > 150000);
+}
+
+TEST_CASE("stream numbers: rows in other forms and bad rows among plain ones", "[pipe]") {
+  std::string rows;
+  for (int i = 0; i < 2000; ++i)
+    rows += std::to_string(i) + (i % 97 == 5   ? ", 1.5e0 ,+2\r\n"
+                                 : i % 89 == 3 ? ",0.25,-3.\n\n"
+                                               : ",0.25,-3.5\n");
+  const std::string head = "# libsection-stream 1\n# units mm\n# table t\nindex,a,b\n";
+  const section::Stream s = section::parse_stream(head + rows, "s.csv");
+  const section::Table& t = s.get("t", "test");
+  REQUIRE(t.rows() == 2000);
+  CHECK(t.at(5, 1) == 1.5);
+  CHECK(t.at(5, 2) == 2);
+  CHECK(t.at(3, 2) == -3);
+  CHECK(t.at(4, 2) == -3.5);
+  // A bad cell: the line-by-line parse names its line.
+  std::string bad = rows;
+  bad.replace(bad.find("\n1500,") + 1, 4, "15x0");
+  const std::string text = head + bad;
+  const auto line = std::count(text.begin(), text.begin() + long(text.find("15x0")), '\n') + 1;
+  try {
+    section::parse_stream(text, "s.csv");
+    FAIL("no error");
+  } catch (const std::exception& e) {
+    CHECK_THAT(e.what(), Catch::Contains("s.csv:" + std::to_string(line) + ":") && Catch::Contains("'15x0'"));
+  }
+}
