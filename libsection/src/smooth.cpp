@@ -33,15 +33,17 @@ struct Topology {
   int end_term() const { return closed ? n : n - 1; }
 };
 
-/// Segment lengths, floored so that a collapsed segment cannot divide by zero.
-std::vector<double> segment_lengths(const Points& q, const Topology& t, double floor) {
-  std::vector<double> l(t.n, 0.0);
+/// Segment lengths into `l` (its storage reused across iterations), floored so that a
+/// collapsed segment cannot divide by zero.
+void segment_lengths(const Points& q, const Topology& t, double floor, std::vector<double>& l) {
+  l.assign(t.n, 0.0);
   for (int k = t.first_segment(); k < t.n; ++k) l[k] = std::max((q[k] - q[t.prev(k)]).norm(), floor);
-  return l;
 }
 
-double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t, double floor) {
-  const auto l = segment_lengths(q, t, floor);
+/// E of q; `l` is scratch for the segment lengths.
+double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t, double floor,
+                 std::vector<double>& l) {
+  segment_lengths(q, t, floor, l);
   double curvature = 0;
   for (int i = t.first_term(); i < t.end_term(); ++i) {
     const int h = t.prev(i), j = t.next(i);
@@ -59,14 +61,17 @@ double energy_of(const Points& q, const Points& q0, double a, double b, const To
 /// row of term i, w_i = 1 / (l_i + l_{i+1}); A q = b q0 is grad E = 0 at frozen lengths.
 using Band = std::vector<std::array<double, 5>>;
 
-void assemble_band(const std::vector<double>& l, double a, double b, const Topology& t, Band& band) {
-  band.assign(t.n, {0, 0, 0, 0, 0});
-  for (int i = 0; i < t.n; ++i) band[i][2] = b;
+/// `inv` is scratch for the inverse lengths (each is needed by two terms).
+void assemble_band(const std::vector<double>& l, double a, double b, const Topology& t, Band& band,
+                   std::vector<double>& inv) {
+  band.assign(t.n, {0, 0, b, 0, 0});
+  inv.resize(t.n);
+  for (int k = t.first_segment(); k < t.n; ++k) inv[k] = 1 / l[k];
   for (int i = t.first_term(); i < t.end_term(); ++i) {
     const int j = t.next(i);
     const double w = a / (l[i] + l[j]);
     const std::array<int, 3> id{t.prev(i), i, j};
-    const std::array<double, 3> r{1 / l[i], -1 / l[i] - 1 / l[j], 1 / l[j]};
+    const std::array<double, 3> r{inv[i], -inv[i] - inv[j], inv[j]};
     for (int x = 0; x < 3; ++x)
       for (int y = 0; y < 3; ++y) band[id[x]][2 + y - x] += w * r[x] * r[y];
   }
@@ -85,15 +90,19 @@ int band_column(int i, int o, const Topology& t) {
 std::unique_ptr<detail::CholmodSolver> band_solver(const Topology& t) {
   const int n = t.n;
   std::vector<int> ap(n + 1, 0), ai, source;
+  ai.reserve(5 * static_cast<std::size_t>(n));
+  source.reserve(5 * static_cast<std::size_t>(n));
   for (int col = 0; col < n; ++col) {
-    std::vector<int> rows;
+    std::array<int, 5> rows{};
+    int count = 0;
     for (int o = -2; o <= 2; ++o) {
       const int r = band_column(col, o, t);  // symmetric pattern: row r of column col
-      if (r >= 0) rows.push_back(r);
+      if (r >= 0) rows[count++] = r;
     }
-    std::sort(rows.begin(), rows.end());
-    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-    for (int r : rows) {
+    std::sort(rows.begin(), rows.begin() + count);
+    count = static_cast<int>(std::unique(rows.begin(), rows.begin() + count) - rows.begin());
+    for (int k = 0; k < count; ++k) {
+      const int r = rows[k];
       ai.push_back(r);
       int o = col - r;  // band entry (r, col) = band[r][2 + o]
       if (o > 2) o -= n;
@@ -233,7 +242,8 @@ double smooth_energy(const Points& points, const Points& reference, double a, do
     return b * closeness;
   }
   // Zero-length segments: a tiny floor keeps E finite; their unit tangent is then ~0.
-  return energy_of(points, reference, a, b, t, 1e-300);
+  std::vector<double> l;
+  return energy_of(points, reference, a, b, t, 1e-300, l);
 }
 
 namespace {
@@ -287,7 +297,8 @@ Problem prepare(const Points& points, const SmoothOptions& options, SmoothResult
 /// (or a shorter one) when it lowers E. Returns the final E.
 double minimise(const Problem& p, const SmoothOptions& options, Points& q, SmoothResult& result) {
   const Topology& topo = p.topo;
-  double energy = energy_of(q, p.q0, p.a, p.b, topo, p.floor);
+  std::vector<double> l, inv;  // scratch, reused by every iteration
+  double energy = energy_of(q, p.q0, p.a, p.b, topo, p.floor, l);
   result.energy_before = energy;
   result.energy_history.push_back(energy);
   Eigen::MatrixX2d rhs(topo.n, 2), x(topo.n, 2);
@@ -298,7 +309,8 @@ double minimise(const Problem& p, const SmoothOptions& options, Points& q, Smoot
   Points next(topo.n);
   static_assert(sizeof(Band::value_type) == 5 * sizeof(double), "band rows are packed");
   for (int it = 1; p.a > 0 && it <= options.max_iterations; ++it) {
-    assemble_band(segment_lengths(q, topo, p.floor), p.a, p.b, topo, band);
+    // l holds q's lengths: the last energy_of was of q (before the loop, or the step taken).
+    assemble_band(l, p.a, p.b, topo, band, inv);
     if (cholmod) {
       cholmod->solve(band.front().data(), rhs, x);
     } else {
@@ -313,7 +325,7 @@ double minimise(const Problem& p, const SmoothOptions& options, Points& q, Smoot
     bool lowered = false;
     for (double t = 1; t >= 1.0 / 16 && !lowered; t /= 2) {
       for (int i = 0; i < topo.n; ++i) next[i] = q[i] + t * (x.row(i).transpose() - q[i]);
-      next_energy = energy_of(next, p.q0, p.a, p.b, topo, p.floor);
+      next_energy = energy_of(next, p.q0, p.a, p.b, topo, p.floor, l);
       lowered = next_energy < energy;
     }
     if (!lowered) {
