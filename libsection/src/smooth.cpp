@@ -33,22 +33,33 @@ struct Topology {
   int end_term() const { return closed ? n : n - 1; }
 };
 
-/// Segment lengths into `l` (its storage reused across iterations), floored so that a
-/// collapsed segment cannot divide by zero.
-void segment_lengths(const Points& q, const Topology& t, double floor, std::vector<double>& l) {
-  l.assign(t.n, 0.0);
-  for (int k = t.first_segment(); k < t.n; ++k) l[k] = std::max((q[k] - q[t.prev(k)]).norm(), floor);
+/// Segment lengths `l`, floored so that a collapsed segment cannot divide by zero, and unit
+/// tangents `u` (each used by two curvature terms); the storage is reused across iterations.
+struct Segments {
+  std::vector<double> l;
+  Points u;
+};
+
+void segments_of(const Points& q, const Topology& t, double floor, Segments& s) {
+  s.l.assign(t.n, 0.0);
+  s.u.resize(t.n);
+  for (int k = t.first_segment(); k < t.n; ++k) {
+    const Eigen::Vector2d e = q[k] - q[t.prev(k)];
+    s.l[k] = std::max(e.norm(), floor);
+    s.u[k] = e / s.l[k];
+  }
 }
 
-/// E of q; `l` is scratch for the segment lengths.
+/// E of q; `s` is scratch, left with q's segments.
 double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t, double floor,
-                 std::vector<double>& l) {
-  segment_lengths(q, t, floor, l);
+                 Segments& s) {
+  segments_of(q, t, floor, s);
+  const std::vector<double>& l = s.l;
   double curvature = 0;
   for (int i = t.first_term(); i < t.end_term(); ++i) {
-    const int h = t.prev(i), j = t.next(i);
+    const int j = t.next(i);
     // kappa_i^2 (l_i + l_j) / 4 with kappa_i = 2 |d_i| / (l_i + l_j).
-    const Eigen::Vector2d d = (q[j] - q[i]) / l[j] - (q[i] - q[h]) / l[i];
+    const Eigen::Vector2d d = s.u[j] - s.u[i];
     curvature += d.squaredNorm() / (l[i] + l[j]);
   }
   double closeness = 0;
@@ -242,8 +253,8 @@ double smooth_energy(const Points& points, const Points& reference, double a, do
     return b * closeness;
   }
   // Zero-length segments: a tiny floor keeps E finite; their unit tangent is then ~0.
-  std::vector<double> l;
-  return energy_of(points, reference, a, b, t, 1e-300, l);
+  Segments s;
+  return energy_of(points, reference, a, b, t, 1e-300, s);
 }
 
 namespace {
@@ -297,8 +308,9 @@ Problem prepare(const Points& points, const SmoothOptions& options, SmoothResult
 /// (or a shorter one) when it lowers E. Returns the final E.
 double minimise(const Problem& p, const SmoothOptions& options, Points& q, SmoothResult& result) {
   const Topology& topo = p.topo;
-  std::vector<double> l, inv;  // scratch, reused by every iteration
-  double energy = energy_of(q, p.q0, p.a, p.b, topo, p.floor, l);
+  Segments segments;  // scratch, reused by every iteration
+  std::vector<double> inv;
+  double energy = energy_of(q, p.q0, p.a, p.b, topo, p.floor, segments);
   result.energy_before = energy;
   result.energy_history.push_back(energy);
   Eigen::MatrixX2d rhs(topo.n, 2), x(topo.n, 2);
@@ -309,8 +321,8 @@ double minimise(const Problem& p, const SmoothOptions& options, Points& q, Smoot
   Points next(topo.n);
   static_assert(sizeof(Band::value_type) == 5 * sizeof(double), "band rows are packed");
   for (int it = 1; p.a > 0 && it <= options.max_iterations; ++it) {
-    // l holds q's lengths: the last energy_of was of q (before the loop, or the step taken).
-    assemble_band(l, p.a, p.b, topo, band, inv);
+    // segments holds q's: the last energy_of was of q (before the loop, or the step taken).
+    assemble_band(segments.l, p.a, p.b, topo, band, inv);
     if (cholmod) {
       cholmod->solve(band.front().data(), rhs, x);
     } else {
@@ -325,7 +337,7 @@ double minimise(const Problem& p, const SmoothOptions& options, Points& q, Smoot
     bool lowered = false;
     for (double t = 1; t >= 1.0 / 16 && !lowered; t /= 2) {
       for (int i = 0; i < topo.n; ++i) next[i] = q[i] + t * (x.row(i).transpose() - q[i]);
-      next_energy = energy_of(next, p.q0, p.a, p.b, topo, p.floor, l);
+      next_energy = energy_of(next, p.q0, p.a, p.b, topo, p.floor, segments);
       lowered = next_energy < energy;
     }
     if (!lowered) {
