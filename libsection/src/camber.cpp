@@ -372,8 +372,10 @@ void golden_max(double a, double b, double scale, F&& f) {
 // The foot of q on the axis (Newton from the parameter t).
 double foot_on_axis(const AxisCurve& ax, double t, const Eigen::Vector2d& q) {
   for (int it = 0; it < 20; ++it) {
-    const Eigen::Vector2d d1 = ax.spline.derivative(t, 1), d2 = ax.spline.derivative(t, 2);
-    const Eigen::Vector2d e = ax.spline.point(t) - q;
+    Eigen::Vector2d jet[3];  // point and derivatives, from one evaluation
+    ax.spline.derivatives(t, 2, jet);
+    const Eigen::Vector2d &d1 = jet[1], &d2 = jet[2];
+    const Eigen::Vector2d e = jet[0] - q;
     const double step = e.dot(d1) / (d1.squaredNorm() + e.dot(d2));
     t = std::clamp(t - step, ax.a, ax.b);
     if (std::abs(step) < 1e-15 * (ax.b - ax.a)) break;
@@ -397,8 +399,10 @@ void thickest_circle(const SampledProfile& pr, const AxisCurve& ax, const ArcLen
   InscribedCircle best = circles[k];
   golden_max(a, b, pr.scale, [&](double t) {
     InscribedCircle c;
-    const Eigen::Vector2d n = left_normal(ax.spline.derivative(t, 1).normalized());
-    if (detail::solve_circle(pr.fast, ax.spline.point(t), n, best.t_left, best.t_right, pr.scale, c) &&
+    Eigen::Vector2d jet[2];
+    ax.spline.derivatives(t, 1, jet);
+    const Eigen::Vector2d n = left_normal(jet[1].normalized());
+    if (detail::solve_circle(pr.fast, jet[0], n, best.t_left, best.t_right, pr.scale, c) &&
         detail::valid_circle(pr, n, c, nullptr)) {
       if (c.radius > best.radius) best = c;
       return c.radius;
@@ -426,8 +430,10 @@ namespace detail {
 AxisSample axis_sample(const AxisCurve& ax, const ArcLengthTable& table, double ext_le, double s) {
   AxisSample a;
   a.t = table.param(s - ext_le);
-  a.point = ax.spline.point(a.t);
-  a.normal = left_normal(ax.spline.derivative(a.t, 1).normalized());
+  Eigen::Vector2d jet[2];  // point and first derivative, from one evaluation
+  ax.spline.derivatives(a.t, 1, jet);
+  a.point = jet[0];
+  a.normal = left_normal(jet[1].normalized());
   return a;
 }
 

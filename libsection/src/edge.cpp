@@ -373,9 +373,11 @@ double cap_along(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f
                  std::vector<Eigen::Vector2d>& out) {
   const int m = static_cast<int>(p.size()) - 1;
   int top = 0;
-  for (int i = 1; i <= m; ++i)
-    if (p[i].dot(f) > p[top].dot(f)) top = i;
-  const double hmax = p[top].dot(f);
+  double hmax = p[0].dot(f);
+  for (int i = 1; i <= m; ++i) {
+    const double h = p[i].dot(f);
+    if (h > hmax) top = i, hmax = h;
+  }
   int a = top, b = top;
   while (a > 0 && p[a - 1].dot(f) >= hmax - depth) --a;
   while (b < m && p[b + 1].dot(f) >= hmax - depth) ++b;

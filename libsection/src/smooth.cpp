@@ -33,20 +33,33 @@ struct Topology {
   int end_term() const { return closed ? n : n - 1; }
 };
 
-/// Segment lengths, floored so that a collapsed segment cannot divide by zero.
-std::vector<double> segment_lengths(const Points& q, const Topology& t, double floor) {
-  std::vector<double> l(t.n, 0.0);
-  for (int k = t.first_segment(); k < t.n; ++k) l[k] = std::max((q[k] - q[t.prev(k)]).norm(), floor);
-  return l;
+/// Segment lengths `l`, floored so that a collapsed segment cannot divide by zero, and unit
+/// tangents `u` (each used by two curvature terms); the storage is reused across iterations.
+struct Segments {
+  std::vector<double> l;
+  Points u;
+};
+
+void segments_of(const Points& q, const Topology& t, double floor, Segments& s) {
+  s.l.assign(t.n, 0.0);
+  s.u.resize(t.n);
+  for (int k = t.first_segment(); k < t.n; ++k) {
+    const Eigen::Vector2d e = q[k] - q[t.prev(k)];
+    s.l[k] = std::max(e.norm(), floor);
+    s.u[k] = e / s.l[k];
+  }
 }
 
-double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t, double floor) {
-  const auto l = segment_lengths(q, t, floor);
+/// E of q; `s` is scratch, left with q's segments.
+double energy_of(const Points& q, const Points& q0, double a, double b, const Topology& t, double floor,
+                 Segments& s) {
+  segments_of(q, t, floor, s);
+  const std::vector<double>& l = s.l;
   double curvature = 0;
   for (int i = t.first_term(); i < t.end_term(); ++i) {
-    const int h = t.prev(i), j = t.next(i);
+    const int j = t.next(i);
     // kappa_i^2 (l_i + l_j) / 4 with kappa_i = 2 |d_i| / (l_i + l_j).
-    const Eigen::Vector2d d = (q[j] - q[i]) / l[j] - (q[i] - q[h]) / l[i];
+    const Eigen::Vector2d d = s.u[j] - s.u[i];
     curvature += d.squaredNorm() / (l[i] + l[j]);
   }
   double closeness = 0;
@@ -59,14 +72,17 @@ double energy_of(const Points& q, const Points& q0, double a, double b, const To
 /// row of term i, w_i = 1 / (l_i + l_{i+1}); A q = b q0 is grad E = 0 at frozen lengths.
 using Band = std::vector<std::array<double, 5>>;
 
-void assemble_band(const std::vector<double>& l, double a, double b, const Topology& t, Band& band) {
-  band.assign(t.n, {0, 0, 0, 0, 0});
-  for (int i = 0; i < t.n; ++i) band[i][2] = b;
+/// `inv` is scratch for the inverse lengths (each is needed by two terms).
+void assemble_band(const std::vector<double>& l, double a, double b, const Topology& t, Band& band,
+                   std::vector<double>& inv) {
+  band.assign(t.n, {0, 0, b, 0, 0});
+  inv.resize(t.n);
+  for (int k = t.first_segment(); k < t.n; ++k) inv[k] = 1 / l[k];
   for (int i = t.first_term(); i < t.end_term(); ++i) {
     const int j = t.next(i);
     const double w = a / (l[i] + l[j]);
     const std::array<int, 3> id{t.prev(i), i, j};
-    const std::array<double, 3> r{1 / l[i], -1 / l[i] - 1 / l[j], 1 / l[j]};
+    const std::array<double, 3> r{inv[i], -inv[i] - inv[j], inv[j]};
     for (int x = 0; x < 3; ++x)
       for (int y = 0; y < 3; ++y) band[id[x]][2 + y - x] += w * r[x] * r[y];
   }
@@ -85,15 +101,19 @@ int band_column(int i, int o, const Topology& t) {
 std::unique_ptr<detail::CholmodSolver> band_solver(const Topology& t) {
   const int n = t.n;
   std::vector<int> ap(n + 1, 0), ai, source;
+  ai.reserve(5 * static_cast<std::size_t>(n));
+  source.reserve(5 * static_cast<std::size_t>(n));
   for (int col = 0; col < n; ++col) {
-    std::vector<int> rows;
+    std::array<int, 5> rows{};
+    int count = 0;
     for (int o = -2; o <= 2; ++o) {
       const int r = band_column(col, o, t);  // symmetric pattern: row r of column col
-      if (r >= 0) rows.push_back(r);
+      if (r >= 0) rows[count++] = r;
     }
-    std::sort(rows.begin(), rows.end());
-    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-    for (int r : rows) {
+    std::sort(rows.begin(), rows.begin() + count);
+    count = static_cast<int>(std::unique(rows.begin(), rows.begin() + count) - rows.begin());
+    for (int k = 0; k < count; ++k) {
+      const int r = rows[k];
       ai.push_back(r);
       int o = col - r;  // band entry (r, col) = band[r][2 + o]
       if (o > 2) o -= n;
@@ -233,7 +253,8 @@ double smooth_energy(const Points& points, const Points& reference, double a, do
     return b * closeness;
   }
   // Zero-length segments: a tiny floor keeps E finite; their unit tangent is then ~0.
-  return energy_of(points, reference, a, b, t, 1e-300);
+  Segments s;
+  return energy_of(points, reference, a, b, t, 1e-300, s);
 }
 
 namespace {
@@ -287,7 +308,9 @@ Problem prepare(const Points& points, const SmoothOptions& options, SmoothResult
 /// (or a shorter one) when it lowers E. Returns the final E.
 double minimise(const Problem& p, const SmoothOptions& options, Points& q, SmoothResult& result) {
   const Topology& topo = p.topo;
-  double energy = energy_of(q, p.q0, p.a, p.b, topo, p.floor);
+  Segments segments;  // scratch, reused by every iteration
+  std::vector<double> inv;
+  double energy = energy_of(q, p.q0, p.a, p.b, topo, p.floor, segments);
   result.energy_before = energy;
   result.energy_history.push_back(energy);
   Eigen::MatrixX2d rhs(topo.n, 2), x(topo.n, 2);
@@ -298,7 +321,8 @@ double minimise(const Problem& p, const SmoothOptions& options, Points& q, Smoot
   Points next(topo.n);
   static_assert(sizeof(Band::value_type) == 5 * sizeof(double), "band rows are packed");
   for (int it = 1; p.a > 0 && it <= options.max_iterations; ++it) {
-    assemble_band(segment_lengths(q, topo, p.floor), p.a, p.b, topo, band);
+    // segments holds q's: the last energy_of was of q (before the loop, or the step taken).
+    assemble_band(segments.l, p.a, p.b, topo, band, inv);
     if (cholmod) {
       cholmod->solve(band.front().data(), rhs, x);
     } else {
@@ -313,7 +337,7 @@ double minimise(const Problem& p, const SmoothOptions& options, Points& q, Smoot
     bool lowered = false;
     for (double t = 1; t >= 1.0 / 16 && !lowered; t /= 2) {
       for (int i = 0; i < topo.n; ++i) next[i] = q[i] + t * (x.row(i).transpose() - q[i]);
-      next_energy = energy_of(next, p.q0, p.a, p.b, topo, p.floor);
+      next_energy = energy_of(next, p.q0, p.a, p.b, topo, p.floor, segments);
       lowered = next_energy < energy;
     }
     if (!lowered) {

@@ -12,6 +12,8 @@ namespace section::detail {
 /// solve, and factored with the natural ordering: CHOLMOD then does the same arithmetic on
 /// the same matrix, without the transpose and the allocations around it, so the solution
 /// is bit for bit that of the permuting factorisation.
+/// One analysis serves both: that of A gives P, and with P made the identity it is the
+/// analysis of P A P' in the natural ordering.
 struct CholmodSolver::Impl {
   explicit Impl(std::string who) : who(std::move(who)) {
     cholmod_start(&common);
@@ -63,28 +65,25 @@ void CholmodSolver::Impl::setup(int size, const std::vector<int>& col_start, con
   a.sorted = 1;
   a.packed = 1;
   // The fill-reducing ordering, as an analysis of A picks it.
-  cholmod_factor* ordered = cholmod_analyze(&a, &common);
-  if (!ordered) throw Error(who + ": CHOLMOD could not analyse the system");
-  perm.assign(static_cast<int*>(ordered->Perm), static_cast<int*>(ordered->Perm) + n);
+  factor = cholmod_analyze(&a, &common);
+  if (!factor) throw Error(who + ": CHOLMOD could not analyse the system");
+  int* order = static_cast<int*>(factor->Perm);
+  perm.assign(order, order + n);
   // P A P' in upper form, as the permuting factorisation builds it; each of its entries
   // carries the number of the entry of A it came from.
   pap = cholmod_ptranspose(&a, 1, perm.data(), nullptr, 0, &common);
-  cholmod_free_factor(&ordered, &common);
   if (!pap) throw Error(who + ": CHOLMOD could not permute the system");
   const std::size_t nz = cholmod_nnz(pap, &common);
   const double* px = static_cast<const double*>(pap->x);
   from.resize(nz);
   for (std::size_t k = 0; k < nz; ++k) from[k] = source[static_cast<std::size_t>(px[k])];
-  // Natural ordering of the permuted matrix, no postordering: P A P' is factored as given.
-  common.nmethods = 1;
-  common.method[0].ordering = CHOLMOD_NATURAL;
-  common.postorder = 0;
-  factor = cholmod_analyze(pap, &common);
-  if (!factor || factor->ordering != CHOLMOD_NATURAL)
-    throw Error(who + ": CHOLMOD could not analyse the permuted system");
-  const int* natural = static_cast<const int*>(factor->Perm);
-  for (int k = 0; natural && k < n; ++k)
-    if (natural[k] != k) throw Error(who + ": CHOLMOD reordered the permuted system");
+  // The analysis of P A P' in the natural ordering is the same symbolic factor (column
+  // counts in the order of P, postordered) without the permutation: P A P' is factored
+  // as given, with no second analysis.
+  if (factor->is_super || factor->xtype != CHOLMOD_PATTERN)
+    throw Error(who + ": CHOLMOD gave an unexpected analysis");
+  for (int k = 0; k < n; ++k) order[k] = k;
+  factor->ordering = CHOLMOD_NATURAL;
   rhs = cholmod_allocate_dense(n, 2, n, CHOLMOD_REAL, &common);
   if (!rhs) throw Error(who + ": CHOLMOD could not allocate the right-hand side");
 }

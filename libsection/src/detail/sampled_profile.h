@@ -44,6 +44,7 @@ struct SampledProfile {
   double scale = 1;  ///< bounding-box diagonal of the samples
   std::vector<Eigen::Vector2d> samples;
   std::vector<double> ts;  ///< parameter of each sample
+  double step = 0;         ///< largest distance between consecutive samples, rounded up
 
   /// Throws section::Error `camber: ...` when `c` is open, too short or degenerate.
   SampledProfile(const BSpline& c, int count);

@@ -142,14 +142,18 @@ EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
   const double reach = 3 * 3.14159265358979 * size, h = reach / half;
   // Samples every h along the curve, from -reach to +reach around the edge point.
   std::vector<Eigen::Vector2d> samples(2 * half + 1);
-  samples[half] = curve.point(edge.t);
+  Eigen::Vector2d jet[2];  // point and first derivative, from one evaluation
+  curve.derivatives(edge.t, 1, jet);
+  samples[half] = jet[0];
+  const double speed0 = jet[1].norm();
   for (int dir : {-1, 1}) {
-    double t = edge.t;
+    double t = edge.t, speed = speed0;
     for (int k = 1; k <= half; ++k) {
-      const double speed = curve.derivative(t, 1).norm();
       if (!(speed > 0)) return out;
       t += dir * h / speed;
-      samples[half + dir * k] = curve.point(t);
+      curve.derivatives(t, 1, jet);
+      samples[half + dir * k] = jet[0];
+      speed = jet[1].norm();
     }
   }
   // A point covers its nearest sample if that lies within 2h. Samples are bucketed in
