@@ -35,8 +35,8 @@ struct Normal {
 // The data term of the measured points. Degree: the curve's when 0, else equal to it (the
 // same arithmetic, with the loops unrolled).
 template <int Degree>
-void add_points(const detail::PiecewiseCurve& pc, const Points& q, const Feet& f, const std::vector<double>& w,
-                Normal& eq) {
+void add_points(const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
+                const std::vector<double>& w, Normal& eq) {
   const int n = eq.n, p = Degree > 0 ? Degree : eq.p;
   double val[8];
   int idx[8];
