@@ -102,7 +102,7 @@ public:
   CurveJet jet(double t) const { return jet(locate(t)); }
 
   // Cubics (nearly every curve) take the same arithmetic with the degree known to the
-  // compiler: loops unrolled, several times faster in the fits' inner loops.
+  // compiler: the loops unrolled, the fits' inner loops take a fifth less time.
   CurveJet jet(const Local& l) const { return degree_ == 3 ? jet_of<3>(l) : jet_of<0>(l); }
 
   /// The p + 1 basis functions non-zero at t: the first one's control index (the others
