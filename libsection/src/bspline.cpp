@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -336,36 +335,40 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
                 " parameters");
   // The data term summed per matrix entry in point order, first term first: the sums that
   // setFromTriplets would form from one triplet per point and entry, without the triplets.
-  // A row meets the 2 p + 1 columns within p of it at most.
-  struct Entry {
-    int column;
-    double value;
+  // A row meets the 2 p + 1 columns within p of it at most: slot p + (column - row), or
+  // the column itself on a closed curve of 2 p + 1 control points or fewer.
+  const int p = shape.degree, slots = 2 * p + 1;
+  const bool by_column = n <= slots;
+  auto slot_of = [&](int row, int column) {
+    if (by_column) return column;
+    int d = column - row;
+    if (d > p) d -= n;
+    if (d < -p) d += n;
+    return d + p;
   };
-  std::vector<std::array<Entry, 2 * max_degree + 1>> entries(n);
-  std::vector<int> used(n, 0);
+  std::vector<double> entries(static_cast<std::size_t>(n) * slots, 0.0);
+  std::vector<char> used(entries.size(), 0);
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-  std::vector<int> idx;
-  std::vector<double> val;
+  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders;  // row 0 written, only it read
+  int idx[max_degree + 1];
   double trace = 0;
   for (int i = 0; i < m; ++i) {
     const double w = weights.empty() ? 1.0 : weights[i];
     if (w <= 0) continue;
-    shape.basis(parameters[i], idx, val);
-    for (std::size_t a = 0; a < idx.size(); ++a) {
+    // As BSpline::basis, without its checks and allocations per point.
+    const double tn = normalise(shape, parameters[i]);
+    const long j = find_span(shape, tn);
+    basis_derivatives(shape, j, tn, 0, ders);
+    const double* val = ders[0].data();
+    for (int r = 0; r <= p; ++r) idx[r] = control_index(shape, j - p + r);
+    for (int a = 0; a <= p; ++a) {
       rhs.row(idx[a]) += w * val[a] * points[i].transpose();
-      auto& row = entries[idx[a]];
-      int& count = used[idx[a]];
-      for (std::size_t b = 0; b < idx.size(); ++b) {
+      const std::size_t row = static_cast<std::size_t>(idx[a]) * slots;
+      for (int b = 0; b <= p; ++b) {
         const double v = w * val[a] * val[b];
-        int e = 0;
-        while (e < count && row[e].column != idx[b]) ++e;
-        if (e < count) {
-          row[e].value += v;
-        } else {
-          assert(count < static_cast<int>(row.size()) &&
-                 "fit_control_points: the basis indices are p + 1 consecutive ones");
-          row[count++] = {idx[b], v};
-        }
+        const std::size_t e = row + slot_of(idx[a], idx[b]);
+        entries[e] = used[e] ? entries[e] + v : v;
+        used[e] = 1;
       }
       trace += w * val[a] * val[a];
     }
@@ -373,7 +376,12 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(static_cast<std::size_t>(n) * (2 * shape.degree + 1 + 9));
   for (int r = 0; r < n; ++r)
-    for (int e = 0; e < used[r]; ++e) trip.emplace_back(r, entries[r][e].column, entries[r][e].value);
+    for (int e = 0; e < slots; ++e) {
+      const std::size_t k = static_cast<std::size_t>(r) * slots + e;
+      if (!used[k]) continue;
+      const int column = by_column ? e : (r + e - p + n) % n;
+      trip.emplace_back(r, column, entries[k]);
+    }
   // Second differences of the control polygon keep the system regular where spans hold
   // no data; the weight is relative to the mean diagonal of the data term.
   const double lambda = std::max(fairness, 1e-12) * std::max(trace / n, 1e-12);

@@ -91,8 +91,8 @@ bool sort_runs(std::vector<std::size_t>& order, const std::vector<double>& t) {
 }
 
 // t wrapped into [t_min, t_max) by one period.
-double wrap(const BSpline& c, double t) {
-  const double t_min = c.t_min(), t_max = c.t_max(), period = t_max - t_min;
+double wrap(const detail::PiecewiseCurve& pc, double t) {
+  const double t_min = pc.t_min(), t_max = pc.t_max(), period = t_max - t_min;
   return t < t_min ? t + period : (t >= t_max ? t - period : t);
 }
 
@@ -128,7 +128,7 @@ std::vector<std::size_t> track_feet(const BSpline& c, const detail::PiecewiseCur
       }
     }
     if (ok)
-      f.t[k] = wrap(c, t);
+      f.t[k] = wrap(pc, t);
     else
       lost.push_back(k);
   }
@@ -162,7 +162,7 @@ void search_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
     auto distance = [&](double x) {
       return detail::squared_distance(pc.jet(at = pc.locate(x, at.span)), q[k]);
     };
-    f.t[k] = wrap(c, detail::minimise_bracket(distance, a, b, ts[i]));
+    f.t[k] = wrap(pc, detail::minimise_bracket(distance, a, b, ts[i]));
     const detail::CurveJet j = pc.jet(at = pc.locate(f.t[k], at.span));
     const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
     f.signed_distance[k] = (q[k] - j.point).dot(normal);

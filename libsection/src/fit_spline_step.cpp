@@ -32,10 +32,12 @@ struct Normal {
   Eigen::Matrix2d& at(int i, int offset) { return band[static_cast<std::size_t>(i) * (p + 1) + offset]; }
 };
 
-// The data term of the measured points.
-void add_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
+// The data term of the measured points. Degree: the curve's when 0, else equal to it (the
+// same arithmetic, with the loops unrolled).
+template <int Degree>
+void add_points(const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
                 const std::vector<double>& w, Normal& eq) {
-  const int n = eq.n, p = eq.p;
+  const int n = eq.n, p = Degree > 0 ? Degree : eq.p;
   double val[8];
   int idx[8];
   detail::PiecewiseCurve::Local at{0, 0};  // the last span located: consecutive points are close
@@ -173,7 +175,10 @@ BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
                  const std::vector<double>& w, double fairness, double smoothing_length, StepSolver& solver) {
   const int n = static_cast<int>(c.control.size());
   Normal eq(n, c.degree);
-  add_points(c, pc, q, f, w, eq);
+  if (c.degree == 3)
+    add_points<3>(pc, q, f, w, eq);
+  else
+    add_points<0>(pc, q, f, w, eq);
   if (smoothing_length > 0 && c.degree == 3) add_change_of_curvature(c, pc, f, w, smoothing_length, eq);
   const Eigen::SparseMatrix<double> H = assemble(c, fairness, eq);
   const Eigen::VectorXd x = solve(H, eq.rhs, solver);
