@@ -163,16 +163,21 @@ bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std
                  int ridged, double slab, int min_support, Eigen::Matrix<double, N, 1>& sol, int firm = N,
                  double firm_ridge = 1e-3) {
   std::vector<char> use(rows.size(), 1);
+  std::vector<double> res(rows.size()), sorted;
   sol.setZero();
   for (int pass = 0; pass < 3; ++pass) {
     Eigen::Matrix<double, N, N> A = Eigen::Matrix<double, N, N>::Zero();
     Eigen::Matrix<double, N, 1> b = Eigen::Matrix<double, N, 1>::Zero();
     // The lower triangle only, mirrored after: each entry is the same sum of the same
-    // products as the full outer products give, at half the work.
+    // products as the full outer products give, at half the work. Unrolled, each inner
+    // loop has fixed bounds and its products pair up in vector registers (every sum in
+    // the same order: the same numbers; the drift band's fit took 6 % of `slice`).
     for (std::size_t r = 0; r < rows.size(); ++r)
       if (use[r]) {
         const Eigen::Matrix<double, N, 1>& x = rows[r];
+#pragma GCC unroll 16
         for (int j = 0; j < N; ++j)
+#pragma GCC unroll 16
           for (int i = j; i < N; ++i) A(i, j) += x(i) * x(j);
         b += x * rhs[r];
       }
@@ -182,14 +187,20 @@ bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std
     for (int j = 0; j < ridged; ++j) A(j, j) += (j < firm ? 1e-3 : firm_ridge) * weight + 1e-12;
     sol = A.ldlt().solve(b);
     if (!sol.allFinite()) return false;
-    std::vector<double> res;
-    for (std::size_t r = 0; r < rows.size(); ++r) res.push_back(std::abs(rhs[r] - rows[r].dot(sol)));
-    std::vector<double> sorted = res;
+    for (std::size_t r = 0; r < rows.size(); ++r) res[r] = std::abs(rhs[r] - rows[r].dot(sol));
+    sorted = res;
     std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
     const double cut = 3 * 1.4826 * sorted[sorted.size() / 2] + 0.05 * slab;
     int kept = 0;
-    for (std::size_t r = 0; r < rows.size(); ++r) kept += (use[r] = res[r] <= cut);
+    bool same = true;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      const char u = res[r] <= cut;
+      same = same && u == use[r];
+      kept += (use[r] = u);
+    }
     if (kept < min_support) return false;
+    // The same rows kept: a further pass would repeat this one, number for number.
+    if (same) break;
   }
   return true;
 }
