@@ -58,10 +58,25 @@ public:
   int nearest(const Vec& c, double r) const {
     int best = -1;
     double bd = 0;
-    for_each_within(c, r, [&](int i) {
+    const auto take = [&](int i) {
       const double d = (points_[std::size_t(i)] - c).squaredNorm();
       if (best < 0 || d < bd || (d == bd && i < best)) best = i, bd = d;
-    });
+    };
+    // The 3 x 3 cells about c first: every point outside them lies at least a cell away
+    // (0.999 of one: the cells come from rounded quotients), so a nearer one found there,
+    // or a radius under a cell, settles it in 9 probes instead of up to (2 r / cell + 2)^2.
+    const double sure = 0.999 * cell_;
+    if (std::max(std::abs(c.x()), std::abs(c.y())) < 1e12 * cell_) {  // far from coord's clamp
+      const std::int64_t cx = coord(c.x()), cy = coord(c.y());
+      for (std::int64_t x = cx - 1; x <= cx + 1; ++x)
+        for (std::int64_t y = cy - 1; y <= cy + 1; ++y)
+          if (const Slot* s = find(pack(x, y)))
+            for (int i = s->head; i >= 0; i = next_[std::size_t(i)])
+              if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) take(i);
+      if (r < sure || (best >= 0 && bd < sure * sure)) return best;
+      best = -1;
+    }
+    for_each_within(c, r, take);
     return best;
   }
 
