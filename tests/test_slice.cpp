@@ -243,3 +243,26 @@ TEST_CASE("slice: a band tried and not taken leaves the slab's ordering, skeleto
   for (std::size_t i = 0; i < m.skeleton.size(); ++i)
     if (std::abs(m.skeleton[i].x()) < 6) CHECK(std::abs(m.skeleton[i].y()) < 2 * m.cell);  // on the axis
 }
+
+TEST_CASE("slice: exact copies of points change no section", "[slice][generated]") {
+  ScanOptions so = section::inspection_scan();
+  so.z_min = 29;
+  so.z_max = 31;
+  so.seed = 5;
+  const Scan scan = generate_scan(turbine_blade(), so);
+  Cloud copied = scan.cloud;
+  // After the originals: each first instance is kept, in order (slab, band and fill).
+  copied.points.insert(copied.points.end(), scan.cloud.points.begin(), scan.cloud.points.end());
+  SliceOptions options;
+  options.slab = 0.1;  // the spacing estimate would see the copies
+  const std::vector<Plane> planes = planes_at({0, 0, 1}, {30});
+  const SliceResult a = slice(scan.cloud, planes, options), b = slice(copied, planes, options);
+  REQUIRE(a.sections.size() == 1);
+  REQUIRE(b.sections.size() == 1);
+  REQUIRE(a.sections[0].error.empty());
+  CHECK(b.sections[0].slab_points == a.sections[0].slab_points);
+  CHECK(b.sections[0].band_points == a.sections[0].band_points);
+  const MorphologyResult &ma = a.sections[0].morphology, &mb = b.sections[0].morphology;
+  REQUIRE(ma.loops.size() == mb.loops.size());
+  for (std::size_t l = 0; l < ma.loops.size(); ++l) CHECK(ma.loops[l].points == mb.loops[l].points);
+}

@@ -55,6 +55,8 @@ QuadraticDrift fit_profile_drift(const std::vector<Vec>& uv, const std::vector<d
     const double zr = zmax * (round + 1) / 2.0;
     std::vector<Row> rows;
     std::vector<double> rhs;
+    rows.reserve(uv.size());
+    rhs.reserve(uv.size());
     for (std::size_t i = 0; i < uv.size(); ++i) {
       const double z = dz[i];
       if (std::abs(z) > zr) continue;

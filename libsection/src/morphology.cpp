@@ -118,7 +118,7 @@ double cell_size(const Points& points, const std::vector<std::size_t>& all, cons
     morph::robust_box(points, all, 0.001, lo, hi);
     const Vec ext = hi - lo;
     h = std::max(h, std::sqrt(ext.x() * ext.y() / double(std::max<std::size_t>(1, opt.auto_cells))));
-    h = std::max(h, 1e-4 * ext.norm());
+    h = std::max({h, 1e-4 * ext.norm(), opt.min_cell});
     if (!(h > 0)) throw Error("morphology: the points are all equal; no loop can be formed");
   }
   Vec lo = points[0], hi = lo;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
+#include <tuple>
 
 namespace section::morph {
 
@@ -55,18 +56,33 @@ PointGrid::PointGrid(const Points& points, const std::vector<std::size_t>& subse
 double PointGrid::nearest(std::size_t k, int max_ring) const {
   const Vec& p = points_[k];
   const std::int64_t ci = ix(p.x()), cj = ix(p.y());
+  // p's distance to the sides of its own cell, less a margin for the rounded quotients
+  // that placed p and the others in their cells.
+  const double x0 = double(ci) * cell_, y0 = double(cj) * cell_;
+  const double side = std::min({p.x() - x0, x0 + cell_ - p.x(), p.y() - y0, y0 + cell_ - p.y()});
+  const double margin = std::max(0.0, side - 1e-9 * (cell_ + std::abs(p.x()) + std::abs(p.y())));
   double best2 = std::numeric_limits<double>::infinity();
+  const auto take = [&](std::uint32_t q) {
+    const double d2 = (points_[q] - p).squaredNorm();
+    if (d2 > 0 && d2 < best2) best2 = d2;
+  };
   for (int ring = 0; ring <= max_ring; ++ring) {
-    for (std::int64_t j = cj - ring; j <= cj + ring; ++j)
+    if (ring == 0) {
+      visit(ci, cj, take);
+    } else {  // the ring's cells only: its top and bottom rows, then its sides between
       for (std::int64_t i = ci - ring; i <= ci + ring; ++i) {
-        if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring) continue;
-        visit(i, j, [&](std::uint32_t q) {
-          const double d2 = (points_[q] - p).squaredNorm();
-          if (d2 > 0 && d2 < best2) best2 = d2;
-        });
+        visit(i, cj - ring, take);
+        visit(i, cj + ring, take);
       }
-    // Every point of a farther ring is at least `ring` cells away.
-    if (best2 <= (ring * cell_) * (ring * cell_)) break;
+      for (std::int64_t j = cj - ring + 1; j <= cj + ring - 1; ++j) {
+        visit(ci - ring, j, take);
+        visit(ci + ring, j, take);
+      }
+    }
+    // Every point of a farther ring is at least `ring` cells and p's margin away (the
+    // nearest, so, found: a point as far changes nothing).
+    const double reach = ring * cell_ + margin;
+    if (best2 <= reach * reach) break;
   }
   return std::sqrt(best2);
 }
@@ -105,28 +121,66 @@ SegmentGrid::SegmentGrid(const std::vector<const Points*>& loops, double cell) :
   cells_ = sorted_cells(keyed, ids_);
 }
 
+Foot SegmentGrid::foot(std::uint64_t id, const Vec& p, const detail::SegmentFoot& f) const {
+  const int l = int(id >> 32);
+  const std::size_t k = std::size_t(id & 0xffffffffu);
+  const Points& q = *loops_[l];
+  const Vec e = q[(k + 1) % q.size()] - q[k];
+  const double e2 = e.squaredNorm();
+  Foot out;
+  out.loop = l;
+  out.s = cum_[l][k] + f.t * std::sqrt(e2);
+  out.distance = std::sqrt(f.d2);
+  out.normal = e2 > 0 ? Vec(e.y(), -e.x()) / std::sqrt(e2) : Vec(0, 0);
+  return out;
+}
+
+detail::SegmentFoot SegmentGrid::foot_on(std::uint64_t id, const Vec& p) const {
+  const Points& q = *loops_[int(id >> 32)];
+  const std::size_t k = std::size_t(id & 0xffffffffu);
+  return detail::segment_foot(q[k], q[(k + 1) % q.size()], p);
+}
+
 Foot SegmentGrid::nearest(const Vec& p) const {
+  const std::int64_t ci = ix(p.x()), cj = ix(p.y());
+  // p's own cell first: a segment outside it lies at least p's distance to the cell's
+  // sides away (less a margin for rounding), so a nearer foot there settles it. The
+  // 3 x 3 scan below takes the first of equally near feet in its order (cell row by row,
+  // then id): among the own cell's segments that is the least (first of the 3 x 3 cells
+  // that holds the segment, id), each segment held by the cells its box covers.
+  const double x0 = double(ci) * cell_, y0 = double(cj) * cell_;
+  const double side = std::min({p.x() - x0, x0 + cell_ - p.x(), p.y() - y0, y0 + cell_ - p.y()});
+  const double margin = side - 1e-9 * (cell_ + std::abs(p.x()) + std::abs(p.y()));
+  if (margin > 0) {
+    const auto [begin, end] = cells_.find(cell_key(ci, cj));
+    double best2 = std::min(cell_ * cell_, margin * margin);
+    std::size_t won = end;
+    std::int64_t won_j = 0, won_i = 0;
+    for (std::size_t a = begin; a < end; ++a) {
+      const detail::SegmentFoot f = foot_on(ids_[a], p);
+      if (f.d2 > best2 || (f.d2 == best2 && won == end)) continue;
+      const Points& q = *loops_[int(ids_[a] >> 32)];
+      const std::size_t k = std::size_t(ids_[a] & 0xffffffffu);
+      const Vec& u = q[k];
+      const Vec& v = q[(k + 1) % q.size()];
+      const std::int64_t j = std::max(ix(std::min(u.y(), v.y())), cj - 1);
+      const std::int64_t i = std::max(ix(std::min(u.x(), v.x())), ci - 1);
+      if (f.d2 == best2 && std::make_tuple(j, i, ids_[a]) > std::make_tuple(won_j, won_i, ids_[won]))
+        continue;
+      best2 = f.d2, won = a, won_j = j, won_i = i;
+    }
+    if (won != end) return foot(ids_[won], p, foot_on(ids_[won], p));
+  }
   Foot best;
   double best2 = cell_ * cell_;
-  const std::int64_t ci = ix(p.x()), cj = ix(p.y());
   for (std::int64_t j = cj - 1; j <= cj + 1; ++j)
     for (std::int64_t i = ci - 1; i <= ci + 1; ++i) {
       const auto [begin, end] = cells_.find(cell_key(i, j));
       for (std::size_t a = begin; a < end; ++a) {
-        const int l = int(ids_[a] >> 32);
-        const std::size_t k = std::size_t(ids_[a] & 0xffffffffu);
-        const Points& q = *loops_[l];
-        const Vec& u = q[k];
-        const Vec& v = q[(k + 1) % q.size()];
-        const detail::SegmentFoot f = detail::segment_foot(u, v, p);
+        const detail::SegmentFoot f = foot_on(ids_[a], p);
         if (f.d2 < best2) {
-          const Vec e = v - u;
-          const double e2 = e.squaredNorm();
           best2 = f.d2;
-          best.loop = l;
-          best.s = cum_[l][k] + f.t * std::sqrt(e2);
-          best.distance = std::sqrt(f.d2);
-          best.normal = e2 > 0 ? Vec(e.y(), -e.x()) / std::sqrt(e2) : Vec(0, 0);
+          best = foot(ids_[a], p, f);
         }
       }
     }

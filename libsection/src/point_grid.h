@@ -3,6 +3,8 @@
 // Uniform hash grids of the morphology step (src/morphology.cpp): over a subset of 2D points
 // (spacing, isolated points) and over the segments of closed polylines (nearest boundary
 // foot). Cells are sorted by key and found through an open-addressing table.
+#include "detail/segment.h"
+
 #include <Eigen/Core>
 
 #include <cmath>
@@ -102,6 +104,8 @@ public:
 
 private:
   std::int64_t ix(double x) const { return std::int64_t(std::floor(x / cell_)); }
+  detail::SegmentFoot foot_on(std::uint64_t id, const Vec& p) const;
+  Foot foot(std::uint64_t id, const Vec& p, const detail::SegmentFoot& f) const;
   std::vector<const Points*> loops_;
   double cell_;
   std::vector<std::vector<double>> cum_;

@@ -11,10 +11,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
 #include <new>
-#include <numeric>
 #include <optional>
 
 namespace section {
@@ -128,21 +129,36 @@ private:
 
 // Drops the exact copies of a point (the first stays), in order: a copy adds nothing, and
 // zero distances make the spacings of the later stages zero (every interval a hole).
-// True when there were copies.
+// True when there were copies. An open-addressed table of the points kept so far finds a
+// copy in one probe or two (a sort of the near points cost 5 % of `slice`).
 template <class P>
 bool drop_copies(std::vector<P>& points) {
-  std::vector<std::size_t> order(points.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  const auto before = [&](std::size_t a, std::size_t b) {
-    for (int k = 0; k < int(P::RowsAtCompileTime); ++k)
-      if (points[a][k] != points[b][k]) return points[a][k] < points[b][k];
-    return a < b;
+  std::size_t size = 16;
+  while (size < 2 * points.size()) size *= 2;
+  std::vector<std::uint32_t> slot(size, UINT32_MAX);
+  const auto home = [&](const P& p) {
+    std::uint64_t h = 0;
+    for (int k = 0; k < int(P::RowsAtCompileTime); ++k) {
+      const double x = p[k] + 0.0;  // -0 and +0 are equal: one hash
+      std::uint64_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      h = (h ^ bits) * 0x9E3779B97F4A7C15ULL;
+    }
+    return std::size_t(h ^ (h >> 29)) & (size - 1);
   };
-  std::sort(order.begin(), order.end(), before);
   std::vector<char> copy(points.size(), 0);
   bool any = false;
-  for (std::size_t k = 1; k < order.size(); ++k)
-    if (points[order[k]] == points[order[k - 1]]) copy[order[k]] = 1, any = true;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    for (std::size_t h = home(points[k]);; h = (h + 1) & (size - 1)) {
+      if (slot[h] == UINT32_MAX) {
+        slot[h] = std::uint32_t(k);
+        break;
+      }
+      if (points[slot[h]] == points[k]) {
+        copy[k] = 1, any = true;
+        break;
+      }
+    }
   if (!any) return false;
   std::size_t w = 0;
   for (std::size_t k = 0; k < points.size(); ++k)
@@ -198,8 +214,14 @@ bool order_band(SectionSlice& s, const std::vector<Eigen::Vector3d>& near, std::
       drift_band(s.morphology, near, slab, half, options.band_spacing, options.band_sparse_max * slab);
   drop_copies(band);
   if (band.size() <= slab_points) return false;
+  // The band's rows, carried onto the plane, lie close beside one another: their nearest
+  // neighbours' spacing, the automatic cell, is far finer than the spacing along the
+  // profile on a sparse scan (a 10 k point scan: 0.08 against 0.27 mm, 11 times the cells).
+  MorphologyOptions band_options = options.morphology;
+  if (!s.morphology.loops.empty())
+    band_options.min_cell = s.morphology.loops[0].length / double(band.size());
   try {
-    s.morphology = order_section(band, options.morphology);
+    s.morphology = order_section(band, band_options);
   } catch (const Error&) {
     return false;
   }

@@ -19,6 +19,7 @@ struct MorphologyResult;
 struct MorphologyOptions {
   double cell = 0;                   ///< mm, raster cell h; 0 = the point spacing (at most `auto_cells`)
   std::size_t auto_cells = 250'000;  ///< cells, raster budget when `cell` is 0
+  double min_cell = 0;               ///< mm, floor of the cell when `cell` is 0 (slice: a band's)
   int max_dilation = 64;             ///< cells, largest dilation radius tried (closes gaps of 2 r)
   double outlier_distance = 0;       ///< mm, points farther from every loop are dropped; 0 = 2.5 cells
   double isolated_distance = 0;      ///< mm, a point with no other this close is left out; 0 = 6 cells
