@@ -37,6 +37,7 @@ bool substantial(long long cells) {
 struct Seeds {
   std::vector<Vec> mean;
   std::vector<int> slot;
+  std::vector<int> first, last;  // per row, the first and last column holding a seed
 };
 
 // Places a raster over [lo, hi] with `margin` cells around.
@@ -57,6 +58,8 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
   seed.assign(r.size(), 0);
   seeds.slot.assign(r.size(), -1);
   seeds.mean.clear();
+  seeds.first.assign(r.h, r.w);
+  seeds.last.assign(r.h, -1);
   std::vector<int> count;
   for (std::size_t k : subset) {
     const Vec c = r.to_cell(points[k]);
@@ -64,6 +67,8 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
     const int j = std::clamp(int(std::lround(c.y())), 0, r.h - 1);
     const std::size_t cell = std::size_t(j) * r.w + i;
     seed[cell] = 1;
+    seeds.first[j] = std::min(seeds.first[j], i);
+    seeds.last[j] = std::max(seeds.last[j], i);
     if (seeds.slot[cell] < 0) {
       seeds.slot[cell] = int(seeds.mean.size());
       seeds.mean.emplace_back(0, 0);
@@ -219,6 +224,13 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   // radius + 2 cells. Start with a small margin and widen it only when the radius needs it:
   // the result is that of a margin of rmax + 2, on a much smaller raster.
   int margin = std::min(rmax, 8) + 2;
+  // The reach of the distances: cells farther from every point count as at `reach` + 1, and
+  // only the cells of each row within `reach` of its neighbouring rows' points are visited.
+  // The closing radius is that of the reach rmax unless some interior closes only beyond
+  // `reach` (then a wider profile gap would set it: the reach widens to rmax). The erosion
+  // and the boundary read the nearest point of cells up to twice the radius from the
+  // points (see erode): the reach widens to cover them.
+  int reach = std::min(rmax, 29);
   Raster& r = pass.raster;
   r.cell = h;
   Seeds seeds;
@@ -227,18 +239,27 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   for (;;) {
     place_raster(lo, hi, h, margin, opt.max_cells, r);
     seed_cells(points, subset, r, scratch.bytes, seeds);
-    const int cap = (rmax + 1) * (rmax + 1);
-    d2 = distance_transform(r, scratch.bytes, cap, rmax + 2 - margin, nearest_seed, scratch);
-    b2 = bottleneck(r, d2, cap, scratch.ints);
-    const int rc = closing_radius(d2, b2, cap, rmax);
+    // At the reach rmax, every cell as before (and the nearest point of every cell).
+    const Spans spans = spans_of(r, seeds.first, seeds.last, reach);
+    const Spans* band = reach < rmax ? &spans : nullptr;
+    const int cap = (reach + 1) * (reach + 1);
+    d2 = distance_transform(r, scratch.bytes, cap, rmax + 2 - margin, nearest_seed, scratch, band);
+    b2 = bottleneck(r, d2, cap, scratch.ints, band);
+    const int rc = closing_radius(d2, b2, cap, reach);
+    if (rc == 0 && reach < rmax) {
+      reach = rmax;
+      continue;
+    }
     if (rc == 0) return false;
     pass.closing = rc;
     // Margin: twice the closing radius (at least 4 cells). A disc just able to bridge a gap
     // dips into it by about its radius and may cut a thin trailing edge in two; a disc twice
     // as large dips by a quarter of that.
     pass.radius = std::min(std::max(2 * rc, 4), rmax);
-    if (pass.radius + 2 <= margin) break;
-    margin = pass.radius + 2;
+    const int need = std::min(rmax, 2 * pass.radius + 9);
+    if (pass.radius + 2 <= margin && need <= reach) break;
+    margin = std::max(margin, pass.radius + 2);
+    reach = std::max(reach, need);
   }
   const std::vector<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, scratch);
   label_components(out2, b2, d2, scratch, pass);

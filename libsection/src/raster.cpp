@@ -80,24 +80,75 @@ void distance_1d(const float* f, int n, float big, int base, float* d, int* arg,
   }
 }
 
+/// Sets the cells off the spans to cap, their bottleneck (their row leads to the border
+/// through cells at cap), and seeds each span cell next to one of them with its own d2,
+/// like a border cell.
+template <class Seed>
+void seed_spans(const Raster& r, const Spans& spans, int cap, std::vector<int>& b2, const Seed& seed) {
+  for (int j = 0; j < r.h; ++j) {
+    const std::size_t row = std::size_t(j) * r.w;
+    const int lo = spans.lo[j], hi = spans.hi[j];
+    if (lo > hi) {
+      std::fill(b2.begin() + row, b2.begin() + row + r.w, cap);
+      continue;
+    }
+    std::fill(b2.begin() + row, b2.begin() + row + lo, cap);
+    std::fill(b2.begin() + row + hi + 1, b2.begin() + row + r.w, cap);
+  }
+  for (int j = 0; j < r.h; ++j) {
+    const int lo = spans.lo[j], hi = spans.hi[j];
+    if (lo > hi) continue;
+    seed(lo, j);
+    seed(hi, j);
+    // The cells whose neighbour above or below is off its row's span.
+    for (const int k : {j - 1, j + 1}) {
+      if (k < 0 || k >= r.h) continue;
+      const int klo = spans.lo[k], khi = spans.hi[k];
+      if (klo > khi) {
+        for (int i = lo; i <= hi; ++i) seed(i, j);
+        continue;
+      }
+      for (int i = lo; i <= std::min(hi, klo - 1); ++i) seed(i, j);
+      for (int i = std::max(lo, khi + 1); i <= hi; ++i) seed(i, j);
+    }
+  }
+}
+
 }  // namespace
 
+Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector<int>& last, int reach) {
+  Spans s;
+  s.lo.assign(r.h, r.w);
+  s.hi.assign(r.h, -1);
+  for (int j = 0; j < r.h; ++j) {
+    if (first[j] > last[j]) continue;
+    for (int k = std::max(0, j - reach), k1 = std::min(r.h - 1, j + reach); k <= k1; ++k) {
+      s.lo[k] = std::min(s.lo[k], std::max(0, first[j] - reach));
+      s.hi[k] = std::max(s.hi[k], std::min(r.w - 1, last[j] + reach));
+    }
+  }
+  return s;
+}
+
 std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest, Scratch& scratch) {
+                                    std::vector<int>& nearest, Scratch& scratch, const Spans* spans) {
   const float big = 1e20f;
   const int w = r.w, h = r.h;
+  const auto lo_of = [&](int j) { return spans ? spans->lo[j] : 0; };
+  const auto hi_of = [&](int j) { return spans ? spans->hi[j] : w - 1; };
   // Columns: with 0/1 seeds the 1D transform is the distance to the nearest seed above or
-  // below, found by one sweep each way over whole rows (cache friendly).
+  // below, found by one sweep each way over whole rows (cache friendly). With spans, a
+  // sample at cap or beyond is left out of the rows' envelopes: it brings no cell below cap.
   std::vector<float>& f = scratch.f;
   std::vector<int>& row_of = scratch.ints;
-  f.resize(r.size());  // both written in full by the sweeps below
+  f.resize(r.size());  // both written in full (on the spans) by the sweeps below
   row_of.resize(r.size());
   {
     std::vector<int> last(w, -1);
     for (int j = 0; j < h; ++j) {
       const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
       int* arow = row_of.data() + std::size_t(j) * w;
-      for (int i = 0; i < w; ++i) {
+      for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
         if (srow[i]) last[i] = j;
         arow[i] = last[i];
       }
@@ -107,13 +158,14 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
       const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
       int* arow = row_of.data() + std::size_t(j) * w;
       float* frow = f.data() + std::size_t(j) * w;
-      for (int i = 0; i < w; ++i) {
+      for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
         if (srow[i]) last[i] = j;
         const int above = arow[i], below = last[i];
         // The seed above wins a tie (the lower index).
         const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
         arow[i] = s;
-        frow[i] = s < 0 ? big : float(double(j - s) * double(j - s));
+        const double fs = double(j - s) * double(j - s);
+        frow[i] = s < 0 || (spans && fs >= cap) ? big : float(fs);
       }
     }
   }
@@ -124,21 +176,33 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   std::vector<int> d(r.size());
   nearest.resize(r.size());  // every cell written below
   for (int j = 0; j < h; ++j) {
-    const float* row = f.data() + std::size_t(j) * w;
-    distance_1d(row, w, big, base, out.data(), arg.data(), v, z);
-    for (int i = 0; i < w; ++i) {
-      const std::size_t c = std::size_t(j) * w + i;
+    const std::size_t row = std::size_t(j) * w;
+    const int lo = lo_of(j), hi = hi_of(j);
+    if (lo > hi) {
+      std::fill(d.begin() + row, d.begin() + row + w, cap);
+      std::fill(nearest.begin() + row, nearest.begin() + row + w, -1);
+      continue;
+    }
+    std::fill(d.begin() + row, d.begin() + row + lo, cap);
+    std::fill(nearest.begin() + row, nearest.begin() + row + lo, -1);
+    std::fill(d.begin() + row + hi + 1, d.begin() + row + w, cap);
+    std::fill(nearest.begin() + row + hi + 1, nearest.begin() + row + w, -1);
+    distance_1d(f.data() + row + lo, hi - lo + 1, big, base + lo, out.data(), arg.data(), v, z);
+    for (int i = lo; i <= hi; ++i) {
+      const std::size_t c = row + i;
+      const float o = out[i - lo];
       // Squared distances are integers (exact in float below 2^24, and every float above
       // 2^23 is an integer): rounding is a truncation of x + 0.5.
-      d[c] = out[i] >= float(cap) ? cap : int(out[i] + 0.5f);
-      const int si = arg[i];
-      nearest[c] = out[i] < 1e19f ? row_of[std::size_t(j) * w + si] * w + si : -1;
+      d[c] = o >= float(cap) ? cap : int(o + 0.5f);
+      const int si = arg[i - lo] + lo;
+      nearest[c] = o < 1e19f ? row_of[row + si] * w + si : -1;
     }
   }
   return d;
 }
 
-std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next) {
+std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next,
+                            const Spans* spans) {
   std::vector<int> b2(r.size(), -1);
   // Each bucket is a stack threaded through `next` (a cell enters one bucket, once; its
   // entry is written before it is read).
@@ -154,6 +218,7 @@ std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap
     b2[c] = d2[c];
     push(c);
   };
+  if (spans) seed_spans(r, *spans, cap, b2, seed);
   for (int i = 0; i < r.w; ++i) {
     seed(i, 0);
     seed(i, r.h - 1);
