@@ -80,6 +80,20 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
   for (std::size_t m = 0; m < seeds.mean.size(); ++m) seeds.mean[m] /= count[m];
 }
 
+// Calls fn(first, end) with the cell indices of each row's span (the whole row without
+// spans).
+template <class Fn>
+void for_spans(const Spans* band, int h, int w, const Fn& fn) {
+  for (int j = 0; j < h; ++j) {
+    const std::size_t row = std::size_t(j) * w;
+    if (!band) {
+      fn(row, row + w);
+    } else if (band->lo[j] <= band->hi[j]) {
+      fn(row + band->lo[j], row + band->hi[j] + 1);
+    }
+  }
+}
+
 // The closing radius r_c (cells), 0 when no substantial interior is ever enclosed.
 // A cell is enclosed at radius r when b2 <= r^2 < d2: inside the band of radius r but
 // not on it. Cells enclosed at some radius (b2 < d2) are the interior of closed
@@ -88,19 +102,23 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
 // them have closed. Taking the first radius at which some interior appears instead
 // leaves a part of a thin profile open behind a wide hole when the band pinches the
 // profile elsewhere first.
-int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int cap, int rmax) {
+int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int cap, int rmax, int w,
+                   const Spans* band) {
   std::vector<long long> closing_at(rmax + 2, 0);
   long long ever = 0;
   // b2 and d2 lie in [0, cap]: their ceil_sqrt from a table (one per interior cell).
   std::vector<int> root(std::size_t(cap) + 1);
   for (int x = 0; x <= cap; ++x) root[x] = ceil_sqrt(x);
-  for (std::size_t c = 0; c < d2.size(); ++c) {
-    if (b2[c] >= d2[c]) continue;
-    const int a = std::max(1, root[b2[c]]);
-    if (a > rmax || a > root[d2[c]] - 1) continue;  // never enclosed at an integer radius <= rmax
-    ++closing_at[a];
-    ++ever;
-  }
+  // Off the spans b2 = d2 = cap: nothing to count there.
+  for_spans(band, int(d2.size() / w), w, [&](std::size_t c0, std::size_t c1) {
+    for (std::size_t c = c0; c < c1; ++c) {
+      if (b2[c] >= d2[c]) continue;
+      const int a = std::max(1, root[b2[c]]);
+      if (a > rmax || a > root[d2[c]] - 1) continue;  // never enclosed at an integer radius <= rmax
+      ++closing_at[a];
+      ++ever;
+    }
+  });
   if (!substantial(ever)) return 0;
   int rc = 0;
   for (long long sum = 0; rc < rmax && sum < ever;) sum += closing_at[++rc];
@@ -110,7 +128,7 @@ int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int c
 // Erodes the fill back (keeps the cells farther than the radius from the outside) and sets
 // pass.g; returns the squared distance of each cell to the outside.
 std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector<int>& nearest_seed,
-                       const Seeds& seeds, int rmax, int base, Scratch& scratch) {
+                       const Seeds& seeds, int rmax, int base, const Spans* band, Scratch& scratch) {
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;
   std::vector<std::uint8_t>& outside = scratch.bytes;
@@ -119,7 +137,7 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
   const int cap_out = int(std::min(far, double(1 << 30)));
   std::vector<int> nearest_out;
-  std::vector<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch);
+  std::vector<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch, band, true);
 
   // The closing's complement is about the union of the empty discs centred on outside
   // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside
@@ -132,11 +150,16 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
     const Vec c(double(y % r.w), double(y / r.w));
     return float((c - seeds.mean[seeds.slot[s]]).norm());
   };
-  pass.g = std::move(scratch.f);  // every cell written below
-  for (std::size_t c = 0; c < cells; ++c) {
-    const int y = nearest_out[c];
-    pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
-  }
+  pass.g = std::move(scratch.f);
+  // Off the spans, cells are outside and farther than rmax from every point (as far as
+  // anything reads them).
+  std::fill(pass.g.begin(), pass.g.end(), -float(rmax + 1));
+  for_spans(band, r.h, r.w, [&](std::size_t c0, std::size_t c1) {
+    for (std::size_t c = c0; c < c1; ++c) {
+      const int y = nearest_out[c];
+      pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
+    }
+  });
   return out2;
 }
 
@@ -236,16 +259,18 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   Seeds seeds;
   std::vector<int> nearest_seed, d2, b2;
   Scratch scratch;
+  Spans spans;
+  const Spans* band = nullptr;
   for (;;) {
     place_raster(lo, hi, h, margin, opt.max_cells, r);
     seed_cells(points, subset, r, scratch.bytes, seeds);
     // At the reach rmax, every cell as before (and the nearest point of every cell).
-    const Spans spans = spans_of(r, seeds.first, seeds.last, reach);
-    const Spans* band = reach < rmax ? &spans : nullptr;
+    spans = spans_of(r, seeds.first, seeds.last, reach);
+    band = reach < rmax ? &spans : nullptr;
     const int cap = (reach + 1) * (reach + 1);
     d2 = distance_transform(r, scratch.bytes, cap, rmax + 2 - margin, nearest_seed, scratch, band);
     b2 = bottleneck(r, d2, cap, scratch.ints, band);
-    const int rc = closing_radius(d2, b2, cap, reach);
+    const int rc = closing_radius(d2, b2, cap, reach, r.w, band);
     if (rc == 0 && reach < rmax) {
       reach = rmax;
       continue;
@@ -261,7 +286,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     margin = std::max(margin, pass.radius + 2);
     reach = std::max(reach, need);
   }
-  const std::vector<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, scratch);
+  const std::vector<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, band, scratch);
   label_components(out2, b2, d2, scratch, pass);
   return true;
 }

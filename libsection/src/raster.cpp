@@ -114,6 +114,49 @@ void seed_spans(const Raster& r, const Spans& spans, int cap, std::vector<int>& 
   }
 }
 
+/// The columns' part of distance_transform: row_of holds, on the spans, the row of the
+/// nearest seed in the cell's column (-1: none), found by one sweep each way over whole
+/// rows (cache friendly). With off_seeds, the cells off the spans are seeds too.
+void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const Spans* spans, bool off_seeds,
+                   std::vector<int>& row_of) {
+  const int w = r.w, h = r.h;
+  const auto lo_of = [&](int j) { return spans ? spans->lo[j] : 0; };
+  const auto hi_of = [&](int j) { return spans ? spans->hi[j] : w - 1; };
+  // Row k's off-span cells are seeds for the columns of row j's span (k = j -+ 1).
+  const auto enter = [&](int j, int k, std::vector<int>& last) {
+    if (!off_seeds || k < 0 || k >= h) return;
+    const int lo = lo_of(j), hi = hi_of(j), klo = lo_of(k), khi = hi_of(k);
+    if (klo > khi) {
+      for (int i = lo; i <= hi; ++i) last[i] = k;
+      return;
+    }
+    for (int i = lo; i <= std::min(hi, klo - 1); ++i) last[i] = k;
+    for (int i = std::max(lo, khi + 1); i <= hi; ++i) last[i] = k;
+  };
+  std::vector<int> last(w, -1);
+  for (int j = 0; j < h; ++j) {
+    const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
+    int* arow = row_of.data() + std::size_t(j) * w;
+    enter(j, j - 1, last);
+    for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
+      if (srow[i]) last[i] = j;
+      arow[i] = last[i];
+    }
+  }
+  std::fill(last.begin(), last.end(), -1);
+  for (int j = h - 1; j >= 0; --j) {
+    const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
+    int* arow = row_of.data() + std::size_t(j) * w;
+    enter(j, j + 1, last);
+    for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
+      if (srow[i]) last[i] = j;
+      const int above = arow[i], below = last[i];
+      // The seed above wins a tie (the lower index).
+      arow[i] = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
+    }
+  }
+}
+
 }  // namespace
 
 Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector<int>& last, int reach) {
@@ -131,44 +174,18 @@ Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector
 }
 
 std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest, Scratch& scratch, const Spans* spans) {
+                                    std::vector<int>& nearest, Scratch& scratch, const Spans* spans,
+                                    bool off_seeds) {
   const float big = 1e20f;
   const int w = r.w, h = r.h;
-  const auto lo_of = [&](int j) { return spans ? spans->lo[j] : 0; };
-  const auto hi_of = [&](int j) { return spans ? spans->hi[j] : w - 1; };
-  // Columns: with 0/1 seeds the 1D transform is the distance to the nearest seed above or
-  // below, found by one sweep each way over whole rows (cache friendly). With spans, a
-  // sample at cap or beyond is left out of the rows' envelopes: it brings no cell below cap.
   std::vector<float>& f = scratch.f;
   std::vector<int>& row_of = scratch.ints;
-  f.resize(r.size());  // both written in full (on the spans) by the sweeps below
+  f.resize(r.size());  // both written in full (on the spans) by the sweeps
   row_of.resize(r.size());
-  {
-    std::vector<int> last(w, -1);
-    for (int j = 0; j < h; ++j) {
-      const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
-      int* arow = row_of.data() + std::size_t(j) * w;
-      for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
-        if (srow[i]) last[i] = j;
-        arow[i] = last[i];
-      }
-    }
-    std::fill(last.begin(), last.end(), -1);
-    for (int j = h - 1; j >= 0; --j) {
-      const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
-      int* arow = row_of.data() + std::size_t(j) * w;
-      float* frow = f.data() + std::size_t(j) * w;
-      for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
-        if (srow[i]) last[i] = j;
-        const int above = arow[i], below = last[i];
-        // The seed above wins a tie (the lower index).
-        const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
-        arow[i] = s;
-        const double fs = double(j - s) * double(j - s);
-        frow[i] = s < 0 || (spans && fs >= cap) ? big : float(fs);
-      }
-    }
-  }
+  column_sweeps(r, seed, spans, off_seeds, row_of);
+  // With spans far from the seeds, a column's sample at cap or beyond is left out of the
+  // rows' envelopes: it brings no cell below cap.
+  const bool prune = spans && !off_seeds;
   const int n = std::max(w, h);
   std::vector<int> v(n + 1), arg(n);
   std::vector<double> z(n + 2);
@@ -177,17 +194,28 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   nearest.resize(r.size());  // every cell written below
   for (int j = 0; j < h; ++j) {
     const std::size_t row = std::size_t(j) * w;
-    const int lo = lo_of(j), hi = hi_of(j);
-    if (lo > hi) {
-      std::fill(d.begin() + row, d.begin() + row + w, cap);
-      std::fill(nearest.begin() + row, nearest.begin() + row + w, -1);
-      continue;
+    int lo = spans ? spans->lo[j] : 0, hi = spans ? spans->hi[j] : w - 1;
+    if (spans && off_seeds && lo <= hi) {
+      // The off-span cells next to the span are seeds: the row's zeros that bound its runs.
+      if (lo > 0) row_of[row + --lo] = j;
+      if (hi < w - 1) row_of[row + ++hi] = j;
     }
-    std::fill(d.begin() + row, d.begin() + row + lo, cap);
-    std::fill(nearest.begin() + row, nearest.begin() + row + lo, -1);
-    std::fill(d.begin() + row + hi + 1, d.begin() + row + w, cap);
-    std::fill(nearest.begin() + row + hi + 1, nearest.begin() + row + w, -1);
-    distance_1d(f.data() + row + lo, hi - lo + 1, big, base + lo, out.data(), arg.data(), v, z);
+    const auto off = [&](int i0, int i1) {
+      for (int i = i0; i < i1; ++i) {
+        d[row + i] = off_seeds ? 0 : cap;
+        nearest[row + i] = off_seeds ? int(row + i) : -1;
+      }
+    };
+    off(0, std::min(lo, w));
+    off(std::max(lo, hi + 1), w);
+    if (lo > hi) continue;
+    float* frow = f.data() + row;
+    const int* arow = row_of.data() + row;
+    for (int i = lo; i <= hi; ++i) {
+      const double fs = double(j - arow[i]) * double(j - arow[i]);
+      frow[i] = arow[i] < 0 || (prune && fs >= cap) ? big : float(fs);
+    }
+    distance_1d(frow + lo, hi - lo + 1, big, base + lo, out.data(), arg.data(), v, z);
     for (int i = lo; i <= hi; ++i) {
       const std::size_t c = row + i;
       const float o = out[i - lo];

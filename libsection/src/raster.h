@@ -48,11 +48,12 @@ Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector
 /// the envelope of the columns. With `spans` (of a reach whose square is below `cap`),
 /// only their cells are computed (the others get `cap` and -1), and `nearest` is that of
 /// the transform without them only where the distance is below `cap` (beyond, another
-/// seed or -1).
+/// seed or -1). With `off_seeds`, the cells off the spans are seeds instead (distance 0,
+/// their own nearest), and the distances on the spans are those without spans.
 /// Uses scratch.f and scratch.ints (not scratch.bytes, which may hold `seed`).
 std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest, Scratch& scratch,
-                                    const Spans* spans = nullptr);
+                                    std::vector<int>& nearest, Scratch& scratch, const Spans* spans = nullptr,
+                                    bool off_seeds = false);
 
 /// For every cell, the largest t such that a 4-connected path from the raster border
 /// reaches it through cells with d2 >= t (the bottleneck of the widest path): the cell is
