@@ -80,6 +80,15 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
   for (std::size_t m = 0; m < seeds.mean.size(); ++m) seeds.mean[m] /= count[m];
 }
 
+// Calls fn(first, end) with the columns of row j's span (the whole row without spans).
+template <class Fn>
+void for_spans_of_row(const Spans* band, int j, int w, const Fn& fn) {
+  if (!band)
+    fn(0, w);
+  else if (band->lo[j] <= band->hi[j])
+    fn(band->lo[j], band->hi[j] + 1);
+}
+
 // Calls fn(first, end) with the cell indices of each row's span (the whole row without
 // spans).
 template <class Fn>
@@ -163,54 +172,77 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
   return out2;
 }
 
+// The runs of fill cells (out2 > r^2) of each row, in raster order, each joined to the
+// runs it touches (8-connected) in the row above: `parent` is a union-find forest.
+struct Runs {
+  std::vector<int> row, first, last, parent;
+  int root(int k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  }
+};
+
+Runs fill_runs(const std::vector<int>& out2, int rr, const Raster& r, const Spans* band) {
+  Runs runs;
+  int above = 0, begin = 0;  // the runs of the row above: [above, begin)
+  for (int j = 0; j < r.h; ++j) {
+    const int start = int(runs.row.size());
+    const std::size_t row = std::size_t(j) * r.w;
+    for_spans_of_row(band, j, r.w, [&](int i0, int i1) {
+      for (int i = i0; i < i1; ++i) {
+        if (out2[row + i] <= rr) continue;
+        const int a = i;
+        while (i + 1 < i1 && out2[row + i + 1] > rr) ++i;
+        const int k = int(runs.row.size());
+        runs.row.push_back(j);
+        runs.first.push_back(a);
+        runs.last.push_back(i);
+        runs.parent.push_back(k);
+        while (above < begin && runs.last[above] < a - 1) ++above;
+        for (int m = above; m < begin && runs.first[m] <= i + 1; ++m) {
+          const int x = runs.root(m), y = runs.root(k);
+          if (x != y) runs.parent[std::max(x, y)] = std::min(x, y);
+        }
+      }
+    });
+    above = start;
+    begin = int(runs.row.size());
+  }
+  return runs;
+}
+
 // 8-connected components of the fill (out2 > r^2), labelled in raster order of their
-// first cell. `open` marks fill cells not labelled yet (one byte per cell: cheaper to
-// test than out2 and label).
+// first cell, from the rows' runs of fill cells.
 void label_components(const std::vector<int>& out2, const std::vector<int>& b2, const std::vector<int>& d2,
-                      Scratch& scratch, Pass& pass) {
+                      const Spans* band, Scratch& scratch, Pass& pass) {
   const Raster& r = pass.raster;
-  const int rr = pass.radius * pass.radius;
   pass.label = std::move(scratch.ints);
   std::fill(pass.label.begin(), pass.label.end(), 0);
-  std::vector<std::uint8_t>& open = scratch.bytes;
-  const std::size_t cells = r.size();  // once: a byte written may alias r, for the compiler
-  for (std::size_t c = 0; c < cells; ++c) open[c] = out2[c] > rr;
-  const std::ptrdiff_t W = r.w;
-  const std::ptrdiff_t around[8] = {-W - 1, -W, -W + 1, -1, 1, W - 1, W, W + 1};
-  std::vector<std::uint32_t> queue;
-  for (std::size_t c0 = 0; c0 < cells; ++c0) {
-    if (!open[c0]) continue;
-    Component comp;
-    comp.label = int(pass.components.size()) + 1;
-    comp.start = c0;
-    comp.i0 = r.w;
-    comp.j0 = r.h;
-    const auto take = [&](std::size_t e) {
-      if (!open[e]) return;
-      open[e] = 0;
-      pass.label[e] = comp.label;
-      queue.push_back(std::uint32_t(e));
-    };
-    pass.label[c0] = comp.label;
-    open[c0] = 0;
-    queue.assign(1, std::uint32_t(c0));
-    for (std::size_t q = 0; q < queue.size(); ++q) {
-      const std::uint32_t c = queue[q];
-      ++comp.area;
-      if (b2[c] < d2[c]) ++comp.enclosed;
-      const int i = int(c % r.w), j = int(c / r.w);
-      comp.i0 = std::min(comp.i0, i);
-      comp.i1 = std::max(comp.i1, i);
-      comp.j0 = std::min(comp.j0, j);
-      comp.j1 = std::max(comp.j1, j);
-      if (i > 0 && j > 0 && i + 1 < r.w && j + 1 < r.h) {
-        for (const std::ptrdiff_t o : around) take(std::size_t(std::ptrdiff_t(c) + o));
-        continue;
-      }
-      for (int y = std::max(0, j - 1); y <= std::min(r.h - 1, j + 1); ++y)
-        for (int x = std::max(0, i - 1); x <= std::min(r.w - 1, i + 1); ++x) take(std::size_t(y) * r.w + x);
+  Runs runs = fill_runs(out2, pass.radius * pass.radius, r, band);
+  std::vector<int> id(runs.row.size(), -1);  // by root: index into pass.components
+  for (std::size_t k = 0; k < runs.row.size(); ++k) {
+    const int root = runs.root(int(k));
+    const int j = runs.row[k], a = runs.first[k], e = runs.last[k];
+    if (id[root] < 0) {
+      id[root] = int(pass.components.size());
+      Component comp;
+      comp.label = id[root] + 1;
+      comp.start = std::size_t(j) * r.w + a;
+      comp.i0 = r.w;
+      comp.j0 = r.h;
+      pass.components.push_back(comp);
     }
-    pass.components.push_back(comp);
+    Component& comp = pass.components[id[root]];
+    const std::size_t row = std::size_t(j) * r.w;
+    comp.area += std::size_t(e - a + 1);
+    for (std::size_t c = row + a; c <= row + e; ++c) {
+      pass.label[c] = comp.label;
+      comp.enclosed += b2[c] < d2[c];
+    }
+    comp.i0 = std::min(comp.i0, a);
+    comp.i1 = std::max(comp.i1, e);
+    comp.j0 = std::min(comp.j0, j);
+    comp.j1 = std::max(comp.j1, j);
   }
   for (auto& comp : pass.components)
     if (!substantial(comp.enclosed)) comp.enclosed = 0;  // an open band or a fragment
@@ -287,7 +319,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     reach = std::max(reach, need);
   }
   const std::vector<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, band, scratch);
-  label_components(out2, b2, d2, scratch, pass);
+  label_components(out2, b2, d2, band, scratch, pass);
   return true;
 }
 
