@@ -141,8 +141,13 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;
   std::vector<std::uint8_t>& outside = scratch.bytes;
-  const std::size_t cells = r.size();  // once: a byte written may alias r, for the compiler
-  for (std::size_t c = 0; c < cells; ++c) outside[c] = b2[c] > rr;
+  // Read on the spans only (the cells off them are outside).
+  // (Through pointers: a byte written may alias a vector's, for the compiler.)
+  const int* b = b2.data();
+  std::uint8_t* out = outside.data();
+  for_spans(band, r.h, r.w, [&](std::size_t c0, std::size_t c1) {
+    for (std::size_t c = c0; c < c1; ++c) out[c] = b[c] > rr;
+  });
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
   const int cap_out = int(std::min(far, double(1 << 30)));
   std::vector<int> nearest_out;
@@ -153,22 +158,30 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
   // cell nearest to x, g(x) = |x - y*| - d(y*) is the signed distance of x to that union:
   // its zero level is the boundary to a small fraction of a cell, and it passes through
   // the outermost points.
-  const auto exact_d = [&](std::size_t y) {
+  const auto exact_d = [&](std::size_t y, int i, int j) {
     const int s = nearest_seed[y];
     if (s < 0) return float(rmax + 1);
-    const Vec c(double(y % r.w), double(y / r.w));
-    return float((c - seeds.mean[seeds.slot[s]]).norm());
+    return float((Vec(double(i), double(j)) - seeds.mean[seeds.slot[s]]).norm());
   };
   pass.g = std::move(scratch.f);
   // Off the spans, cells are outside and farther than rmax from every point (as far as
   // anything reads them).
   std::fill(pass.g.begin(), pass.g.end(), -float(rmax + 1));
-  for_spans(band, r.h, r.w, [&](std::size_t c0, std::size_t c1) {
-    for (std::size_t c = c0; c < c1; ++c) {
-      const int y = nearest_out[c];
-      pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
-    }
-  });
+  for (int j = 0; j < r.h; ++j) {
+    const std::size_t row = std::size_t(j) * r.w;
+    for_spans_of_row(band, j, r.w, [&](int i0, int i1) {
+      for (int i = i0; i < i1; ++i) {
+        const std::size_t c = row + i;
+        const int y = nearest_out[c];
+        if (y < 0)
+          pass.g[c] = float(rmax + 1);
+        else if (std::size_t(y) == c)  // an outside cell (out2 = 0)
+          pass.g[c] = std::sqrt(float(out2[c])) - exact_d(c, i, j);
+        else
+          pass.g[c] = std::sqrt(float(out2[c])) - exact_d(std::size_t(y), y % r.w, y / r.w);
+      }
+    });
+  }
   return out2;
 }
 

@@ -116,9 +116,10 @@ void seed_spans(const Raster& r, const Spans& spans, int cap, std::vector<int>& 
 
 /// The columns' part of distance_transform: row_of holds, on the spans, the row of the
 /// nearest seed in the cell's column (-1: none), found by one sweep each way over whole
-/// rows (cache friendly). With off_seeds, the cells off the spans are seeds too.
+/// rows (cache friendly), and f its squared distance (1e20 when none or at least `prune`).
+/// With off_seeds, the cells off the spans are seeds too.
 void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const Spans* spans, bool off_seeds,
-                   std::vector<int>& row_of) {
+                   float prune, std::vector<int>& row_of, std::vector<float>& f) {
   const int w = r.w, h = r.h;
   const auto lo_of = [&](int j) { return spans ? spans->lo[j] : 0; };
   const auto hi_of = [&](int j) { return spans ? spans->hi[j] : w - 1; };
@@ -147,12 +148,16 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
   for (int j = h - 1; j >= 0; --j) {
     const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
     int* arow = row_of.data() + std::size_t(j) * w;
+    float* frow = f.data() + std::size_t(j) * w;
     enter(j, j + 1, last);
     for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
       if (srow[i]) last[i] = j;
       const int above = arow[i], below = last[i];
       // The seed above wins a tie (the lower index).
-      arow[i] = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
+      const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
+      arow[i] = s;
+      const float fs = float(double(j - s) * double(j - s));
+      frow[i] = s < 0 || fs >= prune ? 1e20f : fs;
     }
   }
 }
@@ -182,10 +187,9 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   std::vector<int>& row_of = scratch.ints;
   f.resize(r.size());  // both written in full (on the spans) by the sweeps
   row_of.resize(r.size());
-  column_sweeps(r, seed, spans, off_seeds, row_of);
   // With spans far from the seeds, a column's sample at cap or beyond is left out of the
   // rows' envelopes: it brings no cell below cap.
-  const bool prune = spans && !off_seeds;
+  column_sweeps(r, seed, spans, off_seeds, spans && !off_seeds ? float(cap) : big, row_of, f);
   const int n = std::max(w, h);
   std::vector<int> v(n + 1), arg(n);
   std::vector<double> z(n + 2);
@@ -197,8 +201,8 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
     int lo = spans ? spans->lo[j] : 0, hi = spans ? spans->hi[j] : w - 1;
     if (spans && off_seeds && lo <= hi) {
       // The off-span cells next to the span are seeds: the row's zeros that bound its runs.
-      if (lo > 0) row_of[row + --lo] = j;
-      if (hi < w - 1) row_of[row + ++hi] = j;
+      if (lo > 0) row_of[row + --lo] = j, f[row + lo] = 0;
+      if (hi < w - 1) row_of[row + ++hi] = j, f[row + hi] = 0;
     }
     const auto off = [&](int i0, int i1) {
       for (int i = i0; i < i1; ++i) {
@@ -210,11 +214,6 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
     off(std::max(lo, hi + 1), w);
     if (lo > hi) continue;
     float* frow = f.data() + row;
-    const int* arow = row_of.data() + row;
-    for (int i = lo; i <= hi; ++i) {
-      const double fs = double(j - arow[i]) * double(j - arow[i]);
-      frow[i] = arow[i] < 0 || (prune && fs >= cap) ? big : float(fs);
-    }
     distance_1d(frow + lo, hi - lo + 1, big, base + lo, out.data(), arg.data(), v, z);
     for (int i = lo; i <= hi; ++i) {
       const std::size_t c = row + i;
