@@ -134,29 +134,34 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
     for (int i = lo; i <= std::min(hi, klo - 1); ++i) last[i] = k;
     for (int i = std::max(lo, khi + 1); i <= hi; ++i) last[i] = k;
   };
+  // Branch-free loops over raw pointers (they vectorise).
   std::vector<int> last(w, -1);
   for (int j = 0; j < h; ++j) {
     const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
     int* arow = row_of.data() + std::size_t(j) * w;
+    int* lrow = last.data();
     enter(j, j - 1, last);
     for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
-      if (srow[i]) last[i] = j;
-      arow[i] = last[i];
+      const int l = srow[i] ? j : lrow[i];
+      lrow[i] = l;
+      arow[i] = l;
     }
   }
   std::fill(last.begin(), last.end(), -1);
   for (int j = h - 1; j >= 0; --j) {
     const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
     int* arow = row_of.data() + std::size_t(j) * w;
+    int* lrow = last.data();
     float* frow = f.data() + std::size_t(j) * w;
     enter(j, j + 1, last);
     for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
-      if (srow[i]) last[i] = j;
-      const int above = arow[i], below = last[i];
+      const int below = srow[i] ? j : lrow[i];
+      lrow[i] = below;
+      const int above = arow[i];
       // The seed above wins a tie (the lower index).
       const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
       arow[i] = s;
-      const float fs = float(double(j - s) * double(j - s));
+      const float fs = float(j - s) * float(j - s);
       frow[i] = s < 0 || fs >= prune ? 1e20f : fs;
     }
   }
