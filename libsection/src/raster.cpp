@@ -194,7 +194,9 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   row_of.resize(r.size());
   // With spans far from the seeds, a column's sample at cap or beyond is left out of the
   // rows' envelopes: it brings no cell below cap.
-  column_sweeps(r, seed, spans, off_seeds, spans && !off_seeds ? float(cap) : big, row_of, f);
+  const bool prune = spans && !off_seeds;
+  const int near = ceil_sqrt(cap);  // (near - 1)^2 < cap <= near^2
+  column_sweeps(r, seed, spans, off_seeds, prune ? float(cap) : big, row_of, f);
   const int n = std::max(w, h);
   std::vector<int> v(n + 1), arg(n);
   std::vector<double> z(n + 2);
@@ -218,16 +220,38 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
     off(0, std::min(lo, w));
     off(std::max(lo, hi + 1), w);
     if (lo > hi) continue;
-    float* frow = f.data() + row;
-    distance_1d(frow + lo, hi - lo + 1, big, base + lo, out.data(), arg.data(), v, z);
-    for (int i = lo; i <= hi; ++i) {
-      const std::size_t c = row + i;
-      const float o = out[i - lo];
-      // Squared distances are integers (exact in float below 2^24, and every float above
-      // 2^23 is an integer): rounding is a truncation of x + 0.5.
-      d[c] = o >= float(cap) ? cap : int(o + 0.5f);
-      const int si = arg[i - lo] + lo;
-      nearest[c] = o < 1e19f ? row_of[row + si] * w + si : -1;
+    const float* frow = f.data() + row;
+    // The row's stretch from a to b (the whole span unless pruned: see below).
+    const auto stretch = [&](int a, int b) {
+      distance_1d(frow + a, b - a + 1, big, base + a, out.data(), arg.data(), v, z);
+      for (int i = a; i <= b; ++i) {
+        const std::size_t c = row + i;
+        const float o = out[i - a];
+        // Squared distances are integers (exact in float below 2^24, and every float above
+        // 2^23 is an integer): rounding is a truncation of x + 0.5.
+        d[c] = o >= float(cap) ? cap : int(o + 0.5f);
+        const int si = arg[i - a] + a;
+        nearest[c] = o < 1e19f ? row_of[row + si] * w + si : -1;
+      }
+    };
+    if (!prune) {
+      stretch(lo, hi);
+      continue;
+    }
+    // Pruned, a kept sample brings below cap only the cells closer than `near` to it: the
+    // clusters of kept samples are done apart, each with its cells that close (the
+    // envelope of a cluster's samples is the row's there), and the rest is at cap.
+    off(lo, hi + 1);
+    for (int i = lo; i <= hi;) {
+      if (!(frow[i] < big)) {
+        ++i;
+        continue;
+      }
+      int last = i;
+      for (int k = i + 1; k <= hi && k <= last + 2 * near - 2; ++k)
+        if (frow[k] < big) last = k;
+      stretch(std::max(lo, i - near + 1), std::min(hi, last + near - 1));
+      i = last + near;
     }
   }
   return d;
