@@ -164,8 +164,8 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
     return float((Vec(double(i), double(j)) - seeds.mean[seeds.slot[s]]).norm());
   };
   pass.g = std::move(scratch.f);
-  // Off the spans, cells are outside and farther than rmax from every point (as far as
-  // anything reads them).
+  // Off the spans, cells are outside and farther than the reach from every point: their g
+  // is read only as below -1.5 (see run_pass).
   std::fill(pass.g.begin(), pass.g.end(), -float(rmax + 1));
   for (int j = 0; j < r.h; ++j) {
     const std::size_t row = std::size_t(j) * r.w;
@@ -292,12 +292,18 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   // radius + 2 cells. Start with a small margin and widen it only when the radius needs it:
   // the result is that of a margin of rmax + 2, on a much smaller raster.
   int margin = std::min(rmax, 8) + 2;
-  // The reach of the distances: cells farther from every point count as at `reach` + 1, and
-  // only the cells of each row within `reach` of its neighbouring rows' points are visited.
-  // The closing radius is that of the reach rmax unless some interior closes only beyond
-  // `reach` (then a wider profile gap would set it: the reach widens to rmax). The erosion
-  // and the boundary read the nearest point of cells up to twice the radius from the
-  // points (see erode): the reach widens to cover them.
+  // The reach (cells): a cell farther than `reach` from every point counts as at reach + 1
+  // (d2 = cap), and only the rows' spans (the cells within `reach` of the points of the
+  // rows within `reach`) are computed: every cell off them is outside. The closing radius
+  // (the largest at which some cell closes) is then that of the reach rmax unless some cell
+  // closes only beyond `reach`, behind a gap more than 2 reach cells wide: such a cell is
+  // not seen (the reach widens to rmax only when nothing closes within it). With 29 cells
+  // that takes a gap of 60 cells, which the full reach closes with a radius of 60 or more.
+  // The erosion reads the nearest point of the outside cells up to radius + 1 from the
+  // points, the boundary (bilinear reads of g) that of those up to 2 radius + 9 (a fill
+  // cell next to a non-fill one is within 2 radius + 2 of the points, the boundary moves
+  // up to 5.5 cells from it): the reach widens to cover them. At the reach rmax every cell
+  // is computed, as without spans.
   int reach = std::min(rmax, 29);
   Raster& r = pass.raster;
   r.cell = h;
@@ -309,7 +315,6 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   for (;;) {
     place_raster(lo, hi, h, margin, opt.max_cells, r);
     seed_cells(points, subset, r, scratch.bytes, seeds);
-    // At the reach rmax, every cell as before (and the nearest point of every cell).
     spans = spans_of(r, seeds.first, seeds.last, reach);
     band = reach < rmax ? &spans : nullptr;
     const int cap = (reach + 1) * (reach + 1);
