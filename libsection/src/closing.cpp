@@ -138,6 +138,7 @@ int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int c
 // pass.g; returns the squared distance of each cell to the outside.
 std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector<int>& nearest_seed,
                        const Seeds& seeds, int rmax, int base, const Spans* band, Scratch& scratch) {
+  pass.deep = pass.deep || !band;
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;
   std::vector<std::uint8_t>& outside = scratch.bytes;
@@ -149,7 +150,12 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
     for (std::size_t c = c0; c < c1; ++c) out[c] = b[c] > rr;
   });
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
-  const int cap_out = int(std::min(far, double(1 << 30)));
+  // Not deep: the distances to the outside only below radius + 8 cells. The outside cell
+  // nearest to a non-outside one is within radius + 1 of the points, so deeper g > 6.3
+  // (left at rmax + 1): the boundary reads g within a few cells of its zero level, the
+  // normals (image_normal) only whether it is above 1/2.
+  const int deep_cap = (pass.radius + 8) * (pass.radius + 8);
+  const int cap_out = pass.deep ? int(std::min(far, double(1 << 30))) : deep_cap;
   std::vector<int> nearest_out;
   std::vector<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch, band, true);
 
@@ -173,7 +179,7 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
       for (int i = i0; i < i1; ++i) {
         const std::size_t c = row + i;
         const int y = nearest_out[c];
-        if (y < 0)
+        if (y < 0 || out2[c] >= cap_out)
           pass.g[c] = float(rmax + 1);
         else if (std::size_t(y) == c)  // an outside cell (out2 = 0)
           pass.g[c] = std::sqrt(float(out2[c])) - exact_d(c, i, j);
@@ -276,7 +282,8 @@ Error raster_too_large(double wc, double hc, double h, std::size_t max_cells) {
 }
 
 bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,
-              const MorphologyOptions& opt, Pass& pass) {
+              const MorphologyOptions& opt, Pass& pass, bool deep) {
+  pass.deep = deep;
   Vec lo = points[subset[0]], hi = lo;
   for (std::size_t k : subset) {
     lo = lo.cwiseMin(points[k]);

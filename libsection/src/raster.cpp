@@ -192,9 +192,9 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   std::vector<int>& row_of = scratch.ints;
   f.resize(r.size());  // both written in full (on the spans) by the sweeps
   row_of.resize(r.size());
-  // With spans far from the seeds, a column's sample at cap or beyond is left out of the
-  // rows' envelopes: it brings no cell below cap.
-  const bool prune = spans && !off_seeds;
+  // With spans, a column's sample at cap or beyond is left out of the rows' envelopes: it
+  // brings no cell below cap.
+  const bool prune = spans != nullptr;
   const int near = ceil_sqrt(cap);  // (near - 1)^2 < cap <= near^2
   column_sweeps(r, seed, spans, off_seeds, prune ? float(cap) : big, row_of, f);
   const int n = std::max(w, h);
@@ -211,14 +211,15 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
       if (lo > 0) row_of[row + --lo] = j, f[row + lo] = 0;
       if (hi < w - 1) row_of[row + ++hi] = j, f[row + hi] = 0;
     }
-    const auto off = [&](int i0, int i1) {
+    // Cells off the span (seeds or at cap) or out of reach (at cap).
+    const auto off = [&](int i0, int i1, bool seeds) {
       for (int i = i0; i < i1; ++i) {
-        d[row + i] = off_seeds ? 0 : cap;
-        nearest[row + i] = off_seeds ? int(row + i) : -1;
+        d[row + i] = seeds ? 0 : cap;
+        nearest[row + i] = seeds ? int(row + i) : -1;
       }
     };
-    off(0, std::min(lo, w));
-    off(std::max(lo, hi + 1), w);
+    off(0, std::min(lo, w), off_seeds);
+    off(std::max(lo, hi + 1), w, off_seeds);
     if (lo > hi) continue;
     const float* frow = f.data() + row;
     // The row's stretch from a to b (the whole span unless pruned: see below).
@@ -241,7 +242,7 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
     // Pruned, a kept sample brings below cap only the cells closer than `near` to it: the
     // clusters of kept samples are done apart, each with its cells that close (the
     // envelope of a cluster's samples is the row's there), and the rest is at cap.
-    off(lo, hi + 1);
+    off(lo, hi + 1, false);
     for (int i = lo; i <= hi;) {
       if (!(frow[i] < big)) {
         ++i;

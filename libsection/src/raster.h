@@ -45,11 +45,11 @@ Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector
 /// clamped to `cap`, and that seed's cell index in `nearest` (-1 when there is no seed).
 /// `seed` is 1 at seeds. `base` is added to the cell indices in the parabola arithmetic
 /// (see distance_1d). Between equidistant seeds the one of lower index wins, as in
-/// the envelope of the columns. With `spans` (of a reach whose square is below `cap`),
-/// only their cells are computed (the others get `cap` and -1), and `nearest` is that of
-/// the transform without them only where the distance is below `cap` (beyond, another
-/// seed or -1). With `off_seeds`, the cells off the spans are seeds instead (distance 0,
-/// their own nearest), and the distances on the spans are those without spans.
+/// the envelope of the columns. With `spans`, only their cells are computed, and the
+/// cells that lie `cap` or farther from every seed may get `cap` and -1: `nearest` is that
+/// of the transform without spans wherever the distance is below `cap`. The cells off the
+/// spans get `cap` and -1, or with `off_seeds` are seeds themselves (0 and their own
+/// index; the distances on the spans are then those of these seeds too).
 /// Uses scratch.f and scratch.ints (not scratch.bytes, which may hold `seed`).
 std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
                                     std::vector<int>& nearest, Scratch& scratch, const Spans* spans = nullptr,
