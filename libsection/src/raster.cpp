@@ -134,7 +134,7 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
     for (int i = lo; i <= std::min(hi, klo - 1); ++i) last[i] = k;
     for (int i = std::max(lo, khi + 1); i <= hi; ++i) last[i] = k;
   };
-  // Branch-free loops over raw pointers (they vectorise).
+  // Branch-free loops over raw pointers (a select, not a branch, per cell).
   std::vector<int> last(w, -1);
   for (int j = 0; j < h; ++j) {
     const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
