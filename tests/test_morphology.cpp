@@ -388,6 +388,7 @@ TEST_CASE("morphology: skeleton_if leaves the skeleton out and the loops as they
     CHECK(m.loops[0].index == all.loops[0].index);
     CHECK(m.loops[0].normals == all.loops[0].normals);
     CHECK(m.skeleton.size() == (wanted ? all.skeleton.size() : 0));
+    if (wanted) CHECK(m.skeleton_radius == all.skeleton_radius);  // g deep inside made again
     for (std::size_t i = 0; wanted && i < m.skeleton.size(); ++i) {
       CHECK(std::abs(m.skeleton[i].y()) < 2 * m.cell + 1e-9 + (std::abs(m.skeleton[i].x()) > 6 ? 2 : 0));
       CHECK(m.skeleton[i] == all.skeleton[i]);

@@ -37,6 +37,7 @@ bool substantial(long long cells) {
 struct Seeds {
   std::vector<Vec> mean;
   std::vector<int> slot;
+  std::vector<int> first, last;  // per row, the first and last column holding a seed
 };
 
 // Places a raster over [lo, hi] with `margin` cells around.
@@ -57,6 +58,8 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
   seed.assign(r.size(), 0);
   seeds.slot.assign(r.size(), -1);
   seeds.mean.clear();
+  seeds.first.assign(r.h, r.w);
+  seeds.last.assign(r.h, -1);
   std::vector<int> count;
   for (std::size_t k : subset) {
     const Vec c = r.to_cell(points[k]);
@@ -64,6 +67,8 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
     const int j = std::clamp(int(std::lround(c.y())), 0, r.h - 1);
     const std::size_t cell = std::size_t(j) * r.w + i;
     seed[cell] = 1;
+    seeds.first[j] = std::min(seeds.first[j], i);
+    seeds.last[j] = std::max(seeds.last[j], i);
     if (seeds.slot[cell] < 0) {
       seeds.slot[cell] = int(seeds.mean.size());
       seeds.mean.emplace_back(0, 0);
@@ -75,6 +80,29 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
   for (std::size_t m = 0; m < seeds.mean.size(); ++m) seeds.mean[m] /= count[m];
 }
 
+// Calls fn(first, end) with the columns of row j's span (the whole row without spans).
+template <class Fn>
+void for_spans_of_row(const Spans* band, int j, int w, const Fn& fn) {
+  if (!band)
+    fn(0, w);
+  else if (band->lo[j] <= band->hi[j])
+    fn(band->lo[j], band->hi[j] + 1);
+}
+
+// Calls fn(first, end) with the cell indices of each row's span (the whole row without
+// spans).
+template <class Fn>
+void for_spans(const Spans* band, int h, int w, const Fn& fn) {
+  for (int j = 0; j < h; ++j) {
+    const std::size_t row = std::size_t(j) * w;
+    if (!band) {
+      fn(row, row + w);
+    } else if (band->lo[j] <= band->hi[j]) {
+      fn(row + band->lo[j], row + band->hi[j] + 1);
+    }
+  }
+}
+
 // The closing radius r_c (cells), 0 when no substantial interior is ever enclosed.
 // A cell is enclosed at radius r when b2 <= r^2 < d2: inside the band of radius r but
 // not on it. Cells enclosed at some radius (b2 < d2) are the interior of closed
@@ -83,19 +111,23 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
 // them have closed. Taking the first radius at which some interior appears instead
 // leaves a part of a thin profile open behind a wide hole when the band pinches the
 // profile elsewhere first.
-int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int cap, int rmax) {
+int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int cap, int rmax, int w,
+                   const Spans* band) {
   std::vector<long long> closing_at(rmax + 2, 0);
   long long ever = 0;
   // b2 and d2 lie in [0, cap]: their ceil_sqrt from a table (one per interior cell).
   std::vector<int> root(std::size_t(cap) + 1);
   for (int x = 0; x <= cap; ++x) root[x] = ceil_sqrt(x);
-  for (std::size_t c = 0; c < d2.size(); ++c) {
-    if (b2[c] >= d2[c]) continue;
-    const int a = std::max(1, root[b2[c]]);
-    if (a > rmax || a > root[d2[c]] - 1) continue;  // never enclosed at an integer radius <= rmax
-    ++closing_at[a];
-    ++ever;
-  }
+  // Off the spans b2 = d2 = cap: nothing to count there.
+  for_spans(band, int(d2.size() / w), w, [&](std::size_t c0, std::size_t c1) {
+    for (std::size_t c = c0; c < c1; ++c) {
+      if (b2[c] >= d2[c]) continue;
+      const int a = std::max(1, root[b2[c]]);
+      if (a > rmax || a > root[d2[c]] - 1) continue;  // never enclosed at an integer radius <= rmax
+      ++closing_at[a];
+      ++ever;
+    }
+  });
   if (!substantial(ever)) return 0;
   int rc = 0;
   for (long long sum = 0; rc < rmax && sum < ever;) sum += closing_at[++rc];
@@ -105,84 +137,131 @@ int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int c
 // Erodes the fill back (keeps the cells farther than the radius from the outside) and sets
 // pass.g; returns the squared distance of each cell to the outside.
 std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector<int>& nearest_seed,
-                       const Seeds& seeds, int rmax, int base, Scratch& scratch) {
+                       const Seeds& seeds, int rmax, int base, const Spans* band, Scratch& scratch) {
+  pass.deep = pass.deep || !band;
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;
   std::vector<std::uint8_t>& outside = scratch.bytes;
-  const std::size_t cells = r.size();  // once: a byte written may alias r, for the compiler
-  for (std::size_t c = 0; c < cells; ++c) outside[c] = b2[c] > rr;
+  // Read on the spans only (the cells off them are outside).
+  // (Through pointers: a byte written may alias a vector's, for the compiler.)
+  const int* b = b2.data();
+  std::uint8_t* out = outside.data();
+  for_spans(band, r.h, r.w, [&](std::size_t c0, std::size_t c1) {
+    for (std::size_t c = c0; c < c1; ++c) out[c] = b[c] > rr;
+  });
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
-  const int cap_out = int(std::min(far, double(1 << 30)));
+  // Not deep: the distances to the outside only below radius + 8 cells. The outside cell
+  // nearest to a non-outside one is within radius + 1 of the points, so deeper g > 6.3
+  // (left at rmax + 1): the boundary reads g within a few cells of its zero level, the
+  // normals (image_normal) only whether it is above 1/2.
+  const int deep_cap = (pass.radius + 8) * (pass.radius + 8);
+  const int cap_out = pass.deep ? int(std::min(far, double(1 << 30))) : deep_cap;
   std::vector<int> nearest_out;
-  std::vector<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch);
+  std::vector<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch, band, true);
 
   // The closing's complement is about the union of the empty discs centred on outside
   // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside
   // cell nearest to x, g(x) = |x - y*| - d(y*) is the signed distance of x to that union:
   // its zero level is the boundary to a small fraction of a cell, and it passes through
   // the outermost points.
-  const auto exact_d = [&](std::size_t y) {
+  const auto exact_d = [&](std::size_t y, int i, int j) {
     const int s = nearest_seed[y];
     if (s < 0) return float(rmax + 1);
-    const Vec c(double(y % r.w), double(y / r.w));
-    return float((c - seeds.mean[seeds.slot[s]]).norm());
+    return float((Vec(double(i), double(j)) - seeds.mean[seeds.slot[s]]).norm());
   };
-  pass.g = std::move(scratch.f);  // every cell written below
-  for (std::size_t c = 0; c < cells; ++c) {
-    const int y = nearest_out[c];
-    pass.g[c] = y < 0 ? float(rmax + 1) : std::sqrt(float(out2[c])) - exact_d(std::size_t(y));
+  pass.g = std::move(scratch.f);
+  // Off the spans, cells are outside and farther than the reach from every point: their g
+  // is read only as below -1.5 (see run_pass).
+  std::fill(pass.g.begin(), pass.g.end(), -float(rmax + 1));
+  for (int j = 0; j < r.h; ++j) {
+    const std::size_t row = std::size_t(j) * r.w;
+    for_spans_of_row(band, j, r.w, [&](int i0, int i1) {
+      for (int i = i0; i < i1; ++i) {
+        const std::size_t c = row + i;
+        const int y = nearest_out[c];
+        if (y < 0 || out2[c] >= cap_out)
+          pass.g[c] = float(rmax + 1);
+        else if (std::size_t(y) == c)  // an outside cell (out2 = 0)
+          pass.g[c] = std::sqrt(float(out2[c])) - exact_d(c, i, j);
+        else
+          pass.g[c] = std::sqrt(float(out2[c])) - exact_d(std::size_t(y), y % r.w, y / r.w);
+      }
+    });
   }
   return out2;
 }
 
+// The runs of fill cells (out2 > r^2) of each row, in raster order, each joined to the
+// runs it touches (8-connected) in the row above: `parent` is a union-find forest.
+struct Runs {
+  std::vector<int> row, first, last, parent;
+  int root(int k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  }
+};
+
+Runs fill_runs(const std::vector<int>& out2, int rr, const Raster& r, const Spans* band) {
+  Runs runs;
+  int above = 0, begin = 0;  // the runs of the row above: [above, begin)
+  for (int j = 0; j < r.h; ++j) {
+    const int start = int(runs.row.size());
+    const std::size_t row = std::size_t(j) * r.w;
+    for_spans_of_row(band, j, r.w, [&](int i0, int i1) {
+      for (int i = i0; i < i1; ++i) {
+        if (out2[row + i] <= rr) continue;
+        const int a = i;
+        while (i + 1 < i1 && out2[row + i + 1] > rr) ++i;
+        const int k = int(runs.row.size());
+        runs.row.push_back(j);
+        runs.first.push_back(a);
+        runs.last.push_back(i);
+        runs.parent.push_back(k);
+        while (above < begin && runs.last[above] < a - 1) ++above;
+        for (int m = above; m < begin && runs.first[m] <= i + 1; ++m) {
+          const int x = runs.root(m), y = runs.root(k);
+          if (x != y) runs.parent[std::max(x, y)] = std::min(x, y);
+        }
+      }
+    });
+    above = start;
+    begin = int(runs.row.size());
+  }
+  return runs;
+}
+
 // 8-connected components of the fill (out2 > r^2), labelled in raster order of their
-// first cell. `open` marks fill cells not labelled yet (one byte per cell: cheaper to
-// test than out2 and label).
+// first cell, from the rows' runs of fill cells.
 void label_components(const std::vector<int>& out2, const std::vector<int>& b2, const std::vector<int>& d2,
-                      Scratch& scratch, Pass& pass) {
+                      const Spans* band, Scratch& scratch, Pass& pass) {
   const Raster& r = pass.raster;
-  const int rr = pass.radius * pass.radius;
   pass.label = std::move(scratch.ints);
   std::fill(pass.label.begin(), pass.label.end(), 0);
-  std::vector<std::uint8_t>& open = scratch.bytes;
-  const std::size_t cells = r.size();  // once: a byte written may alias r, for the compiler
-  for (std::size_t c = 0; c < cells; ++c) open[c] = out2[c] > rr;
-  const std::ptrdiff_t W = r.w;
-  const std::ptrdiff_t around[8] = {-W - 1, -W, -W + 1, -1, 1, W - 1, W, W + 1};
-  std::vector<std::uint32_t> queue;
-  for (std::size_t c0 = 0; c0 < cells; ++c0) {
-    if (!open[c0]) continue;
-    Component comp;
-    comp.label = int(pass.components.size()) + 1;
-    comp.start = c0;
-    comp.i0 = r.w;
-    comp.j0 = r.h;
-    const auto take = [&](std::size_t e) {
-      if (!open[e]) return;
-      open[e] = 0;
-      pass.label[e] = comp.label;
-      queue.push_back(std::uint32_t(e));
-    };
-    pass.label[c0] = comp.label;
-    open[c0] = 0;
-    queue.assign(1, std::uint32_t(c0));
-    for (std::size_t q = 0; q < queue.size(); ++q) {
-      const std::uint32_t c = queue[q];
-      ++comp.area;
-      if (b2[c] < d2[c]) ++comp.enclosed;
-      const int i = int(c % r.w), j = int(c / r.w);
-      comp.i0 = std::min(comp.i0, i);
-      comp.i1 = std::max(comp.i1, i);
-      comp.j0 = std::min(comp.j0, j);
-      comp.j1 = std::max(comp.j1, j);
-      if (i > 0 && j > 0 && i + 1 < r.w && j + 1 < r.h) {
-        for (const std::ptrdiff_t o : around) take(std::size_t(std::ptrdiff_t(c) + o));
-        continue;
-      }
-      for (int y = std::max(0, j - 1); y <= std::min(r.h - 1, j + 1); ++y)
-        for (int x = std::max(0, i - 1); x <= std::min(r.w - 1, i + 1); ++x) take(std::size_t(y) * r.w + x);
+  Runs runs = fill_runs(out2, pass.radius * pass.radius, r, band);
+  std::vector<int> id(runs.row.size(), -1);  // by root: index into pass.components
+  for (std::size_t k = 0; k < runs.row.size(); ++k) {
+    const int root = runs.root(int(k));
+    const int j = runs.row[k], a = runs.first[k], e = runs.last[k];
+    if (id[root] < 0) {
+      id[root] = int(pass.components.size());
+      Component comp;
+      comp.label = id[root] + 1;
+      comp.start = std::size_t(j) * r.w + a;
+      comp.i0 = r.w;
+      comp.j0 = r.h;
+      pass.components.push_back(comp);
     }
-    pass.components.push_back(comp);
+    Component& comp = pass.components[id[root]];
+    const std::size_t row = std::size_t(j) * r.w;
+    comp.area += std::size_t(e - a + 1);
+    for (std::size_t c = row + a; c <= row + e; ++c) {
+      pass.label[c] = comp.label;
+      comp.enclosed += b2[c] < d2[c];
+    }
+    comp.i0 = std::min(comp.i0, a);
+    comp.i1 = std::max(comp.i1, e);
+    comp.j0 = std::min(comp.j0, j);
+    comp.j1 = std::max(comp.j1, j);
   }
   for (auto& comp : pass.components)
     if (!substantial(comp.enclosed)) comp.enclosed = 0;  // an open band or a fragment
@@ -203,7 +282,8 @@ Error raster_too_large(double wc, double hc, double h, std::size_t max_cells) {
 }
 
 bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,
-              const MorphologyOptions& opt, Pass& pass) {
+              const MorphologyOptions& opt, Pass& pass, bool deep) {
+  pass.deep = deep;
   Vec lo = points[subset[0]], hi = lo;
   for (std::size_t k : subset) {
     lo = lo.cwiseMin(points[k]);
@@ -219,29 +299,52 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   // radius + 2 cells. Start with a small margin and widen it only when the radius needs it:
   // the result is that of a margin of rmax + 2, on a much smaller raster.
   int margin = std::min(rmax, 8) + 2;
+  // The reach (cells): a cell farther than `reach` from every point counts as at reach + 1
+  // (d2 = cap), and only the rows' spans (the cells within `reach` of the points of the
+  // rows within `reach`) are computed: every cell off them is outside. The closing radius
+  // (the largest at which some cell closes) is then that of the reach rmax unless some cell
+  // closes only beyond `reach`, behind a gap more than 2 reach cells wide: such a cell is
+  // not seen (the reach widens to rmax only when nothing closes within it). With 29 cells
+  // that takes a gap of 60 cells, which the full reach closes with a radius of 60 or more.
+  // The erosion reads the nearest point of the outside cells up to radius + 1 from the
+  // points, the boundary (bilinear reads of g) that of those up to 2 radius + 9 (a fill
+  // cell next to a non-fill one is within 2 radius + 2 of the points, the boundary moves
+  // up to 5.5 cells from it): the reach widens to cover them. At the reach rmax every cell
+  // is computed, as without spans.
+  int reach = std::min(rmax, 29);
   Raster& r = pass.raster;
   r.cell = h;
   Seeds seeds;
   std::vector<int> nearest_seed, d2, b2;
   Scratch scratch;
+  Spans spans;
+  const Spans* band = nullptr;
   for (;;) {
     place_raster(lo, hi, h, margin, opt.max_cells, r);
     seed_cells(points, subset, r, scratch.bytes, seeds);
-    const int cap = (rmax + 1) * (rmax + 1);
-    d2 = distance_transform(r, scratch.bytes, cap, rmax + 2 - margin, nearest_seed, scratch);
-    b2 = bottleneck(r, d2, cap, scratch.ints);
-    const int rc = closing_radius(d2, b2, cap, rmax);
+    spans = spans_of(r, seeds.first, seeds.last, reach);
+    band = reach < rmax ? &spans : nullptr;
+    const int cap = (reach + 1) * (reach + 1);
+    d2 = distance_transform(r, scratch.bytes, cap, rmax + 2 - margin, nearest_seed, scratch, band);
+    b2 = bottleneck(r, d2, cap, scratch.ints, band);
+    const int rc = closing_radius(d2, b2, cap, reach, r.w, band);
+    if (rc == 0 && reach < rmax) {
+      reach = rmax;
+      continue;
+    }
     if (rc == 0) return false;
     pass.closing = rc;
     // Margin: twice the closing radius (at least 4 cells). A disc just able to bridge a gap
     // dips into it by about its radius and may cut a thin trailing edge in two; a disc twice
     // as large dips by a quarter of that.
     pass.radius = std::min(std::max(2 * rc, 4), rmax);
-    if (pass.radius + 2 <= margin) break;
-    margin = pass.radius + 2;
+    const int need = std::min(rmax, 2 * pass.radius + 9);
+    if (pass.radius + 2 <= margin && need <= reach) break;
+    margin = std::max(margin, pass.radius + 2);
+    reach = std::max(reach, need);
   }
-  const std::vector<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, scratch);
-  label_components(out2, b2, d2, scratch, pass);
+  const std::vector<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, band, scratch);
+  label_components(out2, b2, d2, band, scratch, pass);
   return true;
 }
 

@@ -30,13 +30,15 @@ struct Pass {
   std::vector<int> label;             // component of the eroded fill, 0 = none
   std::vector<float> g;               // signed distance to the closing's boundary, cells, > 0 inside
   std::vector<Component> components;  // index = label - 1
+  bool deep = true;                   // g exact deep inside too (else rmax + 1 there)
 };
 
 /// Builds the raster of `subset` (cell h), finds the closing radius and labels the
 /// closed fill. Returns false when the band never encloses a substantial interior.
-/// Throws section::Error when the raster would exceed opt.max_cells.
+/// Without `deep`, g may be left at rmax + 1 (cells) deep inside the fill, where only
+/// the skeleton reads it. Throws section::Error when the raster would exceed opt.max_cells.
 bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,
-              const MorphologyOptions& opt, Pass& pass);
+              const MorphologyOptions& opt, Pass& pass, bool deep = true);
 
 /// The boundary of one component in world coordinates, counterclockwise: the Moore trace
 /// smoothed a little, then each vertex moved along its normal onto the zero level of g.

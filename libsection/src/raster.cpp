@@ -80,43 +80,123 @@ void distance_1d(const float* f, int n, float big, int base, float* d, int* arg,
   }
 }
 
-}  // namespace
-
-std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest, Scratch& scratch) {
-  const float big = 1e20f;
-  const int w = r.w, h = r.h;
-  // Columns: with 0/1 seeds the 1D transform is the distance to the nearest seed above or
-  // below, found by one sweep each way over whole rows (cache friendly).
-  std::vector<float>& f = scratch.f;
-  std::vector<int>& row_of = scratch.ints;
-  f.resize(r.size());  // both written in full by the sweeps below
-  row_of.resize(r.size());
-  {
-    std::vector<int> last(w, -1);
-    for (int j = 0; j < h; ++j) {
-      const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
-      int* arow = row_of.data() + std::size_t(j) * w;
-      for (int i = 0; i < w; ++i) {
-        if (srow[i]) last[i] = j;
-        arow[i] = last[i];
-      }
+/// Sets the cells off the spans to cap, their bottleneck (their row leads to the border
+/// through cells at cap), and seeds each span cell next to one of them with its own d2,
+/// like a border cell.
+template <class Seed>
+void seed_spans(const Raster& r, const Spans& spans, int cap, std::vector<int>& b2, const Seed& seed) {
+  for (int j = 0; j < r.h; ++j) {
+    const std::size_t row = std::size_t(j) * r.w;
+    const int lo = spans.lo[j], hi = spans.hi[j];
+    if (lo > hi) {
+      std::fill(b2.begin() + row, b2.begin() + row + r.w, cap);
+      continue;
     }
-    std::fill(last.begin(), last.end(), -1);
-    for (int j = h - 1; j >= 0; --j) {
-      const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
-      int* arow = row_of.data() + std::size_t(j) * w;
-      float* frow = f.data() + std::size_t(j) * w;
-      for (int i = 0; i < w; ++i) {
-        if (srow[i]) last[i] = j;
-        const int above = arow[i], below = last[i];
-        // The seed above wins a tie (the lower index).
-        const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
-        arow[i] = s;
-        frow[i] = s < 0 ? big : float(double(j - s) * double(j - s));
+    std::fill(b2.begin() + row, b2.begin() + row + lo, cap);
+    std::fill(b2.begin() + row + hi + 1, b2.begin() + row + r.w, cap);
+  }
+  for (int j = 0; j < r.h; ++j) {
+    const int lo = spans.lo[j], hi = spans.hi[j];
+    if (lo > hi) continue;
+    seed(lo, j);
+    seed(hi, j);
+    // The cells whose neighbour above or below is off its row's span.
+    for (const int k : {j - 1, j + 1}) {
+      if (k < 0 || k >= r.h) continue;
+      const int klo = spans.lo[k], khi = spans.hi[k];
+      if (klo > khi) {
+        for (int i = lo; i <= hi; ++i) seed(i, j);
+        continue;
       }
+      for (int i = lo; i <= std::min(hi, klo - 1); ++i) seed(i, j);
+      for (int i = std::max(lo, khi + 1); i <= hi; ++i) seed(i, j);
     }
   }
+}
+
+/// The columns' part of distance_transform: row_of holds, on the spans, the row of the
+/// nearest seed in the cell's column (-1: none), found by one sweep each way over whole
+/// rows (cache friendly), and f its squared distance (1e20 when none or at least `prune`).
+/// With off_seeds, the cells off the spans are seeds too.
+void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const Spans* spans, bool off_seeds,
+                   float prune, std::vector<int>& row_of, std::vector<float>& f) {
+  const int w = r.w, h = r.h;
+  const auto lo_of = [&](int j) { return spans ? spans->lo[j] : 0; };
+  const auto hi_of = [&](int j) { return spans ? spans->hi[j] : w - 1; };
+  // Row k's off-span cells are seeds for the columns of row j's span (k = j -+ 1).
+  const auto enter = [&](int j, int k, std::vector<int>& last) {
+    if (!off_seeds || k < 0 || k >= h) return;
+    const int lo = lo_of(j), hi = hi_of(j), klo = lo_of(k), khi = hi_of(k);
+    if (klo > khi) {
+      for (int i = lo; i <= hi; ++i) last[i] = k;
+      return;
+    }
+    for (int i = lo; i <= std::min(hi, klo - 1); ++i) last[i] = k;
+    for (int i = std::max(lo, khi + 1); i <= hi; ++i) last[i] = k;
+  };
+  // Branch-free loops over raw pointers (a select, not a branch, per cell).
+  std::vector<int> last(w, -1);
+  for (int j = 0; j < h; ++j) {
+    const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
+    int* arow = row_of.data() + std::size_t(j) * w;
+    int* lrow = last.data();
+    enter(j, j - 1, last);
+    for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
+      const int l = srow[i] ? j : lrow[i];
+      lrow[i] = l;
+      arow[i] = l;
+    }
+  }
+  std::fill(last.begin(), last.end(), -1);
+  for (int j = h - 1; j >= 0; --j) {
+    const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
+    int* arow = row_of.data() + std::size_t(j) * w;
+    int* lrow = last.data();
+    float* frow = f.data() + std::size_t(j) * w;
+    enter(j, j + 1, last);
+    for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
+      const int below = srow[i] ? j : lrow[i];
+      lrow[i] = below;
+      const int above = arow[i];
+      // The seed above wins a tie (the lower index).
+      const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
+      arow[i] = s;
+      const float fs = float(j - s) * float(j - s);
+      frow[i] = s < 0 || fs >= prune ? 1e20f : fs;
+    }
+  }
+}
+
+}  // namespace
+
+Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector<int>& last, int reach) {
+  Spans s;
+  s.lo.assign(r.h, r.w);
+  s.hi.assign(r.h, -1);
+  for (int j = 0; j < r.h; ++j) {
+    if (first[j] > last[j]) continue;
+    for (int k = std::max(0, j - reach), k1 = std::min(r.h - 1, j + reach); k <= k1; ++k) {
+      s.lo[k] = std::min(s.lo[k], std::max(0, first[j] - reach));
+      s.hi[k] = std::max(s.hi[k], std::min(r.w - 1, last[j] + reach));
+    }
+  }
+  return s;
+}
+
+std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
+                                    std::vector<int>& nearest, Scratch& scratch, const Spans* spans,
+                                    bool off_seeds) {
+  const float big = 1e20f;
+  const int w = r.w, h = r.h;
+  std::vector<float>& f = scratch.f;
+  std::vector<int>& row_of = scratch.ints;
+  f.resize(r.size());  // both written in full (on the spans) by the sweeps
+  row_of.resize(r.size());
+  // With spans, a column's sample at cap or beyond is left out of the rows' envelopes: it
+  // brings no cell below cap.
+  const bool prune = spans != nullptr;
+  const int near = ceil_sqrt(cap);  // (near - 1)^2 < cap <= near^2
+  column_sweeps(r, seed, spans, off_seeds, prune ? float(cap) : big, row_of, f);
   const int n = std::max(w, h);
   std::vector<int> v(n + 1), arg(n);
   std::vector<double> z(n + 2);
@@ -124,21 +204,62 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   std::vector<int> d(r.size());
   nearest.resize(r.size());  // every cell written below
   for (int j = 0; j < h; ++j) {
-    const float* row = f.data() + std::size_t(j) * w;
-    distance_1d(row, w, big, base, out.data(), arg.data(), v, z);
-    for (int i = 0; i < w; ++i) {
-      const std::size_t c = std::size_t(j) * w + i;
-      // Squared distances are integers (exact in float below 2^24, and every float above
-      // 2^23 is an integer): rounding is a truncation of x + 0.5.
-      d[c] = out[i] >= float(cap) ? cap : int(out[i] + 0.5f);
-      const int si = arg[i];
-      nearest[c] = out[i] < 1e19f ? row_of[std::size_t(j) * w + si] * w + si : -1;
+    const std::size_t row = std::size_t(j) * w;
+    int lo = spans ? spans->lo[j] : 0, hi = spans ? spans->hi[j] : w - 1;
+    if (spans && off_seeds && lo <= hi) {
+      // The off-span cells next to the span are seeds: the row's zeros that bound its runs.
+      if (lo > 0) row_of[row + --lo] = j, f[row + lo] = 0;
+      if (hi < w - 1) row_of[row + ++hi] = j, f[row + hi] = 0;
+    }
+    // Cells off the span (seeds or at cap) or out of reach (at cap).
+    const auto off = [&](int i0, int i1, bool seeds) {
+      for (int i = i0; i < i1; ++i) {
+        d[row + i] = seeds ? 0 : cap;
+        nearest[row + i] = seeds ? int(row + i) : -1;
+      }
+    };
+    off(0, std::min(lo, w), off_seeds);
+    off(std::max(lo, hi + 1), w, off_seeds);
+    if (lo > hi) continue;
+    const float* frow = f.data() + row;
+    // The row's stretch from a to b (the whole span unless pruned: see below).
+    const auto stretch = [&](int a, int b) {
+      distance_1d(frow + a, b - a + 1, big, base + a, out.data(), arg.data(), v, z);
+      for (int i = a; i <= b; ++i) {
+        const std::size_t c = row + i;
+        const float o = out[i - a];
+        // Squared distances are integers (exact in float below 2^24, and every float above
+        // 2^23 is an integer): rounding is a truncation of x + 0.5.
+        d[c] = o >= float(cap) ? cap : int(o + 0.5f);
+        const int si = arg[i - a] + a;
+        nearest[c] = o < 1e19f ? row_of[row + si] * w + si : -1;
+      }
+    };
+    if (!prune) {
+      stretch(lo, hi);
+      continue;
+    }
+    // Pruned, a kept sample brings below cap only the cells closer than `near` to it: the
+    // clusters of kept samples are done apart, each with its cells that close (the
+    // envelope of a cluster's samples is the row's there), and the rest is at cap.
+    off(lo, hi + 1, false);
+    for (int i = lo; i <= hi;) {
+      if (!(frow[i] < big)) {
+        ++i;
+        continue;
+      }
+      int last = i;
+      for (int k = i + 1; k <= hi && k <= last + 2 * near - 2; ++k)
+        if (frow[k] < big) last = k;
+      stretch(std::max(lo, i - near + 1), std::min(hi, last + near - 1));
+      i = last + near;
     }
   }
   return d;
 }
 
-std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next) {
+std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next,
+                            const Spans* spans) {
   std::vector<int> b2(r.size(), -1);
   // Each bucket is a stack threaded through `next` (a cell enters one bucket, once; its
   // entry is written before it is read).
@@ -154,6 +275,7 @@ std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap
     b2[c] = d2[c];
     push(c);
   };
+  if (spans) seed_spans(r, *spans, cap, b2, seed);
   for (int i = 0; i < r.w; ++i) {
     seed(i, 0);
     seed(i, r.h - 1);

@@ -30,20 +30,38 @@ struct Scratch {
   std::vector<std::uint8_t> bytes;
 };
 
+/// The cells of each row that may lie within `reach` cells of a seed: columns lo[j]..hi[j]
+/// (none when lo[j] > hi[j]). Every cell off them is farther than `reach` from every seed,
+/// and so is every cell between it and the raster's border along its row.
+struct Spans {
+  std::vector<int> lo, hi;
+};
+
+/// Spans of reach `reach` around seeds whose columns in row j run from first[j] to last[j]
+/// (first[j] > last[j]: no seed in the row).
+Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector<int>& last, int reach);
+
 /// Exact squared Euclidean distance (in cells^2) of every cell to the nearest seed cell,
 /// clamped to `cap`, and that seed's cell index in `nearest` (-1 when there is no seed).
 /// `seed` is 1 at seeds. `base` is added to the cell indices in the parabola arithmetic
 /// (see distance_1d). Between equidistant seeds the one of lower index wins, as in
-/// the envelope of the columns.
+/// the envelope of the columns. With `spans`, only their cells are computed, and the
+/// cells that lie `cap` or farther from every seed may get `cap` and -1: `nearest` is that
+/// of the transform without spans wherever the distance is below `cap`. The cells off the
+/// spans get `cap` and -1, or with `off_seeds` are seeds themselves (0 and their own
+/// index; the distances on the spans are then those of these seeds too).
 /// Uses scratch.f and scratch.ints (not scratch.bytes, which may hold `seed`).
 std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest, Scratch& scratch);
+                                    std::vector<int>& nearest, Scratch& scratch, const Spans* spans = nullptr,
+                                    bool off_seeds = false);
 
 /// For every cell, the largest t such that a 4-connected path from the raster border
 /// reaches it through cells with d2 >= t (the bottleneck of the widest path): the cell is
 /// outside the band of radius r exactly when b2 > r^2. Bucket queue over the (clamped,
-/// integer) keys: O(cells).
-std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next);
+/// integer) keys: O(cells). With `spans` (those of distance_transform, d2 = cap off
+/// them), the cells off the spans get cap, their value, without a visit.
+std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next,
+                            const Spans* spans = nullptr);
 
 /// Smallest r with r * r >= x.
 int ceil_sqrt(int x);

@@ -205,6 +205,19 @@ void check_loops_hold(const std::vector<Eigen::Vector2d>& points, const Morpholo
   throw Error(what);
 }
 
+// Whether band_half_width will likely ask for a band at least a slab wide: the loop's
+// mean spacing at least twice the band spacing, its length guessed as twice the points'
+// extent. A guess for speed only (see order_slabs).
+bool band_likely(const std::vector<Eigen::Vector2d>& points, const SliceOptions& options) {
+  if (!(options.band_spacing > 0) || options.band_max < 1 || points.empty()) return false;
+  Eigen::Vector2d lo = points[0], hi = lo;
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return 2 * (hi - lo).maxCoeff() >= 2 * options.band_spacing * double(points.size());
+}
+
 // Orders the drift-corrected band of half width `half` beside s's slab ordering into
 // s.morphology. False, s as it was, when the band holds no more points than the slab or
 // cannot be ordered.
@@ -274,9 +287,11 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
                                             options.band_max);
         return half >= slab && !near().empty() ? half : 0.0;
       };
-      // The slab's skeleton only when no band is tried (a band's ordering has its own).
+      // The slab's skeleton only when no band is tried (a band's ordering has its own). When
+      // a band is likely, the slab's ordering leaves out what only a skeleton needs (made
+      // again if asked for after all); the results are the same either way.
       MorphologyOptions slab_options = options.morphology;
-      if (slab_options.skeleton && !order)
+      if (slab_options.skeleton && !order && band_likely(slabs[i], options))
         slab_options.skeleton_if = [&](const MorphologyResult& m) { return band_half(m) == 0; };
       s.morphology = order ? order(slabs[i], options.morphology) : order_section(slabs[i], slab_options);
       std::size_t first = slabs[i].size();
