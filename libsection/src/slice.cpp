@@ -231,8 +231,7 @@ bool order_band(SectionSlice& s, const std::vector<Eigen::Vector3d>& near, std::
   // neighbours' spacing, the automatic cell, is far finer than the spacing along the
   // profile on a sparse scan (a 10 k point scan: 0.08 against 0.27 mm, 11 times the cells).
   MorphologyOptions band_options = options.morphology;
-  if (!s.morphology.loops.empty())
-    band_options.min_cell = s.morphology.loops[0].length / double(band.size());
+  if (!s.morphology.loops.empty()) band_options.min_cell = s.morphology.loops[0].length / double(band.size());
   try {
     s.morphology = order_section(band, band_options);
   } catch (const Error&) {
