@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 namespace section {
@@ -63,10 +64,15 @@ Near near_of(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& firs
   return n;
 }
 
+// Every step-th of m points is measured for at most `queries` of them.
+std::size_t step_of(std::size_t m, std::size_t queries) {
+  return std::max<std::size_t>(1, m / std::max<std::size_t>(1, queries));
+}
+
 // The spacing in the surface and along the normal, medians over every step-th point.
 void measure_spacings(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, const Vec3& n,
                       const SamplingOptions& options, Sampling& s, std::vector<double>& heights) {
-  const std::size_t step = std::max<std::size_t>(1, first.size() / std::max<std::size_t>(1, options.queries));
+  const std::size_t step = step_of(first.size(), options.queries);
   const std::size_t count = (first.size() + step - 1) / step;
   std::vector<double> nearest(count, std::numeric_limits<double>::infinity());
   heights.assign(count, std::numeric_limits<double>::infinity());
@@ -348,18 +354,28 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
     throw Error("slice: the plane normal must be finite and non-zero");
   const Vec3 n = normal.normalized();
   const std::size_t all = std::min(points.size(), std::max<std::size_t>(options.max_points, 1));
-  // A first look at fewer points settles a dense scan for a fraction of the cost; the rest
-  // only when they are not one.
-  for (const std::size_t m : {std::min(all, first_look), all}) {
+  // A first look at fewer points, fewer of them measured, settles a dense scan for a
+  // fraction of the cost (a small cloud too); the rest only when they are not one, on the
+  // same tree when the first look held all the points.
+  const std::size_t look = std::min(all, first_look);
+  std::unique_ptr<std::vector<Vec3>> first;
+  std::unique_ptr<detail::NearestPoints<3>> tree;
+  for (const bool partial : {true, false}) {
+    const std::size_t m = partial ? look : all;
     Sampling s;
     s.points = m;
     if (m < 2) return s;
-    const std::vector<Vec3> first(points.begin(), points.begin() + std::ptrdiff_t(m));
-    const detail::NearestPoints<3> tree(first);
+    if (!first || first->size() != m) {
+      tree.reset();
+      first = std::make_unique<std::vector<Vec3>>(points.begin(), points.begin() + std::ptrdiff_t(m));
+      tree = std::make_unique<detail::NearestPoints<3>>(*first);
+    }
     std::vector<double> heights;
     SamplingOptions o = options;
-    if (m < all) o.queries = std::min(o.queries, first_queries);
-    measure_spacings(tree, first, n, o, s, heights);
+    if (partial) o.queries = std::min(o.queries, first_queries);
+    // A first look measuring what the whole one would is the whole one.
+    const bool whole = !partial || (m == all && step_of(m, o.queries) == step_of(m, options.queries));
+    measure_spacings(*tree, *first, n, o, s, heights);
     // Heights on levels (the quartiles of the gaps along the normal close together, where
     // a dense scan's spread over a factor of two) wider apart than the spacing are lines
     // too: a slab of the spacing would fall between them.
@@ -368,11 +384,15 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
     const bool on_levels = s.normal_low >= 0.8 * s.normal_high && s.normal_low > 0;
     const bool levels = on_levels && s.normal_spacing > s.spacing,
                sparse_up = s.normal_spacing > options.anisotropy * s.spacing;
-    if (!(s.spacing > 0) || !(on_levels || sparse_up)) return s;
-    if (m < all) continue;
+    // Exact copies make the spacing the slab (as the density they inflate cannot give it):
+    // a cloud the first look held measures it over all its queries, as it always did.
+    const bool copies = 100 * s.duplicates > s.measured && m == all;
+    const bool dense = !(s.spacing > 0) || !(on_levels || sparse_up);
+    if (dense && (whole || !copies)) return s;
+    if (!whole) continue;
     s.kind = SamplingKind::lines;
     s.rows =
-        find_rows(tree, first, n, s.spacing, on_levels ? s.normal_low : 0, !levels && !sparse_up, options);
+        find_rows(*tree, *first, n, s.spacing, on_levels ? s.normal_low : 0, !levels && !sparse_up, options);
     if (!s.rows.empty()) {
       classify_rows(options, s);
       return s;
