@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 namespace section {
@@ -63,17 +64,33 @@ Near near_of(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& firs
   return n;
 }
 
-// The spacing in the surface and along the normal, medians over every step-th point.
+// The neighbours of point i: those kept (every point's, when measure_spacings measured them
+// all) or searched again.
+Near near_at(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first,
+             const std::vector<Near>& known, std::size_t i) {
+  return known.empty() ? near_of(tree, first, i) : known[i];
+}
+
+// Every step-th of m points is measured for at most `queries` of them.
+std::size_t step_of(std::size_t m, std::size_t queries) {
+  return std::max<std::size_t>(1, m / std::max<std::size_t>(1, queries));
+}
+
+// The spacing in the surface and along the normal, medians over every step-th point; the
+// neighbours of each point into `known` when every point is measured (else it is empty).
 void measure_spacings(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, const Vec3& n,
-                      const SamplingOptions& options, Sampling& s, std::vector<double>& heights) {
-  const std::size_t step = std::max<std::size_t>(1, first.size() / std::max<std::size_t>(1, options.queries));
+                      const SamplingOptions& options, Sampling& s, std::vector<double>& heights,
+                      std::vector<Near>& known) {
+  const std::size_t step = step_of(first.size(), options.queries);
   const std::size_t count = (first.size() + step - 1) / step;
   std::vector<double> nearest(count, std::numeric_limits<double>::infinity());
   heights.assign(count, std::numeric_limits<double>::infinity());
   std::vector<char> copied(count, 0);
+  known.assign(step == 1 ? count : 0, Near{});
   detail::parallel_for(count, options.threads, [&](std::size_t q) {
     const std::size_t i = q * step;
     const Near near = near_of(tree, first, i);
+    if (step == 1) known[q] = near;
     copied[q] = near.copied;
     for (int j = 0; j < near.count; ++j) {
       const Vec3 d = first[std::size_t(near.index[j])] - first[i];
@@ -103,12 +120,13 @@ std::size_t root(std::vector<std::size_t>& parent, std::size_t a) {
 // row, its neighbours before and after it), so that where a row's points lie sparse a row
 // beside it is not joined.
 std::vector<std::vector<std::size_t>> pieces(const detail::NearestPoints<3>& tree,
-                                             const std::vector<Vec3>& first, const Vec3& n, int threads) {
+                                             const std::vector<Vec3>& first, const std::vector<Near>& known,
+                                             const Vec3& n, int threads) {
   const std::size_t m = first.size();
   std::vector<std::array<int, wanted>> link(m);
   detail::parallel_for((m + 4095) / 4096, threads, [&](std::size_t block) {
     for (std::size_t i = block * 4096; i < std::min(m, (block + 1) * 4096); ++i) {
-      const Near near = near_of(tree, first, i);
+      const Near near = near_at(tree, first, known, i);
       link[i].fill(-1);
       if (near.count < 2) continue;
       const double reach = 3 * (first[std::size_t(near.index[1])] - first[i]).norm();
@@ -237,12 +255,12 @@ std::vector<std::vector<std::size_t>> levels_of(const std::vector<Vec3>& first, 
 // points to its nearest neighbour within 6 degrees of the plane (on a level, its neighbour
 // along the line), the least eigenvector of their scatter; `n` when that is over 30
 // degrees from it.
-Vec3 level_normal(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, const Vec3& n,
-                  const SamplingOptions& options) {
+Vec3 level_normal(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first,
+                  const std::vector<Near>& known, const Vec3& n, const SamplingOptions& options) {
   const std::size_t step = std::max<std::size_t>(1, first.size() / std::max<std::size_t>(1, options.queries));
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (std::size_t i = 0; i < first.size(); i += step) {
-    const Near near = near_of(tree, first, i);
+    const Near near = near_at(tree, first, known, i);
     for (int j = 0; j < near.count; ++j) {
       const Vec3 d = (first[std::size_t(near.index[j])] - first[i]).normalized();
       if (std::abs(d.dot(n)) >= 0.1) continue;
@@ -261,12 +279,13 @@ Vec3 level_normal(const detail::NearestPoints<3>& tree, const std::vector<Vec3>&
 // along `n`, else along the levels' own normal (level_normal); `only_levels`: no rows
 // but levels (points no sparser along the normal than across it are rows only so).
 std::vector<PointRow> find_rows(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first,
-                                const Vec3& n, double spacing, double level_gap, bool only_levels,
-                                const SamplingOptions& options) {
+                                const std::vector<Near>& known, const Vec3& n, double spacing,
+                                double level_gap, bool only_levels, const SamplingOptions& options) {
   std::vector<std::vector<std::size_t>> parts;
   if (level_gap > 0) parts = levels_of(first, n, level_gap);
-  if (level_gap > 0 && parts.size() < 2)
-    parts = levels_of(first, level_normal(tree, first, n, options), level_gap);
+  // (An infinite gap makes one level along any normal: none is sought.)
+  if (level_gap > 0 && std::isfinite(level_gap) && parts.size() < 2)
+    parts = levels_of(first, level_normal(tree, first, known, n, options), level_gap);
   std::vector<PointRow> rows;
   if (parts.size() >= 2) {
     // Levels are whole lines: none joins another (tilted ones overlap in height along n).
@@ -274,7 +293,7 @@ std::vector<PointRow> find_rows(const detail::NearestPoints<3>& tree, const std:
       if (part.size() >= 8) rows.push_back(fit_row(std::move(part), first, n, options.flatness));
   } else {
     if (only_levels) return {};
-    parts = pieces(tree, first, n, options.threads);
+    parts = pieces(tree, first, known, n, options.threads);
     if (8 * parts.size() > first.size()) return {};  // mostly strays: no rows
     rows = join_pieces(std::move(parts), first, n, spacing, options.flatness);
   }
@@ -348,18 +367,29 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
     throw Error("slice: the plane normal must be finite and non-zero");
   const Vec3 n = normal.normalized();
   const std::size_t all = std::min(points.size(), std::max<std::size_t>(options.max_points, 1));
-  // A first look at fewer points settles a dense scan for a fraction of the cost; the rest
-  // only when they are not one.
-  for (const std::size_t m : {std::min(all, first_look), all}) {
+  // A first look at fewer points, fewer of them measured, settles a dense scan for a
+  // fraction of the cost (a small cloud too); the rest only when they are not one, on the
+  // same tree when the first look held all the points.
+  const std::size_t look = std::min(all, first_look);
+  std::unique_ptr<std::vector<Vec3>> first;
+  std::unique_ptr<detail::NearestPoints<3>> tree;
+  for (const bool partial : {true, false}) {
+    const std::size_t m = partial ? look : all;
     Sampling s;
     s.points = m;
     if (m < 2) return s;
-    const std::vector<Vec3> first(points.begin(), points.begin() + std::ptrdiff_t(m));
-    const detail::NearestPoints<3> tree(first);
+    if (!first || first->size() != m) {
+      tree.reset();
+      first = std::make_unique<std::vector<Vec3>>(points.begin(), points.begin() + std::ptrdiff_t(m));
+      tree = std::make_unique<detail::NearestPoints<3>>(*first);
+    }
     std::vector<double> heights;
+    std::vector<Near> known;
     SamplingOptions o = options;
-    if (m < all) o.queries = std::min(o.queries, first_queries);
-    measure_spacings(tree, first, n, o, s, heights);
+    if (partial) o.queries = std::min(o.queries, first_queries);
+    // A first look measuring what the whole one would is the whole one.
+    const bool whole = !partial || (m == all && step_of(m, o.queries) == step_of(m, options.queries));
+    measure_spacings(*tree, *first, n, o, s, heights, known);
     // Heights on levels (the quartiles of the gaps along the normal close together, where
     // a dense scan's spread over a factor of two) wider apart than the spacing are lines
     // too: a slab of the spacing would fall between them.
@@ -368,11 +398,15 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
     const bool on_levels = s.normal_low >= 0.8 * s.normal_high && s.normal_low > 0;
     const bool levels = on_levels && s.normal_spacing > s.spacing,
                sparse_up = s.normal_spacing > options.anisotropy * s.spacing;
-    if (!(s.spacing > 0) || !(on_levels || sparse_up)) return s;
-    if (m < all) continue;
+    // Exact copies make the spacing the slab (as the density they inflate cannot give it):
+    // a cloud the first look held measures it over all its queries, as it always did.
+    const bool copies = 100 * s.duplicates > s.measured && m == all;
+    const bool dense = !(s.spacing > 0) || !(on_levels || sparse_up);
+    if (dense && (whole || !copies)) return s;
+    if (!whole) continue;
     s.kind = SamplingKind::lines;
-    s.rows =
-        find_rows(tree, first, n, s.spacing, on_levels ? s.normal_low : 0, !levels && !sparse_up, options);
+    s.rows = find_rows(*tree, *first, known, n, s.spacing, on_levels ? s.normal_low : 0,
+                       !levels && !sparse_up, options);
     if (!s.rows.empty()) {
       classify_rows(options, s);
       return s;

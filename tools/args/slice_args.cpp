@@ -180,6 +180,7 @@ void SliceArgs::declare(CLI::App& app) {
     if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0)
       throw CLI::ValidationError("--normal", "must not be 0,0,0 (a plane needs a direction)");
     check_surfaces(*this);
+    options.sampling.threads = options.threads;  // --threads 1: no thread in the sampling either
   });
 }
 

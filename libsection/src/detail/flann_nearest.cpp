@@ -10,7 +10,9 @@ namespace section::detail {
 template <int Dim>
 struct NearestPoints<Dim>::Impl {
   std::vector<double> coords;  // row-major copy: FLANN keeps a pointer to it
-  std::unique_ptr<flann::Index<flann::L2<double>>> index;
+  // The kd-tree itself (flann::Index would make it so too), so that k_nearest can search it
+  // without knnSearch's copies and allocations per query.
+  std::unique_ptr<flann::KDTreeSingleIndex<flann::L2<double>>> index;
 };
 
 namespace {
@@ -30,8 +32,8 @@ NearestPoints<Dim>::NearestPoints(const std::vector<Point>& points, int leaf_siz
   if (points.empty()) throw Error("nearest: no points to search");
   impl_->coords = row_major<Dim>(points);
   flann::Matrix<double> data(impl_->coords.data(), points.size(), Dim);
-  impl_->index =
-      std::make_unique<flann::Index<flann::L2<double>>>(data, flann::KDTreeSingleIndexParams(leaf_size));
+  impl_->index = std::make_unique<flann::KDTreeSingleIndex<flann::L2<double>>>(
+      data, flann::KDTreeSingleIndexParams(leaf_size));
   impl_->index->buildIndex();
 }
 
@@ -72,10 +74,21 @@ template <int Dim>
 void NearestPoints<Dim>::k_nearest(const Point& q, int k, int* index, double* d2) const {
   double coords[Dim];
   for (int i = 0; i < Dim; ++i) coords[i] = q[i];
-  flann::Matrix<double> qm(coords, 1, Dim);
-  flann::Matrix<int> im(index, 1, static_cast<std::size_t>(k));
-  flann::Matrix<double> dm(d2, 1, static_cast<std::size_t>(k));
-  impl_->index->knnSearch(qm, im, dm, k, flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
+  const flann::SearchParams params(flann::FLANN_CHECKS_UNLIMITED);
+  constexpr int few = 64;  // at most this many: knnSearch's own search, straight (no heap under 250)
+  if (k > few) {
+    flann::Matrix<double> qm(coords, 1, Dim);
+    flann::Matrix<int> im(index, 1, static_cast<std::size_t>(k));
+    flann::Matrix<double> dm(d2, 1, static_cast<std::size_t>(k));
+    impl_->index->knnSearch(qm, im, dm, k, params);
+    return;
+  }
+  flann::KNNSimpleResultSet<double> found(static_cast<std::size_t>(k));
+  impl_->index->findNeighbors(found, coords, params);
+  std::size_t at[few];
+  const std::size_t n = std::min(found.size(), static_cast<std::size_t>(k));
+  found.copy(at, d2, n);
+  for (std::size_t j = 0; j < n; ++j) index[j] = static_cast<int>(at[j]);
 }
 
 template class NearestPoints<2>;
