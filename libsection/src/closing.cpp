@@ -95,11 +95,7 @@ template <class Fn>
 void for_spans(const Spans* band, int h, int w, const Fn& fn) {
   for (int j = 0; j < h; ++j) {
     const std::size_t row = std::size_t(j) * w;
-    if (!band) {
-      fn(row, row + w);
-    } else if (band->lo[j] <= band->hi[j]) {
-      fn(row + band->lo[j], row + band->hi[j] + 1);
-    }
+    for_spans_of_row(band, j, w, [&](int i0, int i1) { fn(row + i0, row + i1); });
   }
 }
 

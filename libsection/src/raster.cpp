@@ -80,6 +80,18 @@ void distance_1d(const float* f, int n, float big, int base, float* d, int* arg,
   }
 }
 
+/// Calls fn(i) for each column i of row j's span whose cell in row k is off row k's span.
+template <class Fn>
+void each_beside_off_span(const Spans& spans, int j, int k, const Fn& fn) {
+  const int lo = spans.lo[j], hi = spans.hi[j], klo = spans.lo[k], khi = spans.hi[k];
+  if (klo > khi) {
+    for (int i = lo; i <= hi; ++i) fn(i);
+    return;
+  }
+  for (int i = lo; i <= std::min(hi, klo - 1); ++i) fn(i);
+  for (int i = std::max(lo, khi + 1); i <= hi; ++i) fn(i);
+}
+
 /// Sets the cells off the spans to cap, their bottleneck (their row leads to the border
 /// through cells at cap), and seeds each span cell next to one of them with its own d2,
 /// like a border cell.
@@ -101,16 +113,8 @@ void seed_spans(const Raster& r, const Spans& spans, int cap, std::vector<int>& 
     seed(lo, j);
     seed(hi, j);
     // The cells whose neighbour above or below is off its row's span.
-    for (const int k : {j - 1, j + 1}) {
-      if (k < 0 || k >= r.h) continue;
-      const int klo = spans.lo[k], khi = spans.hi[k];
-      if (klo > khi) {
-        for (int i = lo; i <= hi; ++i) seed(i, j);
-        continue;
-      }
-      for (int i = lo; i <= std::min(hi, klo - 1); ++i) seed(i, j);
-      for (int i = std::max(lo, khi + 1); i <= hi; ++i) seed(i, j);
-    }
+    for (const int k : {j - 1, j + 1})
+      if (k >= 0 && k < r.h) each_beside_off_span(spans, j, k, [&](int i) { seed(i, j); });
   }
 }
 
@@ -125,14 +129,8 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
   const auto hi_of = [&](int j) { return spans ? spans->hi[j] : w - 1; };
   // Row k's off-span cells are seeds for the columns of row j's span (k = j -+ 1).
   const auto enter = [&](int j, int k, std::vector<int>& last) {
-    if (!off_seeds || k < 0 || k >= h) return;
-    const int lo = lo_of(j), hi = hi_of(j), klo = lo_of(k), khi = hi_of(k);
-    if (klo > khi) {
-      for (int i = lo; i <= hi; ++i) last[i] = k;
-      return;
-    }
-    for (int i = lo; i <= std::min(hi, klo - 1); ++i) last[i] = k;
-    for (int i = std::max(lo, khi + 1); i <= hi; ++i) last[i] = k;
+    if (off_seeds && spans && k >= 0 && k < h)
+      each_beside_off_span(*spans, j, k, [&](int i) { last[i] = k; });
   };
   // Branch-free loops over raw pointers (a select, not a branch, per cell).
   std::vector<int> last(w, -1);

@@ -257,7 +257,7 @@ std::vector<std::vector<std::size_t>> levels_of(const std::vector<Vec3>& first, 
 // degrees from it.
 Vec3 level_normal(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first,
                   const std::vector<Near>& known, const Vec3& n, const SamplingOptions& options) {
-  const std::size_t step = std::max<std::size_t>(1, first.size() / std::max<std::size_t>(1, options.queries));
+  const std::size_t step = step_of(first.size(), options.queries);
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (std::size_t i = 0; i < first.size(); i += step) {
     const Near near = near_at(tree, first, known, i);
