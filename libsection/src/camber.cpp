@@ -449,7 +449,7 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
   const SampledProfile pr(profile, options.medial.samples);
   CamberResult res;
   res.orientation = pr.sigma;
-  MedialAxis ma = medial_axis(profile, options.medial);
+  MedialAxis ma = detail::medial_axis(pr, options.medial);  // (the same samples)
   std::vector<InscribedCircle> medial = ma.circles;
   const BranchSize size = blade_size(medial, options);
   prune_ends(medial, options.edge_prune);

@@ -77,6 +77,26 @@ struct CircleFit {
   double radius_sigma = 0;  // standard error of the radius, from the fit's covariance and rms
 };
 
+// The sum of the outer products row row^T of rows (u, v, w): the lower triangle summed and
+// mirrored, the same sums as the full products in two thirds of the work (the circle
+// fits' normal equations).
+struct OuterSum {
+  double uu = 0, vu = 0, vv = 0, wu = 0, wv = 0, ww = 0;
+  void add(const Eigen::Vector3d& r) {
+    uu += r.x() * r.x();
+    vu += r.y() * r.x();
+    vv += r.y() * r.y();
+    wu += r.z() * r.x();
+    wv += r.z() * r.y();
+    ww += r.z() * r.z();
+  }
+  Eigen::Matrix3d matrix() const {
+    Eigen::Matrix3d m;
+    m << uu, vu, wu, vu, vv, wv, wu, wv, ww;
+    return m;
+  }
+};
+
 // Rms distance of the points from the circle.
 double rms_about(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& center, double radius) {
   double sum = 0;
@@ -87,15 +107,14 @@ double rms_about(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& c
 // Standard error of a fitted circle's radius from the Gauss-Newton covariance and its rms.
 double radius_sigma(const std::vector<Eigen::Vector2d>& p, const CircleFit& fit) {
   const int n = static_cast<int>(p.size());
-  Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+  OuterSum jtj;
   for (const auto& q : p) {
     const Eigen::Vector2d r = q - fit.center;
     const double dist = r.norm();
     if (!(dist > 0)) continue;
-    const Eigen::Vector3d row(-r.x() / dist, -r.y() / dist, -1);
-    jtj += row * row.transpose();
+    jtj.add(Eigen::Vector3d(-r.x() / dist, -r.y() / dist, -1));
   }
-  const Eigen::Matrix3d cov = jtj.inverse();
+  const Eigen::Matrix3d cov = jtj.matrix().inverse();
   return std::sqrt(std::max(cov(2, 2), 0.0) * fit.rms * fit.rms * n / (n - 3));
 }
 
@@ -106,29 +125,29 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const auto& q : p) mean += q;
   mean /= n;
-  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+  OuterSum ata;
   Eigen::Vector3d atb = Eigen::Vector3d::Zero();
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d q = p[i] - mean;
     const Eigen::Vector3d row(q.x(), q.y(), 1);
-    ata += row * row.transpose();
+    ata.add(row);
     atb += row * -q.squaredNorm();
   }
-  const Eigen::Vector3d s = ata.ldlt().solve(atb);
+  const Eigen::Vector3d s = ata.matrix().ldlt().solve(atb);
   Eigen::Vector3d x(-0.5 * s(0), -0.5 * s(1), 0);
   x(2) = std::sqrt(std::max(x.head<2>().squaredNorm() - s(2), 0.0));
   for (int it = 0; it < 30; ++it) {
-    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+    OuterSum jtj;
     Eigen::Vector3d jte = Eigen::Vector3d::Zero();
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector2d q = p[i] - mean - x.head<2>();
       const double dist = q.norm();
       if (!(dist > 0)) continue;
       const Eigen::Vector3d row(-q.x() / dist, -q.y() / dist, -1);
-      jtj += row * row.transpose();
+      jtj.add(row);
       jte += row * (dist - x(2));
     }
-    const Eigen::Vector3d dx = -jtj.ldlt().solve(jte);
+    const Eigen::Vector3d dx = -jtj.matrix().ldlt().solve(jte);
     if (!dx.allFinite()) break;
     x += dx;
     if (dx.norm() < 1e-13 * std::max(1.0, x(2))) break;

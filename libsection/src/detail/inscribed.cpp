@@ -78,7 +78,7 @@ bool valid_circle(const SampledProfile& pr, const Eigen::Vector2d& n, const Insc
       if ((pr.fast.jet(t).point - c.center).norm() < r * (1 - 1e-4)) return false;
     }
   }
-  return pr.sample_distance(c.center) >= r * (1 - 1e-3);
+  return !pr.sample_within(c.center, r * (1 - 1e-3));
 }
 
 bool circle_on_normal(const SampledProfile& pr, const Eigen::Vector2d& p, const Eigen::Vector2d& n,
