@@ -274,7 +274,7 @@ void final_edge_point(const SampledProfile& pr, const InscribedCircle& end, cons
   if (e.vertex) return;  // the vertex is the edge point
   double t = 0;
   if (detail::ray_hit(pr, end.center, d, t))
-    e.point = pr.fast.jet(t).point, e.t = t;
+    e.point = pr.fast.point(t), e.t = t;
   else if (e.face == 0)
     throw Error("camber: the camber line's end tangent does not meet the profile");
   else
