@@ -119,8 +119,8 @@ struct Checker {
     double worst = 0;
     const double span = e.arc_t1 - e.arc_t0;  // the walks from the edge point, unwrapped
     for (int i = 0; i <= 60; ++i)
-      worst = std::max(worst,
-                       std::abs((pr.fast.point(e.arc_t0 + span * i / 60) - e.center).norm() - e.radius));
+      worst =
+          std::max(worst, std::abs((pr.fast.point(e.arc_t0 + span * i / 60) - e.center).norm() - e.radius));
     const double arc_limit =
         2 * options.noise_factor * std::max({options.noise, 1e-4 * e.radius, e.sampling});
     if (worst > arc_limit) fail(c, worst, arc_limit);

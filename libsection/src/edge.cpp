@@ -333,8 +333,7 @@ Edge measure_edge(const SampledProfile& pr, const InscribedCircle& end_circle, c
     e.on_points = true;
   }
   // Arc: the angle the edge arc subtends at the fitted centre.
-  const Eigen::Vector2d q0 = pr.fast.point(e.arc_t0) - fit.center,
-                        q1 = pr.fast.point(e.arc_t1) - fit.center;
+  const Eigen::Vector2d q0 = pr.fast.point(e.arc_t0) - fit.center, q1 = pr.fast.point(e.arc_t1) - fit.center;
   e.arc = (std::abs(std::atan2(cross(d, q0), d.dot(q0))) + std::abs(std::atan2(cross(d, q1), d.dot(q1)))) *
           180 / pi;
   e.center = fit.center;

@@ -40,8 +40,8 @@ inline long digit_run(const char*& p, const char* end, std::uint64_t& m) {
       p += 8;
       continue;
     }
-    const int n = __builtin_ctzll(other) / 8;  // leading digits
-    if (n == 0) return long(p - first);  // (no digit follows)
+    const int n = __builtin_ctzll(other) / 8;                    // leading digits
+    if (n == 0) return long(p - first);                          // (no digit follows)
     x = (x << (8 * (8 - n))) | (0x3030303030303030 >> (8 * n));  // '0's before them
     m = m * tens[n] + eight_digits(x);
     p += n;
