@@ -4,6 +4,7 @@
 #include "section/medial_axis.h"
 
 #include "camber_fixtures.h"
+#include "detail/sampled_profile.h"
 
 #include <catch2/catch.hpp>
 
@@ -63,4 +64,24 @@ TEST_CASE("medial_axis: an inscribed circle on an ellipse's major axis has the t
   CHECK(c.left.y() > 0);
   CHECK(c.right.y() < 0);
   CHECK(std::abs((c.left - c.center).norm() - (c.right - c.center).norm()) < 1e-9);
+}
+
+TEST_CASE("sampled profile: a sample nearer a point than r, on an ellipse", "[medial_axis]") {
+  // Ellipse 10 x 4: a point (x, 0) with |x| < (a^2 - b^2) / a is b sqrt(1 - x^2 / (a^2 - b^2))
+  // from it; (20, 0) is 10 from the vertex (10, 0).
+  const double a = 10, b = 4;
+  std::vector<Vector2d> pts;
+  for (int i = 0; i < 20000; ++i)
+    pts.push_back({a * std::cos(2 * pi * i / 20000), b * std::sin(2 * pi * i / 20000)});
+  const BSpline profile = dense_spline(pts);
+  const section::detail::SampledProfile pr(profile, 1000);
+  std::vector<std::pair<Vector2d, double>> cases = {{{20, 0}, 10}, {{-20, 3}, std::hypot(10.0, 3.0)}};
+  for (const double x : {0.0, 1.5, -3.0, 5.0, 8.0})
+    cases.push_back({{x, 0}, b * std::sqrt(1 - x * x / (a * a - b * b))});
+  for (const auto& [q, d] : cases) {
+    CAPTURE(q.x(), q.y(), d);
+    CHECK_FALSE(pr.sample_within(q, 0.99 * d));
+    CHECK(pr.sample_within(q, 1.01 * d));
+    CHECK(pr.sample_distance(q) == Approx(d).epsilon(1e-2));
+  }
 }

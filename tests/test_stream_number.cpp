@@ -2,6 +2,7 @@
 // The stream's own number reader (io/plain_number.h) gives the double std::from_chars gives,
 // bit for bit, or leaves the text to it.
 #include "io/plain_number.h"
+#include "io/stream_text.h"
 #include "section/io/stream.h"
 
 #include <catch2/catch.hpp>
@@ -97,4 +98,17 @@ TEST_CASE("stream numbers: rows in other forms and bad rows among plain ones", "
   } catch (const std::exception& e) {
     CHECK_THAT(e.what(), Catch::Contains("s.csv:" + std::to_string(line) + ":") && Catch::Contains("'15x0'"));
   }
+}
+
+TEST_CASE("stream text: count_lines counts every line end, at any offset and length", "[pipe]") {
+  std::string text;
+  std::mt19937_64 rng(7);
+  while (text.size() < 20000) text += std::string(rng() % 90, 'x') + (rng() % 5 ? "\n" : "\n\n");
+  text += std::string(300 * 64, '\n');  // more than 255 in one byte lane
+  for (std::size_t from : {0, 1, 15, 63, 64, 100})
+    for (std::size_t size : {0, 1, 16, 63, 64, 65, 127, 4095, 4097, 16000, 38000}) {
+      CAPTURE(from, size);
+      const std::string_view s = std::string_view(text).substr(from, size);
+      CHECK(section::detail::count_lines(s) == std::size_t(std::count(s.begin(), s.end(), '\n')));
+    }
 }

@@ -274,7 +274,7 @@ void final_edge_point(const SampledProfile& pr, const InscribedCircle& end, cons
   if (e.vertex) return;  // the vertex is the edge point
   double t = 0;
   if (detail::ray_hit(pr, end.center, d, t))
-    e.point = pr.fast.jet(t).point, e.t = t;
+    e.point = pr.fast.point(t), e.t = t;
   else if (e.face == 0)
     throw Error("camber: the camber line's end tangent does not meet the profile");
   else
@@ -449,7 +449,7 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
   const SampledProfile pr(profile, options.medial.samples);
   CamberResult res;
   res.orientation = pr.sigma;
-  MedialAxis ma = medial_axis(profile, options.medial);
+  MedialAxis ma = detail::medial_axis(pr, options.medial);  // (the same samples)
   std::vector<InscribedCircle> medial = ma.circles;
   const BranchSize size = blade_size(medial, options);
   prune_ends(medial, options.edge_prune);

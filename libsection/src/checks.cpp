@@ -55,7 +55,7 @@ Foot foot(const SampledProfile& pr, const Eigen::Vector2d& q) {
     t -= step;
     if (std::abs(step) < 1e-14 * pr.period) break;
   }
-  f.distance = std::min((pr.fast.jet(t).point - q).norm(), pr.sample_distance(q));
+  f.distance = std::min((pr.fast.point(t) - q).norm(), pr.sample_distance(q));
   return f;
 }
 
@@ -77,7 +77,7 @@ double extent(const SampledProfile& pr, const Eigen::Vector2d& e) {
       if (!(dg < 0)) break;
       const double step = std::clamp(g / dg, -h, h);
       t -= step;
-      best = std::max(best, sign * pr.fast.jet(t).point.dot(e));
+      best = std::max(best, sign * pr.fast.point(t).dot(e));
       if (std::abs(step) < 1e-14 * pr.period) break;
     }
     return best;
@@ -119,8 +119,8 @@ struct Checker {
     double worst = 0;
     const double span = e.arc_t1 - e.arc_t0;  // the walks from the edge point, unwrapped
     for (int i = 0; i <= 60; ++i)
-      worst = std::max(worst,
-                       std::abs((pr.fast.jet(e.arc_t0 + span * i / 60).point - e.center).norm() - e.radius));
+      worst =
+          std::max(worst, std::abs((pr.fast.point(e.arc_t0 + span * i / 60) - e.center).norm() - e.radius));
     const double arc_limit =
         2 * options.noise_factor * std::max({options.noise, 1e-4 * e.radius, e.sampling});
     if (worst > arc_limit) fail(c, worst, arc_limit);

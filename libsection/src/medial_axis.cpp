@@ -127,7 +127,12 @@ bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point, cons
 }
 
 MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options) {
-  const SampledProfile pr(profile, options.samples);
+  return detail::medial_axis(SampledProfile(profile, options.samples), options);
+}
+
+namespace detail {
+
+MedialAxis medial_axis(const SampledProfile& pr, const MedialAxisOptions& options) {
   MedialAxis result;
   const std::vector<Eigen::Vector2d> seed = seed_branch(pr, options);
   result.seed_points = static_cast<int>(seed.size());
@@ -156,5 +161,7 @@ MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options)
   result.curve = ax.spline;
   return result;
 }
+
+}  // namespace detail
 
 }  // namespace section

@@ -77,7 +77,7 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> bitangent(const detail::PiecewiseCur
     tb -= step(1);
     if (step.norm() < 1e-14 * period) break;
   }
-  return {f.jet(ta).point, f.jet(tb).point};
+  return {f.point(ta), f.point(tb)};
 }
 
 }  // namespace
@@ -122,7 +122,7 @@ void caliper(const BSpline& profile, const CamberResult& camber, SectionParams& 
   const int n = 2000;
   const double t0 = profile.t_min(), period = profile.t_max() - t0;
   std::vector<Eigen::Vector2d> s(n);
-  for (int i = 0; i < n; ++i) s[i] = f.jet(t0 + period * i / n).point;
+  for (int i = 0; i < n; ++i) s[i] = f.point(t0 + period * i / n);
   auto index_of = [&](double t) {
     double r = std::fmod(t - t0, period);
     if (r < 0) r += period;
@@ -167,8 +167,8 @@ void caliper(const BSpline& profile, const CamberResult& camber, SectionParams& 
     if (s[i].dot(e) > s[imax].dot(e)) imax = i;
     if (s[i].dot(e) < s[imin].dot(e)) imin = i;
   }
-  const double hi = f.jet(extreme(f, t0 + period * imax / n, e)).point.dot(e);
-  const double lo = f.jet(extreme(f, t0 + period * imin / n, e)).point.dot(e);
+  const double hi = f.point(extreme(f, t0 + period * imax / n, e)).dot(e);
+  const double lo = f.point(extreme(f, t0 + period * imin / n, e)).dot(e);
   out.caliper_chord = std::max(hi, s[imax].dot(e)) - std::min(lo, s[imin].dot(e));
   out.caliper_stagger = degrees(e);
 }
@@ -233,8 +233,8 @@ std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const C
       if (!detail::ray_hit(pr, c.center, left_normal(d), tl) ||
           !detail::ray_hit(pr, c.center, -left_normal(d), tr))
         throw Error("params: the camber normal at station " + std::to_string(f) + " misses the profile");
-      c.left = pr.fast.jet(tl).point;
-      c.right = pr.fast.jet(tr).point;
+      c.left = pr.fast.point(tl);
+      c.right = pr.fast.point(tr);
       st.thickness = (c.left - c.right).norm();
     }
     st.point = c.center;
@@ -256,8 +256,8 @@ Sides split_sides(const BSpline& profile, const CamberResult& camber, int count)
   std::vector<Eigen::Vector2d> fwd, bwd;
   const double lf = forward(le, te), lb = forward(te, le);
   for (int i = 0; i < count; ++i) {
-    fwd.push_back(f.jet(le + lf * i / (count - 1)).point);
-    bwd.push_back(f.jet(le - lb * i / (count - 1)).point);
+    fwd.push_back(f.point(le + lf * i / (count - 1)));
+    bwd.push_back(f.point(le - lb * i / (count - 1)));
   }
   const bool forward_is_pressure = (camber.pressure_side < 0) == (camber.orientation > 0);
   Sides sides;

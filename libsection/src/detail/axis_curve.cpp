@@ -34,9 +34,9 @@ BSpline fit_open(const std::vector<Eigen::Vector2d>& points, int control_points,
 AxisCurve::AxisCurve(BSpline s) : spline(std::move(s)), a(spline.t_min()), b(spline.t_max()), f(spline) {}
 
 Eigen::Vector2d AxisCurve::point(double u) const {
-  if (u < a) return f.jet(a).point + (u - a) * tangent(a);
-  if (u > b) return f.jet(b).point + (u - b) * tangent(b);
-  return f.jet(u).point;
+  if (u < a) return f.point(a) + (u - a) * tangent(a);
+  if (u > b) return f.point(b) + (u - b) * tangent(b);
+  return f.point(u);
 }
 
 Eigen::Vector2d AxisCurve::tangent(double u) const {

@@ -41,8 +41,8 @@ bool solve_circle(const PiecewiseCurve& curve, const Eigen::Vector2d& p, const E
       out.center = p + lambda * n;
       out.t_left = ta;
       out.t_right = tb;
-      out.left = curve.jet(ta).point;
-      out.right = curve.jet(tb).point;
+      out.left = curve.point(ta);
+      out.right = curve.point(tb);
       out.radius = 0.5 * ((out.center - out.left).norm() + (out.center - out.right).norm());
       if (kappa) {  // signed curvatures at the contacts, from the last iterate's derivatives
         kappa[0] = cross(a1, a2) / std::pow(a1.norm(), 3);
@@ -75,10 +75,10 @@ bool valid_circle(const SampledProfile& pr, const Eigen::Vector2d& n, const Insc
     const double length = pr.forward(from, to);
     for (int i = 1; i < 24; ++i) {
       const double t = from + length * (0.05 + 0.9 * i / 24.0);
-      if ((pr.fast.jet(t).point - c.center).norm() < r * (1 - 1e-4)) return false;
+      if ((pr.fast.point(t) - c.center).norm() < r * (1 - 1e-4)) return false;
     }
   }
-  return pr.sample_distance(c.center) >= r * (1 - 1e-3);
+  return !pr.sample_within(c.center, r * (1 - 1e-3));
 }
 
 bool circle_on_normal(const SampledProfile& pr, const Eigen::Vector2d& p, const Eigen::Vector2d& n,

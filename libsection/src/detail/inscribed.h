@@ -43,4 +43,8 @@ bool circle_on_normal(const SampledProfile& pr, const Eigen::Vector2d& p, const 
 bool snap_to_axis(const SampledProfile& pr, const Eigen::Vector2d& p, const Eigen::Vector2d& n,
                   const InscribedCircle& guess, InscribedCircle& out);
 
+/// section::medial_axis of the profile sampled as `pr` (options.samples samples): camber_line
+/// has them already.
+MedialAxis medial_axis(const SampledProfile& pr, const MedialAxisOptions& options);
+
 }  // namespace section::detail

@@ -114,6 +114,18 @@ public:
   }
 
   Eigen::Vector2d point(double t) const { return point(locate(t)); }
+  /// `count` (2 or more) points evenly in parameter from t0 to t1, both included:
+  /// point(t0 + (t1 - t0) * i / (count - 1)), each span tried from the one before.
+  std::vector<Eigen::Vector2d> points(double t0, double t1, int count) const {
+    std::vector<Eigen::Vector2d> out;
+    out.reserve(static_cast<std::size_t>(std::max(count, 0)));
+    Local at{0, 0};
+    for (int i = 0; i < count; ++i) {
+      at = locate(t0 + (t1 - t0) * i / (count - 1), at.span);
+      out.push_back(point(at));
+    }
+    return out;
+  }
 
   Eigen::Vector2d point(const Local& l) const {
     const Eigen::Vector2d* c = &coef_[l.span * (degree_ + 1)];

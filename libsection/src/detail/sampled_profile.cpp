@@ -16,9 +16,14 @@ SampledProfile::SampledProfile(const BSpline& c, int count) : curve(c), fast(c) 
   period = c.t_max() - t0;
   count = std::max(count, 64);
   samples.reserve(count);
+  ts.reserve(count);
+  // In order: the span of the sample before is tried first (the same span a search finds),
+  // and only the point is evaluated (the same arithmetic as the jet's).
+  PiecewiseCurve::Local at{0, 0};
   for (int i = 0; i < count; ++i) {
     ts.push_back(t0 + period * i / count);
-    samples.push_back(fast.jet(ts.back()).point);
+    at = fast.locate(ts.back(), at.span);
+    samples.push_back(fast.point(at));
   }
   Eigen::Vector2d low = samples[0], high = samples[0];
   double area = 0;
@@ -75,6 +80,20 @@ double SampledProfile::sample_distance(const Eigen::Vector2d& q) const {
   return std::sqrt(best2);
 }
 
+bool SampledProfile::sample_within(const Eigen::Vector2d& q, double r) const {
+  // As in sample_distance: the samples after i that cannot come nearer than r + two steps
+  // are skipped; a sample nearer than r is then never skipped.
+  const int n = static_cast<int>(samples.size());
+  for (int i = 0; i < n;) {
+    const double d = std::sqrt((samples[i] - q).squaredNorm());
+    if (d < r) return true;
+    const double gap = d - r;  // NaN for a non-finite q or r: no skip
+    const double skip = gap > 3 * step ? gap / step - 2 : 0;
+    i += 1 + static_cast<int>(std::min(skip, static_cast<double>(n)));
+  }
+  return false;
+}
+
 bool ray_hit(const SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Vector2d& d, double& t_hit) {
   const int n = static_cast<int>(pr.samples.size());
   double best = std::numeric_limits<double>::infinity();
@@ -90,7 +109,7 @@ bool ray_hit(const SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Ve
   if (seg < 0) return false;
   // Safeguarded secant on g(t) = d x (C(t) - m) inside the bracketing span.
   double a = pr.ts[seg], b = a + pr.period / n;
-  auto g = [&](double t) { return cross(d, pr.fast.jet(t).point - m); };
+  auto g = [&](double t) { return cross(d, pr.fast.point(t) - m); };
   double ga = g(a), gb = g(b);
   for (int it = 0; it < 100 && std::abs(b - a) > 1e-15 * pr.period; ++it) {
     double t = ga == gb ? 0.5 * (a + b) : a - ga * (b - a) / (gb - ga);

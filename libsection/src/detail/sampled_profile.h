@@ -58,6 +58,9 @@ struct SampledProfile {
   int nearest_on_side(const Eigen::Vector2d& q, const Eigen::Vector2d& n) const;
   /// Distance from q to the nearest sample.
   double sample_distance(const Eigen::Vector2d& q) const;
+  /// True when a sample is nearer q than r: sample_distance(q) < r, told without finding
+  /// the nearest (at the first such sample, skipping by r rather than the best so far).
+  bool sample_within(const Eigen::Vector2d& q, double r) const;
   /// Outward unit normal at t.
   Eigen::Vector2d outward(double t) const {
     const Eigen::Vector2d d = fast.jet(t).d1.normalized();

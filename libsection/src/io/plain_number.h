@@ -9,6 +9,17 @@
 
 namespace section::detail {
 
+#if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+/// The value of eight digit characters read as a little-endian word (fast_float's SWAR sum).
+inline std::uint64_t eight_digits(std::uint64_t x) {
+  x -= 0x3030303030303030;
+  x = (x * 10) + (x >> 8);
+  return (((x & 0x000000FF000000FF) * (100 + (1000000ULL << 32))) +
+          (((x >> 16) & 0x000000FF000000FF) * (1 + (10000ULL << 32)))) >>
+         32;
+}
+#endif
+
 /// Appends the run of decimal digits at `p` (up to `end`) to `m` (m * 10^count + them),
 /// moves `p` past it and returns its length. Eight bytes at a time where eight can be read:
 /// their leading digits are found and summed in a few multiplications (after fast_float's
@@ -24,17 +35,17 @@ inline long digit_run(const char*& p, const char* end, std::uint64_t& m) {
     // The high bit of each byte that is not a digit; exact up to the first such byte
     // (no carry or borrow reaches it from the digits before), which is all that is used.
     const std::uint64_t other = ((x + 0x4646464646464646) | (x - 0x3030303030303030)) & 0x8080808080808080;
-    const int n = other ? __builtin_ctzll(other) / 8 : 8;  // leading digits
-    if (n == 0) break;
-    if (n < 8) x = (x << (8 * (8 - n))) | (0x3030303030303030 >> (8 * n));  // '0's before them
-    x -= 0x3030303030303030;
-    x = (x * 10) + (x >> 8);
-    x = (((x & 0x000000FF000000FF) * (100 + (1000000ULL << 32))) +
-         (((x >> 16) & 0x000000FF000000FF) * (1 + (10000ULL << 32)))) >>
-        32;
-    m = m * tens[n] + x;
+    if (!other) {  // eight digits (the most common block: the first of a fraction)
+      m = m * 100000000 + eight_digits(x);
+      p += 8;
+      continue;
+    }
+    const int n = __builtin_ctzll(other) / 8;                    // leading digits
+    if (n == 0) return long(p - first);                          // (no digit follows)
+    x = (x << (8 * (8 - n))) | (0x3030303030303030 >> (8 * n));  // '0's before them
+    m = m * tens[n] + eight_digits(x);
     p += n;
-    if (n < 8) return long(p - first);
+    return long(p - first);
   }
 #endif
   while (p < end && static_cast<unsigned>(*p - '0') < 10) m = 10 * m + std::uint64_t(*p++ - '0');

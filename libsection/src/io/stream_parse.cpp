@@ -112,19 +112,26 @@ bool parse_row(std::string_view line, const IdRules& ids, std::vector<double>& o
 
 // A row at `p` in the form the writers give (cells plain_number, ',' between them, '\n'
 // or `end` after them) appended to `out`: the end of its line, or nullptr for any other row
-// (then left to parse_row, with what was appended).
+// (then left to parse_row; nothing appended). The row is gathered on the stack and
+// appended whole: one check of the vector's room a row, not one a value.
 inline const char* plain_row(const char* p, const char* end, const IdRules& ids, std::vector<double>& out) {
-  if (ids.column.empty()) return nullptr;
-  const std::size_t last = ids.column.size() - 1;
+  constexpr std::size_t most = 32;  // (wider rows are left to parse_row)
+  const std::size_t columns = ids.column.size();
+  if (columns == 0 || columns > most) return nullptr;
+  double row[most];
   for (std::size_t col = 0;; ++col) {
     double value = 0;
     p = plain_number(p, end, value);
     if (!p || std::abs(value) > max_coordinate || !ids.ok(col, value)) return nullptr;
-    out.push_back(value);
-    if (p == end) return col == last ? p : nullptr;
-    if (col == last) return *p == '\n' ? p + 1 : nullptr;
-    if (*p++ != ',') return nullptr;
+    row[col] = value;
+    if (col + 1 == columns) {
+      if (p != end && *p++ != '\n') return nullptr;
+      break;
+    }
+    if (p == end || *p++ != ',') return nullptr;
   }
+  out.insert(out.end(), row, row + columns);
+  return p;
 }
 
 // The data rows of `text` (whole lines, blank ones skipped) into `out`; false when any row
@@ -133,12 +140,10 @@ bool parse_rows(std::string_view text, const IdRules& ids, std::vector<double>& 
   const char* p = text.data();
   const char* const end = p + text.size();
   while (p < end) {
-    const std::size_t row_start = out.size();
     if (const char* next = plain_row(p, end, ids, out)) {
       p = next;
       continue;
     }
-    out.resize(row_start);
     const void* nl = std::memchr(p, '\n', std::size_t(end - p));
     const char* const line_end = nl ? static_cast<const char*>(nl) : end;
     std::string_view line(p, std::size_t(line_end - p));
