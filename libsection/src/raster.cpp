@@ -92,20 +92,17 @@ void each_beside_off_span(const Spans& spans, int j, int k, const Fn& fn) {
   for (int i = std::max(lo, khi + 1); i <= hi; ++i) fn(i);
 }
 
-/// Sets the cells off the spans to cap, their bottleneck (their row leads to the border
-/// through cells at cap), and seeds each span cell next to one of them with its own d2,
-/// like a border cell.
+/// Sets b2 to -1 (not yet reached) on the spans and to cap off them, their bottleneck (their
+/// row leads to the border through cells at cap), and seeds each span cell next to an
+/// off-span one with its own d2, like a border cell.
 template <class Seed>
-void seed_spans(const Raster& r, const Spans& spans, int cap, std::vector<int>& b2, const Seed& seed) {
+void seed_spans(const Raster& r, const Spans& spans, int cap, Buffer<int>& b2, const Seed& seed) {
   for (int j = 0; j < r.h; ++j) {
-    const std::size_t row = std::size_t(j) * r.w;
-    const int lo = spans.lo[j], hi = spans.hi[j];
-    if (lo > hi) {
-      std::fill(b2.begin() + row, b2.begin() + row + r.w, cap);
-      continue;
-    }
-    std::fill(b2.begin() + row, b2.begin() + row + lo, cap);
-    std::fill(b2.begin() + row + hi + 1, b2.begin() + row + r.w, cap);
+    int* row = b2.data() + std::size_t(j) * r.w;
+    const int lo = std::min(spans.lo[j], r.w), hi = std::max(spans.hi[j], lo - 1);
+    std::fill(row, row + lo, cap);
+    std::fill(row + lo, row + hi + 1, -1);
+    std::fill(row + hi + 1, row + r.w, cap);
   }
   for (int j = 0; j < r.h; ++j) {
     const int lo = spans.lo[j], hi = spans.hi[j];
@@ -123,7 +120,7 @@ void seed_spans(const Raster& r, const Spans& spans, int cap, std::vector<int>& 
 /// rows (cache friendly), and f its squared distance (1e20 when none or at least `prune`).
 /// With off_seeds, the cells off the spans are seeds too.
 void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const Spans* spans, bool off_seeds,
-                   float prune, std::vector<int>& row_of, std::vector<float>& f) {
+                   float prune, Buffer<int>& row_of, Buffer<float>& f) {
   const int w = r.w, h = r.h;
   const auto lo_of = [&](int j) { return spans ? spans->lo[j] : 0; };
   const auto hi_of = [&](int j) { return spans ? spans->hi[j] : w - 1; };
@@ -181,13 +178,12 @@ Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector
   return s;
 }
 
-std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest, Scratch& scratch, const Spans* spans,
-                                    bool off_seeds) {
+Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
+                               Buffer<int>& nearest, Scratch& scratch, const Spans* spans, bool off_seeds) {
   const float big = 1e20f;
   const int w = r.w, h = r.h;
-  std::vector<float>& f = scratch.f;
-  std::vector<int>& row_of = scratch.ints;
+  Buffer<float>& f = scratch.f;
+  Buffer<int>& row_of = scratch.ints;
   f.resize(r.size());  // both written in full (on the spans) by the sweeps
   row_of.resize(r.size());
   // With spans, a column's sample at cap or beyond is left out of the rows' envelopes: it
@@ -199,8 +195,8 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   std::vector<int> v(n + 1), arg(n);
   std::vector<double> z(n + 2);
   std::vector<float> out(n);
-  std::vector<int> d(r.size());
-  nearest.resize(r.size());  // every cell written below
+  Buffer<int> d(r.size());  // d and nearest: every cell written below
+  nearest.resize(r.size());
   for (int j = 0; j < h; ++j) {
     const std::size_t row = std::size_t(j) * w;
     int lo = spans ? spans->lo[j] : 0, hi = spans ? spans->hi[j] : w - 1;
@@ -256,9 +252,8 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
   return d;
 }
 
-std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next,
-                            const Spans* spans) {
-  std::vector<int> b2(r.size(), -1);
+Buffer<int> bottleneck(const Raster& r, const Buffer<int>& d2, int cap, Buffer<int>& next, const Spans* spans) {
+  Buffer<int> b2(r.size());
   // Each bucket is a stack threaded through `next` (a cell enters one bucket, once; its
   // entry is written before it is read).
   std::vector<std::int32_t> head(std::size_t(cap) + 1, -1);
@@ -273,7 +268,10 @@ std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap
     b2[c] = d2[c];
     push(c);
   };
-  if (spans) seed_spans(r, *spans, cap, b2, seed);
+  if (spans)
+    seed_spans(r, *spans, cap, b2, seed);
+  else
+    std::fill(b2.begin(), b2.end(), -1);
   for (int i = 0; i < r.w; ++i) {
     seed(i, 0);
     seed(i, r.h - 1);
@@ -308,7 +306,7 @@ int ceil_sqrt(int x) {
   return s;
 }
 
-double bilinear(const Raster& r, const std::vector<float>& f, const Vec& c) {
+double bilinear(const Raster& r, const Buffer<float>& f, const Vec& c) {
   const double x = std::clamp(c.x(), 0.0, double(r.w - 1) - 1e-9);
   const double y = std::clamp(c.y(), 0.0, double(r.h - 1) - 1e-9);
   const int i = int(x), j = int(y);
@@ -317,7 +315,7 @@ double bilinear(const Raster& r, const std::vector<float>& f, const Vec& c) {
   return (1 - fy) * ((1 - fx) * f[a] + fx * f[a + 1]) + fy * ((1 - fx) * f[a + r.w] + fx * f[a + r.w + 1]);
 }
 
-Points trace(const Raster& r, const std::vector<int>& label, int label_id, std::size_t start) {
+Points trace(const Raster& r, const Buffer<int>& label, int label_id, std::size_t start) {
   static const int dx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
   static const int dy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
   const auto dir_of = [](int x, int y) {
