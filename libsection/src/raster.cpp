@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace section::morph {
@@ -115,6 +116,16 @@ void seed_spans(const Raster& r, const Spans& spans, int cap, Buffer<int>& b2, c
   }
 }
 
+/// The least m >= 0 with float(m) * float(m) >= prune (that square grows with m), at most
+/// `none`: the column distances pruned are those of m rows or more.
+int first_pruned(float prune, int none) {
+  if (!(prune < 1e18f)) return none;
+  long long m = std::llround(std::sqrt(double(prune)));
+  while (m > 0 && float(m - 1) * float(m - 1) >= prune) --m;
+  while (float(m) * float(m) < prune) ++m;
+  return int(std::min<long long>(m, none));
+}
+
 /// The columns' part of distance_transform: row_of holds, on the spans, the row of the
 /// nearest seed in the cell's column (-1: none), found by one sweep each way over whole
 /// rows (cache friendly), and f its squared distance (1e20 when none or at least `prune`).
@@ -143,6 +154,11 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
     }
   }
   std::fill(last.begin(), last.end(), -1);
+  const int none = std::numeric_limits<int>::max();
+  const int far = first_pruned(prune, none);
+  const float big = 1e20f;
+  std::int32_t big_bits;
+  std::memcpy(&big_bits, &big, sizeof big_bits);
   for (int j = h - 1; j >= 0; --j) {
     const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
     int* arow = row_of.data() + std::size_t(j) * w;
@@ -153,14 +169,89 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
       const int below = srow[i] ? j : lrow[i];
       lrow[i] = below;
       const int above = arow[i];
-      // The seed above wins a tie (the lower index).
-      const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
+      // The nearer seed, the one above on a tie (the lower index); -1 when none. Integer
+      // selects of this form only, so that the loop is vectorised (GCC keeps a branch for
+      // a float compare, or a select of floats).
+      const int da = above < 0 ? none : j - above, db = below < 0 ? none : below - j;
+      const int s = da <= db ? above : below;
       arow[i] = s;
+      // 1e20 from `far` rows on (and when none), by a mask on the float's bits.
+      const std::int32_t pruned = -std::int32_t((da <= db ? da : db) >= far);
       const float fs = float(j - s) * float(j - s);
-      frow[i] = s < 0 || fs >= prune ? 1e20f : fs;
+      std::int32_t bits;
+      std::memcpy(&bits, &fs, sizeof bits);
+      bits = (bits & ~pruned) | (big_bits & pruned);
+      std::memcpy(frow + i, &bits, sizeof bits);
     }
   }
 }
+
+/// The rows' part of distance_transform: the envelope of each row's column distances f
+/// (1e20: none, or pruned), into d (clamped to cap) and nearest.
+struct RowPass {
+  const Raster& r;
+  const Buffer<float>& f;
+  const Buffer<int>& row_of;
+  int cap, base;
+  bool prune;
+  Buffer<int>& d;
+  Buffer<int>& nearest;
+  int near = ceil_sqrt(cap);  // (near - 1)^2 < cap <= near^2
+  int n = std::max(r.w, r.h);
+  std::vector<int> v = std::vector<int>(n + 1), arg = std::vector<int>(n);
+  std::vector<double> z = std::vector<double>(n + 2);
+  std::vector<float> out = std::vector<float>(n);
+
+  // Cells i0..i1 - 1 of row j as seeds (0, their own index) or at cap (none).
+  void off(int j, int i0, int i1, bool seeds) {
+    const std::size_t row = std::size_t(j) * r.w;
+    for (int i = i0; i < i1; ++i) {
+      d[row + i] = seeds ? 0 : cap;
+      nearest[row + i] = seeds ? int(row + i) : -1;
+    }
+  }
+
+  // The envelope over cells a..b of row j.
+  void stretch(int j, int a, int b) {
+    const std::size_t row = std::size_t(j) * r.w;
+    const float big = 1e20f;
+    distance_1d(f.data() + row + a, b - a + 1, big, base + a, out.data(), arg.data(), v, z);
+    for (int i = a; i <= b; ++i) {
+      const std::size_t c = row + i;
+      const float o = out[i - a];
+      // Squared distances are integers (exact in float below 2^24, and every float above
+      // 2^23 is an integer): rounding is a truncation of x + 0.5.
+      d[c] = o >= float(cap) ? cap : int(o + 0.5f);
+      const int si = arg[i - a] + a;
+      nearest[c] = o < 1e19f ? row_of[row + si] * r.w + si : -1;
+    }
+  }
+
+  // Cells lo..hi of row j: the envelope of all unless pruned. Pruned, a kept sample brings
+  // below cap only the cells closer than `near` to it: the clusters of kept samples are done
+  // apart, each with its cells that close (the envelope of a cluster's samples is the row's
+  // there), and the rest is at cap.
+  void part(int j, int lo, int hi) {
+    if (!prune) {
+      stretch(j, lo, hi);
+      return;
+    }
+    const float* frow = f.data() + std::size_t(j) * r.w;
+    const float big = 1e20f;
+    off(j, lo, hi + 1, false);
+    for (int i = lo; i <= hi;) {
+      if (!(frow[i] < big)) {
+        ++i;
+        continue;
+      }
+      int last = i;
+      for (int k = i + 1; k <= hi && k <= last + 2 * near - 2; ++k)
+        if (frow[k] < big) last = k;
+      stretch(j, std::max(lo, i - near + 1), std::min(hi, last + near - 1));
+      i = last + near;
+    }
+  }
+};
 
 }  // namespace
 
@@ -189,14 +280,10 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
   // With spans, a column's sample at cap or beyond is left out of the rows' envelopes: it
   // brings no cell below cap.
   const bool prune = spans != nullptr;
-  const int near = ceil_sqrt(cap);  // (near - 1)^2 < cap <= near^2
   column_sweeps(r, seed, spans, off_seeds, prune ? float(cap) : big, row_of, f);
-  const int n = std::max(w, h);
-  std::vector<int> v(n + 1), arg(n);
-  std::vector<double> z(n + 2);
-  std::vector<float> out(n);
   Buffer<int> d(r.size());  // d and nearest: every cell written below
   nearest.resize(r.size());
+  RowPass rows{r, f, row_of, cap, base, prune, d, nearest};
   for (int j = 0; j < h; ++j) {
     const std::size_t row = std::size_t(j) * w;
     int lo = spans ? spans->lo[j] : 0, hi = spans ? spans->hi[j] : w - 1;
@@ -205,48 +292,28 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
       if (lo > 0) row_of[row + --lo] = j, f[row + lo] = 0;
       if (hi < w - 1) row_of[row + ++hi] = j, f[row + hi] = 0;
     }
-    // Cells off the span (seeds or at cap) or out of reach (at cap).
-    const auto off = [&](int i0, int i1, bool seeds) {
-      for (int i = i0; i < i1; ++i) {
-        d[row + i] = seeds ? 0 : cap;
-        nearest[row + i] = seeds ? int(row + i) : -1;
-      }
-    };
-    off(0, std::min(lo, w), off_seeds);
-    off(std::max(lo, hi + 1), w, off_seeds);
+    // Cells off the span (seeds or at cap).
+    rows.off(j, 0, std::min(lo, w), off_seeds);
+    rows.off(j, std::max(lo, hi + 1), w, off_seeds);
     if (lo > hi) continue;
-    const float* frow = f.data() + row;
-    // The row's stretch from a to b (the whole span unless pruned: see below).
-    const auto stretch = [&](int a, int b) {
-      distance_1d(frow + a, b - a + 1, big, base + a, out.data(), arg.data(), v, z);
-      for (int i = a; i <= b; ++i) {
-        const std::size_t c = row + i;
-        const float o = out[i - a];
-        // Squared distances are integers (exact in float below 2^24, and every float above
-        // 2^23 is an integer): rounding is a truncation of x + 0.5.
-        d[c] = o >= float(cap) ? cap : int(o + 0.5f);
-        const int si = arg[i - a] + a;
-        nearest[c] = o < 1e19f ? row_of[row + si] * w + si : -1;
-      }
-    };
-    if (!prune) {
-      stretch(lo, hi);
+    if (!off_seeds) {
+      rows.part(j, lo, hi);
       continue;
     }
-    // Pruned, a kept sample brings below cap only the cells closer than `near` to it: the
-    // clusters of kept samples are done apart, each with its cells that close (the
-    // envelope of a cluster's samples is the row's there), and the rest is at cap.
-    off(lo, hi + 1, false);
+    // Dense seeds (the erosion's outside): a seed is its own nearest and splits the row (see
+    // distance_1d), so only the runs between seeds are transformed, each with the seeds that
+    // bound it; the rest costs a write.
+    const float* frow = f.data() + row;
     for (int i = lo; i <= hi;) {
-      if (!(frow[i] < big)) {
+      if (frow[i] == 0) {
+        rows.off(j, i, i + 1, true);
         ++i;
         continue;
       }
-      int last = i;
-      for (int k = i + 1; k <= hi && k <= last + 2 * near - 2; ++k)
-        if (frow[k] < big) last = k;
-      stretch(std::max(lo, i - near + 1), std::min(hi, last + near - 1));
-      i = last + near;
+      int b = i;
+      while (b < hi && frow[b + 1] != 0) ++b;
+      rows.part(j, std::max(lo, i - 1), std::min(hi, b + 1));
+      i = b + 2;  // b + 1, a seed, was done with the run
     }
   }
   return d;
