@@ -10,14 +10,25 @@ namespace section::morph {
 
 namespace {
 
-/// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples) into d.
+/// The lower envelope's parabolas: the sample of each (v), where it starts (z, one more)
+/// and its height at the origin, f + (q + base)^2 (h, kept so as not to be computed again).
+struct Envelope {
+  std::vector<int> v;
+  std::vector<double> z, h;
+  explicit Envelope(int n) : v(n + 1), z(n + 2), h(n + 1) {}
+};
+
+/// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples) into d, and
+/// the nearest sample's index plus `offset` into arg (-1: none).
 /// Samples with f >= `big` (no seed in their column) are left out of the lower envelope:
 /// they never win, and the envelope of the others is the same. Positions are q + base, so
 /// that the rounding of the parabola intersections, which decides between equidistant
 /// seeds, does not depend on where the raster starts (its margin).
-void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
-                 std::vector<double>& z) {
+void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg, int offset, Envelope& e) {
   const double inf = std::numeric_limits<double>::infinity();
+  int* v = e.v.data();
+  double* z = e.z.data();
+  double* h = e.h.data();
   int k = -1;
   for (int q = 0; q < n; ++q) {
     if (!(f[q] < big)) continue;
@@ -25,19 +36,20 @@ void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg,
     if (k < 0) {
       k = 0;
       v[0] = q;
+      h[0] = fq;
       z[0] = -inf;
       z[1] = inf;
       continue;
     }
     double s;
     for (;;) {
-      const int p = v[k];
-      s = (fq - (double(f[p]) + double(p + base) * (p + base))) / (2.0 * (q - p));
+      s = (fq - h[k]) / (2.0 * (q - v[k]));
       if (s > z[k] || k == 0) break;  // z[0] = -inf: k never drops below 0
       --k;
     }
     ++k;
     v[k] = q;
+    h[k] = fq;
     z[k] = s;
     z[k + 1] = inf;
   }
@@ -53,7 +65,7 @@ void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg,
     while (z[k + 1] < q + base) ++k;
     const double dq = double(q - v[k]);
     d[q] = float(dq * dq + double(f[v[k]]));
-    arg[q] = v[k];
+    arg[q] = v[k] + offset;
   }
 }
 
@@ -62,8 +74,7 @@ void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg,
 /// intersections with it lie at least half a cell away, far beyond rounding), so the
 /// envelope of a run between two zeros, zeros included, is the whole row's there, with the
 /// same arithmetic. Runs of seeds then cost nothing: most of a raster is outside.
-void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
-                 std::vector<double>& z) {
+void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, Envelope& e) {
   for (int a = 0; a < n;) {
     if (f[a] == 0) {
       d[a] = 0;
@@ -74,9 +85,7 @@ void distance_1d(const float* f, int n, float big, int base, float* d, int* arg,
     int b = a + 1;
     while (b < n && f[b] != 0) ++b;
     const int lo = a > 0 ? a - 1 : 0, hi = b < n ? b + 1 : n;
-    envelope_1d(f + lo, hi - lo, big, base + lo, d + lo, arg + lo, v, z);
-    for (int q = lo; q < hi; ++q)
-      if (arg[q] >= 0) arg[q] += lo;
+    envelope_1d(f + lo, hi - lo, big, base + lo, d + lo, arg + lo, lo, e);
     a = b;
   }
 }
@@ -198,8 +207,8 @@ struct RowPass {
   Buffer<int>& nearest;
   int near = ceil_sqrt(cap);  // (near - 1)^2 < cap <= near^2
   int n = std::max(r.w, r.h);
-  std::vector<int> v = std::vector<int>(n + 1), arg = std::vector<int>(n);
-  std::vector<double> z = std::vector<double>(n + 2);
+  Envelope e = Envelope(n);
+  std::vector<int> arg = std::vector<int>(n);
   std::vector<float> out = std::vector<float>(n);
 
   // Cells i0..i1 - 1 of row j as seeds (0, their own index) or at cap (none).
@@ -215,7 +224,7 @@ struct RowPass {
   void stretch(int j, int a, int b) {
     const std::size_t row = std::size_t(j) * r.w;
     const float big = 1e20f;
-    distance_1d(f.data() + row + a, b - a + 1, big, base + a, out.data(), arg.data(), v, z);
+    distance_1d(f.data() + row + a, b - a + 1, big, base + a, out.data(), arg.data(), e);
     for (int i = a; i <= b; ++i) {
       const std::size_t c = row + i;
       const float o = out[i - a];
