@@ -356,20 +356,28 @@ Buffer<int> bottleneck(const Raster& r, const Buffer<int>& d2, int cap, Buffer<i
     seed(0, j);
     seed(r.w - 1, j);
   }
-  const std::size_t size = r.size();
+  const std::size_t size = r.size(), w = std::size_t(r.w);
+  const auto reach = [&](std::size_t e, int level) {
+    if (b2[e] >= 0) return;
+    b2[e] = std::min(level, d2[e]);
+    push(e);
+  };
   for (int level = cap; level >= 0; --level) {
     while (head[level] >= 0) {
-      const std::uint32_t c = std::uint32_t(head[level]);
+      const std::size_t c = std::size_t(head[level]);
       head[level] = next[c];
       // Every border cell was seeded above, so a step that wraps to the other side of the
-      // raster lands on a cell already set; only steps off its ends need a test.
-      const std::size_t nb[4] = {std::size_t(c) - 1, std::size_t(c) + 1, std::size_t(c) - r.w,
-                                 std::size_t(c) + r.w};
-      for (int k = 0; k < 4; ++k) {
-        if (nb[k] >= size || b2[nb[k]] >= 0) continue;
-        b2[nb[k]] = std::min(level, d2[nb[k]]);
-        push(nb[k]);
+      // raster lands on a cell already set; only the steps of the first and last rows'
+      // cells may leave it.
+      if (c >= w && c + w < size) {
+        reach(c - 1, level);
+        reach(c + 1, level);
+        reach(c - w, level);
+        reach(c + w, level);
+        continue;
       }
+      for (const std::size_t e : {c - 1, c + 1, c - w, c + w})
+        if (e < size) reach(e, level);
     }
   }
   return b2;
