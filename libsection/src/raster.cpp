@@ -18,13 +18,15 @@ struct Envelope {
   explicit Envelope(int n) : v(n + 1), z(n + 2), h(n + 1) {}
 };
 
-/// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples) into d, and
-/// the nearest sample's index plus `offset` into arg (-1: none).
+/// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples): emit(q, d, s)
+/// for each sample q (plus `offset`) with its squared distance d and nearest sample s (plus
+/// `offset`; -1 and `big` when none).
 /// Samples with f >= `big` (no seed in their column) are left out of the lower envelope:
 /// they never win, and the envelope of the others is the same. Positions are q + base, so
 /// that the rounding of the parabola intersections, which decides between equidistant
 /// seeds, does not depend on where the raster starts (its margin).
-void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg, int offset, Envelope& e) {
+template <class Emit>
+void envelope_1d(const float* f, int n, float big, int base, int offset, Envelope& e, const Emit& emit) {
   const double inf = std::numeric_limits<double>::infinity();
   int* v = e.v.data();
   double* z = e.z.data();
@@ -54,18 +56,14 @@ void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg,
     z[k + 1] = inf;
   }
   if (k < 0) {
-    for (int q = 0; q < n; ++q) {
-      d[q] = big;
-      arg[q] = -1;
-    }
+    for (int q = 0; q < n; ++q) emit(q + offset, big, -1);
     return;
   }
   k = 0;
   for (int q = 0; q < n; ++q) {
     while (z[k + 1] < q + base) ++k;
     const double dq = double(q - v[k]);
-    d[q] = float(dq * dq + double(f[v[k]]));
-    arg[q] = v[k] + offset;
+    emit(q + offset, float(dq * dq + double(f[v[k]])), v[k] + offset);
   }
 }
 
@@ -74,18 +72,18 @@ void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg,
 /// intersections with it lie at least half a cell away, far beyond rounding), so the
 /// envelope of a run between two zeros, zeros included, is the whole row's there, with the
 /// same arithmetic. Runs of seeds then cost nothing: most of a raster is outside.
-void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, Envelope& e) {
+template <class Emit>
+void distance_1d(const float* f, int n, float big, int base, Envelope& e, const Emit& emit) {
   for (int a = 0; a < n;) {
     if (f[a] == 0) {
-      d[a] = 0;
-      arg[a] = a;
+      emit(a, 0.0f, a);
       ++a;
       continue;
     }
     int b = a + 1;
     while (b < n && f[b] != 0) ++b;
     const int lo = a > 0 ? a - 1 : 0, hi = b < n ? b + 1 : n;
-    envelope_1d(f + lo, hi - lo, big, base + lo, d + lo, arg + lo, lo, e);
+    envelope_1d(f + lo, hi - lo, big, base + lo, lo, e, emit);
     a = b;
   }
 }
@@ -208,8 +206,6 @@ struct RowPass {
   int near = ceil_sqrt(cap);  // (near - 1)^2 < cap <= near^2
   int n = std::max(r.w, r.h);
   Envelope e = Envelope(n);
-  std::vector<int> arg = std::vector<int>(n);
-  std::vector<float> out = std::vector<float>(n);
 
   // Cells i0..i1 - 1 of row j as seeds (0, their own index) or at cap (none).
   void off(int j, int i0, int i1, bool seeds) {
@@ -224,16 +220,13 @@ struct RowPass {
   void stretch(int j, int a, int b) {
     const std::size_t row = std::size_t(j) * r.w;
     const float big = 1e20f;
-    distance_1d(f.data() + row + a, b - a + 1, big, base + a, out.data(), arg.data(), e);
-    for (int i = a; i <= b; ++i) {
-      const std::size_t c = row + i;
-      const float o = out[i - a];
+    distance_1d(f.data() + row + a, b - a + 1, big, base + a, e, [&](int q, float o, int s) {
+      const std::size_t c = row + a + q;
       // Squared distances are integers (exact in float below 2^24, and every float above
       // 2^23 is an integer): rounding is a truncation of x + 0.5.
       d[c] = o >= float(cap) ? cap : int(o + 0.5f);
-      const int si = arg[i - a] + a;
-      nearest[c] = o < 1e19f ? row_of[row + si] * r.w + si : -1;
-    }
+      nearest[c] = o < 1e19f ? row_of[row + a + s] * r.w + a + s : -1;
+    });
   }
 
   // Cells lo..hi of row j: the envelope of all unless pruned. Pruned, a kept sample brings
