@@ -240,7 +240,7 @@ struct RowPass {
     }
     const float* frow = f.data() + std::size_t(j) * r.w;
     const float big = 1e20f;
-    off(j, lo, hi + 1, false);
+    int done = lo;  // the cells before are written (the clusters' stretches are disjoint)
     for (int i = lo; i <= hi;) {
       if (!(frow[i] < big)) {
         ++i;
@@ -249,9 +249,13 @@ struct RowPass {
       int last = i;
       for (int k = i + 1; k <= hi && k <= last + 2 * near - 2; ++k)
         if (frow[k] < big) last = k;
-      stretch(j, std::max(lo, i - near + 1), std::min(hi, last + near - 1));
+      const int a = std::max(lo, i - near + 1), b = std::min(hi, last + near - 1);
+      off(j, done, a, false);
+      stretch(j, a, b);
+      done = b + 1;
       i = last + near;
     }
+    off(j, done, hi + 1, false);
   }
 };
 
