@@ -375,12 +375,14 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
   const int k = int(std::ceil(3 * sigma));
   const int i0 = int(std::floor(c.x())) - k + 1, j0 = int(std::floor(c.y())) - k + 1;
   const int n = 2 * k;
-  double gx[64], gy[64];
+  // The offsets p - c of the window's columns and rows (tx, ty) and their weights.
+  double gx[64], gy[64], tx[64], ty[64];
   const double inv = 1 / (2 * sigma * sigma);
   for (int a = 0; a < n; ++a) {
-    const double tx = c.x() - (i0 + a), ty = c.y() - (j0 + a);
-    gx[a] = std::exp(-tx * tx * inv);
-    gy[a] = std::exp(-ty * ty * inv);
+    tx[a] = c.x() - (i0 + a);
+    ty[a] = c.y() - (j0 + a);
+    gx[a] = std::exp(-tx[a] * tx[a] * inv);
+    gy[a] = std::exp(-ty[a] * ty[a] * inv);
   }
   // The window clipped to the raster (cells off it are left out).
   const int a0 = std::max(0, -i0), a1 = std::min(n, r.w - i0);
@@ -389,9 +391,9 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
   // reload waited on the two stores (the same sums, several times slower).
   double gx_sum = 0, gy_sum = 0;
   for (int b = b0; b < b1; ++b) {
-    const int j = j0 + b;
-    const int* label = pass.label.data() + std::size_t(j) * r.w;
-    const float* dist = pass.g.data() + std::size_t(j) * r.w;
+    const std::size_t row = std::size_t(j0 + b) * r.w;
+    const int* label = pass.label.data() + row;
+    const float* dist = pass.g.data() + row;
     for (int a = a0; a < a1; ++a) {
       const int i = i0 + a;
       const int l = label[i];
@@ -399,8 +401,8 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
       const double cover = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
       if (cover == 0) continue;
       const double wgt = cover * gx[a] * gy[b];
-      gx_sum += wgt * (c.x() - i);
-      gy_sum += wgt * (c.y() - j);
+      gx_sum += wgt * tx[a];
+      gy_sum += wgt * ty[b];
     }
   }
   const Vec g(gx_sum, gy_sum);
