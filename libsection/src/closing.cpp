@@ -36,7 +36,7 @@ bool substantial(long long cells) {
 /// (-1: no point), the mean of its points in cell coordinates.
 struct Seeds {
   std::vector<Vec> mean;
-  Buffer<int> slot;  // set at the seeds only
+  Buffer<int> slot;              // set at the seeds only
   std::vector<int> first, last;  // per row, the first and last column holding a seed
 };
 
@@ -132,8 +132,8 @@ int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rm
 
 // Erodes the fill back (keeps the cells farther than the radius from the outside) and sets
 // pass.g; returns the squared distance of each cell to the outside.
-Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_seed,
-                       const Seeds& seeds, int rmax, int base, const Spans* band, Scratch& scratch) {
+Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_seed, const Seeds& seeds,
+                  int rmax, int base, const Spans* band, Scratch& scratch) {
   pass.deep = pass.deep || !band;
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;

@@ -28,7 +28,7 @@ struct Pass {
   int closing = 0;                    // r_c: radius at which the band closed
   int radius = 0;                     // r: radius used (closing plus one step of margin)
   Buffer<int> label;                  // component of the eroded fill, 0 = none
-  Buffer<float> g;                  // signed distance to the closing's boundary, cells, > 0 inside
+  Buffer<float> g;                    // signed distance to the closing's boundary, cells, > 0 inside
   std::vector<Component> components;  // index = label - 1
   bool deep = true;                   // g exact deep inside too (else rmax + 1 there)
 };

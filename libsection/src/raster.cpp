@@ -325,7 +325,8 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
   return d;
 }
 
-Buffer<int> bottleneck(const Raster& r, const Buffer<int>& d2, int cap, Buffer<int>& next, const Spans* spans) {
+Buffer<int> bottleneck(const Raster& r, const Buffer<int>& d2, int cap, Buffer<int>& next,
+                       const Spans* spans) {
   Buffer<int> b2(r.size());
   // Each bucket is a stack threaded through `next` (a cell enters one bucket, once; its
   // entry is written before it is read).
