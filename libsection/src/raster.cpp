@@ -59,11 +59,15 @@ void envelope_1d(const float* f, int n, float big, int base, int offset, Envelop
     for (int q = 0; q < n; ++q) emit(q + offset, big, -1);
     return;
   }
-  k = 0;
-  for (int q = 0; q < n; ++q) {
-    while (z[k + 1] < q + base) ++k;
-    const double dq = double(q - v[k]);
-    emit(q + offset, float(dq * dq + double(f[v[k]])), v[k] + offset);
+  // Parabola k is the lowest for the samples q with z[k] < q + base <= z[k + 1]: up to
+  // floor(z[k + 1]) - base (exact: an integer below 2^53 less a small one).
+  for (int q = 0, k = 0; q < n; ++k) {
+    const double last = std::clamp(std::floor(z[k + 1]) - base, -1.0, double(n - 1));
+    const double fv = double(f[v[k]]);
+    for (const int end = int(last); q <= end; ++q) {
+      const double dq = double(q - v[k]);
+      emit(q + offset, float(dq * dq + fv), v[k] + offset);
+    }
   }
 }
 
