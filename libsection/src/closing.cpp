@@ -36,7 +36,7 @@ bool substantial(long long cells) {
 /// (-1: no point), the mean of its points in cell coordinates.
 struct Seeds {
   std::vector<Vec> mean;
-  std::vector<int> slot;
+  Buffer<int> slot;              // set at the seeds only
   std::vector<int> first, last;  // per row, the first and last column holding a seed
 };
 
@@ -56,7 +56,7 @@ void place_raster(const Vec& lo, const Vec& hi, double h, int margin, std::size_
 void seed_cells(const Points& points, const std::vector<std::size_t>& subset, const Raster& r,
                 std::vector<std::uint8_t>& seed, Seeds& seeds) {
   seed.assign(r.size(), 0);
-  seeds.slot.assign(r.size(), -1);
+  seeds.slot.resize(r.size());
   seeds.mean.clear();
   seeds.first.assign(r.h, r.w);
   seeds.last.assign(r.h, -1);
@@ -66,10 +66,10 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
     const int i = std::clamp(int(std::lround(c.x())), 0, r.w - 1);
     const int j = std::clamp(int(std::lround(c.y())), 0, r.h - 1);
     const std::size_t cell = std::size_t(j) * r.w + i;
-    seed[cell] = 1;
     seeds.first[j] = std::min(seeds.first[j], i);
     seeds.last[j] = std::max(seeds.last[j], i);
-    if (seeds.slot[cell] < 0) {
+    if (!seed[cell]) {
+      seed[cell] = 1;
       seeds.slot[cell] = int(seeds.mean.size());
       seeds.mean.emplace_back(0, 0);
       count.push_back(0);
@@ -107,7 +107,7 @@ void for_spans(const Spans* band, int h, int w, const Fn& fn) {
 // them have closed. Taking the first radius at which some interior appears instead
 // leaves a part of a thin profile open behind a wide hole when the band pinches the
 // profile elsewhere first.
-int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int cap, int rmax, int w,
+int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rmax, int w,
                    const Spans* band) {
   std::vector<long long> closing_at(rmax + 2, 0);
   long long ever = 0;
@@ -132,8 +132,8 @@ int closing_radius(const std::vector<int>& d2, const std::vector<int>& b2, int c
 
 // Erodes the fill back (keeps the cells farther than the radius from the outside) and sets
 // pass.g; returns the squared distance of each cell to the outside.
-std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector<int>& nearest_seed,
-                       const Seeds& seeds, int rmax, int base, const Spans* band, Scratch& scratch) {
+Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_seed, const Seeds& seeds,
+                  int rmax, int base, const Spans* band, Scratch& scratch) {
   pass.deep = pass.deep || !band;
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;
@@ -152,8 +152,8 @@ std::vector<int> erode(Pass& pass, const std::vector<int>& b2, const std::vector
   // normals (image_normal) only whether it is above 1/2.
   const int deep_cap = (pass.radius + 8) * (pass.radius + 8);
   const int cap_out = pass.deep ? int(std::min(far, double(1 << 30))) : deep_cap;
-  std::vector<int> nearest_out;
-  std::vector<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch, band, true);
+  Buffer<int> nearest_out;
+  Buffer<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch, band, true);
 
   // The closing's complement is about the union of the empty discs centred on outside
   // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside
@@ -197,7 +197,7 @@ struct Runs {
   }
 };
 
-Runs fill_runs(const std::vector<int>& out2, int rr, const Raster& r, const Spans* band) {
+Runs fill_runs(const Buffer<int>& out2, int rr, const Raster& r, const Spans* band) {
   Runs runs;
   int above = 0, begin = 0;  // the runs of the row above: [above, begin)
   for (int j = 0; j < r.h; ++j) {
@@ -228,7 +228,7 @@ Runs fill_runs(const std::vector<int>& out2, int rr, const Raster& r, const Span
 
 // 8-connected components of the fill (out2 > r^2), labelled in raster order of their
 // first cell, from the rows' runs of fill cells.
-void label_components(const std::vector<int>& out2, const std::vector<int>& b2, const std::vector<int>& d2,
+void label_components(const Buffer<int>& out2, const Buffer<int>& b2, const Buffer<int>& d2,
                       const Spans* band, Scratch& scratch, Pass& pass) {
   const Raster& r = pass.raster;
   pass.label = std::move(scratch.ints);
@@ -311,7 +311,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   Raster& r = pass.raster;
   r.cell = h;
   Seeds seeds;
-  std::vector<int> nearest_seed, d2, b2;
+  Buffer<int> nearest_seed, d2, b2;
   Scratch scratch;
   Spans spans;
   const Spans* band = nullptr;
@@ -339,7 +339,7 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     margin = std::max(margin, pass.radius + 2);
     reach = std::max(reach, need);
   }
-  const std::vector<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, band, scratch);
+  const Buffer<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, band, scratch);
   label_components(out2, b2, d2, band, scratch, pass);
   return true;
 }
@@ -375,12 +375,14 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
   const int k = int(std::ceil(3 * sigma));
   const int i0 = int(std::floor(c.x())) - k + 1, j0 = int(std::floor(c.y())) - k + 1;
   const int n = 2 * k;
-  double gx[64], gy[64];
+  // The offsets p - c of the window's columns and rows (tx, ty) and their weights.
+  double gx[64], gy[64], tx[64], ty[64];
   const double inv = 1 / (2 * sigma * sigma);
   for (int a = 0; a < n; ++a) {
-    const double tx = c.x() - (i0 + a), ty = c.y() - (j0 + a);
-    gx[a] = std::exp(-tx * tx * inv);
-    gy[a] = std::exp(-ty * ty * inv);
+    tx[a] = c.x() - (i0 + a);
+    ty[a] = c.y() - (j0 + a);
+    gx[a] = std::exp(-tx[a] * tx[a] * inv);
+    gy[a] = std::exp(-ty[a] * ty[a] * inv);
   }
   // The window clipped to the raster (cells off it are left out).
   const int a0 = std::max(0, -i0), a1 = std::min(n, r.w - i0);
@@ -389,9 +391,9 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
   // reload waited on the two stores (the same sums, several times slower).
   double gx_sum = 0, gy_sum = 0;
   for (int b = b0; b < b1; ++b) {
-    const int j = j0 + b;
-    const int* label = pass.label.data() + std::size_t(j) * r.w;
-    const float* dist = pass.g.data() + std::size_t(j) * r.w;
+    const std::size_t row = std::size_t(j0 + b) * r.w;
+    const int* label = pass.label.data() + row;
+    const float* dist = pass.g.data() + row;
     for (int a = a0; a < a1; ++a) {
       const int i = i0 + a;
       const int l = label[i];
@@ -399,8 +401,8 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
       const double cover = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
       if (cover == 0) continue;
       const double wgt = cover * gx[a] * gy[b];
-      gx_sum += wgt * (c.x() - i);
-      gy_sum += wgt * (c.y() - j);
+      gx_sum += wgt * tx[a];
+      gy_sum += wgt * ty[b];
     }
   }
   const Vec g(gx_sum, gy_sum);

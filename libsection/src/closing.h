@@ -27,8 +27,8 @@ struct Pass {
   Raster raster;
   int closing = 0;                    // r_c: radius at which the band closed
   int radius = 0;                     // r: radius used (closing plus one step of margin)
-  std::vector<int> label;             // component of the eroded fill, 0 = none
-  std::vector<float> g;               // signed distance to the closing's boundary, cells, > 0 inside
+  Buffer<int> label;                  // component of the eroded fill, 0 = none
+  Buffer<float> g;                    // signed distance to the closing's boundary, cells, > 0 inside
   std::vector<Component> components;  // index = label - 1
   bool deep = true;                   // g exact deep inside too (else rmax + 1 there)
 };

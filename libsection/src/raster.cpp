@@ -3,20 +3,34 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace section::morph {
 
 namespace {
 
-/// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples) into d.
+/// The lower envelope's parabolas: the sample of each (v), where it starts (z, one more)
+/// and its height at the origin, f + (q + base)^2 (h, kept so as not to be computed again).
+struct Envelope {
+  std::vector<int> v;
+  std::vector<double> z, h;
+  explicit Envelope(int n) : v(n + 1), z(n + 2), h(n + 1) {}
+};
+
+/// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples): emit(q, d, s)
+/// for each sample q (plus `offset`) with its squared distance d and nearest sample s (plus
+/// `offset`; -1 and `big` when none).
 /// Samples with f >= `big` (no seed in their column) are left out of the lower envelope:
 /// they never win, and the envelope of the others is the same. Positions are q + base, so
 /// that the rounding of the parabola intersections, which decides between equidistant
 /// seeds, does not depend on where the raster starts (its margin).
-void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
-                 std::vector<double>& z) {
+template <class Emit>
+void envelope_1d(const float* f, int n, float big, int base, int offset, Envelope& e, const Emit& emit) {
   const double inf = std::numeric_limits<double>::infinity();
+  int* v = e.v.data();
+  double* z = e.z.data();
+  double* h = e.h.data();
   int k = -1;
   for (int q = 0; q < n; ++q) {
     if (!(f[q] < big)) continue;
@@ -24,35 +38,36 @@ void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg,
     if (k < 0) {
       k = 0;
       v[0] = q;
+      h[0] = fq;
       z[0] = -inf;
       z[1] = inf;
       continue;
     }
     double s;
     for (;;) {
-      const int p = v[k];
-      s = (fq - (double(f[p]) + double(p + base) * (p + base))) / (2.0 * (q - p));
+      s = (fq - h[k]) / (2.0 * (q - v[k]));
       if (s > z[k] || k == 0) break;  // z[0] = -inf: k never drops below 0
       --k;
     }
     ++k;
     v[k] = q;
+    h[k] = fq;
     z[k] = s;
     z[k + 1] = inf;
   }
   if (k < 0) {
-    for (int q = 0; q < n; ++q) {
-      d[q] = big;
-      arg[q] = -1;
-    }
+    for (int q = 0; q < n; ++q) emit(q + offset, big, -1);
     return;
   }
-  k = 0;
-  for (int q = 0; q < n; ++q) {
-    while (z[k + 1] < q + base) ++k;
-    const double dq = double(q - v[k]);
-    d[q] = float(dq * dq + double(f[v[k]]));
-    arg[q] = v[k];
+  // Parabola k is the lowest for the samples q with z[k] < q + base <= z[k + 1]: up to
+  // floor(z[k + 1]) - base (exact: an integer below 2^53 less a small one).
+  for (int q = 0, k = 0; q < n; ++k) {
+    const double last = std::clamp(std::floor(z[k + 1]) - base, -1.0, double(n - 1));
+    const double fv = double(f[v[k]]);
+    for (const int end = int(last); q <= end; ++q) {
+      const double dq = double(q - v[k]);
+      emit(q + offset, float(dq * dq + fv), v[k] + offset);
+    }
   }
 }
 
@@ -61,21 +76,18 @@ void envelope_1d(const float* f, int n, float big, int base, float* d, int* arg,
 /// intersections with it lie at least half a cell away, far beyond rounding), so the
 /// envelope of a run between two zeros, zeros included, is the whole row's there, with the
 /// same arithmetic. Runs of seeds then cost nothing: most of a raster is outside.
-void distance_1d(const float* f, int n, float big, int base, float* d, int* arg, std::vector<int>& v,
-                 std::vector<double>& z) {
+template <class Emit>
+void distance_1d(const float* f, int n, float big, int base, Envelope& e, const Emit& emit) {
   for (int a = 0; a < n;) {
     if (f[a] == 0) {
-      d[a] = 0;
-      arg[a] = a;
+      emit(a, 0.0f, a);
       ++a;
       continue;
     }
     int b = a + 1;
     while (b < n && f[b] != 0) ++b;
     const int lo = a > 0 ? a - 1 : 0, hi = b < n ? b + 1 : n;
-    envelope_1d(f + lo, hi - lo, big, base + lo, d + lo, arg + lo, v, z);
-    for (int q = lo; q < hi; ++q)
-      if (arg[q] >= 0) arg[q] += lo;
+    envelope_1d(f + lo, hi - lo, big, base + lo, lo, e, emit);
     a = b;
   }
 }
@@ -92,20 +104,17 @@ void each_beside_off_span(const Spans& spans, int j, int k, const Fn& fn) {
   for (int i = std::max(lo, khi + 1); i <= hi; ++i) fn(i);
 }
 
-/// Sets the cells off the spans to cap, their bottleneck (their row leads to the border
-/// through cells at cap), and seeds each span cell next to one of them with its own d2,
-/// like a border cell.
+/// Sets b2 to -1 (not yet reached) on the spans and to cap off them, their bottleneck (their
+/// row leads to the border through cells at cap), and seeds each span cell next to an
+/// off-span one with its own d2, like a border cell.
 template <class Seed>
-void seed_spans(const Raster& r, const Spans& spans, int cap, std::vector<int>& b2, const Seed& seed) {
+void seed_spans(const Raster& r, const Spans& spans, int cap, Buffer<int>& b2, const Seed& seed) {
   for (int j = 0; j < r.h; ++j) {
-    const std::size_t row = std::size_t(j) * r.w;
-    const int lo = spans.lo[j], hi = spans.hi[j];
-    if (lo > hi) {
-      std::fill(b2.begin() + row, b2.begin() + row + r.w, cap);
-      continue;
-    }
-    std::fill(b2.begin() + row, b2.begin() + row + lo, cap);
-    std::fill(b2.begin() + row + hi + 1, b2.begin() + row + r.w, cap);
+    int* row = b2.data() + std::size_t(j) * r.w;
+    const int lo = std::min(spans.lo[j], r.w), hi = std::max(spans.hi[j], lo - 1);
+    std::fill(row, row + lo, cap);
+    std::fill(row + lo, row + hi + 1, -1);
+    std::fill(row + hi + 1, row + r.w, cap);
   }
   for (int j = 0; j < r.h; ++j) {
     const int lo = spans.lo[j], hi = spans.hi[j];
@@ -118,12 +127,22 @@ void seed_spans(const Raster& r, const Spans& spans, int cap, std::vector<int>& 
   }
 }
 
+/// The least m >= 0 with float(m) * float(m) >= prune (that square grows with m), at most
+/// `none`: the column distances pruned are those of m rows or more.
+int first_pruned(float prune, int none) {
+  if (!(prune < 1e18f)) return none;
+  long long m = std::llround(std::sqrt(double(prune)));
+  while (m > 0 && float(m - 1) * float(m - 1) >= prune) --m;
+  while (float(m) * float(m) < prune) ++m;
+  return int(std::min<long long>(m, none));
+}
+
 /// The columns' part of distance_transform: row_of holds, on the spans, the row of the
 /// nearest seed in the cell's column (-1: none), found by one sweep each way over whole
 /// rows (cache friendly), and f its squared distance (1e20 when none or at least `prune`).
 /// With off_seeds, the cells off the spans are seeds too.
 void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const Spans* spans, bool off_seeds,
-                   float prune, std::vector<int>& row_of, std::vector<float>& f) {
+                   float prune, Buffer<int>& row_of, Buffer<float>& f) {
   const int w = r.w, h = r.h;
   const auto lo_of = [&](int j) { return spans ? spans->lo[j] : 0; };
   const auto hi_of = [&](int j) { return spans ? spans->hi[j] : w - 1; };
@@ -146,6 +165,11 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
     }
   }
   std::fill(last.begin(), last.end(), -1);
+  const int none = std::numeric_limits<int>::max();
+  const int far = first_pruned(prune, none);
+  const float big = 1e20f;
+  std::int32_t big_bits;
+  std::memcpy(&big_bits, &big, sizeof big_bits);
   for (int j = h - 1; j >= 0; --j) {
     const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
     int* arow = row_of.data() + std::size_t(j) * w;
@@ -156,14 +180,88 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
       const int below = srow[i] ? j : lrow[i];
       lrow[i] = below;
       const int above = arow[i];
-      // The seed above wins a tie (the lower index).
-      const int s = above < 0 ? below : (below < 0 || j - above <= below - j) ? above : below;
+      // The nearer seed, the one above on a tie (the lower index); -1 when none. Integer
+      // selects of this form only, so that the loop is vectorised (GCC keeps a branch for
+      // a float compare, or a select of floats).
+      const int da = above < 0 ? none : j - above, db = below < 0 ? none : below - j;
+      const int s = da <= db ? above : below;
       arow[i] = s;
+      // 1e20 from `far` rows on (and when none), by a mask on the float's bits.
+      const std::int32_t pruned = -std::int32_t((da <= db ? da : db) >= far);
       const float fs = float(j - s) * float(j - s);
-      frow[i] = s < 0 || fs >= prune ? 1e20f : fs;
+      std::int32_t bits;
+      std::memcpy(&bits, &fs, sizeof bits);
+      bits = (bits & ~pruned) | (big_bits & pruned);
+      std::memcpy(frow + i, &bits, sizeof bits);
     }
   }
 }
+
+/// The rows' part of distance_transform: the envelope of each row's column distances f
+/// (1e20: none, or pruned), into d (clamped to cap) and nearest.
+struct RowPass {
+  const Raster& r;
+  const Buffer<float>& f;
+  const Buffer<int>& row_of;
+  int cap, base;
+  bool prune;
+  Buffer<int>& d;
+  Buffer<int>& nearest;
+  int near = ceil_sqrt(cap);  // (near - 1)^2 < cap <= near^2
+  int n = std::max(r.w, r.h);
+  Envelope e = Envelope(n);
+
+  // Cells i0..i1 - 1 of row j as seeds (0, their own index) or at cap (none).
+  void off(int j, int i0, int i1, bool seeds) {
+    const std::size_t row = std::size_t(j) * r.w;
+    for (int i = i0; i < i1; ++i) {
+      d[row + i] = seeds ? 0 : cap;
+      nearest[row + i] = seeds ? int(row + i) : -1;
+    }
+  }
+
+  // The envelope over cells a..b of row j.
+  void stretch(int j, int a, int b) {
+    const std::size_t row = std::size_t(j) * r.w;
+    const float big = 1e20f;
+    distance_1d(f.data() + row + a, b - a + 1, big, base + a, e, [&](int q, float o, int s) {
+      const std::size_t c = row + a + q;
+      // Squared distances are integers (exact in float below 2^24, and every float above
+      // 2^23 is an integer): rounding is a truncation of x + 0.5.
+      d[c] = o >= float(cap) ? cap : int(o + 0.5f);
+      nearest[c] = o < 1e19f ? row_of[row + a + s] * r.w + a + s : -1;
+    });
+  }
+
+  // Cells lo..hi of row j: the envelope of all unless pruned. Pruned, a kept sample brings
+  // below cap only the cells closer than `near` to it: the clusters of kept samples are done
+  // apart, each with its cells that close (the envelope of a cluster's samples is the row's
+  // there), and the rest is at cap.
+  void part(int j, int lo, int hi) {
+    if (!prune) {
+      stretch(j, lo, hi);
+      return;
+    }
+    const float* frow = f.data() + std::size_t(j) * r.w;
+    const float big = 1e20f;
+    int done = lo;  // the cells before are written (the clusters' stretches are disjoint)
+    for (int i = lo; i <= hi;) {
+      if (!(frow[i] < big)) {
+        ++i;
+        continue;
+      }
+      int last = i;
+      for (int k = i + 1; k <= hi && k <= last + 2 * near - 2; ++k)
+        if (frow[k] < big) last = k;
+      const int a = std::max(lo, i - near + 1), b = std::min(hi, last + near - 1);
+      off(j, done, a, false);
+      stretch(j, a, b);
+      done = b + 1;
+      i = last + near;
+    }
+    off(j, done, hi + 1, false);
+  }
+};
 
 }  // namespace
 
@@ -181,26 +279,21 @@ Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector
   return s;
 }
 
-std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest, Scratch& scratch, const Spans* spans,
-                                    bool off_seeds) {
+Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
+                               Buffer<int>& nearest, Scratch& scratch, const Spans* spans, bool off_seeds) {
   const float big = 1e20f;
   const int w = r.w, h = r.h;
-  std::vector<float>& f = scratch.f;
-  std::vector<int>& row_of = scratch.ints;
+  Buffer<float>& f = scratch.f;
+  Buffer<int>& row_of = scratch.ints;
   f.resize(r.size());  // both written in full (on the spans) by the sweeps
   row_of.resize(r.size());
   // With spans, a column's sample at cap or beyond is left out of the rows' envelopes: it
   // brings no cell below cap.
   const bool prune = spans != nullptr;
-  const int near = ceil_sqrt(cap);  // (near - 1)^2 < cap <= near^2
   column_sweeps(r, seed, spans, off_seeds, prune ? float(cap) : big, row_of, f);
-  const int n = std::max(w, h);
-  std::vector<int> v(n + 1), arg(n);
-  std::vector<double> z(n + 2);
-  std::vector<float> out(n);
-  std::vector<int> d(r.size());
-  nearest.resize(r.size());  // every cell written below
+  Buffer<int> d(r.size());  // d and nearest: every cell written below
+  nearest.resize(r.size());
+  RowPass rows{r, f, row_of, cap, base, prune, d, nearest};
   for (int j = 0; j < h; ++j) {
     const std::size_t row = std::size_t(j) * w;
     int lo = spans ? spans->lo[j] : 0, hi = spans ? spans->hi[j] : w - 1;
@@ -209,56 +302,36 @@ std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint
       if (lo > 0) row_of[row + --lo] = j, f[row + lo] = 0;
       if (hi < w - 1) row_of[row + ++hi] = j, f[row + hi] = 0;
     }
-    // Cells off the span (seeds or at cap) or out of reach (at cap).
-    const auto off = [&](int i0, int i1, bool seeds) {
-      for (int i = i0; i < i1; ++i) {
-        d[row + i] = seeds ? 0 : cap;
-        nearest[row + i] = seeds ? int(row + i) : -1;
-      }
-    };
-    off(0, std::min(lo, w), off_seeds);
-    off(std::max(lo, hi + 1), w, off_seeds);
+    // Cells off the span (seeds or at cap).
+    rows.off(j, 0, std::min(lo, w), off_seeds);
+    rows.off(j, std::max(lo, hi + 1), w, off_seeds);
     if (lo > hi) continue;
-    const float* frow = f.data() + row;
-    // The row's stretch from a to b (the whole span unless pruned: see below).
-    const auto stretch = [&](int a, int b) {
-      distance_1d(frow + a, b - a + 1, big, base + a, out.data(), arg.data(), v, z);
-      for (int i = a; i <= b; ++i) {
-        const std::size_t c = row + i;
-        const float o = out[i - a];
-        // Squared distances are integers (exact in float below 2^24, and every float above
-        // 2^23 is an integer): rounding is a truncation of x + 0.5.
-        d[c] = o >= float(cap) ? cap : int(o + 0.5f);
-        const int si = arg[i - a] + a;
-        nearest[c] = o < 1e19f ? row_of[row + si] * w + si : -1;
-      }
-    };
-    if (!prune) {
-      stretch(lo, hi);
+    if (!off_seeds) {
+      rows.part(j, lo, hi);
       continue;
     }
-    // Pruned, a kept sample brings below cap only the cells closer than `near` to it: the
-    // clusters of kept samples are done apart, each with its cells that close (the
-    // envelope of a cluster's samples is the row's there), and the rest is at cap.
-    off(lo, hi + 1, false);
+    // Dense seeds (the erosion's outside): a seed is its own nearest and splits the row (see
+    // distance_1d), so only the runs between seeds are transformed, each with the seeds that
+    // bound it; the rest costs a write.
+    const float* frow = f.data() + row;
     for (int i = lo; i <= hi;) {
-      if (!(frow[i] < big)) {
+      if (frow[i] == 0) {
+        rows.off(j, i, i + 1, true);
         ++i;
         continue;
       }
-      int last = i;
-      for (int k = i + 1; k <= hi && k <= last + 2 * near - 2; ++k)
-        if (frow[k] < big) last = k;
-      stretch(std::max(lo, i - near + 1), std::min(hi, last + near - 1));
-      i = last + near;
+      int b = i;
+      while (b < hi && frow[b + 1] != 0) ++b;
+      rows.part(j, std::max(lo, i - 1), std::min(hi, b + 1));
+      i = b + 2;  // b + 1, a seed, was done with the run
     }
   }
   return d;
 }
 
-std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next,
-                            const Spans* spans) {
-  std::vector<int> b2(r.size(), -1);
+Buffer<int> bottleneck(const Raster& r, const Buffer<int>& d2, int cap, Buffer<int>& next,
+                       const Spans* spans) {
+  Buffer<int> b2(r.size());
   // Each bucket is a stack threaded through `next` (a cell enters one bucket, once; its
   // entry is written before it is read).
   std::vector<std::int32_t> head(std::size_t(cap) + 1, -1);
@@ -273,7 +346,10 @@ std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap
     b2[c] = d2[c];
     push(c);
   };
-  if (spans) seed_spans(r, *spans, cap, b2, seed);
+  if (spans)
+    seed_spans(r, *spans, cap, b2, seed);
+  else
+    std::fill(b2.begin(), b2.end(), -1);
   for (int i = 0; i < r.w; ++i) {
     seed(i, 0);
     seed(i, r.h - 1);
@@ -282,20 +358,28 @@ std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap
     seed(0, j);
     seed(r.w - 1, j);
   }
-  const std::size_t size = r.size();
+  const std::size_t size = r.size(), w = std::size_t(r.w);
+  const auto reach = [&](std::size_t e, int level) {
+    if (b2[e] >= 0) return;
+    b2[e] = std::min(level, d2[e]);
+    push(e);
+  };
   for (int level = cap; level >= 0; --level) {
     while (head[level] >= 0) {
-      const std::uint32_t c = std::uint32_t(head[level]);
+      const std::size_t c = std::size_t(head[level]);
       head[level] = next[c];
       // Every border cell was seeded above, so a step that wraps to the other side of the
-      // raster lands on a cell already set; only steps off its ends need a test.
-      const std::size_t nb[4] = {std::size_t(c) - 1, std::size_t(c) + 1, std::size_t(c) - r.w,
-                                 std::size_t(c) + r.w};
-      for (int k = 0; k < 4; ++k) {
-        if (nb[k] >= size || b2[nb[k]] >= 0) continue;
-        b2[nb[k]] = std::min(level, d2[nb[k]]);
-        push(nb[k]);
+      // raster lands on a cell already set; only the steps of the first and last rows'
+      // cells may leave it.
+      if (c >= w && c + w < size) {
+        reach(c - 1, level);
+        reach(c + 1, level);
+        reach(c - w, level);
+        reach(c + w, level);
+        continue;
       }
+      for (const std::size_t e : {c - 1, c + 1, c - w, c + w})
+        if (e < size) reach(e, level);
     }
   }
   return b2;
@@ -308,7 +392,7 @@ int ceil_sqrt(int x) {
   return s;
 }
 
-double bilinear(const Raster& r, const std::vector<float>& f, const Vec& c) {
+double bilinear(const Raster& r, const Buffer<float>& f, const Vec& c) {
   const double x = std::clamp(c.x(), 0.0, double(r.w - 1) - 1e-9);
   const double y = std::clamp(c.y(), 0.0, double(r.h - 1) - 1e-9);
   const int i = int(x), j = int(y);
@@ -317,7 +401,7 @@ double bilinear(const Raster& r, const std::vector<float>& f, const Vec& c) {
   return (1 - fy) * ((1 - fx) * f[a] + fx * f[a + 1]) + fy * ((1 - fx) * f[a + r.w] + fx * f[a + r.w + 1]);
 }
 
-Points trace(const Raster& r, const std::vector<int>& label, int label_id, std::size_t start) {
+Points trace(const Raster& r, const Buffer<int>& label, int label_id, std::size_t start) {
   static const int dx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
   static const int dy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
   const auto dir_of = [](int x, int y) {

@@ -6,6 +6,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 namespace section::morph {
@@ -22,11 +24,37 @@ struct Raster {
   Vec to_world(const Vec& c) const { return {x0 + c.x() * cell, y0 + c.y() * cell}; }
 };
 
+/// An allocator that leaves the elements of a resize uninitialised: a raster buffer whose
+/// cells are all written before they are read is not zeroed first (a pass over the whole
+/// raster, and the touch of every fresh page).
+template <class T>
+struct NoInit : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = NoInit<U>;
+  };
+  NoInit() = default;
+  template <class U>
+  NoInit(const NoInit<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// A raster-sized buffer: resize() leaves new cells undefined.
+template <class T>
+using Buffer = std::vector<T, NoInit<T>>;
+
 /// Raster-sized buffers handed from step to step of one pass: each fresh page costs a page
 /// fault (the kernel zeroes it), more than most steps' own work on it.
 struct Scratch {
-  std::vector<float> f;
-  std::vector<int> ints;
+  Buffer<float> f;
+  Buffer<int> ints;
   std::vector<std::uint8_t> bytes;
 };
 
@@ -51,27 +79,27 @@ Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector
 /// spans get `cap` and -1, or with `off_seeds` are seeds themselves (0 and their own
 /// index; the distances on the spans are then those of these seeds too).
 /// Uses scratch.f and scratch.ints (not scratch.bytes, which may hold `seed`).
-std::vector<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
-                                    std::vector<int>& nearest, Scratch& scratch, const Spans* spans = nullptr,
-                                    bool off_seeds = false);
+Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
+                               Buffer<int>& nearest, Scratch& scratch, const Spans* spans = nullptr,
+                               bool off_seeds = false);
 
 /// For every cell, the largest t such that a 4-connected path from the raster border
 /// reaches it through cells with d2 >= t (the bottleneck of the widest path): the cell is
 /// outside the band of radius r exactly when b2 > r^2. Bucket queue over the (clamped,
 /// integer) keys: O(cells). With `spans` (those of distance_transform, d2 = cap off
 /// them), the cells off the spans get cap, their value, without a visit.
-std::vector<int> bottleneck(const Raster& r, const std::vector<int>& d2, int cap, std::vector<int>& next,
-                            const Spans* spans = nullptr);
+Buffer<int> bottleneck(const Raster& r, const Buffer<int>& d2, int cap, Buffer<int>& next,
+                       const Spans* spans = nullptr);
 
 /// Smallest r with r * r >= x.
 int ceil_sqrt(int x);
 
 /// f at cell coordinates c, bilinear between cell centres (clamped to the raster).
-double bilinear(const Raster& r, const std::vector<float>& f, const Vec& c);
+double bilinear(const Raster& r, const Buffer<float>& f, const Vec& c);
 
 /// Moore-neighbour trace of the component labelled `label` starting at its first cell in
 /// raster order; stops when the first move repeats (Jacob's criterion), so one-cell-wide
 /// parts are walked on both sides. Returns cell coordinates.
-Points trace(const Raster& r, const std::vector<int>& label, int label_id, std::size_t start);
+Points trace(const Raster& r, const Buffer<int>& label, int label_id, std::size_t start);
 
 }  // namespace section::morph

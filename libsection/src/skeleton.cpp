@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -32,6 +33,23 @@ struct ThinTable {
   }
 };
 
+/// Calls fn(c) for each nonzero byte c of img, in order; zero words of 8 bytes are passed
+/// over whole (most of a crop is background, most of a thinned one too).
+template <class Fn>
+void for_each_set(const std::vector<std::uint8_t>& img, const Fn& fn) {
+  const std::size_t n = img.size();
+  for (std::size_t c = 0; c < n;) {
+    std::uint64_t word = 1;
+    if (c + 8 <= n) std::memcpy(&word, img.data() + c, sizeof word);
+    if (word == 0) {
+      c += 8;
+      continue;
+    }
+    for (const std::size_t end = std::min(c + 8, n); c < end; ++c)
+      if (img[c]) fn(c);
+  }
+}
+
 /// Zhang-Suen thinning of a binary image (w x h, 1 = foreground, the outermost rows and
 /// columns empty), in place. Only cells next to a deletion are looked at again, so the cost
 /// is about the area.
@@ -40,12 +58,12 @@ void thin(std::vector<std::uint8_t>& img, int w, int h) {
   // Foreground cells are never on the image's frame (the caller leaves it empty), so their
   // neighbours are all inside: fixed offsets, no bounds tests.
   const std::ptrdiff_t W = w;
-  const std::ptrdiff_t around[9] = {-W - 1, -W, -W + 1, -1, 0, 1, W - 1, W, W + 1};
+  const std::ptrdiff_t around[8] = {-W - 1, -W, -W + 1, -1, 1, W - 1, W, W + 1};
   std::vector<std::uint32_t> cand;
   std::vector<std::uint8_t> mark(img.size(), 0);
-  for (std::size_t c = 0; c < img.size(); ++c)
-    if (img[c] && (!img[c - 1] || !img[c + 1] || !img[c - W] || !img[c + W]))
-      cand.push_back(std::uint32_t(c));
+  for_each_set(img, [&](std::size_t c) {
+    if (!img[c - 1] || !img[c + 1] || !img[c - W] || !img[c + W]) cand.push_back(std::uint32_t(c));
+  });
   // The sub-steps (bit 0, bit 1) a cell was kept in since its neighbourhood last changed:
   // kept in both, it is kept again until a neighbour goes, so it is not tested meanwhile.
   std::vector<std::uint8_t> kept(img.size(), 0);
@@ -106,10 +124,12 @@ Crop crop(const Pass& pass, const Component& comp) {
   c.w = i1 - i0 + 3;
   c.h = j1 - j0 + 3;
   c.img.assign(std::size_t(c.w) * c.h, 0);
-  for (int j = j0; j <= j1; ++j)
-    for (int i = i0; i <= i1; ++i)
-      c.img[std::size_t(j - j0 + 1) * c.w + (i - i0 + 1)] =
-          pass.label[std::size_t(j) * r.w + i] == comp.label;
+  // By row pointers: the loop over a row is vectorised.
+  for (int j = j0; j <= j1; ++j) {
+    const int* label = pass.label.data() + std::size_t(j) * r.w + i0;
+    std::uint8_t* out = c.img.data() + std::size_t(j - j0 + 1) * c.w + 1;
+    for (int i = 0; i <= i1 - i0; ++i) out[i] = label[i] == comp.label;
+  }
   return c;
 }
 
@@ -167,8 +187,7 @@ void skeleton_of(const Pass& pass, const Component& comp, MorphologyResult& resu
   if (c.img.empty()) return;
   thin(c.img, c.w, c.h);
   std::vector<std::uint32_t> cells;
-  for (std::size_t k = 0; k < c.img.size(); ++k)
-    if (c.img[k]) cells.push_back(std::uint32_t(k));
+  for_each_set(c.img, [&](std::size_t k) { cells.push_back(std::uint32_t(k)); });
   if (cells.empty()) return;
   Points path;
   std::vector<double> radius;
