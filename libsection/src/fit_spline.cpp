@@ -182,7 +182,7 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
   // In adaptive mode the first curve only has to show where the curvature is: its
   // uniform spans cannot follow the edges, and iterating them to convergence is slow.
   FitSplineOptions first = o;
-  if (o.control_points == 0) first.max_iterations = std::min(o.max_iterations, 4);
+  if (o.control_points == 0) first.max_iterations = std::min(o.max_iterations, o.first_iterations);
   Refinement r = refine(curve, measured, first);
   result.iterations = r.iterations;
   if (o.control_points == 0) adapt_knots(measured, o, stop_at_fold, r, result);

@@ -28,17 +28,18 @@ struct FitSplineOptions {
   int max_control_points = 1500;     ///< adaptive: cap on control points per loop
   int max_rounds = 12;               ///< adaptive: knot insertion rounds
   int max_iterations = 30;           ///< distance-minimisation iterations per round
-  double convergence = 1e-2;         ///< stop iterating when the RMS changes by less than this fraction
-  double fairness = 1e-5;            ///< weight of the control polygon's second differences
-  double smoothing_length = 0.15;    ///< mm: strength of the change-of-curvature penalty; 0 = off
-  double outlier_distance = 0;       ///< mm: isolated points farther off are ignored; 0 = automatic
-  double outlier_floor = 0.02;       ///< mm: least automatic outlier distance (6 noise sigmas otherwise)
-  int samples = 0;                   ///< stream stage: points per loop in the "samples" table (0 = none)
-  double sample_spacing = 0;         ///< mm, stream stage: spacing of "samples" (0 = use `samples`)
-  double gap_factor = 10;            ///< a stretch without points longer than this many spacings is a hole
-  double layer_ratio = 1.6;          ///< residual spread (noise sigmas) marking two layers; 0 = off
-  double layer_separation = 2;       ///< noise sigmas: least separation of two layers reported
-  int threads = 0;                   ///< stream stage: worker threads over the loops; 0 = all cores
+  int first_iterations = 4;   ///< adaptive: iterations of the first curve, whose curvature places the knots
+  double convergence = 1e-2;  ///< stop iterating when the RMS changes by less than this fraction
+  double fairness = 1e-5;     ///< weight of the control polygon's second differences
+  double smoothing_length = 0.15;  ///< mm: strength of the change-of-curvature penalty; 0 = off
+  double outlier_distance = 0;     ///< mm: isolated points farther off are ignored; 0 = automatic
+  double outlier_floor = 0.02;     ///< mm: least automatic outlier distance (6 noise sigmas otherwise)
+  int samples = 0;                 ///< stream stage: points per loop in the "samples" table (0 = none)
+  double sample_spacing = 0;       ///< mm, stream stage: spacing of "samples" (0 = use `samples`)
+  double gap_factor = 10;          ///< a stretch without points longer than this many spacings is a hole
+  double layer_ratio = 1.6;        ///< residual spread (noise sigmas) marking two layers; 0 = off
+  double layer_separation = 2;     ///< noise sigmas: least separation of two layers reported
+  int threads = 0;                 ///< stream stage: worker threads over the loops; 0 = all cores
 };
 
 /// What fit_spline returns: the fitted curve and its fit diagnostics.
