@@ -96,8 +96,19 @@ int band_column(int i, int o, const Topology& t) {
   return c < 0 ? c + t.n : c - t.n;
 }
 
-/// The global solver (CHOLMOD) for the band's pattern, analysed once per curve: A's entries
-/// are all band entries (both triangles, columns sorted), read from the band's rows.
+/// An elimination order that turns the band into a plain band of half-width 4, whose
+/// factor has no fill outside it: open curves in their own order, closed ones from both
+/// ends inwards (0, n-1, 1, n-2, ...), which puts the wrap-around neighbours side by side.
+/// Known in advance, it spares the search for a fill-reducing order (AMD) on every curve.
+std::vector<int> band_order(const Topology& t) {
+  std::vector<int> order(t.n);
+  for (int k = 0; k < t.n; ++k) order[k] = !t.closed ? k : (k % 2 == 0 ? k / 2 : t.n - 1 - k / 2);
+  return order;
+}
+
+/// The global solver (CHOLMOD) for the band's pattern, analysed once per curve in the band
+/// order: A's entries are all band entries (both triangles, columns sorted), read from the
+/// band's rows.
 std::unique_ptr<detail::CholmodSolver> band_solver(const Topology& t) {
   const int n = t.n;
   std::vector<int> ap(n + 1, 0), ai, source;
@@ -122,7 +133,7 @@ std::unique_ptr<detail::CholmodSolver> band_solver(const Topology& t) {
     }
     ap[col + 1] = static_cast<int>(ai.size());
   }
-  return std::make_unique<detail::CholmodSolver>(n, ap, ai, std::move(source), "smooth");
+  return std::make_unique<detail::CholmodSolver>(n, ap, ai, std::move(source), "smooth", band_order(t));
 }
 
 /// The paper's point-by-point iteration on the same frozen-length system, warm-started

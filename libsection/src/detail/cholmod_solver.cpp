@@ -33,7 +33,7 @@ struct CholmodSolver::Impl {
     cholmod_finish(&common);
   }
   void setup(int n, const std::vector<int>& col_start, const std::vector<int>& rows,
-             const std::vector<int>& source);
+             const std::vector<int>& source, const std::vector<int>& order);
 
   std::string who;
   int n = 0;
@@ -46,7 +46,7 @@ struct CholmodSolver::Impl {
 };
 
 void CholmodSolver::Impl::setup(int size, const std::vector<int>& col_start, const std::vector<int>& rows,
-                                const std::vector<int>& source) {
+                                const std::vector<int>& source, const std::vector<int>& order_given) {
   n = size;
   // A with its entry numbers as values (to follow them), read as its lower triangle.
   std::vector<int> ap = col_start, ai = rows;
@@ -64,8 +64,16 @@ void CholmodSolver::Impl::setup(int size, const std::vector<int>& col_start, con
   a.dtype = CHOLMOD_DOUBLE;
   a.sorted = 1;
   a.packed = 1;
-  // The fill-reducing ordering, as an analysis of A picks it.
-  factor = cholmod_analyze(&a, &common);
+  // The fill-reducing ordering: the caller's, or the one an analysis of A picks.
+  if (!order_given.empty()) {
+    if (order_given.size() != static_cast<std::size_t>(n)) throw Error(who + ": an order of the wrong size");
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_GIVEN;
+    std::vector<int> given = order_given;  // cholmod_analyze_p takes a non-const pointer
+    factor = cholmod_analyze_p(&a, given.data(), nullptr, 0, &common);
+  } else {
+    factor = cholmod_analyze(&a, &common);
+  }
   if (!factor) throw Error(who + ": CHOLMOD could not analyse the system");
   int* order = static_cast<int*>(factor->Perm);
   perm.assign(order, order + n);
@@ -89,9 +97,9 @@ void CholmodSolver::Impl::setup(int size, const std::vector<int>& col_start, con
 }
 
 CholmodSolver::CholmodSolver(int n, const std::vector<int>& col_start, const std::vector<int>& rows,
-                             std::vector<int> source, const std::string& who)
+                             std::vector<int> source, const std::string& who, const std::vector<int>& order)
     : impl_(new Impl(who)) {
-  impl_->setup(n, col_start, rows, source);  // on a throw, ~Impl releases what was made
+  impl_->setup(n, col_start, rows, source, order);  // on a throw, ~Impl releases what was made
 }
 
 CholmodSolver::~CholmodSolver() = default;

@@ -16,9 +16,11 @@ class CholmodSolver {
 public:
   /// The n x n matrix's pattern, column by column: rows[col_start[c] .. col_start[c + 1])
   /// are the rows of column c's entries (both triangles, sorted), and source[k] the place
-  /// of entry k's value in the array given to solve. Errors begin with `who`.
+  /// of entry k's value in the array given to solve. Errors begin with `who`. `order`, when
+  /// not empty, is a fill-reducing order the caller knows (row `order[k]` eliminated k-th);
+  /// otherwise CHOLMOD's analysis picks one (AMD).
   CholmodSolver(int n, const std::vector<int>& col_start, const std::vector<int>& rows,
-                std::vector<int> source, const std::string& who);
+                std::vector<int> source, const std::string& who, const std::vector<int>& order = {});
   ~CholmodSolver();
   CholmodSolver(const CholmodSolver&) = delete;
   CholmodSolver& operator=(const CholmodSolver&) = delete;
