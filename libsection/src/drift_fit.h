@@ -38,10 +38,9 @@ public:
   void for_each_within(const Vec& c, double r, F&& f) const {
     const std::int64_t x0 = coord(c.x() - r), x1 = coord(c.x() + r), y0 = coord(c.y() - r),
                        y1 = coord(c.y() + r);
-    for (std::int64_t x = x0; x <= x1; ++x)
-      for (std::int64_t y = y0; y <= y1; ++y)
-        for (int i = head(x, y); i >= 0; i = next_[std::size_t(i)])
-          if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) f(i);
+    for_each_in_cells(x0, x1, y0, y1, [&](int i) {
+      if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) f(i);
+    });
   }
   // The points within r of c, in ascending order.
   std::vector<int> within(const Vec& c, double r) const {
@@ -69,10 +68,9 @@ public:
     const double sure = 0.999 * cell_;
     if (std::max(std::abs(c.x()), std::abs(c.y())) < 1e12 * cell_) {  // far from coord's clamp
       const std::int64_t cx = coord(c.x()), cy = coord(c.y());
-      for (std::int64_t x = cx - 1; x <= cx + 1; ++x)
-        for (std::int64_t y = cy - 1; y <= cy + 1; ++y)
-          for (int i = head(x, y); i >= 0; i = next_[std::size_t(i)])
-            if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) take(i);
+      for_each_in_cells(cx - 1, cx + 1, cy - 1, cy + 1, [&](int i) {
+        if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) take(i);
+      });
       if (r < sure || (best >= 0 && bd < sure * sure)) return best;
       best = -1;
     }
@@ -91,12 +89,27 @@ private:
     return std::int64_t((std::uint64_t(x) << 32) ^ (std::uint64_t(y) & 0xffffffffULL));
   }
   std::int64_t key(const Vec& p) const { return pack(coord(p.x()), coord(p.y())); }
-  // The first point of cell (x, y)'s list, -1 for none.
-  int head(std::int64_t x, std::int64_t y) const {
-    if (!heads_.empty()) {
-      if (x < x0_ || y < y0_ || x - x0_ >= nx_ || y - y0_ >= ny_) return -1;
-      return heads_[std::size_t((x - x0_) * ny_ + (y - y0_))];
+  // Calls f(i) for every point of the cells [x0, x1] x [y0, y1]. The array's rows are
+  // clipped to its box once, not each cell tested against it (a quarter of the drift
+  // band's nearest searches went to the cells' bounds and offsets).
+  template <class F>
+  void for_each_in_cells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, F&& f) const {
+    if (heads_.empty()) {
+      for (std::int64_t x = x0; x <= x1; ++x)
+        for (std::int64_t y = y0; y <= y1; ++y)
+          for (int i = head(x, y); i >= 0; i = next_[std::size_t(i)]) f(i);
+      return;
     }
+    const std::int64_t xa = std::max(x0, x0_) - x0_, xb = std::min(x1, x0_ + nx_ - 1) - x0_;
+    const std::int64_t ya = std::max(y0, y0_) - y0_, yb = std::min(y1, y0_ + ny_ - 1) - y0_;
+    for (std::int64_t x = xa; x <= xb; ++x) {
+      const int* row = heads_.data() + x * ny_;
+      for (std::int64_t y = ya; y <= yb; ++y)
+        for (int i = row[y]; i >= 0; i = next_[std::size_t(i)]) f(i);
+    }
+  }
+  // The first point of cell (x, y)'s list in the table, -1 for none.
+  int head(std::int64_t x, std::int64_t y) const {
     const Slot* s = find(pack(x, y));
     return s ? s->head : -1;
   }
@@ -205,6 +218,52 @@ double profile_length(const MorphologyResult& ordered);
 void near_plane(const std::vector<Eigen::Vector3d>& nearby, double limit, std::vector<Vec>& uv,
                 std::vector<double>& dz);
 
+// The normal equations' lower triangle (A) and right side (b) over the used rows, each
+// entry summed in row order (the same sums of the same products as one outer product a
+// row gives: the same numbers), two entries a step: lanes (2p, 2p + 1) of column j from
+// the pair holding j (an entry above the diagonal comes along, unused), and for odd N the
+// last lane's entries in pairs of columns. The scalar form was a load, a multiply, an add
+// and a store an entry, 5 % of `slice`.
+template <int N>
+void normal_equations(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
+                      const std::vector<char>& use, Eigen::Matrix<double, N, N>& A,
+                      Eigen::Matrix<double, N, 1>& b) {
+  constexpr int P = N / 2, odd = N % 2;
+  constexpr int columns = (P + 1) * P + odd * P + P;  // sum over j of P - j / 2, the last lane, b
+  Eigen::Matrix<double, 2, columns> acc = Eigen::Matrix<double, 2, columns>::Zero();
+  double last = 0, b_last = 0;  // A(N - 1, N - 1) and b(N - 1) for odd N
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (!use[r]) continue;
+    const Eigen::Matrix<double, N, 1>& x = rows[r];
+    const double y = rhs[r];
+    int k = 0;
+#pragma GCC unroll 16
+    for (int j = 0; j < N; ++j)
+#pragma GCC unroll 8
+      for (int p = j / 2; p < P; ++p) acc.col(k++) += x.template segment<2>(2 * p) * x(j);
+    if constexpr (odd == 1) {
+#pragma GCC unroll 8
+      for (int p = 0; p < P; ++p) acc.col(k++) += x.template segment<2>(2 * p) * x(N - 1);
+      last += x(N - 1) * x(N - 1);
+      b_last += x(N - 1) * y;
+    }
+#pragma GCC unroll 8
+    for (int p = 0; p < P; ++p) acc.col(k++) += x.template segment<2>(2 * p) * y;
+  }
+  int k = 0;
+  for (int j = 0; j < N; ++j)
+    for (int p = j / 2; p < P; ++p, ++k)
+      for (int i = std::max(2 * p, j); i < 2 * p + 2; ++i) A(i, j) = acc(i - 2 * p, k);
+  if constexpr (odd == 1) {
+    for (int p = 0; p < P; ++p, ++k) A(N - 1, 2 * p) = acc(0, k), A(N - 1, 2 * p + 1) = acc(1, k);
+    A(N - 1, N - 1) = last;
+    b(N - 1) = b_last;
+  }
+  for (int p = 0; p < P; ++p, ++k) b(2 * p) = acc(0, k), b(2 * p + 1) = acc(1, k);
+  for (int j = 1; j < N; ++j)
+    for (int i = 0; i < j; ++i) A(i, j) = A(j, i);
+}
+
 // Trimmed least squares for the drift fits: three passes, each on the rows within
 // 3 robust sigmas (plus 0.05 slab) of the last fit, with a ridge on the first `ridged`
 // unknowns (1e-3 of the first two's weight: a direction the pairs do not see, as V . t
@@ -219,23 +278,9 @@ bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std
   std::vector<double> res(rows.size()), sorted;
   sol.setZero();
   for (int pass = 0; pass < 3; ++pass) {
-    Eigen::Matrix<double, N, N> A = Eigen::Matrix<double, N, N>::Zero();
-    Eigen::Matrix<double, N, 1> b = Eigen::Matrix<double, N, 1>::Zero();
-    // The lower triangle only, mirrored after: each entry is the same sum of the same
-    // products as the full outer products give, at half the work. Unrolled, each inner
-    // loop has fixed bounds and its products pair up in vector registers (every sum in
-    // the same order: the same numbers; the drift band's fit took 6 % of `slice`).
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      if (use[r]) {
-        const Eigen::Matrix<double, N, 1>& x = rows[r];
-#pragma GCC unroll 16
-        for (int j = 0; j < N; ++j)
-#pragma GCC unroll 16
-          for (int i = j; i < N; ++i) A(i, j) += x(i) * x(j);
-        b += x * rhs[r];
-      }
-    for (int j = 1; j < N; ++j)
-      for (int i = 0; i < j; ++i) A(i, j) = A(j, i);
+    Eigen::Matrix<double, N, N> A;
+    Eigen::Matrix<double, N, 1> b;
+    normal_equations(rows, rhs, use, A, b);
     const double weight = A(0, 0) + A(1, 1);
     for (int j = 0; j < ridged; ++j) A(j, j) += (j < firm ? 1e-3 : firm_ridge) * weight + 1e-12;
     sol = A.ldlt().solve(b);

@@ -344,9 +344,21 @@ std::size_t read_ply_cloud(ByteSource& src, const CloudReadOptions& opt, const P
 
 void check_vertices(const Eigen::Vector3d* v, std::size_t m, unsigned long long first,
                     const std::string& name) {
-  bool bad = false;
+  // |x| <= max_coordinate, NaN not, as integers: a double's bits without the sign order
+  // like its magnitude (a NaN's above every number's), so limit - bits turns negative
+  // exactly where the test fails. Ors of differences pair up in vector registers; the
+  // floating compare did not (6 % of `slice` on a 5 M point scan).
+  std::uint64_t limit;
+  std::memcpy(&limit, &detail::max_coordinate, sizeof limit);
+  std::int64_t any = 0;
   const double* d = m ? v[0].data() : nullptr;
-  for (std::size_t k = 0; k < 3 * m; ++k) bad |= !(std::abs(d[k]) <= detail::max_coordinate);
+#pragma GCC unroll 8
+  for (std::size_t k = 0; k < 3 * m; ++k) {
+    std::uint64_t bits;
+    std::memcpy(&bits, d + k, sizeof bits);
+    any |= std::int64_t(limit - (bits & 0x7fffffffffffffffULL));
+  }
+  const bool bad = any < 0;
   for (std::size_t k = 0; bad && k < m; ++k) {
     if (!v[k].allFinite())
       throw Error("read_cloud: " + name + ": vertex " + std::to_string(first + k) +
