@@ -223,14 +223,14 @@ double noise_sigma(const Feet& f, const std::vector<double>& w) {
   if (!std::isnan(f.noise_all) && std::all_of(w.begin(), w.end(), [](double x) { return x > 0; }))
     return f.noise_all;
   const std::vector<std::size_t>& order = f.order;
-  std::vector<double> diffs(order.size());
-  std::size_t count = 0, prev = order.size();
+  std::vector<double> diffs;  // reserved, not zeroed: it is filled once
+  diffs.reserve(order.size());
+  std::size_t prev = order.size();
   for (std::size_t i : order) {
     if (w[i] <= 0) continue;
-    if (prev != order.size()) diffs[count++] = std::abs(f.signed_distance[i] - f.signed_distance[prev]);
+    if (prev != order.size()) diffs.push_back(std::abs(f.signed_distance[i] - f.signed_distance[prev]));
     prev = i;
   }
-  diffs.resize(count);
   return 1.4826 * median_nonnegative(std::move(diffs)) / std::sqrt(2.0);
 }
 

@@ -28,6 +28,28 @@ double points_per_span(const FitSplineOptions& o, double sigma) {
   return sigma < o.exact_noise ? std::max(o.min_span_points, o.exact_min_span_points) : o.min_span_points;
 }
 
+namespace {
+
+// The largest of v[i - reach .. i + reach] (wrapped) and 0 for each i, NaNs ignored,
+// m > reach: maxima over blocks of 2 reach + 1 from both ends (van Herk, Gil and Werman),
+// so a few operations per sample instead of 2 reach + 1. A maximum is exact in any order.
+std::vector<double> window_max(const std::vector<double>& v, std::size_t reach) {
+  const std::size_t m = v.size(), width = 2 * reach + 1, len = m + 2 * reach;
+  auto at = [&](std::size_t x) {  // x in [0, m + 2 reach): v[x - reach], wrapped
+    const std::size_t j = x + m - reach;
+    return v[j >= 2 * m ? j - 2 * m : (j >= m ? j - m : j)];
+  };
+  std::vector<double> forward(len), backward(len);
+  for (std::size_t x = 0; x < len; ++x) forward[x] = std::max(x % width == 0 ? 0.0 : forward[x - 1], at(x));
+  for (std::size_t x = len; x-- > 0;)
+    backward[x] = std::max(x + 1 == len || (x + 1) % width == 0 ? 0.0 : backward[x + 1], at(x));
+  std::vector<double> out(m);
+  for (std::size_t i = 0; i < m; ++i) out[i] = std::max(backward[i], forward[i + width - 1]);
+  return out;
+}
+
+}  // namespace
+
 // Knots spread by the approximation error of a cubic on a circle: a span of length h on
 // curvature k deviates by about (5/384) h^4 k^3, so h = (76.8 tol / k^3)^(1/4), between
 // min_span and initial_span. Edges (small radii) get dense knots, flanks sparse ones.
@@ -75,16 +97,7 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   }
   // Widen the dense stretches a little: the curvature of a curve that still cuts an
   // edge is lower than the true one and its peak narrower.
-  std::vector<double> widened(m);
-  const int reach = 16;
-  for (std::size_t i = 0; i < m; ++i) {
-    double d = 0;
-    for (int k = -reach; k <= reach; ++k) {
-      const std::size_t j = i + m + k;  // in [m - reach, 2 m + reach): one wrap at most, m > reach
-      d = std::max(d, density[j >= 2 * m ? j - 2 * m : (j >= m ? j - m : j)]);
-    }
-    widened[i] = d;
-  }
+  const std::vector<double> widened = window_max(density, 16);
   std::vector<double> cum(m + 1, 0);
   for (std::size_t i = 0; i < m; ++i) cum[i + 1] = cum[i] + widened[i] * ds[i];
   const int n = std::clamp(static_cast<int>(std::ceil(cum[m])), std::max(8, o.degree + 1),

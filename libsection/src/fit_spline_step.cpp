@@ -111,9 +111,10 @@ void add_change_of_curvature(const BSpline& c, const detail::PiecewiseCurve& pc,
   }
 }
 
-// The system as a sparse matrix: the band (both triangles), then fairness (second
-// differences of the control polygon), which keeps spans without data determined, and a
-// tiny pull toward the current control points, which keeps the system definite.
+// The system as a sparse matrix: the band, then fairness (second differences of the
+// control polygon), which keeps spans without data determined, and a tiny pull toward the
+// current control points, which keeps the system definite. Only the lower triangle: the
+// LDLT (orderings included) reads no other, and each entry sums its terms in the same order.
 Eigen::SparseMatrix<double> assemble(const BSpline& c, double fairness, Normal& eq) {
   const int n = eq.n, p = eq.p;
   std::vector<Eigen::Triplet<double>> trip;
@@ -125,8 +126,8 @@ Eigen::SparseMatrix<double> assemble(const BSpline& c, double fairness, Normal& 
       const int j = (i + o) % n;
       for (int r = 0; r < 2; ++r)
         for (int s = 0; s < 2; ++s) {
-          trip.emplace_back(2 * i + r, 2 * j + s, B(r, s));
-          if (o > 0) trip.emplace_back(2 * j + s, 2 * i + r, B(r, s));
+          if (o == 0 ? r >= s : j < i) trip.emplace_back(2 * i + r, 2 * j + s, B(r, s));
+          if (o > 0 && j > i) trip.emplace_back(2 * j + s, 2 * i + r, B(r, s));
         }
     }
   const double lambda = fairness * std::max(eq.trace / n, 1e-12);
@@ -137,7 +138,7 @@ Eigen::SparseMatrix<double> assemble(const BSpline& c, double fairness, Normal& 
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
         for (int r = 0; r < 2; ++r)
-          trip.emplace_back(2 * ids[a] + r, 2 * ids[b] + r, lambda * coef[a] * coef[b]);
+          if (ids[a] >= ids[b]) trip.emplace_back(2 * ids[a] + r, 2 * ids[b] + r, lambda * coef[a] * coef[b]);
     for (int r = 0; r < 2; ++r) {
       trip.emplace_back(2 * i + r, 2 * i + r, mu);
       eq.rhs(2 * i + r) += mu * c.control[i](r);
