@@ -96,6 +96,15 @@ TEST_CASE("fit_spline: exact circle points give a curve within 1 um", "[fit_spli
   }
 }
 
+TEST_CASE("fit_spline: a negative count of first iterations is refused", "[fit_spline]") {
+  const auto p =
+      curve_points([](double a) { return Vector2d(10 * std::cos(a), 10 * std::sin(a)); }, 400, 0, 1);
+  section::FitSplineOptions o;
+  o.first_iterations = -1;
+  CHECK_THROWS_WITH(section::fit_spline(p, p, o),
+                    Catch::Contains("first iterations -1 must not be negative"));
+}
+
 TEST_CASE("fit_spline: thin ellipse with 0.2 mm end radius within 1 um", "[fit_spline]") {
   const double a = 20, b = 2;  // end radius b^2 / a = 0.2 mm
   auto f = [&](double t) { return Vector2d(a * std::cos(t), b * std::sin(t)); };

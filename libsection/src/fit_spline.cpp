@@ -84,6 +84,9 @@ void check_options(const FitSplineOptions& o) {
     throw Error("fit_spline: tolerance, initial span and minimum span must be positive");
   if (!(o.smoothing_length >= 0) || !(o.outlier_floor >= 0))
     throw Error("fit_spline: smoothing length and outlier floor must not be negative");
+  if (o.first_iterations < 0)
+    throw Error("fit_spline: first iterations " + std::to_string(o.first_iterations) +
+                " must not be negative");
 }
 
 // First curve: least squares through the ordered profile on uniform chord-length knots.
