@@ -60,6 +60,18 @@ int SampledProfile::nearest_on_side(const Eigen::Vector2d& q, const Eigen::Vecto
   return best;
 }
 
+namespace {
+
+// How far a scan moves on from a sample `gap` farther from q than it needs (samples
+// `step` apart, n of them): the samples that cannot come near enough are passed over, with
+// a margin of two steps over the rounding.
+int samples_on(double gap, double step, int n) {
+  const double skip = gap > 3 * step ? gap / step - 2 : 0;
+  return 1 + static_cast<int>(std::min(skip, static_cast<double>(n)));
+}
+
+}  // namespace
+
 double SampledProfile::sample_distance(const Eigen::Vector2d& q) const {
   // Sample i + m is at least r_i - m step from q (r_i: sample i's distance), so the
   // samples after i that cannot come nearer than the best so far are skipped, with a
@@ -73,9 +85,7 @@ double SampledProfile::sample_distance(const Eigen::Vector2d& q) const {
   for (int i = 0; i < n;) {
     const double d2 = (samples[i] - q).squaredNorm();
     if (d2 < best2) best2 = d2, best = std::sqrt(d2);
-    const double gap = std::sqrt(d2) - best;  // NaN for a non-finite q: no skip
-    const double skip = gap > 3 * step ? gap / step - 2 : 0;
-    i += 1 + static_cast<int>(std::min(skip, static_cast<double>(n)));
+    i += samples_on(std::sqrt(d2) - best, step, n);  // NaN gap (a non-finite q): the next
   }
   return std::sqrt(best2);
 }
@@ -87,9 +97,7 @@ bool SampledProfile::sample_within(const Eigen::Vector2d& q, double r) const {
   for (int i = 0; i < n;) {
     const double d = std::sqrt((samples[i] - q).squaredNorm());
     if (d < r) return true;
-    const double gap = d - r;  // NaN for a non-finite q or r: no skip
-    const double skip = gap > 3 * step ? gap / step - 2 : 0;
-    i += 1 + static_cast<int>(std::min(skip, static_cast<double>(n)));
+    i += samples_on(d - r, step, n);  // NaN gap (a non-finite q or r): the next
   }
   return false;
 }

@@ -83,7 +83,7 @@ Stream parse_stream_text(std::string_view text, const std::string& source,
 struct FormattedStream {
   std::vector<std::string> formatted;         ///< pieces made here
   std::vector<std::unique_ptr<char[]>> rows;  ///< rows formatted here (into buffers not zeroed first)
-  std::vector<std::string_view> parts;        ///< every piece in order: views of `formatted` or of sources
+  std::vector<std::string_view> parts;  ///< every piece in order: views of `formatted`, `rows` or sources
   std::size_t size() const {
     std::size_t n = 0;
     for (const auto& p : parts) n += p.size();
