@@ -12,7 +12,8 @@ namespace {
 
 // Cuts each end of the path back to the last circle, within the end's tenth, that holds
 // the end's own circle (within a quarter cell): the medial axis runs on from a round
-// edge's centre to its tip inside the edge's circle, where the thinning's branch stopped.
+// edge's centre to its tip inside the edge's circle, where the thinning's branch stopped
+// (on a noisy outline the circles near the tip hold less than the end's: part stays).
 // Seeded with that spur, camber's edges bridged over holes moved by a micrometre or more,
 // and with the input's rounding (tests/tools/test_formats.sh). Cell coordinates.
 void trim_ends(Points& path, std::vector<double>& radius) {
