@@ -7,7 +7,7 @@
 // scores it) of the unperturbed input and its spread over the trials, then the worst.
 // Usage: fit_stability --streams PREFIX [--seeds N] [--first-seed S]
 //                      [--preset turbine|compressor|both] [--trials T] [--section K]
-//                      [--first-iterations N] [--quiet]
+//                      [--first-iterations N] [--bridge-factor F] [--quiet]
 // Trial t of T moves the coordinates by up to 10^(-8 + 2 (t-1)/(T-1)) mm.
 #include "section/extras/generate.h"
 #include "section/extras/score.h"
@@ -184,6 +184,8 @@ int main(int argc, char** argv) {
       opt.trials = std::atoi(argv[++i]);
     else if (a == "--first-iterations" && has_value)
       opt.fit.first_iterations = std::atoi(argv[++i]);
+    else if (a == "--bridge-factor" && has_value)
+      opt.fit.bridge_factor = std::atof(argv[++i]);
     else if (a == "--section" && has_value)
       opt.section = std::atoi(argv[++i]);
     else if (a == "--quiet")
@@ -192,7 +194,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: fit_stability --streams PREFIX [--seeds N] [--first-seed S] "
                    "[--preset turbine|compressor|both] [--trials T] [--section K] [--first-iterations N] "
-                   "[--quiet]\n");
+                   "[--bridge-factor F] [--quiet]\n");
       return 2;
     }
   }

@@ -140,6 +140,17 @@ void adapt_knots(const Points& measured, const FitSplineOptions& o, bool stop_at
     result.rounds = round + 1;
     r = std::move(next);
   }
+  // Holes holding more knots than their bridge needs get fewer (see bridge_holes), and the
+  // curve is refined on those. Done on the last knots only: the rounds' knots are left as
+  // they were, so that a fit without such a hole is not changed.
+  if (!(o.bridge_factor > 0)) return;
+  const std::vector<double> bridged =
+      fit::bridge_holes(r.curve, r.feet, measured, r.weights, o.bridge_factor, o.degree);
+  if (bridged.size() == r.curve.knots.size()) return;
+  Refinement next = refine(fit::reknot(r.curve, bridged), measured, o, &r.feet);
+  result.iterations += next.iterations;
+  if (stop_at_fold && self_intersects(next.curve)) return;
+  r = std::move(next);
 }
 
 // The distances of the measured points (outliers left out) to the final curve r.
@@ -183,7 +194,8 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
 
   FitSplineResult result;
   // In adaptive mode the first curve only has to show where the curvature is: its
-  // uniform spans cannot follow the edges, and iterating them to convergence is slow.
+  // uniform spans cannot follow the edges, and iterating them to convergence is slow
+  // (but 12 iterations make the knots stable to last-bit noise: docs/FITSPLINE.md).
   FitSplineOptions first = o;
   if (o.control_points == 0) first.max_iterations = std::min(o.max_iterations, o.first_iterations);
   Refinement r = refine(curve, measured, first);

@@ -89,6 +89,12 @@ double points_per_span(const FitSplineOptions& o, double sigma);
 std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double sigma,
                                     const FitSplineOptions& o);
 
+/// The knots of c with every hole (a stretch without measured points q longer than
+/// `factor` median spacings) holding no more than its bridge needs: one span per 30
+/// degrees of turning across it, at least two. Points of weight 0 do not count.
+std::vector<double> bridge_holes(const BSpline& c, const Feet& feet, const Points& q,
+                                 const std::vector<double>& w, double factor, int degree);
+
 /// Knots after splitting every span whose residuals hold more than noise.
 std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vector<double>& w, double sigma,
                                 const FitSplineOptions& o);

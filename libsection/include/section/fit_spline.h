@@ -28,9 +28,11 @@ struct FitSplineOptions {
   int max_control_points = 1500;     ///< adaptive: cap on control points per loop
   int max_rounds = 12;               ///< adaptive: knot insertion rounds
   int max_iterations = 30;           ///< distance-minimisation iterations per round
-  int first_iterations = 4;   ///< adaptive: iterations of the first curve, whose curvature places the knots
-  double convergence = 1e-2;  ///< stop iterating when the RMS changes by less than this fraction
-  double fairness = 1e-5;     ///< weight of the control polygon's second differences
+  int first_iterations = 4;  ///< adaptive: iterations of the first curve, whose curvature places the knots
+  double bridge_factor =
+      0;  ///< adaptive: holes this many spacings long get few knots (4 = the candidate); 0 = off
+  double convergence = 1e-2;       ///< stop iterating when the RMS changes by less than this fraction
+  double fairness = 1e-5;          ///< weight of the control polygon's second differences
   double smoothing_length = 0.15;  ///< mm: strength of the change-of-curvature penalty; 0 = off
   double outlier_distance = 0;     ///< mm: isolated points farther off are ignored; 0 = automatic
   double outlier_floor = 0.02;     ///< mm: least automatic outlier distance (6 noise sigmas otherwise)
