@@ -94,9 +94,10 @@ TEST_CASE("tool options: --help answers with exit code 0 without the required fl
 }
 
 TEST_CASE("tool options: smooth, fitspline and camber read their flags into the stage options", "[tools]") {
-  const auto smooth =
-      parsed<SmoothArgs>({"--solver", "gauss-seidel", "--length", "0.5", "--report", "r.csv"});
+  const auto smooth = parsed<SmoothArgs>(
+      {"--solver", "gauss-seidel", "--length", "0.5", "--report", "r.csv", "--move-tolerance", "0"});
   REQUIRE(smooth.code == -1);
+  CHECK(smooth.args.options.move_tolerance == 0);
   CHECK(smooth.args.options.solver == section::SmoothSolver::gauss_seidel);
   CHECK(smooth.args.options.smoothing_length == 0.5);
   CHECK(smooth.args.report == "r.csv");

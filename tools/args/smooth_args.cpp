@@ -30,6 +30,9 @@ void SmoothArgs::declare(CLI::App& app) {
               CLI::IsMember({"cholmod", "gauss-seidel", "gauss_seidel"}));
   add_checked(app, "--max-iterations", options.max_iterations, "Cap on outer iterations",
               CLI::Range(1, 100000));
+  add_checked(app, "--move-tolerance", options.move_tolerance,
+              "Stop when no point moved farther across the curve (mean spacings); 0 = run to the cap",
+              CLI::NonNegativeNumber);
   app.add_option("--report", report, "Write the per-loop statistics (CSV) to FILE");
   app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
       ->check(CLI::NonNegativeNumber);

@@ -13,7 +13,8 @@ struct SmoothArgs {
   static constexpr const char* name = "smooth";
   static const char* const description;
   Common common;
-  SmoothOptions options;           ///< --length, --spacings, --a, --b, --solver, --max-iterations, --threads
+  /// --length, --spacings, --a, --b, --solver, --max-iterations, --move-tolerance, --threads
+  SmoothOptions options;
   std::string solver = "cholmod";  ///< --solver as given (options.solver is set from it)
   std::string report;              ///< --report: the per-loop statistics (CSV) to this file
   /// Declares the options on `app`, bound to these fields.

@@ -35,7 +35,9 @@ struct SmoothOptions {
   SmoothSolver solver = SmoothSolver::cholmod;  ///< linear solver of each outer iteration
   int max_iterations = 20;                      ///< cap on outer iterations (length updates)
   double tolerance = 1e-9;                      ///< stop when |E_k - E_{k-1}| <= tolerance * E_k
-  double move_tolerance = 1e-4;    ///< mean spacings: stop when no point moves farther across the curve
+  /// Mean spacings: stop when no point moved farther across the curve in the last iteration.
+  /// 0.006 spacing: on scans the later iterations only creep (docs/SMOOTH.md, issue 25).
+  double move_tolerance = 6e-3;
   double merge_distance = 1e-3;    ///< mean spacings: closer consecutive points are merged
   bool closed = true;              ///< the polyline is a closed loop (last point joins the first)
   int max_sweeps = 1000000;        ///< gauss_seidel only: cap on sweeps per outer iteration
