@@ -7,7 +7,6 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -84,13 +83,11 @@ void triangulate(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
 }
 
 // The dual tree of the inside triangles: a node per triangle at its circumcentre, with
-// its distance to the corners, joined across the unconstrained shared edges (at most
-// three per node: kept in place, not as a vector per node).
+// its distance to the corners, joined across the unconstrained shared edges.
 struct DualTree {
   std::vector<Eigen::Vector2d> node;
   std::vector<double> radius;
-  std::vector<std::array<int, 3>> adjacent;
-  std::vector<int> degree;
+  std::vector<std::vector<int>> adjacent;
 };
 
 // A near-degenerate triangle whose circumcentre leaves the polygon's bounding box is
@@ -103,9 +100,6 @@ DualTree dual_tree(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
   }
   DualTree tree;
   std::vector<Cdt::Face_handle> faces;
-  faces.reserve(cdt.number_of_faces());
-  tree.node.reserve(cdt.number_of_faces());
-  tree.radius.reserve(cdt.number_of_faces());
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     if (f->info().nesting % 2 != 1) continue;
     Eigen::Vector2d p[3];
@@ -123,13 +117,12 @@ DualTree dual_tree(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
     tree.radius.push_back(std::min({(c - p[0]).norm(), (c - p[1]).norm(), (c - p[2]).norm()}));
   }
   tree.adjacent.resize(faces.size());
-  tree.degree.assign(faces.size(), 0);
   for (std::size_t k = 0; k < faces.size(); ++k)
     for (int i = 0; i < 3; ++i) {
       const Cdt::Face_handle nb = faces[k]->neighbor(i);
       if (cdt.is_infinite(nb) || nb->info().nesting % 2 != 1) continue;
       if (cdt.is_constrained(Cdt::Edge(faces[k], i))) continue;
-      tree.adjacent[k][std::size_t(tree.degree[k]++)] = nb->info().index;
+      tree.adjacent[k].push_back(nb->info().index);
     }
   return tree;
 }
@@ -150,8 +143,8 @@ std::vector<int> longest_path(const DualTree& tree) {
       const int k = stack.back();
       stack.pop_back();
       if (distance[k] > distance[best]) best = k;
-      for (int a = 0; a < tree.degree[std::size_t(k)]; ++a)
-        if (const int j = tree.adjacent[std::size_t(k)][std::size_t(a)]; distance[j] < 0) {
+      for (int j : tree.adjacent[k])
+        if (distance[j] < 0) {
           distance[j] = distance[k] + (tree.node[j] - tree.node[k]).norm();
           parent[j] = k;
           stack.push_back(j);
