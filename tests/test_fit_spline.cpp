@@ -105,6 +105,16 @@ TEST_CASE("fit_spline: a negative count of first iterations is refused", "[fit_s
                     Catch::Contains("first iterations -1 must not be negative"));
 }
 
+TEST_CASE("fit_spline: a negative or NaN bridge factor is refused", "[fit_spline]") {
+  const auto p =
+      curve_points([](double a) { return Vector2d(10 * std::cos(a), 10 * std::sin(a)); }, 400, 0, 1);
+  for (const double f : {-1.0, std::nan(""), HUGE_VAL}) {
+    section::FitSplineOptions o;
+    o.bridge_factor = f;
+    CHECK_THROWS_WITH(section::fit_spline(p, p, o), Catch::Contains("bridge factor must be 0 (off)"));
+  }
+}
+
 TEST_CASE("fit_spline: thin ellipse with 0.2 mm end radius within 1 um", "[fit_spline]") {
   const double a = 20, b = 2;  // end radius b^2 / a = 0.2 mm
   auto f = [&](double t) { return Vector2d(a * std::cos(t), b * std::sin(t)); };

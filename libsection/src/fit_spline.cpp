@@ -87,6 +87,8 @@ void check_options(const FitSplineOptions& o) {
   if (o.first_iterations < 0)
     throw Error("fit_spline: first iterations " + std::to_string(o.first_iterations) +
                 " must not be negative");
+  if (!(o.bridge_factor >= 0) || !std::isfinite(o.bridge_factor))
+    throw Error("fit_spline: bridge factor must be 0 (off) or a positive number of spacings");
 }
 
 // First curve: least squares through the ordered profile on uniform chord-length knots.

@@ -29,8 +29,9 @@ struct FitSplineOptions {
   int max_rounds = 12;               ///< adaptive: knot insertion rounds
   int max_iterations = 30;           ///< distance-minimisation iterations per round
   int first_iterations = 4;  ///< adaptive: iterations of the first curve, whose curvature places the knots
-  double bridge_factor =
-      0;  ///< adaptive: holes this many spacings long get few knots (4 = the candidate); 0 = off
+  /// adaptive: holes longer than this many median spacings keep only the knots their bridge
+  /// needs (4 = the stable candidate, docs/FITSPLINE.md); 0 = off
+  double bridge_factor = 0;
   double convergence = 1e-2;       ///< stop iterating when the RMS changes by less than this fraction
   double fairness = 1e-5;          ///< weight of the control polygon's second differences
   double smoothing_length = 0.15;  ///< mm: strength of the change-of-curvature penalty; 0 = off
