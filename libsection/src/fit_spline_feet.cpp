@@ -103,7 +103,7 @@ std::vector<std::size_t> track_feet(const BSpline& c, const detail::PiecewiseCur
   const double step = period / (8.0 * static_cast<double>(c.control.size()));
   const double converged = 1e-12 * period;  // parameter step (about a length) that ends Newton
   std::vector<std::size_t> lost;
-  detail::PiecewiseCurve::Local at{0, 0};  // the last span located: consecutive points are close
+  detail::PiecewiseCurve::Cursor at;  // the last span located: consecutive points are close
   for (std::size_t k = 0; k < q.size(); ++k) {
     if (!previous) {
       lost.push_back(k);
@@ -112,8 +112,7 @@ std::vector<std::size_t> track_feet(const BSpline& c, const detail::PiecewiseCur
     double t = previous->t[k];
     bool ok = false;
     for (int it = 0; it < 8; ++it) {
-      at = pc.locate(t, at.span);
-      const detail::CurveJet j = pc.jet(at);
+      const detail::CurveJet j = pc.jet(pc.locate(t, at));
       const detail::SquaredDistance g = detail::squared_distance(j, q[k]);
       if (!(g.ddg > 0)) break;
       const double dt = -g.dg / g.ddg;
@@ -148,7 +147,7 @@ Points search_samples(const detail::PiecewiseCurve& pc, const std::vector<double
 void search_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
                  const std::vector<std::size_t>& lost, const FootSearch& search, Feet& f) {
   const double period = c.t_max() - c.t_min();
-  detail::PiecewiseCurve::Local at{0, 0};
+  detail::PiecewiseCurve::Cursor at;
   const std::vector<double>& ts = search.ts;
   const std::size_t m = ts.size();
   Points lost_points(lost.size());
@@ -159,11 +158,9 @@ void search_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
     const std::size_t i = static_cast<std::size_t>(idx[l]);
     const double a = i > 0 ? ts[i - 1] : ts[m - 1] - period;
     const double b = i + 1 < m ? ts[i + 1] : c.t_max();
-    auto distance = [&](double x) {
-      return detail::squared_distance(pc.jet(at = pc.locate(x, at.span)), q[k]);
-    };
+    auto distance = [&](double x) { return detail::squared_distance(pc.jet(pc.locate(x, at)), q[k]); };
     f.t[k] = wrap(pc, detail::minimise_bracket(distance, a, b, ts[i]));
-    const detail::CurveJet j = pc.jet(at = pc.locate(f.t[k], at.span));
+    const detail::CurveJet j = pc.jet(pc.locate(f.t[k], at));
     const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
     f.signed_distance[k] = (q[k] - j.point).dot(normal);
   }

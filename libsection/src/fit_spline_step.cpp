@@ -40,10 +40,10 @@ void add_points(const detail::PiecewiseCurve& pc, const Points& q, const Feet& f
   const int n = eq.n, p = Degree > 0 ? Degree : eq.p;
   double val[8];
   int idx[8];
-  detail::PiecewiseCurve::Local at{0, 0};  // the last span located: consecutive points are close
+  detail::PiecewiseCurve::Cursor cursor;  // the last span located: consecutive points are close
   for (std::size_t k = 0; k < q.size(); ++k) {
     if (w[k] <= 0) continue;
-    at = pc.locate(f.t[k], at.span);
+    const detail::PiecewiseCurve::Local at = pc.locate(f.t[k], cursor);
     const int first = pc.basis(at, val);
     for (int a = 0; a <= p; ++a) idx[a] = first + a < n ? first + a : first + a - n;
     const detail::CurveJet jet = pc.jet(at);

@@ -98,6 +98,24 @@ public:
     return {span, t - breaks_[span]};
   }
 
+  /// The last span located and its breaks, for loops that locate nearby parameters one after
+  /// another (Newton on a foot, points in order along the curve).
+  struct Cursor {
+    Local at{0, 0};
+    double lo = 0, hi = 0;  // the span's breaks (none before the first locate)
+  };
+
+  /// locate(t, cursor.at.span), and the cursor moved there. A t inside the cursor's span
+  /// takes two comparisons: a span lies inside the period (the domain), so such a t needs
+  /// no wrapping (clamping), and the search would find that span.
+  Local locate(double t, Cursor& cursor) const {
+    if (cursor.lo <= t && t < cursor.hi) return cursor.at = {cursor.at.span, t - cursor.lo};
+    cursor.at = locate(t, cursor.at.span);
+    cursor.lo = breaks_[cursor.at.span];
+    cursor.hi = breaks_[cursor.at.span + 1];
+    return cursor.at;
+  }
+
   /// Point and derivatives at t (wrapped into one period when closed, clamped when open).
   CurveJet jet(double t) const { return jet(locate(t)); }
 
