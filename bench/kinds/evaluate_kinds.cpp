@@ -391,8 +391,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "evaluate_kinds: no slice in %s (--tools DIR)\n", o.tools.c_str());
     return 2;
   }
-  const bool temporary = o.keep.empty();
-  if (temporary)
+  o.temporary = o.keep.empty();
+  if (o.temporary)
     o.keep = (fs::temp_directory_path() / ("evaluate_kinds." + std::to_string(::getpid()))).string();
   int failed = 0;
   std::vector<std::string> summary;
