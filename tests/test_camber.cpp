@@ -5,6 +5,7 @@
 #include "section/camber.h"
 
 #include "camber_fixtures.h"
+#include "section/checks.h"
 #include "section/error.h"
 #include "section/io/stream.h"
 #include "section/params.h"
@@ -240,4 +241,38 @@ TEST_CASE("camber: a medial branch that stops short of an edge centre is bridged
     kink = std::max(kink, (p[k + 1] - 2 * p[k] + p[k - 1]).norm());
   INFO("largest second difference " << kink * 1e3 << " um");
   CHECK(kink < 0.02);
+}
+
+TEST_CASE("camber: a finger the spline leaves beside a trailing edge is measured through or flagged",
+          "[camber]") {
+  // A bump of `height` edge radii, 0.12 R wide, a quarter radius to either side of the
+  // TE point: the medial branch runs on into it past the edge centre. Up to 6 % of R
+  // (12 um on a 0.2 mm edge) the edge is measured as without it; a taller one may take
+  // the edge circle, which then subtends too little of the flanks' turning and is flagged.
+  for (double side : {-1.0, 1.0})
+    for (double height : {0.03, 0.06, 0.1}) {
+      int k = 0;
+      for (const SectionDesign& d : designs()) {
+        CAPTURE(side, height, k++);
+        const SectionTruth truth = section::section_truth(d, 20000);
+        std::vector<Vector2d> pts = truth.profile;
+        const double r = truth.te_radius, at = truth.te_s + side * 0.25 * r, width = 0.12 * r;
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+          const double x = (truth.profile_s[i] - at) / width;
+          pts[i] += height * r * std::exp(-0.5 * x * x) * truth.profile_normal[i];
+        }
+        const BSpline spline = dense_spline(pts);
+        const section::CamberResult c = section::camber_line(spline);
+        const section::SectionParams p = section::section_params(spline, c);
+        const std::uint32_t te_flags =
+            section::bit(section::Check::te_circle) | section::bit(section::Check::te_radius);
+        const bool flag = (section::check_section(spline, c, p).flags & te_flags) != 0;
+        const bool good = std::abs(p.outlet_angle - truth.outlet_angle) < 0.5 &&
+                          relative(p.te_radius, r) < 0.1 && (c.te.center - truth.te_center).norm() < 0.1 * r;
+        CAPTURE(p.outlet_angle - truth.outlet_angle, relative(p.te_radius, r), c.te.arc);
+        if (height <= 0.06) CHECK(good);
+        CHECK((good || flag));
+        CHECK_FALSE((good && flag));
+      }
+    }
 }

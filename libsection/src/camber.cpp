@@ -202,7 +202,16 @@ void end_at_centre(const SampledProfile& pr, std::vector<InscribedCircle>& circl
   const bool round = e.shape == EdgeShape::round || options.edge == EdgeModel::round;
   // A circle much larger than the end's inscribed circle fits a flank, not the edge; on
   // an edge that is not circular the fitted centre moves with the arc taken.
-  if (!round || !e.circular || (e.center - end.center).norm() > e.radius || e.radius > 3 * end.radius) return;
+  if (!round || !e.circular) return;
+  // The medial end may have run on past the centre into a finger the spline left at the
+  // tip (a small end circle): the axis still passes through the edge circle when one of
+  // its circles is nearly it, and the run-on is dropped below.
+  const auto nearly_edge = [&e](const InscribedCircle& c) {
+    return (c.center - e.center).norm() <= 0.25 * e.radius &&
+           std::abs(c.radius - e.radius) <= 0.25 * e.radius;
+  };
+  const bool consistent = (e.center - end.center).norm() <= e.radius && e.radius <= 3 * end.radius;
+  if (!consistent && std::none_of(circles.begin(), circles.end(), nearly_edge)) return;
   std::vector<InscribedCircle> kept;
   // Medial circles close to the centre touch the profile near the edge-arc junction,
   // where the spline's curvature jump ripples: leaving out those within 0.3 edge radii

@@ -115,6 +115,9 @@ struct Checker {
     const double pass = f.inside ? e.radius - f.distance : e.radius + f.distance;
     const double limit = options.noise_factor * std::max(options.noise, e.fit_rms) + options.floor * pr.scale;
     if (pass > limit) return fail(c, pass, limit);
+    const double short_by = e.circular ? arc_shortfall(e, c == Check::le_radius) : 0;  // else flagged as such
+    if (short_by > options.arc_shortfall)
+      fail(c == Check::le_radius ? Check::le_circle : Check::te_circle, short_by, options.arc_shortfall);
     if (!(options.noise > 0) || !e.circular) return;  // not circular: flagged as such (le_circle)
     double worst = 0;
     const double span = e.arc_t1 - e.arc_t0;  // the walks from the edge point, unwrapped
@@ -124,6 +127,32 @@ struct Checker {
     const double arc_limit =
         2 * options.noise_factor * std::max({options.noise, 1e-4 * e.radius, e.sampling});
     if (worst > arc_limit) fail(c, worst, arc_limit);
+  }
+
+  // Degrees by which a round edge's arc falls short of the profile's turning between its
+  // flanks (taken from the arc's ends to `reach` beyond): a circle tangent to its flanks
+  // subtends all of it, 180 deg less the wedge; one fitted to a bump or finger the spline
+  // left at the tip subtends little more than the core it grew from.
+  double arc_shortfall(const Edge& e, bool le) const {
+    const int n = static_cast<int>(pr.samples.size());
+    // Past the whole edge even when the circle fits a finger: twice the blade's inscribed
+    // radius 5 % of the camber length in from the edge point.
+    const double s = le ? 0.05 * camber.length : 0.95 * camber.length;
+    const auto at_s = std::lower_bound(camber.s.begin(), camber.s.end(), s);
+    const double inside = at_s == camber.s.end() ? 0 : camber.radius[std::size_t(at_s - camber.s.begin())];
+    const double reach = 2 * std::max(e.radius, inside);
+    Eigen::Vector2d travel[2];  // the profile's direction along each flank (in t)
+    for (int side = 0; side < 2; ++side) {
+      const Eigen::Vector2d end = pr.fast.point(pr.wrap(side ? e.arc_t1 : e.arc_t0));
+      const int at = pr.nearest(end);
+      int k = 1, i = at;
+      for (; k < n / 4 && (pr.samples[i] - end).norm() < reach; ++k) i = ((at + (side ? k : -k)) % n + n) % n;
+      if (k >= n / 4) return 0;  // flanks longer than a quarter of the profile: no wedge to compare
+      travel[side] = (side ? pr.samples[i] - end : end - pr.samples[i]).normalized();
+    }
+    // Under 180 deg on converging or parallel flanks; diverging ones (over 180) are never short.
+    const double turning = std::acos(std::clamp(travel[0].dot(travel[1]), -1.0, 1.0)) * 180 / pi;
+    return turning - e.arc;
   }
 
   void edge_point(const Edge& e, Check c, Check vertex) {

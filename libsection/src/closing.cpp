@@ -134,7 +134,6 @@ int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rm
 // pass.g; returns the squared distance of each cell to the outside.
 Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_seed, const Seeds& seeds,
                   int rmax, int base, const Spans* band, Scratch& scratch) {
-  pass.deep = pass.deep || !band;
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;
   std::vector<std::uint8_t>& outside = scratch.bytes;
@@ -146,12 +145,12 @@ Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_
     for (std::size_t c = c0; c < c1; ++c) out[c] = b[c] > rr;
   });
   const double far = 2.0 * std::max(r.w, r.h) * std::max(r.w, r.h) + 4;
-  // Not deep: the distances to the outside only below radius + 8 cells. The outside cell
-  // nearest to a non-outside one is within radius + 1 of the points, so deeper g > 6.3
+  // On the spans, the distances to the outside only below radius + 8 cells. The outside
+  // cell nearest to a non-outside one is within radius + 1 of the points, so deeper g > 6.3
   // (left at rmax + 1): the boundary reads g within a few cells of its zero level, the
-  // normals (image_normal) only whether it is above 1/2.
-  const int deep_cap = (pass.radius + 8) * (pass.radius + 8);
-  const int cap_out = pass.deep ? int(std::min(far, double(1 << 30))) : deep_cap;
+  // normals (image_normal) only whether it is above 1/2. (The full raster, without spans,
+  // is not pruned: exact everywhere, as it always was.)
+  const int cap_out = band ? (pass.radius + 8) * (pass.radius + 8) : int(std::min(far, double(1 << 30)));
   Buffer<int> nearest_out;
   Buffer<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch, band, true);
 
@@ -278,8 +277,7 @@ Error raster_too_large(double wc, double hc, double h, std::size_t max_cells) {
 }
 
 bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,
-              const MorphologyOptions& opt, Pass& pass, bool deep) {
-  pass.deep = deep;
+              const MorphologyOptions& opt, Pass& pass) {
   Vec lo = points[subset[0]], hi = lo;
   for (std::size_t k : subset) {
     lo = lo.cwiseMin(points[k]);
@@ -344,13 +342,19 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   return true;
 }
 
-/// The boundary of one component in world coordinates, counterclockwise: the Moore trace
-/// smoothed a little, then each vertex moved along its normal onto the zero level of g.
-Points component_boundary(const Pass& pass, const Component& comp) {
+Points outline(const Pass& pass, const Component& comp) {
   Points b = trace(pass.raster, pass.label, comp.label, comp.start);
   if (b.size() < 3) return {};
   if (signed_area(b) < 0) std::reverse(b.begin(), b.end());
   smooth_closed(b, 2);
+  return b;
+}
+
+/// The boundary of one component in world coordinates, counterclockwise: the Moore trace
+/// smoothed a little, then each vertex moved along its normal onto the zero level of g.
+Points component_boundary(const Pass& pass, const Component& comp) {
+  Points b = outline(pass, comp);
+  if (b.empty()) return {};
   for (int it = 0; it < 3; ++it) {
     Points moved = b;
     for (std::size_t i = 0; i < b.size(); ++i) {

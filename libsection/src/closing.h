@@ -30,15 +30,18 @@ struct Pass {
   Buffer<int> label;                  // component of the eroded fill, 0 = none
   Buffer<float> g;                    // signed distance to the closing's boundary, cells, > 0 inside
   std::vector<Component> components;  // index = label - 1
-  bool deep = true;                   // g exact deep inside too (else rmax + 1 there)
 };
 
 /// Builds the raster of `subset` (cell h), finds the closing radius and labels the
 /// closed fill. Returns false when the band never encloses a substantial interior.
-/// Without `deep`, g may be left at rmax + 1 (cells) deep inside the fill, where only
-/// the skeleton reads it. Throws section::Error when the raster would exceed opt.max_cells.
+/// g may be left at rmax + 1 (cells) deep inside the fill, where nothing reads it.
+/// Throws section::Error when the raster would exceed opt.max_cells.
 bool run_pass(const Points& points, const std::vector<std::size_t>& subset, double h,
-              const MorphologyOptions& opt, Pass& pass, bool deep = true);
+              const MorphologyOptions& opt, Pass& pass);
+
+/// The Moore trace of one component, counterclockwise, smoothed a little: cell
+/// coordinates, a function of the labels alone (empty under 3 vertices).
+Points outline(const Pass& pass, const Component& comp);
 
 /// The boundary of one component in world coordinates, counterclockwise: the Moore trace
 /// smoothed a little, then each vertex moved along its normal onto the zero level of g.
@@ -53,7 +56,8 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma);
 /// Signed area of a closed polygon (positive counterclockwise).
 double signed_area(const Points& p);
 
-/// Skeleton of a component into result.skeleton and result.skeleton_radius (skeleton.cpp).
+/// Skeleton of a component into result.skeleton and result.skeleton_radius (skeleton.cpp):
+/// the main branch of the medial axis of its outline.
 void skeleton_of(const Pass& pass, const Component& comp, MorphologyResult& result);
 
 /// x as text for the error messages ("%.6g").

@@ -83,7 +83,6 @@ struct Found {
 // that order as it is.
 struct Search {
   std::vector<Pass> passes;
-  std::vector<std::vector<std::size_t>> subsets;  // of each pass
   std::vector<Found> found;
   std::vector<std::size_t> footed;
   std::vector<Foot> feet;
@@ -138,8 +137,7 @@ void find_loops(const Points& points, std::vector<std::size_t> subset, double h,
                 std::size_t min_points, const MorphologyOptions& opt, Search& s, MorphologyResult& result) {
   while (subset.size() >= min_points && int(s.found.size()) < opt.max_loops) {
     Pass pass;
-    // g deep inside a loop only for a skeleton sure to be made (else made again if asked).
-    if (!morph::run_pass(points, subset, h, opt, pass, opt.skeleton && !opt.skeleton_if)) break;
+    if (!morph::run_pass(points, subset, h, opt, pass)) break;
     if (s.passes.empty()) result.raster_cells = pass.raster.size();
     const std::size_t before = s.found.size();
     for (std::size_t ci = 0; ci < pass.components.size(); ++ci) {
@@ -154,7 +152,6 @@ void find_loops(const Points& points, std::vector<std::size_t> subset, double h,
       s.found.push_back(std::move(f));
     }
     s.passes.push_back(std::move(pass));
-    s.subsets.push_back(subset);
     if (s.found.size() == before) break;
     std::vector<const Points*> bounds;
     for (const Found& f : s.found) bounds.push_back(&f.boundary);
@@ -236,15 +233,8 @@ void make_loops(const Points& points, Search& s, double h, double outlier, std::
     result.loops.push_back(std::move(loop));
   }
   result.dropped = dropped;
-  if (first && opt.skeleton && (!opt.skeleton_if || opt.skeleton_if(result))) {
-    if (first_pass->deep) {
-      morph::skeleton_of(*first_pass, *first, result);
-    } else {  // the same pass again, with g deep inside (the same components)
-      Pass deep;
-      morph::run_pass(points, s.subsets[std::size_t(first_pass - s.passes.data())], h, opt, deep);
-      morph::skeleton_of(deep, deep.components[std::size_t(first->label - 1)], result);
-    }
-  }
+  if (first && opt.skeleton && (!opt.skeleton_if || opt.skeleton_if(result)))
+    morph::skeleton_of(*first_pass, *first, result);
 }
 
 }  // namespace

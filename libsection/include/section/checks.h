@@ -120,6 +120,7 @@ struct CheckOptions {
   double tangent_length = 0.05;  ///< camber-length fraction over which the end directions are taken
   double angle_floor = 1;        ///< degrees: least angle tolerance
   double vertex_reach = 0.02;    ///< camber-length fraction over which a sharp edge's wedge is taken
+  double arc_shortfall = 40;  ///< degrees: a round edge's arc may fall this far short of its flanks' turning
 };
 
 /// One failed check: what was measured and the most it may be (same unit).

@@ -7,6 +7,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -83,11 +84,13 @@ void triangulate(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
 }
 
 // The dual tree of the inside triangles: a node per triangle at its circumcentre, with
-// its distance to the corners, joined across the unconstrained shared edges.
+// its distance to the corners, joined across the unconstrained shared edges (at most
+// three per node: kept in place, not as a vector per node).
 struct DualTree {
   std::vector<Eigen::Vector2d> node;
   std::vector<double> radius;
-  std::vector<std::vector<int>> adjacent;
+  std::vector<std::array<int, 3>> adjacent;
+  std::vector<int> degree;
 };
 
 // A near-degenerate triangle whose circumcentre leaves the polygon's bounding box is
@@ -100,6 +103,9 @@ DualTree dual_tree(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
   }
   DualTree tree;
   std::vector<Cdt::Face_handle> faces;
+  faces.reserve(cdt.number_of_faces());
+  tree.node.reserve(cdt.number_of_faces());
+  tree.radius.reserve(cdt.number_of_faces());
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     if (f->info().nesting % 2 != 1) continue;
     Eigen::Vector2d p[3];
@@ -117,12 +123,13 @@ DualTree dual_tree(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
     tree.radius.push_back(std::min({(c - p[0]).norm(), (c - p[1]).norm(), (c - p[2]).norm()}));
   }
   tree.adjacent.resize(faces.size());
+  tree.degree.assign(faces.size(), 0);
   for (std::size_t k = 0; k < faces.size(); ++k)
     for (int i = 0; i < 3; ++i) {
       const Cdt::Face_handle nb = faces[k]->neighbor(i);
       if (cdt.is_infinite(nb) || nb->info().nesting % 2 != 1) continue;
       if (cdt.is_constrained(Cdt::Edge(faces[k], i))) continue;
-      tree.adjacent[k].push_back(nb->info().index);
+      tree.adjacent[k][std::size_t(tree.degree[k]++)] = nb->info().index;
     }
   return tree;
 }
@@ -143,8 +150,8 @@ std::vector<int> longest_path(const DualTree& tree) {
       const int k = stack.back();
       stack.pop_back();
       if (distance[k] > distance[best]) best = k;
-      for (int j : tree.adjacent[k])
-        if (distance[j] < 0) {
+      for (int a = 0; a < tree.degree[std::size_t(k)]; ++a)
+        if (const int j = tree.adjacent[std::size_t(k)][std::size_t(a)]; distance[j] < 0) {
           distance[j] = distance[k] + (tree.node[j] - tree.node[k]).norm();
           parent[j] = k;
           stack.push_back(j);

@@ -240,6 +240,15 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
                     format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
     }
+    case Check::le_circle:
+    case Check::te_circle:  // the arc's shortfall from the flanks' turning
+      std::snprintf(
+          text, sizeof text,
+          "%s circle fails check %s: its arc falls %s short of the turning between the flanks (at most %s): "
+          "it fits a bump at the tip or a nose not circular; its radius, point and angle depend on the arc",
+          k.check == Check::le_circle ? "leading-edge" : "trailing-edge", name, format_angle(k.value).c_str(),
+          format_angle(k.limit).c_str());
+      break;
     case Check::le_point:
     case Check::te_point:
       std::snprintf(text, sizeof text, "%s point fails check %s: it lies %s off the profile (at most %s)",
