@@ -404,10 +404,10 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
     const float* dist = pass.g.data() + row;
     for (int a = a0; a < a1; ++a) {
       const int i = i0 + a;
+      if (!(dist[i] > -0.5f)) continue;  // no cover (1/2 + g <= 0), whatever the label
       const int l = label[i];
       if (l != label_id && l != 0) continue;
       const double cover = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
-      if (cover == 0) continue;
       const double wgt = cover * gx[a] * gy[b];
       gx_sum += wgt * tx[a];
       gy_sum += wgt * ty[b];
