@@ -171,15 +171,19 @@ Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_
   for (int j = 0; j < r.h; ++j) {
     const std::size_t row = std::size_t(j) * r.w;
     for_spans_of_row(band, j, r.w, [&](int i0, int i1) {
+      // out2 is 0 at the outside cells (their own nearest) only, and cap_out wherever the
+      // transform left no nearest.
+      const int* o2 = out2.data() + row;
+      float* g = pass.g.data() + row;
       for (int i = i0; i < i1; ++i) {
-        const std::size_t c = row + i;
-        const int y = nearest_out[c];
-        if (y < 0 || out2[c] >= cap_out)
-          pass.g[c] = float(rmax + 1);
-        else if (std::size_t(y) == c)  // an outside cell (out2 = 0)
-          pass.g[c] = std::sqrt(float(out2[c])) - exact_d(c, i, j);
-        else
-          pass.g[c] = std::sqrt(float(out2[c])) - exact_d(std::size_t(y), y % r.w, y / r.w);
+        if (o2[i] >= cap_out) {
+          g[i] = float(rmax + 1);
+        } else if (o2[i] == 0) {
+          g[i] = std::sqrt(float(o2[i])) - exact_d(row + i, i, j);
+        } else {
+          const int y = nearest_out[row + i];
+          g[i] = std::sqrt(float(o2[i])) - exact_d(std::size_t(y), y % r.w, y / r.w);
+        }
       }
     });
   }
@@ -400,10 +404,10 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
     const float* dist = pass.g.data() + row;
     for (int a = a0; a < a1; ++a) {
       const int i = i0 + a;
+      if (!(dist[i] > -0.5f)) continue;  // no cover (1/2 + g <= 0), whatever the label
       const int l = label[i];
       if (l != label_id && l != 0) continue;
       const double cover = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
-      if (cover == 0) continue;
       const double wgt = cover * gx[a] * gy[b];
       gx_sum += wgt * tx[a];
       gy_sum += wgt * ty[b];

@@ -18,9 +18,10 @@ struct Envelope {
   explicit Envelope(int n) : v(n + 1), z(n + 2), h(n + 1) {}
 };
 
-/// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples): emit(q, d, s)
-/// for each sample q (plus `offset`) with its squared distance d and nearest sample s (plus
-/// `offset`; -1 and `big` when none).
+/// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples): emit(q0, q1, s,
+/// fs) for each run of samples q0..q1 (plus `offset`) whose nearest sample is s (plus
+/// `offset`; -1 and fs = `big` when none), fs = f[s]: sample q lies (q - s)^2 + fs from it.
+/// By runs, so that what depends on s only is worked out once per run.
 /// Samples with f >= `big` (no seed in their column) are left out of the lower envelope:
 /// they never win, and the envelope of the others is the same. Positions are q + base, so
 /// that the rounding of the parabola intersections, which decides between equidistant
@@ -56,39 +57,16 @@ void envelope_1d(const float* f, int n, float big, int base, int offset, Envelop
     z[k + 1] = inf;
   }
   if (k < 0) {
-    for (int q = 0; q < n; ++q) emit(q + offset, big, -1);
+    emit(offset, n - 1 + offset, -1, double(big));
     return;
   }
   // Parabola k is the lowest for the samples q with z[k] < q + base <= z[k + 1]: up to
   // floor(z[k + 1]) - base (exact: an integer below 2^53 less a small one).
   for (int q = 0, k = 0; q < n; ++k) {
-    const double last = std::clamp(std::floor(z[k + 1]) - base, -1.0, double(n - 1));
-    const double fv = double(f[v[k]]);
-    for (const int end = int(last); q <= end; ++q) {
-      const double dq = double(q - v[k]);
-      emit(q + offset, float(dq * dq + fv), v[k] + offset);
-    }
-  }
-}
-
-/// envelope_1d of f split at its zero samples (seeds in the sample's own cell). A zero
-/// sample is its own nearest, and no parabola on one side of it wins on the other (their
-/// intersections with it lie at least half a cell away, far beyond rounding), so the
-/// envelope of a run between two zeros, zeros included, is the whole row's there, with the
-/// same arithmetic. Runs of seeds then cost nothing: most of a raster is outside.
-template <class Emit>
-void distance_1d(const float* f, int n, float big, int base, Envelope& e, const Emit& emit) {
-  for (int a = 0; a < n;) {
-    if (f[a] == 0) {
-      emit(a, 0.0f, a);
-      ++a;
-      continue;
-    }
-    int b = a + 1;
-    while (b < n && f[b] != 0) ++b;
-    const int lo = a > 0 ? a - 1 : 0, hi = b < n ? b + 1 : n;
-    envelope_1d(f + lo, hi - lo, big, base + lo, lo, e, emit);
-    a = b;
+    const int end = int(std::clamp(std::floor(z[k + 1]) - base, -1.0, double(n - 1)));
+    if (q > end) continue;
+    emit(q + offset, end + offset, v[k] + offset, double(f[v[k]]));
+    q = end + 1;
   }
 }
 
@@ -138,7 +116,7 @@ int first_pruned(float prune, int none) {
 }
 
 /// The columns' part of distance_transform: row_of holds, on the spans, the row of the
-/// nearest seed in the cell's column (-1: none), found by one sweep each way over whole
+/// nearest seed in the cell's column (when none, a row far off), found by one sweep each way over whole
 /// rows (cache friendly), and f its squared distance (1e20 when none or at least `prune`).
 /// With off_seeds, the cells off the spans are seeds too.
 void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const Spans* spans, bool off_seeds,
@@ -151,8 +129,11 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
     if (off_seeds && spans && k >= 0 && k < h)
       each_beside_off_span(*spans, j, k, [&](int i) { last[i] = k; });
   };
-  // Branch-free loops over raw pointers (a select, not a branch, per cell).
-  std::vector<int> last(w, -1);
+  // Branch-free loops over raw pointers (a select, not a branch, per cell). A column with
+  // no seed on one side has one `far_row` rows off (cell indices are ints, and the raster's
+  // margin makes w > 4, so h < 2^29): farther than every real one, with no select for it.
+  const int far_row = 1 << 30;
+  std::vector<int> last(w, -far_row);
   for (int j = 0; j < h; ++j) {
     const std::uint8_t* srow = seed.data() + std::size_t(j) * w;
     int* arow = row_of.data() + std::size_t(j) * w;
@@ -164,9 +145,8 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
       arow[i] = l;
     }
   }
-  std::fill(last.begin(), last.end(), -1);
-  const int none = std::numeric_limits<int>::max();
-  const int far = first_pruned(prune, none);
+  std::fill(last.begin(), last.end(), far_row);
+  const int far = std::min(first_pruned(prune, far_row), far_row / 2);  // every real distance < h
   const float big = 1e20f;
   std::int32_t big_bits;
   std::memcpy(&big_bits, &big, sizeof big_bits);
@@ -180,10 +160,10 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
       const int below = srow[i] ? j : lrow[i];
       lrow[i] = below;
       const int above = arow[i];
-      // The nearer seed, the one above on a tie (the lower index); -1 when none. Integer
-      // selects of this form only, so that the loop is vectorised (GCC keeps a branch for
-      // a float compare, or a select of floats).
-      const int da = above < 0 ? none : j - above, db = below < 0 ? none : below - j;
+      // The nearer seed, the one above on a tie (the lower index); a far row when none.
+      // Integer selects of this form only, so that the loop is vectorised (GCC keeps a
+      // branch for a float compare, or a select of floats).
+      const int da = j - above, db = below - j;
       const int s = da <= db ? above : below;
       arow[i] = s;
       // 1e20 from `far` rows on (and when none), by a mask on the float's bits.
@@ -220,16 +200,30 @@ struct RowPass {
     }
   }
 
-  // The envelope over cells a..b of row j.
+  // The envelope over cells a..b of row j. It picks the nearest sample exactly (the lowest
+  // on a tie): the intersections are quotients of exact integers, correctly rounded, and
+  // distinct ones lie far beyond rounding apart. So the envelope of any part of a row that
+  // holds a cell's nearest sample gives the cell what the whole row's does.
   void stretch(int j, int a, int b) {
     const std::size_t row = std::size_t(j) * r.w;
     const float big = 1e20f;
-    distance_1d(f.data() + row + a, b - a + 1, big, base + a, e, [&](int q, float o, int s) {
-      const std::size_t c = row + a + q;
-      // Squared distances are integers (exact in float below 2^24, and every float above
-      // 2^23 is an integer): rounding is a truncation of x + 0.5.
-      d[c] = o >= float(cap) ? cap : int(o + 0.5f);
-      nearest[c] = o < 1e19f ? row_of[row + a + s] * r.w + a + s : -1;
+    envelope_1d(f.data() + row + a, b - a + 1, big, base + a, 0, e, [&](int q0, int q1, int s, double fs) {
+      int* dc = d.data() + row + a;
+      int* nc = nearest.data() + row + a;
+      if (s < 0) {  // no seed: `big`, beyond cap
+        std::fill(dc + q0, dc + q1 + 1, cap);
+        std::fill(nc + q0, nc + q1 + 1, -1);
+        return;
+      }
+      const int to = row_of[row + a + s] * r.w + a + s;
+      for (int q = q0; q <= q1; ++q) {
+        const double dq = double(q - s);
+        const float o = float(dq * dq + fs);
+        // Squared distances are integers (exact in float below 2^24, and every float above
+        // 2^23 is an integer): rounding is a truncation of x + 0.5.
+        dc[q] = o >= float(cap) ? cap : int(o + 0.5f);
+        nc[q] = o < 1e19f ? to : -1;
+      }
     });
   }
 
@@ -257,7 +251,7 @@ struct RowPass {
       off(j, done, a, false);
       stretch(j, a, b);
       done = b + 1;
-      i = last + near;
+      i = last + 2 * near - 1;  // the scan above found none before
     }
     off(j, done, hi + 1, false);
   }
@@ -310,9 +304,9 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
       rows.part(j, lo, hi);
       continue;
     }
-    // Dense seeds (the erosion's outside): a seed is its own nearest and splits the row (see
-    // distance_1d), so only the runs between seeds are transformed, each with the seeds that
-    // bound it; the rest costs a write.
+    // Dense seeds (the erosion's outside): a seed is its own nearest, and the nearest of the
+    // cells between two seeds is one of them or between them (see stretch), so only the runs
+    // between seeds are transformed, each with the seeds that bound it; the rest costs a write.
     const float* frow = f.data() + row;
     for (int i = lo; i <= hi;) {
       if (frow[i] == 0) {

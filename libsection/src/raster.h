@@ -72,7 +72,7 @@ Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector
 /// Exact squared Euclidean distance (in cells^2) of every cell to the nearest seed cell,
 /// clamped to `cap`, and that seed's cell index in `nearest` (-1 when there is no seed).
 /// `seed` is 1 at seeds. `base` is added to the cell indices in the parabola arithmetic
-/// (see distance_1d). Between equidistant seeds the one of lower index wins, as in
+/// (see envelope_1d). Between equidistant seeds the one of lower index wins, as in
 /// the envelope of the columns. With `spans`, only their cells are computed, and the
 /// cells that lie `cap` or farther from every seed may get `cap` and -1: `nearest` is that
 /// of the transform without spans wherever the distance is below `cap`. The cells off the
