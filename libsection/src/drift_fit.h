@@ -19,14 +19,14 @@ using Vec = Eigen::Vector2d;
 
 // Uniform grid over 2D points, each cell the head of a list of its points threaded
 // through `next_` (no allocation per cell): a plain array of the cells over the points'
-// box when that holds few cells a point, else (and once points are added) an
+// box when that holds at most `dense` cells a point, else (and once points are added) an
 // open-addressed table of the occupied cells (a query probes a few table slots instead of
 // hashing into a node-based map).
 class Grid {
 public:
-  Grid(const std::vector<Vec>& points, double cell) : points_(points), cell_(cell) {
+  Grid(const std::vector<Vec>& points, double cell, double dense = 32) : points_(points), cell_(cell) {
     next_.assign(points.size(), -1);
-    if (!make_dense()) rehash(points.size());
+    if (!make_dense(dense)) rehash(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) insert(int(i));
   }
   void add(int i) {
@@ -132,16 +132,16 @@ private:
     const Slot* s = find(pack(x, y));
     return s ? s->head : -1;
   }
-  // The array of cells over the points' box, when it holds at most 32 cells a point (4096
-  // at least): false, nothing made, else.
-  bool make_dense() {
+  // The array of cells over the points' box, when it holds at most `dense` cells a point
+  // (4096 at least): false, nothing made, else.
+  bool make_dense(double dense) {
     if (points_.empty()) return false;
     Vec lo = points_[0], hi = lo;
     for (const Vec& p : points_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     if (!lo.allFinite() || !hi.allFinite()) return false;
     x0_ = coord(lo.x()), y0_ = coord(lo.y());
     nx_ = coord(hi.x()) - x0_ + 1, ny_ = coord(hi.y()) - y0_ + 1;
-    if (double(nx_) * double(ny_) > std::max(4096.0, 32.0 * double(points_.size()))) return false;
+    if (double(nx_) * double(ny_) > std::max(4096.0, dense * double(points_.size()))) return false;
     heads_.assign(std::size_t(nx_ * ny_), -1);
     return true;
   }
@@ -332,8 +332,10 @@ template <int N>
 bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
                  int ridged, double slab, int min_support, Eigen::Matrix<double, N, 1>& sol, int firm = N,
                  double firm_ridge = 1e-3) {
-  std::vector<char> use(rows.size(), 1);
-  std::vector<double> res(rows.size()), sorted;
+  // Held: for all the compiler knows, a store to `use` could change rows.size().
+  const std::size_t n = rows.size();
+  std::vector<char> use(n, 1);
+  std::vector<double> res(n), sorted;
   sol.setZero();
   for (int pass = 0; pass < 3; ++pass) {
     Eigen::Matrix<double, N, N> A;
@@ -343,13 +345,13 @@ bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std
     for (int j = 0; j < ridged; ++j) A(j, j) += (j < firm ? 1e-3 : firm_ridge) * weight + 1e-12;
     sol = A.ldlt().solve(b);
     if (!sol.allFinite()) return false;
-    for (std::size_t r = 0; r < rows.size(); ++r) res[r] = std::abs(rhs[r] - rows[r].dot(sol));
+    for (std::size_t r = 0; r < n; ++r) res[r] = std::abs(rhs[r] - rows[r].dot(sol));
     sorted = res;
     std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
     const double cut = 3 * 1.4826 * sorted[sorted.size() / 2] + 0.05 * slab;
     int kept = 0;
     bool same = true;
-    for (std::size_t r = 0; r < rows.size(); ++r) {
+    for (std::size_t r = 0; r < n; ++r) {
       const char u = res[r] <= cut;
       same = same && u == use[r];
       kept += (use[r] = u);
