@@ -261,9 +261,10 @@ inline constexpr NormalPairs<N> normal_pairs{};
 // a pair and row).
 // The last block, for odd N, also sums x(N - 1) x(N - 1) and x(N - 1) y into `last`.
 template <int N, int K0, int B>
-void add_normal_pairs(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
-                      const std::vector<char>& use, Eigen::Matrix<double, 2, NormalPairs<N>::count>& acc,
-                      Eigen::Vector2d& last) {
+__attribute__((target_clones("avx", "default"))) void add_normal_pairs(
+    const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
+    const std::vector<char>& use, Eigen::Matrix<double, 2, NormalPairs<N>::count>& acc,
+    Eigen::Vector2d& last) {
   constexpr const NormalPairs<N>& pairs = normal_pairs<N>;
   constexpr bool with_last = N % 2 == 1 && K0 + B == NormalPairs<N>::count;
   Eigen::Matrix<double, 2, B> part = Eigen::Matrix<double, 2, B>::Zero();
