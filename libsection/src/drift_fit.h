@@ -256,15 +256,24 @@ struct NormalPairs {
 template <int N>
 inline constexpr NormalPairs<N> normal_pairs{};
 
+// With GCC on x86-64 Linux, an AVX clone of a function beside the plain one, picked when
+// the library loads: the same multiplies and adds in three-operand form (no copies), and
+// no FMA (not in "avx"), so the same numbers on every CPU.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define SECTION_AVX_CLONE __attribute__((target_clones("avx", "default")))
+#else
+#define SECTION_AVX_CLONE
+#endif
+
 // Pairs [K0, K0 + B) of NormalPairs summed over the used rows, in row order, held in
 // registers for the whole sweep (all pairs at once spill most of them: a load and a store
-// a pair and row).
-// The last block, for odd N, also sums x(N - 1) x(N - 1) and x(N - 1) y into `last`.
+// a pair and row). The last block, for odd N, also sums x(N - 1) x(N - 1) and x(N - 1) y
+// into `last`.
 template <int N, int K0, int B>
-__attribute__((target_clones("avx", "default"))) void add_normal_pairs(
-    const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
-    const std::vector<char>& use, Eigen::Matrix<double, 2, NormalPairs<N>::count>& acc,
-    Eigen::Vector2d& last) {
+SECTION_AVX_CLONE void add_normal_pairs(const std::vector<Eigen::Matrix<double, N, 1>>& rows,
+                                        const std::vector<double>& rhs, const std::vector<char>& use,
+                                        Eigen::Matrix<double, 2, NormalPairs<N>::count>& acc,
+                                        Eigen::Vector2d& last) {
   constexpr const NormalPairs<N>& pairs = normal_pairs<N>;
   constexpr bool with_last = N % 2 == 1 && K0 + B == NormalPairs<N>::count;
   Eigen::Matrix<double, 2, B> part = Eigen::Matrix<double, 2, B>::Zero();
