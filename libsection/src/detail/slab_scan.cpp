@@ -149,10 +149,13 @@ void add_parallel(const Eigen::Vector3d* points, std::size_t count, int threads,
 void add_near_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
                      const std::vector<Frame>& frame, double reach,
                      std::vector<std::vector<Eigen::Vector3d>>& out) {
-  for (const SlabGroup& g : groups) {
-    const SlabTests t(g);
+  // The tests on the heap, not in the frame: held in registers, they were saved and
+  // restored around every near point's appends (a call may grow a list), which cost more
+  // than reading them from memory each point.
+  std::vector<SlabTests> tests;
+  for (const SlabGroup& g : groups) tests.emplace_back(g);
+  for (const SlabTests& t : tests)
     for (std::size_t i = 0; i < count; ++i) add_if_near(points[i], t.n.dot(points[i]), t, frame, reach, out);
-  }
 }
 
 }  // namespace
