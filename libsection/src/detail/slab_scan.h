@@ -40,9 +40,9 @@ struct SlabGroup {
   std::size_t first_at_least(double key) const;
 };
 
-/// What the per-point tests of a SlabGroup read, copied out of it: a loop over points that
-/// appends to lists holds these in registers (read through the group, they were loaded
-/// again every point, as any append could have changed them for all the compiler knew).
+/// What the per-point tests of a SlabGroup read, copied out of it once for a loop over
+/// points: read through the group, every point loaded its vectors' bounds again and
+/// converted their sizes (any append could have changed them, for all the compiler knew).
 struct SlabTests {
   explicit SlabTests(const SlabGroup& g)
       : n(g.n),
