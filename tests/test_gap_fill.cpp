@@ -195,6 +195,66 @@ TEST_CASE("gap fill: the points grid finds what a search of every point finds", 
   }
 }
 
+TEST_CASE("gap fill: the array grid's nearest agrees with a search of every point", "[gap_fill]") {
+  // A grid small enough to be an array: queries inside it, at its edges (the 3 x 3 cells
+  // partly off the array) and outside, with two points at the same place (the lower index
+  // wins the tie).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> in(-2, 2), out(-3, 3);
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < 300; ++i) pts.emplace_back(in(rng), in(rng));
+  pts.push_back(pts[17]);
+  const drift::Grid grid(pts, 0.25, 128);
+  for (int q = 0; q < 600; ++q) {
+    const Eigen::Vector2d c = q == 0 ? pts[17] : Eigen::Vector2d(out(rng), out(rng));
+    const double r = q % 3 == 0 ? 0.1 : (q % 3 == 1 ? 0.3 : 2.0);
+    int best = -1;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const double d = (pts[i] - c).squaredNorm();
+      if (d <= r * r && (best < 0 || d < (pts[std::size_t(best)] - c).squaredNorm())) best = int(i);
+    }
+    CHECK(grid.nearest(c, r) == best);
+  }
+}
+
+// The drift fits' normal equations against the sums of the used rows' products taken
+// one row after another: the same numbers to the last bit, whatever the blocks.
+template <int N>
+void check_normal_equations(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-3, 3);
+  std::vector<Eigen::Matrix<double, N, 1>> rows(257);
+  std::vector<double> rhs(rows.size());
+  std::vector<char> use(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    for (int i = 0; i < N; ++i) rows[r](i) = u(rng);
+    rhs[r] = u(rng);
+    use[r] = u(rng) > -2;
+  }
+  Eigen::Matrix<double, N, N> A;
+  Eigen::Matrix<double, N, 1> b;
+  drift::normal_equations(rows, rhs, use, A, b);
+  for (int i = 0; i < N; ++i) {
+    double bi = 0;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (use[r]) bi += rows[r](i) * rhs[r];
+    CHECK(b(i) == bi);
+    for (int j = 0; j <= i; ++j) {
+      double aij = 0;
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        if (use[r]) aij += rows[r](i) * rows[r](j);
+      CHECK(A(i, j) == aij);
+      CHECK(A(j, i) == aij);
+    }
+  }
+}
+
+TEST_CASE("drift fits: the normal equations are the used rows' sums in row order", "[gap_fill]") {
+  std::mt19937 rng(5);
+  check_normal_equations<3>(rng);
+  check_normal_equations<13>(rng);
+  check_normal_equations<8>(rng);
+}
+
 TEST_CASE("gap fill: bad options are refused before any work", "[gap_fill]") {
   Cloud c;
   for (int k = 0; k < 100; ++k) c.points.emplace_back(std::cos(k * 0.0628), std::sin(k * 0.0628), 0.0);

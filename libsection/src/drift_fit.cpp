@@ -52,6 +52,8 @@ double profile_length(const MorphologyResult& ordered) {
 
 void near_plane(const std::vector<Eigen::Vector3d>& nearby, double limit, std::vector<Vec>& uv,
                 std::vector<double>& dz) {
+  uv.reserve(uv.size() + nearby.size());  // at most all of them: no copies as the lists grow
+  dz.reserve(dz.size() + nearby.size());
   for (const auto& p : nearby)
     if (p.allFinite() && std::abs(p.z()) <= limit) {
       uv.emplace_back(p.x(), p.y());

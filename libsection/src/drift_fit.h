@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace section::drift {
@@ -18,14 +19,14 @@ using Vec = Eigen::Vector2d;
 
 // Uniform grid over 2D points, each cell the head of a list of its points threaded
 // through `next_` (no allocation per cell): a plain array of the cells over the points'
-// box when that holds few cells a point, else (and once points are added) an
+// box when that holds at most `dense` cells a point, else (and once points are added) an
 // open-addressed table of the occupied cells (a query probes a few table slots instead of
 // hashing into a node-based map).
 class Grid {
 public:
-  Grid(const std::vector<Vec>& points, double cell) : points_(points), cell_(cell) {
+  Grid(const std::vector<Vec>& points, double cell, double dense = 32) : points_(points), cell_(cell) {
     next_.assign(points.size(), -1);
-    if (!make_dense()) rehash(points.size());
+    if (!make_dense(dense)) rehash(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) insert(int(i));
   }
   void add(int i) {
@@ -58,19 +59,30 @@ public:
   int nearest(const Vec& c, double r) const {
     int best = -1;
     double bd = 0;
+    const double r2 = r * r;
+    const Vec at = c;  // local copies: no store through `take` can change them
+    const Vec* const points = points_.data();
+    const int* const next = next_.data();
     const auto take = [&](int i) {
-      const double d = (points_[std::size_t(i)] - c).squaredNorm();
-      if (best < 0 || d < bd || (d == bd && i < best)) best = i, bd = d;
+      const double d = (points[i] - at).squaredNorm();
+      if (d <= r2 && (best < 0 || d < bd || (d == bd && i < best))) best = i, bd = d;
     };
     // The 3 x 3 cells about c first: every point outside them lies at least a cell away
     // (0.999 of one: the cells come from rounded quotients), so a nearer one found there,
     // or a radius under a cell, settles it in 9 probes instead of up to (2 r / cell + 2)^2.
     const double sure = 0.999 * cell_;
     if (std::max(std::abs(c.x()), std::abs(c.y())) < 1e12 * cell_) {  // far from coord's clamp
-      const std::int64_t cx = coord(c.x()), cy = coord(c.y());
-      for_each_in_cells(cx - 1, cx + 1, cy - 1, cy + 1, [&](int i) {
-        if ((points_[std::size_t(i)] - c).squaredNorm() <= r * r) take(i);
-      });
+      const std::int64_t cx = near_coord(c.x()), cy = near_coord(c.y());
+      if (!heads_.empty() && cx > x0_ && cx + 1 < x0_ + nx_ && cy > y0_ && cy + 1 < y0_ + ny_) {
+        // All 9 inside the array: three runs of three cells, no bounds to clip (the
+        // clipping and the cells' loops were half of the drift band's nearest searches).
+        const int* row = heads_.data() + (cx - 1 - x0_) * ny_ + (cy - 1 - y0_);
+        for (int a = 0; a < 3; ++a, row += ny_)
+          for (int b = 0; b < 3; ++b)
+            for (int i = row[b]; i >= 0; i = next[i]) take(i);
+      } else {
+        for_each_in_cells(cx - 1, cx + 1, cy - 1, cy + 1, take);
+      }
       if (r < sure || (best >= 0 && bd < sure * sure)) return best;
       best = -1;
     }
@@ -85,6 +97,13 @@ private:
   };
   // Clamped: a cell index must fit an int64 whatever the coordinates and cell.
   std::int64_t coord(double v) const { return std::int64_t(std::clamp(std::floor(v / cell_), -1e15, 1e15)); }
+  // coord for |v| under 1e12 cells, where the clamp does nothing: floor as the truncation,
+  // less one when that rounded up (a quarter of the instructions).
+  std::int64_t near_coord(double v) const {
+    const double q = v / cell_;
+    const std::int64_t t = std::int64_t(q);
+    return t - std::int64_t(double(t) > q);
+  }
   static std::int64_t pack(std::int64_t x, std::int64_t y) {
     return std::int64_t((std::uint64_t(x) << 32) ^ (std::uint64_t(y) & 0xffffffffULL));
   }
@@ -113,16 +132,16 @@ private:
     const Slot* s = find(pack(x, y));
     return s ? s->head : -1;
   }
-  // The array of cells over the points' box, when it holds at most 32 cells a point (4096
-  // at least): false, nothing made, else.
-  bool make_dense() {
+  // The array of cells over the points' box, when it holds at most `dense` cells a point
+  // (4096 at least): false, nothing made, else.
+  bool make_dense(double dense) {
     if (points_.empty()) return false;
     Vec lo = points_[0], hi = lo;
     for (const Vec& p : points_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     if (!lo.allFinite() || !hi.allFinite()) return false;
     x0_ = coord(lo.x()), y0_ = coord(lo.y());
     nx_ = coord(hi.x()) - x0_ + 1, ny_ = coord(hi.y()) - y0_ + 1;
-    if (double(nx_) * double(ny_) > std::max(4096.0, 32.0 * double(points_.size()))) return false;
+    if (double(nx_) * double(ny_) > std::max(4096.0, dense * double(points_.size()))) return false;
     heads_.assign(std::size_t(nx_ * ny_), -1);
     return true;
   }
@@ -218,46 +237,95 @@ double profile_length(const MorphologyResult& ordered);
 void near_plane(const std::vector<Eigen::Vector3d>& nearby, double limit, std::vector<Vec>& uv,
                 std::vector<double>& dz);
 
-// The normal equations' lower triangle (A) and right side (b) over the used rows, each
-// entry summed in row order (the same sums of the same products as one outer product a
-// row gives: the same numbers), two entries a step: lanes (2p, 2p + 1) of column j from
-// the pair holding j (an entry above the diagonal comes along, unused), and for odd N the
-// last lane's entries in pairs of columns. The scalar form was a load, a multiply, an add
-// and a store an entry, 5 % of `slice`.
+// The lanes a row adds to in the normal equations, in pairs: pair k is the row's entries
+// (2 seg[k], 2 seg[k] + 1) times its entry fac[k] (N: its right side). Column j's pairs
+// from the one holding j down (an entry above the diagonal comes along, unused), for odd
+// N then the last entry's pairs, then the right side's.
 template <int N>
-void normal_equations(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
-                      const std::vector<char>& use, Eigen::Matrix<double, N, N>& A,
-                      Eigen::Matrix<double, N, 1>& b) {
-  constexpr int P = N / 2, odd = N % 2;
-  constexpr int columns = (P + 1) * P + odd * P + P;  // sum over j of P - j / 2, the last lane, b
-  Eigen::Matrix<double, 2, columns> acc = Eigen::Matrix<double, 2, columns>::Zero();
-  double last = 0, b_last = 0;  // A(N - 1, N - 1) and b(N - 1) for odd N
+struct NormalPairs {
+  static constexpr int P = N / 2, count = (P + 1) * P + (N % 2) * P + P;
+  int seg[count] = {}, fac[count] = {};
+  constexpr NormalPairs() {
+    int k = 0;
+    for (int j = 0; j < N; ++j)
+      for (int p = j / 2; p < P; ++p) seg[k] = p, fac[k++] = j;
+    for (int p = 0; N % 2 == 1 && p < P; ++p) seg[k] = p, fac[k++] = N - 1;
+    for (int p = 0; p < P; ++p) seg[k] = p, fac[k++] = N;
+  }
+};
+template <int N>
+inline constexpr NormalPairs<N> normal_pairs{};
+
+// With GCC on x86-64 Linux, an AVX clone of a function beside the plain one, picked when
+// the library loads: the same multiplies and adds in three-operand form (no copies), and
+// no FMA (not in "avx"), so the same numbers on every CPU.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define SECTION_AVX_CLONE __attribute__((target_clones("avx", "default")))
+#else
+#define SECTION_AVX_CLONE
+#endif
+
+// Pairs [K0, K0 + B) of NormalPairs summed over the used rows, in row order, held in
+// registers for the whole sweep (all pairs at once spill most of them: a load and a store
+// a pair and row). The last block, for odd N, also sums x(N - 1) x(N - 1) and x(N - 1) y
+// into `last`.
+template <int N, int K0, int B>
+SECTION_AVX_CLONE void add_normal_pairs(const std::vector<Eigen::Matrix<double, N, 1>>& rows,
+                                        const std::vector<double>& rhs, const std::vector<char>& use,
+                                        Eigen::Matrix<double, 2, NormalPairs<N>::count>& acc,
+                                        Eigen::Vector2d& last) {
+  constexpr const NormalPairs<N>& pairs = normal_pairs<N>;
+  constexpr bool with_last = N % 2 == 1 && K0 + B == NormalPairs<N>::count;
+  Eigen::Matrix<double, 2, B> part = Eigen::Matrix<double, 2, B>::Zero();
+  double last_x = 0, last_y = 0;
   for (std::size_t r = 0; r < rows.size(); ++r) {
     if (!use[r]) continue;
     const Eigen::Matrix<double, N, 1>& x = rows[r];
     const double y = rhs[r];
-    int k = 0;
 #pragma GCC unroll 16
-    for (int j = 0; j < N; ++j)
-#pragma GCC unroll 8
-      for (int p = j / 2; p < P; ++p) acc.col(k++) += x.template segment<2>(2 * p) * x(j);
-    if constexpr (odd == 1) {
-#pragma GCC unroll 8
-      for (int p = 0; p < P; ++p) acc.col(k++) += x.template segment<2>(2 * p) * x(N - 1);
-      last += x(N - 1) * x(N - 1);
-      b_last += x(N - 1) * y;
+    for (int k = 0; k < B; ++k)
+      part.col(k) +=
+          x.template segment<2>(2 * pairs.seg[K0 + k]) * (pairs.fac[K0 + k] == N ? y : x(pairs.fac[K0 + k]));
+    if constexpr (with_last) {
+      last_x += x(N - 1) * x(N - 1);
+      last_y += x(N - 1) * y;
     }
-#pragma GCC unroll 8
-    for (int p = 0; p < P; ++p) acc.col(k++) += x.template segment<2>(2 * p) * y;
   }
+  acc.template middleCols<B>(K0) = part;
+  if constexpr (with_last) last = Eigen::Vector2d(last_x, last_y);
+}
+
+template <int N, int Width, int... Block>
+void add_normal_blocks(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
+                       const std::vector<char>& use, Eigen::Matrix<double, 2, NormalPairs<N>::count>& acc,
+                       Eigen::Vector2d& last, std::integer_sequence<int, Block...>) {
+  constexpr int count = NormalPairs<N>::count;
+  (add_normal_pairs<N, Block * Width, std::min(Width, count - Block * Width)>(rows, rhs, use, acc, last),
+   ...);
+}
+
+// The normal equations' lower triangle (A) and right side (b) over the used rows, each
+// entry summed in row order (the same sums of the same products as one outer product a
+// row gives: the same numbers), two entries a step (NormalPairs), a block of 12 pairs a
+// sweep over the rows. The scalar form was a load, a multiply, an add and a store an
+// entry, 5 % of `slice`; all pairs in one sweep still a load and a store a pair.
+template <int N>
+void normal_equations(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
+                      const std::vector<char>& use, Eigen::Matrix<double, N, N>& A,
+                      Eigen::Matrix<double, N, 1>& b) {
+  constexpr int P = N / 2, odd = N % 2, count = NormalPairs<N>::count, width = 12;
+  Eigen::Matrix<double, 2, count> acc;
+  Eigen::Vector2d last;  // A(N - 1, N - 1) and b(N - 1) for odd N
+  add_normal_blocks<N, width>(rows, rhs, use, acc, last,
+                              std::make_integer_sequence<int, (count + width - 1) / width>{});
   int k = 0;
   for (int j = 0; j < N; ++j)
     for (int p = j / 2; p < P; ++p, ++k)
       for (int i = std::max(2 * p, j); i < 2 * p + 2; ++i) A(i, j) = acc(i - 2 * p, k);
   if constexpr (odd == 1) {
     for (int p = 0; p < P; ++p, ++k) A(N - 1, 2 * p) = acc(0, k), A(N - 1, 2 * p + 1) = acc(1, k);
-    A(N - 1, N - 1) = last;
-    b(N - 1) = b_last;
+    A(N - 1, N - 1) = last(0);
+    b(N - 1) = last(1);
   }
   for (int p = 0; p < P; ++p, ++k) b(2 * p) = acc(0, k), b(2 * p + 1) = acc(1, k);
   for (int j = 1; j < N; ++j)
@@ -274,8 +342,10 @@ template <int N>
 bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std::vector<double>& rhs,
                  int ridged, double slab, int min_support, Eigen::Matrix<double, N, 1>& sol, int firm = N,
                  double firm_ridge = 1e-3) {
-  std::vector<char> use(rows.size(), 1);
-  std::vector<double> res(rows.size()), sorted;
+  // Held: for all the compiler knows, a store to `use` could change rows.size().
+  const std::size_t n = rows.size();
+  std::vector<char> use(n, 1);
+  std::vector<double> res(n), sorted;
   sol.setZero();
   for (int pass = 0; pass < 3; ++pass) {
     Eigen::Matrix<double, N, N> A;
@@ -285,13 +355,13 @@ bool trimmed_fit(const std::vector<Eigen::Matrix<double, N, 1>>& rows, const std
     for (int j = 0; j < ridged; ++j) A(j, j) += (j < firm ? 1e-3 : firm_ridge) * weight + 1e-12;
     sol = A.ldlt().solve(b);
     if (!sol.allFinite()) return false;
-    for (std::size_t r = 0; r < rows.size(); ++r) res[r] = std::abs(rhs[r] - rows[r].dot(sol));
+    for (std::size_t r = 0; r < n; ++r) res[r] = std::abs(rhs[r] - rows[r].dot(sol));
     sorted = res;
     std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
     const double cut = 3 * 1.4826 * sorted[sorted.size() / 2] + 0.05 * slab;
     int kept = 0;
     bool same = true;
-    for (std::size_t r = 0; r < rows.size(); ++r) {
+    for (std::size_t r = 0; r < n; ++r) {
       const char u = res[r] <= cut;
       same = same && u == use[r];
       kept += (use[r] = u);

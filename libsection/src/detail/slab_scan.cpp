@@ -82,18 +82,18 @@ std::vector<Frame> frames_of(const std::vector<Plane>& planes) {
 namespace {
 
 // Appends q to the list of every plane of `g` whose slab contains it (s = g.n . q).
-inline void add_if_in_slab(const Eigen::Vector3d& q, double s, const SlabGroup& g,
+inline void add_if_in_slab(const Eigen::Vector3d& q, double s, const SlabGroup& g, const SlabTests& t,
                            const std::vector<Frame>& frame, double slab,
                            std::vector<std::vector<Eigen::Vector2d>>& out) {
   const double half = 0.5 * slab;
-  const std::size_t np = g.offset.size();
+  const std::size_t np = t.planes;
   // The first plane whose slab can contain q, then its neighbours while they can.
   const double scale = std::max({std::abs(q.x()), std::abs(q.y()), std::abs(q.z()), std::abs(s), slab});
   const double tol = 1e-12 * (scale + 1);
-  std::size_t k = g.first_at_least(s - half - tol);
-  for (; k < np && g.offset[k] <= s + half + tol; ++k) {
-    const double above_lower = s - (g.offset[k] - half);
-    const double below_upper = (g.offset[k] + half) - s;
+  std::size_t k = t.first_at_least(s - half - tol);
+  for (; k < np && t.offset[k] <= s + half + tol; ++k) {
+    const double above_lower = s - (t.offset[k] - half);
+    const double below_upper = (t.offset[k] + half) - s;
     bool inside;
     if (above_lower > tol && below_upper > tol) {
       inside = true;
@@ -103,29 +103,28 @@ inline void add_if_in_slab(const Eigen::Vector3d& q, double s, const SlabGroup& 
       const Boundary& hi = g.upper[k];
       inside = orientation(lo.a, lo.b, lo.c, q) >= 0 && orientation(hi.a, hi.b, hi.c, q) <= 0;
     }
-    if (inside) out[g.plane[k]].push_back(frame[g.plane[k]].to_plane(q));
+    if (inside) out[t.plane[k]].push_back(frame[t.plane[k]].to_plane(q));
   }
 }
 
 // True when q (s = g.n . q) is in a bucket of `g` with no slab near it and its rounding
 // tolerance (add_if_in_slab) is below half a bucket (the rest of a bucket covers it): no
 // slab can contain it.
-inline bool far_from_every_slab(const Eigen::Vector3d& q, double s, const SlabGroup& g, double slab) {
-  if (g.near.empty() || !g.far_from_slabs(s)) return false;
+inline bool far_from_every_slab(const Eigen::Vector3d& q, double s, const SlabTests& t, double slab) {
+  if (!t.far_from_slabs(s)) return false;
   const double scale = std::max({std::abs(q.x()), std::abs(q.y()), std::abs(q.z()), std::abs(s), slab});
-  return 1e-12 * (scale + 1) < 0.5 * g.near_width;
+  return 1e-12 * (scale + 1) < 0.5 * t.near_width;
 }
 
 // Appends (u, v, signed distance from the plane) of q to the list of every plane of `g`
 // within `reach` of it (s = g.n . q; `g` built with a slab of 2 reach).
-inline void add_if_near(const Eigen::Vector3d& q, double s, const SlabGroup& g,
+inline void add_if_near(const Eigen::Vector3d& q, double s, const SlabTests& t,
                         const std::vector<Frame>& frame, double reach,
                         std::vector<std::vector<Eigen::Vector3d>>& out) {
-  if (!g.near.empty() && g.far_from_slabs(s)) return;
-  const std::size_t np = g.offset.size();
-  for (std::size_t k = g.first_at_least(s - reach); k < np && g.offset[k] <= s + reach; ++k) {
-    const Eigen::Vector2d uv = frame[g.plane[k]].to_plane(q);
-    out[g.plane[k]].emplace_back(uv.x(), uv.y(), s - g.offset[k]);
+  if (t.far_from_slabs(s)) return;
+  for (std::size_t k = t.first_at_least(s - reach); k < t.planes && t.offset[k] <= s + reach; ++k) {
+    const Eigen::Vector2d uv = frame[t.plane[k]].to_plane(q);
+    out[t.plane[k]].emplace_back(uv.x(), uv.y(), s - t.offset[k]);
   }
 }
 
@@ -150,8 +149,13 @@ void add_parallel(const Eigen::Vector3d* points, std::size_t count, int threads,
 void add_near_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
                      const std::vector<Frame>& frame, double reach,
                      std::vector<std::vector<Eigen::Vector3d>>& out) {
-  for (const SlabGroup& g : groups)
-    for (std::size_t i = 0; i < count; ++i) add_if_near(points[i], g.n.dot(points[i]), g, frame, reach, out);
+  // The tests on the heap, not in the frame: held in registers, they were saved and
+  // restored around every near point's appends (a call may grow a list), which cost more
+  // than reading them from memory each point.
+  std::vector<SlabTests> tests;
+  for (const SlabGroup& g : groups) tests.emplace_back(g);
+  for (const SlabTests& t : tests)
+    for (std::size_t i = 0; i < count; ++i) add_if_near(points[i], t.n.dot(points[i]), t, frame, reach, out);
 }
 
 }  // namespace
@@ -159,11 +163,13 @@ void add_near_points(const Eigen::Vector3d* points, std::size_t count, const std
 void add_slab_points(const Eigen::Vector3d* points, std::size_t count, const std::vector<SlabGroup>& groups,
                      const std::vector<Frame>& frame, double slab,
                      std::vector<std::vector<Eigen::Vector2d>>& out) {
-  for (const SlabGroup& g : groups)
+  for (const SlabGroup& g : groups) {
+    const SlabTests t(g);
     for (std::size_t i = 0; i < count; ++i) {
-      const double s = g.n.dot(points[i]);
-      if (!far_from_every_slab(points[i], s, g, slab)) add_if_in_slab(points[i], s, g, frame, slab, out);
+      const double s = t.n.dot(points[i]);
+      if (!far_from_every_slab(points[i], s, t, slab)) add_if_in_slab(points[i], s, g, t, frame, slab, out);
     }
+  }
 }
 
 std::size_t parts_of(std::size_t count, int threads) {
@@ -203,12 +209,12 @@ void add_slab_and_near_points_parallel(const Eigen::Vector3d* points, std::size_
     const std::size_t a = count * t / parts, b = count * (t + 1) / parts;
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
       const SlabGroup& g = groups[gi];
-      const SlabGroup& ng = near_groups[gi];
+      const SlabTests gt(g), nt(near_groups[gi]);
       for (std::size_t i = a; i < b; ++i) {
         const Eigen::Vector3d& q = points[i];
-        const double s = g.n.dot(q);
-        if (!far_from_every_slab(q, s, g, slab)) add_if_in_slab(q, s, g, frame, slab, local_slabs[t]);
-        add_if_near(q, s, ng, frame, reach, local_near[t]);
+        const double s = gt.n.dot(q);
+        if (!far_from_every_slab(q, s, gt, slab)) add_if_in_slab(q, s, g, gt, frame, slab, local_slabs[t]);
+        add_if_near(q, s, nt, frame, reach, local_near[t]);
       }
     }
   });

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace section::detail {
@@ -32,22 +33,62 @@ struct SlabGroup {
   std::vector<char> near;
 
   /// True when n . q = s lies in a bucket with no slab within a bucket of it.
-  bool far_from_slabs(double s) const {
-    const double x = (s - near0) * inv_near;
-    return x >= 0 && x < double(near.size()) && !near[std::size_t(x)];
-  }
+  bool far_from_slabs(double s) const;
 
   /// The index of the first offset >= key (std::lower_bound's answer), from the bucket's
   /// guess and a few steps.
+  std::size_t first_at_least(double key) const;
+};
+
+/// What the per-point tests of a SlabGroup read, copied out of it once for a loop over
+/// points: read through the group, every point loaded its vectors' bounds again and
+/// converted their sizes (any append could have changed them, for all the compiler knew).
+struct SlabTests {
+  explicit SlabTests(const SlabGroup& g)
+      : n(g.n),
+        near0(g.near0),
+        inv_near(g.inv_near),
+        near_width(g.near_width),
+        near_count(double(g.near.size())),
+        near(g.near.data()),
+        key0(g.key0),
+        inv_width(g.inv_width),
+        buckets(g.first.size()),
+        first(g.first.data()),
+        offset(g.offset.data()),
+        planes(g.offset.size()),
+        plane(g.plane.data()) {}
+  Eigen::Vector3d n;
+  double near0, inv_near, near_width, near_count;
+  const char* near;
+  double key0, inv_width;
+  std::size_t buckets;
+  const std::size_t* first;
+  const double* offset;
+  std::size_t planes;
+  const int* plane;
+
+  /// SlabGroup::far_from_slabs (false when the group has no buckets).
+  bool far_from_slabs(double s) const {
+    const double x = (s - near0) * inv_near;
+    return x >= 0 && x < near_count && !near[std::int64_t(x)];  // x < 2^20: no unsigned guard
+  }
+  /// SlabGroup::first_at_least.
   std::size_t first_at_least(double key) const {
     const double x = (key - key0) * inv_width;
-    const std::size_t nb = first.size();
-    std::size_t k = first[x >= 0 ? (x < double(nb) ? std::size_t(x) : nb - 1) : 0];
+    std::size_t k = first[x >= 0 ? (x < double(buckets) ? std::size_t(x) : buckets - 1) : 0];
     while (k > 0 && offset[k - 1] >= key) --k;
-    while (k < offset.size() && offset[k] < key) ++k;
+    while (k < planes && offset[k] < key) ++k;
     return k;
   }
 };
+
+inline bool SlabGroup::far_from_slabs(double s) const {
+  return SlabTests(*this).far_from_slabs(s);
+}
+inline std::size_t SlabGroup::first_at_least(double key) const {
+  return SlabTests(*this).first_at_least(key);
+}
 
 /// The planes grouped by normal (a group's planes share n), sorted by offset, with their
 /// slab boundaries (width `slab`) and the buckets that speed up the search.
