@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <tuple>
@@ -244,6 +245,17 @@ struct Ends {
   Edge le, te;
 };
 
+// What detect_edge measures an edge from: the end circle's centre and radius (not its
+// contacts) and the outward tangent there.
+struct EdgeInput {
+  double bits[5] = {};
+  EdgeInput() = default;
+  EdgeInput(const InscribedCircle& end, const Eigen::Vector2d& d)
+      : bits{end.center.x(), end.center.y(), end.radius, d.x(), d.y()} {}
+  // The same bits (a signed zero or a NaN told apart): the same edge follows.
+  bool same(const EdgeInput& o) const { return std::memcmp(bits, o.bits, sizeof bits) == 0; }
+};
+
 // Round edges end at the centre of the circle fitted to the edge arc; the arc depends on
 // the end tangent, so tangent -> edge point -> arc -> circle is iterated (3 times). Blunt
 // faces are looked for once, on the medial branch as found. `ax` enters as the axis
@@ -254,6 +266,7 @@ Ends settle_edges(const SampledProfile& pr, const std::vector<InscribedCircle>& 
   const std::vector<InscribedCircle> medial_rev(medial.rbegin(), medial.rend());
   Face face_le, face_te;
   Ends ends{medial, {}, {}};
+  EdgeInput last_le, last_te;
   for (int it = 0; it < 3; ++it) {
     const auto tg = end_tangents(ax, ends.circles, options.tangent_span, size.length);
     const Eigen::Vector2d d_le = -tg.first, d_te = tg.second;
@@ -261,9 +274,20 @@ Ends settle_edges(const SampledProfile& pr, const std::vector<InscribedCircle>& 
       face_le = detail::blunt_face(pr, medial, d_le, options);
       face_te = detail::blunt_face(pr, medial_rev, d_te, options);
     }
-    ends.le =
-        detail::detect_edge(pr, ends.circles.front(), d_le, face_le, 2 * size.widest, options, measured);
-    ends.te = detail::detect_edge(pr, ends.circles.back(), d_te, face_te, 2 * size.widest, options, measured);
+    // An edge depends on its end circle and tangent alone (the rest stays): the same
+    // inputs as the last iteration's give the same edge, and at both ends the same
+    // circles and axis, so the iteration has settled (a converged round edge whose circle
+    // was refitted to the measured points: its centre repeats while its point moves).
+    const EdgeInput in_le{ends.circles.front(), d_le}, in_te{ends.circles.back(), d_te};
+    const bool same_le = it > 0 && in_le.same(last_le), same_te = it > 0 && in_te.same(last_te);
+    if (same_le && same_te) break;
+    last_le = in_le, last_te = in_te;
+    if (!same_le)
+      ends.le =
+          detail::detect_edge(pr, ends.circles.front(), d_le, face_le, 2 * size.widest, options, measured);
+    if (!same_te)
+      ends.te =
+          detail::detect_edge(pr, ends.circles.back(), d_te, face_te, 2 * size.widest, options, measured);
     ends.circles = medial;
     trim_at_face(ends.circles, face_le, true);
     trim_at_face(ends.circles, face_te, false);
