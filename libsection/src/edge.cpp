@@ -380,17 +380,45 @@ std::vector<Eigen::Vector2d> profile_near(const SampledProfile& pr, const Eigen:
   return pr.fast.points(ta, tb, 601);
 }
 
-// The cap of `p` within `depth` below its extreme point along f: its points into `out`
-// and its width across f; -1 when the cap runs out of `p` (not an edge).
-double cap_along(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f, double depth,
-                 std::vector<Eigen::Vector2d>& out) {
+// The largest distance between consecutive points of `p`, rounded up, and at least 1e-12
+// of their largest coordinate (far above the rounding of a height along a direction).
+double largest_step(const std::vector<Eigen::Vector2d>& p) {
+  double step = 0, size = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    size = std::max(size, p[i].cwiseAbs().maxCoeff());
+    if (i > 0) step = std::max(step, (p[i] - p[i - 1]).norm());
+  }
+  return std::max(step, 1e-12 * size) * (1 + 1e-9);
+}
+
+// The first point of `p` (consecutive points at most `step` apart) farthest along the unit
+// f, as a full scan finds it. Point i + k lies at most h_i + k step along f, so the points
+// after i that cannot reach the best height known (from every 8th point), less two steps
+// for the rounding, are passed over: every point at the greatest height is still visited,
+// in order.
+int first_highest(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f, double step) {
   const int m = static_cast<int>(p.size()) - 1;
+  double bound = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= m; i += 8) bound = std::max(bound, p[i].dot(f));
   int top = 0;
   double hmax = p[0].dot(f);
-  for (int i = 1; i <= m; ++i) {
+  for (int i = 1; i <= m;) {
     const double h = p[i].dot(f);
     if (h > hmax) top = i, hmax = h;
+    const double gap = bound - h;  // NaN (a non-finite point): the next
+    i += 1 + (gap > 3 * step ? static_cast<int>(std::min(gap / step - 2, static_cast<double>(m))) : 0);
   }
+  return top;
+}
+
+// The cap of `p` (consecutive points at most `step` apart) within `depth` below its
+// extreme point along f: its points into `out` and its width across f; -1 when the cap
+// runs out of `p` (not an edge).
+double cap_along(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f, double step, double depth,
+                 std::vector<Eigen::Vector2d>& out) {
+  const int m = static_cast<int>(p.size()) - 1;
+  const int top = first_highest(p, f, step);
+  const double hmax = p[top].dot(f);
   int a = top, b = top;
   while (a > 0 && p[a - 1].dot(f) >= hmax - depth) --a;
   while (b < m && p[b + 1].dot(f) >= hmax - depth) ++b;
@@ -429,12 +457,13 @@ bool straightest_cap(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2
                      Cap& best) {
   bool found = false;
   std::vector<Eigen::Vector2d> trial;
+  const double step = largest_step(p);
   for (int k = -40; k <= 40; ++k) {
     const double a = k * pi / 180;
     const Eigen::Vector2d g =
         Eigen::Vector2d(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y())
             .normalized();
-    const double width = cap_along(p, g, depth, trial);
+    const double width = cap_along(p, g, step, depth, trial);
     if (width < 0 || trial.size() < 3) continue;
     Cap cap;
     line_fit(trial, cap);
