@@ -249,7 +249,11 @@ PointsNoise points_noise(const BSpline& profile, const std::vector<Eigen::Vector
   const SampledProfile pr(profile, 4000);
   // The points in the profile's order (by their nearest sample's parameter).
   std::vector<std::pair<double, std::size_t>> all(n);
-  for (std::size_t i = 0; i < n; ++i) all[i] = {pr.ts[pr.nearest(points[i])], i};
+  int at = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    at = pr.nearest(points[i], at);
+    all[i] = {pr.ts[static_cast<std::size_t>(at)], i};
+  }
   std::sort(all.begin(), all.end());
   // Points much closer than the mean spacing share their noise (a grid cut between its
   // lines gives two points per cell, both interpolated from the same vertices): one is kept.
