@@ -373,11 +373,13 @@ void off_axis_check(const SampledProfile& pr, CamberResult& res) {
   }
 }
 
-// Axis parameter nearest q among the parameters of the arc-length table.
-double nearest_param(const AxisCurve& ax, const ArcLengthTable& table, const Eigen::Vector2d& q) {
+// Axis parameter nearest q among the parameters of the arc-length table (`points`: the
+// axis at each of them).
+double nearest_param(const AxisCurve& ax, const ArcLengthTable& table,
+                     const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& q) {
   double best = ax.a, dist = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < table.t.size(); ++i) {
-    const double e = (ax.spline.point(table.t[i]) - q).norm();
+    const double e = (points[i] - q).norm();
     if (e < dist) dist = e, best = table.t[i];
   }
   return best;
@@ -425,7 +427,10 @@ void thickest_circle(const SampledProfile& pr, const AxisCurve& ax, const ArcLen
     if (circles[i].radius > circles[k].radius) k = static_cast<int>(i);
   const InscribedCircle& lo_c = circles[std::max(k - 1, 0)];
   const InscribedCircle& hi_c = circles[std::min<std::size_t>(k + 1, circles.size() - 1)];
-  double a = nearest_param(ax, table, lo_c.center), b = nearest_param(ax, table, hi_c.center);
+  // The axis at the table's parameters, evaluated once for the three searches.
+  std::vector<Eigen::Vector2d> points(table.t.size());
+  for (std::size_t i = 0; i < table.t.size(); ++i) points[i] = ax.spline.point(table.t[i]);
+  double a = nearest_param(ax, table, points, lo_c.center), b = nearest_param(ax, table, points, hi_c.center);
   if (a > b) std::swap(a, b);
   a = std::max(a - (b - a), ax.a);
   b = std::min(b + (b - a), ax.b);
@@ -444,7 +449,7 @@ void thickest_circle(const SampledProfile& pr, const AxisCurve& ax, const ArcLen
   });
   res.thickest = best;
   res.thickest_s =
-      res.ext_le + table.arc(foot_on_axis(ax, nearest_param(ax, table, best.center), best.center));
+      res.ext_le + table.arc(foot_on_axis(ax, nearest_param(ax, table, points, best.center), best.center));
 }
 
 // +1 when the pressure side lies left of the LE-to-TE direction, -1 right: the pressure
