@@ -11,6 +11,7 @@
 #include "section/pipe/schema.h"
 #include "section/pipe/fit_spline_stream.h"
 #include "detail/local_origin.h"
+#include "detail/section_checks.h"
 #include "pipe/adapter.h"
 #include "pipe/camber_issues.h"
 
@@ -227,14 +228,15 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   SectionCamber m = measure(local, opt, q);
   CheckOptions checks;
   checks.noise = opt.profile_noise;
+  const detail::SampledProfile sampled(local, detail::check_samples);  // for both checks
   // Few points for the fit's coefficients: their own scatter, which its rms may hide.
   if (q.all.size() < 16 * local.control.size()) {
-    const PointsNoise scatter = points_noise(local, q.all);
+    const PointsNoise scatter = detail::points_noise(sampled, q.all);
     checks.points_noise = scatter.rms, checks.points = scatter.points;
     // The distance limits see the noise the rms hides (a noise left unknown stays so).
     if (checks.noise > 0) checks.noise = std::max(checks.noise, scatter.rms);
   }
-  SectionCheck check = check_section(local, m.camber, m.params, checks);
+  SectionCheck check = detail::check_section(sampled, m.camber, m.params, checks);
   if (const auto l = in.fits.find(section); l != in.fits.end() && l->second.layers > 0)
     check.findings.push_back({Check::layers, l->second.layers, l->second.layers_length});
   const std::uint32_t flags = pipe::describe_issues({section, local, m.camber, m.params, m.le, m.te, q, opt},
