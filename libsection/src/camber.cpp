@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -484,7 +485,13 @@ Eigen::Vector2d extension_point(const CamberResult& camber, double s) {
 
 CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
                          const std::vector<Eigen::Vector2d>& measured) {
-  const SampledProfile pr(profile, options.medial.samples);
+  return detail::camber_line(SampledProfile(profile, options.medial.samples), options, measured, nullptr);
+}
+
+namespace detail {
+
+CamberResult camber_line(const SampledProfile& pr, const CamberOptions& options,
+                         const std::vector<Eigen::Vector2d>& measured, std::unique_ptr<CamberAxis>* axis) {
   CamberResult res;
   res.orientation = pr.sigma;
   MedialAxis ma = detail::medial_axis(pr, options.medial);  // (the same samples)
@@ -516,7 +523,10 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
   off_axis_check(pr, res);
   thickest_circle(pr, ax, table, circles, res);
   res.pressure_side = pressure_side(res);
+  if (axis) *axis = std::make_unique<CamberAxis>(CamberAxis{ax, table});
   return res;
 }
+
+}  // namespace detail
 
 }  // namespace section

@@ -10,6 +10,7 @@
 #include "section/io/stream.h"
 #include "section/pipe/schema.h"
 #include "section/pipe/fit_spline_stream.h"
+#include "detail/camber_line.h"
 #include "detail/local_origin.h"
 #include "detail/section_checks.h"
 #include "pipe/adapter.h"
@@ -17,6 +18,7 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 
@@ -151,15 +153,21 @@ struct SectionCamber {
 // holds no seed).
 SectionCamber measure(const BSpline& curve, CamberOptions& opt, const Measured& q) {
   SectionCamber m;
+  // The camber line's samples and final axis serve the thickness stations too when they
+  // sample the profile alike (the default).
+  const detail::SampledProfile pr(curve, opt.medial.samples);
+  std::unique_ptr<detail::CamberAxis> axis;
   try {
-    m.camber = camber_line(curve, opt, q.all);
+    m.camber = detail::camber_line(pr, opt, q.all, &axis);
   } catch (const Error&) {
     if (opt.medial.seed.empty()) throw;
     opt.medial.seed.clear();
-    m.camber = camber_line(curve, opt, q.all);
+    m.camber = detail::camber_line(pr, opt, q.all, &axis);
   }
   m.params = section_params(curve, m.camber);
-  m.stations = thickness_stations(curve, m.camber, opt.stations);
+  m.stations = opt.medial.samples == detail::thickness_samples
+                   ? detail::thickness_stations(pr, *axis, m.camber, opt.stations)
+                   : thickness_stations(curve, m.camber, opt.stations);
   m.sides = split_sides(curve, m.camber, opt.side_samples);
   m.le = pipe::edge_coverage(curve, m.camber.le, q.all, opt.edge_hole_reach);
   m.te = pipe::edge_coverage(curve, m.camber.te, q.all, opt.edge_hole_reach);
