@@ -246,6 +246,14 @@ struct Ends {
   Edge le, te;
 };
 
+// The same centres in the same order, to the bit.
+bool same_centres(const std::vector<InscribedCircle>& a, const std::vector<InscribedCircle>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (std::memcmp(a[i].center.data(), b[i].center.data(), 2 * sizeof(double)) != 0) return false;
+  return true;
+}
+
 // What detect_edge measures an edge from: the end circle's centre and radius (not its
 // contacts) and the outward tangent there.
 struct EdgeInput {
@@ -499,7 +507,10 @@ CamberResult camber_line(const SampledProfile& pr, const CamberOptions& options,
   const BranchSize size = blade_size(medial, options);
   prune_ends(medial, options.edge_prune);
   orient(medial, options, res);
-  AxisCurve ax = detail::make_axis(detail::centers(medial), 1e-8);
+  // The medial axis ends with the axis through its own circles: the same centres (no end
+  // pruned, the order kept) give that axis again.
+  AxisCurve ax = same_centres(medial, ma.circles) ? AxisCurve(ma.curve)
+                                                  : detail::make_axis(detail::centers(medial), 1e-8);
   Ends ends = settle_edges(pr, medial, ax, size, options, measured);
   const std::vector<InscribedCircle>& circles = ends.circles;
   std::tie(res.le_tangent, res.te_tangent) = end_tangents(ax, circles, options.tangent_span, size.length);
