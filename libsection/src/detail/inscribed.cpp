@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "detail/inscribed.h"
 
-#include "detail/pivot_solve.h"
-
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -26,7 +24,7 @@ bool solve_circle(const PiecewiseCurve& curve, const Eigen::Vector2d& p, const E
     j << -a1.squaredNorm() + (c - a).dot(a2), 0, n.dot(a1),  //
         0, -b1.squaredNorm() + (c - b).dot(b2), n.dot(b1),   //
         -f(0), f(1), (b - a).dot(n);
-    Eigen::Vector3d dx = -full_pivot_solve(j, f);
+    Eigen::Vector3d dx = -j.fullPivLu().solve(f);
     if (!dx.allFinite()) return false;
     const double sa = a1.norm(), sb = b1.norm();
     const double r = std::max(0.5 * ((c - a).norm() + (c - b).norm()), 1e-6 * scale);
