@@ -5,16 +5,12 @@
 #include "section/medial_axis.h"
 
 #include "camber_fixtures.h"
-#include "detail/pivot_solve.h"
 #include "detail/sampled_profile.h"
 
-#include <Eigen/LU>
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <random>
 #include <utility>
 #include <vector>
 
@@ -114,23 +110,5 @@ TEST_CASE("sampled profile: the nearest sample is the first one a full scan find
     CHECK(pr.nearest(q) == full);
     for (const int hint : {full, (full + n / 2) % n, 0, n - 1}) CHECK(pr.nearest(q, hint) == full);
     CHECK(pr.sample_distance(q) == (pr.samples[full] - q).norm());
-  }
-}
-
-TEST_CASE("full_pivot_solve: the bits of Eigen's FullPivLU solve, singular systems included",
-          "[medial_axis]") {
-  std::mt19937 random(11);
-  std::uniform_real_distribution<double> unit(-1, 1);
-  for (int trial = 0; trial < 20000; ++trial) {
-    Eigen::Matrix3d m;
-    Eigen::Vector3d rhs;
-    for (int i = 0; i < 9; ++i) m.data()[i] = trial % 4 == 0 && i % 3 == 0 ? 0.0 : unit(random) * 1e3;
-    for (int i = 0; i < 3; ++i) rhs(i) = trial % 6 == 0 && i == 1 ? 0.0 : unit(random);
-    if (trial % 5 == 0) m.row(2) = 2 * m.row(0);  // rank 2
-    if (trial % 7 == 0) m.col(1).setZero();
-    if (trial % 97 == 0) m.setZero();  // rank 0: x = 0
-    const Eigen::Vector3d eigen = m.fullPivLu().solve(rhs), own = section::detail::full_pivot_solve(m, rhs);
-    CAPTURE(trial);
-    CHECK(std::memcmp(eigen.data(), own.data(), sizeof(double) * 3) == 0);
   }
 }
