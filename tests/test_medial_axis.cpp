@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the medial axis (section/medial_axis.h) against exact ground truth: an
-// ellipse's medial axis and inscribed circles.
+// ellipse's medial axis and inscribed circles; the sampled profile's searches against full
+// scans, the inscribed circles' 3 x 3 solve against Eigen's.
 #include "section/medial_axis.h"
 
 #include "camber_fixtures.h"
@@ -83,5 +84,31 @@ TEST_CASE("sampled profile: a sample nearer a point than r, on an ellipse", "[me
     CHECK_FALSE(pr.sample_within(q, 0.99 * d));
     CHECK(pr.sample_within(q, 1.01 * d));
     CHECK(pr.sample_distance(q) == Approx(d).epsilon(1e-2));
+  }
+}
+
+TEST_CASE("sampled profile: the nearest sample is the first one a full scan finds, with or without a hint",
+          "[medial_axis]") {
+  // Ellipse 10 x 4; points inside, on and outside it, the centre (nearly equidistant from
+  // many samples) and far away; hints right and wrong.
+  const double a = 10, b = 4;
+  std::vector<Vector2d> pts;
+  for (int i = 0; i < 20000; ++i)
+    pts.push_back({a * std::cos(2 * pi * i / 20000), b * std::sin(2 * pi * i / 20000)});
+  const section::detail::SampledProfile pr(dense_spline(pts), 1000);
+  std::vector<Vector2d> queries = {{0, 0}, {100, -50}, {-10, 0}, {0, 4}};
+  for (int i = 0; i < 400; ++i) {
+    const double t = 2 * pi * i / 400, f = 0.2 + 0.005 * i;
+    queries.push_back({f * a * std::cos(t), f * b * std::sin(t)});
+  }
+  const int n = static_cast<int>(pr.samples.size());
+  for (const auto& q : queries) {
+    int full = 0;
+    for (int i = 1; i < n; ++i)
+      if ((pr.samples[i] - q).squaredNorm() < (pr.samples[full] - q).squaredNorm()) full = i;
+    CAPTURE(q.x(), q.y());
+    CHECK(pr.nearest(q) == full);
+    for (const int hint : {full, (full + n / 2) % n, 0, n - 1}) CHECK(pr.nearest(q, hint) == full);
+    CHECK(pr.sample_distance(q) == (pr.samples[full] - q).norm());
   }
 }

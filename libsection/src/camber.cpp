@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -244,6 +246,25 @@ struct Ends {
   Edge le, te;
 };
 
+// The same centres in the same order, to the bit.
+bool same_centres(const std::vector<InscribedCircle>& a, const std::vector<InscribedCircle>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (std::memcmp(a[i].center.data(), b[i].center.data(), 2 * sizeof(double)) != 0) return false;
+  return true;
+}
+
+// What detect_edge measures an edge from: the end circle's centre and radius (not its
+// contacts) and the outward tangent there.
+struct EdgeInput {
+  double bits[5] = {};
+  EdgeInput() = default;
+  EdgeInput(const InscribedCircle& end, const Eigen::Vector2d& d)
+      : bits{end.center.x(), end.center.y(), end.radius, d.x(), d.y()} {}
+  // The same bits (a signed zero or a NaN told apart): the same edge follows.
+  bool same(const EdgeInput& o) const { return std::memcmp(bits, o.bits, sizeof bits) == 0; }
+};
+
 // Round edges end at the centre of the circle fitted to the edge arc; the arc depends on
 // the end tangent, so tangent -> edge point -> arc -> circle is iterated (3 times). Blunt
 // faces are looked for once, on the medial branch as found. `ax` enters as the axis
@@ -254,6 +275,7 @@ Ends settle_edges(const SampledProfile& pr, const std::vector<InscribedCircle>& 
   const std::vector<InscribedCircle> medial_rev(medial.rbegin(), medial.rend());
   Face face_le, face_te;
   Ends ends{medial, {}, {}};
+  EdgeInput last_le, last_te;
   for (int it = 0; it < 3; ++it) {
     const auto tg = end_tangents(ax, ends.circles, options.tangent_span, size.length);
     const Eigen::Vector2d d_le = -tg.first, d_te = tg.second;
@@ -261,9 +283,20 @@ Ends settle_edges(const SampledProfile& pr, const std::vector<InscribedCircle>& 
       face_le = detail::blunt_face(pr, medial, d_le, options);
       face_te = detail::blunt_face(pr, medial_rev, d_te, options);
     }
-    ends.le =
-        detail::detect_edge(pr, ends.circles.front(), d_le, face_le, 2 * size.widest, options, measured);
-    ends.te = detail::detect_edge(pr, ends.circles.back(), d_te, face_te, 2 * size.widest, options, measured);
+    // An edge depends on its end circle and tangent alone (the rest stays): the same
+    // inputs as the last iteration's give the same edge, and at both ends the same
+    // circles and axis, so the iteration has settled (a converged round edge whose circle
+    // was refitted to the measured points: its centre repeats while its point moves).
+    const EdgeInput in_le{ends.circles.front(), d_le}, in_te{ends.circles.back(), d_te};
+    const bool same_le = it > 0 && in_le.same(last_le), same_te = it > 0 && in_te.same(last_te);
+    if (same_le && same_te) break;
+    last_le = in_le, last_te = in_te;
+    if (!same_le)
+      ends.le =
+          detail::detect_edge(pr, ends.circles.front(), d_le, face_le, 2 * size.widest, options, measured);
+    if (!same_te)
+      ends.te =
+          detail::detect_edge(pr, ends.circles.back(), d_te, face_te, 2 * size.widest, options, measured);
     ends.circles = medial;
     trim_at_face(ends.circles, face_le, true);
     trim_at_face(ends.circles, face_te, false);
@@ -349,11 +382,13 @@ void off_axis_check(const SampledProfile& pr, CamberResult& res) {
   }
 }
 
-// Axis parameter nearest q among the parameters of the arc-length table.
-double nearest_param(const AxisCurve& ax, const ArcLengthTable& table, const Eigen::Vector2d& q) {
+// Axis parameter nearest q among the parameters of the arc-length table (`points`: the
+// axis at each of them).
+double nearest_param(const AxisCurve& ax, const ArcLengthTable& table,
+                     const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& q) {
   double best = ax.a, dist = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < table.t.size(); ++i) {
-    const double e = (ax.spline.point(table.t[i]) - q).norm();
+    const double e = (points[i] - q).norm();
     if (e < dist) dist = e, best = table.t[i];
   }
   return best;
@@ -401,7 +436,10 @@ void thickest_circle(const SampledProfile& pr, const AxisCurve& ax, const ArcLen
     if (circles[i].radius > circles[k].radius) k = static_cast<int>(i);
   const InscribedCircle& lo_c = circles[std::max(k - 1, 0)];
   const InscribedCircle& hi_c = circles[std::min<std::size_t>(k + 1, circles.size() - 1)];
-  double a = nearest_param(ax, table, lo_c.center), b = nearest_param(ax, table, hi_c.center);
+  // The axis at the table's parameters, evaluated once for the three searches.
+  std::vector<Eigen::Vector2d> points(table.t.size());
+  for (std::size_t i = 0; i < table.t.size(); ++i) points[i] = ax.spline.point(table.t[i]);
+  double a = nearest_param(ax, table, points, lo_c.center), b = nearest_param(ax, table, points, hi_c.center);
   if (a > b) std::swap(a, b);
   a = std::max(a - (b - a), ax.a);
   b = std::min(b + (b - a), ax.b);
@@ -420,7 +458,7 @@ void thickest_circle(const SampledProfile& pr, const AxisCurve& ax, const ArcLen
   });
   res.thickest = best;
   res.thickest_s =
-      res.ext_le + table.arc(foot_on_axis(ax, nearest_param(ax, table, best.center), best.center));
+      res.ext_le + table.arc(foot_on_axis(ax, nearest_param(ax, table, points, best.center), best.center));
 }
 
 // +1 when the pressure side lies left of the LE-to-TE direction, -1 right: the pressure
@@ -455,7 +493,13 @@ Eigen::Vector2d extension_point(const CamberResult& camber, double s) {
 
 CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
                          const std::vector<Eigen::Vector2d>& measured) {
-  const SampledProfile pr(profile, options.medial.samples);
+  return detail::camber_line(SampledProfile(profile, options.medial.samples), options, measured, nullptr);
+}
+
+namespace detail {
+
+CamberResult camber_line(const SampledProfile& pr, const CamberOptions& options,
+                         const std::vector<Eigen::Vector2d>& measured, std::unique_ptr<CamberAxis>* axis) {
   CamberResult res;
   res.orientation = pr.sigma;
   MedialAxis ma = detail::medial_axis(pr, options.medial);  // (the same samples)
@@ -463,7 +507,10 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
   const BranchSize size = blade_size(medial, options);
   prune_ends(medial, options.edge_prune);
   orient(medial, options, res);
-  AxisCurve ax = detail::make_axis(detail::centers(medial), 1e-8);
+  // The medial axis ends with the axis through its own circles: the same centres (no end
+  // pruned, the order kept) give that axis again.
+  AxisCurve ax = same_centres(medial, ma.circles) ? AxisCurve(ma.curve)
+                                                  : detail::make_axis(detail::centers(medial), 1e-8);
   Ends ends = settle_edges(pr, medial, ax, size, options, measured);
   const std::vector<InscribedCircle>& circles = ends.circles;
   std::tie(res.le_tangent, res.te_tangent) = end_tangents(ax, circles, options.tangent_span, size.length);
@@ -487,7 +534,10 @@ CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
   off_axis_check(pr, res);
   thickest_circle(pr, ax, table, circles, res);
   res.pressure_side = pressure_side(res);
+  if (axis) *axis = std::make_unique<CamberAxis>(CamberAxis{ax, table});
   return res;
 }
+
+}  // namespace detail
 
 }  // namespace section

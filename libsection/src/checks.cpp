@@ -2,6 +2,7 @@
 #include "section/checks.h"
 
 #include "detail/sampled_profile.h"
+#include "detail/section_checks.h"
 
 #include <Eigen/Cholesky>
 
@@ -244,12 +245,27 @@ struct Checker {
 }  // namespace
 
 PointsNoise points_noise(const BSpline& profile, const std::vector<Eigen::Vector2d>& points) {
+  if (points.size() < 12) return {};
+  return detail::points_noise(SampledProfile(profile, detail::check_samples), points);
+}
+
+SectionCheck check_section(const BSpline& profile, const CamberResult& camber, const SectionParams& params,
+                           const CheckOptions& options) {
+  return detail::check_section(SampledProfile(profile, detail::check_samples), camber, params, options);
+}
+
+namespace detail {
+
+PointsNoise points_noise(const SampledProfile& pr, const std::vector<Eigen::Vector2d>& points) {
   std::size_t n = points.size();
   if (n < 12) return {};
-  const SampledProfile pr(profile, 4000);
   // The points in the profile's order (by their nearest sample's parameter).
   std::vector<std::pair<double, std::size_t>> all(n);
-  for (std::size_t i = 0; i < n; ++i) all[i] = {pr.ts[pr.nearest(points[i])], i};
+  int at = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    at = pr.nearest(points[i], at);
+    all[i] = {pr.ts[static_cast<std::size_t>(at)], i};
+  }
   std::sort(all.begin(), all.end());
   // Points much closer than the mean spacing share their noise (a grid cut between its
   // lines gives two points per cell, both interpolated from the same vertices): one is kept.
@@ -289,9 +305,8 @@ PointsNoise points_noise(const BSpline& profile, const std::vector<Eigen::Vector
   return {1.4826 * scatter[scatter.size() / 2], double(n)};
 }
 
-SectionCheck check_section(const BSpline& profile, const CamberResult& camber, const SectionParams& params,
+SectionCheck check_section(const SampledProfile& pr, const CamberResult& camber, const SectionParams& params,
                            const CheckOptions& options) {
-  const SampledProfile pr(profile, 4000);
   Checker k{pr, camber, params, options, options.noise_factor * options.noise + options.floor * pr.scale, {}};
   k.edge_circle(camber.le, Check::le_radius);
   k.edge_circle(camber.te, Check::te_radius);
@@ -300,11 +315,13 @@ SectionCheck check_section(const BSpline& profile, const CamberResult& camber, c
   k.chord();
   k.end_angle(params.inlet_angle, camber.ext_le, 1, Check::inlet_angle);
   k.end_angle(params.outlet_angle, camber.length - camber.ext_te, -1, Check::outlet_angle);
-  k.noise(profile.control.size());
+  k.noise(pr.curve.control.size());
   std::sort(k.out.findings.begin(), k.out.findings.end(),
             [](const Finding& a, const Finding& b) { return bit(a.check) < bit(b.check); });
   return k.out;
 }
+
+}  // namespace detail
 
 namespace {
 

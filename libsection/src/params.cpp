@@ -198,10 +198,18 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
 
 std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const CamberResult& camber,
                                                  const std::vector<double>& fractions) {
-  const detail::SampledProfile pr(profile, 1000);
   const detail::AxisCurve ax(camber.medial.curve);
+  const detail::ArcLengthTable table(ax.spline, 4 * static_cast<int>(camber.medial.circles.size()));
+  return detail::thickness_stations(detail::SampledProfile(profile, detail::thickness_samples), {ax, table},
+                                    camber, fractions);
+}
+
+std::vector<ThicknessStation> detail::thickness_stations(const SampledProfile& pr, const CamberAxis& axis,
+                                                         const CamberResult& camber,
+                                                         const std::vector<double>& fractions) {
+  const detail::AxisCurve& ax = axis.ax;
+  const detail::ArcLengthTable& table = axis.table;
   const auto& circles = camber.medial.circles;
-  const detail::ArcLengthTable table(ax.spline, 4 * static_cast<int>(circles.size()));
   std::vector<ThicknessStation> out;
   for (double f : fractions) {
     if (!(f >= 0 && f <= 1))

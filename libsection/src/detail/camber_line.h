@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The camber line at an arc length from its LE point, shared by camber_line's samples and
-// the thickness stations (src/camber.cpp).
+// the thickness stations (src/camber.cpp); camber_line and the thickness stations on one
+// sampled profile and axis (the camber stream measures both).
 #include "detail/axis_curve.h"
+#include "detail/sampled_profile.h"
 #include "section/camber.h"
+#include "section/params.h"
 
 #include <Eigen/Core>
+
+#include <memory>
+#include <vector>
 
 namespace section::detail {
 
@@ -22,5 +28,26 @@ AxisSample axis_sample(const AxisCurve& ax, const ArcLengthTable& table, double 
 /// The point at arc length s on the straight extensions of `camber`: the LE one when
 /// s <= ext_le, else the TE one.
 Eigen::Vector2d extension_point(const CamberResult& camber, double s);
+
+/// The axis camber_line ends with and its arc-length table (what thickness_stations
+/// rebuilds from CamberResult::medial).
+struct CamberAxis {
+  AxisCurve ax;
+  ArcLengthTable table;
+};
+
+/// camber_line on `pr` (the profile sampled with options.medial.samples); its final axis
+/// into `axis` when given.
+CamberResult camber_line(const SampledProfile& pr, const CamberOptions& options,
+                         const std::vector<Eigen::Vector2d>& measured, std::unique_ptr<CamberAxis>* axis);
+
+/// The samples thickness_stations measures the profile by.
+constexpr int thickness_samples = 1000;
+
+/// thickness_stations on `pr` (the profile sampled with thickness_samples) and on the axis
+/// camber_line gave `camber` with.
+std::vector<ThicknessStation> thickness_stations(const SampledProfile& pr, const CamberAxis& axis,
+                                                 const CamberResult& camber,
+                                                 const std::vector<double>& fractions);
 
 }  // namespace section::detail

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The edges as camber_line measures them (src/edge.cpp): the edge circle fitted to a
-// grown (or fixed) edge arc, refitted to the measured points, the blunt-face test and
-// the shape classification.
+// grown (or fixed) edge arc, refitted to the measured points, the blunt-face test
+// (src/blunt_face.cpp) and the shape classification.
 #include "detail/sampled_profile.h"
 #include "section/camber.h"
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace section::detail {
 
@@ -39,16 +40,6 @@ SampledProfile::SampledProfile(const BSpline& c, int count) : curve(c), fast(c) 
   sigma = area >= 0 ? 1 : -1;
 }
 
-int SampledProfile::nearest(const Eigen::Vector2d& q) const {
-  int best = 0;
-  double d = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const double e = (samples[i] - q).squaredNorm();
-    if (e < d) d = e, best = static_cast<int>(i);
-  }
-  return best;
-}
-
 int SampledProfile::nearest_on_side(const Eigen::Vector2d& q, const Eigen::Vector2d& n) const {
   int best = -1;
   double d = std::numeric_limits<double>::infinity();
@@ -70,24 +61,53 @@ int samples_on(double gap, double step, int n) {
   return 1 + static_cast<int>(std::min(skip, static_cast<double>(n)));
 }
 
-}  // namespace
-
-double SampledProfile::sample_distance(const Eigen::Vector2d& q) const {
-  // Sample i + m is at least r_i - m step from q (r_i: sample i's distance), so the
-  // samples after i that cannot come nearer than the best so far are skipped, with a
-  // margin of two steps over the rounding: the minimum is the one a full scan finds. A
-  // first pass over every 16th sample sets a near best: most samples are far from q and
-  // are then skipped (the scan visits one in five or fewer).
+// The first sample at the least distance from q (as a full scan finds it) and its squared
+// distance (infinite for a non-finite q, index 0). Sample i + m is at least r_i - m step
+// from q (r_i: sample i's distance), so the samples after i that cannot come nearer than
+// the best so far are skipped, with a margin of two steps over the rounding: every sample
+// at the least distance is still visited, in order. The best starts at `bound2`, a squared
+// distance of some sample to q: the nearer it is, the more samples are skipped.
+std::pair<int, double> first_nearest(const std::vector<Eigen::Vector2d>& samples, double step,
+                                     const Eigen::Vector2d& q, double bound2) {
   const int n = static_cast<int>(samples.size());
-  double best2 = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < n; i += 16) best2 = std::min(best2, (samples[i] - q).squaredNorm());
-  double best = std::sqrt(best2);
+  double bound = std::sqrt(bound2), best2 = std::numeric_limits<double>::infinity();
+  int best = 0;
   for (int i = 0; i < n;) {
     const double d2 = (samples[i] - q).squaredNorm();
-    if (d2 < best2) best2 = d2, best = std::sqrt(d2);
-    i += samples_on(std::sqrt(d2) - best, step, n);  // NaN gap (a non-finite q): the next
+    if (d2 < best2) best2 = d2, best = i;
+    if (d2 < bound2) bound2 = d2, bound = std::sqrt(d2);
+    i += samples_on(std::sqrt(d2) - bound, step, n);  // NaN gap (a non-finite q): the next
   }
-  return std::sqrt(best2);
+  return {best, best2};
+}
+
+// The least squared distance from q to every 16th sample: most samples are far from q
+// and then skipped (the scan visits one in five or fewer).
+double coarse_bound(const std::vector<Eigen::Vector2d>& samples, const Eigen::Vector2d& q) {
+  double bound2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < samples.size(); i += 16)
+    bound2 = std::min(bound2, (samples[i] - q).squaredNorm());
+  return bound2;
+}
+
+}  // namespace
+
+int SampledProfile::nearest(const Eigen::Vector2d& q) const {
+  return first_nearest(samples, step, q, coarse_bound(samples, q)).first;
+}
+
+int SampledProfile::nearest(const Eigen::Vector2d& q, int hint) const {
+  // The hint and its neighbours bound the distance (points in order along the profile:
+  // the last point's nearest sample lies close).
+  const int n = static_cast<int>(samples.size());
+  double bound2 = std::numeric_limits<double>::infinity();
+  for (int k = -8; k <= 8; ++k)
+    bound2 = std::min(bound2, (samples[((hint + k) % n + n) % n] - q).squaredNorm());
+  return first_nearest(samples, step, q, bound2).first;
+}
+
+double SampledProfile::sample_distance(const Eigen::Vector2d& q) const {
+  return std::sqrt(first_nearest(samples, step, q, coarse_bound(samples, q)).second);
 }
 
 bool SampledProfile::sample_within(const Eigen::Vector2d& q, double r) const {

@@ -52,8 +52,11 @@ struct SampledProfile {
   double wrap(double t) const { return t0 + std::fmod(std::fmod(t - t0, period) + period, period); }
   /// Parameter distance going forward (in the curve's direction) from a to b.
   double forward(double a, double b) const { return std::fmod(std::fmod(b - a, period) + period, period); }
-  /// Index of the sample nearest q.
+  /// Index of the first sample nearest q.
   int nearest(const Eigen::Vector2d& q) const;
+  /// The same, sooner when the sample `hint` lies near q (the last one found, for points
+  /// in order along the profile).
+  int nearest(const Eigen::Vector2d& q, int hint) const;
   /// Nearest sample on the side of the line through q that `n` points to; -1 when none.
   int nearest_on_side(const Eigen::Vector2d& q, const Eigen::Vector2d& n) const;
   /// Distance from q to the nearest sample.

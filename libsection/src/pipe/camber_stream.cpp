@@ -10,12 +10,15 @@
 #include "section/io/stream.h"
 #include "section/pipe/schema.h"
 #include "section/pipe/fit_spline_stream.h"
+#include "detail/camber_line.h"
 #include "detail/local_origin.h"
+#include "detail/section_checks.h"
 #include "pipe/adapter.h"
 #include "pipe/camber_issues.h"
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 
@@ -150,15 +153,21 @@ struct SectionCamber {
 // holds no seed).
 SectionCamber measure(const BSpline& curve, CamberOptions& opt, const Measured& q) {
   SectionCamber m;
+  // The camber line's samples and final axis serve the thickness stations too when they
+  // sample the profile alike (the default).
+  const detail::SampledProfile pr(curve, opt.medial.samples);
+  std::unique_ptr<detail::CamberAxis> axis;
   try {
-    m.camber = camber_line(curve, opt, q.all);
+    m.camber = detail::camber_line(pr, opt, q.all, &axis);
   } catch (const Error&) {
     if (opt.medial.seed.empty()) throw;
     opt.medial.seed.clear();
-    m.camber = camber_line(curve, opt, q.all);
+    m.camber = detail::camber_line(pr, opt, q.all, &axis);
   }
   m.params = section_params(curve, m.camber);
-  m.stations = thickness_stations(curve, m.camber, opt.stations);
+  m.stations = opt.medial.samples == detail::thickness_samples
+                   ? detail::thickness_stations(pr, *axis, m.camber, opt.stations)
+                   : thickness_stations(curve, m.camber, opt.stations);
   m.sides = split_sides(curve, m.camber, opt.side_samples);
   m.le = pipe::edge_coverage(curve, m.camber.le, q.all, opt.edge_hole_reach);
   m.te = pipe::edge_coverage(curve, m.camber.te, q.all, opt.edge_hole_reach);
@@ -227,14 +236,15 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   SectionCamber m = measure(local, opt, q);
   CheckOptions checks;
   checks.noise = opt.profile_noise;
+  const detail::SampledProfile sampled(local, detail::check_samples);  // for both checks
   // Few points for the fit's coefficients: their own scatter, which its rms may hide.
   if (q.all.size() < 16 * local.control.size()) {
-    const PointsNoise scatter = points_noise(local, q.all);
+    const PointsNoise scatter = detail::points_noise(sampled, q.all);
     checks.points_noise = scatter.rms, checks.points = scatter.points;
     // The distance limits see the noise the rms hides (a noise left unknown stays so).
     if (checks.noise > 0) checks.noise = std::max(checks.noise, scatter.rms);
   }
-  SectionCheck check = check_section(local, m.camber, m.params, checks);
+  SectionCheck check = detail::check_section(sampled, m.camber, m.params, checks);
   if (const auto l = in.fits.find(section); l != in.fits.end() && l->second.layers > 0)
     check.findings.push_back({Check::layers, l->second.layers, l->second.layers_length});
   const std::uint32_t flags = pipe::describe_issues({section, local, m.camber, m.params, m.le, m.te, q, opt},

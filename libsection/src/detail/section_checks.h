@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// check_section and points_noise on a profile sampled by the caller: the camber stream runs
+// both on every section of few points, on the same samples.
+#include "detail/sampled_profile.h"
+#include "section/checks.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace section::detail {
+
+/// The samples the checks measure the profile by.
+constexpr int check_samples = 4000;
+
+/// check_section on `pr`, the profile sampled with check_samples.
+SectionCheck check_section(const SampledProfile& pr, const CamberResult& camber, const SectionParams& params,
+                           const CheckOptions& options);
+
+/// points_noise on `pr`, the profile sampled with check_samples.
+PointsNoise points_noise(const SampledProfile& pr, const std::vector<Eigen::Vector2d>& points);
+
+}  // namespace section::detail
