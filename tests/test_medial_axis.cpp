@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the medial axis (section/medial_axis.h) against exact ground truth: an
 // ellipse's medial axis and inscribed circles; the sampled profile's searches against full
-// scans, the inscribed circles' 3 x 3 solve against Eigen's.
+// scans.
 #include "section/medial_axis.h"
 
 #include "camber_fixtures.h"
