@@ -69,21 +69,13 @@ inline int decimal_length(std::uint64_t x) {
   return t + (x >= tens[t]);
 }
 
-/// Writes `v` as std::to_chars(p, p + 32, v) does and returns the end, for 2^-17 <= |v| <
-/// 2^49 (7.6e-6 to 5.6e14) other than powers of two; nullptr (nothing written) for any
-/// other value, or where the closest shortest decimal is a tie (left to to_chars).
-inline char* shortest_number(char* p, double v) {
+/// The shortest decimal that reads back as m 2^(e2-52) (2^52 < m < 2^53, e2 in [-17, 48]) and,
+/// of those, the closest: `digits` 10^`exponent`. False where the closest is a tie.
+inline bool shortest_decimal(std::uint64_t m, int e2, std::uint64_t& digits, int& exponent) {
   using u128 = unsigned __int128;
-  std::uint64_t bits;
-  std::memcpy(&bits, &v, sizeof bits);
-  const int e2 = int((bits >> 52) & 0x7FF) - 1023;  // 2^e2 <= |v| < 2^(e2 + 1)
-  const std::uint64_t fraction = bits & ((std::uint64_t(1) << 52) - 1);
-  // (A power of two has a narrower interval below it than above: not handled here.)
-  if (e2 < -17 || e2 > 48 || fraction == 0) return nullptr;
-  const std::uint64_t m = fraction | (std::uint64_t(1) << 52);
-  const int s = 52 - e2;               // |v| = m / 2^s, s in [4, 69]
-  const int e10 = (e2 * 1233) >> 12;   // floor(e2 log10(2)): 10^e10 <= |v| < 10^(e10 + 2)
-  const int k = 16 - e10;              // |v| 10^k in [10^16, 10^18), k in [2, 22]
+  const int s = 52 - e2;              // |v| = m / 2^s, s in [4, 69]
+  const int e10 = (e2 * 1233) >> 12;  // floor(e2 log10(2)): 10^e10 <= |v| < 10^(e10 + 2)
+  const int k = 16 - e10;             // |v| 10^k in [10^16, 10^18), k in [2, 22]
   const u128 ten_k = power_of_ten_128(k);
   const u128 n = u128(m) * ten_k;  // |v| 10^k = n / 2^s exactly (n < 2^127)
   // The reals that read back as v, times 10^k 2^(s+1): within 10^k of 2n (half a unit in
@@ -93,8 +85,8 @@ inline char* shortest_number(char* p, double v) {
   const u128 lower = 2 * n - ten_k, upper = 2 * n + ten_k;
   // The integers D with D 2^(s+1) in that interval: the decimals of 16 to 18 digits at
   // scale 10^-k that read back as v.
-  std::uint64_t lo = even ? std::uint64_t((lower + ((u128(1) << shift) - 1)) >> shift)
-                          : std::uint64_t(lower >> shift) + 1;
+  std::uint64_t lo =
+      even ? std::uint64_t((lower + ((u128(1) << shift) - 1)) >> shift) : std::uint64_t(lower >> shift) + 1;
   std::uint64_t hi = even ? std::uint64_t(upper >> shift) : std::uint64_t((upper - 1) >> shift);
   // Fewer digits while some decimal with them is still in the interval.
   int j = 0;
@@ -110,7 +102,7 @@ inline char* shortest_number(char* p, double v) {
   // Of those, the closest to |v|: |v| 10^(k-j) rounded (the interval is symmetric about it).
   const std::uint64_t whole = std::uint64_t(n >> s);  // |v| 10^k, truncated
   const u128 rest = n & ((u128(1) << s) - 1);         // and what it left, in units of 2^-s
-  std::uint64_t digits = whole / scale;
+  digits = whole / scale;
   const std::uint64_t r = whole % scale;
   bool up, tie;
   if (j == 0) {
@@ -122,19 +114,21 @@ inline char* shortest_number(char* p, double v) {
     up = r > half || (r == half && rest != 0);
     tie = r == half && rest == 0;
   }
-  if (tie) return nullptr;
   digits += up;
-  if (digits < lo || digits > hi) return nullptr;  // (cannot happen; to_chars then)
-  // The digits (at most 17: 18 would leave a multiple of 10 in the interval), 8 at a time.
-  if (digits >= 100000000000000000) return nullptr;
+  exponent = j - k;
+  return !tie && digits >= lo && digits <= hi;  // (the last two cannot fail)
+}
+
+/// Writes `digits` 10^`exponent` (digits < 10^17, no trailing zero) as to_chars does: fixed
+/// or scientific, whichever is shorter, fixed on a tie.
+inline char* write_decimal(char* p, std::uint64_t digits, int exponent) {
   char buf[24];
   eight_digit_text(buf, std::uint32_t(digits / 10000000000000000));
   eight_digit_text(buf + 8, std::uint32_t(digits / 100000000 % 100000000));
   eight_digit_text(buf + 16, std::uint32_t(digits % 100000000));
   const int count = decimal_length(digits);
   const char* const first = buf + 24 - count;
-  const int exp10 = count - 1 + j - k;  // |v| = d.ddd 10^exp10
-  if (bits >> 63) *p++ = '-';
+  const int exp10 = count - 1 + exponent;          // d.ddd 10^exp10
   const int scientific = count + (count > 1) + 4;  // e+XX (|exp10| < 100 here)
   const int fixed = exp10 >= 0 ? (count <= exp10 + 1 ? exp10 + 1 : count + 1) : 1 - exp10 + count;
   if (fixed <= scientific) {
@@ -169,6 +163,26 @@ inline char* shortest_number(char* p, double v) {
   *p++ = char('0' + e / 10);
   *p++ = char('0' + e % 10);
   return p;
+}
+
+/// Writes `v` as std::to_chars(p, p + 32, v) does and returns the end, for 2^-17 <= |v| <
+/// 2^49 (7.6e-6 to 5.6e14) other than powers of two; nullptr (nothing written) for any
+/// other value, or where the closest shortest decimal is a tie (left to to_chars).
+inline char* shortest_number(char* p, double v) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  const int e2 = int((bits >> 52) & 0x7FF) - 1023;  // 2^e2 <= |v| < 2^(e2 + 1)
+  const std::uint64_t fraction = bits & ((std::uint64_t(1) << 52) - 1);
+  // (A power of two has a narrower interval below it than above: not handled here.)
+  if (e2 < -17 || e2 > 48 || fraction == 0) return nullptr;
+  std::uint64_t digits;
+  int exponent;
+  // (At most 17 digits: with 18 the interval would hold a multiple of 10.)
+  if (!shortest_decimal(fraction | (std::uint64_t(1) << 52), e2, digits, exponent) ||
+      digits >= 100000000000000000)
+    return nullptr;
+  if (bits >> 63) *p++ = '-';
+  return write_decimal(p, digits, exponent);
 }
 
 #else
