@@ -2,6 +2,7 @@
 // The stream's own number reader (io/plain_number.h) gives the double std::from_chars gives,
 // bit for bit, or leaves the text to it.
 #include "io/plain_number.h"
+#include "io/shortest_number.h"
 #include "io/stream_text.h"
 #include "section/io/stream.h"
 
@@ -71,6 +72,56 @@ TEST_CASE("stream numbers: plain_number reads what the writers write, as from_ch
     REQUIRE(agrees(buf));
   }
   CHECK(checked > 150000);
+}
+
+TEST_CASE("stream numbers: shortest_number writes what std::to_chars writes, or declines", "[pipe]") {
+  const auto agrees_to_chars = [](double v) {
+    char mine[64], theirs[64];
+    const char* end = section::detail::shortest_number(mine, v);
+    if (!end) return true;  // declined: the writer uses to_chars
+    const auto r = std::to_chars(theirs, theirs + sizeof theirs, v);
+    return std::string(mine, std::size_t(end - mine)) == std::string(theirs, std::size_t(r.ptr - theirs));
+  };
+  const auto writes = [](double v, const char* text) {
+    char buf[64];
+    const char* end = section::detail::shortest_number(buf, v);
+    return end && std::string(buf, std::size_t(end - buf)) == text;
+  };
+  // Fixed and scientific forms, whichever is shorter (fixed on a tie).
+  CHECK(writes(19.619593363634294, "19.619593363634294"));
+  CHECK(writes(-0.9794720536585177, "-0.9794720536585177"));
+  CHECK(writes(0.1, "0.1"));
+  CHECK(writes(0.001, "0.001"));
+  CHECK(writes(0.0001, "1e-04"));
+  CHECK(writes(0.00012, "0.00012"));
+  CHECK(writes(1.5e-05, "1.5e-05"));
+  CHECK(writes(123456789012345.6, "123456789012345.6"));
+  CHECK(writes(3e14, "3e+14"));
+  CHECK(writes(300000.0, "3e+05"));
+  CHECK(writes(1.0 / 3, "0.3333333333333333"));
+  // Outside its range, and powers of two: left to to_chars.
+  for (const double v : {0.0, 1.0, 0.5, 1e-6, 1e15, 1e300, -4.0})
+    CHECK(section::detail::shortest_number(nullptr, v) == nullptr);
+  // Random doubles of every significand across the range, short decimals and their
+  // neighbours (where the interval's ends decide).
+  std::mt19937_64 rng(31);
+  long written = 0;
+  for (int k = 0; k < 400000; ++k) {
+    std::uint64_t bits = (rng() & ((std::uint64_t(1) << 52) - 1)) | (std::uint64_t(1005 + rng() % 68) << 52) |
+                         (std::uint64_t(k % 2) << 63);
+    double v;
+    std::memcpy(&v, &bits, sizeof v);
+    char buf[64];
+    written += section::detail::shortest_number(buf, v) != nullptr;
+    REQUIRE(agrees_to_chars(v));
+    const int digits = 1 + int(rng() % 17);
+    const double d =
+        double(rng() % std::uint64_t(std::pow(10.0, digits))) * std::pow(10.0, int(rng() % 20) - 6 - digits);
+    REQUIRE(agrees_to_chars(d));
+    REQUIRE(agrees_to_chars(std::nextafter(d, 1e300)));
+    REQUIRE(agrees_to_chars(std::nextafter(d, 0.0)));
+  }
+  CHECK(written > 380000);  // (2 of its 68 exponents are outside the range)
 }
 
 TEST_CASE("stream numbers: rows in other forms and bad rows among plain ones", "[pipe]") {

@@ -5,6 +5,7 @@
 
 #include "detail/parallel.h"
 #include "io/byte_source.h"
+#include "io/shortest_number.h"
 #include "io/stream_text.h"
 #include "section/error.h"
 
@@ -21,7 +22,7 @@ namespace {
 
 // Writes v as std::to_chars(double) does (shortest round trip, fixed or scientific,
 // whichever is shorter, fixed on a tie). Integers below 100000 in magnitude (ids, counts)
-// print in fixed notation, digit by digit, much faster.
+// print in fixed notation, digit by digit, much faster; most others by shortest_number.
 inline char* put_number(char* p, double v) {
   if (v > -100000 && v < 100000) {
     const int k = int(v);
@@ -38,6 +39,7 @@ inline char* put_number(char* p, double v) {
       return p;
     }
   }
+  if (char* end = shortest_number(p, v)) return end;
   return std::to_chars(p, p + 32, v).ptr;
 }
 

@@ -110,20 +110,32 @@ bool parse_row(std::string_view line, const IdRules& ids, std::vector<double>& o
   return col == columns;
 }
 
-// A row at `p` in the form the writers give (cells plain_number, ',' between them, '\n'
-// or `end` after them) appended to `out`: the end of its line, or nullptr for any other row
-// (then left to parse_row; nothing appended). The row is gathered on the stack and
-// appended whole: one check of the vector's room a row, not one a value.
+// A row at `p` in the form the writers give (cells plain_number, ids 1 to 9 digits, ','
+// between them, '\n' or `end` after them) appended to `out`: the end of its line, or nullptr
+// for any other row (then left to parse_row; nothing appended). The row is gathered on the
+// stack and appended whole: one check of the vector's room a row, not one a value.
 inline const char* plain_row(const char* p, const char* end, const IdRules& ids, std::vector<double>& out) {
   constexpr std::size_t most = 32;  // (wider rows are left to parse_row)
   const std::size_t columns = ids.column.size();
   if (columns == 0 || columns > most) return nullptr;
+  const char* const kind = ids.column.data();
   double row[most];
   for (std::size_t col = 0;; ++col) {
-    double value = 0;
-    p = plain_number(p, end, value);
-    if (!p || std::abs(value) > max_coordinate || !ids.ok(col, value)) return nullptr;
-    row[col] = value;
+    if (kind[col]) {
+      // An id as an integer: below 10^9, so a valid id and exact as a double, without the
+      // checks of a double that could be one.
+      const char* const first = p;
+      std::uint32_t id = 0;
+      while (p < end && static_cast<unsigned>(*p - '0') < 10) id = 10 * id + std::uint32_t(*p++ - '0');
+      if (p == first || p - first > 9) return nullptr;
+      row[col] = double(id);
+      if (kind[col] == 2 && ids.section >= 0 && row[col] != ids.section) return nullptr;
+    } else {
+      double value = 0;
+      p = plain_number(p, end, value);
+      if (!p || std::abs(value) > max_coordinate) return nullptr;
+      row[col] = value;
+    }
     if (col + 1 == columns) {
       if (p != end && *p++ != '\n') return nullptr;
       break;
