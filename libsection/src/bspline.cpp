@@ -91,13 +91,15 @@ long find_span(const BSpline& c, double t) {
   return std::clamp<long>(j, p, n - 1);
 }
 
-// Basis functions and their derivatives up to `nd` at t in span j (Piegl & Tiller A2.3).
-// ders[k][r] is the k-th derivative of N_{j-p+r}.
-void basis_derivatives(const BSpline& c, long j, double t, int nd,
-                       std::array<std::array<double, max_degree + 1>, max_degree + 1>& ders) {
-  const int p = c.degree;
+using BasisTable = std::array<std::array<double, max_degree + 1>, max_degree + 1>;
+
+// basis_derivatives at degree Degree (the curve's when 0): cubics (nearly every curve) get
+// the loops unrolled, the same arithmetic in the same order.
+template <int Degree>
+void basis_derivatives_of(const BSpline& c, long j, double t, int nd, BasisTable& ders) {
+  const int p = Degree > 0 ? Degree : c.degree;
   // Not zeroed (that took most of the time at degree 3): every entry read is written first.
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ndu;
+  BasisTable ndu;
   std::array<double, max_degree + 1> left, right;
   ndu[0][0] = 1.0;
   for (int r = 1; r <= p; ++r) {
@@ -145,6 +147,15 @@ void basis_derivatives(const BSpline& c, long j, double t, int nd,
   }
 }
 
+// Basis functions and their derivatives up to `nd` at t in span j (Piegl & Tiller A2.3).
+// ders[k][r] is the k-th derivative of N_{j-p+r}.
+void basis_derivatives(const BSpline& c, long j, double t, int nd, BasisTable& ders) {
+  if (c.degree == 3)
+    basis_derivatives_of<3>(c, j, t, nd, ders);
+  else
+    basis_derivatives_of<0>(c, j, t, nd, ders);
+}
+
 int control_index(const BSpline& c, long i) {
   if (!c.closed) return static_cast<int>(i);
   const long n = control_count(c);
@@ -159,7 +170,7 @@ void evaluate(const BSpline& c, double t, int nd, Eigen::Vector2d* out) {
   const long j = find_span(c, tn);
   const int p = c.degree;
   const int nk = std::min(nd, p);
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders;  // rows 0..nk written, only those read
+  BasisTable ders;  // rows 0..nk written, only those read
   basis_derivatives(c, j, tn, nk, ders);
   for (int k = 0; k <= nd; ++k) {
     out[k].setZero();
@@ -263,7 +274,7 @@ void BSpline::basis(double t, std::vector<int>& index, std::vector<double>& valu
   check_curve(*this);
   const double tn = normalise(*this, t);
   const long j = find_span(*this, tn);
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders{};
+  BasisTable ders{};
   basis_derivatives(*this, j, tn, 0, ders);
   index.resize(degree + 1);
   value.resize(degree + 1);
@@ -349,7 +360,7 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   std::vector<double> entries(static_cast<std::size_t>(n) * slots, 0.0);
   std::vector<char> used(entries.size(), 0);
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders;  // row 0 written, only it read
+  BasisTable ders;  // row 0 written, only it read
   int idx[max_degree + 1];
   double trace = 0;
   for (int i = 0; i < m; ++i) {
