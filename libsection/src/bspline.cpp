@@ -93,11 +93,13 @@ long find_span(const BSpline& c, double t) {
 
 using BasisTable = std::array<std::array<double, max_degree + 1>, max_degree + 1>;
 
-// basis_derivatives at degree Degree (the curve's when 0): cubics (nearly every curve) get
-// the loops unrolled, the same arithmetic in the same order.
-template <int Degree>
-void basis_derivatives_of(const BSpline& c, long j, double t, int nd, BasisTable& ders) {
+// basis_derivatives at degree Degree (the curve's when 0) up to derivative Derivs (nd's
+// when negative): cubics (nearly every curve) get the loops unrolled, the same arithmetic
+// in the same order.
+template <int Degree, int Derivs>
+void basis_derivatives_of(const BSpline& c, long j, double t, int derivs, BasisTable& ders) {
   const int p = Degree > 0 ? Degree : c.degree;
+  const int nd = Derivs >= 0 ? Derivs : derivs;
   // Not zeroed (that took most of the time at degree 3): every entry read is written first.
   BasisTable ndu;
   std::array<double, max_degree + 1> left, right;
@@ -150,10 +152,14 @@ void basis_derivatives_of(const BSpline& c, long j, double t, int nd, BasisTable
 // Basis functions and their derivatives up to `nd` at t in span j (Piegl & Tiller A2.3).
 // ders[k][r] is the k-th derivative of N_{j-p+r}.
 void basis_derivatives(const BSpline& c, long j, double t, int nd, BasisTable& ders) {
-  if (c.degree == 3)
-    basis_derivatives_of<3>(c, j, t, nd, ders);
+  if (c.degree != 3)
+    basis_derivatives_of<0, -1>(c, j, t, nd, ders);
+  else if (nd == 0)  // values (fits, points)
+    basis_derivatives_of<3, 0>(c, j, t, nd, ders);
+  else if (nd == 3)  // all derivatives (PiecewiseCurve)
+    basis_derivatives_of<3, 3>(c, j, t, nd, ders);
   else
-    basis_derivatives_of<0>(c, j, t, nd, ders);
+    basis_derivatives_of<3, -1>(c, j, t, nd, ders);
 }
 
 int control_index(const BSpline& c, long i) {
@@ -372,12 +378,14 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
     basis_derivatives(shape, j, tn, 0, ders);
     const double* val = ders[0].data();
     for (int r = 0; r <= p; ++r) idx[r] = control_index(shape, j - p + r);
+    // Columns in a row without a wrap between them (nearly every point): slots p - a + b.
+    const bool plain = !by_column && idx[p] == idx[0] + p;
     for (int a = 0; a <= p; ++a) {
       rhs.row(idx[a]) += w * val[a] * points[i].transpose();
       const std::size_t row = static_cast<std::size_t>(idx[a]) * slots;
       for (int b = 0; b <= p; ++b) {
         const double v = w * val[a] * val[b];
-        const std::size_t e = row + slot_of(idx[a], idx[b]);
+        const std::size_t e = row + (plain ? p - a + b : slot_of(idx[a], idx[b]));
         entries[e] = used[e] ? entries[e] + v : v;
         used[e] = 1;
       }
