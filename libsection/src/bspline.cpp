@@ -152,14 +152,16 @@ void basis_derivatives_of(const BSpline& c, long j, double t, int derivs, BasisT
 // Basis functions and their derivatives up to `nd` at t in span j (Piegl & Tiller A2.3).
 // ders[k][r] is the k-th derivative of N_{j-p+r}.
 void basis_derivatives(const BSpline& c, long j, double t, int nd, BasisTable& ders) {
-  if (c.degree != 3)
+  if (c.degree != 3 || nd > 3)
     basis_derivatives_of<0, -1>(c, j, t, nd, ders);
   else if (nd == 0)  // values (fits, points)
     basis_derivatives_of<3, 0>(c, j, t, nd, ders);
-  else if (nd == 3)  // all derivatives (PiecewiseCurve)
+  else if (nd == 1)
+    basis_derivatives_of<3, 1>(c, j, t, nd, ders);
+  else if (nd == 2)
+    basis_derivatives_of<3, 2>(c, j, t, nd, ders);
+  else  // all derivatives (PiecewiseCurve)
     basis_derivatives_of<3, 3>(c, j, t, nd, ders);
-  else
-    basis_derivatives_of<3, -1>(c, j, t, nd, ders);
 }
 
 int control_index(const BSpline& c, long i) {
