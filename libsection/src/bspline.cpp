@@ -354,8 +354,9 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
                 " parameters");
   // The data term summed per matrix entry in point order, first term first: the sums that
   // setFromTriplets would form from one triplet per point and entry, without the triplets.
-  // A row meets the 2 p + 1 columns within p of it at most: slot p + (column - row), or
-  // the column itself on a closed curve of 2 p + 1 control points or fewer.
+  // A row meets the 2 p + 1 columns within p of it at most: slot p + (column - row) (p - a
+  // + b for the basis functions a, b of a point whose columns do not wrap, nearly every
+  // point), or the column itself on a closed curve of 2 p + 1 control points or fewer.
   const int p = shape.degree, slots = 2 * p + 1;
   const bool by_column = n <= slots;
   auto slot_of = [&](int row, int column) {
@@ -380,7 +381,6 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
     basis_derivatives(shape, j, tn, 0, ders);
     const double* val = ders[0].data();
     for (int r = 0; r <= p; ++r) idx[r] = control_index(shape, j - p + r);
-    // Columns in a row without a wrap between them (nearly every point): slots p - a + b.
     const bool plain = !by_column && idx[p] == idx[0] + p;
     for (int a = 0; a <= p; ++a) {
       rhs.row(idx[a]) += w * val[a] * points[i].transpose();

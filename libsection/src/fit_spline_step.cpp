@@ -39,7 +39,7 @@ void add_points(const detail::PiecewiseCurve& pc, const Points& q, const Feet& f
                 const std::vector<double>& w, Normal& eq) {
   const int n = eq.n, p = Degree > 0 ? Degree : eq.p;
   double val[8];
-  double trace = eq.trace;  // a local: the band's stores cannot change it
+  double trace = eq.trace;                // a local: the band's stores cannot change it
   detail::PiecewiseCurve::Cursor cursor;  // the last span located: consecutive points are close
   for (std::size_t k = 0; k < q.size(); ++k) {
     if (w[k] <= 0) continue;
