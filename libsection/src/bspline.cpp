@@ -354,9 +354,8 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
                 " parameters");
   // The data term summed per matrix entry in point order, first term first: the sums that
   // setFromTriplets would form from one triplet per point and entry, without the triplets.
-  // A row meets the 2 p + 1 columns within p of it at most: slot p + (column - row) (p - a
-  // + b for the basis functions a, b of a point whose columns do not wrap, nearly every
-  // point), or the column itself on a closed curve of 2 p + 1 control points or fewer.
+  // A row meets the 2 p + 1 columns within p of it at most: slot p + (column - row), p - a + b for
+  // a point's basis functions a, b without a wrap, or the column itself when n <= 2 p + 1 (closed).
   const int p = shape.degree, slots = 2 * p + 1;
   const bool by_column = n <= slots;
   auto slot_of = [&](int row, int column) {
