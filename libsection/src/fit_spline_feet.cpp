@@ -201,7 +201,7 @@ void order_feet(std::size_t count, const Feet* previous, Feet& f) {
 }  // namespace
 
 FootSearch::FootSearch(const BSpline& c, const detail::PiecewiseCurve& pc)
-    : ts(span_samples(c, 8)), tree(search_samples(pc, ts), 4) {}
+    : ts(span_samples(c, 8)), tree(search_samples(pc, ts), 10) {}
 
 Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet* previous,
                  const FootSearch* search) {
