@@ -45,7 +45,8 @@ double median_nonnegative(std::vector<double> v) {
   int digits = 4;
   while (digits < 11 && (std::size_t(1) << digits) < v.size() / 2) ++digits;
   const int shift = std::max(top + 1 - digits, 0);
-  auto bucket = [&](double x) { return static_cast<std::size_t>((bits(x) >> shift) & ((1u << digits) - 1)); };
+  const std::uint64_t mask = (std::uint64_t(1) << digits) - 1;
+  auto bucket = [&](double x) { return static_cast<std::size_t>((bits(x) >> shift) & mask); };
   std::vector<std::size_t> count(std::size_t(1) << digits, 0);
   for (double x : v) ++count[bucket(x)];
   const std::size_t mid = v.size() / 2;
