@@ -91,13 +91,17 @@ long find_span(const BSpline& c, double t) {
   return std::clamp<long>(j, p, n - 1);
 }
 
-// Basis functions and their derivatives up to `nd` at t in span j (Piegl & Tiller A2.3).
-// ders[k][r] is the k-th derivative of N_{j-p+r}.
-void basis_derivatives(const BSpline& c, long j, double t, int nd,
-                       std::array<std::array<double, max_degree + 1>, max_degree + 1>& ders) {
-  const int p = c.degree;
+using BasisTable = std::array<std::array<double, max_degree + 1>, max_degree + 1>;
+
+// basis_derivatives at degree Degree (the curve's when 0) up to derivative Derivs (nd's
+// when negative): cubics (nearly every curve) get the loops unrolled, the same arithmetic
+// in the same order.
+template <int Degree, int Derivs>
+void basis_derivatives_of(const BSpline& c, long j, double t, int derivs, BasisTable& ders) {
+  const int p = Degree > 0 ? Degree : c.degree;
+  const int nd = Derivs >= 0 ? Derivs : derivs;
   // Not zeroed (that took most of the time at degree 3): every entry read is written first.
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ndu;
+  BasisTable ndu;
   std::array<double, max_degree + 1> left, right;
   ndu[0][0] = 1.0;
   for (int r = 1; r <= p; ++r) {
@@ -145,6 +149,21 @@ void basis_derivatives(const BSpline& c, long j, double t, int nd,
   }
 }
 
+// Basis functions and their derivatives up to `nd` at t in span j (Piegl & Tiller A2.3).
+// ders[k][r] is the k-th derivative of N_{j-p+r}.
+void basis_derivatives(const BSpline& c, long j, double t, int nd, BasisTable& ders) {
+  if (c.degree != 3 || nd > 3)
+    basis_derivatives_of<0, -1>(c, j, t, nd, ders);
+  else if (nd == 0)  // values (fits, points)
+    basis_derivatives_of<3, 0>(c, j, t, nd, ders);
+  else if (nd == 1)
+    basis_derivatives_of<3, 1>(c, j, t, nd, ders);
+  else if (nd == 2)
+    basis_derivatives_of<3, 2>(c, j, t, nd, ders);
+  else  // all derivatives (PiecewiseCurve)
+    basis_derivatives_of<3, 3>(c, j, t, nd, ders);
+}
+
 int control_index(const BSpline& c, long i) {
   if (!c.closed) return static_cast<int>(i);
   const long n = control_count(c);
@@ -159,7 +178,7 @@ void evaluate(const BSpline& c, double t, int nd, Eigen::Vector2d* out) {
   const long j = find_span(c, tn);
   const int p = c.degree;
   const int nk = std::min(nd, p);
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders;  // rows 0..nk written, only those read
+  BasisTable ders;  // rows 0..nk written, only those read
   basis_derivatives(c, j, tn, nk, ders);
   for (int k = 0; k <= nd; ++k) {
     out[k].setZero();
@@ -263,7 +282,7 @@ void BSpline::basis(double t, std::vector<int>& index, std::vector<double>& valu
   check_curve(*this);
   const double tn = normalise(*this, t);
   const long j = find_span(*this, tn);
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders{};
+  BasisTable ders{};
   basis_derivatives(*this, j, tn, 0, ders);
   index.resize(degree + 1);
   value.resize(degree + 1);
@@ -335,8 +354,8 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
                 " parameters");
   // The data term summed per matrix entry in point order, first term first: the sums that
   // setFromTriplets would form from one triplet per point and entry, without the triplets.
-  // A row meets the 2 p + 1 columns within p of it at most: slot p + (column - row), or
-  // the column itself on a closed curve of 2 p + 1 control points or fewer.
+  // A row meets the 2 p + 1 columns within p of it at most: slot p + (column - row), p - a + b for
+  // a point's basis functions a, b without a wrap, or the column itself when n <= 2 p + 1 (closed).
   const int p = shape.degree, slots = 2 * p + 1;
   const bool by_column = n <= slots;
   auto slot_of = [&](int row, int column) {
@@ -349,7 +368,7 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   std::vector<double> entries(static_cast<std::size_t>(n) * slots, 0.0);
   std::vector<char> used(entries.size(), 0);
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> ders;  // row 0 written, only it read
+  BasisTable ders;  // row 0 written, only it read
   int idx[max_degree + 1];
   double trace = 0;
   for (int i = 0; i < m; ++i) {
@@ -361,12 +380,13 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
     basis_derivatives(shape, j, tn, 0, ders);
     const double* val = ders[0].data();
     for (int r = 0; r <= p; ++r) idx[r] = control_index(shape, j - p + r);
+    const bool plain = !by_column && idx[p] == idx[0] + p;
     for (int a = 0; a <= p; ++a) {
       rhs.row(idx[a]) += w * val[a] * points[i].transpose();
       const std::size_t row = static_cast<std::size_t>(idx[a]) * slots;
       for (int b = 0; b <= p; ++b) {
         const double v = w * val[a] * val[b];
-        const std::size_t e = row + slot_of(idx[a], idx[b]);
+        const std::size_t e = row + (plain ? p - a + b : slot_of(idx[a], idx[b]));
         entries[e] = used[e] ? entries[e] + v : v;
         used[e] = 1;
       }

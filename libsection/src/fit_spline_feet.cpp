@@ -40,8 +40,13 @@ double median_nonnegative(std::vector<double> v) {
   if (lo == hi) return v.front();
   int top = 63;  // highest bit that varies
   while (!(((lo ^ hi) >> top) & 1)) --top;
-  const int digits = 11, shift = std::max(top + 1 - digits, 0);
-  auto bucket = [&](double x) { return static_cast<std::size_t>((bits(x) >> shift) & ((1u << digits) - 1)); };
+  // About two values per bucket, up to 2048 buckets: few points (sparse rows) zero and walk
+  // a short count; the median found is the same.
+  int digits = 4;
+  while (digits < 11 && (std::size_t(1) << digits) < v.size() / 2) ++digits;
+  const int shift = std::max(top + 1 - digits, 0);
+  const std::uint64_t mask = (std::uint64_t(1) << digits) - 1;
+  auto bucket = [&](double x) { return static_cast<std::size_t>((bits(x) >> shift) & mask); };
   std::vector<std::size_t> count(std::size_t(1) << digits, 0);
   for (double x : v) ++count[bucket(x)];
   const std::size_t mid = v.size() / 2;

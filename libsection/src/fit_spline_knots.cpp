@@ -60,9 +60,10 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   const std::vector<double> ts = span_samples(c, 32);
   const std::size_t m = ts.size();
   const detail::PiecewiseCurve pc(c);
-  std::vector<detail::CurveJet> jets(m);
+  std::vector<detail::CurveJet> jets;  // reserved, not zeroed: it is filled once
+  jets.reserve(m);
   detail::PiecewiseCurve::Local at{0, 0};
-  for (std::size_t i = 0; i < m; ++i) jets[i] = pc.jet(at = pc.locate(ts[i], at.span));
+  for (std::size_t i = 0; i < m; ++i) jets.push_back(pc.jet(at = pc.locate(ts[i], at.span)));
   std::vector<double> density(m), ds(m);
   const double tol = std::max(o.tolerance, 0.5 * sigma);
   // Measured points per unit length around each sample, over a window of +-window.

@@ -39,13 +39,12 @@ void add_points(const detail::PiecewiseCurve& pc, const Points& q, const Feet& f
                 const std::vector<double>& w, Normal& eq) {
   const int n = eq.n, p = Degree > 0 ? Degree : eq.p;
   double val[8];
-  int idx[8];
+  double trace = eq.trace;                // a local: the band's stores cannot change it
   detail::PiecewiseCurve::Cursor cursor;  // the last span located: consecutive points are close
   for (std::size_t k = 0; k < q.size(); ++k) {
     if (w[k] <= 0) continue;
     const detail::PiecewiseCurve::Local at = pc.locate(f.t[k], cursor);
     const int first = pc.basis(at, val);
-    for (int a = 0; a <= p; ++a) idx[a] = first + a < n ? first + a : first + a - n;
     const detail::CurveJet jet = pc.jet(at);
     const Eigen::Vector2d tangent = jet.d1.normalized();
     const Eigen::Vector2d normal(tangent.y(), -tangent.x());
@@ -63,11 +62,14 @@ void add_points(const detail::PiecewiseCurve& pc, const Points& q, const Feet& f
     const Eigen::Matrix2d M = w[k] * (normal * normal.transpose() + alpha * tangent * tangent.transpose());
     const Eigen::Vector2d Mq = M * q[k];
     for (int a = 0; a <= p; ++a) {
-      eq.rhs.segment<2>(2 * idx[a]) += val[a] * Mq;
-      for (int b = a; b <= p; ++b) eq.at(idx[a], b - a) += val[a] * val[b] * M;
-      eq.trace += w[k] * val[a] * val[a];
+      const int i = first + a < n ? first + a : first + a - n;
+      eq.rhs.segment<2>(2 * i) += val[a] * Mq;
+      Eigen::Matrix2d* row = &eq.at(i, 0);  // blocks (i, 0..p - a)
+      for (int b = a; b <= p; ++b) row[b - a] += val[a] * val[b] * M;
+      trace += w[k] * val[a] * val[a];
     }
   }
+  eq.trace = trace;
 }
 
 // Change of curvature: the normal component of C''' (for a curve parameterised by arc

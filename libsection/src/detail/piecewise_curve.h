@@ -179,8 +179,9 @@ private:
       right[r] = u[degree - 1 + r] - x;
       double saved = 0;
       for (int i = 0; i < r; ++i) {
-        const double denominator = right[i + 1] + left[r - i];
-        const double temp = denominator == 0 ? 0 : value[i] / denominator;
+        // Never 0 (unlike BSpline's on any knot span): the knots it spans hold this span,
+        // of positive length, and x lies in it.
+        const double temp = value[i] / (right[i + 1] + left[r - i]);
         value[i] = saved + right[i + 1] * temp;
         saved = left[r - i] * temp;
       }
