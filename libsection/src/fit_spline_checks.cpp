@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 namespace section {
 
@@ -51,7 +50,7 @@ Along along_curve(const Refinement& r) {
   for (std::size_t k : r.feet.order)
     if (r.weights[k] > 0) a.points.push_back(k), a.ts.push_back(r.feet.t[k]);
   if (a.ts.empty()) return a;
-  const detail::PiecewiseCurve pc(r.curve);
+  const detail::PiecewiseCurve& pc = r.pc;
   a.chords.resize(a.ts.size());
   detail::PiecewiseCurve::Local at = pc.locate(a.ts[0]);
   Eigen::Vector2d previous = pc.point(at);
@@ -192,20 +191,27 @@ bool self_intersects(const BSpline& curve) {
   for (double s : speed)
     if (!(s > 1e-9 * speed_max)) return true;  // cusp: the curve stops and turns back
   if (fit::doubles_back(p)) return true;
-  // Segments sorted by their lowest x; sweep to test only overlapping boxes.
-  std::vector<std::size_t> order(m);
-  std::iota(order.begin(), order.end(), 0);
-  auto lo_x = [&](std::size_t i) { return std::min(p[i].x(), p[(i + 1) % m].x()); };
-  auto hi_x = [&](std::size_t i) { return std::max(p[i].x(), p[(i + 1) % m].x()); };
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo_x(a) < lo_x(b); });
+  // Segments sorted by their lowest x; sweep to test only overlapping boxes. Whether two
+  // segments cross does not depend on which of them comes first: any sweep order gives
+  // the same answer.
+  struct Span {
+    double lo, hi;  // x range
+    std::size_t i;  // segment p[i] p[i + 1]
+  };
+  std::vector<Span> spans(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    const double x0 = p[i].x(), x1 = p[i + 1 < m ? i + 1 : 0].x();
+    spans[i] = {std::min(x0, x1), std::max(x0, x1), i};
+  }
+  std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.lo < b.lo; });
   auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
     return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
   };
   for (std::size_t x = 0; x < m; ++x) {
-    const std::size_t i = order[x];
+    const std::size_t i = spans[x].i;
     const Eigen::Vector2d &a = p[i], &b = p[(i + 1) % m];
-    for (std::size_t y = x + 1; y < m && lo_x(order[y]) <= hi_x(i); ++y) {
-      const std::size_t j = order[y];
+    for (std::size_t y = x + 1; y < m && spans[y].lo <= spans[x].hi; ++y) {
+      const std::size_t j = spans[y].i;
       if (j == i || (i + 1) % m == j || (j + 1) % m == i) continue;  // neighbours share a point
       const Eigen::Vector2d &c = p[j], &d = p[(j + 1) % m];
       if (std::max(a.y(), b.y()) < std::min(c.y(), d.y()) || std::max(c.y(), d.y()) < std::min(a.y(), b.y()))
