@@ -173,6 +173,51 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
     result.layers_length = 0;
 }
 
+namespace {
+
+// The x range of one segment p[i] p[i + 1] of a closed polyline.
+struct XSpan {
+  double lo, hi;
+  std::size_t i;
+};
+
+// The segments of the closed polyline p by increasing lo. Along a profile, lo rises or
+// falls monotonically over long stretches (a side, read forwards or backwards): those runs
+// are merged, a few merges instead of a sort of all the segments.
+std::vector<XSpan> x_spans_sorted(const Points& p) {
+  const std::size_t m = p.size();
+  std::vector<XSpan> spans(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    const double x0 = p[i].x(), x1 = p[i + 1 < m ? i + 1 : 0].x();
+    spans[i] = {std::min(x0, x1), std::max(x0, x1), i};
+  }
+  const auto by_lo = [](const XSpan& a, const XSpan& b) { return a.lo < b.lo; };
+  std::vector<std::size_t> bounds{0};  // runs [bounds[r], bounds[r + 1])
+  for (std::size_t s = 0; s < m;) {
+    std::size_t e = s + 1;
+    if (e < m && spans[e].lo < spans[s].lo) {
+      while (e < m && !(spans[e - 1].lo < spans[e].lo)) ++e;
+      std::reverse(spans.begin() + s, spans.begin() + e);
+    } else {
+      while (e < m && !(spans[e].lo < spans[e - 1].lo)) ++e;
+    }
+    bounds.push_back(s = e);
+  }
+  while (bounds.size() > 2) {
+    std::vector<std::size_t> merged{0};
+    for (std::size_t r = 0; r + 2 < bounds.size(); r += 2) {
+      std::inplace_merge(spans.begin() + bounds[r], spans.begin() + bounds[r + 1], spans.begin() + bounds[r + 2],
+                         by_lo);
+      merged.push_back(bounds[r + 2]);
+    }
+    if (bounds.size() % 2 == 0) merged.push_back(bounds.back());  // an odd run out, carried
+    bounds = std::move(merged);
+  }
+  return spans;
+}
+
+}  // namespace
+
 }  // namespace fit
 
 bool self_intersects(const BSpline& curve) {
@@ -194,16 +239,7 @@ bool self_intersects(const BSpline& curve) {
   // Segments sorted by their lowest x; sweep to test only overlapping boxes. Whether two
   // segments cross does not depend on which of them comes first: any sweep order gives
   // the same answer.
-  struct Span {
-    double lo, hi;  // x range
-    std::size_t i;  // segment p[i] p[i + 1]
-  };
-  std::vector<Span> spans(m);
-  for (std::size_t i = 0; i < m; ++i) {
-    const double x0 = p[i].x(), x1 = p[i + 1 < m ? i + 1 : 0].x();
-    spans[i] = {std::min(x0, x1), std::max(x0, x1), i};
-  }
-  std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.lo < b.lo; });
+  const std::vector<fit::XSpan> spans = fit::x_spans_sorted(p);
   auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
     return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
   };
