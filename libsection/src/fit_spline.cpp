@@ -71,6 +71,19 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   return best;
 }
 
+// The area inside the closed curve of r: of the polygon through 16 points per control
+// point, at the parameters `sample` takes, evaluated on the polynomials.
+double curve_area(const Refinement& r) {
+  const int count = 16 * static_cast<int>(r.curve.control.size());
+  const double a = r.curve.t_min(), b = r.curve.t_max();
+  Points dense;
+  dense.reserve(static_cast<std::size_t>(count));
+  detail::PiecewiseCurve::Local at{0, 0};
+  for (int i = 0; i < count; ++i)
+    dense.push_back(r.pc.point(at = r.pc.locate(a + (b - a) * i / count, at.span)));
+  return polygon_area(dense);
+}
+
 struct FoldError : Error {
   using Error::Error;
 };
@@ -127,7 +140,7 @@ void adapt_knots(const Points& measured, const FitSplineOptions& o, bool stop_at
         fit::curvature_knots(r.curve, r.pc, r.feet, fit::noise_sigma(r.feet, r.weights), o);
     Refinement next = refine(fit::reknot(r.curve, r.pc, knots), measured, o, &r.feet);
     result.iterations += next.iterations;
-    if (stop_at_fold && self_intersects(next.curve)) break;
+    if (stop_at_fold && fit::self_intersects(next.curve, next.pc)) break;
     const bool same = knots.size() == r.curve.knots.size();
     r = std::move(next);
     if (same) break;
@@ -139,7 +152,7 @@ void adapt_knots(const Points& measured, const FitSplineOptions& o, bool stop_at
       break;
     Refinement next = refine(fit::reknot(r.curve, r.pc, knots), measured, o, &r.feet);
     result.iterations += next.iterations;
-    if (stop_at_fold && self_intersects(next.curve)) break;
+    if (stop_at_fold && fit::self_intersects(next.curve, next.pc)) break;
     result.rounds = round + 1;
     r = std::move(next);
   }
@@ -152,7 +165,7 @@ void adapt_knots(const Points& measured, const FitSplineOptions& o, bool stop_at
   if (bridged.size() == r.curve.knots.size()) return;
   Refinement next = refine(fit::reknot(r.curve, r.pc, bridged), measured, o, &r.feet);
   result.iterations += next.iterations;
-  if (stop_at_fold && self_intersects(next.curve)) return;
+  if (stop_at_fold && fit::self_intersects(next.curve, next.pc)) return;
   r = std::move(next);
 }
 
@@ -206,10 +219,10 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
   if (o.control_points == 0) adapt_knots(measured, o, stop_at_fold, r, result);
 
   result.spline = r.curve;
-  if (self_intersects(result.spline)) throw FoldError("fit_spline: the fitted curve folds or crosses itself");
+  if (fit::self_intersects(r.curve, r.pc))
+    throw FoldError("fit_spline: the fitted curve folds or crosses itself");
   // The curve must enclose the profile's region on the same side (no turned-over loop).
-  const Points dense = sample(result.spline, 16 * static_cast<int>(result.spline.control.size()));
-  const double area = polygon_area(dense);
+  const double area = curve_area(r);
   if (area * input_area <= 0 || std::abs(area - input_area) > 0.5 * std::abs(input_area))
     throw Error("fit_spline: the fitted curve does not enclose the profile's area (fold or wrong ordering)");
   measure_fit(r, measured.size(), result);

@@ -206,8 +206,8 @@ std::vector<XSpan> x_spans_sorted(const Points& p) {
   while (bounds.size() > 2) {
     std::vector<std::size_t> merged{0};
     for (std::size_t r = 0; r + 2 < bounds.size(); r += 2) {
-      std::inplace_merge(spans.begin() + bounds[r], spans.begin() + bounds[r + 1], spans.begin() + bounds[r + 2],
-                         by_lo);
+      std::inplace_merge(spans.begin() + bounds[r], spans.begin() + bounds[r + 1],
+                         spans.begin() + bounds[r + 2], by_lo);
       merged.push_back(bounds[r + 2]);
     }
     if (bounds.size() % 2 == 0) merged.push_back(bounds.back());  // an odd run out, carried
@@ -222,24 +222,37 @@ std::vector<XSpan> x_spans_sorted(const Points& p) {
 
 bool self_intersects(const BSpline& curve) {
   const std::vector<double> ts = span_samples(curve, 16);
+  if (ts.empty()) return false;
+  Eigen::Vector2d d[2];
+  curve.derivatives(ts[0], 1, d);  // throws section::Error on an invalid curve, before the conversion
+  return fit::self_intersects(curve, detail::PiecewiseCurve(curve));
+}
+
+namespace fit {
+
+// The samples evaluated on the polynomials (16 per span, a dozen operations each instead
+// of a basis evaluation): they differ from BSpline::derivatives' only in the last bits,
+// which decide nothing here (a crossing, cusp or finger is not a matter of 1e-16).
+bool self_intersects(const BSpline& curve, const detail::PiecewiseCurve& pc) {
+  const std::vector<double> ts = span_samples(curve, 16);
   const std::size_t m = ts.size();
-  fit::Points p(m);
+  Points p(m);
   double speed_max = 0;
   std::vector<double> speed(m);
+  detail::PiecewiseCurve::Local at{0, 0};
   for (std::size_t i = 0; i < m; ++i) {
-    Eigen::Vector2d d[2];  // the same point and derivative as point() and derivative(), one evaluation
-    curve.derivatives(ts[i], 1, d);
-    p[i] = d[0];
-    speed[i] = d[1].norm();
+    const detail::CurveJet jet = pc.jet(at = pc.locate(ts[i], at.span));
+    p[i] = jet.point;
+    speed[i] = jet.d1.norm();
     speed_max = std::max(speed_max, speed[i]);
   }
   for (double s : speed)
     if (!(s > 1e-9 * speed_max)) return true;  // cusp: the curve stops and turns back
-  if (fit::doubles_back(p)) return true;
+  if (doubles_back(p)) return true;
   // Segments sorted by their lowest x; sweep to test only overlapping boxes. Whether two
   // segments cross does not depend on which of them comes first: any sweep order gives
   // the same answer.
-  const std::vector<fit::XSpan> spans = fit::x_spans_sorted(p);
+  const std::vector<XSpan> spans = x_spans_sorted(p);
   auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
     return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
   };
@@ -259,6 +272,8 @@ bool self_intersects(const BSpline& curve) {
   }
   return false;
 }
+
+}  // namespace fit
 
 bool in_gap(const BSpline& curve, const FitSplineResult::Gap& gap, double t) {
   const double period = curve.t_max() - curve.t_min();

@@ -51,8 +51,9 @@ std::vector<double> window_max(const std::vector<double>& v, std::size_t reach) 
 // samples i - k .. i + k (wrapped), k growing until the length reaches 2 window (or half
 // the loop). The lengths add up in that order, a pair (i + k, i - k) at a time, as the
 // density always has; the hits are whole numbers, whose sums are exact in any order (so
-// prefix sums). ds is laid out unwrapped so the inner loop tests nothing but the length.
-std::vector<double> window_density(const std::vector<double>& ds, const std::vector<double>& hits, double window) {
+// prefix sums). ds is laid out unwrapped: the inner loop wraps nothing.
+std::vector<double> window_density(const std::vector<double>& ds, const std::vector<double>& hits,
+                                   double window) {
   const std::size_t m = ds.size(), reach = m / 2 > 0 ? m / 2 - 1 : 0;  // the largest k
   std::vector<double> wide(m + 2 * reach), hits_before(m + 2 * reach + 1, 0);
   for (std::size_t x = 0; x < wide.size(); ++x) {

@@ -131,4 +131,7 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
 /// True when the closed polyline p runs out and back alongside itself (a finger).
 bool doubles_back(const Points& p);
 
+/// section::self_intersects on curve c as polynomials (`pc`), which the fit has at hand.
+bool self_intersects(const BSpline& c, const detail::PiecewiseCurve& pc);
+
 }  // namespace section::fit
