@@ -333,6 +333,24 @@ TEST_CASE("fit_spline: degenerate loops throw section::Error", "[fit_spline]") {
   }
 }
 
+TEST_CASE("self_intersects: loops with many x-monotone stretches, crossing or not", "[fit_spline]") {
+  auto loop = [](auto f) {
+    section::CurveFitOptions o;
+    o.control_points = 120;
+    return section::fit_curve(curve_points(f, 1200, 0, 1), o);
+  };
+  auto polar = [](double r, double a) { return Vector2d(r * std::cos(a), r * std::sin(a)); };
+  REQUIRE_FALSE(section::self_intersects(loop([&](double a) { return polar(3, a); })));
+  // A 9-pointed star: 18 stretches along which x rises or falls, none crossing.
+  REQUIRE_FALSE(
+      section::self_intersects(loop([&](double a) { return polar(3 + 0.8 * std::sin(9 * a), a); })));
+  // A limacon: its inner loop crosses the outer one at the origin (r = 0 at a = 2 pi / 3).
+  REQUIRE(section::self_intersects(loop([&](double a) { return polar(1 + 2 * std::cos(a), a); })));
+  // The same with 30 waves on it.
+  REQUIRE(section::self_intersects(
+      loop([&](double a) { return polar(1 + 2 * std::cos(a) + 0.1 * std::sin(30 * a), a); })));
+}
+
 TEST_CASE("fit_spline: stream stage writes splines that read back, failures become issues", "[fit_spline]") {
   section::Stream s;
   section::Table pts{"points", {"section", "loop", "index", "u", "v", "nu", "nv"}, {}};

@@ -36,10 +36,11 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
     return fit::outlier_weights(ft, q, threshold);
   };
   Refinement now;
-  // Both the feet and the next step evaluate the current curve: converted once.
-  detail::PiecewiseCurve pc(c);
+  // The feet, the next step and the knots of the next round evaluate the current curve:
+  // converted once.
+  now.pc = detail::PiecewiseCurve(c);
   fit::StepSolver solver;
-  now.feet = fit::foot_points(c, pc, q, start);
+  now.feet = fit::foot_points(c, now.pc, q, start);
   now.weights = weights_for(now.feet);
   now.rms = fit::weighted_rms(now.feet, now.weights);
   now.curve = std::move(c);
@@ -50,14 +51,14 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   int it = 0;
   for (; it < o.max_iterations; ++it) {
     BSpline next =
-        fit::sdm_step(now.curve, pc, q, now.feet, now.weights, o.fairness, o.smoothing_length, solver);
-    pc = detail::PiecewiseCurve(next);
-    Feet nf = fit::foot_points(next, pc, q, &now.feet);
+        fit::sdm_step(now.curve, now.pc, q, now.feet, now.weights, o.fairness, o.smoothing_length, solver);
+    detail::PiecewiseCurve npc(next);
+    Feet nf = fit::foot_points(next, npc, q, &now.feet);
     std::vector<double> nw = weights_for(nf);
     const double nrms = fit::weighted_rms(nf, nw);
     const double change = std::abs(now.rms - nrms);
     if (now_best) best = std::move(now);
-    now = {std::move(next), std::move(nf), std::move(nw), nrms, 0};
+    now = {std::move(next), std::move(npc), std::move(nf), std::move(nw), nrms, 0};
     now_best = nrms <= best_rms;
     if (now_best) best_rms = nrms;
     if (change <= o.convergence * nrms + 1e-3 * o.tolerance) {
@@ -68,6 +69,19 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   if (now_best) best = std::move(now);
   best.iterations = it;
   return best;
+}
+
+// The area inside the closed curve of r: of the polygon through 16 points per control
+// point, at the parameters `sample` takes, evaluated on the polynomials.
+double curve_area(const Refinement& r) {
+  const int count = 16 * static_cast<int>(r.curve.control.size());
+  const double a = r.curve.t_min(), b = r.curve.t_max();
+  Points dense;
+  dense.reserve(static_cast<std::size_t>(count));
+  detail::PiecewiseCurve::Local at{0, 0};
+  for (int i = 0; i < count; ++i)
+    dense.push_back(r.pc.point(at = r.pc.locate(a + (b - a) * i / count, at.span)));
+  return polygon_area(dense);
 }
 
 struct FoldError : Error {
@@ -123,10 +137,10 @@ void adapt_knots(const Points& measured, const FitSplineOptions& o, bool stop_at
                  FitSplineResult& result) {
   for (int pass = 0; pass < 3; ++pass) {
     const std::vector<double> knots =
-        fit::curvature_knots(r.curve, r.feet, fit::noise_sigma(r.feet, r.weights), o);
-    Refinement next = refine(fit::reknot(r.curve, knots), measured, o, &r.feet);
+        fit::curvature_knots(r.curve, r.pc, r.feet, fit::noise_sigma(r.feet, r.weights), o);
+    Refinement next = refine(fit::reknot(r.curve, r.pc, knots), measured, o, &r.feet);
     result.iterations += next.iterations;
-    if (stop_at_fold && self_intersects(next.curve)) break;
+    if (stop_at_fold && fit::self_intersects(next.curve, next.pc)) break;
     const bool same = knots.size() == r.curve.knots.size();
     r = std::move(next);
     if (same) break;
@@ -136,9 +150,9 @@ void adapt_knots(const Points& measured, const FitSplineOptions& o, bool stop_at
     const std::vector<double> knots = fit::split_spans(r.curve, r.feet, r.weights, sigma, o);
     if (knots.size() == r.curve.knots.size() || static_cast<int>(knots.size()) - 1 > o.max_control_points)
       break;
-    Refinement next = refine(fit::reknot(r.curve, knots), measured, o, &r.feet);
+    Refinement next = refine(fit::reknot(r.curve, r.pc, knots), measured, o, &r.feet);
     result.iterations += next.iterations;
-    if (stop_at_fold && self_intersects(next.curve)) break;
+    if (stop_at_fold && fit::self_intersects(next.curve, next.pc)) break;
     result.rounds = round + 1;
     r = std::move(next);
   }
@@ -149,9 +163,9 @@ void adapt_knots(const Points& measured, const FitSplineOptions& o, bool stop_at
   const std::vector<double> bridged =
       fit::bridge_holes(r.curve, r.feet, measured, r.weights, o.bridge_factor, o.degree);
   if (bridged.size() == r.curve.knots.size()) return;
-  Refinement next = refine(fit::reknot(r.curve, bridged), measured, o, &r.feet);
+  Refinement next = refine(fit::reknot(r.curve, r.pc, bridged), measured, o, &r.feet);
   result.iterations += next.iterations;
-  if (stop_at_fold && self_intersects(next.curve)) return;
+  if (stop_at_fold && fit::self_intersects(next.curve, next.pc)) return;
   r = std::move(next);
 }
 
@@ -205,10 +219,10 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
   if (o.control_points == 0) adapt_knots(measured, o, stop_at_fold, r, result);
 
   result.spline = r.curve;
-  if (self_intersects(result.spline)) throw FoldError("fit_spline: the fitted curve folds or crosses itself");
+  if (fit::self_intersects(r.curve, r.pc))
+    throw FoldError("fit_spline: the fitted curve folds or crosses itself");
   // The curve must enclose the profile's region on the same side (no turned-over loop).
-  const Points dense = sample(result.spline, 16 * static_cast<int>(result.spline.control.size()));
-  const double area = polygon_area(dense);
+  const double area = curve_area(r);
   if (area * input_area <= 0 || std::abs(area - input_area) > 0.5 * std::abs(input_area))
     throw Error("fit_spline: the fitted curve does not enclose the profile's area (fold or wrong ordering)");
   measure_fit(r, measured.size(), result);

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 namespace section {
 
@@ -51,7 +50,7 @@ Along along_curve(const Refinement& r) {
   for (std::size_t k : r.feet.order)
     if (r.weights[k] > 0) a.points.push_back(k), a.ts.push_back(r.feet.t[k]);
   if (a.ts.empty()) return a;
-  const detail::PiecewiseCurve pc(r.curve);
+  const detail::PiecewiseCurve& pc = r.pc;
   a.chords.resize(a.ts.size());
   detail::PiecewiseCurve::Local at = pc.locate(a.ts[0]);
   Eigen::Vector2d previous = pc.point(at);
@@ -174,38 +173,94 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
     result.layers_length = 0;
 }
 
+namespace {
+
+// The x range of one segment p[i] p[i + 1] of a closed polyline.
+struct XSpan {
+  double lo, hi;
+  std::size_t i;
+};
+
+// The segments of the closed polyline p by increasing lo. Along a profile, lo rises or
+// falls monotonically over long stretches (a side, read forwards or backwards): those runs
+// are merged, a few merges instead of a sort of all the segments.
+std::vector<XSpan> x_spans_sorted(const Points& p) {
+  const std::size_t m = p.size();
+  std::vector<XSpan> spans(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    const double x0 = p[i].x(), x1 = p[i + 1 < m ? i + 1 : 0].x();
+    spans[i] = {std::min(x0, x1), std::max(x0, x1), i};
+  }
+  const auto by_lo = [](const XSpan& a, const XSpan& b) { return a.lo < b.lo; };
+  std::vector<std::size_t> bounds{0};  // runs [bounds[r], bounds[r + 1])
+  for (std::size_t s = 0; s < m;) {
+    std::size_t e = s + 1;
+    if (e < m && spans[e].lo < spans[s].lo) {
+      while (e < m && !(spans[e - 1].lo < spans[e].lo)) ++e;
+      std::reverse(spans.begin() + s, spans.begin() + e);
+    } else {
+      while (e < m && !(spans[e].lo < spans[e - 1].lo)) ++e;
+    }
+    bounds.push_back(s = e);
+  }
+  while (bounds.size() > 2) {
+    std::vector<std::size_t> merged{0};
+    for (std::size_t r = 0; r + 2 < bounds.size(); r += 2) {
+      std::inplace_merge(spans.begin() + bounds[r], spans.begin() + bounds[r + 1],
+                         spans.begin() + bounds[r + 2], by_lo);
+      merged.push_back(bounds[r + 2]);
+    }
+    if (bounds.size() % 2 == 0) merged.push_back(bounds.back());  // an odd run out, carried
+    bounds = std::move(merged);
+  }
+  return spans;
+}
+
+}  // namespace
+
 }  // namespace fit
 
 bool self_intersects(const BSpline& curve) {
   const std::vector<double> ts = span_samples(curve, 16);
+  if (ts.empty()) return false;
+  Eigen::Vector2d d[2];
+  curve.derivatives(ts[0], 1, d);  // throws section::Error on an invalid curve, before the conversion
+  return fit::self_intersects(curve, detail::PiecewiseCurve(curve));
+}
+
+namespace fit {
+
+// The samples evaluated on the polynomials (16 per span, a dozen operations each instead
+// of a basis evaluation): they differ from BSpline::derivatives' only in the last bits,
+// which decide nothing here (a crossing, cusp or finger is not a matter of 1e-16).
+bool self_intersects(const BSpline& curve, const detail::PiecewiseCurve& pc) {
+  const std::vector<double> ts = span_samples(curve, 16);
   const std::size_t m = ts.size();
-  fit::Points p(m);
+  Points p(m);
   double speed_max = 0;
   std::vector<double> speed(m);
+  detail::PiecewiseCurve::Local at{0, 0};
   for (std::size_t i = 0; i < m; ++i) {
-    Eigen::Vector2d d[2];  // the same point and derivative as point() and derivative(), one evaluation
-    curve.derivatives(ts[i], 1, d);
-    p[i] = d[0];
-    speed[i] = d[1].norm();
+    const detail::CurveJet jet = pc.jet(at = pc.locate(ts[i], at.span));
+    p[i] = jet.point;
+    speed[i] = jet.d1.norm();
     speed_max = std::max(speed_max, speed[i]);
   }
   for (double s : speed)
     if (!(s > 1e-9 * speed_max)) return true;  // cusp: the curve stops and turns back
-  if (fit::doubles_back(p)) return true;
-  // Segments sorted by their lowest x; sweep to test only overlapping boxes.
-  std::vector<std::size_t> order(m);
-  std::iota(order.begin(), order.end(), 0);
-  auto lo_x = [&](std::size_t i) { return std::min(p[i].x(), p[(i + 1) % m].x()); };
-  auto hi_x = [&](std::size_t i) { return std::max(p[i].x(), p[(i + 1) % m].x()); };
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo_x(a) < lo_x(b); });
+  if (doubles_back(p)) return true;
+  // Segments sorted by their lowest x; sweep to test only overlapping boxes. Whether two
+  // segments cross does not depend on which of them comes first: any sweep order gives
+  // the same answer.
+  const std::vector<XSpan> spans = x_spans_sorted(p);
   auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
     return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
   };
   for (std::size_t x = 0; x < m; ++x) {
-    const std::size_t i = order[x];
+    const std::size_t i = spans[x].i;
     const Eigen::Vector2d &a = p[i], &b = p[(i + 1) % m];
-    for (std::size_t y = x + 1; y < m && lo_x(order[y]) <= hi_x(i); ++y) {
-      const std::size_t j = order[y];
+    for (std::size_t y = x + 1; y < m && spans[y].lo <= spans[x].hi; ++y) {
+      const std::size_t j = spans[y].i;
       if (j == i || (i + 1) % m == j || (j + 1) % m == i) continue;  // neighbours share a point
       const Eigen::Vector2d &c = p[j], &d = p[(j + 1) % m];
       if (std::max(a.y(), b.y()) < std::min(c.y(), d.y()) || std::max(c.y(), d.y()) < std::min(a.y(), b.y()))
@@ -217,6 +272,8 @@ bool self_intersects(const BSpline& curve) {
   }
   return false;
 }
+
+}  // namespace fit
 
 bool in_gap(const BSpline& curve, const FitSplineResult::Gap& gap, double t) {
   const double period = curve.t_max() - curve.t_min();

@@ -9,13 +9,12 @@ namespace section::fit {
 // The curve on new knots: least squares on dense samples of the old curve, so that the
 // shape carries over to the refined knot vector (almost exactly: the old space nests in
 // the new one when knots were only inserted).
-BSpline reknot(const BSpline& c, const std::vector<double>& knots) {
+BSpline reknot(const BSpline& c, const detail::PiecewiseCurve& pc, const std::vector<double>& knots) {
   BSpline shape = c;
   shape.knots = knots;
   shape.control.assign(knots.size() - 1, Eigen::Vector2d::Zero());
   std::vector<double> ts = span_samples(shape, 12);
   Points pts(ts.size());
-  const detail::PiecewiseCurve pc(c);
   detail::PiecewiseCurve::Local at{0, 0};
   for (std::size_t i = 0; i < ts.size(); ++i) pts[i] = pc.point(at = pc.locate(ts[i], at.span));
   return fit_control_points(pts, ts, shape, 1e-12);
@@ -48,6 +47,51 @@ std::vector<double> window_max(const std::vector<double>& v, std::size_t reach) 
   return out;
 }
 
+// Measured points per unit length around each sample i: the hits and lengths ds of the
+// samples i - k .. i + k (wrapped), k growing until the length reaches 2 window (or half
+// the loop). The lengths add up in that order, a pair (i + k, i - k) at a time, as the
+// density always has; the hits are whole numbers, whose sums are exact in any order (so
+// prefix sums). ds is laid out unwrapped: the inner loop wraps nothing.
+std::vector<double> window_density(const std::vector<double>& ds, const std::vector<double>& hits,
+                                   double window) {
+  const std::size_t m = ds.size(), reach = m / 2 > 0 ? m / 2 - 1 : 0;  // the largest k
+  std::vector<double> wide(m + 2 * reach), hits_before(m + 2 * reach + 1, 0);
+  for (std::size_t x = 0; x < wide.size(); ++x) {
+    const std::size_t j = (x + m - reach) % m;  // sample x - reach, wrapped
+    wide[x] = ds[j];
+    hits_before[x + 1] = hits_before[x] + hits[j];
+  }
+  std::vector<double> out(m);
+  const double limit = 2 * window;
+  for (std::size_t i = 0; i < m; ++i) {
+    const double* centre = &wide[i + reach];
+    const double *up = centre + 1, *down = centre - 1, *last = centre + reach;
+    double length = centre[0];
+    // Four pairs a pass (hundreds of pairs around an edge's short spans), each tested.
+    while (up + 3 <= last && length < limit) {
+      if (!((length += up[0] + down[0]) < limit)) {
+        up += 1, down -= 1;
+        break;
+      }
+      if (!((length += up[1] + down[-1]) < limit)) {
+        up += 2, down -= 2;
+        break;
+      }
+      if (!((length += up[2] + down[-2]) < limit)) {
+        up += 3, down -= 3;
+        break;
+      }
+      length += up[3] + down[-3];
+      up += 4, down -= 4;
+    }
+    for (; up <= last && length < limit; ++up, --down) length += *up + *down;
+    const std::size_t k = static_cast<std::size_t>(up - centre);  // the pairs added: k - 1
+    const double count = hits_before[i + reach + k] - hits_before[i + reach + 1 - k];
+    out[i] = length > 0 ? count / length : 0;
+  }
+  return out;
+}
+
 }  // namespace
 
 // Knots spread by the approximation error of a cubic on a circle: a span of length h on
@@ -55,11 +99,10 @@ std::vector<double> window_max(const std::vector<double>& v, std::size_t reach) 
 // min_span and initial_span. Edges (small radii) get dense knots, flanks sparse ones.
 // Noise sets the useful tolerance (half a sigma: a shorter span fits the noise more than
 // it removes bias), and each span keeps at least min_span_points measured points.
-std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double sigma,
-                                    const FitSplineOptions& o) {
+std::vector<double> curvature_knots(const BSpline& c, const detail::PiecewiseCurve& pc, const Feet& feet,
+                                    double sigma, const FitSplineOptions& o) {
   const std::vector<double> ts = span_samples(c, 32);
   const std::size_t m = ts.size();
-  const detail::PiecewiseCurve pc(c);
   std::vector<detail::CurveJet> jets;  // reserved, not zeroed: it is filled once
   jets.reserve(m);
   detail::PiecewiseCurve::Local at{0, 0};
@@ -76,25 +119,19 @@ std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double s
   }
   for (std::size_t i = 0; i < m; ++i)
     ds[i] = jets[i].d1.norm() * ((i + 1 < m ? ts[i + 1] : c.t_max()) - ts[i]);
-  std::vector<double> point_density(m);
-  const double window = 0.5 * o.initial_span;
-  for (std::size_t i = 0; i < m; ++i) {
-    double count = hits[i], length = ds[i];
-    // Samples i + k and i - k, wrapped (without a division per step).
-    std::size_t up = i, down = i;
-    for (std::size_t k = 1; k < m / 2 && length < 2 * window; ++k) {
-      up = up + 1 == m ? 0 : up + 1;
-      down = down == 0 ? m - 1 : down - 1;
-      count += hits[up] + hits[down];
-      length += ds[up] + ds[down];
-    }
-    point_density[i] = length > 0 ? count / length : 0;
-  }
+  const std::vector<double> point_density = window_density(ds, hits, 0.5 * o.initial_span);
+  // An h^4 past these bounds (by a margin far above pow's rounding) is clamped without
+  // the pow, to what the clamp of the pow gives.
+  const double h4_long = std::pow(std::max(o.initial_span, o.min_span), 4) * (1 + 1e-12);
+  const double h4_short = std::pow(o.min_span, 4) * (1 - 1e-12);
   for (std::size_t i = 0; i < m; ++i) {
     const double k = std::abs(jets[i].curvature());
-    const double h = std::pow(76.8 * tol / std::max(k * k * k, 1e-300), 0.25);
+    const double h4 = 76.8 * tol / std::max(k * k * k, 1e-300);
+    const double h = h4 >= h4_long    ? o.initial_span
+                     : h4 <= h4_short ? o.min_span
+                                      : std::clamp(std::pow(h4, 0.25), o.min_span, o.initial_span);
     const double supported = std::max(1 / o.initial_span, point_density[i] / points_per_span(o, sigma));
-    density[i] = std::min(1 / std::clamp(h, o.min_span, o.initial_span), supported);
+    density[i] = std::min(1 / h, supported);
   }
   // Widen the dense stretches a little: the curvature of a curve that still cuts an
   // edge is lower than the true one and its peak narrower.

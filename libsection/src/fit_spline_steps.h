@@ -79,15 +79,17 @@ struct StepSolver {
 BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
                  const std::vector<double>& w, double fairness, double smoothing_length, StepSolver& solver);
 
-/// The curve on new knots: least squares on dense samples of the old curve.
-BSpline reknot(const BSpline& c, const std::vector<double>& knots);
+/// The curve on new knots: least squares on dense samples of the old curve c (`pc`: c as
+/// polynomials).
+BSpline reknot(const BSpline& c, const detail::PiecewiseCurve& pc, const std::vector<double>& knots);
 
 /// Fewest measured points per knot span at noise sigma.
 double points_per_span(const FitSplineOptions& o, double sigma);
 
-/// Knots spread by curvature and point density (fit_spline_knots.cpp).
-std::vector<double> curvature_knots(const BSpline& c, const Feet& feet, double sigma,
-                                    const FitSplineOptions& o);
+/// Knots spread by curvature and point density (fit_spline_knots.cpp) on curve c (`pc`: c
+/// as polynomials).
+std::vector<double> curvature_knots(const BSpline& c, const detail::PiecewiseCurve& pc, const Feet& feet,
+                                    double sigma, const FitSplineOptions& o);
 
 /// The knots of c with every hole (a stretch without measured points q longer than
 /// `factor` median spacings) holding no more than its bridge needs: one span per 30
@@ -102,6 +104,7 @@ std::vector<double> split_spans(const BSpline& c, const Feet& f, const std::vect
 /// A curve with the feet and weights of the measured points on it.
 struct Refinement {
   BSpline curve;
+  detail::PiecewiseCurve pc;  // curve as polynomials, for the steps that evaluate it next
   Feet feet;
   std::vector<double> weights;
   double rms = 0;
@@ -127,5 +130,8 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
 
 /// True when the closed polyline p runs out and back alongside itself (a finger).
 bool doubles_back(const Points& p);
+
+/// section::self_intersects on curve c as polynomials (`pc`), which the fit has at hand.
+bool self_intersects(const BSpline& c, const detail::PiecewiseCurve& pc);
 
 }  // namespace section::fit

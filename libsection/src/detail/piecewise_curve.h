@@ -25,6 +25,9 @@ struct CurveJet {
 
 class PiecewiseCurve {
 public:
+  /// No curve yet (a state to assign one to).
+  PiecewiseCurve() = default;
+
   /// Converts `curve` (checked by the caller: a valid open or closed B-spline).
   explicit PiecewiseCurve(const BSpline& curve)
       : degree_(curve.degree), closed_(curve.closed), t_min_(curve.t_min()), t_max_(curve.t_max()) {
@@ -190,9 +193,9 @@ private:
     return first_control_[l.span];
   }
 
-  int degree_;
-  bool closed_;
-  double t_min_, t_max_;
+  int degree_ = 0;
+  bool closed_ = false;
+  double t_min_ = 0, t_max_ = 0;
   std::vector<double> breaks_;
   std::vector<int> first_control_;     // per span: control index of its first basis function
   std::vector<double> local_knots_;    // per span: the 2 degree knots around it
