@@ -41,14 +41,16 @@ struct Guess {
   // the threads collect them, not copied).
   std::vector<std::vector<std::vector<Eigen::Vector3d>>> kept;
 
-  // Appends q to the list in `out` of each guessed plane within half_width of it.
-  void keep(const Eigen::Vector3d& q, std::vector<std::vector<Eigen::Vector3d>>& out) const {
-    for (const detail::SlabGroup& g : groups) {
-      const double s = g.n.dot(q);
-      if (!g.near.empty() && g.far_from_slabs(s)) continue;
-      for (std::size_t k = g.first_at_least(s - half_width);
-           k < g.offset.size() && g.offset[k] <= s + half_width; ++k)
-        out[g.plane[k]].push_back(q);
+  // Appends q to the list in `out` of each guessed plane within half_width of it; `tests`
+  // are those of `groups` (made once for a loop over points: see detail::SlabTests).
+  void keep(const Eigen::Vector3d& q, const std::vector<detail::SlabTests>& tests,
+            std::vector<std::vector<Eigen::Vector3d>>& out) const {
+    for (const detail::SlabTests& t : tests) {
+      const double s = t.n.dot(q);
+      if (t.far_from_slabs(s)) continue;
+      for (std::size_t k = t.first_at_least(s - half_width); k < t.planes && t.offset[k] <= s + half_width;
+           ++k)
+        out[t.plane[k]].push_back(q);
     }
   }
 
@@ -223,14 +225,20 @@ void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eig
     r.kept.resize(guess.planes.size());
     for (auto& list : r.kept)
       list.reserve(std::size_t(guess.share * double(e - a) / double(r.kept.size()) * 1.25) + 16);
+    // The tests on the heap, as add_near_points' (held in registers, they were saved and
+    // restored around every kept point's append); the extent in locals, which an append
+    // cannot change (r's could, for all the compiler knew).
+    std::vector<detail::SlabTests> tests(guess.groups.begin(), guess.groups.end());
+    double lo = r.lo, hi = r.hi, big = r.big;
     for (std::size_t i = a; i < e; ++i) {
       const Eigen::Vector3d& q = p[i];
       const double s = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
-      r.lo = s < r.lo ? s : r.lo;
-      r.hi = s > r.hi ? s : r.hi;
-      r.big = std::max({r.big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
-      guess.keep(q, r.kept);
+      lo = s < lo ? s : lo;
+      hi = s > hi ? s : hi;
+      big = std::max({big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
+      guess.keep(q, tests, r.kept);
     }
+    r.lo = lo, r.hi = hi, r.big = big;
   } else {
     for (std::size_t i = a; i < e; ++i) {
       const double s = n.x() * p[i].x() + n.y() * p[i].y() + n.z() * p[i].z();
