@@ -15,6 +15,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <random>
 
@@ -323,19 +324,38 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
     std::vector<std::vector<Eigen::Vector3d>>().swap(guess.kept[k]);
   });
   // A plane's near points, when its section asks: from a pass over the file for every
-  // plane, made once, when a section first asks.
+  // plane not read yet, made when a section with a band first asks, or after the ordering
+  // for the planes whose sections have gaps to fill alone (order_slabs' prefetch).
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
-  std::once_flag near_read;
+  std::vector<char> read(planes.size(), 0);
+  std::mutex near_mutex;
+  const auto read_planes = [&](const std::vector<std::size_t>& which) {
+    std::vector<std::size_t> ids;
+    std::vector<Plane> some;
+    for (std::size_t k : which)
+      if (!read[k]) ids.push_back(k), some.push_back(planes[k]);
+    if (ids.empty()) return;
+    auto got = read_near_points(path, some, reach, read_chunks, held);
+    for (std::size_t m = 0; m < ids.size(); ++m) near[ids[m]] = std::move(got[m]), read[ids[m]] = 1;
+  };
+  std::vector<std::size_t> every(planes.size());
+  std::iota(every.begin(), every.end(), std::size_t(0));
   const detail::NearFn near_of = [&](std::size_t k) {
     if (!(reach > 0)) return std::vector<Eigen::Vector3d>{};
-    std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks, held); });
+    std::lock_guard<std::mutex> lock(near_mutex);
+    if (!read[k]) read_planes(every);
     return std::move(near[k]);
+  };
+  const detail::NearPrefetch prefetch = [&](const std::vector<std::size_t>& which) {
+    if (!(reach > 0)) return;
+    std::lock_guard<std::mutex> lock(near_mutex);
+    read_planes(which);
   };
   SliceResult result;
   result.points = total;
   result.slab = slab;
   result.file_passes = 1;
-  detail::order_slabs(slabs, near_of, planes, slab, options, result, sink);
+  detail::order_slabs(slabs, near_of, planes, slab, options, result, sink, {}, prefetch);
   return result;
 }
 
