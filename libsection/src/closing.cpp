@@ -130,6 +130,25 @@ int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rm
   return rc;
 }
 
+// Each row's cells of the spans from the first to the last that is not outside (none when
+// all are): the cells beyond are outside like those off the spans, seeds of the erosion's
+// transform (off_seeds) that need no transform of their own.
+Spans inside_spans(const Raster& r, const Spans& band, const std::uint8_t* out) {
+  Spans inner;
+  inner.lo.assign(r.h, r.w);
+  inner.hi.assign(r.h, -1);
+  for (int j = 0; j < r.h; ++j) {
+    const std::uint8_t* row = out + std::size_t(j) * r.w;
+    int a = band.lo[j], b = band.hi[j];
+    while (a <= b && row[a]) ++a;
+    while (b >= a && row[b]) --b;
+    if (a > b) continue;
+    inner.lo[j] = a;
+    inner.hi[j] = b;
+  }
+  return inner;
+}
+
 // Erodes the fill back (keeps the cells farther than the radius from the outside) and sets
 // pass.g; returns the squared distance of each cell to the outside.
 Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_seed, const Seeds& seeds,
@@ -152,7 +171,9 @@ Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_
   // is not pruned: exact everywhere, as it always was.)
   const int cap_out = band ? (pass.radius + 8) * (pass.radius + 8) : int(std::min(far, double(1 << 30)));
   Buffer<int> nearest_out;
-  Buffer<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch, band, true);
+  const Spans inner = band ? inside_spans(r, *band, out) : Spans{};
+  Buffer<int> out2 =
+      distance_transform(r, outside, cap_out, base, nearest_out, scratch, band ? &inner : nullptr, true);
 
   // The closing's complement is about the union of the empty discs centred on outside
   // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside
