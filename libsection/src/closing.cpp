@@ -150,9 +150,10 @@ Spans inside_spans(const Raster& r, const Spans& band, const std::uint8_t* out) 
 }
 
 // Erodes the fill back (keeps the cells farther than the radius from the outside) and sets
-// pass.g; returns the squared distance of each cell to the outside.
+// pass.g; returns the squared distance of each cell to the outside. With spans, `inner` gets
+// their cells that are not outside (inside_spans), which hold the fill.
 Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_seed, const Seeds& seeds,
-                  int rmax, int base, const Spans* band, Scratch& scratch) {
+                  int rmax, int base, const Spans* band, Scratch& scratch, Spans& inner) {
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;
   std::vector<std::uint8_t>& outside = scratch.bytes;
@@ -171,7 +172,7 @@ Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_
   // is not pruned: exact everywhere, as it always was.)
   const int cap_out = band ? (pass.radius + 8) * (pass.radius + 8) : int(std::min(far, double(1 << 30)));
   Buffer<int> nearest_out;
-  const Spans inner = band ? inside_spans(r, *band, out) : Spans{};
+  if (band) inner = inside_spans(r, *band, out);
   Buffer<int> out2 =
       distance_transform(r, outside, cap_out, base, nearest_out, scratch, band ? &inner : nullptr, true);
 
@@ -362,8 +363,10 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     margin = std::max(margin, pass.radius + 2);
     reach = std::max(reach, need);
   }
-  const Buffer<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, band, scratch);
-  label_components(out2, b2, d2, band, scratch, pass);
+  Spans inner;
+  const Buffer<int> out2 =
+      erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, band, scratch, inner);
+  label_components(out2, b2, d2, band ? &inner : nullptr, scratch, pass);
   return true;
 }
 
