@@ -130,10 +130,30 @@ int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rm
   return rc;
 }
 
+// Each row's cells of the spans from the first to the last that is not outside (none when
+// all are): the cells beyond are outside like those off the spans, seeds of the erosion's
+// transform (off_seeds) that need no transform of their own.
+Spans inside_spans(const Raster& r, const Spans& band, const std::uint8_t* out) {
+  Spans inner;
+  inner.lo.assign(r.h, r.w);
+  inner.hi.assign(r.h, -1);
+  for (int j = 0; j < r.h; ++j) {
+    const std::uint8_t* row = out + std::size_t(j) * r.w;
+    int a = band.lo[j], b = band.hi[j];
+    while (a <= b && row[a]) ++a;
+    while (b >= a && row[b]) --b;
+    if (a > b) continue;
+    inner.lo[j] = a;
+    inner.hi[j] = b;
+  }
+  return inner;
+}
+
 // Erodes the fill back (keeps the cells farther than the radius from the outside) and sets
-// pass.g; returns the squared distance of each cell to the outside.
+// pass.g; returns the squared distance of each cell to the outside. With spans, `inner` gets
+// their cells that are not outside (inside_spans), which hold the fill.
 Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_seed, const Seeds& seeds,
-                  int rmax, int base, const Spans* band, Scratch& scratch) {
+                  int rmax, int base, const Spans* band, Scratch& scratch, Spans& inner) {
   const Raster& r = pass.raster;
   const int rr = pass.radius * pass.radius;
   std::vector<std::uint8_t>& outside = scratch.bytes;
@@ -152,7 +172,9 @@ Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_
   // is not pruned: exact everywhere, as it always was.)
   const int cap_out = band ? (pass.radius + 8) * (pass.radius + 8) : int(std::min(far, double(1 << 30)));
   Buffer<int> nearest_out;
-  Buffer<int> out2 = distance_transform(r, outside, cap_out, base, nearest_out, scratch, band, true);
+  if (band) inner = inside_spans(r, *band, out);
+  Buffer<int> out2 =
+      distance_transform(r, outside, cap_out, base, nearest_out, scratch, band ? &inner : nullptr, true);
 
   // The closing's complement is about the union of the empty discs centred on outside
   // cells y, of radius d(y) = distance from y to the nearest point. With y* the outside
@@ -341,8 +363,10 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
     margin = std::max(margin, pass.radius + 2);
     reach = std::max(reach, need);
   }
-  const Buffer<int> out2 = erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, band, scratch);
-  label_components(out2, b2, d2, band, scratch, pass);
+  Spans inner;
+  const Buffer<int> out2 =
+      erode(pass, b2, nearest_seed, seeds, rmax, rmax + 2 - margin, band, scratch, inner);
+  label_components(out2, b2, d2, band ? &inner : nullptr, scratch, pass);
   return true;
 }
 

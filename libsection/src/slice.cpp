@@ -242,20 +242,90 @@ bool order_band(SectionSlice& s, const std::vector<Eigen::Vector3d>& near, std::
   return true;
 }
 
+// A section that waits for its near points to fill its gaps (order_slabs): where its
+// ordering left off.
+struct Waiting {
+  bool fill = false;
+  Eigen::Vector2d local = Eigen::Vector2d::Zero();  // the origin the section is ordered about
+  std::size_t first = 0;                            // fill_gaps' `first`
+};
+
+// Plane i's near points about the section's origin `local`, exact copies counted once.
+std::vector<Eigen::Vector3d> near_about(const NearFn& near_of, std::size_t i, const Eigen::Vector2d& local) {
+  std::vector<Eigen::Vector3d> near = near_of ? near_of(i) : std::vector<Eigen::Vector3d>{};
+  drop_copies(near);
+  for (auto& q : near) q.head<2>() -= local;
+  return near;
+}
+
+// Fills the gaps of s's profile from the near points (none: s as it is).
+void fill_from(SectionSlice& s, const std::vector<Eigen::Vector3d>& near, double slab, std::size_t first,
+               const SliceOptions& options) {
+  if (near.empty()) return;
+  GapFillResult r = fill_gaps(s.morphology, near, slab, first, options.fill);
+  s.morphology = std::move(r.filled);
+  r.filled = MorphologyResult{};
+  s.fill = std::move(r);
+}
+
+// Runs step(); an error ends the section, as its error (out of memory fails the run: a
+// section left out for it would pass unnoticed).
+template <class Step>
+void guarded(SectionSlice& s, double slab, const Step& step) {
+  try {
+    step();
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    s.error = with_hint(e.what(), s, slab);
+  }
+}
+
+// The sections that wait for their near points (order_slabs): their gaps filled from
+// them, all asked for at once, then done(i).
+template <class Done>
+void fill_waiting(const std::vector<Waiting>& waiting, const NearFn& near_of, const NearPrefetch& prefetch,
+                  const std::vector<std::vector<Eigen::Vector2d>>& slabs, double slab,
+                  const SliceOptions& options, SliceResult& result, const Done& done) {
+  std::vector<std::size_t> wanted;
+  for (std::size_t i = 0; i < waiting.size(); ++i)
+    if (waiting[i].fill) wanted.push_back(i);
+  if (wanted.empty()) return;
+  prefetch(wanted);
+  detail::parallel_for(wanted.size(), options.threads, [&](std::size_t k) {
+    const std::size_t i = wanted[k];
+    SectionSlice& s = result.sections[i];
+    guarded(s, slab, [&] {
+      fill_from(s, near_about(near_of, i, waiting[i].local), slab, waiting[i].first, options);
+      check_loops_hold(slabs[i], s.morphology, std::max(3 * slab, 10 * s.morphology.cell));
+    });
+    done(i);
+  });
+}
+
 }  // namespace
 
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
                  const std::vector<Plane>& planes, double slab, const SliceOptions& options,
-                 SliceResult& result, const SectionFn& sink, const OrderFn& order) {
+                 SliceResult& result, const SectionFn& sink, const OrderFn& order,
+                 const NearPrefetch& prefetch) {
   result.sections.resize(planes.size());
   InOrder in_order(planes.size(), sink);
+  // With `prefetch`, a section with gaps to fill whose near points no band asked for waits
+  // until every other is ordered: then the near points of those that wait alone are asked
+  // for (one read of a file for a few planes, not every plane's).
+  std::vector<Waiting> waiting(planes.size());
+  const auto done = [&](std::size_t i) {
+    std::vector<Eigen::Vector2d>().swap(slabs[i]);
+    in_order.finished(i, result.sections);
+  };
   detail::parallel_for(planes.size(), options.threads, [&](std::size_t i) {
     SectionSlice& s = result.sections[i];
     s.id = static_cast<int>(i);
     s.frame = make_frame(planes[i].origin, planes[i].normal);
     const bool copies = drop_copies(slabs[i]);
     s.slab_points = slabs[i].size();
-    try {
+    guarded(s, slab, [&] {
       if (slabs[i].empty())
         throw Error(s.error.empty() ? "no points in the slab (the plane misses the part?)" : s.error);
       if (copies && slabs[i].size() == 1)
@@ -269,11 +339,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
       }
       std::optional<std::vector<Eigen::Vector3d>> near_points;
       const auto near = [&]() -> const std::vector<Eigen::Vector3d>& {
-        if (!near_points) {
-          near_points = near_of ? near_of(i) : std::vector<Eigen::Vector3d>{};
-          drop_copies(*near_points);
-          for (auto& q : *near_points) q.head<2>() -= local;
-        }
+        if (!near_points) near_points = near_about(near_of, i, local);
         return *near_points;
       };
       // The band's half width when a band is to be tried, else 0. A band less than twice
@@ -302,22 +368,18 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
       }
       // The points beside the plane only for a profile with gaps (the look for gaps
       // needs none of them, and fill_gaps finds none then).
-      if (options.fill_gaps && fill_gaps(s.morphology, {}, slab, first, options.fill).gaps > 0 &&
-          !near().empty()) {
-        GapFillResult r = fill_gaps(s.morphology, near(), slab, first, options.fill);
-        s.morphology = std::move(r.filled);
-        r.filled = MorphologyResult{};
-        s.fill = std::move(r);
+      if (options.fill_gaps && fill_gaps(s.morphology, {}, slab, first, options.fill).gaps > 0) {
+        if (prefetch && !near_points) {
+          waiting[i] = {true, local, first};
+          return;
+        }
+        fill_from(s, near(), slab, first, options);
       }
       check_loops_hold(slabs[i], s.morphology, std::max(3 * slab, 10 * s.morphology.cell));
-    } catch (const std::bad_alloc&) {
-      throw;  // out of memory fails the run: a section left out for it would pass unnoticed
-    } catch (const std::exception& e) {
-      s.error = with_hint(e.what(), s, slab);
-    }
-    std::vector<Eigen::Vector2d>().swap(slabs[i]);
-    in_order.finished(i, result.sections);
+    });
+    if (!waiting[i].fill) done(i);
   });
+  fill_waiting(waiting, near_of, prefetch, slabs, slab, options, result, done);
 }
 
 }  // namespace detail

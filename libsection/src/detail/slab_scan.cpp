@@ -46,8 +46,9 @@ std::vector<SlabGroup> group_planes(const std::vector<Plane>& planes, double sla
       const double key = g.inv_width > 0 ? a + double(k) / g.inv_width : a;
       g.first[k] = std::lower_bound(g.offset.begin(), g.offset.end(), key) - g.offset.begin();
     }
-    // Buckets a sixteenth of the narrowest gap between planes (or of the slab) wide, so
-    // that most of the space between slabs is in buckets far from them.
+    // Buckets a sixteenth of the narrowest gap between planes (or of the slab) wide, an
+    // eighth of the slab at most, so that most of the space between slabs is in buckets far
+    // from them (a slab's near buckets reach a bucket or two beyond it); 2^19 at most.
     double gap = 0;
     for (std::size_t k = 1; k < g.offset.size(); ++k) {
       const double d = g.offset[k] - g.offset[k - 1];
@@ -55,7 +56,9 @@ std::vector<SlabGroup> group_planes(const std::vector<Plane>& planes, double sla
     }
     const double half = 0.5 * slab, pad = std::max(4 * slab, g.offset.back() - g.offset.front());
     const double from = g.offset.front() - half - pad, to = g.offset.back() + half + pad;
-    const double buckets = (to - from) / (std::max(gap, slab) / 16);
+    const double width =
+        std::max(std::min(std::max(gap, slab) / 16, slab / 8), (to - from) / double(1 << 19));
+    const double buckets = (to - from) / width;
     const std::size_t nn = buckets > 0 && buckets < double(1 << 20) ? std::size_t(buckets) + 1 : 0;
     g.near0 = from;
     g.near_width = nn ? (to - from) / double(nn) : 0;

@@ -22,6 +22,10 @@ double fill_reach(const SliceOptions& options, double slab);
 /// a section has a band to build or a gap to fill.
 using NearFn = std::function<std::vector<Eigen::Vector3d>(std::size_t i)>;
 
+/// Told which planes' near points are asked for next, all at once: the planes whose
+/// sections wait for them to fill gaps once every other section is ordered (order_slabs).
+using NearPrefetch = std::function<void(const std::vector<std::size_t>& planes)>;
+
 /// Receives each finished section (io/slice_file.h's SectionSink).
 using SectionFn = std::function<void(const SectionSlice&)>;
 
@@ -33,10 +37,13 @@ using OrderFn =
 /// sections in parallel, and fills the profile's gaps from the near points; frees each
 /// section's points once done and hands it to `sink` in plane order. Exact copies of a point
 /// count once. A section of result.sections set beforehand keeps its row fields, and its
-/// error when its slab is empty (why: between rows, say).
+/// error when its slab is empty (why: between rows, say). With `prefetch`, the sections
+/// that need near points only to fill gaps ask for them after all the others are ordered,
+/// `prefetch` told first which they are.
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
                  const std::vector<Plane>& planes, double slab, const SliceOptions& options,
-                 SliceResult& result, const SectionFn& sink = {}, const OrderFn& order = {});
+                 SliceResult& result, const SectionFn& sink = {}, const OrderFn& order = {},
+                 const NearPrefetch& prefetch = {});
 
 /// A row's points ordered into its profile: the morphology's loop when it closes a single
 /// one keeping nearly all of them, in an order that does not cross itself; else (a thin profile sampled

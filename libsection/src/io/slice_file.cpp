@@ -15,6 +15,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <random>
 
@@ -41,14 +42,16 @@ struct Guess {
   // the threads collect them, not copied).
   std::vector<std::vector<std::vector<Eigen::Vector3d>>> kept;
 
-  // Appends q to the list in `out` of each guessed plane within half_width of it.
-  void keep(const Eigen::Vector3d& q, std::vector<std::vector<Eigen::Vector3d>>& out) const {
-    for (const detail::SlabGroup& g : groups) {
-      const double s = g.n.dot(q);
-      if (!g.near.empty() && g.far_from_slabs(s)) continue;
-      for (std::size_t k = g.first_at_least(s - half_width);
-           k < g.offset.size() && g.offset[k] <= s + half_width; ++k)
-        out[g.plane[k]].push_back(q);
+  // Appends q to the list in `out` of each guessed plane within half_width of it; `tests`
+  // are those of `groups` (made once for a loop over points: see detail::SlabTests).
+  void keep(const Eigen::Vector3d& q, const std::vector<detail::SlabTests>& tests,
+            std::vector<std::vector<Eigen::Vector3d>>& out) const {
+    for (const detail::SlabTests& t : tests) {
+      const double s = t.n.dot(q);
+      if (t.far_from_slabs(s)) continue;
+      for (std::size_t k = t.first_at_least(s - half_width); k < t.planes && t.offset[k] <= s + half_width;
+           ++k)
+        out[t.plane[k]].push_back(q);
     }
   }
 
@@ -223,14 +226,20 @@ void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eig
     r.kept.resize(guess.planes.size());
     for (auto& list : r.kept)
       list.reserve(std::size_t(guess.share * double(e - a) / double(r.kept.size()) * 1.25) + 16);
+    // The tests on the heap, as add_near_points' (held in registers, they were saved and
+    // restored around every kept point's append); the extent in locals, which an append
+    // cannot change (r's could, for all the compiler knew).
+    std::vector<detail::SlabTests> tests(guess.groups.begin(), guess.groups.end());
+    double lo = r.lo, hi = r.hi, big = r.big;
     for (std::size_t i = a; i < e; ++i) {
       const Eigen::Vector3d& q = p[i];
       const double s = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
-      r.lo = s < r.lo ? s : r.lo;
-      r.hi = s > r.hi ? s : r.hi;
-      r.big = std::max({r.big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
-      guess.keep(q, r.kept);
+      lo = s < lo ? s : lo;
+      hi = s > hi ? s : hi;
+      big = std::max({big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
+      guess.keep(q, tests, r.kept);
     }
+    r.lo = lo, r.hi = hi, r.big = big;
   } else {
     for (std::size_t i = a; i < e; ++i) {
       const double s = n.x() * p[i].x() + n.y() * p[i].y() + n.z() * p[i].z();
@@ -315,19 +324,38 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
     std::vector<std::vector<Eigen::Vector3d>>().swap(guess.kept[k]);
   });
   // A plane's near points, when its section asks: from a pass over the file for every
-  // plane, made once, when a section first asks.
+  // plane not read yet, made when a section with a band first asks, or after the ordering
+  // for the planes whose sections have gaps to fill alone (order_slabs' prefetch).
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
-  std::once_flag near_read;
+  std::vector<char> read(planes.size(), 0);
+  std::mutex near_mutex;
+  const auto read_planes = [&](const std::vector<std::size_t>& which) {
+    std::vector<std::size_t> ids;
+    std::vector<Plane> some;
+    for (std::size_t k : which)
+      if (!read[k]) ids.push_back(k), some.push_back(planes[k]);
+    if (ids.empty()) return;
+    auto got = read_near_points(path, some, reach, read_chunks, held);
+    for (std::size_t m = 0; m < ids.size(); ++m) near[ids[m]] = std::move(got[m]), read[ids[m]] = 1;
+  };
+  std::vector<std::size_t> every(planes.size());
+  std::iota(every.begin(), every.end(), std::size_t(0));
   const detail::NearFn near_of = [&](std::size_t k) {
     if (!(reach > 0)) return std::vector<Eigen::Vector3d>{};
-    std::call_once(near_read, [&] { near = read_near_points(path, planes, reach, read_chunks, held); });
+    std::lock_guard<std::mutex> lock(near_mutex);
+    if (!read[k]) read_planes(every);
     return std::move(near[k]);
+  };
+  const detail::NearPrefetch prefetch = [&](const std::vector<std::size_t>& which) {
+    if (!(reach > 0)) return;
+    std::lock_guard<std::mutex> lock(near_mutex);
+    read_planes(which);
   };
   SliceResult result;
   result.points = total;
   result.slab = slab;
   result.file_passes = 1;
-  detail::order_slabs(slabs, near_of, planes, slab, options, result, sink);
+  detail::order_slabs(slabs, near_of, planes, slab, options, result, sink, {}, prefetch);
   return result;
 }
 
