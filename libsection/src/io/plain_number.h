@@ -40,7 +40,7 @@ inline long digit_run(const char*& p, const char* end, std::uint64_t& m) {
   const char* const first = p;
 #if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
   static constexpr std::uint64_t tens[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000};
-  // The fraction of most numbers (9 to 16 digits) read as sixteen bytes at once, with one
+  // The fraction of most numbers (9 to 17 digits) read as sixteen bytes at once, with one
   // test of the room for both eights.
   if (end - p >= 16) {
     std::uint64_t x, y;
@@ -55,7 +55,9 @@ inline long digit_run(const char*& p, const char* end, std::uint64_t& m) {
         return 8 + n;
       }
       m = m * 100000000 + eight_digits(y);
-      p += 16;  // (the digits after them as below)
+      p += 16;  // the 17th to 19th digits (or more, refused) one by one
+      while (p < end && static_cast<unsigned>(*p - '0') < 10) m = 10 * m + std::uint64_t(*p++ - '0');
+      return long(p - first);
     }
   }
   while (end - p >= 8 && p - first <= 19) {
