@@ -110,16 +110,15 @@ bool parse_row(std::string_view line, const IdRules& ids, std::vector<double>& o
   return col == columns;
 }
 
+constexpr std::size_t plain_row_most = 32;  // the widest row plain_row reads (the others: parse_row)
+
 // A row at `p` in the form the writers give (cells plain_number, ids 1 to 9 digits, ','
-// between them, '\n' or `end` after them) appended to `out`: the end of its line, or nullptr
-// for any other row (then left to parse_row; nothing appended). The row is gathered on the
-// stack and appended whole: one check of the vector's room a row, not one a value.
-inline const char* plain_row(const char* p, const char* end, const IdRules& ids, std::vector<double>& out) {
-  constexpr std::size_t most = 32;  // (wider rows are left to parse_row)
+// between them, '\n' or `end` after them) into `row`: the end of its line, or nullptr for
+// any other row (then left to parse_row; `row` holds nothing then).
+inline const char* plain_row(const char* p, const char* end, const IdRules& ids, double* row) {
   const std::size_t columns = ids.column.size();
-  if (columns == 0 || columns > most) return nullptr;
+  if (columns == 0 || columns > plain_row_most) return nullptr;
   const char* const kind = ids.column.data();
-  double row[most];
   for (std::size_t col = 0;; ++col) {
     if (kind[col]) {
       // An id as an integer: below 10^9, so a valid id and exact as a double, without the
@@ -142,20 +141,32 @@ inline const char* plain_row(const char* p, const char* end, const IdRules& ids,
     }
     if (p == end || *p++ != ',') return nullptr;
   }
-  out.insert(out.end(), row, row + columns);
   return p;
 }
 
 // The data rows of `text` (whole lines, blank ones skipped) into `out`; false when any row
-// is refused. Rows in the writers' form are read in one pass, their line ends with them.
+// is refused. Rows in the writers' form are read in one pass, their line ends with them,
+// gathered on the stack and appended some at a time: one check of the vector's room for
+// many rows, not one a row.
 bool parse_rows(std::string_view text, const IdRules& ids, std::vector<double>& out) {
   const char* p = text.data();
   const char* const end = p + text.size();
+  constexpr std::size_t room = 32 * plain_row_most;
+  double rows[room];
+  std::size_t held = 0;  // values in `rows`
+  const std::size_t columns = ids.column.size();
+  const auto append = [&] {
+    out.insert(out.end(), rows, rows + held);
+    held = 0;
+  };
   while (p < end) {
-    if (const char* next = plain_row(p, end, ids, out)) {
+    if (const char* next = plain_row(p, end, ids, rows + held)) {  // (room for a row after `held`)
       p = next;
+      held += columns;
+      if (held + columns > room) append();
       continue;
     }
+    append();  // (rows in order)
     const void* nl = std::memchr(p, '\n', std::size_t(end - p));
     const char* const line_end = nl ? static_cast<const char*>(nl) : end;
     std::string_view line(p, std::size_t(line_end - p));
@@ -164,6 +175,7 @@ bool parse_rows(std::string_view text, const IdRules& ids, std::vector<double>& 
     if (trim(line).empty()) continue;
     if (!parse_row(line, ids, out)) return false;
   }
+  append();
   return true;
 }
 
