@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -14,12 +15,36 @@
 #include <mutex>
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 namespace section::detail {
 
 namespace {
+
+// The termination signals the tools clean up after, held off while a temporary file is
+// created and registered or unlinked: one landing in between would leave the file behind,
+// since the handler removes registered files only. A held signal is delivered when the
+// mask returns.
+class HeldSignals {
+public:
+  HeldSignals() {
+    sigset_t set;
+    sigemptyset(&set);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaddset(&set, sig);
+    held_ = ::pthread_sigmask(SIG_BLOCK, &set, &old_) == 0;
+  }
+  ~HeldSignals() {
+    if (held_) ::pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+  }
+  HeldSignals(const HeldSignals&) = delete;
+  HeldSignals& operator=(const HeldSignals&) = delete;
+
+private:
+  sigset_t old_{};
+  bool held_ = false;
+};
 
 std::string reason(int error) {
   return std::strerror(error);
@@ -57,10 +82,14 @@ int spool(const std::string& path, const std::string& name, const std::string& c
   } closer{path == "-" ? -1 : in};
   const char* dir = std::getenv("TMPDIR");
   std::string pattern = std::string(dir && *dir ? dir : "/tmp") + "/libsection-spool-XXXXXX";
-  const int out = ::mkstemp(pattern.data());
+  int out = -1;
+  {
+    const HeldSignals held;
+    out = ::mkstemp(pattern.data());
+    if (out >= 0) ::unlink(pattern.c_str());  // gone with the last descriptor, even after a kill
+  }
   if (out < 0)
     throw Error(component + name + ": cannot make a temporary copy in " + pattern + ": " + reason(errno));
-  ::unlink(pattern.c_str());  // gone with the last descriptor, even after a kill
   const auto fail = [&](const std::string& what) {
     ::close(out);
     throw Error(component + name + ": " + what);
@@ -325,9 +354,13 @@ ByteSink::ByteSink(const std::string& path, std::string component, const std::st
   const bool exists = ::stat(path.c_str(), &st) == 0;
   if (exists && S_ISDIR(st.st_mode)) throw Error(component_ + path + ": is a directory");
   if (!exists || S_ISREG(st.st_mode)) {
-    const int fd = make_temporary(path, suffix, temporary_);
+    int fd = -1;
+    {
+      const HeldSignals held;
+      fd = make_temporary(path, suffix, temporary_);
+      if (fd >= 0) slot_ = register_temporary(temporary_);
+    }
     if (fd >= 0) {
-      slot_ = register_temporary(temporary_);
       if (!(file_ = ::fdopen(fd, "wb"))) {
         const int e = errno;
         ::close(fd);
