@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <numeric>
 
 namespace section::fit {
@@ -101,6 +102,30 @@ double wrap(const detail::PiecewiseCurve& pc, double t) {
   return t < t_min ? t + period : (t >= t_max ? t - period : t);
 }
 
+// Newton on the squared distance to q from t0 while `inside` holds for its iterates, at
+// most 8 steps: true, with the foot's parameter (not wrapped) and signed distance, when it
+// converges (a step of `converged` at most).
+template <class Inside>
+bool newton_foot(const detail::PiecewiseCurve& pc, const Eigen::Vector2d& q, double t0, double converged,
+                 Inside inside, detail::PiecewiseCurve::Cursor& at, double& t, double& signed_distance) {
+  t = t0;
+  for (int it = 0; it < 8; ++it) {
+    const detail::CurveJet j = pc.jet(pc.locate(t, at));
+    const detail::SquaredDistance g = detail::squared_distance(j, q);
+    if (!(g.ddg > 0)) return false;
+    const double dt = -g.dg / g.ddg;
+    t += dt;
+    if (!inside(t)) return false;
+    if (std::abs(dt) <= converged) {
+      // This jet is within `converged` of the foot: its distance is exact to far below a nm.
+      const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
+      signed_distance = (q - j.point).dot(normal);
+      return true;
+    }
+  }
+  return false;
+}
+
 // Tracks each foot by Newton from previous->t (when given); returns the points lost.
 std::vector<std::size_t> track_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
                                     const Feet* previous, Feet& f) {
@@ -114,24 +139,10 @@ std::vector<std::size_t> track_feet(const BSpline& c, const detail::PiecewiseCur
       lost.push_back(k);
       continue;
     }
-    double t = previous->t[k];
-    bool ok = false;
-    for (int it = 0; it < 8; ++it) {
-      const detail::CurveJet j = pc.jet(pc.locate(t, at));
-      const detail::SquaredDistance g = detail::squared_distance(j, q[k]);
-      if (!(g.ddg > 0)) break;
-      const double dt = -g.dg / g.ddg;
-      t += dt;
-      if (std::abs(t - previous->t[k]) > step) break;
-      if (std::abs(dt) <= converged) {
-        // This jet is within `converged` of the foot: its distance is exact to far below a nm.
-        ok = true;
-        const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
-        f.signed_distance[k] = (q[k] - j.point).dot(normal);
-        break;
-      }
-    }
-    if (ok)
+    const double t0 = previous->t[k];
+    auto near_t0 = [&](double x) { return !(std::abs(x - t0) > step); };
+    double t;
+    if (newton_foot(pc, q[k], t0, converged, near_t0, at, t, f.signed_distance[k]))
       f.t[k] = wrap(pc, t);
     else
       lost.push_back(k);
@@ -147,20 +158,57 @@ Points search_samples(const detail::PiecewiseCurve& pc, const std::vector<double
   return pts;
 }
 
-// The full search for the points `lost`: the nearest dense sample from a kd-tree; the foot
-// lies between its neighbours.
+// The samples nearest to one point (the anchor) and how far every other sample is from
+// it at least.
+struct SampleWindow {
+  static constexpr int size = 16;
+  int index[size];
+  double d2[size];
+  int count = 0;
+  Eigen::Vector2d anchor;
+  double reach = 0;
+};
+
+// The sample nearest to q, the kd-tree's answer: consecutive points (slice's loops come in
+// order) mostly share it with the window of a point before, where the triangle inequality
+// proves it (every sample outside is at least reach - |q - anchor| from q); else the tree
+// gives it and, when `more` points follow, a new window.
+std::size_t nearest_sample(const FootSearch& search, const Eigen::Vector2d& q, bool more, SampleWindow& w) {
+  if (w.count > 0) {
+    const double moved = (q - w.anchor).norm();
+    if (moved < w.reach) {
+      double best = std::numeric_limits<double>::infinity();
+      int at = 0;
+      for (int j = 0; j < w.count; ++j) {
+        const double d2 = (search.points[w.index[j]] - q).squaredNorm();
+        if (d2 < best) best = d2, at = w.index[j];
+      }
+      // The margin covers the rounding of the three distances.
+      if (std::sqrt(best) + moved < (1 - 1e-12) * w.reach) return static_cast<std::size_t>(at);
+    }
+  }
+  const int k = more ? std::min<int>(SampleWindow::size, static_cast<int>(search.ts.size())) : 1;
+  search.tree.k_nearest(q, k, w.index, w.d2);
+  w.count = more ? k : 0;
+  w.anchor = q;
+  w.reach = k < static_cast<int>(search.ts.size()) ? std::sqrt(w.d2[k - 1])
+                                                   : std::numeric_limits<double>::infinity();
+  return static_cast<std::size_t>(w.index[0]);
+}
+
+// The full search for the points `lost`: the nearest dense sample; the foot lies between
+// its neighbours.
 void search_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q,
                  const std::vector<std::size_t>& lost, const FootSearch& search, Feet& f) {
   const double period = c.t_max() - c.t_min();
   detail::PiecewiseCurve::Cursor at;
   const std::vector<double>& ts = search.ts;
   const std::size_t m = ts.size();
-  Points lost_points(lost.size());
-  for (std::size_t l = 0; l < lost.size(); ++l) lost_points[l] = q[lost[l]];
-  const std::vector<int> idx = search.tree.nearest(lost_points);
+  SampleWindow window;
   for (std::size_t l = 0; l < lost.size(); ++l) {
     const std::size_t k = lost[l];
-    const std::size_t i = static_cast<std::size_t>(idx[l]);
+    const bool more = l + 1 < lost.size() && lost[l + 1] == k + 1;
+    const std::size_t i = nearest_sample(search, q[k], more, window);
     const double a = i > 0 ? ts[i - 1] : ts[m - 1] - period;
     const double b = i + 1 < m ? ts[i + 1] : c.t_max();
     auto distance = [&](double x) { return detail::squared_distance(pc.jet(pc.locate(x, at)), q[k]); };
@@ -202,7 +250,7 @@ void order_feet(std::size_t count, const Feet* previous, Feet& f) {
 }  // namespace
 
 FootSearch::FootSearch(const BSpline& c, const detail::PiecewiseCurve& pc)
-    : ts(span_samples(c, 8)), tree(search_samples(pc, ts), 10) {}
+    : ts(span_samples(c, 8)), points(search_samples(pc, ts)), tree(points, 10) {}
 
 Feet foot_points(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet* previous,
                  const FootSearch* search) {

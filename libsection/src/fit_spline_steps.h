@@ -40,6 +40,7 @@ struct Feet {
 struct FootSearch {
   FootSearch(const BSpline& c, const detail::PiecewiseCurve& pc);
   std::vector<double> ts;  // sample parameters
+  Points points;           // the samples
   detail::NearestPoints<2> tree;
 };
 
