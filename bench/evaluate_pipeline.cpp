@@ -44,8 +44,9 @@ namespace {
 struct Options {
   int seeds = 1, first_seed = 1;
   double misregistration = 0.0;
-  double noise = -1, density_min = -1, slab = 0.08;  // scan overrides (< 0: the inspection scan's)
-  double twist = 0;  // --twist DEG: extra twist from hub to tip (robustness to drift)
+  double noise = -1, density_min = -1, spacing = -1,
+         slab = 0.08;  // scan overrides (< 0: the inspection scan's)
+  double twist = 0;    // --twist DEG: extra twist from hub to tip (robustness to drift)
   bool rigid_twist =
       false;  // --rigid-twist: --twist turns the metal angles too (the tip section turned whole)
   double band_spacing = -1;     // --band-spacing MM / --no-band (0); < 0: slice's default
@@ -69,7 +70,8 @@ struct Options {
 
 const char* const usage =
     "usage: evaluate_pipeline [--seeds N] [--first-seed S] [--misregistration MM] [--noise MM] [--holes N] "
-    "[--density-min F] [--slab MM] [--twist DEG [--rigid-twist]] [--band-spacing MM] [--band-max SLABS] "
+    "[--density-min F] [--spacing MM] [--slab MM] [--twist DEG [--rigid-twist]] [--band-spacing MM] "
+    "[--band-max SLABS] "
     "[--band-sparse-max SLABS] [--no-band] [--preset turbine|compressor|both] [--full-scan] [--register] "
     "[--no-fill] [--fill-gap K] [--fill-fraction F] [--fill-reach MM] [--auto-cells N] [--no-camber] "
     "[--quiet] "
@@ -88,6 +90,7 @@ std::map<std::string, double*> number_flags(Options& o) {
   return {{"--misregistration", &o.misregistration},
           {"--noise", &o.noise},
           {"--density-min", &o.density_min},
+          {"--spacing", &o.spacing},
           {"--slab", &o.slab},
           {"--twist", &o.twist},
           {"--band-spacing", &o.band_spacing},
@@ -204,6 +207,7 @@ Cloud scan_of(const BladeDesign& blade, const char* kind, int seed, const std::v
   ScanOptions so = inspection_scan();
   so.misregistration = opt.misregistration;
   if (opt.noise >= 0) so.noise = opt.noise;
+  if (opt.spacing > 0) so.spacing = opt.spacing;
   if (opt.holes >= 0) so.holes = opt.holes;
   if (opt.density_min >= 0) so.density_min = opt.density_min;
   so.seed = static_cast<std::uint64_t>(seed);

@@ -2,6 +2,7 @@
 // Tests of the morphology step (ordering unordered section points into closed loops).
 // Shapes are analytic closed curves sampled as a scanner would (random spacing, varying
 // density, holes, noise, a misregistered half, outliers) with exact ground truth.
+#include "detail/kept_ordering.h"
 #include "section/error.h"
 #include "section/morphology.h"
 
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -394,6 +396,49 @@ TEST_CASE("morphology: skeleton_if leaves the skeleton out and the loops as they
       CHECK(m.skeleton[i] == all.skeleton[i]);
     }
   }
+}
+
+TEST_CASE("morphology: denser points beside a kept ordering are ordered on its loops", "[morphology]") {
+  // slice's band: the slab's sparse points are ordered, then a denser scan of the same
+  // profile is ordered on the loops they made, without a raster of its own.
+  const std::vector<Curve> curves = {ellipse({0, 0}, 15, 5), airfoil({-20, 0}, 0.2, 0.2, 3.0, 2.0)};
+  for (std::size_t ci = 0; ci < curves.size(); ++ci)
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+      INFO("curve " << ci << ", seed " << seed);
+      ScanSpec sparse;
+      sparse.seed = seed;
+      sparse.spacing = 0.1;
+      sparse.holes = 0;
+      sparse.outliers = 0;
+      ScanSpec dense = sparse;
+      dense.seed = seed + 100;
+      dense.spacing = 0.05;
+      MorphologyOptions no_skeleton;
+      no_skeleton.skeleton_if = [](const MorphologyResult&) { return false; };
+      const section::detail::OrderedKept slab =
+          section::detail::order_section_kept(scan(curves[ci], sparse).points, no_skeleton);
+      REQUIRE(slab.result.skeleton.empty());
+      const Scan band = scan(curves[ci], dense);
+      const std::optional<MorphologyResult> m = section::detail::order_beside(*slab.kept, band.points, {});
+      REQUIRE(m);
+      REQUIRE(m->loops.size() == 1);
+      CHECK(m->dropped == 0);
+      CHECK(m->loops[0].points.size() == band.points.size());
+      const LoopCheck r = check_loop(m->loops[0], curves[ci]);
+      CHECK(r.winding == Approx(1).margin(1e-9));
+      CHECK(r.worst_backstep < 0.1);
+      CHECK(r.near_fraction >= 0.995);
+      CHECK(r.normal_fraction >= 0.99);  // from the slab's fill
+      // The skeleton is the slab's own: the same as made afresh from it.
+      MorphologyResult with = slab.result;
+      section::detail::add_skeleton(*slab.kept, with);
+      REQUIRE(with.skeleton.size() > 10);
+      CHECK(m->skeleton == with.skeleton);
+      // Points off the kept loops (the profile moved by 1 mm) are not ordered on them.
+      Points moved = band.points;
+      for (Vec& q : moved) q.x() += 1.0;
+      CHECK_FALSE(section::detail::order_beside(*slab.kept, moved, {}));
+    }
 }
 
 TEST_CASE("morphology: 1e5 dense points give one loop (time reported, not asserted)", "[morphology][speed]") {

@@ -2,6 +2,7 @@
 #include "section/morphology.h"
 
 #include "closing.h"
+#include "detail/kept_ordering.h"
 #include "point_grid.h"
 #include "section/error.h"
 
@@ -192,19 +193,20 @@ Loop make_loop(const Points& points, const Found& f, const Pass& pass, int label
 }
 
 // Every input point joins the loop nearest to it, or is dropped; then each loop keeps its
-// members in order along it, without spikes, if enough are left.
-void make_loops(const Points& points, Search& s, double h, double outlier, std::size_t min_points,
-                const MorphologyOptions& opt, MorphologyResult& result) {
+// members in order along it, without spikes, if enough are left. With `feet_known`, the
+// feet s.feet of the points s.footed are reused. Returns the index into s.found of loop 0
+// (-1: none).
+int make_loops(const Points& points, const Search& s, bool feet_known, double h, double outlier,
+               std::size_t min_points, const MorphologyOptions& opt, MorphologyResult& result) {
   std::vector<const Points*> bounds;
   for (const Found& f : s.found) bounds.push_back(&f.boundary);
   const morph::SegmentGrid segs(bounds, outlier);
   std::vector<std::vector<std::pair<double, std::size_t>>> members(s.found.size());
   std::vector<Vec> fallback(points.size());
   std::size_t dropped = 0;
-  const morph::Component* first = nullptr;  // loop 0's component and pass
-  const Pass* first_pass = nullptr;
+  const std::size_t footed = feet_known ? s.footed.size() : 0;
   for (std::size_t k = 0, next = 0; k < points.size(); ++k) {
-    const bool known = next < s.footed.size() && s.footed[next] == k;
+    const bool known = next < footed && s.footed[next] == k;
     const Foot foot = known ? s.feet[next++] : segs.nearest(points[k]);
     if (foot.loop < 0) {
       ++dropped;
@@ -213,6 +215,7 @@ void make_loops(const Points& points, Search& s, double h, double outlier, std::
     members[foot.loop].emplace_back(foot.s, k);
     fallback[k] = foot.normal;
   }
+  int first = -1;
   for (std::size_t l = 0; l < s.found.size(); ++l) {
     auto& mem = members[l];
     std::sort(mem.begin(), mem.end());
@@ -227,27 +230,44 @@ void make_loops(const Points& points, Search& s, double h, double outlier, std::
     Loop loop = make_loop(points, f, pass, comp.label, mem, fallback, opt.normal_sigma);
     if (result.loops.empty()) {
       result.dilation = pass.radius;
-      first = &comp;
-      first_pass = &pass;
+      first = int(l);
     }
     result.loops.push_back(std::move(loop));
   }
   result.dropped = dropped;
-  if (first && opt.skeleton && (!opt.skeleton_if || opt.skeleton_if(result)))
-    morph::skeleton_of(*first_pass, *first, result);
+  if (first >= 0 && opt.skeleton && (!opt.skeleton_if || opt.skeleton_if(result))) {
+    const Found& f = s.found[std::size_t(first)];
+    morph::skeleton_of(s.passes[f.pass], s.passes[f.pass].components[f.component], result);
+  }
+  return first;
 }
 
 }  // namespace
 
-double spacing_2d(const std::vector<Eigen::Vector2d>& points, std::size_t sample) {
-  std::vector<std::size_t> all(points.size());
-  std::iota(all.begin(), all.end(), std::size_t(0));
-  for (const Vec& p : points)
-    if (!p.allFinite()) throw Error("morphology: a point has a non-finite coordinate");
-  return morph::median_spacing(points, all, std::max<std::size_t>(1, sample));
-}
+namespace detail {
 
-MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points, const MorphologyOptions& opt) {
+// A loop closed by a dilation wider than this many cells bridges holes in its points, away
+// from the profile: denser points beside it are dropped there, and are ordered afresh.
+constexpr int kMaxBesideDilation = 32;
+
+struct KeptOrdering {
+  Search search;
+  double h = 0;
+  std::size_t min_points = 0;
+  std::size_t loops = 0;  // loops the ordering made
+  int first = -1;         // index into search.found of loop 0
+  std::size_t raster_cells = 0;
+  std::size_t dropped = 0;  // points the ordering left off its loops
+  int dilation = 0;         // cells, the radius that closed loop 0
+};
+
+}  // namespace detail
+
+namespace {
+
+// order_section, what it found left in `kept`.
+MorphologyResult order_into(const std::vector<Eigen::Vector2d>& points, const MorphologyOptions& opt,
+                            detail::KeptOrdering& kept) {
   const std::size_t min_points = check_input(points, opt);
   std::vector<std::size_t> all(points.size());
   std::iota(all.begin(), all.end(), std::size_t(0));
@@ -265,7 +285,7 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points, const
 
   MorphologyResult result;
   result.cell = h;
-  Search s;
+  Search& s = kept.search;
   find_loops(points, std::move(subset), h, outlier, min_points, opt, s, result);
   if (s.found.empty())
     throw Error("morphology: the " + std::to_string(points.size()) +
@@ -273,14 +293,77 @@ MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points, const
                 " cells (cell " + morph::num(h) + " mm); the section may be open or too sparse");
   // Largest area first.
   const auto larger = [](const Found& a, const Found& b) { return a.area > b.area; };
+  bool feet_known = true;
   if (!std::is_sorted(s.found.begin(), s.found.end(), larger)) {
     std::stable_sort(s.found.begin(), s.found.end(), larger);
-    s.footed.clear();
+    feet_known = false;
   }
-  make_loops(points, s, h, outlier, min_points, opt, result);
+  kept.first = make_loops(points, s, feet_known, h, outlier, min_points, opt, result);
   if (result.loops.empty())
     throw Error("morphology: no loop keeps at least " + std::to_string(min_points) + " points");
+  kept.h = h;
+  kept.min_points = min_points;
+  kept.loops = result.loops.size();
+  kept.raster_cells = result.raster_cells;
+  kept.dropped = result.dropped;
+  kept.dilation = result.dilation;
+  // The feet are of these points only.
+  std::vector<std::size_t>().swap(s.footed);
+  std::vector<Foot>().swap(s.feet);
   return result;
 }
+
+}  // namespace
+
+double spacing_2d(const std::vector<Eigen::Vector2d>& points, std::size_t sample) {
+  std::vector<std::size_t> all(points.size());
+  std::iota(all.begin(), all.end(), std::size_t(0));
+  for (const Vec& p : points)
+    if (!p.allFinite()) throw Error("morphology: a point has a non-finite coordinate");
+  return morph::median_spacing(points, all, std::max<std::size_t>(1, sample));
+}
+
+MorphologyResult order_section(const std::vector<Eigen::Vector2d>& points, const MorphologyOptions& opt) {
+  detail::KeptOrdering kept;
+  return order_into(points, opt, kept);
+}
+
+namespace detail {
+
+OrderedKept order_section_kept(const std::vector<Eigen::Vector2d>& points, const MorphologyOptions& options) {
+  auto kept = std::make_shared<KeptOrdering>();
+  OrderedKept ordered;
+  ordered.result = order_into(points, options, *kept);
+  ordered.kept = std::move(kept);
+  return ordered;
+}
+
+std::optional<MorphologyResult> order_beside(const KeptOrdering& kept,
+                                             const std::vector<Eigen::Vector2d>& points,
+                                             const MorphologyOptions& options) {
+  check_input(points, options);
+  if (kept.dilation > kMaxBesideDilation) return std::nullopt;
+  // The points' own scale, as order_section would take it: the kept loops must hold them
+  // within their own outlier distance, not the kept (coarser) one's.
+  std::vector<std::size_t> all(points.size());
+  std::iota(all.begin(), all.end(), std::size_t(0));
+  const double h = cell_size(points, all, options);
+  const double outlier = options.outlier_distance > 0 ? options.outlier_distance : 2.5 * h;
+  MorphologyResult result;
+  result.cell = kept.h;
+  result.raster_cells = kept.raster_cells;
+  make_loops(points, kept.search, false, h, outlier, kept.min_points, options, result);
+  if (result.loops.size() != kept.loops || result.dropped > kept.dropped + 2) return std::nullopt;
+  return result;
+}
+
+void add_skeleton(const KeptOrdering& kept, MorphologyResult& result) {
+  if (kept.first < 0) return;
+  const Found& f = kept.search.found[std::size_t(kept.first)];
+  const Pass& pass = kept.search.passes[f.pass];
+  morph::skeleton_of(pass, pass.components[f.component], result);
+}
+
+}  // namespace detail
 
 }  // namespace section

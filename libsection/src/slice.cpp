@@ -4,6 +4,7 @@
 #include "section/error.h"
 #include "detail/cgal.h"
 #include "detail/flann_nearest.h"
+#include "detail/kept_ordering.h"
 #include "detail/local_origin.h"
 #include "detail/parallel.h"
 #include "detail/slab_scan.h"
@@ -14,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <optional>
@@ -219,10 +221,11 @@ bool band_likely(const std::vector<Eigen::Vector2d>& points, const SliceOptions&
 }
 
 // Orders the drift-corrected band of half width `half` beside s's slab ordering into
-// s.morphology. False, s as it was, when the band holds no more points than the slab or
+// s.morphology: on the slab's loops (`kept`, what ordered the slab), or afresh when they do
+// not hold the band. False, s as it was, when the band holds no more points than the slab or
 // cannot be ordered.
 bool order_band(SectionSlice& s, const std::vector<Eigen::Vector3d>& near, std::size_t slab_points,
-                double slab, double half, const SliceOptions& options) {
+                double slab, double half, const SliceOptions& options, const detail::KeptOrdering* kept) {
   std::vector<Eigen::Vector2d> band =
       drift_band(s.morphology, near, slab, half, options.band_spacing, options.band_sparse_max * slab);
   drop_copies(band);
@@ -233,13 +236,30 @@ bool order_band(SectionSlice& s, const std::vector<Eigen::Vector3d>& near, std::
   MorphologyOptions band_options = options.morphology;
   if (!s.morphology.loops.empty()) band_options.min_cell = s.morphology.loops[0].length / double(band.size());
   try {
-    s.morphology = order_section(band, band_options);
+    std::optional<MorphologyResult> beside;
+    if (kept) beside = detail::order_beside(*kept, band, band_options);
+    s.morphology = beside ? std::move(*beside) : order_section(band, band_options);
   } catch (const Error&) {
     return false;
   }
   s.band_points = band.size();
   s.band_half_width = half;
   return true;
+}
+
+// Orders the slab's points into s.morphology: with `order` when given (nothing kept), else
+// by order_section, what made it kept to order a band on its loops.
+std::shared_ptr<const detail::KeptOrdering> order_slab(SectionSlice& s,
+                                                       const std::vector<Eigen::Vector2d>& slab,
+                                                       const OrderFn& order,
+                                                       const MorphologyOptions& options) {
+  if (order) {
+    s.morphology = order(slab, options);
+    return nullptr;
+  }
+  detail::OrderedKept ordered = detail::order_section_kept(slab, options);
+  s.morphology = std::move(ordered.result);
+  return std::move(ordered.kept);
 }
 
 // A section that waits for its near points to fill its gaps (order_slabs): where its
@@ -352,20 +372,21 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
                                             options.band_max);
         return half >= slab && !near().empty() ? half : 0.0;
       };
-      // The slab's skeleton only when no band is tried (a band's ordering has its own). When
-      // a band is likely, the slab's ordering leaves out what only a skeleton needs (made
-      // again if asked for after all); the results are the same either way.
+      // The slab's ordering is kept to order a band on its loops (no second raster); when a
+      // band is likely, it leaves its skeleton out until no band is tried after all.
       MorphologyOptions slab_options = options.morphology;
       if (slab_options.skeleton && !order && band_likely(slabs[i], options))
         slab_options.skeleton_if = [&](const MorphologyResult& m) { return band_half(m) == 0; };
-      s.morphology = order ? order(slabs[i], options.morphology) : order_section(slabs[i], slab_options);
+      std::shared_ptr<const detail::KeptOrdering> kept =
+          order_slab(s, slabs[i], order, order ? options.morphology : slab_options);
       std::size_t first = slabs[i].size();
       if (const double half = band_half(s.morphology); half > 0) {
-        if (order_band(s, near(), slabs[i].size(), slab, half, options))
+        if (order_band(s, near(), slabs[i].size(), slab, half, options, kept.get()))
           first = s.band_points;
-        else if (slab_options.skeleton_if)  // the slab's ordering stays: again, with its skeleton
-          s.morphology = order_section(slabs[i], options.morphology);
+        else if (slab_options.skeleton_if)  // the slab's ordering stays: with its skeleton
+          detail::add_skeleton(*kept, s.morphology);
       }
+      kept.reset();
       // The points beside the plane only for a profile with gaps (the look for gaps
       // needs none of them, and fill_gaps finds none then).
       if (options.fill_gaps && fill_gaps(s.morphology, {}, slab, first, options.fill).gaps > 0) {
