@@ -106,34 +106,34 @@ std::vector<int> band_order(const Topology& t) {
   return order;
 }
 
-/// The global solver (CHOLMOD) for the band's pattern, analysed once per curve in the band
-/// order: A's entries are all band entries (both triangles, columns sorted), read from the
-/// band's rows.
+/// The global solver (CHOLMOD) for the band's pattern, given to it in the band order: P A P'
+/// in upper form, each entry read from the band row of the larger of its two points (the
+/// lower triangle of A, as a factorisation of A itself would read it).
 std::unique_ptr<detail::CholmodSolver> band_solver(const Topology& t) {
   const int n = t.n;
+  std::vector<int> order = band_order(t), at(n);
+  for (int k = 0; k < n; ++k) at[order[k]] = k;
   std::vector<int> ap(n + 1, 0), ai, source;
-  ai.reserve(5 * static_cast<std::size_t>(n));
-  source.reserve(5 * static_cast<std::size_t>(n));
+  ai.reserve(3 * static_cast<std::size_t>(n));
+  source.reserve(3 * static_cast<std::size_t>(n));
   for (int col = 0; col < n; ++col) {
-    std::array<int, 5> rows{};
+    const int i = order[col];
+    std::array<std::pair<int, int>, 5> entries{};  // (row of P A P', place in the band)
     int count = 0;
     for (int o = -2; o <= 2; ++o) {
-      const int r = band_column(col, o, t);  // symmetric pattern: row r of column col
-      if (r >= 0) rows[count++] = r;
+      const int j = band_column(i, o, t);  // A(i, j) = band[i][2 + o] = band[j][2 - o]
+      if (j < 0 || at[j] > col) continue;
+      int k = count++;  // insertion: rows sorted
+      for (; k > 0 && entries[k - 1].first > at[j]; --k) entries[k] = entries[k - 1];
+      entries[k] = {at[j], j < i ? 5 * i + 2 + o : 5 * j + 2 - o};
     }
-    std::sort(rows.begin(), rows.begin() + count);
-    count = static_cast<int>(std::unique(rows.begin(), rows.begin() + count) - rows.begin());
     for (int k = 0; k < count; ++k) {
-      const int r = rows[k];
-      ai.push_back(r);
-      int o = col - r;  // band entry (r, col) = band[r][2 + o]
-      if (o > 2) o -= n;
-      if (o < -2) o += n;
-      source.push_back(5 * r + 2 + o);
+      ai.push_back(entries[k].first);
+      source.push_back(entries[k].second);
     }
     ap[col + 1] = static_cast<int>(ai.size());
   }
-  return std::make_unique<detail::CholmodSolver>(n, ap, ai, std::move(source), "smooth", band_order(t));
+  return std::make_unique<detail::CholmodSolver>(n, ap, ai, std::move(source), "smooth", std::move(order));
 }
 
 /// The paper's point-by-point iteration on the same frozen-length system, warm-started
@@ -335,7 +335,8 @@ double minimise(const Problem& p, const SmoothOptions& options, Points& q, Smoot
     // segments holds q's: the last energy_of was of q (before the loop, or the step taken).
     assemble_band(segments.l, p.a, p.b, topo, band, inv);
     if (cholmod) {
-      cholmod->solve(band.front().data(), rhs, x);
+      cholmod->factor(band.front().data());
+      cholmod->solve(rhs, x);
     } else {
       for (int i = 0; i < topo.n; ++i) x.row(i) = q[i].transpose();
       result.sweeps += gauss_seidel(band, rhs, topo, options.sweep_tolerance * p.size, options.max_sweeps, x);

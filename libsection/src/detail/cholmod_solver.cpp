@@ -5,21 +5,23 @@
 
 #include <cholmod.h>
 
+#include <algorithm>
+
 namespace section::detail {
 
-/// The factorisation of A with the fill-reducing permutation P first builds P A P' (a sparse
-/// transpose) at every call; here P A P' is built once, its values refilled in place per
-/// solve, and factored with the natural ordering: CHOLMOD then does the same arithmetic on
-/// the same matrix, without the transpose and the allocations around it, so the solution
-/// is bit for bit that of the permuting factorisation.
-/// One analysis serves both: that of A gives P, and with P made the identity it is the
-/// analysis of P A P' in the natural ordering.
+/// The caller gives P A P' itself (upper form), so the factorisation needs no permuted
+/// transpose per call, and the analysis is that of the natural order: CHOLMOD factors P A P'
+/// exactly as the permuting factorisation of A with P would, with its values refilled in
+/// place per factor.
 struct CholmodSolver::Impl {
   explicit Impl(std::string who) : who(std::move(who)) {
     cholmod_start(&common);
     common.final_asis = 0;
     common.supernodal = CHOLMOD_SIMPLICIAL;
     common.final_ll = 1;
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_NATURAL;
+    common.postorder = 0;  // the caller's order as given
   }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
@@ -32,8 +34,7 @@ struct CholmodSolver::Impl {
     cholmod_free_sparse(&pap, &common);
     cholmod_finish(&common);
   }
-  void setup(int n, const std::vector<int>& col_start, const std::vector<int>& rows,
-             const std::vector<int>& source, const std::vector<int>& order);
+  void setup(int n, const std::vector<int>& col_start, const std::vector<int>& rows);
 
   std::string who;
   int n = 0;
@@ -45,66 +46,35 @@ struct CholmodSolver::Impl {
   cholmod_dense *rhs = nullptr, *x = nullptr, *y = nullptr, *e = nullptr;
 };
 
-void CholmodSolver::Impl::setup(int size, const std::vector<int>& col_start, const std::vector<int>& rows,
-                                const std::vector<int>& source, const std::vector<int>& order_given) {
+void CholmodSolver::Impl::setup(int size, const std::vector<int>& col_start, const std::vector<int>& rows) {
   n = size;
-  // A with its entry numbers as values (to follow them), read as its lower triangle.
-  std::vector<int> ap = col_start, ai = rows;
-  std::vector<double> ax(ai.size());
-  for (std::size_t k = 0; k < ax.size(); ++k) ax[k] = double(k);
-  cholmod_sparse a{};
-  a.nrow = a.ncol = n;
-  a.nzmax = ai.size();
-  a.p = ap.data();
-  a.i = ai.data();
-  a.x = ax.data();
-  a.stype = -1;
-  a.itype = CHOLMOD_INT;
-  a.xtype = CHOLMOD_REAL;
-  a.dtype = CHOLMOD_DOUBLE;
-  a.sorted = 1;
-  a.packed = 1;
-  // The fill-reducing ordering: the caller's, or the one an analysis of A picks.
-  if (!order_given.empty()) {
-    if (order_given.size() != static_cast<std::size_t>(n)) throw Error(who + ": an order of the wrong size");
-    common.nmethods = 1;
-    common.method[0].ordering = CHOLMOD_GIVEN;
-    std::vector<int> given = order_given;  // cholmod_analyze_p takes a non-const pointer
-    factor = cholmod_analyze_p(&a, given.data(), nullptr, 0, &common);
-  } else {
-    factor = cholmod_analyze(&a, &common);
-  }
+  if (perm.size() != static_cast<std::size_t>(n) || from.size() != rows.size() ||
+      col_start.size() != static_cast<std::size_t>(n) + 1 ||
+      col_start.back() != static_cast<int>(rows.size()))
+    throw Error(who + ": a pattern, order or source of the wrong size");
+  pap = cholmod_allocate_sparse(n, n, rows.size(), 1, 1, 1, CHOLMOD_REAL, &common);
+  if (!pap) throw Error(who + ": CHOLMOD could not allocate the system");
+  std::copy(col_start.begin(), col_start.end(), static_cast<int*>(pap->p));
+  std::copy(rows.begin(), rows.end(), static_cast<int*>(pap->i));
+  factor = cholmod_analyze(pap, &common);
   if (!factor) throw Error(who + ": CHOLMOD could not analyse the system");
-  int* order = static_cast<int*>(factor->Perm);
-  perm.assign(order, order + n);
-  // P A P' in upper form, as the permuting factorisation builds it; each of its entries
-  // carries the number of the entry of A it came from.
-  pap = cholmod_ptranspose(&a, 1, perm.data(), nullptr, 0, &common);
-  if (!pap) throw Error(who + ": CHOLMOD could not permute the system");
-  const std::size_t nz = cholmod_nnz(pap, &common);
-  const double* px = static_cast<const double*>(pap->x);
-  from.resize(nz);
-  for (std::size_t k = 0; k < nz; ++k) from[k] = source[static_cast<std::size_t>(px[k])];
-  // The analysis of P A P' in the natural ordering is the same symbolic factor (column
-  // counts in the order of P, postordered) without the permutation: P A P' is factored
-  // as given, with no second analysis.
-  if (factor->is_super || factor->xtype != CHOLMOD_PATTERN)
+  if (factor->is_super || factor->xtype != CHOLMOD_PATTERN || factor->ordering != CHOLMOD_NATURAL)
     throw Error(who + ": CHOLMOD gave an unexpected analysis");
-  for (int k = 0; k < n; ++k) order[k] = k;
-  factor->ordering = CHOLMOD_NATURAL;
   rhs = cholmod_allocate_dense(n, 2, n, CHOLMOD_REAL, &common);
   if (!rhs) throw Error(who + ": CHOLMOD could not allocate the right-hand side");
 }
 
 CholmodSolver::CholmodSolver(int n, const std::vector<int>& col_start, const std::vector<int>& rows,
-                             std::vector<int> source, const std::string& who, const std::vector<int>& order)
+                             std::vector<int> source, const std::string& who, std::vector<int> order)
     : impl_(new Impl(who)) {
-  impl_->setup(n, col_start, rows, source, order);  // on a throw, ~Impl releases what was made
+  impl_->from = std::move(source);
+  impl_->perm = std::move(order);
+  impl_->setup(n, col_start, rows);  // on a throw, ~Impl releases what was made
 }
 
 CholmodSolver::~CholmodSolver() = default;
 
-void CholmodSolver::solve(const double* values, const Eigen::MatrixX2d& b, Eigen::MatrixX2d& out) {
+void CholmodSolver::factor(const double* values) {
   Impl& s = *impl_;
   double* px = static_cast<double*>(s.pap->x);
   for (std::size_t k = 0; k < s.from.size(); ++k) px[k] = values[s.from[k]];
@@ -112,6 +82,11 @@ void CholmodSolver::solve(const double* values, const Eigen::MatrixX2d& b, Eigen
   cholmod_factorize_p(s.pap, beta, nullptr, 0, s.factor, &s.common);
   if (s.common.status < CHOLMOD_OK || s.factor->minor != s.factor->n)
     throw Error(s.who + ": CHOLMOD could not factor the system (not positive definite?)");
+}
+
+void CholmodSolver::solve(const Eigen::MatrixX2d& b, Eigen::MatrixX2d& out) {
+  Impl& s = *impl_;
+  if (s.factor->xtype == CHOLMOD_PATTERN) throw Error(s.who + ": solve before factor");
   const int n = s.n;
   double* r = static_cast<double*>(s.rhs->x);
   for (int k = 0; k < n; ++k) {
