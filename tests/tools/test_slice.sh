@@ -38,7 +38,10 @@ cp "$TMP/out" "$TMP/from_file.csv"
 awk 'BEGIN { for (z = -0.6; z <= 0.6; z += 0.05) for (i = 0; i < 1200; i++) { a = 6.283185307179586 * i / 1200; if (a > 1 && a < 1.2 && z > -0.3 && z < 0.3) continue; printf "%.9f %.9f %.3f\n", 10*cos(a), 5*sin(a) + 0.2*z, z } }' > "$TMP/holed.xyz"
 expect 0 "holed ring" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05
 check "gap filled and noted" -- grep -q "^# fill section=0 gaps=1 filled=1" "$TMP/out"
-# One row in the slab (25 points per mm): the band takes the rows at +-0.05 too.
+# One row in the slab (24 points per mm): dense enough for the default band spacing
+# (0.03 mm); at 0.02 mm the band takes the rows at +-0.05 too.
+check "no band at the default spacing" -- sh -c "! grep -q '^# band' '$TMP/out'"
+expect 0 "holed ring, band every 0.02 mm" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --band-spacing 0.02
 check "band of three rows noted" -- grep -q "^# band section=0 half_width=0.05[0-9]* points=34[0-9][0-9] slab_points=11[0-9][0-9]" "$TMP/out"
 expect 0 "holed ring, slab alone" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --band-spacing 0
 check "no band note without a band" -- sh -c "! grep -q '^# band' '$TMP/out'"
@@ -46,7 +49,7 @@ expect 2 "band max below half a slab" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --
 expect 2 "negative band spacing" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --band-spacing -1
 expect 2 "negative sparse band width" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --band-sparse-max -1
 # Beside the hole's ends the slab is sparse: --band-sparse-max reaches farther there only.
-expect 0 "holed ring, band widened beside sparse stretches" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --band-sparse-max 4
+expect 0 "holed ring, band widened beside sparse stretches" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --band-spacing 0.02 --band-sparse-max 4
 check "wider band noted" -- grep -q "^# band section=0 half_width=0.05[0-9]* points=35[0-9][0-9] slab_points=11[0-9][0-9]" "$TMP/out"
 expect 0 "holed ring, no fill" -- "$BIN/slice" "$TMP/holed.xyz" --at 0 --slab 0.05 --no-fill
 check "no fill note without filling" -- sh -c "! grep -q '^# fill' '$TMP/out'"

@@ -37,7 +37,7 @@ std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, con
 struct SliceOptions {
   double slab = 0;               ///< slab width d; 0 = chosen from the points' sampling (docs/SAMPLING.md)
   MorphologyOptions morphology;  ///< ordering of each section's points
-  double band_spacing = 0.02;    ///< widen the slab into a band (drift_band.h) to one point per this; 0 = off
+  double band_spacing = 0.03;    ///< widen the slab into a band (drift_band.h) to one point per this; 0 = off
   double band_max = 2;           ///< slab widths: the band's largest half width
   double band_sparse_max = 0;    ///< slab widths: the band's half width beside sparse stretches; 0 = off
   bool fill_gaps = true;         ///< fill gaps of the slab from scan points beside the plane (gap_fill.h)

@@ -29,7 +29,8 @@ OrderedKept order_section_kept(const std::vector<Eigen::Vector2d>& points, const
 /// when the kept loop 0 closed only at a dilation over 32 cells (it bridges holes away from
 /// the profile, where denser points may lie), or when the loops do not hold the points:
 /// more than 2 dropped beyond those the kept ordering dropped, or a loop left with too few.
-std::optional<MorphologyResult> order_beside(const KeptOrdering& kept, const std::vector<Eigen::Vector2d>& points,
+std::optional<MorphologyResult> order_beside(const KeptOrdering& kept,
+                                             const std::vector<Eigen::Vector2d>& points,
                                              const MorphologyOptions& options);
 
 /// Adds the skeleton of the kept loop 0 to `result`, the ordering that kept it (which left
