@@ -377,8 +377,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
       MorphologyOptions slab_options = options.morphology;
       if (slab_options.skeleton && !order && band_likely(slabs[i], options))
         slab_options.skeleton_if = [&](const MorphologyResult& m) { return band_half(m) == 0; };
-      std::shared_ptr<const detail::KeptOrdering> kept =
-          order_slab(s, slabs[i], order, order ? options.morphology : slab_options);
+      std::shared_ptr<const detail::KeptOrdering> kept = order_slab(s, slabs[i], order, slab_options);
       std::size_t first = slabs[i].size();
       if (const double half = band_half(s.morphology); half > 0) {
         if (order_band(s, near(), slabs[i].size(), slab, half, options, kept.get()))
