@@ -192,6 +192,18 @@ Loop make_loop(const Points& points, const Found& f, const Pass& pass, int label
   return loop;
 }
 
+// The skeleton of found loop `first` (an index into s.found) into `result`.
+void skeleton_of_found(const Search& s, int first, MorphologyResult& result) {
+  const Found& f = s.found[std::size_t(first)];
+  const Pass& pass = s.passes[f.pass];
+  morph::skeleton_of(pass, pass.components[f.component], result);
+}
+
+// The outlier distance at cell h: the option, or 2.5 cells.
+double outlier_at(const MorphologyOptions& opt, double h) {
+  return opt.outlier_distance > 0 ? opt.outlier_distance : 2.5 * h;
+}
+
 // Every input point joins the loop nearest to it, or is dropped; then each loop keeps its
 // members in order along it, without spikes, if enough are left. With `feet_known`, the
 // feet s.feet of the points s.footed are reused. Returns the index into s.found of loop 0
@@ -235,10 +247,8 @@ int make_loops(const Points& points, const Search& s, bool feet_known, double h,
     result.loops.push_back(std::move(loop));
   }
   result.dropped = dropped;
-  if (first >= 0 && opt.skeleton && (!opt.skeleton_if || opt.skeleton_if(result))) {
-    const Found& f = s.found[std::size_t(first)];
-    morph::skeleton_of(s.passes[f.pass], s.passes[f.pass].components[f.component], result);
-  }
+  if (first >= 0 && opt.skeleton && (!opt.skeleton_if || opt.skeleton_if(result)))
+    skeleton_of_found(s, first, result);
   return first;
 }
 
@@ -272,7 +282,7 @@ MorphologyResult order_into(const std::vector<Eigen::Vector2d>& points, const Mo
   std::vector<std::size_t> all(points.size());
   std::iota(all.begin(), all.end(), std::size_t(0));
   const double h = cell_size(points, all, opt);
-  const double outlier = opt.outlier_distance > 0 ? opt.outlier_distance : 2.5 * h;
+  const double outlier = outlier_at(opt, h);
   const double isolated = opt.isolated_distance > 0 ? opt.isolated_distance : 6 * h;
 
   // Isolated points stay out of the raster so that they cannot make loops or bumps.
@@ -348,7 +358,7 @@ std::optional<MorphologyResult> order_beside(const KeptOrdering& kept,
   std::vector<std::size_t> all(points.size());
   std::iota(all.begin(), all.end(), std::size_t(0));
   const double h = cell_size(points, all, options);
-  const double outlier = options.outlier_distance > 0 ? options.outlier_distance : 2.5 * h;
+  const double outlier = outlier_at(options, h);
   MorphologyResult result;
   result.cell = kept.h;
   result.raster_cells = kept.raster_cells;
@@ -358,10 +368,7 @@ std::optional<MorphologyResult> order_beside(const KeptOrdering& kept,
 }
 
 void add_skeleton(const KeptOrdering& kept, MorphologyResult& result) {
-  if (kept.first < 0) return;
-  const Found& f = kept.search.found[std::size_t(kept.first)];
-  const Pass& pass = kept.search.passes[f.pass];
-  morph::skeleton_of(pass, pass.components[f.component], result);
+  if (kept.first >= 0) skeleton_of_found(kept.search, kept.first, result);
 }
 
 }  // namespace detail
