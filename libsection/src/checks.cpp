@@ -240,6 +240,17 @@ struct Checker {
     const double off = std::abs(detail::wrap_degrees(reported - expected));
     if (off > limit) fail(c, off, limit);
   }
+
+  // The end direction against the fit that gave it: where a quartic over the same span
+  // turns it by more than fit_model plus the tilt the noise gives over that span, the
+  // cubic's own shape set the angle, not the camber line. An edge that is not circular
+  // has its angle flagged already (le_circle, te_circle: the axis bends within the nose).
+  void end_fit(const Edge& e, double model, Check c) {
+    const double span = camber.tangent_span_length;
+    if (!(span > 0) || !e.circular) return;
+    const double limit = options.fit_model + options.noise_factor * options.noise / span * 180 / pi;
+    if (model > limit) fail(c, model, limit);
+  }
 };
 
 }  // namespace
@@ -315,6 +326,8 @@ SectionCheck check_section(const SampledProfile& pr, const CamberResult& camber,
   k.chord();
   k.end_angle(params.inlet_angle, camber.ext_le, 1, Check::inlet_angle);
   k.end_angle(params.outlet_angle, camber.length - camber.ext_te, -1, Check::outlet_angle);
+  k.end_fit(camber.le, camber.le_fit_model, Check::inlet_fit);
+  k.end_fit(camber.te, camber.te_fit_model, Check::outlet_fit);
   k.noise(pr.curve.control.size());
   std::sort(k.out.findings.begin(), k.out.findings.end(),
             [](const Finding& a, const Finding& b) { return bit(a.check) < bit(b.check); });

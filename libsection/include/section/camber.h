@@ -80,6 +80,10 @@ struct CamberResult {
   /// inscribed radius says (0 on the medial axis; large where the line was interpolated),
   /// and that sample's arc length from the LE point.
   double off_axis = 0, off_axis_s = 0;
+  /// Degrees between the end directions that a cubic and a quartic give over the same
+  /// span of the axis (CamberOptions::tangent_span; 0 without it): the cubic's bias where
+  /// the camber's curvature changes fast near the edge. And the span's length.
+  double le_fit_model = 0, te_fit_model = 0, tangent_span_length = 0;
 };
 
 /// Mean-camber line of the closed blade profile `profile`: the medial axis, with round

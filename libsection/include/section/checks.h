@@ -46,6 +46,8 @@ enum class Check : std::uint32_t {
   le_sharp = 1u << 26,   ///< LE taken as sharp (radius 0), but the points resolve a small round edge there
   te_sharp = 1u << 27,   ///< the same at the TE
   noise = 1u << 28,  ///< the fit follows the points' noise: its rms hides a scatter that every length carries
+  inlet_fit = 1u << 29,   ///< inlet angle set by the end fit: a cubic and a quartic over its span disagree
+  outlet_fit = 1u << 30,  ///< the same at the TE
 };
 
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
@@ -99,6 +101,8 @@ inline constexpr CheckName check_names[] = {
     {Check::noise, "noise",
      "max_thickness max_thickness_pos thickness le_radius le_center te_radius te_center le_point te_point "
      "chord stagger caliper_chord camber_line camber_length inlet_angle outlet_angle camber_angle"},
+    {Check::inlet_fit, "inlet_fit", "inlet_angle camber_angle le_point chord stagger"},
+    {Check::outlet_fit, "outlet_fit", "outlet_angle camber_angle te_point chord stagger"},
 };
 
 /// The bit of a check in a flags mask.
@@ -119,6 +123,7 @@ struct CheckOptions {
   double floor = 1e-5;       ///< ... plus this fraction of the profile's size
   double tangent_length = 0.05;  ///< camber-length fraction over which the end directions are taken
   double angle_floor = 1;        ///< degrees: least angle tolerance
+  double fit_model = 0.25;       ///< degrees: most an end direction may change from a cubic to a quartic fit
   double vertex_reach = 0.02;    ///< camber-length fraction over which a sharp edge's wedge is taken
   double arc_shortfall = 40;  ///< degrees: a round edge's arc may fall this far short of its flanks' turning
 };

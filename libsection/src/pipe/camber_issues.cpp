@@ -224,6 +224,28 @@ std::uint32_t edge_flags(const SectionFacts& f, const Edge& e, const EdgeCoverag
   return flags;
 }
 
+// A failed check of an end angle (inlet_angle, outlet_angle, inlet_fit, outlet_fit) in words.
+std::string angle_note(const Finding& k, const SectionParams& p) {
+  char text[320];
+  const bool in = k.check == Check::inlet_angle || k.check == Check::inlet_fit;
+  const double angle = in ? p.inlet_angle : p.outlet_angle;
+  const char* edge = in ? "leading edge" : "trailing edge";
+  if (k.check == Check::inlet_fit || k.check == Check::outlet_fit)
+    std::snprintf(text, sizeof text,
+                  "%s angle %s fails check %s: a quartic fitted to the camber line next to the %s turns "
+                  "the cubic's end direction by %s (at most %s): the camber bends unevenly there and the "
+                  "angle, the edge point and the chord depend on the fit",
+                  in ? "inlet" : "outlet", format_angle(angle).c_str(), check_name(k.check), edge,
+                  format_angle(k.value).c_str(), format_angle(k.limit).c_str());
+  else
+    std::snprintf(text, sizeof text,
+                  "%s angle %s fails check %s: it is %s off the camber line's direction next to the "
+                  "%s (at most %s): the camber line bends there",
+                  in ? "inlet" : "outlet", format_angle(angle).c_str(), check_name(k.check),
+                  format_angle(k.value).c_str(), edge, format_angle(k.limit).c_str());
+  return text;
+}
+
 // A failed check of section_check in words, with its values.
 std::string finding_note(const Finding& k, const SectionParams& p) {
   char text[320];
@@ -293,15 +315,8 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
                     "edges, camber line and angles may be off by up to half that (check %s)",
                     format_length(k.value).c_str(), format_length(k.limit).c_str(), name);
       break;
-    default: {
-      const bool in = k.check == Check::inlet_angle;
-      std::snprintf(text, sizeof text,
-                    "%s angle %s fails check %s: it is %s off the camber line's direction next to the "
-                    "%s (at most %s): the camber line bends there",
-                    in ? "inlet" : "outlet", format_angle(in ? p.inlet_angle : p.outlet_angle).c_str(), name,
-                    format_angle(k.value).c_str(), in ? "leading edge" : "trailing edge",
-                    format_angle(k.limit).c_str());
-    }
+    default:
+      return angle_note(k, p);
   }
   return text;
 }
