@@ -63,7 +63,9 @@ struct Options {
   bool register_views_first = false;  // --register (implies --full-scan): register the two views first
   bool fill_gaps = true;              // --no-fill: the slab points alone
   GapFillOptions fill_options;
-  std::size_t auto_cells = 0;  // --auto-cells N: the morphology raster budget (0 = the default)
+  std::size_t auto_cells = 0;    // --auto-cells N: the morphology raster budget (0 = the default)
+  SmoothOptions smooth_options;  // --smooth-move-tolerance: smooth's stop moved (inputs of fitspline
+                                 // a few hundredths of a micrometre apart: fitspline's stability)
   FitSplineOptions fit_options;
   CamberOptions camber_options;
 };
@@ -75,9 +77,10 @@ const char* const usage =
     "[--band-sparse-max SLABS] [--no-band] [--preset turbine|compressor|both] [--full-scan] [--register] "
     "[--no-fill] [--fill-gap K] [--fill-fraction F] [--fill-reach MM] [--auto-cells N] [--no-camber] "
     "[--quiet] "
-    "[--export DIR]\n"
+    "[--export DIR] [--smooth-move-tolerance SPACINGS]\n"
     "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] "
-    "[--outlier-floor MM] [--tolerance MM]; camber: [--edge-arc DEG] [--edge-core DEG] [--edge-residual K] "
+    "[--outlier-floor MM] [--tolerance MM] [--bridge-factor F]; camber: [--edge-arc DEG] [--edge-core DEG] "
+    "[--edge-residual K] "
     "[--edge-noise-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] [--edge-prune "
     "DEG] "
     "[--tangent-span FRACTION] [--edge-on-spline] [--edge-point-gap F] [--edge-point-sigma F]\n";
@@ -99,12 +102,14 @@ std::map<std::string, double*> number_flags(Options& o) {
           {"--fill-gap", &fill.min_gap},
           {"--fill-reach", &fill.reach},
           {"--fill-fraction", &fill.min_gap_fraction},
+          {"--smooth-move-tolerance", &o.smooth_options.move_tolerance},
           {"--min-span-points", &fit.min_span_points},
           {"--fairness", &fit.fairness},
           {"--smoothing-length", &fit.smoothing_length},
           {"--outlier-floor", &fit.outlier_floor},
           {"--min-span", &fit.min_span},
           {"--tolerance", &fit.tolerance},
+          {"--bridge-factor", &fit.bridge_factor},
           {"--edge-arc", &cam.edge_arc},
           {"--edge-core", &cam.edge_core},
           {"--edge-residual", &cam.edge_residual},
@@ -252,7 +257,7 @@ void run_pipe(Case& c, const Cloud& cloud, const Options& opt) {
   const auto& zs = c.zs;
   Stream stream =
       parse_stream(format_stream(to_stream(slice(cloud, planes_at({0, 0, 1}, zs), sopt), "slice")), "slice");
-  smooth_stream(stream);
+  smooth_stream(stream, opt.smooth_options);
   stream = parse_stream(format_stream(stream), "smooth");
   // EVALUATE_STREAMS=PREFIX writes each blade's stream as fitspline reads it
   // (PREFIX_preset_seed.smooth), to rerun the tools on one case.
