@@ -144,20 +144,21 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> end_tangents(const AxisCurve& ax,
   return t;
 }
 
-// How far the end directions move when the cubic of end_tangent becomes a quartic over the
-// same span: a cubic follows a curvature that changes linearly, and a camber turning fast
-// and unevenly near an edge leaves it biased there (a twisted compressor tip: 0.96 degrees
-// at the TE on the exact profile, the quartic 0.01). checks.h's inlet_fit and outlet_fit.
+// How far the end directions (res's tangents, the cubics of end_tangents) move when the
+// cubic becomes a quartic over the same span: a cubic follows a curvature that changes
+// linearly, and a camber turning fast and unevenly near an edge leaves it biased there (a
+// twisted compressor tip: 0.96 degrees at the TE on the exact profile, the quartic 0.01).
+// checks.h's inlet_fit and outlet_fit. Where the cubic had too few points, so has the
+// quartic: 0.
 void fit_model(const std::vector<InscribedCircle>& circles, double span, CamberResult& res) {
   if (!(span > 0)) return;
   const std::vector<Eigen::Vector2d> c = detail::centers(circles);
-  const Eigen::Vector2d a = end_tangent(c, true, span), b = end_tangent(c, false, span);
   const Eigen::Vector2d qa = end_tangent(c, true, span, 4), qb = end_tangent(c, false, span, 4);
   auto angle = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
     return u.norm() > 0 && v.norm() > 0 ? std::abs(std::atan2(cross(u, v), u.dot(v))) * 180 / pi : 0.0;
   };
-  res.le_fit_model = angle(a, qa);
-  res.te_fit_model = angle(b, qb);
+  res.le_fit_model = angle(res.le_tangent, qa);
+  res.te_fit_model = angle(res.te_tangent, qb);
   res.tangent_span_length = span;
 }
 
