@@ -87,11 +87,17 @@ int first_highest(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& 
   return top;
 }
 
+// The points p[first..last] of a cap.
+struct CapRange {
+  int first = 0, last = -1;
+  int size() const { return last - first + 1; }
+};
+
 // The cap of `p` (consecutive points at most `step` apart) within `depth` below its
 // extreme point along f: its points into `out` and its width across f; -1 when the cap
 // runs out of `p` (not an edge).
 double cap_along(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f, double step, double depth,
-                 std::vector<Eigen::Vector2d>& out) {
+                 CapRange& out) {
   const int m = static_cast<int>(p.size()) - 1;
   const int top = first_highest(p, f, step);
   const double hmax = p[top].dot(f);
@@ -102,7 +108,7 @@ double cap_along(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f
   const Eigen::Vector2d u = detail::left_normal(f);
   double lo_u = std::numeric_limits<double>::infinity(), hi_u = -lo_u;
   for (int i = a; i <= b; ++i) lo_u = std::min(lo_u, p[i].dot(u)), hi_u = std::max(hi_u, p[i].dot(u));
-  out.assign(p.begin() + a, p.begin() + b + 1);
+  out = {a, b};
   return hi_u - lo_u;
 }
 
@@ -113,13 +119,13 @@ struct Cap {
   double rms = std::numeric_limits<double>::infinity();
 };
 
-// Straightness of the points q: their total-least-squares line into `cap`.
-void line_fit(const std::vector<Eigen::Vector2d>& q, Cap& cap) {
+// Straightness of the points q of a cap: their total-least-squares line into `cap`.
+void line_fit(const std::vector<Eigen::Vector2d>& p, CapRange q, Cap& cap) {
   cap.mean.setZero();
-  for (const auto& x : q) cap.mean += x;
+  for (int i = q.first; i <= q.last; ++i) cap.mean += p[i];
   cap.mean /= static_cast<double>(q.size());
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (const auto& x : q) cov += (x - cap.mean) * (x - cap.mean).transpose();
+  for (int i = q.first; i <= q.last; ++i) cov += (p[i] - cap.mean) * (p[i] - cap.mean).transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
   cap.along = eig.eigenvectors().col(1);
   cap.normal = eig.eigenvectors().col(0);
@@ -128,23 +134,33 @@ void line_fit(const std::vector<Eigen::Vector2d>& q, Cap& cap) {
 
 // The straightest cap of `p` among the directions within 40 degrees of d (a face need not
 // be square to the end tangent; the widest cap would be square to a flank, running along
-// it and round the corner). False when no direction gives a cap.
+// it and round the corner). False when no direction gives a cap, or none can be
+// `min_width` wide: a cap `width` wide across its direction and at most `depth` deep
+// along it is at most hypot(width, depth) wide along any line, so the lines need not be
+// fitted (a round edge's caps: 0.64 W at most).
 bool straightest_cap(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& d, double depth,
-                     Cap& best) {
-  bool found = false;
-  std::vector<Eigen::Vector2d> trial;
+                     double min_width, Cap& best) {
   const double step = largest_step(p);
+  std::vector<CapRange> caps;
+  bool wide_enough = false;
   for (int k = -40; k <= 40; ++k) {
     const double a = k * pi / 180;
     const Eigen::Vector2d g =
         Eigen::Vector2d(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y())
             .normalized();
-    const double width = cap_along(p, g, step, depth, trial);
-    if (width < 0 || trial.size() < 3) continue;
+    CapRange cap;
+    const double width = cap_along(p, g, step, depth, cap);
+    if (width < 0 || cap.size() < 3) continue;
+    caps.push_back(cap);
+    if (!(std::hypot(width, depth) * (1 + 1e-6) < min_width)) wide_enough = true;
+  }
+  if (!wide_enough) return false;
+  bool found = false;
+  for (const CapRange& range : caps) {
     Cap cap;
-    line_fit(trial, cap);
+    line_fit(p, range, cap);
     if (cap.rms >= best.rms) continue;
-    cap.points = trial;
+    cap.points.assign(p.begin() + range.first, p.begin() + range.last + 1);
     best = cap;
     found = true;
   }
@@ -173,7 +189,7 @@ Face blunt_face(const SampledProfile& pr, const std::vector<InscribedCircle>& fr
       profile_near(pr, end, 1.5 * w + 2 * pr.period / static_cast<int>(pr.samples.size()));
   const double depth = 0.1 * w;
   Cap cap;
-  if (!straightest_cap(p, d, depth, cap)) return face;
+  if (!straightest_cap(p, d, depth, options.blunt_face * w, cap)) return face;
   const Eigen::Vector2d f = cap.normal.dot(d) < 0 ? Eigen::Vector2d(-cap.normal) : cap.normal;
   double smin = std::numeric_limits<double>::infinity(), smax = -smin;
   for (const auto& q : cap.points) {

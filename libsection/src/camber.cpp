@@ -532,14 +532,15 @@ CamberResult camber_line(const SampledProfile& pr, const CamberOptions& options,
                          const std::vector<Eigen::Vector2d>& measured, std::unique_ptr<CamberAxis>* axis) {
   CamberResult res;
   res.orientation = pr.sigma;
-  MedialAxis ma = detail::medial_axis(pr, options.medial);  // (the same samples)
+  AxisCurve medial_curve;
+  MedialAxis ma = detail::medial_axis(pr, options.medial, &medial_curve);  // (the same samples)
   std::vector<InscribedCircle> medial = ma.circles;
   const BranchSize size = blade_size(medial, options);
   prune_ends(medial, options.edge_prune);
   orient(medial, options, res);
   // The medial axis ends with the axis through its own circles: the same centres (no end
-  // pruned, the order kept) give that axis again.
-  AxisCurve ax = same_centres(medial, ma.circles) ? AxisCurve(ma.curve)
+  // pruned, the order kept) would give that axis again.
+  AxisCurve ax = same_centres(medial, ma.circles) ? std::move(medial_curve)
                                                   : detail::make_axis(detail::centers(medial), 1e-8);
   Ends ends = settle_edges(pr, medial, ax, size, options, measured);
   const std::vector<InscribedCircle>& circles = ends.circles;
@@ -557,7 +558,7 @@ CamberResult camber_line(const SampledProfile& pr, const CamberOptions& options,
   ma.curve = ax.spline;
   res.medial = ma;
 
-  const ArcLengthTable table(ax.spline, 4 * static_cast<int>(circles.size()));
+  const ArcLengthTable table(ax.f, 4 * static_cast<int>(circles.size()));
   res.ext_le = (res.le.point - circles.front().center).norm();
   res.ext_te = (res.te.point - circles.back().center).norm();
   res.length = res.ext_le + table.length() + res.ext_te;

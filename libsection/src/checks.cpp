@@ -37,12 +37,15 @@ Foot foot(const SampledProfile& pr, const Eigen::Vector2d& q) {
   const int n = static_cast<int>(pr.samples.size());
   Foot f;
   int crossings = 0;
+  // The segments (i - 1, i), the closing one first; each end's side of q carried over.
+  bool a_above = pr.samples[n - 1].y() > q.y();
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector2d& a = pr.samples[i];
-    const Eigen::Vector2d& b = pr.samples[(i + 1) % n];
-    if ((a.y() > q.y()) != (b.y() > q.y()) &&
-        q.x() < a.x() + (q.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
+    const Eigen::Vector2d& a = pr.samples[i == 0 ? n - 1 : i - 1];
+    const Eigen::Vector2d& b = pr.samples[i];
+    const bool b_above = b.y() > q.y();
+    if (a_above != b_above && q.x() < a.x() + (q.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
       ++crossings;
+    a_above = b_above;
   }
   f.inside = crossings % 2 == 1;
   double t = pr.ts[pr.nearest(q)];

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace section {
 
@@ -132,7 +133,7 @@ MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options)
 
 namespace detail {
 
-MedialAxis medial_axis(const SampledProfile& pr, const MedialAxisOptions& options) {
+MedialAxis medial_axis(const SampledProfile& pr, const MedialAxisOptions& options, AxisCurve* axis) {
   MedialAxis result;
   const std::vector<Eigen::Vector2d> seed = seed_branch(pr, options);
   result.seed_points = static_cast<int>(seed.size());
@@ -159,6 +160,7 @@ MedialAxis medial_axis(const SampledProfile& pr, const MedialAxisOptions& option
                 " inscribed circles (the profile is not blade-like)");
   result.circles = circles;
   result.curve = ax.spline;
+  if (axis) *axis = std::move(ax);
   return result;
 }
 

@@ -28,17 +28,22 @@ namespace {
 
 // Indices of the convex hull of points (counterclockwise, Andrew's monotone chain).
 std::vector<int> convex_hull(const std::vector<Eigen::Vector2d>& p) {
-  std::vector<int> idx(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) idx[i] = static_cast<int>(i);
-  std::sort(idx.begin(), idx.end(), [&](int a, int b) {
-    return p[a].x() < p[b].x() || (p[a].x() == p[b].x() && p[a].y() < p[b].y());
-  });
+  // Sorted with the coordinates beside the index (the same comparisons in the same places,
+  // so the same order, ties included, as sorting indices; without a lookup per comparison).
+  struct Key {
+    double x, y;
+    int i;
+  };
+  std::vector<Key> idx(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) idx[i] = {p[i].x(), p[i].y(), static_cast<int>(i)};
+  std::sort(idx.begin(), idx.end(),
+            [](const Key& a, const Key& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   std::vector<int> h(2 * p.size());
   std::size_t k = 0;
   for (int pass = 0; pass < 2; ++pass) {
     const std::size_t base = k;
     for (std::size_t n = 0; n < idx.size(); ++n) {
-      const int i = pass == 0 ? idx[n] : idx[idx.size() - 1 - n];
+      const int i = pass == 0 ? idx[n].i : idx[idx.size() - 1 - n].i;
       while (k >= base + 2 && cross(p[h[k - 1]] - p[h[k - 2]], p[i] - p[h[k - 2]]) <= 0) --k;
       h[k++] = i;
     }
@@ -82,9 +87,11 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> bitangent(const detail::PiecewiseCur
 
 }  // namespace
 
-double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
+namespace {
+
+// enclosed_area on f, curve's piecewise form.
+double area_of(const BSpline& curve, const detail::PiecewiseCurve& f, Eigen::Vector2d* centroid) {
   if (!curve.closed) throw Error("params: the area needs a closed curve");
-  const detail::PiecewiseCurve f(curve);
   // 5-point Gauss-Legendre is exact for the degree-8 integrands of a cubic per span.
   static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                               0.9061798459386640};
@@ -112,15 +119,20 @@ double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
   return area;
 }
 
+}  // namespace
+
+double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
+  return area_of(curve, detail::PiecewiseCurve(curve), centroid);
+}
+
 namespace {
 
 // The caliper laid against the pressure side of `profile` (SectionParams::caliper_*):
 // the convex-hull edge bridging the pressure side is the line a caliper touches at both
 // ends, refined to the exact bitangent; the chord is the profile's extent along it.
-void caliper(const BSpline& profile, const CamberResult& camber, SectionParams& out) {
-  const detail::PiecewiseCurve f(profile);
+void caliper(const detail::PiecewiseCurve& f, const CamberResult& camber, SectionParams& out) {
   const int n = 2000;
-  const double t0 = profile.t_min(), period = profile.t_max() - t0;
+  const double t0 = f.t_min(), period = f.t_max() - t0;
   std::vector<Eigen::Vector2d> s(n);
   for (int i = 0; i < n; ++i) s[i] = f.point(t0 + period * i / n);
   auto index_of = [&](double t) {
@@ -135,13 +147,15 @@ void caliper(const BSpline& profile, const CamberResult& camber, SectionParams& 
   const int from = forward_le_te ? ile : ite, to = forward_le_te ? ite : ile;
   const int span = ((to - from) % n + n) % n;
   const int mid = (from + span / 2) % n;
-  std::vector<int> hull = convex_hull(s);
-  std::sort(hull.begin(), hull.end());
+  // The hull vertices on either side of mid, cyclically (mid not one of them).
+  std::vector<char> on_hull(n, 0);
+  for (int i : convex_hull(s)) on_hull[i] = 1;
   int ha = -1, hb = -1;
-  if (!hull.empty() && !std::binary_search(hull.begin(), hull.end(), mid)) {
-    auto it = std::upper_bound(hull.begin(), hull.end(), mid);
-    hb = it == hull.end() ? hull.front() : *it;
-    ha = it == hull.begin() ? hull.back() : *(it - 1);
+  if (!on_hull[mid]) {
+    for (int k = 1; k < n && hb < 0; ++k)
+      if (on_hull[(mid + k) % n]) hb = (mid + k) % n;
+    for (int k = 1; k < n && ha < 0; ++k)
+      if (on_hull[(mid - k + n) % n]) ha = (mid - k + n) % n;
   }
   Eigen::Vector2d e = (out.te_point - out.le_point).normalized();
   if (ha >= 0 && ha != hb) {
@@ -176,6 +190,11 @@ void caliper(const BSpline& profile, const CamberResult& camber, SectionParams& 
 }  // namespace
 
 SectionParams section_params(const BSpline& profile, const CamberResult& camber) {
+  return detail::section_params(profile, detail::PiecewiseCurve(profile), camber);
+}
+
+SectionParams detail::section_params(const BSpline& profile, const PiecewiseCurve& f,
+                                     const CamberResult& camber) {
   SectionParams out;
   out.le_point = camber.le.point;
   out.te_point = camber.te.point;
@@ -191,15 +210,15 @@ SectionParams section_params(const BSpline& profile, const CamberResult& camber)
   out.inlet_angle = degrees(camber.le_tangent);
   out.outlet_angle = degrees(camber.te_tangent);
   out.camber_angle = wrap_degrees(out.inlet_angle - out.outlet_angle);
-  out.area = std::abs(enclosed_area(profile, &out.centroid));
-  caliper(profile, camber, out);
+  out.area = std::abs(area_of(profile, f, &out.centroid));
+  caliper(f, camber, out);
   return out;
 }
 
 std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const CamberResult& camber,
                                                  const std::vector<double>& fractions) {
   const detail::AxisCurve ax(camber.medial.curve);
-  const detail::ArcLengthTable table(ax.spline, 4 * static_cast<int>(camber.medial.circles.size()));
+  const detail::ArcLengthTable table(ax.f, 4 * static_cast<int>(camber.medial.circles.size()));
   return detail::thickness_stations(detail::SampledProfile(profile, detail::thickness_samples), {ax, table},
                                     camber, fractions);
 }
@@ -254,9 +273,12 @@ std::vector<ThicknessStation> detail::thickness_stations(const SampledProfile& p
 }
 
 Sides split_sides(const BSpline& profile, const CamberResult& camber, int count) {
+  return detail::split_sides(detail::PiecewiseCurve(profile), camber, count);
+}
+
+Sides detail::split_sides(const PiecewiseCurve& f, const CamberResult& camber, int count) {
   if (count < 2) throw Error("params: a side needs at least 2 samples");
-  const detail::PiecewiseCurve f(profile);
-  const double period = profile.t_max() - profile.t_min();
+  const double period = f.t_max() - f.t_min();
   auto forward = [&](double a, double b) { return std::fmod(std::fmod(b - a, period) + period, period); };
   const double le = camber.le.t, te = camber.te.t;
   // Forward from LE reaches TE along one side, backward along the other; both sampled

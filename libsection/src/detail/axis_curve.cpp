@@ -52,8 +52,8 @@ AxisCurve make_axis(const std::vector<Eigen::Vector2d>& points, double fairness)
   return AxisCurve(fit_open(p, std::clamp(static_cast<int>(p.size()) / 2, 4, 200), fairness));
 }
 
-ArcLengthTable::ArcLengthTable(const BSpline& c, int pieces) : f(c) {
-  const double a = c.t_min(), b = c.t_max();
+ArcLengthTable::ArcLengthTable(PiecewiseCurve c, int pieces) : f(std::move(c)) {
+  const double a = f.t_min(), b = f.t_max();
   t.push_back(a);
   s.push_back(0);
   for (int i = 1; i <= pieces; ++i) {

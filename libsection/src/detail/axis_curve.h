@@ -19,6 +19,7 @@ struct AxisCurve {
   BSpline spline;
   double a = 0, b = 1;  ///< parameter range of the spline
   PiecewiseCurve f;
+  AxisCurve() = default;  ///< no axis yet (a state to assign one to)
   explicit AxisCurve(BSpline s);
   /// Point at u, on the straight extension when u lies outside [a, b].
   Eigen::Vector2d point(double u) const;
@@ -32,11 +33,12 @@ struct AxisCurve {
 AxisCurve make_axis(const std::vector<Eigen::Vector2d>& points, double fairness);
 
 /// Arc-length table of an open spline (`pieces` equal parameter steps, 5-point
-/// Gauss-Legendre each) for the maps between parameter and arc length.
+/// Gauss-Legendre each) for the maps between parameter and arc length. Made from the
+/// spline's piecewise form (an AxisCurve's own: converted once).
 struct ArcLengthTable {
   PiecewiseCurve f;
   std::vector<double> t, s;  ///< parameter and arc length at each step
-  ArcLengthTable(const BSpline& c, int pieces);
+  ArcLengthTable(PiecewiseCurve c, int pieces);
   double length() const { return s.back(); }
   /// Parameter at arc length `target` (clamped to the curve).
   double param(double target) const;

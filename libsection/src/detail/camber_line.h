@@ -50,4 +50,9 @@ std::vector<ThicknessStation> thickness_stations(const SampledProfile& pr, const
                                                  const CamberResult& camber,
                                                  const std::vector<double>& fractions);
 
+/// section_params and split_sides on f, the profile's piecewise form (made once for all
+/// that measure a section: the camber line's samples, the checks' and these).
+SectionParams section_params(const BSpline& profile, const PiecewiseCurve& f, const CamberResult& camber);
+Sides split_sides(const PiecewiseCurve& f, const CamberResult& camber, int count);
+
 }  // namespace section::detail

@@ -43,8 +43,10 @@ bool circle_on_normal(const SampledProfile& pr, const Eigen::Vector2d& p, const 
 bool snap_to_axis(const SampledProfile& pr, const Eigen::Vector2d& p, const Eigen::Vector2d& n,
                   const InscribedCircle& guess, InscribedCircle& out);
 
+struct AxisCurve;
+
 /// section::medial_axis of the profile sampled as `pr` (options.samples samples): camber_line
-/// has them already.
-MedialAxis medial_axis(const SampledProfile& pr, const MedialAxisOptions& options);
+/// has them already. The axis through the circles (MedialAxis::curve) into `axis` when given.
+MedialAxis medial_axis(const SampledProfile& pr, const MedialAxisOptions& options, AxisCurve* axis = nullptr);
 
 }  // namespace section::detail

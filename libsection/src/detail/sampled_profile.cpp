@@ -10,7 +10,9 @@
 
 namespace section::detail {
 
-SampledProfile::SampledProfile(const BSpline& c, int count) : curve(c), fast(c) {
+SampledProfile::SampledProfile(const BSpline& c, int count) : SampledProfile(c, PiecewiseCurve(c), count) {}
+
+SampledProfile::SampledProfile(const BSpline& c, PiecewiseCurve f, int count) : curve(c), fast(std::move(f)) {
   if (!c.closed) throw Error("camber: the profile spline is open, a closed curve is needed");
   if (c.control.size() < 4) throw Error("camber: the profile spline has too few control points");
   t0 = c.t_min();

@@ -48,6 +48,8 @@ struct SampledProfile {
 
   /// Throws section::Error `camber: ...` when `c` is open, too short or degenerate.
   SampledProfile(const BSpline& c, int count);
+  /// The same with `f`, c's piecewise form, already made (one for every sampling of c).
+  SampledProfile(const BSpline& c, PiecewiseCurve f, int count);
 
   double wrap(double t) const { return t0 + std::fmod(std::fmod(t - t0, period) + period, period); }
   /// Parameter distance going forward (in the curve's direction) from a to b.

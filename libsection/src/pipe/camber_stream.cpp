@@ -149,13 +149,13 @@ struct SectionCamber {
   pipe::EdgeCoverage le, te;
 };
 
-// Measures a section; a poor skeleton seed falls back to the Delaunay seed (`opt` then
-// holds no seed).
-SectionCamber measure(const BSpline& curve, CamberOptions& opt, const Measured& q) {
+// Measures a section on `pr`, `curve` sampled with opt.medial.samples; a poor skeleton
+// seed falls back to the Delaunay seed (`opt` then holds no seed).
+SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, CamberOptions& opt,
+                      const Measured& q) {
   SectionCamber m;
   // The camber line's samples and final axis serve the thickness stations too when they
   // sample the profile alike (the default).
-  const detail::SampledProfile pr(curve, opt.medial.samples);
   std::unique_ptr<detail::CamberAxis> axis;
   try {
     m.camber = detail::camber_line(pr, opt, q.all, &axis);
@@ -164,11 +164,11 @@ SectionCamber measure(const BSpline& curve, CamberOptions& opt, const Measured& 
     opt.medial.seed.clear();
     m.camber = detail::camber_line(pr, opt, q.all, &axis);
   }
-  m.params = section_params(curve, m.camber);
+  m.params = detail::section_params(curve, pr.fast, m.camber);
   m.stations = opt.medial.samples == detail::thickness_samples
                    ? detail::thickness_stations(pr, *axis, m.camber, opt.stations)
                    : thickness_stations(curve, m.camber, opt.stations);
-  m.sides = split_sides(curve, m.camber, opt.side_samples);
+  m.sides = detail::split_sides(pr.fast, m.camber, opt.side_samples);
   m.le = pipe::edge_coverage(curve, m.camber.le, q.all, opt.edge_hole_reach);
   m.te = pipe::edge_coverage(curve, m.camber.te, q.all, opt.edge_hole_reach);
   return m;
@@ -233,10 +233,12 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   local.control = detail::moved(curve.control, origin);
   opt.medial.seed = detail::moved(opt.medial.seed, origin);
   const Measured q = moved(points != in.measured.end() ? points->second : none, origin);
-  SectionCamber m = measure(local, opt, q);
+  // One piecewise form of the profile for every sampling of it and the params.
+  const detail::SampledProfile pr(local, opt.medial.samples);
+  SectionCamber m = measure(local, pr, opt, q);
   CheckOptions checks;
   checks.noise = opt.profile_noise;
-  const detail::SampledProfile sampled(local, detail::check_samples);  // for both checks
+  const detail::SampledProfile sampled(local, pr.fast, detail::check_samples);  // for both checks
   // Few points for the fit's coefficients: their own scatter, which its rms may hide.
   if (q.all.size() < 16 * local.control.size()) {
     const PointsNoise scatter = detail::points_noise(sampled, q.all);
