@@ -297,7 +297,7 @@ Problem prepare(const Points& points, const SmoothOptions& options, SmoothResult
                 std::to_string(result.repaired) + " duplicates), at least " + std::to_string(min_points) +
                 " are needed");
   p.topo = Topology{static_cast<int>(p.q0.size()), options.closed};
-  p.h = mean_spacing(p.q0, options.closed);
+  p.h = result.repaired ? mean_spacing(p.q0, options.closed) : raw_spacing;  // nothing merged: the same
   result.spacing = p.h;
   p.a = options.smoothing_length > 0 ? smoothing_weight(options.smoothing_length, p.h, options.b)
         : options.a > 0              ? options.a

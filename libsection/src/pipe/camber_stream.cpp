@@ -16,11 +16,14 @@
 #include "pipe/adapter.h"
 #include "pipe/camber_issues.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace section {
 
@@ -37,14 +40,30 @@ std::map<int, std::vector<Eigen::Vector2d>> skeletons(const Stream& stream) {
   // A table without the columns it needs is refused, not left out unremarked.
   const long cs = long(t->column(col::section)), cl = t->find_column(col::loop),
              ci = t->find_column(col::index), cu = long(t->column(col::u)), cv = long(t->column(col::v));
-  std::map<int, std::map<int, Eigen::Vector2d>> rows;
+  // Each section's rows in table order (a section's rows come together: the last one's
+  // entry is reused), ordered by index unless already in order (a repeated index: its
+  // last row).
+  std::map<int, std::vector<std::pair<int, Eigen::Vector2d>>> rows;
+  std::vector<std::pair<int, Eigen::Vector2d>>* at = nullptr;
+  int at_section = 0;
   for (std::size_t r = 0; r < t->rows(); ++r) {
     if (cl >= 0 && t->at(r, cl) != 0) continue;
     const int index = ci >= 0 ? static_cast<int>(t->at(r, ci)) : static_cast<int>(r);
-    rows[static_cast<int>(t->at(r, cs))][index] = {t->at(r, cu), t->at(r, cv)};
+    const int section = static_cast<int>(t->at(r, cs));
+    if (!at || section != at_section) at = &rows[section], at_section = section;
+    at->push_back({index, {t->at(r, cu), t->at(r, cv)}});
   }
-  for (const auto& [section, pts] : rows)
-    for (const auto& [index, p] : pts) out[section].push_back(p);
+  for (const auto& [section, pts] : rows) {
+    std::vector<Eigen::Vector2d>& p = out[section];
+    const auto repeat_or_back = [](const auto& a, const auto& b) { return a.first >= b.first; };
+    if (std::adjacent_find(pts.begin(), pts.end(), repeat_or_back) == pts.end()) {  // strictly increasing
+      for (const auto& x : pts) p.push_back(x.second);
+      continue;
+    }
+    std::map<int, Eigen::Vector2d> by_index;
+    for (const auto& x : pts) by_index[x.first] = x.second;
+    for (const auto& x : by_index) p.push_back(x.second);
+  }
   return out;
 }
 
@@ -58,9 +77,13 @@ std::map<int, Measured> measured_points(const Stream& stream) {
   const std::size_t cs = t->column(col::section), cl = t->column(col::loop), cu = t->column(col::u),
                     cv = t->column(col::v);
   const long co = t->find_column(col::offset);
+  Measured* at = nullptr;  // the last row's section (a section's rows come together)
+  int at_section = 0;
   for (std::size_t r = 0; r < t->rows(); ++r) {
     if (t->at(r, cl) != 0) continue;
-    Measured& m = out[static_cast<int>(t->at(r, cs))];
+    const int section = static_cast<int>(t->at(r, cs));
+    if (!at || section != at_section) at = &out[section], at_section = section;
+    Measured& m = *at;
     const Eigen::Vector2d q(t->at(r, cu), t->at(r, cv));
     const double offset = co >= 0 ? t->at(r, co) : 0.0;
     m.all.push_back(q);
