@@ -405,7 +405,9 @@ void sample_line(const SampledProfile& pr, const AxisCurve& ax, const ArcLengthT
 void off_axis_check(const SampledProfile& pr, CamberResult& res) {
   for (std::size_t i = 0; i < res.points.size(); ++i) {
     const double s = res.s[i];
-    if (s > res.ext_le && s < res.length - res.ext_te) {
+    // Only a sample nearer than the radius makes the offset positive: told first without
+    // finding the nearest (most samples of the line have none).
+    if (s > res.ext_le && s < res.length - res.ext_te && pr.sample_within(res.points[i], res.radius[i])) {
       const double off = res.radius[i] - pr.sample_distance(res.points[i]);
       if (off > res.off_axis) res.off_axis = off, res.off_axis_s = s;
     }
