@@ -108,31 +108,32 @@ std::vector<int> band_order(const Topology& t) {
 
 /// The global solver (CHOLMOD) for the band's pattern, given to it in the band order: P A P'
 /// in upper form, each entry read from the band row of the larger of its two points (the
-/// lower triangle of A, as a factorisation of A itself would read it).
+/// lower triangle of A, as a factorisation of A itself would read it). Its columns are
+/// filled row by row, so each column's rows come out in order.
 std::unique_ptr<detail::CholmodSolver> band_solver(const Topology& t) {
   const int n = t.n;
   std::vector<int> order = band_order(t), at(n);
   for (int k = 0; k < n; ++k) at[order[k]] = k;
-  std::vector<int> ap(n + 1, 0), ai, source;
-  ai.reserve(3 * static_cast<std::size_t>(n));
-  source.reserve(3 * static_cast<std::size_t>(n));
-  for (int col = 0; col < n; ++col) {
-    const int i = order[col];
-    std::array<std::pair<int, int>, 5> entries{};  // (row of P A P', place in the band)
-    int count = 0;
-    for (int o = -2; o <= 2; ++o) {
-      const int j = band_column(i, o, t);  // A(i, j) = band[i][2 + o] = band[j][2 - o]
-      if (j < 0 || at[j] > col) continue;
-      int k = count++;  // insertion: rows sorted
-      for (; k > 0 && entries[k - 1].first > at[j]; --k) entries[k] = entries[k - 1];
-      entries[k] = {at[j], j < i ? 5 * i + 2 + o : 5 * j + 2 - o};
+  // Entry (at[j], at[i]) for each band neighbour i of point j eliminated no earlier than j
+  // (j itself included); j = band_column(i, -o) when i = band_column(j, o).
+  auto each_entry = [&](auto&& add) {
+    for (int row = 0; row < n; ++row) {
+      const int j = order[row];
+      for (int o = -2; o <= 2; ++o) {
+        const int i = band_column(j, o, t);  // A(i, j) = band[i][2 - o] = band[j][2 + o]
+        if (i >= 0 && at[i] >= row) add(row, at[i], j < i ? 5 * i + 2 - o : 5 * j + 2 + o);
+      }
     }
-    for (int k = 0; k < count; ++k) {
-      ai.push_back(entries[k].first);
-      source.push_back(entries[k].second);
-    }
-    ap[col + 1] = static_cast<int>(ai.size());
-  }
+  };
+  std::vector<int> ap(n + 1, 0);
+  each_entry([&](int, int col, int) { ++ap[col + 1]; });
+  for (int col = 0; col < n; ++col) ap[col + 1] += ap[col];
+  std::vector<int> ai(ap[n]), source(ap[n]), fill(ap.begin(), ap.end() - 1);
+  each_entry([&](int row, int col, int from) {
+    const int k = fill[col]++;
+    ai[k] = row;
+    source[k] = from;
+  });
   return std::make_unique<detail::CholmodSolver>(n, ap, ai, std::move(source), "smooth", std::move(order));
 }
 
