@@ -42,17 +42,6 @@ SampledProfile::SampledProfile(const BSpline& c, PiecewiseCurve f, int count) : 
   sigma = area >= 0 ? 1 : -1;
 }
 
-int SampledProfile::nearest_on_side(const Eigen::Vector2d& q, const Eigen::Vector2d& n) const {
-  int best = -1;
-  double d = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const Eigen::Vector2d e = samples[i] - q;
-    if (e.dot(n) <= 0) continue;
-    if (e.squaredNorm() < d) d = e.squaredNorm(), best = static_cast<int>(i);
-  }
-  return best;
-}
-
 namespace {
 
 // How far a scan moves on from a sample `gap` farther from q than it needs (samples
@@ -93,6 +82,21 @@ double coarse_bound(const std::vector<Eigen::Vector2d>& samples, const Eigen::Ve
 }
 
 }  // namespace
+
+int SampledProfile::nearest_on_side(const Eigen::Vector2d& q, const Eigen::Vector2d& n) const {
+  // As first_nearest, the best so far that side of the line: the samples after i that
+  // cannot come nearer are skipped (whichever side they lie), every one at the least
+  // distance still visited, in order.
+  const int count = static_cast<int>(samples.size());
+  int best = -1;
+  double d = std::numeric_limits<double>::infinity(), bound = d;
+  for (int i = 0; i < count;) {
+    const Eigen::Vector2d e = samples[i] - q;
+    if (e.dot(n) > 0 && e.squaredNorm() < d) d = e.squaredNorm(), best = i, bound = std::sqrt(d);
+    i += samples_on(std::sqrt(e.squaredNorm()) - bound, step, count);  // NaN gap: the next
+  }
+  return best;
+}
 
 int SampledProfile::nearest(const Eigen::Vector2d& q) const {
   return first_nearest(samples, step, q, coarse_bound(samples, q)).first;
