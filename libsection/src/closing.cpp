@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "closing.h"
 
+#include "bottleneck.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -38,6 +40,7 @@ struct Seeds {
   std::vector<Vec> mean;
   std::vector<int> slot;         // filled, not a Buffer: uninitialised it raised the peak (0.9 MB at 0.25 M)
   std::vector<int> first, last;  // per row, the first and last column holding a seed
+  std::vector<std::size_t> cells;  // the seed cells, in raster order
 };
 
 // Places a raster over [lo, hi] with `margin` cells around.
@@ -58,6 +61,7 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
   seed.assign(r.size(), 0);
   seeds.slot.assign(r.size(), -1);
   seeds.mean.clear();
+  seeds.cells.clear();
   seeds.first.assign(r.h, r.w);
   seeds.last.assign(r.h, -1);
   std::vector<int> count;
@@ -72,12 +76,14 @@ void seed_cells(const Points& points, const std::vector<std::size_t>& subset, co
       seed[cell] = 1;
       seeds.slot[cell] = int(seeds.mean.size());
       seeds.mean.emplace_back(0, 0);
+      seeds.cells.push_back(cell);
       count.push_back(0);
     }
     seeds.mean[seeds.slot[cell]] += c;
     ++count[seeds.slot[cell]];
   }
   for (std::size_t m = 0; m < seeds.mean.size(); ++m) seeds.mean[m] /= count[m];
+  std::sort(seeds.cells.begin(), seeds.cells.end());
 }
 
 // Calls fn(first, end) with the columns of row j's span (the whole row without spans).
@@ -87,6 +93,16 @@ void for_spans_of_row(const Spans* band, int j, int w, const Fn& fn) {
     fn(0, w);
   else if (band->lo[j] <= band->hi[j])
     fn(band->lo[j], band->hi[j] + 1);
+}
+
+// Calls fn(first, end) with the columns of row j's runs (its span but its gap; the whole row
+// without spans).
+template <class Fn>
+void for_runs(const Spans* band, int j, int w, const Fn& fn) {
+  if (!band)
+    fn(0, w);
+  else
+    for_runs_of_row(*band, j, fn);
 }
 
 // Calls fn(first, end) with the cell indices of each row's span (the whole row without
@@ -114,16 +130,21 @@ int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rm
   // b2 and d2 lie in [0, cap]: their ceil_sqrt from a table (one per interior cell).
   std::vector<int> root(std::size_t(cap) + 1);
   for (int x = 0; x <= cap; ++x) root[x] = ceil_sqrt(x);
-  // Off the spans b2 = d2 = cap: nothing to count there.
-  for_spans(band, int(d2.size() / w), w, [&](std::size_t c0, std::size_t c1) {
-    for (std::size_t c = c0; c < c1; ++c) {
-      if (b2[c] >= d2[c]) continue;
-      const int a = std::max(1, root[b2[c]]);
-      if (a > rmax || a > root[d2[c]] - 1) continue;  // never enclosed at an integer radius <= rmax
-      ++closing_at[a];
-      ++ever;
-    }
-  });
+  const auto count = [&](std::size_t c, long long n) {
+    if (b2[c] >= d2[c]) return;
+    const int a = std::max(1, root[b2[c]]);
+    if (a > rmax || a > root[d2[c]] - 1) return;  // never enclosed at an integer radius <= rmax
+    closing_at[a] += n;
+    ever += n;
+  };
+  // Off the spans b2 = d2 = cap: nothing to count there. A gap's cells share b2 and d2.
+  for (int j = 0, h = int(d2.size() / w); j < h; ++j) {
+    const std::size_t row = std::size_t(j) * w;
+    for_runs(band, j, w, [&](int i0, int i1) {
+      for (std::size_t c = row + i0; c < row + i1; ++c) count(c, 1);
+    });
+    if (band && band->has_gap(j)) count(row + band->gap_lo[j], band->gap_hi[j] - band->gap_lo[j] + 1);
+  }
   if (!substantial(ever)) return 0;
   int rc = 0;
   for (long long sum = 0; rc < rmax && sum < ever;) sum += closing_at[++rc];
@@ -132,12 +153,20 @@ int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rm
 
 // Each row's cells of the spans from the first to the last that is not outside (none when
 // all are): the cells beyond are outside like those off the spans, seeds of the erosion's
-// transform (off_seeds) that need no transform of their own.
+// transform (off_seeds) that need no transform of their own. The spans' gaps that are not
+// outside are gaps of these: no outside cell lies within radius + 8 of them (run_pass
+// keeps the reach at 2 radius + 9 or more), so the transform leaves them at its cap.
 Spans inside_spans(const Raster& r, const Spans& band, const std::uint8_t* out) {
   Spans inner;
   inner.lo.assign(r.h, r.w);
   inner.hi.assign(r.h, -1);
+  inner.gap_lo.assign(r.h, 1);
+  inner.gap_hi.assign(r.h, 0);
   for (int j = 0; j < r.h; ++j) {
+    if (band.has_gap(j) && !out[std::size_t(j) * r.w + band.gap_lo[j]]) {
+      inner.gap_lo[j] = band.gap_lo[j];
+      inner.gap_hi[j] = band.gap_hi[j];
+    }
     const std::uint8_t* row = out + std::size_t(j) * r.w;
     int a = band.lo[j], b = band.hi[j];
     while (a <= b && row[a]) ++a;
@@ -192,7 +221,12 @@ Buffer<int> erode(Pass& pass, const Buffer<int>& b2, const Buffer<int>& nearest_
   std::fill(pass.g.begin(), pass.g.end(), -float(rmax + 1));
   for (int j = 0; j < r.h; ++j) {
     const std::size_t row = std::size_t(j) * r.w;
-    for_spans_of_row(band, j, r.w, [&](int i0, int i1) {
+    // A gap's cells are outside (g as filled: they are no nearer than the reach to a
+    // point) or at cap_out (inside_spans).
+    if (band && inner.has_gap(j))
+      std::fill(pass.g.begin() + std::ptrdiff_t(row + inner.gap_lo[j]),
+                pass.g.begin() + std::ptrdiff_t(row + inner.gap_hi[j] + 1), float(rmax + 1));
+    for_runs(band, j, r.w, [&](int i0, int i1) {
       // out2 is 0 at the outside cells (their own nearest) only, and cap_out wherever the
       // transform left no nearest.
       const int* o2 = out2.data() + row;
@@ -228,11 +262,14 @@ Runs fill_runs(const Buffer<int>& out2, int rr, const Raster& r, const Spans* ba
   for (int j = 0; j < r.h; ++j) {
     const int start = int(runs.row.size());
     const std::size_t row = std::size_t(j) * r.w;
+    // A gap's cells are fill cells (at the transform's cap): stepped over at once.
+    const int g0 = band && band->has_gap(j) ? band->gap_lo[j] : -2;
+    const int g1 = band && band->has_gap(j) ? band->gap_hi[j] : -2;
     for_spans_of_row(band, j, r.w, [&](int i0, int i1) {
       for (int i = i0; i < i1; ++i) {
         if (out2[row + i] <= rr) continue;
         const int a = i;
-        while (i + 1 < i1 && out2[row + i + 1] > rr) ++i;
+        while (i + 1 < i1 && out2[row + i + 1] > rr) i = i + 1 == g0 ? g1 : i + 1;
         const int k = int(runs.row.size());
         runs.row.push_back(j);
         runs.first.push_back(a);
@@ -342,7 +379,8 @@ bool run_pass(const Points& points, const std::vector<std::size_t>& subset, doub
   for (;;) {
     place_raster(lo, hi, h, margin, opt.max_cells, r);
     seed_cells(points, subset, r, scratch.bytes, seeds);
-    spans = spans_of(r, seeds.first, seeds.last, reach);
+    const SeedGaps gaps = seed_gaps(r, seeds.cells, reach);
+    spans = spans_of(r, seeds.first, seeds.last, reach, &gaps);
     band = reach < rmax ? &spans : nullptr;
     const int cap = (reach + 1) * (reach + 1);
     d2 = distance_transform(r, scratch.bytes, cap, rmax + 2 - margin, nearest_seed, scratch, band);

@@ -70,41 +70,6 @@ void envelope_1d(const float* f, int n, float big, int base, int offset, Envelop
   }
 }
 
-/// Calls fn(i) for each column i of row j's span whose cell in row k is off row k's span.
-template <class Fn>
-void each_beside_off_span(const Spans& spans, int j, int k, const Fn& fn) {
-  const int lo = spans.lo[j], hi = spans.hi[j], klo = spans.lo[k], khi = spans.hi[k];
-  if (klo > khi) {
-    for (int i = lo; i <= hi; ++i) fn(i);
-    return;
-  }
-  for (int i = lo; i <= std::min(hi, klo - 1); ++i) fn(i);
-  for (int i = std::max(lo, khi + 1); i <= hi; ++i) fn(i);
-}
-
-/// Sets b2 to -1 (not yet reached) on the spans and to cap off them, their bottleneck (their
-/// row leads to the border through cells at cap), and seeds each span cell next to an
-/// off-span one with its own d2, like a border cell.
-template <class Seed>
-void seed_spans(const Raster& r, const Spans& spans, int cap, Buffer<int>& b2, const Seed& seed) {
-  for (int j = 0; j < r.h; ++j) {
-    int* row = b2.data() + std::size_t(j) * r.w;
-    const int lo = std::min(spans.lo[j], r.w), hi = std::max(spans.hi[j], lo - 1);
-    std::fill(row, row + lo, cap);
-    std::fill(row + lo, row + hi + 1, -1);
-    std::fill(row + hi + 1, row + r.w, cap);
-  }
-  for (int j = 0; j < r.h; ++j) {
-    const int lo = spans.lo[j], hi = spans.hi[j];
-    if (lo > hi) continue;
-    seed(lo, j);
-    seed(hi, j);
-    // The cells whose neighbour above or below is off its row's span.
-    for (const int k : {j - 1, j + 1})
-      if (k >= 0 && k < r.h) each_beside_off_span(spans, j, k, [&](int i) { seed(i, j); });
-  }
-}
-
 /// The least m >= 0 with float(m) * float(m) >= prune (that square grows with m), at most
 /// `none`: the column distances pruned are those of m rows or more.
 int first_pruned(float prune, int none) {
@@ -122,8 +87,14 @@ int first_pruned(float prune, int none) {
 void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const Spans* spans, bool off_seeds,
                    float prune, Buffer<int>& row_of, Buffer<float>& f) {
   const int w = r.w, h = r.h;
-  const auto lo_of = [&](int j) { return spans ? spans->lo[j] : 0; };
-  const auto hi_of = [&](int j) { return spans ? spans->hi[j] : w - 1; };
+  // Calls fn(first, end) with row j's runs (its span but the gap; the whole row without
+  // spans).
+  const auto runs = [&](int j, const auto& fn) {
+    if (spans)
+      for_runs_of_row(*spans, j, fn);
+    else
+      fn(0, w);
+  };
   // Row k's off-span cells are seeds for the columns of row j's span (k = j -+ 1).
   const auto enter = [&](int j, int k, std::vector<int>& last) {
     if (off_seeds && spans && k >= 0 && k < h)
@@ -139,11 +110,14 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
     int* arow = row_of.data() + std::size_t(j) * w;
     int* lrow = last.data();
     enter(j, j - 1, last);
-    for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
-      const int l = srow[i] ? j : lrow[i];
-      lrow[i] = l;
-      arow[i] = l;
-    }
+    // The gap's cells are no seeds: `last` passes through them as it is.
+    runs(j, [&](int i0, int i1) {
+      for (int i = i0; i < i1; ++i) {
+        const int l = srow[i] ? j : lrow[i];
+        lrow[i] = l;
+        arow[i] = l;
+      }
+    });
   }
   std::fill(last.begin(), last.end(), far_row);
   const int far = std::min(first_pruned(prune, far_row), far_row / 2);  // every real distance < h
@@ -156,24 +130,29 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
     int* lrow = last.data();
     float* frow = f.data() + std::size_t(j) * w;
     enter(j, j + 1, last);
-    for (int i = lo_of(j), i1 = hi_of(j); i <= i1; ++i) {
-      const int below = srow[i] ? j : lrow[i];
-      lrow[i] = below;
-      const int above = arow[i];
-      // The nearer seed, the one above on a tie (the lower index); a far row when none.
-      // Integer selects of this form only, so that the loop is vectorised (GCC keeps a
-      // branch for a float compare, or a select of floats).
-      const int da = j - above, db = below - j;
-      const int s = da <= db ? above : below;
-      arow[i] = s;
-      // 1e20 from `far` rows on (and when none), by a mask on the float's bits.
-      const std::int32_t pruned = -std::int32_t((da <= db ? da : db) >= far);
-      const float fs = float(j - s) * float(j - s);
-      std::int32_t bits;
-      std::memcpy(&bits, &fs, sizeof bits);
-      bits = (bits & ~pruned) | (big_bits & pruned);
-      std::memcpy(frow + i, &bits, sizeof bits);
-    }
+    runs(j, [&](int i0, int i1) {
+      for (int i = i0; i < i1; ++i) {
+        const int below = srow[i] ? j : lrow[i];
+        lrow[i] = below;
+        const int above = arow[i];
+        // The nearer seed, the one above on a tie (the lower index); a far row when none.
+        // Integer selects of this form only, so that the loop is vectorised (GCC keeps a
+        // branch for a float compare, or a select of floats).
+        const int da = j - above, db = below - j;
+        const int s = da <= db ? above : below;
+        arow[i] = s;
+        // 1e20 from `far` rows on (and when none), by a mask on the float's bits.
+        const std::int32_t pruned = -std::int32_t((da <= db ? da : db) >= far);
+        const float fs = float(j - s) * float(j - s);
+        std::int32_t bits;
+        std::memcpy(&bits, &fs, sizeof bits);
+        bits = (bits & ~pruned) | (big_bits & pruned);
+        std::memcpy(frow + i, &bits, sizeof bits);
+      }
+    });
+    // The gap's cells lie farther than the cap from every seed: pruned (an envelope that
+    // runs into the gap reads them; row_of is read at kept samples only).
+    if (spans && spans->has_gap(j)) std::fill(frow + spans->gap_lo[j], frow + spans->gap_hi[j] + 1, big);
   }
 }
 
@@ -216,42 +195,57 @@ struct RowPass {
         return;
       }
       const int to = row_of[row + a + s] * r.w + a + s;
+      // fs, a kept sample's, is a squared integer: every cell gets `to`.
+      std::fill(nc + q0, nc + q1 + 1, to);
+      if (cap <= (1 << 23)) {
+        // (q - s)^2 + fs in integers: the float below is exact up to 2^23, and beyond it is
+        // at cap (the same values, a third of the instructions).
+        long long v = (long long)(q0 - s) * (q0 - s) + (long long)(fs), step = 2LL * (q0 - s) + 1;
+        for (int q = q0; q <= q1; ++q, v += step, step += 2) dc[q] = v < cap ? int(v) : cap;
+        return;
+      }
       for (int q = q0; q <= q1; ++q) {
         const double dq = double(q - s);
         const float o = float(dq * dq + fs);
         // Squared distances are integers (exact in float below 2^24, and every float above
         // 2^23 is an integer): rounding is a truncation of x + 0.5.
         dc[q] = o >= float(cap) ? cap : int(o + 0.5f);
-        nc[q] = o < 1e19f ? to : -1;
       }
     });
+  }
+
+  // The first kept sample of row j at column i or after, up to hi (hi + 1: none); the
+  // cells of the gap g0..g1 are pruned, and not read.
+  int next_kept(const float* frow, int i, int hi, int g0, int g1) const {
+    if (i >= g0 && i <= g1) i = g1 + 1;
+    const int stop = i < g0 ? std::min(hi, g0 - 1) : hi;
+    for (; i <= stop; ++i)
+      if (frow[i] < 1e20f) return i;
+    return stop < hi ? next_kept(frow, g1 + 1, hi, g0, g1) : hi + 1;
   }
 
   // Cells lo..hi of row j: the envelope of all unless pruned. Pruned, a kept sample brings
   // below cap only the cells closer than `near` to it: the clusters of kept samples are done
   // apart, each with its cells that close (the envelope of a cluster's samples is the row's
-  // there), and the rest is at cap.
-  void part(int j, int lo, int hi) {
+  // there), and the rest is at cap. Cells g0..g1 (a gap of the spans, if g0 <= g1) are
+  // pruned samples.
+  void part(int j, int lo, int hi, int g0, int g1) {
     if (!prune) {
       stretch(j, lo, hi);
       return;
     }
     const float* frow = f.data() + std::size_t(j) * r.w;
-    const float big = 1e20f;
+    if (g0 > g1) g0 = g1 = std::numeric_limits<int>::max();  // no gap: never reached
     int done = lo;  // the cells before are written (the clusters' stretches are disjoint)
-    for (int i = lo; i <= hi;) {
-      if (!(frow[i] < big)) {
-        ++i;
-        continue;
-      }
+    for (int i = next_kept(frow, lo, hi, g0, g1); i <= hi;) {
       int last = i;
-      for (int k = i + 1; k <= hi && k <= last + 2 * near - 2; ++k)
-        if (frow[k] < big) last = k;
+      for (int k = i + 1, end = std::min(hi, i + 2 * near - 2); k <= end; ++k)
+        if (frow[k] < 1e20f) last = k, end = std::min(hi, k + 2 * near - 2);
       const int a = std::max(lo, i - near + 1), b = std::min(hi, last + near - 1);
       off(j, done, a, false);
       stretch(j, a, b);
       done = b + 1;
-      i = last + 2 * near - 1;  // the scan above found none before
+      i = next_kept(frow, last + 2 * near - 1, hi, g0, g1);  // the scan above found none before
     }
     off(j, done, hi + 1, false);
   }
@@ -259,16 +253,73 @@ struct RowPass {
 
 }  // namespace
 
-Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector<int>& last, int reach) {
+SeedGaps seed_gaps(const Raster& r, const std::vector<std::size_t>& cells, int reach) {
+  SeedGaps g;
+  g.a.assign(r.h, 0);
+  g.b.assign(r.h, 0);
+  // Only a gap of 2 reach + 2 columns or more leaves a cell to spans_of (which takes reach
+  // + 1 off each end), and its 2 reach + 1 empty columns hold a whole block of reach + 1:
+  // the seeds of the rows within `reach` (a sliding window) are counted by column and by
+  // block, and a row's gaps are looked for about its runs of empty blocks only.
+  const std::size_t w = std::size_t(r.w);
+  const int bs = reach + 1, blocks = (r.w + bs - 1) / bs;
+  std::vector<int> column(w, 0), block(std::size_t(blocks), 0);
+  std::size_t in = 0, out = 0;  // cells[out, in): the window's seeds
+  for (int k = 0; k < r.h; ++k) {
+    for (; in < cells.size() && int(cells[in] / w) <= k + reach; ++in) {
+      ++column[cells[in] % w];
+      ++block[cells[in] % w / std::size_t(bs)];
+    }
+    for (; out < in && int(cells[out] / w) < k - reach; ++out) {
+      --column[cells[out] % w];
+      --block[cells[out] % w / std::size_t(bs)];
+    }
+    for (int q = 0, widest = 0; q < blocks; ++q) {
+      if (block[std::size_t(q)]) continue;
+      const int q0 = q;
+      while (q + 1 < blocks && !block[std::size_t(q) + 1]) ++q;
+      // The seed columns next to the run of empty blocks q0..q (-1, w: none).
+      int a = q0 * bs - 1, b = (q + 1) * bs;
+      while (a >= 0 && !column[std::size_t(a)]) --a;
+      while (b < r.w && !column[std::size_t(b)]) ++b;
+      if (a >= 0 && b < r.w && b - a > widest) widest = b - a, g.a[k] = a, g.b[k] = b;
+    }
+  }
+  return g;
+}
+
+Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector<int>& last, int reach,
+               const SeedGaps* gaps) {
   Spans s;
   s.lo.assign(r.h, r.w);
   s.hi.assign(r.h, -1);
+  // A seed dy rows away is within `reach` of the cells up to e[dy] columns from it: the
+  // discs, not their squares (a tenth fewer cells than squares on a blade).
+  std::vector<int> e(std::size_t(reach) + 1);
+  for (int dy = 0; dy <= reach; ++dy) {
+    int x = ceil_sqrt((reach + 1) * (reach + 1) - dy * dy);  // x^2 + dy^2 >= (reach + 1)^2
+    e[std::size_t(dy)] = x - 1;
+  }
   for (int j = 0; j < r.h; ++j) {
     if (first[j] > last[j]) continue;
     for (int k = std::max(0, j - reach), k1 = std::min(r.h - 1, j + reach); k <= k1; ++k) {
-      s.lo[k] = std::min(s.lo[k], std::max(0, first[j] - reach));
-      s.hi[k] = std::max(s.hi[k], std::min(r.w - 1, last[j] + reach));
+      const int ek = e[std::size_t(std::abs(k - j))];
+      s.lo[k] = std::min(s.lo[k], std::max(0, first[j] - ek));
+      s.hi[k] = std::max(s.hi[k], std::min(r.w - 1, last[j] + ek));
     }
+  }
+  if (!gaps) return s;
+  // Row k's gap: the columns more than `reach` beyond the widest gap's ends of every row
+  // with seeds within `reach` rows (the seeds of row j lie at or before a[j] or at or after
+  // b[j]), within the spans of rows k - 1 and k + 1.
+  s.gap_lo.assign(r.h, 1);
+  s.gap_hi.assign(r.h, 0);
+  for (int k = 1; k + 1 < r.h; ++k) {
+    const int lo = std::max({s.lo[k] + 1, s.lo[k - 1], s.lo[k + 1], gaps->a[k] + reach + 1});
+    const int hi = std::min({s.hi[k] - 1, s.hi[k - 1], s.hi[k + 1], gaps->b[k] - reach - 1});
+    if (lo > hi) continue;
+    s.gap_lo[k] = lo;
+    s.gap_hi[k] = hi;
   }
   return s;
 }
@@ -300,8 +351,10 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
     rows.off(j, 0, std::min(lo, w), off_seeds);
     rows.off(j, std::max(lo, hi + 1), w, off_seeds);
     if (lo > hi) continue;
+    const bool gap = spans && spans->has_gap(j);
+    const int g0 = gap ? spans->gap_lo[j] : 1, g1 = gap ? spans->gap_hi[j] : 0;
     if (!off_seeds) {
-      rows.part(j, lo, hi);
+      rows.part(j, lo, hi, g0, g1);
       continue;
     }
     // Dense seeds (the erosion's outside): a seed is its own nearest, and the nearest of the
@@ -314,69 +367,13 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
         ++i;
         continue;
       }
-      int b = i;
-      while (b < hi && frow[b + 1] != 0) ++b;
-      rows.part(j, std::max(lo, i - 1), std::min(hi, b + 1));
+      int b = i <= g1 && i >= g0 ? g1 : i;  // the gap holds no seed
+      while (b < hi && frow[b + 1] != 0) b = b + 1 == g0 ? g1 : b + 1;
+      rows.part(j, std::max(lo, i - 1), std::min(hi, b + 1), g0, g1);
       i = b + 2;  // b + 1, a seed, was done with the run
     }
   }
   return d;
-}
-
-Buffer<int> bottleneck(const Raster& r, const Buffer<int>& d2, int cap, Buffer<int>& next,
-                       const Spans* spans) {
-  Buffer<int> b2(r.size());
-  // Each bucket is a stack threaded through `next` (a cell enters one bucket, once; its
-  // entry is written before it is read).
-  std::vector<std::int32_t> head(std::size_t(cap) + 1, -1);
-  next.resize(r.size());
-  const auto push = [&](std::size_t c) {
-    next[c] = head[b2[c]];
-    head[b2[c]] = std::int32_t(c);
-  };
-  const auto seed = [&](int i, int j) {
-    const std::size_t c = std::size_t(j) * r.w + i;
-    if (b2[c] >= 0) return;
-    b2[c] = d2[c];
-    push(c);
-  };
-  if (spans)
-    seed_spans(r, *spans, cap, b2, seed);
-  else
-    std::fill(b2.begin(), b2.end(), -1);
-  for (int i = 0; i < r.w; ++i) {
-    seed(i, 0);
-    seed(i, r.h - 1);
-  }
-  for (int j = 0; j < r.h; ++j) {
-    seed(0, j);
-    seed(r.w - 1, j);
-  }
-  const std::size_t size = r.size(), w = std::size_t(r.w);
-  const auto reach = [&](std::size_t e, int level) {
-    if (b2[e] >= 0) return;
-    b2[e] = std::min(level, d2[e]);
-    push(e);
-  };
-  for (int level = cap; level >= 0; --level) {
-    while (head[level] >= 0) {
-      const std::size_t c = std::size_t(head[level]);
-      head[level] = next[c];
-      // Every border cell was seeded above, so a step that wraps to the other side of the
-      // raster lands on a cell already set; only the steps of the first and last rows'
-      // cells may leave it.
-      if (c >= w && c + w < size) {
-        reach(c - 1, level);
-        reach(c + 1, level);
-        reach(c - w, level);
-        reach(c + w, level);
-        continue;
-      }
-      for (const std::size_t e : {c - 1, c + 1, c - w, c + w})
-        if (e < size) reach(e, level);
-    }
-  }
-  return b2;
 }
 
 int ceil_sqrt(int x) {

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The raster of the morphology step (src/morphology.cpp) and the transforms on it: exact
-// Euclidean distance transform, bottleneck (widest path) from the border, boundary trace.
+// Euclidean distance transform, boundary trace (the bottleneck: src/bottleneck.h).
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -61,13 +62,57 @@ struct Scratch {
 /// The cells of each row that may lie within `reach` cells of a seed: columns lo[j]..hi[j]
 /// (none when lo[j] > hi[j]). Every cell off them is farther than `reach` from every seed,
 /// and so is every cell between it and the raster's border along its row.
+/// A span may hold a gap, columns gap_lo[j]..gap_hi[j] (none when gap_lo[j] > gap_hi[j], or
+/// when the vectors are empty): from spans_of, cells farther than `reach` from every seed
+/// along both axes (a closed profile's interior), strictly inside the span and the spans of
+/// the rows above and below, never in the raster's first or last row. Their values are
+/// known (at cap), so the transforms skip them: a span is two runs.
 struct Spans {
   std::vector<int> lo, hi;
+  std::vector<int> gap_lo, gap_hi;
+  bool has_gap(int j) const { return !gap_lo.empty() && gap_lo[j] <= gap_hi[j]; }
 };
 
+/// The widest gap between the seeds of the rows within a reach of each row k: seed columns
+/// a[k] < b[k] of those rows with no seed of those rows between them, at least 2 reach + 2
+/// apart (a[k] >= b[k]: none).
+struct SeedGaps {
+  std::vector<int> a, b;
+};
+
+/// The widest gaps of the seed cells `cells` (cell indices, in raster order) over the rows
+/// within `reach`.
+SeedGaps seed_gaps(const Raster& r, const std::vector<std::size_t>& cells, int reach);
+
 /// Spans of reach `reach` around seeds whose columns in row j run from first[j] to last[j]
-/// (first[j] > last[j]: no seed in the row).
-Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector<int>& last, int reach);
+/// (first[j] > last[j]: no seed in the row); with `gaps`, the spans' gaps too.
+Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector<int>& last, int reach,
+               const SeedGaps* gaps = nullptr);
+
+/// Calls fn(first, end) with the columns of row j's span outside its gap (one or two runs).
+template <class Fn>
+void for_runs_of_row(const Spans& spans, int j, const Fn& fn) {
+  const int lo = spans.lo[j], hi = spans.hi[j];
+  if (lo > hi) return;
+  if (!spans.has_gap(j)) {
+    fn(lo, hi + 1);
+    return;
+  }
+  fn(lo, spans.gap_lo[j]);
+  fn(spans.gap_hi[j] + 1, hi + 1);
+}
+
+/// Calls fn(i) for each column i of row j's span whose cell in row k is off row k's span.
+template <class Fn>
+void each_beside_off_span(const Spans& spans, int j, int k, const Fn& fn) {
+  const int lo = spans.lo[j], hi = spans.hi[j], klo = spans.lo[k], khi = spans.hi[k];
+  if (klo > khi) {
+    for (int i = lo; i <= hi; ++i) fn(i);
+    return;
+  }
+  for (int i = lo; i <= std::min(hi, klo - 1); ++i) fn(i);
+  for (int i = std::max(lo, khi + 1); i <= hi; ++i) fn(i);
+}
 
 /// Exact squared Euclidean distance (in cells^2) of every cell to the nearest seed cell,
 /// clamped to `cap`, and that seed's cell index in `nearest` (-1 when there is no seed).
@@ -77,19 +122,13 @@ Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector
 /// cells that lie `cap` or farther from every seed may get `cap` and -1: `nearest` is that
 /// of the transform without spans wherever the distance is below `cap`. The cells off the
 /// spans get `cap` and -1, or with `off_seeds` are seeds themselves (0 and their own
-/// index; the distances on the spans are then those of these seeds too).
+/// index; the distances on the spans are then those of these seeds too). The cells of the
+/// spans' gaps must lie `cap` or farther from every seed, and be no seeds: they get `cap`
+/// (their column distances are not swept, their rows' envelopes step over them).
 /// Uses scratch.f and scratch.ints (not scratch.bytes, which may hold `seed`).
 Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
                                Buffer<int>& nearest, Scratch& scratch, const Spans* spans = nullptr,
                                bool off_seeds = false);
-
-/// For every cell, the largest t such that a 4-connected path from the raster border
-/// reaches it through cells with d2 >= t (the bottleneck of the widest path): the cell is
-/// outside the band of radius r exactly when b2 > r^2. Bucket queue over the (clamped,
-/// integer) keys: O(cells). With `spans` (those of distance_transform, d2 = cap off
-/// them), the cells off the spans get cap, their value, without a visit.
-Buffer<int> bottleneck(const Raster& r, const Buffer<int>& d2, int cap, Buffer<int>& next,
-                       const Spans* spans = nullptr);
 
 /// Smallest r with r * r >= x.
 int ceil_sqrt(int x);
