@@ -91,6 +91,14 @@ long find_span(const BSpline& c, double t) {
   return std::clamp<long>(j, p, n - 1);
 }
 
+// find_span, trying span `hint` first (parameters in order mostly stay in one): a span of
+// the domain that holds t is the one the search would find.
+long find_span_near(const BSpline& c, double t, long hint) {
+  const long first = c.closed ? 0 : c.degree;
+  if (hint >= first && hint < control_count(c) && c.knots[hint] <= t && t < c.knots[hint + 1]) return hint;
+  return find_span(c, t);
+}
+
 using BasisTable = std::array<std::array<double, max_degree + 1>, max_degree + 1>;
 
 // basis_derivatives at degree Degree (the curve's when 0) up to derivative Derivs (nd's
@@ -371,12 +379,12 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   BasisTable ders;  // row 0 written, only it read
   int idx[max_degree + 1];
   double trace = 0;
+  long j = -1;  // the last point's span
   for (int i = 0; i < m; ++i) {
     const double w = weights.empty() ? 1.0 : weights[i];
     if (w <= 0) continue;
-    // As BSpline::basis, without its checks and allocations per point.
-    const double tn = normalise(shape, parameters[i]);
-    const long j = find_span(shape, tn);
+    const double tn = normalise(shape, parameters[i]);  // as BSpline::basis, without its checks
+    j = find_span_near(shape, tn, j);
     basis_derivatives(shape, j, tn, 0, ders);
     const double* val = ders[0].data();
     for (int r = 0; r <= p; ++r) idx[r] = control_index(shape, j - p + r);
