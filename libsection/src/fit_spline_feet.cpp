@@ -278,11 +278,16 @@ double noise_sigma(const Feet& f, const std::vector<double>& w) {
   const std::vector<std::size_t>& order = f.order;
   std::vector<double> diffs;  // reserved, not zeroed: it is filled once
   diffs.reserve(order.size());
-  std::size_t prev = order.size();
-  for (std::size_t i : order) {
-    if (w[i] <= 0) continue;
-    if (prev != order.size()) diffs.push_back(std::abs(f.signed_distance[i] - f.signed_distance[prev]));
-    prev = i;
+  auto r = order.begin();
+  while (r != order.end() && w[*r] <= 0) ++r;
+  if (r != order.end()) {
+    double last = f.signed_distance[*r];  // of the point before, kept in hand
+    for (++r; r != order.end(); ++r) {
+      if (w[*r] <= 0) continue;
+      const double d = f.signed_distance[*r];
+      diffs.push_back(std::abs(d - last));
+      last = d;
+    }
   }
   return 1.4826 * median_nonnegative(std::move(diffs)) / std::sqrt(2.0);
 }
