@@ -179,20 +179,27 @@ int control_index(const BSpline& c, long i) {
   return static_cast<int>(((i % n) + n) % n);
 }
 
+// Derivatives 0..nd into out[0..nd] at a parameter of span j, the basis functions'
+// derivatives there (k <= min(nd, degree)) given as ders(k, r).
+template <class Ders>
+void weigh(const BSpline& c, long j, int nd, const Ders& ders, Eigen::Vector2d* out) {
+  const int p = c.degree;
+  for (int k = 0; k <= nd; ++k) {
+    out[k].setZero();
+    if (k > p) continue;
+    for (int r = 0; r <= p; ++r) out[k] += ders(k, r) * c.control[control_index(c, j - p + r)];
+  }
+}
+
 // Point and derivatives up to nd at t into out[0..nd].
 void evaluate(const BSpline& c, double t, int nd, Eigen::Vector2d* out) {
   check_curve(c);
   const double tn = normalise(c, t);
   const long j = find_span(c, tn);
-  const int p = c.degree;
-  const int nk = std::min(nd, p);
-  BasisTable ders;  // rows 0..nk written, only those read
-  basis_derivatives(c, j, tn, nk, ders);
-  for (int k = 0; k <= nd; ++k) {
-    out[k].setZero();
-    if (k > p) continue;
-    for (int r = 0; r <= p; ++r) out[k] += ders[k][r] * c.control[control_index(c, j - p + r)];
-  }
+  BasisTable ders;  // rows 0..min(nd, degree) written, only those read
+  basis_derivatives(c, j, tn, std::min(nd, c.degree), ders);
+  weigh(
+      c, j, nd, [&](int k, int r) { return ders[k][r]; }, out);
 }
 
 // Minimum of |C(t) - q|^2 over [a, b] from t0 (see detail::minimise_bracket).
@@ -249,6 +256,28 @@ ClosestPoint refine_samples(const BSpline& c, const Eigen::Vector2d& q, const st
 }
 
 }  // namespace
+
+namespace detail {
+
+long basis_table(const BSpline& curve, double t, int nd, double* table) {
+  check_curve(curve);
+  const double tn = normalise(curve, t);
+  const long j = find_span(curve, tn);
+  const int p = curve.degree, nk = std::min(nd, p);
+  BasisTable ders;
+  basis_derivatives(curve, j, tn, nk, ders);
+  for (int k = 0; k <= nk; ++k)
+    for (int r = 0; r <= p; ++r) table[k * (p + 1) + r] = ders[k][r];
+  return j;
+}
+
+void weigh_basis(const BSpline& curve, long span, int nd, const double* table, Eigen::Vector2d* out) {
+  const int stride = curve.degree + 1;
+  weigh(
+      curve, span, nd, [&](int k, int r) { return table[k * stride + r]; }, out);
+}
+
+}  // namespace detail
 
 double BSpline::t_min() const {
   return closed ? knots.front() : knots[degree];

@@ -52,7 +52,7 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   for (; it < o.max_iterations; ++it) {
     BSpline next =
         fit::sdm_step(now.curve, now.pc, q, now.feet, now.weights, o.fairness, o.smoothing_length, solver);
-    detail::PiecewiseCurve npc(next);
+    detail::PiecewiseCurve npc(next, now.pc);  // a step moves the control points only
     Feet nf = fit::foot_points(next, npc, q, &now.feet);
     std::vector<double> nw = weights_for(nf);
     const double nrms = fit::weighted_rms(nf, nw);
