@@ -38,7 +38,9 @@ public:
   PiecewiseCurve() = default;
 
   /// Converts `curve` (checked by the caller: a valid open or closed B-spline).
-  explicit PiecewiseCurve(const BSpline& curve)
+  /// `keep_basis`: the basis at the spans' starts kept, for curves on the same knots
+  /// (the constructor below).
+  explicit PiecewiseCurve(const BSpline& curve, bool keep_basis = false)
       : degree_(curve.degree), closed_(curve.closed), t_min_(curve.t_min()), t_max_(curve.t_max()) {
     const std::vector<double>& k = curve.knots;
     std::vector<double> breaks;
@@ -64,7 +66,16 @@ public:
       first_control_.push_back(static_cast<int>(closed_ ? ((j - degree_) % n + n) % n : j - degree_));
       for (long r = j - degree_ + 1; r <= j + degree_; ++r) local_knots_.push_back(knot(r));
     }
-    // The basis at each span's start, from inside the span (right limits).
+    // Taylor coefficients at each span's start, from inside the span (right limits).
+    if (!keep_basis) {
+      coef_.resize((breaks_.size() - 1) * (degree_ + 1));
+      for (std::size_t j = 0; j + 1 < breaks_.size(); ++j) {
+        Eigen::Vector2d ders[8];
+        curve.derivatives(breaks_[j], degree_, ders);
+        set_span(j, ders);
+      }
+      return;
+    }
     const std::size_t table = static_cast<std::size_t>(degree_ + 1) * (degree_ + 1);
     span_.resize(breaks_.size() - 1);
     basis_.resize(span_.size() * table);
@@ -74,9 +85,15 @@ public:
   }
 
   /// `curve`, whose knots are those of the curve `same_knots` was converted from (the
-  /// control points moved): the basis at the spans' starts taken over.
-  PiecewiseCurve(const BSpline& curve, const PiecewiseCurve& same_knots) : PiecewiseCurve(same_knots) {
-    set_controls(curve);
+  /// control points moved): the basis at the spans' starts taken over, or kept here for
+  /// the next such curve.
+  PiecewiseCurve(const BSpline& curve, const PiecewiseCurve& same_knots) {
+    if (same_knots.basis_.empty()) {
+      *this = PiecewiseCurve(curve, true);
+    } else {
+      *this = same_knots;
+      set_controls(curve);
+    }
   }
 
   double t_min() const { return t_min_; }
@@ -165,18 +182,23 @@ public:
   }
 
 private:
-  // The Taylor coefficients of each span at its start from the control points of `curve`.
+  // Span j's Taylor coefficients from the curve's derivatives at its start.
+  void set_span(std::size_t j, const Eigen::Vector2d* ders) {
+    double factorial = 1;
+    for (int d = 0; d <= degree_; ++d) {
+      if (d > 0) factorial *= d;
+      coef_[j * (degree_ + 1) + d] = ders[d] / factorial;
+    }
+  }
+
+  // The Taylor coefficients of every span from the control points of `curve`, on the basis kept.
   void set_controls(const BSpline& curve) {
     const int stride = degree_ + 1;
     coef_.resize(span_.size() * stride);
     for (std::size_t j = 0; j < span_.size(); ++j) {
       Eigen::Vector2d ders[8];
       weigh_basis(curve, span_[j], degree_, &basis_[j * stride * stride], ders);
-      double factorial = 1;
-      for (int d = 0; d <= degree_; ++d) {
-        if (d > 0) factorial *= d;
-        coef_[j * stride + d] = ders[d] / factorial;
-      }
+      set_span(j, ders);
     }
   }
 
