@@ -91,6 +91,14 @@ long find_span(const BSpline& c, double t) {
   return std::clamp<long>(j, p, n - 1);
 }
 
+// find_span, trying span `hint` first (parameters in order mostly stay in one): a span of
+// the domain that holds t is the one the search would find.
+long find_span_near(const BSpline& c, double t, long hint) {
+  const long first = c.closed ? 0 : c.degree;
+  if (hint >= first && hint < control_count(c) && c.knots[hint] <= t && t < c.knots[hint + 1]) return hint;
+  return find_span(c, t);
+}
+
 using BasisTable = std::array<std::array<double, max_degree + 1>, max_degree + 1>;
 
 // basis_derivatives at degree Degree (the curve's when 0) up to derivative Derivs (nd's
@@ -171,20 +179,27 @@ int control_index(const BSpline& c, long i) {
   return static_cast<int>(((i % n) + n) % n);
 }
 
+// Derivatives 0..nd into out[0..nd] at a parameter of span j, the basis functions'
+// derivatives there (k <= min(nd, degree)) given as ders(k, r).
+template <class Ders>
+void weigh(const BSpline& c, long j, int nd, const Ders& ders, Eigen::Vector2d* out) {
+  const int p = c.degree;
+  for (int k = 0; k <= nd; ++k) {
+    out[k].setZero();
+    if (k > p) continue;
+    for (int r = 0; r <= p; ++r) out[k] += ders(k, r) * c.control[control_index(c, j - p + r)];
+  }
+}
+
 // Point and derivatives up to nd at t into out[0..nd].
 void evaluate(const BSpline& c, double t, int nd, Eigen::Vector2d* out) {
   check_curve(c);
   const double tn = normalise(c, t);
   const long j = find_span(c, tn);
-  const int p = c.degree;
-  const int nk = std::min(nd, p);
-  BasisTable ders;  // rows 0..nk written, only those read
-  basis_derivatives(c, j, tn, nk, ders);
-  for (int k = 0; k <= nd; ++k) {
-    out[k].setZero();
-    if (k > p) continue;
-    for (int r = 0; r <= p; ++r) out[k] += ders[k][r] * c.control[control_index(c, j - p + r)];
-  }
+  BasisTable ders;  // rows 0..min(nd, degree) written, only those read
+  basis_derivatives(c, j, tn, std::min(nd, c.degree), ders);
+  weigh(
+      c, j, nd, [&](int k, int r) { return ders[k][r]; }, out);
 }
 
 // Minimum of |C(t) - q|^2 over [a, b] from t0 (see detail::minimise_bracket).
@@ -241,6 +256,28 @@ ClosestPoint refine_samples(const BSpline& c, const Eigen::Vector2d& q, const st
 }
 
 }  // namespace
+
+namespace detail {
+
+long basis_table(const BSpline& curve, double t, int nd, double* table) {
+  check_curve(curve);
+  const double tn = normalise(curve, t);
+  const long j = find_span(curve, tn);
+  const int p = curve.degree, nk = std::min(nd, p);
+  BasisTable ders;
+  basis_derivatives(curve, j, tn, nk, ders);
+  for (int k = 0; k <= nk; ++k)
+    for (int r = 0; r <= p; ++r) table[k * (p + 1) + r] = ders[k][r];
+  return j;
+}
+
+void weigh_basis(const BSpline& curve, long span, int nd, const double* table, Eigen::Vector2d* out) {
+  const int stride = curve.degree + 1;
+  weigh(
+      curve, span, nd, [&](int k, int r) { return table[k * stride + r]; }, out);
+}
+
+}  // namespace detail
 
 double BSpline::t_min() const {
   return closed ? knots.front() : knots[degree];
@@ -371,12 +408,12 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   BasisTable ders;  // row 0 written, only it read
   int idx[max_degree + 1];
   double trace = 0;
+  long j = -1;  // the last point's span
   for (int i = 0; i < m; ++i) {
     const double w = weights.empty() ? 1.0 : weights[i];
     if (w <= 0) continue;
-    // As BSpline::basis, without its checks and allocations per point.
-    const double tn = normalise(shape, parameters[i]);
-    const long j = find_span(shape, tn);
+    const double tn = normalise(shape, parameters[i]);  // as BSpline::basis, without its checks
+    j = find_span_near(shape, tn, j);
     basis_derivatives(shape, j, tn, 0, ders);
     const double* val = ders[0].data();
     for (int r = 0; r <= p; ++r) idx[r] = control_index(shape, j - p + r);

@@ -208,13 +208,29 @@ void search_feet(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
   const std::vector<double>& ts = search.ts;
   const std::size_t m = ts.size();
   SampleWindow window;
+  // The jets at a sample and its neighbours, where every search from that sample starts:
+  // consecutive points mostly share it.
+  std::size_t sample = m;
+  detail::CurveJet at_a, at_b, at_sample;
   for (std::size_t l = 0; l < lost.size(); ++l) {
     const std::size_t k = lost[l];
     const bool more = l + 1 < lost.size() && lost[l + 1] == k + 1;
     const std::size_t i = nearest_sample(search, q[k], more, window);
     const double a = i > 0 ? ts[i - 1] : ts[m - 1] - period;
     const double b = i + 1 < m ? ts[i + 1] : c.t_max();
-    auto distance = [&](double x) { return detail::squared_distance(pc.jet(pc.locate(x, at)), q[k]); };
+    if (i != sample) {
+      sample = i;
+      at_a = pc.jet(pc.locate(a, at));
+      at_b = pc.jet(pc.locate(b, at));
+      at_sample = pc.jet(pc.locate(ts[i], at));
+    }
+    auto distance = [&](double x) {
+      return detail::squared_distance(x == ts[i] ? at_sample
+                                      : x == a   ? at_a
+                                      : x == b   ? at_b
+                                                 : pc.jet(pc.locate(x, at)),
+                                      q[k]);
+    };
     f.t[k] = wrap(pc, detail::minimise_bracket(distance, a, b, ts[i]));
     const detail::CurveJet j = pc.jet(pc.locate(f.t[k], at));
     const Eigen::Vector2d normal = Eigen::Vector2d(j.d1.y(), -j.d1.x()).normalized();
@@ -278,11 +294,16 @@ double noise_sigma(const Feet& f, const std::vector<double>& w) {
   const std::vector<std::size_t>& order = f.order;
   std::vector<double> diffs;  // reserved, not zeroed: it is filled once
   diffs.reserve(order.size());
-  std::size_t prev = order.size();
-  for (std::size_t i : order) {
-    if (w[i] <= 0) continue;
-    if (prev != order.size()) diffs.push_back(std::abs(f.signed_distance[i] - f.signed_distance[prev]));
-    prev = i;
+  auto r = order.begin();
+  while (r != order.end() && w[*r] <= 0) ++r;
+  if (r != order.end()) {
+    double last = f.signed_distance[*r];  // of the point before, kept in hand
+    for (++r; r != order.end(); ++r) {
+      if (w[*r] <= 0) continue;
+      const double d = f.signed_distance[*r];
+      diffs.push_back(std::abs(d - last));
+      last = d;
+    }
   }
   return 1.4826 * median_nonnegative(std::move(diffs)) / std::sqrt(2.0);
 }

@@ -113,23 +113,31 @@ void add_change_of_curvature(const BSpline& c, const detail::PiecewiseCurve& pc,
   }
 }
 
-// The system as a sparse matrix: the band, then fairness (second differences of the
-// control polygon), which keeps spans without data determined, and a tiny pull toward the
-// current control points, which keeps the system definite. Only the lower triangle: the
-// LDLT (orderings included) reads no other, and each entry sums its terms in the same order.
-Eigen::SparseMatrix<double> assemble(const BSpline& c, double fairness, Normal& eq) {
+// The band's blocks of offset > 0 that are exactly zero (no point couples their control
+// points): left out of the matrix's pattern.
+std::vector<char> skipped_blocks(const Normal& eq) {
+  std::vector<char> skipped(eq.band.size(), 0);
+  for (std::size_t k = 0; k < eq.band.size(); ++k) skipped[k] = k % (eq.p + 1) > 0 && eq.band[k].isZero(0);
+  return skipped;
+}
+
+// The terms of the system's matrix H, each as add(row, column, value), in the order
+// setFromTriplets would sum an entry's terms in: the band, then fairness (second
+// differences of the control polygon), which keeps spans without data determined, and a
+// tiny pull toward the current control points, which keeps the system definite. Only the
+// lower triangle: the LDLT (orderings included) reads no other.
+template <class Add>
+void system_terms(const Normal& eq, const std::vector<char>& skipped, double fairness, Add&& add) {
   const int n = eq.n, p = eq.p;
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(n) * (8 * (p + 1) + 40));
   for (int i = 0; i < n; ++i)
     for (int o = 0; o <= p; ++o) {
-      const Eigen::Matrix2d& B = eq.at(i, o);
-      if (o > 0 && B.isZero(0)) continue;
+      if (skipped[static_cast<std::size_t>(i) * (p + 1) + o]) continue;
+      const Eigen::Matrix2d& B = eq.band[static_cast<std::size_t>(i) * (p + 1) + o];
       const int j = (i + o) % n;
       for (int r = 0; r < 2; ++r)
         for (int s = 0; s < 2; ++s) {
-          if (o == 0 ? r >= s : j < i) trip.emplace_back(2 * i + r, 2 * j + s, B(r, s));
-          if (o > 0 && j > i) trip.emplace_back(2 * j + s, 2 * i + r, B(r, s));
+          if (o == 0 ? r >= s : j < i) add(2 * i + r, 2 * j + s, B(r, s));
+          if (o > 0 && j > i) add(2 * j + s, 2 * i + r, B(r, s));
         }
     }
   const double lambda = fairness * std::max(eq.trace / n, 1e-12);
@@ -140,35 +148,72 @@ Eigen::SparseMatrix<double> assemble(const BSpline& c, double fairness, Normal& 
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
         for (int r = 0; r < 2; ++r)
-          if (ids[a] >= ids[b]) trip.emplace_back(2 * ids[a] + r, 2 * ids[b] + r, lambda * coef[a] * coef[b]);
-    for (int r = 0; r < 2; ++r) {
-      trip.emplace_back(2 * i + r, 2 * i + r, mu);
-      eq.rhs(2 * i + r) += mu * c.control[i](r);
-    }
+          if (ids[a] >= ids[b]) add(2 * ids[a] + r, 2 * ids[b] + r, lambda * coef[a] * coef[b]);
+    for (int r = 0; r < 2; ++r) add(2 * i + r, 2 * i + r, mu);
   }
-  Eigen::SparseMatrix<double> H(2 * n, 2 * n);
-  H.setFromTriplets(trip.begin(), trip.end());
-  return H;
 }
 
-// Solves H x = rhs, keeping the ordering while the pattern is the same (it depends on the
-// pattern only).
-Eigen::VectorXd solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs, StepSolver& solver) {
-  const int *outer = H.outerIndexPtr(), *inner = H.innerIndexPtr();
-  const std::size_t outers = static_cast<std::size_t>(H.outerSize()) + 1;
-  const std::size_t nnz = static_cast<std::size_t>(H.nonZeros());
-  if (solver.outer.size() != outers || !std::equal(outer, outer + outers, solver.outer.begin()) ||
-      solver.inner.size() != nnz || !std::equal(inner, inner + nnz, solver.inner.begin())) {
-    solver.ldlt.analyzePattern(H);
-    solver.outer.assign(outer, outer + outers);
-    solver.inner.assign(inner, inner + nnz);
+// A new pattern: H assembled once as SimplicialLDLT<AMD> would take it, its ordering as that
+// solver computes it, P H P' as it would permute it (H's entry numbers in place of its
+// values tell where each lands) and the analysis of P H P' in its natural order, which is
+// what that solver factors: the same factor, bit for bit.
+void analyse(const Normal& eq, std::vector<char> skipped, double fairness, StepSolver& solver) {
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(eq.n) * (8 * (eq.p + 1) + 40));
+  system_terms(eq, skipped, fairness, [&](int r, int c, double v) { trip.emplace_back(r, c, v); });
+  Eigen::SparseMatrix<double> H(2 * eq.n, 2 * eq.n);
+  H.setFromTriplets(trip.begin(), trip.end());
+  {
+    Eigen::SparseMatrix<double> full;
+    full = H.selfadjointView<Eigen::Lower>();
+    Eigen::AMDOrdering<int>()(full, solver.Pinv);
   }
-  solver.ldlt.factorize(H);
+  solver.P = solver.Pinv.inverse();
+  for (Eigen::Index e = 0; e < H.nonZeros(); ++e) H.valuePtr()[e] = static_cast<double>(e);
+  solver.permuted.resize(H.rows(), H.cols());
+  solver.permuted.selfadjointView<Eigen::Upper>() = H.selfadjointView<Eigen::Lower>().twistedBy(solver.P);
+  std::vector<int> landing(static_cast<std::size_t>(H.nonZeros()));
+  for (Eigen::Index e = 0; e < H.nonZeros(); ++e)
+    landing[static_cast<std::size_t>(solver.permuted.valuePtr()[e])] = static_cast<int>(e);
+  std::vector<char> seen(landing.size(), 0);
+  solver.slot.resize(trip.size());
+  const int* rows = H.innerIndexPtr();
+  for (std::size_t k = 0; k < trip.size(); ++k) {
+    int e = H.outerIndexPtr()[trip[k].col()];  // a column holds a few entries
+    while (rows[e] != trip[k].row()) ++e;
+    const int at = landing[static_cast<std::size_t>(e)];
+    solver.slot[k] = seen[static_cast<std::size_t>(at)] ? at : -1 - at;
+    seen[static_cast<std::size_t>(at)] = 1;
+  }
+  solver.ldlt.analyzePattern(solver.permuted);
+  solver.n = eq.n;
+  solver.p = eq.p;
+  solver.skipped = std::move(skipped);
+}
+
+// Solves H x = rhs: the terms written into P H P' (analysed afresh when the pattern
+// changed: it depends on the pattern only), factored, and the solution permuted back.
+Eigen::VectorXd solve(const Normal& eq, double fairness, StepSolver& solver) {
+  std::vector<char> skipped = skipped_blocks(eq);
+  if (solver.n != eq.n || solver.p != eq.p || solver.skipped != skipped)
+    analyse(eq, std::move(skipped), fairness, solver);
+  double* value = solver.permuted.valuePtr();
+  std::size_t k = 0;
+  system_terms(eq, solver.skipped, fairness, [&](int, int, double v) {
+    const int at = solver.slot[k++];
+    if (at < 0)
+      value[-1 - at] = v;
+    else
+      value[at] += v;
+  });
+  solver.ldlt.factorize(solver.permuted);
   if (solver.ldlt.info() != Eigen::Success)
     throw Error("fit_spline: the distance-minimisation system is singular");
-  Eigen::VectorXd x = solver.ldlt.solve(rhs);
+  const Eigen::VectorXd b = solver.P * eq.rhs;
+  Eigen::VectorXd x = solver.ldlt.solve(b);
   if (solver.ldlt.info() != Eigen::Success || !x.allFinite())
     throw Error("fit_spline: the distance-minimisation system is singular");
+  x = solver.Pinv * x;
   return x;
 }
 
@@ -183,8 +228,11 @@ BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Point
   else
     add_points<0>(pc, q, f, w, eq);
   if (smoothing_length > 0 && c.degree == 3) add_change_of_curvature(c, pc, f, w, smoothing_length, eq);
-  const Eigen::SparseMatrix<double> H = assemble(c, fairness, eq);
-  const Eigen::VectorXd x = solve(H, eq.rhs, solver);
+  // The pull toward the current control points (see system_terms), on the right.
+  const double mu = 1e-9 * std::max(eq.trace / n, 1e-12);
+  for (int i = 0; i < n; ++i)
+    for (int r = 0; r < 2; ++r) eq.rhs(2 * i + r) += mu * c.control[i](r);
+  const Eigen::VectorXd x = solve(eq, fairness, solver);
   BSpline out = c;
   for (int i = 0; i < n; ++i) out.control[i] = Eigen::Vector2d(x(2 * i), x(2 * i + 1));
   return out;

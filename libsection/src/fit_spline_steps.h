@@ -67,11 +67,17 @@ std::vector<double> outlier_weights(const Feet& f, const Points& q, double thres
 /// Weighted RMS of the signed distances.
 double weighted_rms(const Feet& f, const std::vector<double>& w);
 
-/// The factorisation of the previous step's system, whose fill-reducing ordering a step
-/// with the same matrix pattern (the same knots, mostly) takes over.
+/// The analysis of the previous step's system, which a step with the same matrix pattern
+/// (the same knots, mostly) takes over: the fill-reducing ordering P (the one
+/// SimplicialLDLT would choose), the matrix P H P' (upper triangle) and where each term of
+/// H lands in it, so that a step writes its terms straight into P H P'.
 struct StepSolver {
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-  std::vector<int> outer, inner;  // the pattern it was analysed for
+  int n = 0, p = 0;
+  std::vector<char> skipped;  // the band's blocks left out of the pattern analysed
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P, Pinv;
+  Eigen::SparseMatrix<double> permuted;
+  std::vector<int> slot;  // per term: its entry in `permuted`, -1 - entry for the entry's first term
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt;
 };
 
 /// One Gauss-Newton step of squared-distance minimisation (Wang, Pottmann and Liu 2006)

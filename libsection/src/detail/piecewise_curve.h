@@ -13,6 +13,15 @@
 
 namespace section::detail {
 
+/// The basis of `curve` at t as BSpline::derivatives(t, nd) weighs the control points
+/// with (it depends on the knots only): derivative k <= min(nd, degree) of the r-th
+/// function non-zero there in table[k * (degree + 1) + r]. Returns the knot span.
+long basis_table(const BSpline& curve, double t, int nd, double* table);
+
+/// BSpline::derivatives(t, nd, out) of `curve` from basis_table(curve, t, nd, table)'s
+/// span and table, on this or any curve with the same knots.
+void weigh_basis(const BSpline& curve, long span, int nd, const double* table, Eigen::Vector2d* out);
+
 /// Point and first two derivatives of a curve at one parameter.
 struct CurveJet {
   Eigen::Vector2d point, d1, d2;
@@ -29,7 +38,9 @@ public:
   PiecewiseCurve() = default;
 
   /// Converts `curve` (checked by the caller: a valid open or closed B-spline).
-  explicit PiecewiseCurve(const BSpline& curve)
+  /// `keep_basis`: the basis at the spans' starts kept, for curves on the same knots
+  /// (the constructor below).
+  explicit PiecewiseCurve(const BSpline& curve, bool keep_basis = false)
       : degree_(curve.degree), closed_(curve.closed), t_min_(curve.t_min()), t_max_(curve.t_max()) {
     const std::vector<double>& k = curve.knots;
     std::vector<double> breaks;
@@ -55,18 +66,33 @@ public:
       first_control_.push_back(static_cast<int>(closed_ ? ((j - degree_) % n + n) % n : j - degree_));
       for (long r = j - degree_ + 1; r <= j + degree_; ++r) local_knots_.push_back(knot(r));
     }
-    const int stride = degree_ + 1;
-    coef_.resize((breaks_.size() - 1) * stride);
-    for (std::size_t j = 0; j + 1 < breaks_.size(); ++j) {
-      // Taylor coefficients at the span's start, from inside the span (right limits).
-      const double a = breaks_[j];
-      Eigen::Vector2d ders[8];
-      curve.derivatives(a, degree_, ders);
-      double factorial = 1;
-      for (int d = 0; d <= degree_; ++d) {
-        if (d > 0) factorial *= d;
-        coef_[j * stride + d] = ders[d] / factorial;
+    // Taylor coefficients at each span's start, from inside the span (right limits).
+    if (!keep_basis) {
+      coef_.resize((breaks_.size() - 1) * (degree_ + 1));
+      for (std::size_t j = 0; j + 1 < breaks_.size(); ++j) {
+        Eigen::Vector2d ders[8];
+        curve.derivatives(breaks_[j], degree_, ders);
+        set_span(j, ders);
       }
+      return;
+    }
+    const std::size_t table = static_cast<std::size_t>(degree_ + 1) * (degree_ + 1);
+    span_.resize(breaks_.size() - 1);
+    basis_.resize(span_.size() * table);
+    for (std::size_t j = 0; j < span_.size(); ++j)
+      span_[j] = basis_table(curve, breaks_[j], degree_, &basis_[j * table]);
+    set_controls(curve);
+  }
+
+  /// `curve`, whose knots are those of the curve `same_knots` was converted from (the
+  /// control points moved): the basis at the spans' starts taken over, or kept here for
+  /// the next such curve.
+  PiecewiseCurve(const BSpline& curve, const PiecewiseCurve& same_knots) {
+    if (same_knots.basis_.empty()) {
+      *this = PiecewiseCurve(curve, true);
+    } else {
+      *this = same_knots;
+      set_controls(curve);
     }
   }
 
@@ -156,6 +182,26 @@ public:
   }
 
 private:
+  // Span j's Taylor coefficients from the curve's derivatives at its start.
+  void set_span(std::size_t j, const Eigen::Vector2d* ders) {
+    double factorial = 1;
+    for (int d = 0; d <= degree_; ++d) {
+      if (d > 0) factorial *= d;
+      coef_[j * (degree_ + 1) + d] = ders[d] / factorial;
+    }
+  }
+
+  // The Taylor coefficients of every span from the control points of `curve`, on the basis kept.
+  void set_controls(const BSpline& curve) {
+    const int stride = degree_ + 1;
+    coef_.resize(span_.size() * stride);
+    for (std::size_t j = 0; j < span_.size(); ++j) {
+      Eigen::Vector2d ders[8];
+      weigh_basis(curve, span_[j], degree_, &basis_[j * stride * stride], ders);
+      set_span(j, ders);
+    }
+  }
+
   // Degree: the curve's when 0, else equal to it.
   template <int Degree>
   CurveJet jet_of(const Local& l) const {
@@ -200,6 +246,8 @@ private:
   std::vector<int> first_control_;     // per span: control index of its first basis function
   std::vector<double> local_knots_;    // per span: the 2 degree knots around it
   std::vector<Eigen::Vector2d> coef_;  // (degree + 1) per span, constant term first
+  std::vector<long> span_;             // per span: its knot span in the curve (BSpline's numbering)
+  std::vector<double> basis_;          // per span: basis_table at its start, all derivatives
 };
 
 /// |C(t) - q|^2 and its first two derivatives in t.
