@@ -3,6 +3,7 @@
 // Shapes are analytic closed curves sampled as a scanner would (random spacing, varying
 // density, holes, noise, a misregistered half, outliers) with exact ground truth.
 #include "detail/kept_ordering.h"
+#include "point_grid.h"
 #include "section/error.h"
 #include "section/morphology.h"
 
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <random>
 #include <vector>
@@ -439,6 +441,22 @@ TEST_CASE("morphology: denser points beside a kept ordering are ordered on its l
       for (Vec& q : moved) q.x() += 1.0;
       CHECK_FALSE(section::detail::order_beside(*slab.kept, moved, {}));
     }
+}
+
+TEST_CASE("morphology: the median spacing with a floor is the larger of the two", "[morphology]") {
+  // 2000 points evenly on a circle of radius 10: each one chord 20 sin(pi / 2000) from the next.
+  Points points;
+  for (int i = 0; i < 2000; ++i) {
+    const double a = 2 * M_PI * i / 2000;
+    points.emplace_back(10 * std::cos(a), 10 * std::sin(a));
+  }
+  std::vector<std::size_t> all(points.size());
+  std::iota(all.begin(), all.end(), std::size_t(0));
+  const double chord = 20 * std::sin(M_PI / 2000);
+  const double median = section::morph::median_spacing(points, all, 20000);
+  CHECK(median == Approx(chord).epsilon(1e-9));
+  CHECK(section::morph::median_spacing(points, all, 20000, 0.5 * chord) == median);
+  CHECK(section::morph::median_spacing(points, all, 20000, 3 * chord) == 3 * chord);
 }
 
 TEST_CASE("morphology: 1e5 dense points give one loop (time reported, not asserted)", "[morphology][speed]") {

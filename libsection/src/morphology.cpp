@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -114,12 +115,12 @@ std::size_t check_input(const std::vector<Eigen::Vector2d>& points, const Morpho
 double cell_size(const Points& points, const std::vector<std::size_t>& all, const MorphologyOptions& opt) {
   double h = opt.cell;
   if (h == 0) {
-    h = morph::median_spacing(points, all, 20000);
     Vec lo, hi;
     morph::robust_box(points, all, 0.001, lo, hi);
     const Vec ext = hi - lo;
-    h = std::max(h, std::sqrt(ext.x() * ext.y() / double(std::max<std::size_t>(1, opt.auto_cells))));
-    h = std::max({h, 1e-4 * ext.norm(), opt.min_cell});
+    const double budget_cell =
+        std::sqrt(ext.x() * ext.y() / double(std::max<std::size_t>(1, opt.auto_cells)));
+    h = morph::median_spacing(points, all, 20000, std::max({budget_cell, 1e-4 * ext.norm(), opt.min_cell}));
     if (!(h > 0)) throw Error("morphology: the points are all equal; no loop can be formed");
   }
   Vec lo = points[0], hi = lo;
@@ -212,14 +213,20 @@ int make_loops(const Points& points, const Search& s, bool feet_known, double h,
                std::size_t min_points, const MorphologyOptions& opt, MorphologyResult& result) {
   std::vector<const Points*> bounds;
   for (const Found& f : s.found) bounds.push_back(&f.boundary);
-  const morph::SegmentGrid segs(bounds, outlier);
+  // Made for the first point whose foot is not known (the slab's are, all but its
+  // isolated points').
+  std::optional<morph::SegmentGrid> segs;
+  const auto nearest = [&](const Vec& p) {
+    if (!segs) segs.emplace(bounds, outlier);
+    return segs->nearest(p);
+  };
   std::vector<std::vector<std::pair<double, std::size_t>>> members(s.found.size());
   std::vector<Vec> fallback(points.size());
   std::size_t dropped = 0;
   const std::size_t footed = feet_known ? s.footed.size() : 0;
   for (std::size_t k = 0, next = 0; k < points.size(); ++k) {
     const bool known = next < footed && s.footed[next] == k;
-    const Foot foot = known ? s.feet[next++] : segs.nearest(points[k]);
+    const Foot foot = known ? s.feet[next++] : nearest(points[k]);
     if (foot.loop < 0) {
       ++dropped;
       continue;

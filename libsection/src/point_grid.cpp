@@ -156,6 +156,7 @@ Foot SegmentGrid::nearest(const Vec& p) const {
     double best2 = std::min(cell_ * cell_, margin * margin);
     std::size_t won = end;
     std::int64_t won_j = 0, won_i = 0;
+    detail::SegmentFoot won_f;
     for (std::size_t a = begin; a < end; ++a) {
       const detail::SegmentFoot f = foot_on(ids_[a], p);
       if (f.d2 > best2 || (f.d2 == best2 && won == end)) continue;
@@ -167,24 +168,24 @@ Foot SegmentGrid::nearest(const Vec& p) const {
       const std::int64_t i = std::max(ix(std::min(u.x(), v.x())), ci - 1);
       if (f.d2 == best2 && std::make_tuple(j, i, ids_[a]) > std::make_tuple(won_j, won_i, ids_[won]))
         continue;
-      best2 = f.d2, won = a, won_j = j, won_i = i;
+      best2 = f.d2, won = a, won_j = j, won_i = i, won_f = f;
     }
-    if (won != end) return foot(ids_[won], p, foot_on(ids_[won], p));
+    if (won != end) return foot(ids_[won], p, won_f);
   }
-  Foot best;
-  double best2 = cell_ * cell_;
+  // The foot made once, of the nearest segment (not of each nearer one on the way).
+  const std::uint64_t none = ~std::uint64_t(0);
+  std::uint64_t best = none;
+  detail::SegmentFoot best_f;
+  best_f.d2 = cell_ * cell_;
   for (std::int64_t j = cj - 1; j <= cj + 1; ++j)
     for (std::int64_t i = ci - 1; i <= ci + 1; ++i) {
       const auto [begin, end] = cells_.find(cell_key(i, j));
       for (std::size_t a = begin; a < end; ++a) {
         const detail::SegmentFoot f = foot_on(ids_[a], p);
-        if (f.d2 < best2) {
-          best2 = f.d2;
-          best = foot(ids_[a], p, f);
-        }
+        if (f.d2 < best_f.d2) best = ids_[a], best_f = f;
       }
     }
-  return best;
+  return best == none ? Foot{} : foot(best, p, best_f);
 }
 
 void robust_box(const Points& points, const std::vector<std::size_t>& subset, double q, Vec& lo, Vec& hi) {
@@ -204,28 +205,35 @@ void robust_box(const Points& points, const std::vector<std::size_t>& subset, do
   hi = {at(xs, 1 - q), at(ys, 1 - q)};
 }
 
-double median_spacing(const Points& points, const std::vector<std::size_t>& subset, std::size_t sample) {
-  if (subset.size() < 2) return 0;
+double median_spacing(const Points& points, const std::vector<std::size_t>& subset, std::size_t sample,
+                      double floor) {
+  if (subset.size() < 2) return std::max(0.0, floor);
   Vec lo, hi;
   robust_box(points, subset, 0.005, lo, hi);
   const double diag = (hi - lo).norm();
   if (!(diag > 0)) {
     robust_box(points, subset, 0, lo, hi);
-    if (!((hi - lo).norm() > 0)) return 0;
+    if (!((hi - lo).norm() > 0)) return std::max(0.0, floor);
   }
   // Section points lie along curves: about n / 2 cells along a curve of length ~2 diag
   // would hold one point each; n^0.75 keeps a few points per cell on dense sections.
   const double cell = std::max(diag, (hi - lo).norm()) / std::pow(double(subset.size()), 0.75);
   const PointGrid grid(points, subset, cell);
   const std::size_t step = std::max<std::size_t>(1, subset.size() / std::max<std::size_t>(1, sample));
+  // The median is the (size / 2)-th of at most `queries` distances: once queries / 2 + 1
+  // lie within the floor, it does too (a band's points, 5 times as close as its cell).
+  const std::size_t queries = (subset.size() + step - 1) / step;
+  std::size_t within = 0;
   std::vector<double> d;
   for (std::size_t a = 0; a < subset.size(); a += step) {
     const double x = grid.nearest(subset[a], 64);
     if (std::isfinite(x)) d.push_back(x);
+    within += x <= floor;
+    if (floor > 0 && within > queries / 2) return floor;
   }
-  if (d.empty()) return 0;
+  if (d.empty()) return std::max(0.0, floor);
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-  return d[d.size() / 2];
+  return std::max(d[d.size() / 2], floor);
 }
 
 }  // namespace section::morph

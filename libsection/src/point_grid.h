@@ -117,7 +117,9 @@ private:
 void robust_box(const Points& points, const std::vector<std::size_t>& subset, double q, Vec& lo, Vec& hi);
 
 /// The median distance from a point of `subset` to its nearest neighbour, on at most
-/// `sample` of them (0 for fewer than two distinct points).
-double median_spacing(const Points& points, const std::vector<std::size_t>& subset, std::size_t sample);
+/// `sample` of them (0 for fewer than two distinct points), or `floor` when that is larger
+/// (known without measuring them all when most lie closer).
+double median_spacing(const Points& points, const std::vector<std::size_t>& subset, std::size_t sample,
+                      double floor = 0);
 
 }  // namespace section::morph
