@@ -58,26 +58,20 @@ SectionIssue parse_issue(std::string_view rest, const std::string& source, std::
   return issue;
 }
 
-// A cell of 1 to 9 digits, optionally after '-' (ids, indices, counts): its value without
-// from_chars, the same double (such integers are exact).
-inline bool small_integer(std::string_view cell, double& value) {
-  const bool minus = !cell.empty() && cell.front() == '-';
-  if (minus) cell.remove_prefix(1);
-  if (cell.empty() || cell.size() > 9) return false;
-  int v = 0;
-  for (const char ch : cell) {
-    if (ch < '0' || ch > '9') return false;
-    v = 10 * v + (ch - '0');
-  }
-  value = minus ? -double(v) : double(v);
-  return true;
+// A cell as a number (false when it is none), in the writers' form without from_chars (the
+// same double, io/plain_number.h); the text from `readable` on may be read.
+inline bool cell_number(const char* readable, std::string_view cell, double& value) {
+  const char* const end = cell.data() + cell.size();
+  const char* const read = cell.empty() ? nullptr : plain_number(readable, cell.data(), end, value);
+  return (read && read == end) || parse_double(cell, value);
 }
 
 // What a row's ids must be: per column 0 (not an id), 1 (an id: an integer, 0 or more) or 2
 // (the section id, equal to `section` in a part of a stream split into parts).
 struct IdRules {
   std::vector<char> column;
-  double section = -1;  // the part's section, -1 outside parts
+  double section = -1;      // the part's section, -1 outside parts
+  std::size_t leading = 0;  // the first columns, section and loop, that most rows repeat (not all columns)
   // True when `value` in column `col` is a valid id there.
   bool ok(std::size_t col, double value) const {
     if (!column[col]) return true;
@@ -88,8 +82,8 @@ struct IdRules {
 };
 
 // One data row of `columns` cells appended to `out`; false on anything the line-by-line
-// parse refuses (it then finds and names the problem).
-bool parse_row(std::string_view line, const IdRules& ids, std::vector<double>& out) {
+// parse refuses (it then finds and names the problem). The text from `readable` on may be read.
+bool parse_row(const char* readable, std::string_view line, const IdRules& ids, std::vector<double>& out) {
   const std::size_t columns = ids.column.size();
   std::size_t start = 0, col = 0;
   while (true) {
@@ -98,8 +92,7 @@ bool parse_row(std::string_view line, const IdRules& ids, std::vector<double>& o
         trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start));
     if (col == columns) return false;
     double value = 0;
-    if (!small_integer(cell, value) &&
-        (!parse_double(cell, value) || !std::isfinite(value) || std::abs(value) > max_coordinate))
+    if (!cell_number(readable, cell, value) || !std::isfinite(value) || std::abs(value) > max_coordinate)
       return false;
     if (!ids.ok(col, value)) return false;
     out.push_back(value);
@@ -112,14 +105,36 @@ bool parse_row(std::string_view line, const IdRules& ids, std::vector<double>& o
 
 constexpr std::size_t plain_row_most = 32;  // the widest row plain_row reads (the others: parse_row)
 
+// The leading ids (IdRules::leading) of the last row read and their text, to be taken again
+// where the next row starts with the same bytes (the section and loop of most rows).
+struct Leading {
+  const char* row = nullptr;
+  std::uint64_t mask = 0;  // the bytes of their text ("0,12,"), at most 8
+  std::size_t length = 0;
+  double value[2] = {0, 0};
+};
+
 // A row at `p` in the form the writers give (cells plain_number, ids 1 to 9 digits, ','
 // between them, '\n' or `end` after them) into `row`: the end of its line, or nullptr for
-// any other row (then left to parse_row; `row` holds nothing then).
-inline const char* plain_row(const char* p, const char* end, const IdRules& ids, double* row) {
+// any other row (then left to parse_row; `row` holds nothing then). The text from `readable`
+// on may be read.
+inline const char* plain_row(const char* readable, const char* p, const char* end, const IdRules& ids,
+                             Leading& leading, double* row) {
   const std::size_t columns = ids.column.size();
   if (columns == 0 || columns > plain_row_most) return nullptr;
   const char* const kind = ids.column.data();
-  for (std::size_t col = 0;; ++col) {
+  const char* const start = p;
+  std::size_t col = 0;
+  if (leading.length && end - p >= 8) {
+    std::uint64_t now, before;
+    std::memcpy(&now, p, 8);
+    std::memcpy(&before, leading.row, 8);
+    if (((now ^ before) & leading.mask) == 0) {  // the same text: the same (valid) ids
+      for (; col < ids.leading; ++col) row[col] = leading.value[col];
+      p += leading.length;
+    }
+  }
+  for (;; ++col) {
     if (kind[col]) {
       // An id as an integer: below 10^9, so a valid id and exact as a double, without the
       // checks of a double that could be one.
@@ -131,7 +146,7 @@ inline const char* plain_row(const char* p, const char* end, const IdRules& ids,
       if (kind[col] == 2 && ids.section >= 0 && row[col] != ids.section) return nullptr;
     } else {
       double value = 0;
-      p = plain_number(p, end, value);
+      p = plain_number(readable, p, end, value);
       if (!p || std::abs(value) > max_coordinate) return nullptr;
       row[col] = value;
     }
@@ -140,6 +155,12 @@ inline const char* plain_row(const char* p, const char* end, const IdRules& ids,
       break;
     }
     if (p == end || *p++ != ',') return nullptr;
+    if (col + 1 == ids.leading && p - start <= 8) {
+      leading.row = start;
+      leading.length = std::size_t(p - start);
+      leading.mask = leading.length == 8 ? ~std::uint64_t(0) : (std::uint64_t(1) << (8 * leading.length)) - 1;
+      std::copy(row, row + ids.leading, leading.value);
+    }
   }
   return p;
 }
@@ -155,12 +176,14 @@ bool parse_rows(std::string_view text, const IdRules& ids, std::vector<double>& 
   double rows[room];
   std::size_t held = 0;  // values in `rows`
   const std::size_t columns = ids.column.size();
+  Leading leading;
   const auto append = [&] {
     out.insert(out.end(), rows, rows + held);
     held = 0;
   };
   while (p < end) {
-    if (const char* next = plain_row(p, end, ids, rows + held)) {  // (room for a row after `held`)
+    if (const char* next =
+            plain_row(text.data(), p, end, ids, leading, rows + held)) {  // (room for a row after `held`)
       p = next;
       held += columns;
       if (held + columns > room) append();
@@ -173,7 +196,7 @@ bool parse_rows(std::string_view text, const IdRules& ids, std::vector<double>& 
     p = nl ? line_end + 1 : end;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (trim(line).empty()) continue;
-    if (!parse_row(line, ids, out)) return false;
+    if (!parse_row(text.data(), line, ids, out)) return false;
   }
   append();
   return true;
@@ -336,6 +359,10 @@ void StreamParser::header(std::string_view line) {
       fail("column '" + n + "' appears twice in the header of table '" + current_->name + "'");
     ids_.column[c] = n == "section" ? 2 : is_id_column(n) ? 1 : 0;
   }
+  ids_.leading = 0;
+  while (ids_.leading < std::min<std::size_t>(2, names.size() - 1) &&
+         (names[ids_.leading] == "section" || names[ids_.leading] == "loop"))
+    ++ids_.leading;
   expect_header_ = false;
 }
 
@@ -430,7 +457,7 @@ void StreamParser::row(std::string_view line) {
     };
     const auto text = [&] { return std::string(cell.substr(0, 40)); };
     double value = 0;
-    if (!parse_double(cell, value)) bad("expected a number, found '" + text() + "'");
+    if (!cell_number(text_.data(), cell, value)) bad("expected a number, found '" + text() + "'");
     if (!std::isfinite(value)) bad("non-finite value '" + text() + "'");
     if (std::abs(value) > max_coordinate) bad("value " + text() + " is beyond +-1e15 (corrupt stream?)");
     // Ids become ints in every stage: a fraction or a value beyond int would be cast silently.
