@@ -95,16 +95,6 @@ void for_spans_of_row(const Spans* band, int j, int w, const Fn& fn) {
     fn(band->lo[j], band->hi[j] + 1);
 }
 
-// Calls fn(first, end) with the columns of row j's runs (its span but its gap; the whole row
-// without spans).
-template <class Fn>
-void for_runs(const Spans* band, int j, int w, const Fn& fn) {
-  if (!band)
-    fn(0, w);
-  else
-    for_runs_of_row(*band, j, fn);
-}
-
 // Calls fn(first, end) with the cell indices of each row's span (the whole row without
 // spans).
 template <class Fn>

@@ -87,14 +87,6 @@ int first_pruned(float prune, int none) {
 void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const Spans* spans, bool off_seeds,
                    float prune, Buffer<int>& row_of, Buffer<float>& f) {
   const int w = r.w, h = r.h;
-  // Calls fn(first, end) with row j's runs (its span but the gap; the whole row without
-  // spans).
-  const auto runs = [&](int j, const auto& fn) {
-    if (spans)
-      for_runs_of_row(*spans, j, fn);
-    else
-      fn(0, w);
-  };
   // Row k's off-span cells are seeds for the columns of row j's span (k = j -+ 1).
   const auto enter = [&](int j, int k, std::vector<int>& last) {
     if (off_seeds && spans && k >= 0 && k < h)
@@ -111,7 +103,7 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
     int* lrow = last.data();
     enter(j, j - 1, last);
     // The gap's cells are no seeds: `last` passes through them as it is.
-    runs(j, [&](int i0, int i1) {
+    for_runs(spans, j, w, [&](int i0, int i1) {
       for (int i = i0; i < i1; ++i) {
         const int l = srow[i] ? j : lrow[i];
         lrow[i] = l;
@@ -130,7 +122,7 @@ void column_sweeps(const Raster& r, const std::vector<std::uint8_t>& seed, const
     int* lrow = last.data();
     float* frow = f.data() + std::size_t(j) * w;
     enter(j, j + 1, last);
-    runs(j, [&](int i0, int i1) {
+    for_runs(spans, j, w, [&](int i0, int i1) {
       for (int i = i0; i < i1; ++i) {
         const int below = srow[i] ? j : lrow[i];
         lrow[i] = below;

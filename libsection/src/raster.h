@@ -89,17 +89,22 @@ SeedGaps seed_gaps(const Raster& r, const std::vector<std::size_t>& cells, int r
 Spans spans_of(const Raster& r, const std::vector<int>& first, const std::vector<int>& last, int reach,
                const SeedGaps* gaps = nullptr);
 
-/// Calls fn(first, end) with the columns of row j's span outside its gap (one or two runs).
+/// Calls fn(first, end) with the columns of row j's span outside its gap (one or two runs);
+/// without spans, the whole row of `w` columns.
 template <class Fn>
-void for_runs_of_row(const Spans& spans, int j, const Fn& fn) {
-  const int lo = spans.lo[j], hi = spans.hi[j];
+void for_runs(const Spans* spans, int j, int w, const Fn& fn) {
+  if (!spans) {
+    fn(0, w);
+    return;
+  }
+  const int lo = spans->lo[j], hi = spans->hi[j];
   if (lo > hi) return;
-  if (!spans.has_gap(j)) {
+  if (!spans->has_gap(j)) {
     fn(lo, hi + 1);
     return;
   }
-  fn(lo, spans.gap_lo[j]);
-  fn(spans.gap_hi[j] + 1, hi + 1);
+  fn(lo, spans->gap_lo[j]);
+  fn(spans->gap_hi[j] + 1, hi + 1);
 }
 
 /// Calls fn(i) for each column i of row j's span whose cell in row k is off row k's span.
