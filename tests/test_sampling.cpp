@@ -13,11 +13,13 @@
 #include "section/sampling.h"
 #include "section/slice.h"
 #include "pipe_stages.h"
+#include "detail/spacing_search.h"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -444,5 +446,37 @@ TEST_CASE("sampling: a loop that leaves much of the section's points far off is 
     const SliceResult p = slice(c, planes_at({0, 0, 1}, {5.0}));
     INFO(p.sections[0].error);
     CHECK(p.sections[0].error.empty());
+  }
+}
+
+TEST_CASE("sampling: mean_spacing from its searches is mean_spacing, bit for bit", "[sampling]") {
+  // Sizes where sampling_of measures every point, every other one at steps that miss some
+  // of mean_spacing's (10 460 points), every tenth, and over mean_spacing's subset (its own
+  // tree then); exact copies of points; a grid, whose points lie at equal distances.
+  const BladeDesign blade = turbine_blade();
+  std::vector<std::vector<Vec3>> clouds;
+  for (const double spacing : {2.0, 0.776, 0.56, 0.35}) {
+    ScanOptions o;
+    o.spacing = spacing;
+    o.noise = 0.005;
+    o.seed = 3;
+    clouds.push_back(generate_scan(blade, o).cloud.points);
+  }
+  std::vector<Vec3> copies = clouds[1];
+  for (std::size_t i = 0; i < copies.size(); i += 7) copies.push_back(copies[i]);
+  clouds.push_back(copies);
+  std::vector<Vec3> grid;
+  for (int i = 0; i < 120; ++i)
+    for (int j = 0; j < 90; ++j) grid.emplace_back(0.08 * i, 0.08 * j, 0.01 * ((i + j) % 3));
+  clouds.push_back(grid);
+  clouds.push_back({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, 0)});
+  for (const auto& points : clouds) {
+    detail::SpacingSearch search;
+    const Sampling s = detail::sampling_of(points, Vec3::UnitZ(), {}, search);
+    CHECK(s.describe() == sampling_of(points, Vec3::UnitZ()).describe());
+    CHECK(bool(search.tree) == (points.size() <= 50'000));
+    const double reused = detail::mean_spacing(points, search), own = mean_spacing(points);
+    INFO(points.size() << " points, " << s.describe());
+    CHECK(std::memcmp(&reused, &own, sizeof own) == 0);
   }
 }
