@@ -480,3 +480,33 @@ TEST_CASE("sampling: mean_spacing from its searches is mean_spacing, bit for bit
     CHECK(std::memcmp(&reused, &own, sizeof own) == 0);
   }
 }
+
+TEST_CASE("sampling: a point's 17 nearest are the first 17 of its 24 nearest, ties included", "[sampling]") {
+  // What lets sampling_of search 17 neighbours, not 24, for a point without a copy:
+  // lattices put many neighbours at equal distances, where an order could differ.
+  std::vector<std::vector<Vec3>> clouds(3);
+  for (int i = 0; i < 60; ++i)
+    for (int j = 0; j < 50; ++j) {
+      clouds[0].emplace_back(0.08 * i, 0.08 * j, 0);
+      clouds[1].emplace_back(0.3 * (i + 0.5 * (j % 2)), 0.3 * j * std::sqrt(0.75), 0.21 * (j % 3));
+    }
+  for (int i = 0; i < 15; ++i)
+    for (int j = 0; j < 15; ++j)
+      for (int k = 0; k < 15; ++k) clouds[2].emplace_back(0.1 * i, 0.1 * j, 0.1 * k);
+  ScanOptions o;
+  o.spacing = 1;
+  o.noise = 0.005;
+  clouds.push_back(generate_scan(turbine_blade(), o).cloud.points);
+  for (const auto& points : clouds) {
+    const detail::NearestPoints<3> tree(points);
+    int differ = 0;
+    for (const Vec3& p : points) {
+      int i17[17], i24[24];
+      double d17[17], d24[24];
+      tree.k_nearest(p, 17, i17, d17);
+      tree.k_nearest(p, 24, i24, d24);
+      differ += !std::equal(i17, i17 + 17, i24) || !std::equal(d17, d17 + 17, d24);
+    }
+    CHECK(differ == 0);
+  }
+}

@@ -24,7 +24,8 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 
 // Neighbours of a point looked at: the 16 nearest distinct others, from a search for 24
-// (exact copies of the point, itself included, are skipped).
+// (exact copies of the point, itself included, are skipped), or for 17 when no other
+// point lies on it.
 constexpr int wanted = 16, searched = 24;
 // The first look: this many points (at most), this many of them measured.
 constexpr std::size_t first_look = 50'000, first_queries = 5'000;
@@ -53,8 +54,17 @@ Near near_of(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& firs
   int idx[searched];
   double d2[searched];
   std::fill(d2, d2 + searched, -1.0);  // FLANN leaves the entries it does not find
-  const int k = int(std::min<std::size_t>(searched, first.size()));
+  // The first 17 of FLANN's exact 24 nearest are its 17 nearest, in the same order: the
+  // search for fewer visits no cell the larger one does not, and what only the larger one
+  // finds lies farther than the smaller one's last. Without a copy of the point they are
+  // the point and its 16 nearest distinct others.
+  const int most = int(std::min<std::size_t>(searched, first.size()));
+  int k = std::min(wanted + 1, most);
   tree.k_nearest(first[i], k, idx, d2);
+  if (k < most && !(d2[1] > 0)) {  // a copy of the point: look past it
+    k = most;
+    tree.k_nearest(first[i], k, idx, d2);
+  }
   if (spacing_d2 && k >= 3) *spacing_d2 = d2[1] > 0 ? d2[1] : d2[2] > 0 ? d2[2] : 0;
   Near n;
   for (int j = 0; j < k && n.count < wanted; ++j) {
