@@ -459,7 +459,8 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
                      const SamplingOptions& options, SpacingSearch& search) {
   search = SpacingSearch{};
   Sampling s = sample_points(points, normal, options, search);
-  if (search.nearest_d2.size() != points.size()) search = SpacingSearch{};  // it held the first points only
+  // Kept for a dense scan's mean spacing alone, and only when it searched every point.
+  if (s.kind != SamplingKind::dense || search.nearest_d2.size() != points.size()) search = SpacingSearch{};
   return s;
 }
 

@@ -15,7 +15,8 @@ namespace section::detail {
 /// What sampling_of searched over all of a cloud's points: its kd-tree over them and, for
 /// each point, the squared distance mean_spacing takes from the point's 3 nearest (the
 /// second, else the third, where nonzero; 0 where neither is), -1 for a point not searched.
-/// Empty (no tree) when sampling_of looked at only the cloud's first points.
+/// Empty (no tree) unless the points are a dense scan and sampling_of looked at all of them
+/// (only a dense scan's slab is its mean spacing).
 struct SpacingSearch {
   std::unique_ptr<NearestPoints<3>> tree;
   std::vector<double> nearest_d2;
