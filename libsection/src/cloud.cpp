@@ -14,8 +14,8 @@ namespace section {
 namespace {
 
 // The median distance from q of the m points `subset` (every (m / q)-th) to their nearest
-// other distinct point, by their 3 nearest in `index`, or from `known` (SpacingSearch's
-// nearest_d2) where a point's are known.
+// other distinct point, by their nearest in `index` (the first nonzero of the 2 after the
+// point itself), or from `known` (SpacingSearch's nearest_d2) where a point's are known.
 double median_nearest(const detail::NearestPoints<3>& index, const std::vector<Eigen::Vector3d>& subset,
                       std::size_t q, const std::vector<double>& known) {
   const std::size_t m = subset.size();
@@ -29,7 +29,10 @@ double median_nearest(const detail::NearestPoints<3>& index, const std::vector<E
       if (known[at] > 0) dists.push_back(std::sqrt(known[at]));
       continue;
     }
-    index.k_nearest(subset[at], 3, idx, d2);
+    // The first 2 of the 3 nearest are the 2 nearest (as in sampling_of's near_of): the
+    // third is needed only past a copy of the point.
+    index.k_nearest(subset[at], 2, idx, d2);
+    if (!(d2[1] > 0)) index.k_nearest(subset[at], 3, idx, d2);
     for (int j = 1; j < 3; ++j)
       if (d2[j] > 0) {
         dists.push_back(std::sqrt(d2[j]));
