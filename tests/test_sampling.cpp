@@ -13,11 +13,13 @@
 #include "section/sampling.h"
 #include "section/slice.h"
 #include "pipe_stages.h"
+#include "detail/spacing_search.h"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -444,5 +446,70 @@ TEST_CASE("sampling: a loop that leaves much of the section's points far off is 
     const SliceResult p = slice(c, planes_at({0, 0, 1}, {5.0}));
     INFO(p.sections[0].error);
     CHECK(p.sections[0].error.empty());
+  }
+}
+
+TEST_CASE("sampling: mean_spacing from its searches is mean_spacing, bit for bit", "[sampling]") {
+  // Sizes where sampling_of measures every point, every other one at steps that miss some
+  // of mean_spacing's (10 460 points), every tenth, and over mean_spacing's subset (its own
+  // tree then); exact copies of points; a grid, whose points lie at equal distances.
+  const BladeDesign blade = turbine_blade();
+  std::vector<std::vector<Vec3>> clouds;
+  for (const double spacing : {2.0, 0.776, 0.56, 0.35}) {
+    ScanOptions o;
+    o.spacing = spacing;
+    o.noise = 0.005;
+    o.seed = 3;
+    clouds.push_back(generate_scan(blade, o).cloud.points);
+  }
+  std::vector<Vec3> copies = clouds[1];
+  for (std::size_t i = 0; i < copies.size(); i += 7) copies.push_back(copies[i]);
+  clouds.push_back(copies);
+  std::vector<Vec3> grid;
+  for (int i = 0; i < 120; ++i)
+    for (int j = 0; j < 90; ++j) grid.emplace_back(0.08 * i, 0.08 * j, 0.01 * ((i + j) % 3));
+  clouds.push_back(grid);
+  clouds.push_back({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, 0)});
+  for (const auto& points : clouds) {
+    detail::SpacingSearch search;
+    const Sampling s = detail::sampling_of(points, Vec3::UnitZ(), {}, search);
+    CHECK(s.describe() == sampling_of(points, Vec3::UnitZ()).describe());
+    CHECK(bool(search.tree) == (s.kind == SamplingKind::dense && points.size() <= 50'000));
+    const double reused = detail::mean_spacing(points, search), own = mean_spacing(points);
+    INFO(points.size() << " points, " << s.describe());
+    CHECK(std::memcmp(&reused, &own, sizeof own) == 0);
+  }
+}
+
+TEST_CASE("sampling: a point's k nearest are the first k of its K nearest, ties included", "[sampling]") {
+  // What lets sampling_of search 17 neighbours, not 24, for a point without a copy, and
+  // mean_spacing 2, not 3: lattices put many neighbours at equal distances, where an order
+  // could differ.
+  std::vector<std::vector<Vec3>> clouds(3);
+  for (int i = 0; i < 60; ++i)
+    for (int j = 0; j < 50; ++j) {
+      clouds[0].emplace_back(0.08 * i, 0.08 * j, 0);
+      clouds[1].emplace_back(0.3 * (i + 0.5 * (j % 2)), 0.3 * j * std::sqrt(0.75), 0.21 * (j % 3));
+    }
+  for (int i = 0; i < 15; ++i)
+    for (int j = 0; j < 15; ++j)
+      for (int k = 0; k < 15; ++k) clouds[2].emplace_back(0.1 * i, 0.1 * j, 0.1 * k);
+  ScanOptions o;
+  o.spacing = 1;
+  o.noise = 0.005;
+  clouds.push_back(generate_scan(turbine_blade(), o).cloud.points);
+  for (const auto& points : clouds) {
+    const detail::NearestPoints<3> tree(points);
+    for (const auto [k, more] : {std::pair{17, 24}, std::pair{2, 3}}) {
+      int differ = 0;
+      for (const Vec3& p : points) {
+        int ik[24], im[24];
+        double dk[24], dm[24];
+        tree.k_nearest(p, k, ik, dk);
+        tree.k_nearest(p, more, im, dm);
+        differ += !std::equal(ik, ik + k, im) || !std::equal(dk, dk + k, dm);
+      }
+      CHECK(differ == 0);
+    }
   }
 }

@@ -5,6 +5,7 @@
 #include "section/frame.h"
 #include "detail/flann_nearest.h"
 #include "detail/parallel.h"
+#include "detail/spacing_search.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -23,7 +24,8 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 
 // Neighbours of a point looked at: the 16 nearest distinct others, from a search for 24
-// (exact copies of the point, itself included, are skipped).
+// (exact copies of the point, itself included, are skipped), or for 17 when no other
+// point lies on it.
 constexpr int wanted = 16, searched = 24;
 // The first look: this many points (at most), this many of them measured.
 constexpr std::size_t first_look = 50'000, first_queries = 5'000;
@@ -39,19 +41,31 @@ double quantile(std::vector<double> v, double q) {
 }
 
 // The distinct neighbours of point i, nearest first (indices into `first`), and whether
-// it has an exact copy.
+// it has an exact copy; with `spacing_d2`, what mean_spacing takes from the point's 3
+// nearest (SpacingSearch::nearest_d2).
 struct Near {
   int index[searched];
   int count = 0;
   bool copied = false;
 };
 
-Near near_of(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, std::size_t i) {
+Near near_of(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, std::size_t i,
+             double* spacing_d2 = nullptr) {
   int idx[searched];
   double d2[searched];
   std::fill(d2, d2 + searched, -1.0);  // FLANN leaves the entries it does not find
-  const int k = int(std::min<std::size_t>(searched, first.size()));
+  // The first 17 of FLANN's exact 24 nearest are its 17 nearest, in the same order: the
+  // search for fewer visits no cell the larger one does not, and what only the larger one
+  // finds lies farther than the smaller one's last. Without a copy of the point they are
+  // the point and its 16 nearest distinct others.
+  const int most = int(std::min<std::size_t>(searched, first.size()));
+  int k = std::min(wanted + 1, most);
   tree.k_nearest(first[i], k, idx, d2);
+  if (k < most && !(d2[1] > 0)) {  // a copy of the point: look past it
+    k = most;
+    tree.k_nearest(first[i], k, idx, d2);
+  }
+  if (spacing_d2 && k >= 3) *spacing_d2 = d2[1] > 0 ? d2[1] : d2[2] > 0 ? d2[2] : 0;
   Near n;
   for (int j = 0; j < k && n.count < wanted; ++j) {
     if (d2[j] < 0 || idx[j] < 0) continue;
@@ -77,10 +91,11 @@ std::size_t step_of(std::size_t m, std::size_t queries) {
 }
 
 // The spacing in the surface and along the normal, medians over every step-th point; the
-// neighbours of each point into `known` when every point is measured (else it is empty).
+// neighbours of each point into `known` when every point is measured (else it is empty),
+// what mean_spacing takes from them into `nearest_d2` (one entry a point).
 void measure_spacings(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, const Vec3& n,
                       const SamplingOptions& options, Sampling& s, std::vector<double>& heights,
-                      std::vector<Near>& known) {
+                      std::vector<Near>& known, std::vector<double>& nearest_d2) {
   const std::size_t step = step_of(first.size(), options.queries);
   const std::size_t count = (first.size() + step - 1) / step;
   std::vector<double> nearest(count, std::numeric_limits<double>::infinity());
@@ -89,7 +104,7 @@ void measure_spacings(const detail::NearestPoints<3>& tree, const std::vector<Ve
   known.assign(step == 1 ? count : 0, Near{});
   detail::parallel_for(count, options.threads, [&](std::size_t q) {
     const std::size_t i = q * step;
-    const Near near = near_of(tree, first, i);
+    const Near near = near_of(tree, first, i, &nearest_d2[i]);
     if (step == 1) known[q] = near;
     copied[q] = near.copied;
     for (int j = 0; j < near.count; ++j) {
@@ -363,6 +378,16 @@ std::string Sampling::describe() const {
 
 Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
                      const SamplingOptions& options) {
+  detail::SpacingSearch unused;
+  return detail::sampling_of(points, normal, options, unused);
+}
+
+namespace detail {
+
+namespace {
+
+Sampling sample_points(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+                       const SamplingOptions& options, SpacingSearch& search) {
   if (!normal.allFinite() || !(normal.norm() > 0))
     throw Error("slice: the plane normal must be finite and non-zero");
   const Vec3 n = normal.normalized();
@@ -372,7 +397,7 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
   // same tree when the first look held all the points.
   const std::size_t look = std::min(all, first_look);
   std::unique_ptr<std::vector<Vec3>> first;
-  std::unique_ptr<detail::NearestPoints<3>> tree;
+  std::unique_ptr<detail::NearestPoints<3>>& tree = search.tree;
   for (const bool partial : {true, false}) {
     const std::size_t m = partial ? look : all;
     Sampling s;
@@ -382,6 +407,7 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
       tree.reset();
       first = std::make_unique<std::vector<Vec3>>(points.begin(), points.begin() + std::ptrdiff_t(m));
       tree = std::make_unique<detail::NearestPoints<3>>(*first);
+      search.nearest_d2.assign(m, -1);
     }
     std::vector<double> heights;
     std::vector<Near> known;
@@ -389,7 +415,7 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
     if (partial) o.queries = std::min(o.queries, first_queries);
     // A first look measuring what the whole one would is the whole one.
     const bool whole = !partial || (m == all && step_of(m, o.queries) == step_of(m, options.queries));
-    measure_spacings(*tree, *first, n, o, s, heights, known);
+    measure_spacings(*tree, *first, n, o, s, heights, known, search.nearest_d2);
     // Heights on levels (the quartiles of the gaps along the normal close together, where
     // a dense scan's spread over a factor of two) wider apart than the spacing are lines
     // too: a slab of the spacing would fall between them.
@@ -426,5 +452,18 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
   }
   return Sampling{};
 }
+
+}  // namespace
+
+Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+                     const SamplingOptions& options, SpacingSearch& search) {
+  search = SpacingSearch{};
+  Sampling s = sample_points(points, normal, options, search);
+  // Kept for a dense scan's mean spacing alone, and only when it searched every point.
+  if (s.kind != SamplingKind::dense || search.nearest_d2.size() != points.size()) search = SpacingSearch{};
+  return s;
+}
+
+}  // namespace detail
 
 }  // namespace section

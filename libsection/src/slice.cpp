@@ -413,13 +413,14 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
   result.points = cloud.points.size();
   result.slab = options.slab;
   if (result.slab == 0) {
-    result.sampling = detail::sample_all(cloud.points, planes[0].normal, options.sampling);
+    detail::SpacingSearch search;
+    result.sampling = detail::sample_all(cloud.points, planes[0].normal, options.sampling, search);
     const Sampling& s = result.sampling;
     if (s.kind == SamplingKind::rows) {
       detail::slice_through_rows(cloud.points, planes, options, result, {});
       return result;
     }
-    result.slab = detail::sampled_slab(cloud.points, s);
+    result.slab = detail::sampled_slab(cloud.points, s, search);
     if (s.kind == SamplingKind::lines && !s.rows.empty() && s.points == cloud.points.size()) {
       detail::slice_between_lines(cloud.points, planes, options, result, {});
       return result;

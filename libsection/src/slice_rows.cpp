@@ -170,21 +170,22 @@ std::vector<Eigen::Vector2d> across_lines(const std::vector<Eigen::Vector3d>& po
 namespace detail {
 
 Sampling sample_all(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
-                    const SamplingOptions& options) {
-  Sampling s = sampling_of(points, normal, options);
+                    const SamplingOptions& options, SpacingSearch& search) {
+  Sampling s = sampling_of(points, normal, options, search);
   if (s.kind == SamplingKind::rows && points.size() > s.points) {
     SamplingOptions all = options;
     all.max_points = points.size();
-    s = sampling_of(points, normal, all);
+    s = sampling_of(points, normal, all, search);
   }
   return s;
 }
 
-double sampled_slab(const std::vector<Eigen::Vector3d>& points, const Sampling& sampling) {
+double sampled_slab(const std::vector<Eigen::Vector3d>& points, const Sampling& sampling,
+                    const SpacingSearch& search) {
   double slab = sampling.kind == SamplingKind::lines ? sampling.slab : 0;
   if (sampling.kind == SamplingKind::dense) {
     // mean_spacing's random subset scales its spacing by the density, which copies inflate.
-    slab = 100 * sampling.duplicates > sampling.measured ? sampling.spacing : mean_spacing(points);
+    slab = 100 * sampling.duplicates > sampling.measured ? sampling.spacing : mean_spacing(points, search);
     if (!(slab > 0)) slab = sampling.spacing;
   }
   if (!(slab > 0))

@@ -3,6 +3,7 @@
 // The steps of slice that slice(Cloud) (src/slice.cpp, where they are defined) and
 // slice_file (src/io/slice_file.cpp) share: option checks and the ordering of the slabs.
 #include "section/slice.h"
+#include "detail/spacing_search.h"
 
 #include <cstddef>
 #include <functional>
@@ -58,14 +59,16 @@ MorphologyResult order_row(const std::vector<Eigen::Vector2d>& points, const Mor
 MorphologyResult order_along_chord(const std::vector<Eigen::Vector2d>& points);
 
 /// sampling_of over the points, and over all of them when its first look found rows (a
-/// row is a section only with all its points).
+/// row is a section only with all its points); its searches kept in `search`.
 Sampling sample_all(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
-                    const SamplingOptions& options);
+                    const SamplingOptions& options, SpacingSearch& search);
 
 /// The slab of a dense scan or of lines from their sampling: a dense scan's mean spacing
-/// (mean_spacing, or the sampling's nearest distinct neighbour where exact copies shrink
-/// it), lines' spacing along the normal. Throws when there is no spacing to take.
-double sampled_slab(const std::vector<Eigen::Vector3d>& points, const Sampling& sampling);
+/// (mean_spacing, on the sampling's `search` where it holds the points, or the sampling's
+/// nearest distinct neighbour where exact copies shrink it), lines' spacing along the
+/// normal. Throws when there is no spacing to take.
+double sampled_slab(const std::vector<Eigen::Vector3d>& points, const Sampling& sampling,
+                    const SpacingSearch& search);
 
 /// Planes through sparse rows (result.sampling.kind rows): each takes the row it passes
 /// through, or fails naming the rows beside it; the rows' points are the slabs.
