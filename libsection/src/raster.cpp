@@ -178,22 +178,26 @@ struct RowPass {
   void stretch(int j, int a, int b) {
     const std::size_t row = std::size_t(j) * r.w;
     const float big = 1e20f;
-    envelope_1d(f.data() + row + a, b - a + 1, big, base + a, 0, e, [&](int q0, int q1, int s, double fs) {
-      int* dc = d.data() + row + a;
-      int* nc = nearest.data() + row + a;
+    // Locals, not members: the stores to d would otherwise reload them (they may alias,
+    // for the compiler) at every run and every cell.
+    int* const dc = d.data() + row + a;
+    int* const nc = nearest.data() + row + a;
+    const int* const of = row_of.data() + row + a;
+    const int c = cap, w = r.w;
+    envelope_1d(f.data() + row + a, b - a + 1, big, base + a, 0, e, [=](int q0, int q1, int s, double fs) {
       if (s < 0) {  // no seed: `big`, beyond cap
-        std::fill(dc + q0, dc + q1 + 1, cap);
+        std::fill(dc + q0, dc + q1 + 1, c);
         std::fill(nc + q0, nc + q1 + 1, -1);
         return;
       }
-      const int to = row_of[row + a + s] * r.w + a + s;
+      const int to = of[s] * w + a + s;
       // fs, a kept sample's, is a squared integer: every cell gets `to`.
       std::fill(nc + q0, nc + q1 + 1, to);
-      if (cap <= (1 << 23)) {
+      if (c <= (1 << 23)) {
         // (q - s)^2 + fs in integers: the float below is exact up to 2^23, and beyond it is
         // at cap (the same values, a third of the instructions).
         long long v = (long long)(q0 - s) * (q0 - s) + (long long)(fs), step = 2LL * (q0 - s) + 1;
-        for (int q = q0; q <= q1; ++q, v += step, step += 2) dc[q] = v < cap ? int(v) : cap;
+        for (int q = q0; q <= q1; ++q, v += step, step += 2) dc[q] = v < c ? int(v) : c;
         return;
       }
       for (int q = q0; q <= q1; ++q) {
@@ -201,7 +205,7 @@ struct RowPass {
         const float o = float(dq * dq + fs);
         // Squared distances are integers (exact in float below 2^24, and every float above
         // 2^23 is an integer): rounding is a truncation of x + 0.5.
-        dc[q] = o >= float(cap) ? cap : int(o + 0.5f);
+        dc[q] = o >= float(c) ? c : int(o + 0.5f);
       }
     });
   }
@@ -354,9 +358,11 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
     // between seeds are transformed, each with the seeds that bound it; the rest costs a write.
     const float* frow = f.data() + row;
     for (int i = lo; i <= hi;) {
-      if (frow[i] == 0) {
-        rows.off(j, i, i + 1, true);
-        ++i;
+      if (frow[i] == 0) {  // a run of seeds (the gap holds none)
+        int e = i + 1;
+        while (e <= hi && frow[e] == 0) ++e;
+        rows.off(j, i, e, true);
+        i = e;
         continue;
       }
       int b = i <= g1 && i >= g0 ? g1 : i;  // the gap holds no seed
