@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 namespace section::morph {
@@ -425,21 +426,29 @@ Points component_boundary(const Pass& pass, const Component& comp) {
   return b;
 }
 
-/// Outward normal at p from the gradient of the component's filled image blurred by a
-/// Gaussian of `sigma` cells: -grad (G * I)(p) is proportional to sum I(c) (p - c) G(p - c).
-/// I is the fill anti-aliased with g (coverage clamp(1/2 + g, 0, 1)), so that the
-/// direction is not that of the cell staircase.
-Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
-  const Raster& r = pass.raster;
+ImageNormals::ImageNormals(const Pass& pass, int label_id, double sigma)
+    : pass_(pass),
+      label_(label_id),
+      k_(int(std::ceil(3 * sigma))),
+      inv_(1 / (2 * sigma * sigma)),
+      shrink_(std::exp(-2 * inv_)),
+      i0_(std::numeric_limits<int>::min()),
+      j0_(0),
+      column_(std::size_t(4 * k_ * k_)),
+      row_end_(std::size_t(2 * k_)),
+      cover_(std::size_t(4 * k_ * k_)) {}
+
+Vec ImageNormals::at(const Vec& p) {
+  const Raster& r = pass_.raster;
   const Vec c = r.to_cell(p);
-  const int k = int(std::ceil(3 * sigma));
+  const int k = k_;
   const int i0 = int(std::floor(c.x())) - k + 1, j0 = int(std::floor(c.y())) - k + 1;
   const int n = 2 * k;
   // The offsets p - c of the window's columns and rows (tx, ty) and their weights: with t
   // falling by 1 a step, exp(-t^2 q) is the previous weight times exp((2t - 1) q), whose
-  // factor shrinks by exp(-2 q) a step: three exp calls per axis, not one per cell.
+  // factor shrinks by exp(-2 q) a step: two exp calls per axis, not one per cell.
   double gx[64], gy[64], tx[64], ty[64];
-  const double inv = 1 / (2 * sigma * sigma), shrink = std::exp(-2 * inv);
+  const double inv = inv_, shrink = shrink_;
   const auto weights = [&](double t0, double* t, double* g) {
     double w = std::exp(-t0 * t0 * inv), f = std::exp((2 * t0 - 1) * inv);
     for (int a = 0; a < n; ++a) {
@@ -457,19 +466,39 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
   // Summed per coordinate: a Vec built per cell went through the stack, and its packed
   // reload waited on the two stores (the same sums, several times slower).
   double gx_sum = 0, gy_sum = 0;
-  for (int b = b0; b < b1; ++b) {
-    const std::size_t row = std::size_t(j0 + b) * r.w;
-    const int* label = pass.label.data() + row;
-    const float* dist = pass.g.data() + row;
-    for (int a = a0; a < a1; ++a) {
-      const int i = i0 + a;
-      if (!(dist[i] > -0.5f)) continue;  // no cover (1/2 + g <= 0), whatever the label
-      const int l = label[i];
-      if (l != label_id && l != 0) continue;
-      const double cover = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
-      const double wgt = cover * gx[a] * gy[b];
-      gx_sum += wgt * tx[a];
-      gy_sum += wgt * ty[b];
+  int* const column = column_.data();
+  int* const row_end = row_end_.data();
+  double* const cover = cover_.data();
+  if (i0 == i0_ && j0 == j0_) {  // the cells of the window before, in the same order
+    for (int b = b0, m = 0; b < b1; ++b) {
+      const double gyb = gy[b], tyb = ty[b];
+      for (const int end = row_end[b]; m < end; ++m) {
+        const int a = column[m];
+        const double wgt = cover[m] * gx[a] * gyb;
+        gx_sum += wgt * tx[a];
+        gy_sum += wgt * tyb;
+      }
+    }
+  } else {
+    i0_ = i0;
+    j0_ = j0;
+    for (int b = b0, m = 0; b < b1; ++b) {
+      const std::size_t row = std::size_t(j0 + b) * r.w;
+      const int* label = pass_.label.data() + row;
+      const float* dist = pass_.g.data() + row;
+      for (int a = a0; a < a1; ++a) {
+        const int i = i0 + a;
+        if (!(dist[i] > -0.5f)) continue;  // no cover (1/2 + g <= 0), whatever the label
+        const int l = label[i];
+        if (l != label_ && l != 0) continue;
+        const double cv = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
+        column[m] = a;
+        cover[m++] = cv;
+        const double wgt = cv * gx[a] * gy[b];
+        gx_sum += wgt * tx[a];
+        gy_sum += wgt * ty[b];
+      }
+      row_end[b] = m;
     }
   }
   const Vec g(gx_sum, gy_sum);
