@@ -279,13 +279,35 @@ Runs fill_runs(const Buffer<int>& out2, int rr, const Raster& r, const Spans* ba
   return runs;
 }
 
+// Zeroes the labels that are read: those of the cells next to the fill (trace) and of the
+// cells whose g is above -1/2 (image normals). With spans (`inner`, the cells that are
+// not outside), both lie on them or one cell beside them: an outside cell lies farther
+// than the radius (4 cells or more) from the points' cells, more than 3 from their means,
+// and its g is below -3. The other labels are left as they are, never read.
+void clear_labels(const Raster& r, const Spans* inner, Buffer<int>& label) {
+  if (!inner) {
+    std::fill(label.begin(), label.end(), 0);
+    return;
+  }
+  for (int j = 0; j < r.h; ++j) {
+    int lo = r.w, hi = -1;
+    for (int k = std::max(0, j - 1); k <= std::min(r.h - 1, j + 1); ++k) {
+      lo = std::min(lo, inner->lo[k]);
+      hi = std::max(hi, inner->hi[k]);
+    }
+    lo = std::max(0, lo - 1);
+    hi = std::min(r.w - 1, hi + 1);
+    if (lo <= hi) std::fill_n(label.data() + std::size_t(j) * r.w + lo, hi - lo + 1, 0);
+  }
+}
+
 // 8-connected components of the fill (out2 > r^2), labelled in raster order of their
 // first cell, from the rows' runs of fill cells.
 void label_components(const Buffer<int>& out2, const Buffer<int>& b2, const Buffer<int>& d2,
                       const Spans* band, Scratch& scratch, Pass& pass) {
   const Raster& r = pass.raster;
   pass.label = std::move(scratch.ints);
-  std::fill(pass.label.begin(), pass.label.end(), 0);
+  clear_labels(r, band, pass.label);
   Runs runs = fill_runs(out2, pass.radius * pass.radius, r, band);
   std::vector<int> id(runs.row.size(), -1);  // by root: index into pass.components
   for (std::size_t k = 0; k < runs.row.size(); ++k) {
