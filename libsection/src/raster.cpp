@@ -192,14 +192,18 @@ struct RowPass {
       }
       const int to = of[s] * w + a + s;
       // fs, a kept sample's, is a squared integer: every cell gets `to`.
-      std::fill(nc + q0, nc + q1 + 1, to);
       if (c <= (1 << 23)) {
         // (q - s)^2 + fs in integers: the float below is exact up to 2^23, and beyond it is
-        // at cap (the same values, a third of the instructions).
+        // at cap (the same values, a third of the instructions). `to` in the same loop: the
+        // runs are short (3-4 cells), a fill of its own costs more than its stores.
         long long v = (long long)(q0 - s) * (q0 - s) + (long long)(fs), step = 2LL * (q0 - s) + 1;
-        for (int q = q0; q <= q1; ++q, v += step, step += 2) dc[q] = v < c ? int(v) : c;
+        for (int q = q0; q <= q1; ++q, v += step, step += 2) {
+          dc[q] = v < c ? int(v) : c;
+          nc[q] = to;
+        }
         return;
       }
+      std::fill(nc + q0, nc + q1 + 1, to);
       for (int q = q0; q <= q1; ++q) {
         const double dq = double(q - s);
         const float o = float(dq * dq + fs);
