@@ -19,21 +19,23 @@ struct Envelope {
 };
 
 /// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples): emit(q0, q1, s,
-/// fs) for each run of samples q0..q1 (plus `offset`) whose nearest sample is s (plus
-/// `offset`; -1 and fs = `big` when none), fs = f[s]: sample q lies (q - s)^2 + fs from it.
-/// By runs, so that what depends on s only is worked out once per run.
+/// fs) for each run of samples q0..q1 whose nearest sample is s (-1 and fs = `big` when
+/// none), fs = f[s]: sample q lies (q - s)^2 + fs from it. By runs, so that what depends on
+/// s only is worked out once per run.
 /// Samples with f >= `big` (no seed in their column) are left out of the lower envelope:
-/// they never win, and the envelope of the others is the same. Positions are q + base, so
+/// they never win, and the envelope of the others is the same; those before `first` and
+/// after `last` must be such samples (they are not read). Positions are q + base, so
 /// that the rounding of the parabola intersections, which decides between equidistant
 /// seeds, does not depend on where the raster starts (its margin).
 template <class Emit>
-void envelope_1d(const float* f, int n, float big, int base, int offset, Envelope& e, const Emit& emit) {
+void envelope_1d(const float* f, int n, int first, int last, float big, int base, Envelope& e,
+                 const Emit& emit) {
   const double inf = std::numeric_limits<double>::infinity();
   int* v = e.v.data();
   double* z = e.z.data();
   double* h = e.h.data();
   int k = -1;
-  for (int q = 0; q < n; ++q) {
+  for (int q = first; q <= last; ++q) {
     if (!(f[q] < big)) continue;
     const double fq = double(f[q]) + double(q + base) * (q + base);
     if (k < 0) {
@@ -57,7 +59,7 @@ void envelope_1d(const float* f, int n, float big, int base, int offset, Envelop
     z[k + 1] = inf;
   }
   if (k < 0) {
-    emit(offset, n - 1 + offset, -1, double(big));
+    emit(0, n - 1, -1, double(big));
     return;
   }
   // Parabola k is the lowest for the samples q with z[k] < q + base <= z[k + 1]: up to
@@ -65,7 +67,7 @@ void envelope_1d(const float* f, int n, float big, int base, int offset, Envelop
   for (int q = 0, k = 0; q < n; ++k) {
     const int end = int(std::clamp(std::floor(z[k + 1]) - base, -1.0, double(n - 1)));
     if (q > end) continue;
-    emit(q + offset, end + offset, v[k] + offset, double(f[v[k]]));
+    emit(q, end, v[k], double(f[v[k]]));
     q = end + 1;
   }
 }
@@ -175,7 +177,8 @@ struct RowPass {
   // on a tie): the intersections are quotients of exact integers, correctly rounded, and
   // distinct ones lie far beyond rounding apart. So the envelope of any part of a row that
   // holds a cell's nearest sample gives the cell what the whole row's does.
-  void stretch(int j, int a, int b) {
+  // The samples of cells a..b off first..last are pruned.
+  void stretch(int j, int a, int b, int first, int last) {
     const std::size_t row = std::size_t(j) * r.w;
     const float big = 1e20f;
     // Locals, not members: the stores to d would otherwise reload them (they may alias,
@@ -184,34 +187,35 @@ struct RowPass {
     int* const nc = nearest.data() + row + a;
     const int* const of = row_of.data() + row + a;
     const int c = cap, w = r.w;
-    envelope_1d(f.data() + row + a, b - a + 1, big, base + a, 0, e, [=](int q0, int q1, int s, double fs) {
-      if (s < 0) {  // no seed: `big`, beyond cap
-        std::fill(dc + q0, dc + q1 + 1, c);
-        std::fill(nc + q0, nc + q1 + 1, -1);
-        return;
-      }
-      const int to = of[s] * w + a + s;
-      // fs, a kept sample's, is a squared integer: every cell gets `to`.
-      if (c <= (1 << 23)) {
-        // (q - s)^2 + fs in integers: the float below is exact up to 2^23, and beyond it is
-        // at cap (the same values, a third of the instructions). `to` in the same loop: the
-        // runs are short (3-4 cells), a fill of its own costs more than its stores.
-        long long v = (long long)(q0 - s) * (q0 - s) + (long long)(fs), step = 2LL * (q0 - s) + 1;
-        for (int q = q0; q <= q1; ++q, v += step, step += 2) {
-          dc[q] = v < c ? int(v) : c;
-          nc[q] = to;
-        }
-        return;
-      }
-      std::fill(nc + q0, nc + q1 + 1, to);
-      for (int q = q0; q <= q1; ++q) {
-        const double dq = double(q - s);
-        const float o = float(dq * dq + fs);
-        // Squared distances are integers (exact in float below 2^24, and every float above
-        // 2^23 is an integer): rounding is a truncation of x + 0.5.
-        dc[q] = o >= float(c) ? c : int(o + 0.5f);
-      }
-    });
+    envelope_1d(f.data() + row + a, b - a + 1, first - a, last - a, big, base + a, e,
+                [=](int q0, int q1, int s, double fs) {
+                  if (s < 0) {  // no seed: `big`, beyond cap
+                    std::fill(dc + q0, dc + q1 + 1, c);
+                    std::fill(nc + q0, nc + q1 + 1, -1);
+                    return;
+                  }
+                  const int to = of[s] * w + a + s;
+                  // fs, a kept sample's, is a squared integer: every cell gets `to`.
+                  if (c <= (1 << 23)) {
+                    // (q - s)^2 + fs in integers: the float below is exact up to 2^23, and beyond it is
+                    // at cap (the same values, a third of the instructions). `to` in the same loop: the
+                    // runs are short (3-4 cells), a fill of its own costs more than its stores.
+                    long long v = (long long)(q0 - s) * (q0 - s) + (long long)(fs), step = 2LL * (q0 - s) + 1;
+                    for (int q = q0; q <= q1; ++q, v += step, step += 2) {
+                      dc[q] = v < c ? int(v) : c;
+                      nc[q] = to;
+                    }
+                    return;
+                  }
+                  std::fill(nc + q0, nc + q1 + 1, to);
+                  for (int q = q0; q <= q1; ++q) {
+                    const double dq = double(q - s);
+                    const float o = float(dq * dq + fs);
+                    // Squared distances are integers (exact in float below 2^24, and every float above
+                    // 2^23 is an integer): rounding is a truncation of x + 0.5.
+                    dc[q] = o >= float(c) ? c : int(o + 0.5f);
+                  }
+                });
   }
 
   // The first kept sample of row j at column i or after, up to hi (hi + 1: none); the
@@ -231,7 +235,7 @@ struct RowPass {
   // pruned samples.
   void part(int j, int lo, int hi, int g0, int g1) {
     if (!prune) {
-      stretch(j, lo, hi);
+      stretch(j, lo, hi, lo, hi);
       return;
     }
     const float* frow = f.data() + std::size_t(j) * r.w;
@@ -243,7 +247,7 @@ struct RowPass {
         if (frow[k] < 1e20f) last = k, end = std::min(hi, k + 2 * near - 2);
       const int a = std::max(lo, i - near + 1), b = std::min(hi, last + near - 1);
       off(j, done, a, false);
-      stretch(j, a, b);
+      stretch(j, a, b, i, last);
       done = b + 1;
       i = next_kept(frow, last + 2 * near - 1, hi, g0, g1);  // the scan above found none before
     }
