@@ -63,9 +63,18 @@ void envelope_1d(const float* f, int n, int first, int last, float big, int base
     return;
   }
   // Parabola k is the lowest for the samples q with z[k] < q + base <= z[k + 1]: up to
-  // floor(z[k + 1]) - base (exact: an integer below 2^53 less a small one).
+  // floor(z[k + 1]) - base, clamped to -1..n - 1 (from a truncation: std::floor is a long
+  // sequence without SSE4.1).
+  const double zlo = double(base), zhi = double(base + n - 1);
   for (int q = 0, k = 0; q < n; ++k) {
-    const int end = int(std::clamp(std::floor(z[k + 1]) - base, -1.0, double(n - 1)));
+    const double zk = z[k + 1];
+    int end = n - 1;
+    if (zk < zlo) {
+      end = -1;
+    } else if (zk < zhi) {
+      const int t = int(zk);
+      end = t - (double(t) > zk) - base;
+    }
     if (q > end) continue;
     emit(q, end, v[k], double(f[v[k]]));
     q = end + 1;
