@@ -464,7 +464,7 @@ Vec ImageNormals::at(const Vec& p) {
   const Raster& r = pass_.raster;
   const Vec c = r.to_cell(p);
   const int k = k_;
-  const int i0 = int(std::floor(c.x())) - k + 1, j0 = int(std::floor(c.y())) - k + 1;
+  const int i0 = floor_int(c.x()) - k + 1, j0 = floor_int(c.y()) - k + 1;
   const int n = 2 * k;
   // The offsets p - c of the window's columns and rows (tx, ty) and their weights: with t
   // falling by 1 a step, exp(-t^2 q) is the previous weight times exp((2t - 1) q), whose

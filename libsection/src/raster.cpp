@@ -63,8 +63,7 @@ void envelope_1d(const float* f, int n, int first, int last, float big, int base
     return;
   }
   // Parabola k is the lowest for the samples q with z[k] < q + base <= z[k + 1]: up to
-  // floor(z[k + 1]) - base, clamped to -1..n - 1 (from a truncation: std::floor is a long
-  // sequence without SSE4.1).
+  // floor(z[k + 1]) - base, clamped to -1..n - 1.
   const double zlo = double(base), zhi = double(base + n - 1);
   for (int q = 0, k = 0; q < n; ++k) {
     const double zk = z[k + 1];
@@ -72,8 +71,7 @@ void envelope_1d(const float* f, int n, int first, int last, float big, int base
     if (zk < zlo) {
       end = -1;
     } else if (zk < zhi) {
-      const int t = int(zk);
-      end = t - (double(t) > zk) - base;
+      end = floor_int(zk) - base;
     }
     if (q > end) continue;
     emit(q, end, v[k], double(f[v[k]]));

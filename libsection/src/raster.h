@@ -135,6 +135,13 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
                                Buffer<int>& nearest, Scratch& scratch, const Spans* spans = nullptr,
                                bool off_seeds = false);
 
+/// floor(x) as an int, for x in the range of int: from a truncation (std::floor is a long
+/// sequence without SSE4.1).
+inline int floor_int(double x) {
+  const int t = int(x);
+  return t - (double(t) > x);
+}
+
 /// Smallest r with r * r >= x.
 int ceil_sqrt(int x);
 
