@@ -254,13 +254,14 @@ Runs fill_runs(const Buffer<int>& out2, int rr, const Raster& r, const Spans* ba
     const int start = int(runs.row.size());
     const std::size_t row = std::size_t(j) * r.w;
     // A gap's cells are fill cells (at the transform's cap): stepped over at once.
-    const int g0 = band && band->has_gap(j) ? band->gap_lo[j] : -2;
-    const int g1 = band && band->has_gap(j) ? band->gap_hi[j] : -2;
+    const int g0 = band && band->has_gap(j) ? band->gap_lo[j] : 1;
+    const int g1 = band && band->has_gap(j) ? band->gap_hi[j] : 0;
     for_spans_of_row(band, j, r.w, [&](int i0, int i1) {
+      const int* o2 = out2.data() + row;
       for (int i = i0; i < i1; ++i) {
-        if (out2[row + i] <= rr) continue;
+        if (o2[i] <= rr) continue;
         const int a = i;
-        while (i + 1 < i1 && out2[row + i + 1] > rr) i = i + 1 == g0 ? g1 : i + 1;
+        i = run_end(i, i1, g0, g1, [&](int c) { return o2[c] > rr; });
         const int k = int(runs.row.size());
         runs.row.push_back(j);
         runs.first.push_back(a);

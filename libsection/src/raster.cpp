@@ -380,8 +380,8 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
         i = e;
         continue;
       }
-      int b = i <= g1 && i >= g0 ? g1 : i;  // the gap holds no seed
-      while (b < hi && frow[b + 1] != 0) b = b + 1 == g0 ? g1 : b + 1;
+      // (The gap holds no seed.)
+      const int b = run_end(i <= g1 && i >= g0 ? g1 : i, hi + 1, g0, g1, [&](int c) { return frow[c] != 0; });
       rows.part(j, std::max(lo, i - 1), std::min(hi, b + 1), g0, g1);
       i = b + 2;  // b + 1, a seed, was done with the run
     }
