@@ -473,9 +473,9 @@ Vec ImageNormals::at(const Vec& p) {
   double gx[64], gy[64], tx[64], ty[64];
   const double inv = inv_, shrink = shrink_;
   const auto weights = [&](double t0, double* t, double* g) {
-    double w = std::exp(-t0 * t0 * inv), f = std::exp((2 * t0 - 1) * inv);
-    for (int a = 0; a < n; ++a) {
-      t[a] = t0 - a;
+    double w = std::exp(-t0 * t0 * inv), f = std::exp((2 * t0 - 1) * inv), da = 0;
+    for (int a = 0; a < n; ++a, da += 1) {  // da = a, exactly
+      t[a] = t0 - da;
       g[a] = w;
       w *= f;
       f *= shrink;
@@ -514,7 +514,7 @@ Vec ImageNormals::at(const Vec& p) {
         if (!(dist[i] > -0.5f)) continue;  // no cover (1/2 + g <= 0), whatever the label
         const int l = label[i];
         if (l != label_ && l != 0) continue;
-        const double cv = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
+        const double cv = std::min(0.5 + double(dist[i]), 1.0);  // clamp(.., 0, 1): above 0 here
         column[m] = a;
         cover[m++] = cv;
         const double wgt = cv * gx[a] * gy[b];
