@@ -117,16 +117,17 @@ void for_spans(const Spans* band, int h, int w, const Fn& fn) {
 int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rmax, int w,
                    const Spans* band) {
   std::vector<long long> closing_at(rmax + 2, 0);
-  long long ever = 0;
   // b2 and d2 lie in [0, cap]: their ceil_sqrt from a table (one per interior cell).
   std::vector<int> root(std::size_t(cap) + 1);
   for (int x = 0; x <= cap; ++x) root[x] = ceil_sqrt(x);
-  const auto count = [&](std::size_t c, long long n) {
-    if (b2[c] >= d2[c]) return;
-    const int a = std::max(1, root[b2[c]]);
-    if (a > rmax || a > root[d2[c]] - 1) return;  // never enclosed at an integer radius <= rmax
-    closing_at[a] += n;
-    ever += n;
+  const int *bp = b2.data(), *dp = d2.data(), *rt = root.data();
+  long long* at = closing_at.data();
+  const auto count = [=](std::size_t c, long long n) {
+    const int b = bp[c], d = dp[c];
+    if (b >= d) return;
+    const int a = std::max(1, rt[b]);
+    if (a > rmax || a > rt[d] - 1) return;  // never enclosed at an integer radius <= rmax
+    at[a] += n;
   };
   // Off the spans b2 = d2 = cap: nothing to count there. A gap's cells share b2 and d2.
   for (int j = 0, h = int(d2.size() / w); j < h; ++j) {
@@ -136,6 +137,8 @@ int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rm
     });
     if (band && band->has_gap(j)) count(row + band->gap_lo[j], band->gap_hi[j] - band->gap_lo[j] + 1);
   }
+  long long ever = 0;
+  for (const long long n : closing_at) ever += n;
   if (!substantial(ever)) return 0;
   int rc = 0;
   for (long long sum = 0; rc < rmax && sum < ever;) sum += closing_at[++rc];
