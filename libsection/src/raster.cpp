@@ -18,6 +18,11 @@ struct Envelope {
   explicit Envelope(int n) : v(n + 1), z(n + 2), h(n + 1) {}
 };
 
+/// The height at the origin of sample q's parabola.
+inline double fq_of(const float* f, int q, int base) {
+  return double(f[q]) + double(q + base) * (q + base);
+}
+
 /// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples): emit(q0, q1, s,
 /// fs) for each run of samples q0..q1 whose nearest sample is s (-1 and fs = `big` when
 /// none), fs = f[s]: sample q lies (q - s)^2 + fs from it. By runs, so that what depends on
@@ -34,30 +39,30 @@ void envelope_1d(const float* f, int n, int first, int last, float big, int base
   int* v = e.v.data();
   double* z = e.z.data();
   double* h = e.h.data();
-  int k = -1;
-  for (int q = first; q <= last; ++q) {
+  int k = -1, q = first;
+  for (; q <= last; ++q) {  // the first kept sample
     if (!(f[q] < big)) continue;
-    const double fq = double(f[q]) + double(q + base) * (q + base);
-    if (k < 0) {
-      k = 0;
-      v[0] = q;
-      h[0] = fq;
-      z[0] = -inf;
-      z[1] = inf;
-      continue;
-    }
+    k = 0;
+    v[0] = q;
+    h[0] = fq_of(f, q, base);
+    z[0] = -inf;
+    break;
+  }
+  for (++q; q <= last; ++q) {
+    if (!(f[q] < big)) continue;
+    const double fq = fq_of(f, q, base);
     double s;
-    for (;;) {
+    for (;;) {  // s is finite (q > v[k]) and z[0] = -inf: k never drops below 0
       s = (fq - h[k]) / (2.0 * (q - v[k]));
-      if (s > z[k] || k == 0) break;  // z[0] = -inf: k never drops below 0
+      if (s > z[k]) break;
       --k;
     }
     ++k;
     v[k] = q;
     h[k] = fq;
     z[k] = s;
-    z[k + 1] = inf;
   }
+  z[k + 1] = inf;
   if (k < 0) {
     emit(0, n - 1, -1, double(big));
     return;
