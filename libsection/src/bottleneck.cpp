@@ -78,17 +78,20 @@ struct Widest {
   const int* const d = d2;
   std::int32_t g = gaps;
   const std::size_t size = r.size(), w = std::size_t(r.w);
-  const auto step = [&](std::size_t e) {
-    if (b[e] >= 0) return;
-    if (b[e] == -2) {  // put aside for fill_gaps
-      b[e] = level;
+  // Cell e, its b2 at *be (an address from the popped cell's: one load for the cells
+  // already set, most of them), the level in a local (a store to next may alias b2).
+  const auto step = [&](int* be, std::size_t e) {
+    if (*be >= 0) return;
+    if (*be == -2) {  // put aside for fill_gaps
+      *be = level;
       nx[e] = g;
       g = std::int32_t(e);
       return;
     }
-    b[e] = std::min(level, d[e]);
-    nx[e] = hd[b[e]];
-    hd[b[e]] = std::int32_t(e);
+    const int at = std::min(level, d[e]);
+    *be = at;
+    nx[e] = hd[at];
+    hd[at] = std::int32_t(e);
   };
   while (hd[level] >= 0) {
     const std::size_t c = std::size_t(hd[level]);
@@ -97,14 +100,15 @@ struct Widest {
     // lands on a cell already set; only the steps of the first and last rows' cells may
     // leave it.
     if (c >= w && c + w < size) {
-      step(c - 1);
-      step(c + 1);
-      step(c - w);
-      step(c + w);
+      int* const bc = b + c;
+      step(bc - 1, c - 1);
+      step(bc + 1, c + 1);
+      step(bc - w, c - w);
+      step(bc + w, c + w);
       continue;
     }
     for (const std::size_t e : {c - 1, c + 1, c - w, c + w})
-      if (e < size) step(e);
+      if (e < size) step(b + e, e);
   }
   gaps = g;
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 namespace section::morph {
@@ -116,16 +117,17 @@ void for_spans(const Spans* band, int h, int w, const Fn& fn) {
 int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rmax, int w,
                    const Spans* band) {
   std::vector<long long> closing_at(rmax + 2, 0);
-  long long ever = 0;
   // b2 and d2 lie in [0, cap]: their ceil_sqrt from a table (one per interior cell).
   std::vector<int> root(std::size_t(cap) + 1);
   for (int x = 0; x <= cap; ++x) root[x] = ceil_sqrt(x);
-  const auto count = [&](std::size_t c, long long n) {
-    if (b2[c] >= d2[c]) return;
-    const int a = std::max(1, root[b2[c]]);
-    if (a > rmax || a > root[d2[c]] - 1) return;  // never enclosed at an integer radius <= rmax
-    closing_at[a] += n;
-    ever += n;
+  const int *bp = b2.data(), *dp = d2.data(), *rt = root.data();
+  long long* at = closing_at.data();
+  const auto count = [=](std::size_t c, long long n) {
+    const int b = bp[c], d = dp[c];
+    if (b >= d) return;
+    const int a = std::max(1, rt[b]);
+    if (a > rmax || a > rt[d] - 1) return;  // never enclosed at an integer radius <= rmax
+    at[a] += n;
   };
   // Off the spans b2 = d2 = cap: nothing to count there. A gap's cells share b2 and d2.
   for (int j = 0, h = int(d2.size() / w); j < h; ++j) {
@@ -135,6 +137,8 @@ int closing_radius(const Buffer<int>& d2, const Buffer<int>& b2, int cap, int rm
     });
     if (band && band->has_gap(j)) count(row + band->gap_lo[j], band->gap_hi[j] - band->gap_lo[j] + 1);
   }
+  long long ever = 0;
+  for (const long long n : closing_at) ever += n;
   if (!substantial(ever)) return 0;
   int rc = 0;
   for (long long sum = 0; rc < rmax && sum < ever;) sum += closing_at[++rc];
@@ -253,13 +257,14 @@ Runs fill_runs(const Buffer<int>& out2, int rr, const Raster& r, const Spans* ba
     const int start = int(runs.row.size());
     const std::size_t row = std::size_t(j) * r.w;
     // A gap's cells are fill cells (at the transform's cap): stepped over at once.
-    const int g0 = band && band->has_gap(j) ? band->gap_lo[j] : -2;
-    const int g1 = band && band->has_gap(j) ? band->gap_hi[j] : -2;
+    const int g0 = band && band->has_gap(j) ? band->gap_lo[j] : 1;
+    const int g1 = band && band->has_gap(j) ? band->gap_hi[j] : 0;
     for_spans_of_row(band, j, r.w, [&](int i0, int i1) {
+      const int* o2 = out2.data() + row;
       for (int i = i0; i < i1; ++i) {
-        if (out2[row + i] <= rr) continue;
+        if (o2[i] <= rr) continue;
         const int a = i;
-        while (i + 1 < i1 && out2[row + i + 1] > rr) i = i + 1 == g0 ? g1 : i + 1;
+        i = run_end(i, i1, g0, g1, [&](int c) { return o2[c] > rr; });
         const int k = int(runs.row.size());
         runs.row.push_back(j);
         runs.first.push_back(a);
@@ -278,13 +283,35 @@ Runs fill_runs(const Buffer<int>& out2, int rr, const Raster& r, const Spans* ba
   return runs;
 }
 
+// Zeroes the labels that are read: those of the cells next to the fill (trace) and of the
+// cells whose g is above -1/2 (image normals). With spans (`inner`, the cells that are
+// not outside), both lie on them or one cell beside them: an outside cell lies farther
+// than the radius (4 cells or more) from the points' cells, more than 3 from their means,
+// and its g is below -3. The other labels are left as they are, never read.
+void clear_labels(const Raster& r, const Spans* inner, Buffer<int>& label) {
+  if (!inner) {
+    std::fill(label.begin(), label.end(), 0);
+    return;
+  }
+  for (int j = 0; j < r.h; ++j) {
+    int lo = r.w, hi = -1;
+    for (int k = std::max(0, j - 1); k <= std::min(r.h - 1, j + 1); ++k) {
+      lo = std::min(lo, inner->lo[k]);
+      hi = std::max(hi, inner->hi[k]);
+    }
+    lo = std::max(0, lo - 1);
+    hi = std::min(r.w - 1, hi + 1);
+    if (lo <= hi) std::fill_n(label.data() + std::size_t(j) * r.w + lo, hi - lo + 1, 0);
+  }
+}
+
 // 8-connected components of the fill (out2 > r^2), labelled in raster order of their
 // first cell, from the rows' runs of fill cells.
 void label_components(const Buffer<int>& out2, const Buffer<int>& b2, const Buffer<int>& d2,
                       const Spans* band, Scratch& scratch, Pass& pass) {
   const Raster& r = pass.raster;
   pass.label = std::move(scratch.ints);
-  std::fill(pass.label.begin(), pass.label.end(), 0);
+  clear_labels(r, band, pass.label);
   Runs runs = fill_runs(out2, pass.radius * pass.radius, r, band);
   std::vector<int> id(runs.row.size(), -1);  // by root: index into pass.components
   for (std::size_t k = 0; k < runs.row.size(); ++k) {
@@ -425,25 +452,33 @@ Points component_boundary(const Pass& pass, const Component& comp) {
   return b;
 }
 
-/// Outward normal at p from the gradient of the component's filled image blurred by a
-/// Gaussian of `sigma` cells: -grad (G * I)(p) is proportional to sum I(c) (p - c) G(p - c).
-/// I is the fill anti-aliased with g (coverage clamp(1/2 + g, 0, 1)), so that the
-/// direction is not that of the cell staircase.
-Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
-  const Raster& r = pass.raster;
+ImageNormals::ImageNormals(const Pass& pass, int label_id, double sigma)
+    : pass_(pass),
+      label_(label_id),
+      k_(int(std::ceil(3 * sigma))),
+      inv_(1 / (2 * sigma * sigma)),
+      shrink_(std::exp(-2 * inv_)),
+      i0_(std::numeric_limits<int>::min()),
+      j0_(0),
+      column_(std::size_t(4 * k_ * k_)),
+      row_end_(std::size_t(2 * k_)),
+      cover_(std::size_t(4 * k_ * k_)) {}
+
+Vec ImageNormals::at(const Vec& p) {
+  const Raster& r = pass_.raster;
   const Vec c = r.to_cell(p);
-  const int k = int(std::ceil(3 * sigma));
-  const int i0 = int(std::floor(c.x())) - k + 1, j0 = int(std::floor(c.y())) - k + 1;
+  const int k = k_;
+  const int i0 = floor_int(c.x()) - k + 1, j0 = floor_int(c.y()) - k + 1;
   const int n = 2 * k;
   // The offsets p - c of the window's columns and rows (tx, ty) and their weights: with t
   // falling by 1 a step, exp(-t^2 q) is the previous weight times exp((2t - 1) q), whose
-  // factor shrinks by exp(-2 q) a step: three exp calls per axis, not one per cell.
+  // factor shrinks by exp(-2 q) a step: two exp calls per axis, not one per cell.
   double gx[64], gy[64], tx[64], ty[64];
-  const double inv = 1 / (2 * sigma * sigma), shrink = std::exp(-2 * inv);
+  const double inv = inv_, shrink = shrink_;
   const auto weights = [&](double t0, double* t, double* g) {
-    double w = std::exp(-t0 * t0 * inv), f = std::exp((2 * t0 - 1) * inv);
-    for (int a = 0; a < n; ++a) {
-      t[a] = t0 - a;
+    double w = std::exp(-t0 * t0 * inv), f = std::exp((2 * t0 - 1) * inv), da = 0;
+    for (int a = 0; a < n; ++a, da += 1) {  // da = a, exactly
+      t[a] = t0 - da;
       g[a] = w;
       w *= f;
       f *= shrink;
@@ -457,19 +492,39 @@ Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma) {
   // Summed per coordinate: a Vec built per cell went through the stack, and its packed
   // reload waited on the two stores (the same sums, several times slower).
   double gx_sum = 0, gy_sum = 0;
-  for (int b = b0; b < b1; ++b) {
-    const std::size_t row = std::size_t(j0 + b) * r.w;
-    const int* label = pass.label.data() + row;
-    const float* dist = pass.g.data() + row;
-    for (int a = a0; a < a1; ++a) {
-      const int i = i0 + a;
-      if (!(dist[i] > -0.5f)) continue;  // no cover (1/2 + g <= 0), whatever the label
-      const int l = label[i];
-      if (l != label_id && l != 0) continue;
-      const double cover = std::clamp(0.5 + double(dist[i]), 0.0, 1.0);
-      const double wgt = cover * gx[a] * gy[b];
-      gx_sum += wgt * tx[a];
-      gy_sum += wgt * ty[b];
+  int* const column = column_.data();
+  int* const row_end = row_end_.data();
+  double* const cover = cover_.data();
+  if (i0 == i0_ && j0 == j0_) {  // the cells of the window before, in the same order
+    for (int b = b0, m = 0; b < b1; ++b) {
+      const double gyb = gy[b], tyb = ty[b];
+      for (const int end = row_end[b]; m < end; ++m) {
+        const int a = column[m];
+        const double wgt = cover[m] * gx[a] * gyb;
+        gx_sum += wgt * tx[a];
+        gy_sum += wgt * tyb;
+      }
+    }
+  } else {
+    i0_ = i0;
+    j0_ = j0;
+    for (int b = b0, m = 0; b < b1; ++b) {
+      const std::size_t row = std::size_t(j0 + b) * r.w;
+      const int* label = pass_.label.data() + row;
+      const float* dist = pass_.g.data() + row;
+      for (int a = a0; a < a1; ++a) {
+        const int i = i0 + a;
+        if (!(dist[i] > -0.5f)) continue;  // no cover (1/2 + g <= 0), whatever the label
+        const int l = label[i];
+        if (l != label_ && l != 0) continue;
+        const double cv = std::min(0.5 + double(dist[i]), 1.0);  // clamp(.., 0, 1): above 0 here
+        column[m] = a;
+        cover[m++] = cv;
+        const double wgt = cv * gx[a] * gy[b];
+        gx_sum += wgt * tx[a];
+        gy_sum += wgt * ty[b];
+      }
+      row_end[b] = m;
     }
   }
   const Vec g(gx_sum, gy_sum);

@@ -47,11 +47,29 @@ Points outline(const Pass& pass, const Component& comp);
 /// smoothed a little, then each vertex moved along its normal onto the zero level of g.
 Points component_boundary(const Pass& pass, const Component& comp);
 
-/// Outward normal at p from the gradient of the component's filled image blurred by a
-/// Gaussian of `sigma` cells: -grad (G * I)(p) is proportional to sum I(c) (p - c) G(p - c).
+/// Outward normals from the gradient of one component's filled image blurred by a Gaussian
+/// of `sigma` cells: at p, -grad (G * I)(p) is proportional to sum I(c) (p - c) G(p - c).
 /// I is the fill anti-aliased with g (coverage clamp(1/2 + g, 0, 1)), so that the
 /// direction is not that of the cell staircase.
-Vec image_normal(const Pass& pass, int label_id, const Vec& p, double sigma);
+class ImageNormals {
+public:
+  ImageNormals(const Pass& pass, int label_id, double sigma);
+  /// The unit normal at p (0 when the gradient vanishes).
+  Vec at(const Vec& p);
+
+private:
+  const Pass& pass_;
+  int label_;
+  int k_;                // window half width: cells within 3 sigma
+  double inv_, shrink_;  // 1 / (2 sigma^2), exp(-2 inv_)
+  // The covered cells of the last window (its first cell i0_, j0_; none when i0_ is
+  // INT_MIN): by window row b, from row_end_[b - 1] (0 for the first) to row_end_[b], the
+  // column a and the cover. Points along a loop share their window with the point before
+  // a third of the time or more (a cell holds 1-2 of them): its cells are not tested again.
+  int i0_, j0_;
+  std::vector<int> column_, row_end_;
+  std::vector<double> cover_;
+};
 
 /// Signed area of a closed polygon (positive counterclockwise).
 double signed_area(const Points& p);

@@ -183,8 +183,9 @@ Loop make_loop(const Points& points, const Found& f, const Pass& pass, int label
   loop.points.reserve(mem.size());
   loop.normals.reserve(mem.size());
   loop.index.reserve(mem.size());
+  morph::ImageNormals normals(pass, label, normal_sigma);
   for (const auto& [s, k] : mem) {
-    Vec n = morph::image_normal(pass, label, points[k], normal_sigma);
+    Vec n = normals.at(points[k]);
     if (n.isZero()) n = fallback[k];
     loop.points.push_back(points[k]);
     loop.normals.push_back(n);

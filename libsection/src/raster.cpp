@@ -18,54 +18,68 @@ struct Envelope {
   explicit Envelope(int n) : v(n + 1), z(n + 2), h(n + 1) {}
 };
 
+/// The height at the origin of sample q's parabola.
+inline double fq_of(const float* f, int q, int base) {
+  return double(f[q]) + double(q + base) * (q + base);
+}
+
 /// Felzenszwalb-Huttenlocher 1D squared distance transform of f (n samples): emit(q0, q1, s,
-/// fs) for each run of samples q0..q1 (plus `offset`) whose nearest sample is s (plus
-/// `offset`; -1 and fs = `big` when none), fs = f[s]: sample q lies (q - s)^2 + fs from it.
-/// By runs, so that what depends on s only is worked out once per run.
+/// fs) for each run of samples q0..q1 whose nearest sample is s (-1 and fs = `big` when
+/// none), fs = f[s]: sample q lies (q - s)^2 + fs from it. By runs, so that what depends on
+/// s only is worked out once per run.
 /// Samples with f >= `big` (no seed in their column) are left out of the lower envelope:
-/// they never win, and the envelope of the others is the same. Positions are q + base, so
+/// they never win, and the envelope of the others is the same; those before `first` and
+/// after `last` must be such samples (they are not read). Positions are q + base, so
 /// that the rounding of the parabola intersections, which decides between equidistant
 /// seeds, does not depend on where the raster starts (its margin).
 template <class Emit>
-void envelope_1d(const float* f, int n, float big, int base, int offset, Envelope& e, const Emit& emit) {
+void envelope_1d(const float* f, int n, int first, int last, float big, int base, Envelope& e,
+                 const Emit& emit) {
   const double inf = std::numeric_limits<double>::infinity();
   int* v = e.v.data();
   double* z = e.z.data();
   double* h = e.h.data();
-  int k = -1;
-  for (int q = 0; q < n; ++q) {
+  int k = -1, q = first;
+  for (; q <= last; ++q) {  // the first kept sample
     if (!(f[q] < big)) continue;
-    const double fq = double(f[q]) + double(q + base) * (q + base);
-    if (k < 0) {
-      k = 0;
-      v[0] = q;
-      h[0] = fq;
-      z[0] = -inf;
-      z[1] = inf;
-      continue;
-    }
+    k = 0;
+    v[0] = q;
+    h[0] = fq_of(f, q, base);
+    z[0] = -inf;
+    break;
+  }
+  for (++q; q <= last; ++q) {
+    if (!(f[q] < big)) continue;
+    const double fq = fq_of(f, q, base);
     double s;
-    for (;;) {
+    for (;;) {  // s is finite (q > v[k]) and z[0] = -inf: k never drops below 0
       s = (fq - h[k]) / (2.0 * (q - v[k]));
-      if (s > z[k] || k == 0) break;  // z[0] = -inf: k never drops below 0
+      if (s > z[k]) break;
       --k;
     }
     ++k;
     v[k] = q;
     h[k] = fq;
     z[k] = s;
-    z[k + 1] = inf;
   }
+  z[k + 1] = inf;
   if (k < 0) {
-    emit(offset, n - 1 + offset, -1, double(big));
+    emit(0, n - 1, -1, double(big));
     return;
   }
   // Parabola k is the lowest for the samples q with z[k] < q + base <= z[k + 1]: up to
-  // floor(z[k + 1]) - base (exact: an integer below 2^53 less a small one).
+  // floor(z[k + 1]) - base, clamped to -1..n - 1.
+  const double zlo = double(base), zhi = double(base + n - 1);
   for (int q = 0, k = 0; q < n; ++k) {
-    const int end = int(std::clamp(std::floor(z[k + 1]) - base, -1.0, double(n - 1)));
+    const double zk = z[k + 1];
+    int end = n - 1;
+    if (zk < zlo) {
+      end = -1;
+    } else if (zk < zhi) {
+      end = floor_int(zk) - base;
+    }
     if (q > end) continue;
-    emit(q + offset, end + offset, v[k] + offset, double(f[v[k]]));
+    emit(q, end, v[k], double(f[v[k]]));
     q = end + 1;
   }
 }
@@ -175,35 +189,45 @@ struct RowPass {
   // on a tie): the intersections are quotients of exact integers, correctly rounded, and
   // distinct ones lie far beyond rounding apart. So the envelope of any part of a row that
   // holds a cell's nearest sample gives the cell what the whole row's does.
-  void stretch(int j, int a, int b) {
+  // The samples of cells a..b off first..last are pruned.
+  void stretch(int j, int a, int b, int first, int last) {
     const std::size_t row = std::size_t(j) * r.w;
     const float big = 1e20f;
-    envelope_1d(f.data() + row + a, b - a + 1, big, base + a, 0, e, [&](int q0, int q1, int s, double fs) {
-      int* dc = d.data() + row + a;
-      int* nc = nearest.data() + row + a;
-      if (s < 0) {  // no seed: `big`, beyond cap
-        std::fill(dc + q0, dc + q1 + 1, cap);
-        std::fill(nc + q0, nc + q1 + 1, -1);
-        return;
-      }
-      const int to = row_of[row + a + s] * r.w + a + s;
-      // fs, a kept sample's, is a squared integer: every cell gets `to`.
-      std::fill(nc + q0, nc + q1 + 1, to);
-      if (cap <= (1 << 23)) {
-        // (q - s)^2 + fs in integers: the float below is exact up to 2^23, and beyond it is
-        // at cap (the same values, a third of the instructions).
-        long long v = (long long)(q0 - s) * (q0 - s) + (long long)(fs), step = 2LL * (q0 - s) + 1;
-        for (int q = q0; q <= q1; ++q, v += step, step += 2) dc[q] = v < cap ? int(v) : cap;
-        return;
-      }
-      for (int q = q0; q <= q1; ++q) {
-        const double dq = double(q - s);
-        const float o = float(dq * dq + fs);
-        // Squared distances are integers (exact in float below 2^24, and every float above
-        // 2^23 is an integer): rounding is a truncation of x + 0.5.
-        dc[q] = o >= float(cap) ? cap : int(o + 0.5f);
-      }
-    });
+    // Locals, not members: the stores to d would otherwise reload them (they may alias,
+    // for the compiler) at every run and every cell.
+    int* const dc = d.data() + row + a;
+    int* const nc = nearest.data() + row + a;
+    const int* const of = row_of.data() + row + a;
+    const int c = cap, w = r.w;
+    envelope_1d(f.data() + row + a, b - a + 1, first - a, last - a, big, base + a, e,
+                [=](int q0, int q1, int s, double fs) {
+                  if (s < 0) {  // no seed: `big`, beyond cap
+                    std::fill(dc + q0, dc + q1 + 1, c);
+                    std::fill(nc + q0, nc + q1 + 1, -1);
+                    return;
+                  }
+                  const int to = of[s] * w + a + s;
+                  // fs, a kept sample's, is a squared integer: every cell gets `to`.
+                  if (c <= (1 << 23)) {
+                    // (q - s)^2 + fs in integers: the float below is exact up to 2^23, and beyond it is
+                    // at cap (the same values, a third of the instructions). `to` in the same loop: the
+                    // runs are short (3-4 cells), a fill of its own costs more than its stores.
+                    long long v = (long long)(q0 - s) * (q0 - s) + (long long)(fs), step = 2LL * (q0 - s) + 1;
+                    for (int q = q0; q <= q1; ++q, v += step, step += 2) {
+                      dc[q] = v < c ? int(v) : c;
+                      nc[q] = to;
+                    }
+                    return;
+                  }
+                  std::fill(nc + q0, nc + q1 + 1, to);
+                  for (int q = q0; q <= q1; ++q) {
+                    const double dq = double(q - s);
+                    const float o = float(dq * dq + fs);
+                    // Squared distances are integers (exact in float below 2^24, and every float above
+                    // 2^23 is an integer): rounding is a truncation of x + 0.5.
+                    dc[q] = o >= float(c) ? c : int(o + 0.5f);
+                  }
+                });
   }
 
   // The first kept sample of row j at column i or after, up to hi (hi + 1: none); the
@@ -223,7 +247,7 @@ struct RowPass {
   // pruned samples.
   void part(int j, int lo, int hi, int g0, int g1) {
     if (!prune) {
-      stretch(j, lo, hi);
+      stretch(j, lo, hi, lo, hi);
       return;
     }
     const float* frow = f.data() + std::size_t(j) * r.w;
@@ -235,7 +259,7 @@ struct RowPass {
         if (frow[k] < 1e20f) last = k, end = std::min(hi, k + 2 * near - 2);
       const int a = std::max(lo, i - near + 1), b = std::min(hi, last + near - 1);
       off(j, done, a, false);
-      stretch(j, a, b);
+      stretch(j, a, b, i, last);
       done = b + 1;
       i = next_kept(frow, last + 2 * near - 1, hi, g0, g1);  // the scan above found none before
     }
@@ -354,13 +378,15 @@ Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>&
     // between seeds are transformed, each with the seeds that bound it; the rest costs a write.
     const float* frow = f.data() + row;
     for (int i = lo; i <= hi;) {
-      if (frow[i] == 0) {
-        rows.off(j, i, i + 1, true);
-        ++i;
+      if (frow[i] == 0) {  // a run of seeds (the gap holds none)
+        int e = i + 1;
+        while (e <= hi && frow[e] == 0) ++e;
+        rows.off(j, i, e, true);
+        i = e;
         continue;
       }
-      int b = i <= g1 && i >= g0 ? g1 : i;  // the gap holds no seed
-      while (b < hi && frow[b + 1] != 0) b = b + 1 == g0 ? g1 : b + 1;
+      // (The gap holds no seed.)
+      const int b = run_end(i <= g1 && i >= g0 ? g1 : i, hi + 1, g0, g1, [&](int c) { return frow[c] != 0; });
       rows.part(j, std::max(lo, i - 1), std::min(hi, b + 1), g0, g1);
       i = b + 2;  // b + 1, a seed, was done with the run
     }

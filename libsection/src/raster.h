@@ -107,6 +107,19 @@ void for_runs(const Spans* spans, int j, int w, const Fn& fn) {
   fn(spans->gap_hi[j] + 1, hi + 1);
 }
 
+/// The last column of the run from column i (which holds) of the columns before `end` for
+/// which holds(column) is true. A gap g0..g1 (none when g0 > g1) that the run reaches at
+/// its first column is stepped over, not read: its columns hold.
+template <class Holds>
+int run_end(int i, int end, int g0, int g1, const Holds& holds) {
+  for (;;) {
+    const int stop = g0 <= g1 && i < g0 ? std::min(end, g0) : end;
+    while (i + 1 < stop && holds(i + 1)) ++i;
+    if (g0 > g1 || i + 1 != g0 || g0 >= end) return i;
+    i = g1;
+  }
+}
+
 /// Calls fn(i) for each column i of row j's span whose cell in row k is off row k's span.
 template <class Fn>
 void each_beside_off_span(const Spans& spans, int j, int k, const Fn& fn) {
@@ -134,6 +147,13 @@ void each_beside_off_span(const Spans& spans, int j, int k, const Fn& fn) {
 Buffer<int> distance_transform(const Raster& r, const std::vector<std::uint8_t>& seed, int cap, int base,
                                Buffer<int>& nearest, Scratch& scratch, const Spans* spans = nullptr,
                                bool off_seeds = false);
+
+/// floor(x) as an int, for x in the range of int: from a truncation (std::floor is a long
+/// sequence without SSE4.1).
+inline int floor_int(double x) {
+  const int t = int(x);
+  return t - (double(t) > x);
+}
 
 /// Smallest r with r * r >= x.
 int ceil_sqrt(int x);
