@@ -255,6 +255,35 @@ ClosestPoint refine_samples(const BSpline& c, const Eigen::Vector2d& q, const st
   return best;
 }
 
+// Where fit_control_points sums a point's terms: a row meets the 2 p + 1 columns within p
+// of it at most: slot p + (column - row), p - a + b for a span's basis functions a, b
+// without a wrap, or the column itself when n <= 2 p + 1 (closed).
+struct RowSlots {
+  explicit RowSlots(const BSpline& shape)
+      : shape(shape), n(control_count(shape)), p(shape.degree), slots(2 * p + 1), by_column(n <= slots) {}
+  int slot_of(int row, int column) const {
+    if (by_column) return column;
+    int d = column - row;
+    if (d > p) d -= n;
+    if (d < -p) d += n;
+    return d + p;
+  }
+  // Takes span j: its control points idx.
+  void span(long j) {
+    for (int r = 0; r <= p; ++r) idx[r] = control_index(shape, j - p + r);
+    plain = !by_column && idx[p] == idx[0] + p;
+  }
+  // The entry of the span's basis functions a, b.
+  std::size_t entry(int a, int b) const {
+    return static_cast<std::size_t>(idx[a]) * slots + (plain ? p - a + b : slot_of(idx[a], idx[b]));
+  }
+  const BSpline& shape;
+  const int n, p, slots;
+  const bool by_column;
+  int idx[max_degree + 1];
+  bool plain = false;
+};
+
 }  // namespace
 
 namespace detail {
@@ -389,24 +418,16 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   if (static_cast<int>(parameters.size()) < m)
     throw Error("fit_curve: " + std::to_string(m) + " points but only " + std::to_string(parameters.size()) +
                 " parameters");
-  // The data term summed per matrix entry in point order, first term first: the sums that
-  // setFromTriplets would form from one triplet per point and entry, without the triplets.
-  // A row meets the 2 p + 1 columns within p of it at most: slot p + (column - row), p - a + b for
-  // a point's basis functions a, b without a wrap, or the column itself when n <= 2 p + 1 (closed).
-  const int p = shape.degree, slots = 2 * p + 1;
-  const bool by_column = n <= slots;
-  auto slot_of = [&](int row, int column) {
-    if (by_column) return column;
-    int d = column - row;
-    if (d > p) d -= n;
-    if (d < -p) d += n;
-    return d + p;
-  };
+  // The data term summed per matrix entry in point order: the sums that setFromTriplets
+  // would form from one triplet per point and entry, without the triplets. The terms are
+  // non-negative (or NaN), so the first added to a zero is itself, and the entries a point
+  // touches are those of its span.
+  RowSlots at(shape);
+  const int p = at.p, slots = at.slots;
   std::vector<double> entries(static_cast<std::size_t>(n) * slots, 0.0);
-  std::vector<char> used(entries.size(), 0);
+  std::vector<char> used(entries.size(), 0), span_used(static_cast<std::size_t>(n), 0);
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
   BasisTable ders;  // row 0 written, only it read
-  int idx[max_degree + 1];
   double trace = 0;
   long j = -1;  // the last point's span
   for (int i = 0; i < m; ++i) {
@@ -416,19 +437,19 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
     j = find_span_near(shape, tn, j);
     basis_derivatives(shape, j, tn, 0, ders);
     const double* val = ders[0].data();
-    for (int r = 0; r <= p; ++r) idx[r] = control_index(shape, j - p + r);
-    const bool plain = !by_column && idx[p] == idx[0] + p;
+    at.span(j);
+    span_used[static_cast<std::size_t>(j)] = 1;
     for (int a = 0; a <= p; ++a) {
-      rhs.row(idx[a]) += w * val[a] * points[i].transpose();
-      const std::size_t row = static_cast<std::size_t>(idx[a]) * slots;
-      for (int b = 0; b <= p; ++b) {
-        const double v = w * val[a] * val[b];
-        const std::size_t e = row + (plain ? p - a + b : slot_of(idx[a], idx[b]));
-        entries[e] = used[e] ? entries[e] + v : v;
-        used[e] = 1;
-      }
+      rhs.row(at.idx[a]) += w * val[a] * points[i].transpose();
+      for (int b = 0; b <= p; ++b) entries[at.entry(a, b)] += w * val[a] * val[b];
       trace += w * val[a] * val[a];
     }
+  }
+  for (long s = 0; s < n; ++s) {
+    if (!span_used[static_cast<std::size_t>(s)]) continue;
+    at.span(s);
+    for (int a = 0; a <= p; ++a)
+      for (int b = 0; b <= p; ++b) used[at.entry(a, b)] = 1;
   }
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(static_cast<std::size_t>(n) * (2 * shape.degree + 1 + 9));
@@ -436,7 +457,7 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
     for (int e = 0; e < slots; ++e) {
       const std::size_t k = static_cast<std::size_t>(r) * slots + e;
       if (!used[k]) continue;
-      const int column = by_column ? e : (r + e - p + n) % n;
+      const int column = at.by_column ? e : (r + e - p + n) % n;
       trip.emplace_back(r, column, entries[k]);
     }
   // Second differences of the control polygon keep the system regular where spans hold

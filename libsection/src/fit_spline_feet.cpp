@@ -48,7 +48,9 @@ double median_nonnegative(std::vector<double> v) {
   const int shift = std::max(top + 1 - digits, 0);
   const std::uint64_t mask = (std::uint64_t(1) << digits) - 1;
   auto bucket = [&](double x) { return static_cast<std::size_t>((bits(x) >> shift) & mask); };
-  std::vector<std::size_t> count(std::size_t(1) << digits, 0);
+  // 32-bit counts: half the table to clear (a selection over more points goes to `median`).
+  if (v.size() > std::numeric_limits<std::uint32_t>::max()) return median(std::move(v));
+  std::vector<std::uint32_t> count(std::size_t(1) << digits, 0);
   for (double x : v) ++count[bucket(x)];
   const std::size_t mid = v.size() / 2;
   std::size_t b = 0, below = 0;

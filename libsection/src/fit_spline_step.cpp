@@ -163,11 +163,9 @@ void analyse(const Normal& eq, std::vector<char> skipped, double fairness, StepS
   system_terms(eq, skipped, fairness, [&](int r, int c, double v) { trip.emplace_back(r, c, v); });
   Eigen::SparseMatrix<double> H(2 * eq.n, 2 * eq.n);
   H.setFromTriplets(trip.begin(), trip.end());
-  {
-    Eigen::SparseMatrix<double> full;
-    full = H.selfadjointView<Eigen::Lower>();
-    Eigen::AMDOrdering<int>()(full, solver.Pinv);
-  }
+  // The solver orders the full matrix A as A' + A; A is symmetric, so that sum has A's
+  // entries in A's order, and the view's overload orders A itself without forming it.
+  Eigen::AMDOrdering<int>()(H.selfadjointView<Eigen::Lower>(), solver.Pinv);
   solver.P = solver.Pinv.inverse();
   for (Eigen::Index e = 0; e < H.nonZeros(); ++e) H.valuePtr()[e] = static_cast<double>(e);
   solver.permuted.resize(H.rows(), H.cols());
