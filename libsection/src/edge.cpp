@@ -188,8 +188,9 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
 std::pair<double, double> angular_arc(const SampledProfile& pr, double t_tip, const Eigen::Vector2d& c,
                                       const Eigen::Vector2d& d, double half) {
   const AngleNear near(half);
+  detail::PiecewiseCurve::Cursor at;  // the walk's steps: the span before is tried first
   auto past = [&](double t) {
-    const Eigen::Vector2d q = pr.fast.point(t) - c;
+    const Eigen::Vector2d q = pr.fast.point(pr.fast.locate(t, at)) - c;
     return near(cross(d, q), d.dot(q)) > half;
   };
   const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
@@ -225,12 +226,15 @@ std::pair<double, double> core_arc(const SampledProfile& pr, double t_tip, const
 // overshoot sqrt(2 R tau), never inside the core's end `keep`.
 double grown_end(const SampledProfile& pr, double t_tip, int dir, double h, const CircleFit& current,
                  const Eigen::Vector2d& mid_dir, double tau, double cap, double keep) {
-  auto residual = [&](double t) { return (pr.fast.point(t) - current.center).norm() - current.radius; };
+  detail::PiecewiseCurve::Cursor at;  // the walk's steps: the span before is tried first
+  auto residual = [&](double t) {
+    return (pr.fast.point(pr.fast.locate(t, at)) - current.center).norm() - current.radius;
+  };
   const AngleNear near(cap);
   double a = t_tip, last_in = t_tip;
   for (double walked = 0; walked < 0.5 * pr.period; walked += h) {
     const double b = a + dir * h;
-    const Eigen::Vector2d q = pr.fast.point(b) - current.center;
+    const Eigen::Vector2d q = pr.fast.point(pr.fast.locate(b, at)) - current.center;
     const double res = q.norm() - current.radius;
     if (res > std::max(20 * tau, 0.2 * current.radius) || near(cross(mid_dir, q), mid_dir.dot(q)) > cap)
       break;

@@ -134,7 +134,8 @@ void caliper(const detail::PiecewiseCurve& f, const CamberResult& camber, Sectio
   const int n = 2000;
   const double t0 = f.t_min(), period = f.t_max() - t0;
   std::vector<Eigen::Vector2d> s(n);
-  for (int i = 0; i < n; ++i) s[i] = f.point(t0 + period * i / n);
+  detail::PiecewiseCurve::Cursor at;  // in order: the span before is tried first
+  for (int i = 0; i < n; ++i) s[i] = f.point(f.locate(t0 + period * i / n, at));
   auto index_of = [&](double t) {
     double r = std::fmod(t - t0, period);
     if (r < 0) r += period;

@@ -17,7 +17,9 @@ double piece_length(const PiecewiseCurve& f, double a, double b) {
   static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
                               0.2369268850561891};
   double sum = 0;
-  for (int i = 0; i < 5; ++i) sum += w[i] * f.jet(0.5 * (a + b) + 0.5 * (b - a) * x[i]).d1.norm();
+  PiecewiseCurve::Cursor at;  // the nodes lie in one span or a few
+  for (int i = 0; i < 5; ++i)
+    sum += w[i] * f.jet(f.locate(0.5 * (a + b) + 0.5 * (b - a) * x[i], at)).d1.norm();
   return 0.5 * (b - a) * sum;
 }
 

@@ -192,7 +192,8 @@ bool ray_hit(const SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Ve
   if (seg < 0) return false;
   // Safeguarded secant on g(t) = d x (C(t) - m) inside the bracketing span.
   double a = pr.ts[seg], b = a + pr.period / n;
-  auto g = [&](double t) { return cross(d, pr.fast.point(t) - m); };
+  PiecewiseCurve::Cursor at;  // the bracket narrows: its span is tried first
+  auto g = [&](double t) { return cross(d, pr.fast.point(pr.fast.locate(t, at)) - m); };
   double ga = g(a), gb = g(b);
   for (int it = 0; it < 100 && std::abs(b - a) > 1e-15 * pr.period; ++it) {
     double t = ga == gb ? 0.5 * (a + b) : a - ga * (b - a) / (gb - ga);
