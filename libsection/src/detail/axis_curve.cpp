@@ -70,9 +70,10 @@ double ArcLengthTable::param(double target) const {
       std::min<std::size_t>(std::upper_bound(s.begin(), s.end(), target) - s.begin(), s.size() - 1);
   const std::size_t k = std::max<std::size_t>(i, 1);
   double x = t[k - 1] + (t[k] - t[k - 1]) * (target - s[k - 1]) / std::max(s[k] - s[k - 1], 1e-300);
+  PiecewiseCurve::Cursor at;  // Newton's steps are short: the span before is tried first
   for (int it = 0; it < 3; ++it) {
     const double err = s[k - 1] + piece_length(f, t[k - 1], x) - target;
-    x -= err / std::max(f.jet(x).d1.norm(), 1e-300);
+    x -= err / std::max(f.jet(f.locate(x, at)).d1.norm(), 1e-300);
   }
   return x;
 }
