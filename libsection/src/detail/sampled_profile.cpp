@@ -75,7 +75,8 @@ SampledProfile::SampledProfile(const BSpline& c, PiecewiseCurve f, int count, bo
   if (!with_runs) return;
   const std::size_t n = samples.size(), k = run_samples;
   for (std::size_t i = 0; i < n; i += k) runs.push_back(segment_of(samples, i, std::min(n, i + k)));
-  for (std::size_t i = 0; i < n; i += k * k) long_runs.push_back(run_of(samples, i, std::min(n, i + k * k)));
+  for (std::size_t i = 0; i < n; i += k * long_run)
+    long_runs.push_back(run_of(samples, i, std::min(n, i + k * long_run)));
 }
 
 namespace {
@@ -156,8 +157,9 @@ bool SampledProfile::sample_within(const Eigen::Vector2d& q, double r) const {
   if (!(r > 0)) return false;  // no distance is less (none is NaN)
   // Only the samples of the runs within reach of q are compared, with the same distance
   // as sample_distance's. A run's samples lie r or more from q, also as rounded, when q
-  // lies farther from its center than its radius plus r, each widened by a million times
-  // the rounding of the distances (q's |q|_1 + r bounds its share).
+  // lies farther from its circle's center (its segment) than its radius (spread) plus r,
+  // each widened by a million times the rounding of the distances (q's |q|_1 + r bounds
+  // its share).
   const double reach = r + 1e-9 * (q.cwiseAbs().sum() + r);
   auto beyond = [&](const Run& run) {
     return (run.center - q).squaredNorm() > std::pow(run.reach + reach, 2);
@@ -168,7 +170,7 @@ bool SampledProfile::sample_within(const Eigen::Vector2d& q, double r) const {
                        [&](const Eigen::Vector2d& p) { return std::sqrt((p - q).squaredNorm()) < r; });
   for (std::size_t l = 0; l < long_runs.size(); ++l) {
     if (beyond(long_runs[l])) continue;
-    for (std::size_t j = l * k; j < std::min(runs.size(), (l + 1) * k); ++j) {
+    for (std::size_t j = l * long_run; j < std::min(runs.size(), (l + 1) * long_run); ++j) {
       if (segment_offset(runs[j], q).squaredNorm() > std::pow(runs[j].reach + reach, 2)) continue;
       for (std::size_t i = j * k; i < std::min(n, (j + 1) * k); ++i)
         if (std::sqrt((samples[i] - q).squaredNorm()) < r) return true;

@@ -59,12 +59,12 @@ struct SampledProfile {
     double inverse_length2;  ///< 1 / |ab|^2, 0 for a point
     double reach;
   };
-  /// Runs of run_samples samples (the last may be shorter), and runs of run_samples^2
-  /// samples: sample_within passes over the runs far from q at once (none: it compares
-  /// every sample).
+  /// Runs of run_samples samples (the last may be shorter), and runs of long_run of those
+  /// (48 samples): sample_within passes over the runs far from q at once (none: it
+  /// compares every sample). The sizes give the fewest instructions on blade profiles.
   std::vector<Segment> runs;
   std::vector<Run> long_runs;
-  static constexpr int run_samples = 8;
+  static constexpr std::size_t run_samples = 12, long_run = 4;
 
   /// Throws section::Error `camber: ...` when `c` is open, too short or degenerate.
   SampledProfile(const BSpline& c, int count);
