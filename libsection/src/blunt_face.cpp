@@ -69,13 +69,16 @@ double largest_step(const std::vector<Eigen::Vector2d>& p) {
 
 // The first point of `p` (consecutive points at most `step` apart) farthest along the unit
 // f, as a full scan finds it. Point i + k lies at most h_i + k step along f, so the points
-// after i that cannot reach the best height known (from every 8th point), less two steps
-// for the rounding, are passed over: every point at the greatest height is still visited,
-// in order.
-int first_highest(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f, double step) {
+// after i that cannot reach the best height known (point `hint`'s, the highest along a
+// direction close to f; else from every 8th point), less two steps for the rounding, are
+// passed over: every point at the greatest height is still visited, in order.
+int first_highest(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f, double step, int hint) {
   const int m = static_cast<int>(p.size()) - 1;
   double bound = -std::numeric_limits<double>::infinity();
-  for (int i = 0; i <= m; i += 8) bound = std::max(bound, p[i].dot(f));
+  if (hint >= 0)
+    bound = p[hint].dot(f);
+  else
+    for (int i = 0; i <= m; i += 8) bound = std::max(bound, p[i].dot(f));
   int top = 0;
   double hmax = p[0].dot(f);
   for (int i = 1; i <= m;) {
@@ -95,11 +98,12 @@ struct CapRange {
 
 // The cap of `p` (consecutive points at most `step` apart) within `depth` below its
 // extreme point along f: its points into `out` and its width across f; -1 when the cap
-// runs out of `p` (not an edge).
+// runs out of `p` (not an edge). `top`: the extreme point along the direction before
+// (-1: none), replaced by this one.
 double cap_along(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& f, double step, double depth,
-                 CapRange& out) {
+                 CapRange& out, int& top) {
   const int m = static_cast<int>(p.size()) - 1;
-  const int top = first_highest(p, f, step);
+  top = first_highest(p, f, step, top);
   const double hmax = p[top].dot(f);
   int a = top, b = top;
   while (a > 0 && p[a - 1].dot(f) >= hmax - depth) --a;
@@ -143,13 +147,14 @@ bool straightest_cap(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2
   const double step = largest_step(p);
   std::vector<CapRange> caps;
   bool wide_enough = false;
+  int top = -1;
   for (int k = -40; k <= 40; ++k) {
     const double a = k * pi / 180;
     const Eigen::Vector2d g =
         Eigen::Vector2d(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y())
             .normalized();
     CapRange cap;
-    const double width = cap_along(p, g, step, depth, cap);
+    const double width = cap_along(p, g, step, depth, cap, top);
     if (width < 0 || cap.size() < 3) continue;
     caps.push_back(cap);
     if (!(std::hypot(width, depth) * (1 + 1e-6) < min_width)) wide_enough = true;

@@ -50,8 +50,9 @@ Foot foot(const SampledProfile& pr, const Eigen::Vector2d& q) {
   f.inside = crossings % 2 == 1;
   double t = pr.ts[pr.nearest(q)];
   const double h = pr.period / n;
+  detail::PiecewiseCurve::Cursor at;  // Newton's steps are short: the span before is tried first
   for (int it = 0; it < 30; ++it) {
-    const detail::CurveJet j = pr.fast.jet(t);
+    const detail::CurveJet j = pr.fast.jet(pr.fast.locate(t, at));
     const Eigen::Vector2d e = j.point - q;
     const double g = e.dot(j.d1), dg = j.d1.squaredNorm() + e.dot(j.d2);
     if (!(dg > 0)) break;
@@ -59,7 +60,7 @@ Foot foot(const SampledProfile& pr, const Eigen::Vector2d& q) {
     t -= step;
     if (std::abs(step) < 1e-14 * pr.period) break;
   }
-  f.distance = std::min((pr.fast.point(t) - q).norm(), pr.sample_distance(q));
+  f.distance = std::min((pr.fast.point(pr.fast.locate(t, at)) - q).norm(), pr.sample_distance(q));
   return f;
 }
 
@@ -75,13 +76,14 @@ double extent(const SampledProfile& pr, const Eigen::Vector2d& e) {
   auto refine = [&](int i, double sign) {
     double t = pr.ts[i], best = sign * pr.samples[i].dot(e);
     const double h = pr.period / n;
+    detail::PiecewiseCurve::Cursor at;  // Newton's steps are short: the span before is tried first
     for (int it = 0; it < 30; ++it) {
-      const detail::CurveJet j = pr.fast.jet(t);
+      const detail::CurveJet j = pr.fast.jet(pr.fast.locate(t, at));
       const double g = sign * j.d1.dot(e), dg = sign * j.d2.dot(e);
       if (!(dg < 0)) break;
       const double step = std::clamp(g / dg, -h, h);
       t -= step;
-      best = std::max(best, sign * pr.fast.point(t).dot(e));
+      best = std::max(best, sign * pr.fast.point(pr.fast.locate(t, at)).dot(e));
       if (std::abs(step) < 1e-14 * pr.period) break;
     }
     return best;
@@ -294,9 +296,10 @@ PointsNoise points_noise(const SampledProfile& pr, const std::vector<Eigen::Vect
   if (n < 12) return {};
   std::vector<double> scatter;
   scatter.reserve(n);
+  detail::PiecewiseCurve::Cursor span_at;  // in order: the span before is tried first
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = order[k].second;
-    const detail::CurveJet j = pr.fast.jet(order[k].first);
+    const detail::CurveJet j = pr.fast.jet(pr.fast.locate(order[k].first, span_at));
     const Eigen::Vector2d along = j.d1.normalized(), normal = detail::left_normal(along);
     // The quadratic y(x) through the four neighbours (x along the profile's tangent, y
     // along its normal), predicted at the point: the residual over its standard deviation

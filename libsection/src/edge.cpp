@@ -53,16 +53,38 @@ std::pair<double, double> walk_until(const SampledProfile& pr, double t, int dir
   return {a, b};
 }
 
+// |atan2(y, x)| (y = cross(d, q), x = d.dot(q): the angle between d and q) where it lies
+// within about 1e-9 of `limit`, else a stand-in on the same side of the limit, 0 below and
+// pi above: walks compare it with the limit, and the arctangent was their costliest step.
+// The side is told by sin(angle - limit), of the sign of cos(limit) |y| - sin(limit) x,
+// with a margin of a million times its rounding (and the arctangent's).
+class AngleNear {
+public:
+  explicit AngleNear(double limit)
+      : cos_(std::cos(limit)), sin_(std::sin(limit)), told_(limit > 0 && limit < pi) {}
+  double operator()(double y, double x) const {
+    const double side = cos_ * std::abs(y) - sin_ * x, margin = 1e-9 * (std::abs(x) + std::abs(y));
+    if (told_ && side < -margin) return 0;
+    if (told_ && side > margin) return pi;
+    return std::abs(std::atan2(y, x));  // near the limit, or NaN
+  }
+
+private:
+  double cos_, sin_;
+  bool told_;  // a limit in (0, pi): the stand-ins compare as the angle
+};
+
 // Parameter where the outward normal has turned by `angle` (radians) from direction d,
 // walking from t_tip in `direction` (+1 forward, -1 backward); stops after half a period.
 double arc_end(const SampledProfile& pr, double t_tip, const Eigen::Vector2d& d, double angle, int direction,
                const Eigen::Vector2d& center, double reach) {
   // Past the angle, or leaving the end circle's neighbourhood (a flank facing the same
   // way as the edge, as on a highly staggered blade): the value is > angle.
+  const AngleNear near(angle);
   auto turn = [&](double t) {
     const Eigen::Vector2d nn = pr.outward(t);
     if ((pr.fast.point(t) - center).norm() > reach) return 4.0;
-    return std::abs(std::atan2(cross(d, nn), d.dot(nn)));
+    return near(cross(d, nn), d.dot(nn));
   };
   const double h = pr.period / static_cast<double>(pr.samples.size());
   bool found = false;
@@ -165,9 +187,11 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
 // a fitted profile).
 std::pair<double, double> angular_arc(const SampledProfile& pr, double t_tip, const Eigen::Vector2d& c,
                                       const Eigen::Vector2d& d, double half) {
+  const AngleNear near(half);
+  detail::PiecewiseCurve::Cursor at;  // the walk's steps: the span before is tried first
   auto past = [&](double t) {
-    const Eigen::Vector2d q = pr.fast.point(t) - c;
-    return std::abs(std::atan2(cross(d, q), d.dot(q))) > half;
+    const Eigen::Vector2d q = pr.fast.point(pr.fast.locate(t, at)) - c;
+    return near(cross(d, q), d.dot(q)) > half;
   };
   const double h = pr.period / (2.0 * pr.samples.size());  // then bisected
   bool found = false;
@@ -202,14 +226,17 @@ std::pair<double, double> core_arc(const SampledProfile& pr, double t_tip, const
 // overshoot sqrt(2 R tau), never inside the core's end `keep`.
 double grown_end(const SampledProfile& pr, double t_tip, int dir, double h, const CircleFit& current,
                  const Eigen::Vector2d& mid_dir, double tau, double cap, double keep) {
-  auto residual = [&](double t) { return (pr.fast.point(t) - current.center).norm() - current.radius; };
+  detail::PiecewiseCurve::Cursor at;  // the walk's steps: the span before is tried first
+  auto residual = [&](double t) {
+    return (pr.fast.point(pr.fast.locate(t, at)) - current.center).norm() - current.radius;
+  };
+  const AngleNear near(cap);
   double a = t_tip, last_in = t_tip;
   for (double walked = 0; walked < 0.5 * pr.period; walked += h) {
     const double b = a + dir * h;
-    const Eigen::Vector2d q = pr.fast.point(b) - current.center;
+    const Eigen::Vector2d q = pr.fast.point(pr.fast.locate(b, at)) - current.center;
     const double res = q.norm() - current.radius;
-    if (res > std::max(20 * tau, 0.2 * current.radius) ||
-        std::abs(std::atan2(cross(mid_dir, q), mid_dir.dot(q))) > cap)
+    if (res > std::max(20 * tau, 0.2 * current.radius) || near(cross(mid_dir, q), mid_dir.dot(q)) > cap)
       break;
     if (res <= tau) last_in = b;
     a = b;

@@ -100,6 +100,7 @@ double area_of(const BSpline& curve, const detail::PiecewiseCurve& f, Eigen::Vec
   // About a local origin far from 0: x^2 y' at 1e6 keeps few digits of the centroid.
   const Eigen::Vector2d origin = detail::local_origin(curve.control);
   double area = 0, mx = 0, my = 0;
+  detail::PiecewiseCurve::Cursor at;              // in order: the span before is tried first
   const int sub = std::max(1, curve.degree / 3);  // higher degrees: split each span
   for (std::size_t k = 0; k + 1 < curve.knots.size(); ++k)
     for (int q = 0; q < sub; ++q) {
@@ -107,7 +108,7 @@ double area_of(const BSpline& curve, const detail::PiecewiseCurve& f, Eigen::Vec
       const double b = curve.knots[k] + (curve.knots[k + 1] - curve.knots[k]) * (q + 1) / sub;
       for (int i = 0; i < 5; ++i) {
         const double t = 0.5 * (a + b) + 0.5 * (b - a) * x[i];
-        const detail::CurveJet j = f.jet(t);
+        const detail::CurveJet j = f.jet(f.locate(t, at));
         const Eigen::Vector2d p = j.point - origin;
         const double ww = 0.5 * (b - a) * w[i];
         area += ww * 0.5 * cross(p, j.d1);
@@ -134,7 +135,8 @@ void caliper(const detail::PiecewiseCurve& f, const CamberResult& camber, Sectio
   const int n = 2000;
   const double t0 = f.t_min(), period = f.t_max() - t0;
   std::vector<Eigen::Vector2d> s(n);
-  for (int i = 0; i < n; ++i) s[i] = f.point(t0 + period * i / n);
+  detail::PiecewiseCurve::Cursor at;  // in order: the span before is tried first
+  for (int i = 0; i < n; ++i) s[i] = f.point(f.locate(t0 + period * i / n, at));
   auto index_of = [&](double t) {
     double r = std::fmod(t - t0, period);
     if (r < 0) r += period;

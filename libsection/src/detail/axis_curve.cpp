@@ -17,7 +17,9 @@ double piece_length(const PiecewiseCurve& f, double a, double b) {
   static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
                               0.2369268850561891};
   double sum = 0;
-  for (int i = 0; i < 5; ++i) sum += w[i] * f.jet(0.5 * (a + b) + 0.5 * (b - a) * x[i]).d1.norm();
+  PiecewiseCurve::Cursor at;  // the nodes lie in one span or a few
+  for (int i = 0; i < 5; ++i)
+    sum += w[i] * f.jet(f.locate(0.5 * (a + b) + 0.5 * (b - a) * x[i], at)).d1.norm();
   return 0.5 * (b - a) * sum;
 }
 
@@ -68,9 +70,10 @@ double ArcLengthTable::param(double target) const {
       std::min<std::size_t>(std::upper_bound(s.begin(), s.end(), target) - s.begin(), s.size() - 1);
   const std::size_t k = std::max<std::size_t>(i, 1);
   double x = t[k - 1] + (t[k] - t[k - 1]) * (target - s[k - 1]) / std::max(s[k] - s[k - 1], 1e-300);
+  PiecewiseCurve::Cursor at;  // Newton's steps are short: the span before is tried first
   for (int it = 0; it < 3; ++it) {
     const double err = s[k - 1] + piece_length(f, t[k - 1], x) - target;
-    x -= err / std::max(f.jet(x).d1.norm(), 1e-300);
+    x -= err / std::max(f.jet(f.locate(x, at)).d1.norm(), 1e-300);
   }
   return x;
 }

@@ -14,8 +14,9 @@ bool solve_circle(const PiecewiseCurve& curve, const Eigen::Vector2d& p, const E
   double lambda = 0;
   const double tol = 1e-13 * scale;
   double previous = std::numeric_limits<double>::infinity();
+  PiecewiseCurve::Cursor at_a, at_b;  // the contacts move little: their spans are tried first
   for (int it = 0; it < 30; ++it) {
-    const CurveJet ja = curve.jet(ta), jb = curve.jet(tb);
+    const CurveJet ja = curve.jet(curve.locate(ta, at_a)), jb = curve.jet(curve.locate(tb, at_b));
     const Eigen::Vector2d &a = ja.point, &a1 = ja.d1, &a2 = ja.d2, &b = jb.point, &b1 = jb.d1, &b2 = jb.d2;
     const Eigen::Vector2d c = p + lambda * n;
     const Eigen::Vector3d f((c - a).dot(a1), (c - b).dot(b1),
@@ -41,8 +42,8 @@ bool solve_circle(const PiecewiseCurve& curve, const Eigen::Vector2d& p, const E
       out.center = p + lambda * n;
       out.t_left = ta;
       out.t_right = tb;
-      out.left = curve.point(ta);
-      out.right = curve.point(tb);
+      out.left = curve.point(curve.locate(ta, at_a));
+      out.right = curve.point(curve.locate(tb, at_b));
       out.radius = 0.5 * ((out.center - out.left).norm() + (out.center - out.right).norm());
       if (kappa) {  // signed curvatures at the contacts, from the last iterate's derivatives
         kappa[0] = cross(a1, a2) / std::pow(a1.norm(), 3);
@@ -73,9 +74,10 @@ bool valid_circle(const SampledProfile& pr, const Eigen::Vector2d& n, const Insc
     const bool from_left = (end == 0) == (pr.sigma > 0);
     const double from = from_left ? c.t_left : c.t_right, to = from_left ? c.t_right : c.t_left;
     const double length = pr.forward(from, to);
+    PiecewiseCurve::Cursor at;  // in order: the span before is tried first
     for (int i = 1; i < 24; ++i) {
       const double t = from + length * (0.05 + 0.9 * i / 24.0);
-      if ((pr.fast.point(t) - c.center).norm() < r * (1 - 1e-4)) return false;
+      if ((pr.fast.point(pr.fast.locate(t, at)) - c.center).norm() < r * (1 - 1e-4)) return false;
     }
   }
   return !pr.sample_within(c.center, r * (1 - 1e-3));

@@ -10,9 +10,41 @@
 
 namespace section::detail {
 
+namespace {
+
+// The circle about the mean of samples [begin, end) through the farthest of them.
+SampledProfile::Run run_of(const std::vector<Eigen::Vector2d>& samples, std::size_t begin, std::size_t end) {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  for (std::size_t i = begin; i < end; ++i) center += samples[i];
+  center /= static_cast<double>(end - begin);
+  double radius = 0;
+  for (std::size_t i = begin; i < end; ++i) radius = std::max(radius, (samples[i] - center).norm());
+  return {center, radius + 1e-9 * (radius + center.cwiseAbs().sum())};
+}
+
+// The point of the segment nearest q, less q.
+Eigen::Vector2d segment_offset(const SampledProfile::Segment& s, const Eigen::Vector2d& q) {
+  const double t = std::clamp((q - s.a).dot(s.ab) * s.inverse_length2, 0.0, 1.0);
+  return s.a + t * s.ab - q;
+}
+
+// The segment of samples [begin, end).
+SampledProfile::Segment segment_of(const std::vector<Eigen::Vector2d>& samples, std::size_t begin,
+                                   std::size_t end) {
+  const Eigen::Vector2d ab = samples[end - 1] - samples[begin];
+  SampledProfile::Segment s{samples[begin], ab, ab.squaredNorm() > 0 ? 1 / ab.squaredNorm() : 0, 0};
+  double spread = 0;
+  for (std::size_t i = begin; i < end; ++i) spread = std::max(spread, segment_offset(s, samples[i]).norm());
+  s.reach = spread + 1e-9 * (spread + s.a.cwiseAbs().sum() + samples[end - 1].cwiseAbs().sum());
+  return s;
+}
+
+}  // namespace
+
 SampledProfile::SampledProfile(const BSpline& c, int count) : SampledProfile(c, PiecewiseCurve(c), count) {}
 
-SampledProfile::SampledProfile(const BSpline& c, PiecewiseCurve f, int count) : curve(c), fast(std::move(f)) {
+SampledProfile::SampledProfile(const BSpline& c, PiecewiseCurve f, int count, bool with_runs)
+    : curve(c), fast(std::move(f)) {
   if (!c.closed) throw Error("camber: the profile spline is open, a closed curve is needed");
   if (c.control.size() < 4) throw Error("camber: the profile spline has too few control points");
   t0 = c.t_min();
@@ -40,6 +72,11 @@ SampledProfile::SampledProfile(const BSpline& c, PiecewiseCurve f, int count) : 
   scale = (high - low).norm();
   if (!(scale > 0) || !std::isfinite(scale)) throw Error("camber: the profile is degenerate");
   sigma = area >= 0 ? 1 : -1;
+  if (!with_runs) return;
+  const std::size_t n = samples.size(), k = run_samples;
+  for (std::size_t i = 0; i < n; i += k) runs.push_back(segment_of(samples, i, std::min(n, i + k)));
+  for (std::size_t i = 0; i < n; i += k * long_run)
+    long_runs.push_back(run_of(samples, i, std::min(n, i + k * long_run)));
 }
 
 namespace {
@@ -117,13 +154,27 @@ double SampledProfile::sample_distance(const Eigen::Vector2d& q) const {
 }
 
 bool SampledProfile::sample_within(const Eigen::Vector2d& q, double r) const {
-  // As in sample_distance: the samples after i that cannot come nearer than r + two steps
-  // are skipped; a sample nearer than r is then never skipped.
-  const int n = static_cast<int>(samples.size());
-  for (int i = 0; i < n;) {
-    const double d = std::sqrt((samples[i] - q).squaredNorm());
-    if (d < r) return true;
-    i += samples_on(d - r, step, n);  // NaN gap (a non-finite q or r): the next
+  if (!(r > 0)) return false;  // no distance is less (none is NaN)
+  // Only the samples of the runs within reach of q are compared, with the same distance
+  // as sample_distance's. A run's samples lie r or more from q, also as rounded, when q
+  // lies farther from its circle's center (its segment) than its radius (spread) plus r,
+  // each widened by a million times the rounding of the distances (q's |q|_1 + r bounds
+  // its share).
+  const double reach = r + 1e-9 * (q.cwiseAbs().sum() + r);
+  auto beyond = [&](const Run& run) {
+    return (run.center - q).squaredNorm() > std::pow(run.reach + reach, 2);
+  };
+  const std::size_t n = samples.size(), k = run_samples;
+  if (runs.empty())
+    return std::any_of(samples.begin(), samples.end(),
+                       [&](const Eigen::Vector2d& p) { return std::sqrt((p - q).squaredNorm()) < r; });
+  for (std::size_t l = 0; l < long_runs.size(); ++l) {
+    if (beyond(long_runs[l])) continue;
+    for (std::size_t j = l * long_run; j < std::min(runs.size(), (l + 1) * long_run); ++j) {
+      if (segment_offset(runs[j], q).squaredNorm() > std::pow(runs[j].reach + reach, 2)) continue;
+      for (std::size_t i = j * k; i < std::min(n, (j + 1) * k); ++i)
+        if (std::sqrt((samples[i] - q).squaredNorm()) < r) return true;
+    }
   }
   return false;
 }
@@ -143,7 +194,8 @@ bool ray_hit(const SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Ve
   if (seg < 0) return false;
   // Safeguarded secant on g(t) = d x (C(t) - m) inside the bracketing span.
   double a = pr.ts[seg], b = a + pr.period / n;
-  auto g = [&](double t) { return cross(d, pr.fast.point(t) - m); };
+  PiecewiseCurve::Cursor at;  // the bracket narrows: its span is tried first
+  auto g = [&](double t) { return cross(d, pr.fast.point(pr.fast.locate(t, at)) - m); };
   double ga = g(a), gb = g(b);
   for (int it = 0; it < 100 && std::abs(b - a) > 1e-15 * pr.period; ++it) {
     double t = ga == gb ? 0.5 * (a + b) : a - ga * (b - a) / (gb - ga);

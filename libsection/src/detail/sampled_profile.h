@@ -45,11 +45,32 @@ struct SampledProfile {
   std::vector<Eigen::Vector2d> samples;
   std::vector<double> ts;  ///< parameter of each sample
   double step = 0;         ///< largest distance between consecutive samples, rounded up
+  /// A circle holding a run of consecutive samples, its radius widened by a million
+  /// times the rounding of the distances to them (see sample_within).
+  struct Run {
+    Eigen::Vector2d center;
+    double reach;
+  };
+  /// The segment from a run's first sample to its last (a + t ab, 0 <= t <= 1), and the
+  /// run's largest distance from it widened as a Run's radius: tighter than a circle
+  /// where the profile is nearly straight.
+  struct Segment {
+    Eigen::Vector2d a, ab;
+    double inverse_length2;  ///< 1 / |ab|^2, 0 for a point
+    double reach;
+  };
+  /// Runs of run_samples samples (the last may be shorter), and runs of long_run of those
+  /// (48 samples): sample_within passes over the runs far from q at once (none: it
+  /// compares every sample). The sizes give the fewest instructions on blade profiles.
+  std::vector<Segment> runs;
+  std::vector<Run> long_runs;
+  static constexpr std::size_t run_samples = 12, long_run = 4;
 
   /// Throws section::Error `camber: ...` when `c` is open, too short or degenerate.
   SampledProfile(const BSpline& c, int count);
-  /// The same with `f`, c's piecewise form, already made (one for every sampling of c).
-  SampledProfile(const BSpline& c, PiecewiseCurve f, int count);
+  /// The same with `f`, c's piecewise form, already made (one for every sampling of c);
+  /// `with_runs` false leaves out the runs, for a profile sample_within is not asked of.
+  SampledProfile(const BSpline& c, PiecewiseCurve f, int count, bool with_runs = true);
 
   double wrap(double t) const { return t0 + std::fmod(std::fmod(t - t0, period) + period, period); }
   /// Parameter distance going forward (in the curve's direction) from a to b.
@@ -64,7 +85,7 @@ struct SampledProfile {
   /// Distance from q to the nearest sample.
   double sample_distance(const Eigen::Vector2d& q) const;
   /// True when a sample is nearer q than r: sample_distance(q) < r, told without finding
-  /// the nearest (at the first such sample, skipping by r rather than the best so far).
+  /// the nearest (at the first such sample, skipping the runs that lie r or more away).
   bool sample_within(const Eigen::Vector2d& q, double r) const;
   /// Outward unit normal at t.
   Eigen::Vector2d outward(double t) const {

@@ -261,7 +261,7 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   SectionCamber m = measure(local, pr, opt, q);
   CheckOptions checks;
   checks.noise = opt.profile_noise;
-  const detail::SampledProfile sampled(local, pr.fast, detail::check_samples);  // for both checks
+  const detail::SampledProfile sampled(local, pr.fast, detail::check_samples, false);  // for both checks
   // Few points for the fit's coefficients: their own scatter, which its rms may hide.
   if (q.all.size() < 16 * local.control.size()) {
     const PointsNoise scatter = detail::points_noise(sampled, q.all);
