@@ -19,6 +19,7 @@
 # Usage: scripts/bench.sh [SIZES...]       (default 0.25 0.5 1 5 20)
 # Env:   BUILD_DIR (default build), BENCH_DIR (default /tmp/libsection-bench),
 #        REPEAT (default 1: runs per timing, the minimum is kept), PEER=0 skips Python,
+#        PEER_PYTHON (default python3: the interpreter that runs the peers),
 #        ROWS=0 skips the rows case, MESH=0 the mesh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,6 +28,9 @@ BUILD="${BUILD_DIR:-build}"
 WORK="${BENCH_DIR:-/tmp/libsection-bench}"
 REPEAT="${REPEAT:-1}"
 PEER="${PEER:-1}"
+# The peers' interpreter: a virtual environment with numpy, scipy, trimesh and plyfile keeps
+# their PyPI versions away from the Debian numpy that the Python module's tests import.
+PEER_PYTHON="${PEER_PYTHON:-python3}"
 # A build tree is brought up to date; a copy of built tools and libraries (tools/, bench/,
 # libsection/, as /work/baseline-*) is run as it is.
 if [ -f "$BUILD/CMakeCache.txt" ]; then
@@ -102,7 +106,7 @@ bench_pipe() {
   fi
   if [ "$PEER" = 1 ]; then
     # shellcheck disable=SC2086
-    timed python3 "$SRC/scripts/peers/slice_peer.py" "$ply" $peer_args
+    timed "$PEER_PYTHON" "$SRC/scripts/peers/slice_peer.py" "$ply" $peer_args
     local peer_fitted
     peer_fitted=$(sed -E 's/.*sections=([0-9]+).*/\1/' "$WORK/last.out")
     row "$m" "python peer (spline)" "$WALL" "$PEAK_MB" "$peer_fitted sections"
@@ -151,7 +155,7 @@ if [ "${MESH:-1}" = 1 ]; then
   slice_s=$WALL
   row mesh "slice 20 (1M tri)" "$WALL" "$PEAK_MB" ""
   if [ "$PEER" = 1 ]; then
-    timed python3 "$SRC/scripts/peers/mesh_peer.py" "$mesh" --count 20
+    timed "$PEER_PYTHON" "$SRC/scripts/peers/mesh_peer.py" "$mesh" --count 20
     row mesh "trimesh multiplane" "$WALL" "$PEAK_MB" "$(python3 -c "print(f'{$WALL/$slice_s:.1f}x')")"
     sed 's/^/        peer: /' "$WORK/last.out"
   fi
