@@ -79,7 +79,8 @@ const char* const usage =
     "[--quiet] "
     "[--export DIR] [--smooth-move-tolerance SPACINGS]\n"
     "       fit options: [--min-span-points N] [--min-span MM] [--fairness F] [--smoothing-length MM] "
-    "[--outlier-floor MM] [--tolerance MM] [--bridge-factor F]; camber: [--edge-arc DEG] [--edge-core DEG] "
+    "[--outlier-floor MM] [--tolerance MM] [--first-iterations N] [--bridge-factor F]; camber: [--edge-arc "
+    "DEG] [--edge-core DEG] "
     "[--edge-residual K] "
     "[--edge-noise-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] [--edge-prune "
     "DEG] "
@@ -129,6 +130,7 @@ const std::map<std::string, void (*)(Options&, const char*)> other_values = {
     {"--first-seed", [](Options& o, const char* v) { o.first_seed = std::atoi(v); }},
     {"--holes", [](Options& o, const char* v) { o.holes = std::atoi(v); }},
     {"--auto-cells", [](Options& o, const char* v) { o.auto_cells = std::size_t(std::atol(v)); }},
+    {"--first-iterations", [](Options& o, const char* v) { o.fit_options.first_iterations = std::atoi(v); }},
     {"--preset", [](Options& o, const char* v) { o.preset = v; }},
     {"--export", [](Options& o, const char* v) { o.export_dir = v; }}};
 

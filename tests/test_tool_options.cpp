@@ -103,10 +103,15 @@ TEST_CASE("tool options: smooth, fitspline and camber read their flags into the 
   CHECK(smooth.args.report == "r.csv");
   CHECK(smooth.args.common.input == "-");
 
-  const auto fit = parsed<FitsplineArgs>({"in.csv", "--samples", "40", "--threads", "2"});
+  const auto fit = parsed<FitsplineArgs>(
+      {"in.csv", "--samples", "40", "--threads", "2", "--first-iterations", "12", "--bridge-factor", "4"});
   REQUIRE(fit.code == -1);
   CHECK(fit.args.options.samples == 40);
   CHECK(fit.args.options.threads == 2);
+  CHECK(fit.args.options.first_iterations == 12);
+  CHECK(fit.args.options.bridge_factor == 4);
+  CHECK(parsed<FitsplineArgs>({"--first-iterations", "-1"}).code != -1);
+  CHECK(parsed<FitsplineArgs>({"--bridge-factor", "-2"}).code != -1);
 
   const auto camber = parsed<CamberArgs>(
       {"--stations", "0.25, +0.5", "--le-direction", "0,0,-1", "--edge", "auto", "--edge-on-spline"});

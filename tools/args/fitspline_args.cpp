@@ -41,6 +41,15 @@ void FitsplineArgs::declare(CLI::App& app) {
   declare_counts(app, options);
   add_checked(app, "--max-iterations", options.max_iterations,
               "Distance-minimisation iterations per refinement round", CLI::Range(1, 10000));
+  add_checked(app, "--first-iterations", options.first_iterations,
+              "Adaptive knots: iterations of the first curve, whose curvature places the knots (12 with "
+              "--bridge-factor 4: curves stable to the last bits of the input, for about a quarter more "
+              "time, but edge radii not yet as sure; docs/FITSPLINE.md, Stability)",
+              CLI::Range(0, 10000));
+  add_checked(app, "--bridge-factor", options.bridge_factor,
+              "Adaptive knots: a stretch without points longer than this many median spacings keeps only the "
+              "knots its bridge needs; 0 = off",
+              CLI::NonNegativeNumber);
   add_checked(app, "--max-control-points", options.max_control_points,
               "Cap on control points per loop in adaptive mode", CLI::Range(8, 1000000));
   add_checked(app, "--fairness", options.fairness, "Relative weight of the fairness term",
