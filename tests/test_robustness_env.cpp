@@ -296,6 +296,9 @@ TEST_CASE("robustness: the tools' command line refuses NaN, 0,0,0 and clobbering
              Catch::StartsWith("2 ") && Catch::Contains("--x: must be a finite number"));
   CHECK_THAT(usage({"--list", "1,inf"}), Catch::Contains("--list: must be a finite number, got 'inf'"));
   CHECK_THAT(usage({"--x", "-1"}), Catch::Contains("Value -1 is below 0\n"));
+  CHECK_THAT(usage({"--x", "inf"}),
+             Catch::StartsWith("2 ") && Catch::Contains("--x: must be a finite number, got 'inf'\n"));
+  CHECK_THAT(usage({"--x", "-inf"}), Catch::Contains("--x: must be a finite number, got '-inf'\n"));
   CHECK(usage({"--x", "2", "--list", "1,2"}) == "-1 ");
 }
 #endif

@@ -71,11 +71,19 @@ std::size_t byte_size(const std::string& text) {
 namespace {
 
 // CLI11's "Value -1 not in range 0.000000 to 1797693...(309 digits).000000" (its
-// NonNegativeNumber) as "Value -1 is below 0".
+// NonNegativeNumber) as "Value -1 is below 0"; "Value inf ..." as a non-finite number.
 std::string readable_range(std::string what) {
-  const std::string range = " not in range ", top = " to 179769313486231570";
+  const std::string range = " not in range ", top = " to 179769313486231570", value = "Value ";
   const auto at = what.find(range), to = what.find(top);
   if (at == std::string::npos || to == std::string::npos || to < at) return what;
+  const auto v0 = what.rfind(value, at);
+  if (v0 != std::string::npos) {
+    const std::string text = what.substr(v0 + value.size(), at - v0 - value.size());
+    double v = 0;
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (r.ec == std::errc() && r.ptr == text.data() + text.size() && !std::isfinite(v))
+      return what.substr(0, v0) + "must be a finite number, got '" + text + "'";
+  }
   std::string low = what.substr(at + range.size(), to - at - range.size());
   while (low.find('.') != std::string::npos && (low.back() == '0' || low.back() == '.')) low.pop_back();
   const auto end = what.find_first_not_of("0123456789.", to + top.size());
