@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -70,6 +71,15 @@ std::size_t byte_size(const std::string& text) {
 
 namespace {
 
+// `text` read whole as a number (from_chars: no locale, as the tools read their number
+// lists; "inf" and "nan" too), or nothing.
+std::optional<double> whole_number(const std::string& text) {
+  double v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (r.ec != std::errc() || r.ptr != text.data() + text.size()) return std::nullopt;
+  return v;
+}
+
 // CLI11's "Value -1 not in range 0.000000 to 1797693...(309 digits).000000" (its
 // NonNegativeNumber) as "Value -1 is below 0"; "Value inf ..." as a non-finite number.
 std::string readable_range(std::string what) {
@@ -79,9 +89,7 @@ std::string readable_range(std::string what) {
   const auto v0 = what.rfind(value, at);
   if (v0 != std::string::npos) {
     const std::string text = what.substr(v0 + value.size(), at - v0 - value.size());
-    double v = 0;
-    const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (r.ec == std::errc() && r.ptr == text.data() + text.size() && !std::isfinite(v))
+    if (const auto v = whole_number(text); v && !std::isfinite(*v))
       return what.substr(0, v0) + "must be a finite number, got '" + text + "'";
   }
   std::string low = what.substr(at + range.size(), to - at - range.size());
@@ -96,9 +104,7 @@ void refuse_non_finite(CLI::App& app) {
   for (const CLI::Option* o : app.get_options()) {
     if (o->get_type_name().find("FLOAT") == std::string::npos) continue;
     for (const std::string& text : o->results()) {
-      double v = 0;
-      const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-      if (r.ec == std::errc() && r.ptr == text.data() + text.size() && !std::isfinite(v))
+      if (const auto v = whole_number(text); v && !std::isfinite(*v))
         throw CLI::ValidationError(o->get_name(), "must be a finite number, got '" + text + "'");
     }
   }
@@ -378,11 +384,8 @@ bool ends_with(const std::string& text, const std::string& tail) {
 
 const CLI::Validator positive(
     [](std::string& text) -> std::string {
-      // from_chars: the whole text, no locale, as the tools read their number lists.
-      double v = 0;
-      const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-      if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !(v > 0) || !std::isfinite(v))
-        return "must be a number above 0, got '" + text + "'";
+      const auto v = whole_number(text);
+      if (!v || !(*v > 0) || !std::isfinite(*v)) return "must be a number above 0, got '" + text + "'";
       return {};
     },
     "POSITIVE", "positive");
