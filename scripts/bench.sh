@@ -3,7 +3,8 @@
 # Benchmark driver: libsection against the Python a user would write instead, on the
 # same generated files. For each cloud size (millions of points; the full turbine blade
 # at 0.08 mm spacing is ~0.94 M points, so spacing = 0.08 sqrt(0.94 / M)) it times, with
-# /usr/bin/time (wall s, peak MB, and user + system CPU of every process):
+# /usr/bin/time (wall s, peak MB, and user + system CPU of every process), each input file
+# read into the page cache before every run:
 #   read     bench/bench_read on the binary PLY and on the XYZ text (points per second)
 #   slice    `slice FILE.ply --count 20`
 #   pipe     `slice --count 20 | smooth | fitspline | camber` (peak = the largest process):
@@ -42,14 +43,30 @@ mkdir -p "$WORK"
 SIZES=("$@")
 [ ${#SIZES[@]} -eq 0 ] && SIZES=(0.25 0.5 1 5 20)
 
+# warm ARGS...: reads every file among ARGS into the page cache before a timed run, so that
+# every run reads its input from memory (a kernel may reclaim idle cache within seconds:
+# docs/PERFORMANCE.md), and reading and the pipe compare alike.
+warm() {
+  local a
+  for a in "$@"; do
+    if [ -f "$a" ]; then cat "$a" > /dev/null; fi
+  done
+}
+
 # timed CMD...: runs CMD REPEAT times (stdout to last.out), sets WALL and PEAK_MB to the minimum.
+# The wall time from the clock in ns (/usr/bin/time's %e counts in 10 ms steps: a quarter
+# of reading the 5 M point file).
 timed() {
-  local w kb
+  local w kb t0 t1
   WALL=""; PEAK_MB=""
   for _ in $(seq "$REPEAT"); do
-    /usr/bin/time -f "%e %M" -o "$WORK/time.txt" "$@" > "$WORK/last.out" 2> "$WORK/last.err" ||
+    warm "$@"
+    t0=$(date +%s.%N)
+    /usr/bin/time -f "%M" -o "$WORK/time.txt" "$@" > "$WORK/last.out" 2> "$WORK/last.err" ||
       { echo "bench: failed: $*" >&2; sed 's/^/  /' "$WORK/last.err" | tail -5 >&2; return 1; }
-    read -r w kb < <(tail -1 "$WORK/time.txt")
+    t1=$(date +%s.%N)
+    w=$(awk "BEGIN{printf \"%.3f\", $t1 - $t0}")
+    read -r kb < <(tail -1 "$WORK/time.txt")
     if [ -z "$WALL" ] || awk "BEGIN{exit !($w < $WALL)}"; then WALL=$w; fi
     local mb=$((kb / 1024))
     if [ -z "$PEAK_MB" ] || [ "$mb" -lt "$PEAK_MB" ]; then PEAK_MB=$mb; fi
@@ -71,10 +88,11 @@ pipe_timed() {
   for s in "${STAGES[@]}"; do eval "CPU_$s="; done
   for _ in $(seq "$REPEAT"); do
     local t0 t1
+    warm "$@"
     t0=$(date +%s.%N)
     bash -c "$cmd" > "$WORK/last.out" || { echo "bench: failed: $cmd" >&2; return 1; }
     t1=$(date +%s.%N)
-    w=$(awk "BEGIN{printf \"%.2f\", $t1 - $t0}")
+    w=$(awk "BEGIN{printf \"%.3f\", $t1 - $t0}")
     local peak=0
     for s in "${STAGES[@]}"; do
       local u sy kb c old
