@@ -53,19 +53,20 @@ warm() {
   done
 }
 
+# since T0: the seconds from T0 (date +%s.%N) to now, from the clock in ns (/usr/bin/time's
+# %e counts in 10 ms steps: a quarter of reading the 5 M point file).
+since() { awk "BEGIN{printf \"%.3f\", $(date +%s.%N) - $1}"; }
+
 # timed CMD...: runs CMD REPEAT times (stdout to last.out), sets WALL and PEAK_MB to the minimum.
-# The wall time from the clock in ns (/usr/bin/time's %e counts in 10 ms steps: a quarter
-# of reading the 5 M point file).
 timed() {
-  local w kb t0 t1
+  local w kb t0
   WALL=""; PEAK_MB=""
   for _ in $(seq "$REPEAT"); do
     warm "$@"
     t0=$(date +%s.%N)
     /usr/bin/time -f "%M" -o "$WORK/time.txt" "$@" > "$WORK/last.out" 2> "$WORK/last.err" ||
       { echo "bench: failed: $*" >&2; sed 's/^/  /' "$WORK/last.err" | tail -5 >&2; return 1; }
-    t1=$(date +%s.%N)
-    w=$(awk "BEGIN{printf \"%.3f\", $t1 - $t0}")
+    w=$(since "$t0")
     read -r kb < <(tail -1 "$WORK/time.txt")
     if [ -z "$WALL" ] || awk "BEGIN{exit !($w < $WALL)}"; then WALL=$w; fi
     local mb=$((kb / 1024))
@@ -87,12 +88,11 @@ pipe_timed() {
   done
   for s in "${STAGES[@]}"; do eval "CPU_$s="; done
   for _ in $(seq "$REPEAT"); do
-    local t0 t1
+    local t0
     warm "$@"
     t0=$(date +%s.%N)
     bash -c "$cmd" > "$WORK/last.out" || { echo "bench: failed: $cmd" >&2; return 1; }
-    t1=$(date +%s.%N)
-    w=$(awk "BEGIN{printf \"%.3f\", $t1 - $t0}")
+    w=$(since "$t0")
     local peak=0
     for s in "${STAGES[@]}"; do
       local u sy kb c old

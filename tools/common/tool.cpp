@@ -80,6 +80,11 @@ std::optional<double> whole_number(const std::string& text) {
   return v;
 }
 
+// The refusal of a non-finite value, whichever check finds it.
+std::string not_finite(const std::string& text) {
+  return "must be a finite number, got '" + text + "'";
+}
+
 // CLI11's "Value -1 not in range 0.000000 to 1797693...(309 digits).000000" (its
 // NonNegativeNumber) as "Value -1 is below 0"; "Value inf ..." as a non-finite number.
 std::string readable_range(std::string what) {
@@ -90,7 +95,7 @@ std::string readable_range(std::string what) {
   if (v0 != std::string::npos) {
     const std::string text = what.substr(v0 + value.size(), at - v0 - value.size());
     if (const auto v = whole_number(text); v && !std::isfinite(*v))
-      return what.substr(0, v0) + "must be a finite number, got '" + text + "'";
+      return what.substr(0, v0) + not_finite(text);
   }
   std::string low = what.substr(at + range.size(), to - at - range.size());
   while (low.find('.') != std::string::npos && (low.back() == '0' || low.back() == '.')) low.pop_back();
@@ -105,7 +110,7 @@ void refuse_non_finite(CLI::App& app) {
     if (o->get_type_name().find("FLOAT") == std::string::npos) continue;
     for (const std::string& text : o->results()) {
       if (const auto v = whole_number(text); v && !std::isfinite(*v))
-        throw CLI::ValidationError(o->get_name(), "must be a finite number, got '" + text + "'");
+        throw CLI::ValidationError(o->get_name(), not_finite(text));
     }
   }
 }

@@ -27,8 +27,8 @@ Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
                      const SamplingOptions& options, SpacingSearch& search);
 
 /// mean_spacing(points, sample), bit for bit, from `search` where it holds these points (the
-/// same tree, and the 3 nearest of a point are the first 3 of the 24 nearest sampling_of
-/// searched, with the same squared distances: both are FLANN's exact search).
+/// same tree, and the 3 nearest of a point are the first 3 of the 17 or 24 nearest
+/// sampling_of searched, with the same squared distances: both are FLANN's exact search).
 double mean_spacing(const std::vector<Eigen::Vector3d>& points, const SpacingSearch& search,
                     std::size_t sample = 5000);
 
