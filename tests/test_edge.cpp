@@ -79,18 +79,45 @@ TEST_CASE("edge: a NACA 0012 with a closed trailing edge has a round LE and a sh
 TEST_CASE("edge: edge radii on noisy profiles (sigma 5 um) stay within 3 % (LE) / 10 % (TE)", "[edge]") {
   // Exact profile points every 40 um, moved by Gaussian noise (sigma 5 um) along the exact
   // normal, fitted with fit_spline: the edge arc is chosen geometrically on the noisy
-  // curve (grown while the profile stays at noise level from the fitted circle).
-  for_noisy_fits(0.04, {1u, 2u},
-                 [](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>&,
-                    const BSpline& spline) {
-                   const section::CamberResult c = section::camber_line(spline);
-                   INFO("design " << k << " seed " << seed << " LE " << c.le.radius << " / "
-                                  << truth.le_radius << " TE " << c.te.radius << " / " << truth.te_radius);
-                   CHECK(relative(c.le.radius, truth.le_radius) < 0.03);
-                   CHECK(relative(c.te.radius, truth.te_radius) < 0.10);
-                   // The fitted centre ends the camber line: it lies within a few noise sigmas of the truth.
-                   CHECK((c.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
+  // curve (grown while the profile stays at noise level from the fitted circle). Twelve
+  // seeds, not one or two: on a 0.15 mm TE with a point every 40 um the radius moves by
+  // several per cent from seed to seed, so a pair of seeds shows luck, not the method
+  // (docs/CAMBER.md, "Noisy profiles", has 40 seeds). Measured either way: the noise
+  // unknown and the spline alone, and the noise and the points given (as the pipe does).
+  std::vector<double> le[2], te[2];
+  for_noisy_fits(0.04, {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 10u, 11u, 12u},
+                 [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
+                     const BSpline& spline) {
+                   const auto [on_points, on_spline] = on_points_and_spline(spline, pts);
+                   const section::CamberResult alone = section::camber_line(spline);
+                   for (int way = 0; way < 2; ++way) {
+                     const section::CamberResult& c = way == 0 ? alone : on_points;
+                     INFO((way == 0 ? "spline alone" : "noise and points given")
+                          << ": design " << k << " seed " << seed << " LE " << c.le.radius << " / "
+                          << truth.le_radius << " TE " << c.te.radius << " / " << truth.te_radius);
+                     le[way].push_back(relative(c.le.radius, truth.le_radius));
+                     te[way].push_back(relative(c.te.radius, truth.te_radius));
+                     CHECK(le[way].back() < 0.03);
+                     CHECK(te[way].back() < 0.10);
+                     // The fitted centre ends the camber line: it lies within a few noise sigmas of the
+                     // truth.
+                     CHECK((c.le.center - truth.le_center).norm() < 0.03 * truth.le_radius + 0.005);
+                   }
                  });
+  // Over the 48 fits the errors stay at the noise's scale (measured 0.64 / 0.43 % LE, 2.0
+  // / 1.7 % TE): a bias of a few per cent on every edge fails here.
+  const auto rms = [](const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x * x;
+    return std::sqrt(s / double(v.size()));
+  };
+  for (int way = 0; way < 2; ++way) {
+    INFO((way == 0 ? "spline alone" : "noise and points given")
+         << ": rms LE " << rms(le[way]) * 100 << " %, TE " << rms(te[way]) * 100 << " %");
+    REQUIRE(le[way].size() == 48);
+    CHECK(rms(le[way]) < 0.01);
+    CHECK(rms(te[way]) < 0.03);
+  }
 }
 
 TEST_CASE("edge: edge circles refitted to the measured points lose the spline's shape error", "[edge]") {
