@@ -183,6 +183,8 @@ struct Worst {
   double rms = 0, rms_near = 0, max = 0, gap = 0, cam_rms = 0, cam_max = 0, chord = 0, tmax = 0, rle = 0,
          rte = 0, in = 0, out = 0;
   int sections = 0, fit_failed = 0, camber_failed = 0;
+  // |radius error| / its standard error (params le/te_radius_sigma), per edge that has one.
+  std::vector<double> le_z = {}, te_z = {};
   void take(const Worst& o) {
     for (double Worst::*m :
          {&Worst::rms, &Worst::rms_near, &Worst::max, &Worst::gap, &Worst::cam_rms, &Worst::cam_max,
@@ -319,6 +321,10 @@ std::string camber_columns(const Case& c, int id, const SectionTruth& truth, Sec
   e.tmax = std::abs(cs.max_thickness);
   e.rle = std::abs(cs.le_radius);
   e.rte = std::abs(cs.te_radius);
+  const double le_sigma = par->at(std::size_t(row), par->column("le_radius_sigma")),
+               te_sigma = par->at(std::size_t(row), par->column("te_radius_sigma"));
+  if (le_sigma > 0) W.le_z.push_back(e.rle * truth.le_radius / le_sigma);
+  if (te_sigma > 0) W.te_z.push_back(e.rte * truth.te_radius / te_sigma);
   e.in = std::abs(cs.inlet_angle);
   e.out = std::abs(cs.outlet_angle);
   char buf[256];
@@ -501,6 +507,29 @@ void evaluate_section(const Case& c, std::size_t k, const std::map<std::pair<int
   if (!opt.quiet) std::printf("%s\n", line.c_str());
 }
 
+// How the edge radii's errors compare with their standard errors: |error| / sigma at the
+// median, 90th and 99th percentiles, and the share beyond 2 and 3 sigma (a normal error:
+// 0.67, 1.64, 2.58; 4.6 % and 0.27 %), LE / TE.
+std::string calibration(std::vector<double> le, std::vector<double> te) {
+  std::sort(le.begin(), le.end());
+  std::sort(te.begin(), te.end());
+  const auto at = [](const std::vector<double>& v, double q) {
+    return v[std::size_t(q * double(v.size() - 1))];
+  };
+  const auto beyond = [](const std::vector<double>& v, double k) {
+    return 100.0 * double(std::count_if(v.begin(), v.end(), [&](double z) { return z > k; })) /
+           double(v.size());
+  };
+  char buf[320];
+  std::snprintf(
+      buf, sizeof buf,
+      "radius |error| / standard error (LE / TE, %zu / %zu edges): median %.2f / %.2f, 90 %% %.2f / "
+      "%.2f, 99 %% %.2f / %.2f, beyond 2 sigma %.1f / %.1f %%, beyond 3 sigma %.1f / %.1f %%",
+      le.size(), te.size(), at(le, 0.5), at(te, 0.5), at(le, 0.9), at(te, 0.9), at(le, 0.99), at(te, 0.99),
+      beyond(le, 2), beyond(te, 2), beyond(le, 3), beyond(te, 3));
+  return buf;
+}
+
 void print_worst(const std::map<std::string, Worst>& worst, const Options& opt) {
   const bool misreg = opt.misregistration > 0;
   for (const auto& [kind, W] : worst) {
@@ -515,6 +544,8 @@ void print_worst(const std::map<std::string, Worst>& worst, const Options& opt) 
           "LE radius %.2f%%, TE radius %.2f%%, inlet %.3f deg, outlet %.3f deg\n",
           kind.c_str(), W.cam_rms * 1e3, W.cam_max * 1e3, W.chord * 1e3, W.tmax * 1e3, W.rle * 100,
           W.rte * 100, W.in, W.out);
+    if (opt.with_camber && !W.le_z.empty() && !W.te_z.empty())
+      std::printf("      %-10s %s\n", kind.c_str(), calibration(W.le_z, W.te_z).c_str());
   }
   std::printf(
       "targets: fit rms <= %s um, max <= %s um; camber rms <= 3 um, max <= 15 um, chord 10 um, "

@@ -358,3 +358,61 @@ TEST_CASE("edge: an edge without a radius is not reported partly not measured by
     CHECK(params.at(0, params.column("te_radius")) == 0);
   }
 }
+
+TEST_CASE("edge: an edge radius's standard error matches the spread of its error", "[edge]") {
+  // Points every 40 um with 5 um noise, the circles refitted on them (as the pipe does):
+  // over 48 fits |error| / radius_sigma should look like a normal error's (median 0.67,
+  // 0.27 % beyond 3): measured median 0.58, 2 of the 96 edges beyond 3 (4.4 the largest:
+  // the sigma leaves out the arc's choice). A sigma a factor of 2 off either way fails here.
+  std::vector<double> z;
+  for_noisy_fits(0.04, {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 10u, 11u, 12u},
+                 [&](int k, unsigned seed, const SectionTruth& truth, const std::vector<Vector2d>& pts,
+                     const BSpline& spline) {
+                   const auto [on_points, on_spline] = on_points_and_spline(spline, pts);
+                   INFO("design " << k << " seed " << seed);
+                   CHECK(on_spline.le.radius_sigma == 0);  // the spline's arc alone: no standard error
+                   CHECK(on_spline.te.radius_sigma == 0);
+                   for (const auto& [e, r] :
+                        {std::pair{on_points.le, truth.le_radius}, {on_points.te, truth.te_radius}}) {
+                     REQUIRE(e.on_points);
+                     REQUIRE(e.radius_sigma > 0);
+                     z.push_back(std::abs(e.radius - r) / e.radius_sigma);
+                   }
+                 });
+  std::sort(z.begin(), z.end());
+  const double median = z[z.size() / 2];
+  const auto beyond3 = std::count_if(z.begin(), z.end(), [](double x) { return x > 3; });
+  INFO("median " << median << ", beyond 3 sigma " << beyond3 << " of " << z.size() << ", largest "
+                 << z.back());
+  CHECK(median > 0.4);
+  CHECK(median < 1.2);
+  CHECK(beyond3 <= 3);
+}
+
+TEST_CASE("edge: a radius's standard error grows with the noise and as the points thin", "[edge]") {
+  // A 1 mm LE: sigma goes as the noise over the square root of the points on the arc.
+  const SectionTruth truth = section::section_truth(SectionDesign{}, 20000);
+  auto le_of = [&](double sigma, double spacing) {
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> noise(0, sigma);
+    std::vector<Vector2d> pts;
+    const int count = static_cast<int>(truth.perimeter / spacing);
+    for (int i = 0; i < count; ++i) {
+      const std::size_t j = static_cast<std::size_t>(i) * truth.profile.size() / count;
+      pts.push_back(truth.profile[j] + noise(rng) * truth.profile_normal[j]);
+    }
+    section::CamberOptions o;
+    o.profile_noise = sigma;
+    return section::camber_line(section::fit_spline(pts, pts).spline, o, pts).le;
+  };
+  const section::Edge quiet = le_of(0.002, 0.02), noisy = le_of(0.005, 0.02), sparse = le_of(0.005, 0.08);
+  INFO("sigma " << quiet.radius_sigma << " (2 um, 20 um apart), " << noisy.radius_sigma << " (5 um), "
+                << sparse.radius_sigma << " (5 um, 80 um apart)");
+  REQUIRE(quiet.on_points);
+  REQUIRE(noisy.on_points);
+  REQUIRE(sparse.on_points);
+  CHECK(noisy.radius_sigma / quiet.radius_sigma == Approx(2.5).epsilon(0.3));
+  CHECK(sparse.radius_sigma / noisy.radius_sigma == Approx(2).epsilon(0.3));
+  for (const section::Edge& e : {quiet, noisy, sparse})
+    CHECK(std::abs(e.radius - truth.le_radius) < 4 * e.radius_sigma);
+}

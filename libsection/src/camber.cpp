@@ -553,7 +553,7 @@ CamberResult camber_line(const SampledProfile& pr, const CamberOptions& options,
   for (Edge* e : {&ends.le, &ends.te})
     if (e->shape == EdgeShape::sharp ||
         (options.edge == EdgeModel::automatic && e->shape != EdgeShape::round))
-      e->radius = 0;
+      e->radius = e->radius_sigma = 0;
   res.le = ends.le;
   res.te = ends.te;
   ma.circles = circles;

@@ -356,6 +356,7 @@ Edge measure_edge(const SampledProfile& pr, const InscribedCircle& end_circle, c
   }
   // The fit rms stays the spline arc's about the circle (the circularity test's measure).
   if (options.edge_on_points && refit_on_measured(pr, e, d, measured, options, fit)) {
+    e.radius_sigma = fit.radius_sigma;  // the measured points' own (before rms is the spline's)
     fit.rms = rms_about(arc_points(pr, e.arc_t0, e.arc_t1), fit.center, fit.radius);
     e.on_points = true;
   }
@@ -473,6 +474,7 @@ Edge detect_edge(const SampledProfile& pr, const InscribedCircle& end, const Eig
     e.shape = EdgeShape::blunt;
     e.face = face.width;
     e.radius = 0;
+    e.radius_sigma = 0;
     e.center = face.mid;
   }
   return e;

@@ -52,6 +52,13 @@ struct Edge {
   double sampling = 0;
   double face = 0;         ///< blunt edge with a flat face: the face's width (0 otherwise)
   bool on_points = false;  ///< the circle was refitted to the measured points on the arc
+  /// Standard error of `radius` when the circle was refitted on the measured points
+  /// (`on_points`): from the fit's covariance and the points' rms about the circle, so it
+  /// grows with their noise, as they thin, and with a hole or a short arc (docs/CAMBER.md,
+  /// "The edge radius's standard error"). 0 when the circle rests on the fitted curve's arc
+  /// alone (no measured points given, too few of them on the arc, or a gap among them) or
+  /// the radius is 0.
+  double radius_sigma = 0;
   /// Sharp (closed) edge: the medial branch runs into a vertex of the profile, which is
   /// the edge point (radius 0, centre = point, no arc).
   bool vertex = false;

@@ -231,6 +231,12 @@ constexpr auto params_columns = by_section<ParamsRow>({
     {"le_fit_rms", "length", "rms distance of that arc from its circle",
      [](auto& r) { return r.camber.le.fit_rms; }},
     {"te_fit_rms", "length", "the same at the trailing edge", [](auto& r) { return r.camber.te.fit_rms; }},
+    {"le_radius_sigma", "length",
+     "standard error of le_radius, from its circle's fit on the measured points; 0 when the circle rests on "
+     "the fitted curve alone (too few measured points on the arc, or a gap among them) or le_radius is 0",
+     [](auto& r) { return r.camber.le.radius_sigma; }},
+    {"te_radius_sigma", "length", "the same at the trailing edge",
+     [](auto& r) { return r.camber.te.radius_sigma; }},
     {"stagger", "degrees", "angle of the chord line, LE to TE", param<&Params::stagger>},
     {"inlet_angle", "degrees", "the camber tangent (toward the TE) at the LE", param<&Params::inlet_angle>},
     {"outlet_angle", "degrees", "its tangent at the TE", param<&Params::outlet_angle>},
