@@ -12,6 +12,7 @@
 //                   [--bridge-factor F]
 #include "section/camber.h"
 #include "section/extras/generate.h"
+#include "section/extras/score.h"
 #include "section/fit_spline.h"
 
 #include <algorithm>
@@ -19,7 +20,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -33,40 +33,18 @@ struct Options {
   FitSplineOptions fit;
 };
 
-// Points every `spacing` along the exact profile, moved along the exact normal; the same
-// points as tests/camber_fixtures.h's noisy_profile at 5 um.
-std::vector<Eigen::Vector2d> noisy_profile(const SectionTruth& truth, double spacing, double sigma,
-                                           std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0, sigma);
-  std::vector<Eigen::Vector2d> pts;
-  const int count = static_cast<int>(truth.perimeter / spacing);
-  for (int i = 0; i < count; ++i) {
-    const std::size_t j = static_cast<std::size_t>(i) * truth.profile.size() / std::size_t(count);
-    pts.push_back(truth.profile[j] + noise(rng) * truth.profile_normal[j]);
-  }
-  return pts;
-}
-
 struct Errors {
   std::vector<double> le, te;
   std::vector<double> le_z, te_z;  // |error| / standard error, edges refitted on the points
 };
 
-// |error| / standard error at the median, 90th and 99th percentiles and beyond 2 and 3
-// sigma (a normal error: 0.67, 1.64, 2.58; 4.6 % and 0.27 %).
-void calibration(const char* edge, std::vector<double> z) {
-  if (z.empty()) return;
-  std::sort(z.begin(), z.end());
-  const auto at = [&](double q) { return z[std::size_t(q * double(z.size() - 1))]; };
-  const auto beyond = [&](double k) {
-    return 100.0 * double(std::count_if(z.begin(), z.end(), [&](double x) { return x > k; })) /
-           double(z.size());
-  };
+void print_calibration(const char* edge, const std::vector<double>& ratios) {
+  const Calibration c = calibration(ratios);
+  if (c.count == 0) return;
   std::printf(
       "  %s |error| / standard error (%zu edges): median %.2f, 90 %% %.2f, 99 %% %.2f, beyond 2 sigma "
       "%.1f %%, beyond 3 sigma %.1f %%\n",
-      edge, z.size(), at(0.5), at(0.9), at(0.99), beyond(2), beyond(3));
+      edge, c.count, c.median, c.p90, c.p99, 100 * c.beyond2, 100 * c.beyond3);
 }
 
 void summary(const char* way, const char* edge, std::vector<double> v, double limit) {
@@ -143,8 +121,8 @@ int main(int argc, char** argv) {
     summary(ways[w], "LE", errors[w].le, 0.03);
     summary(ways[w], "TE", errors[w].te, 0.10);
   }
-  calibration("LE", errors[1].le_z);
-  calibration("TE", errors[1].te_z);
+  print_calibration("LE", errors[1].le_z);
+  print_calibration("TE", errors[1].te_z);
   std::printf("beyond 3 %% (LE) or 10 %% (TE):%s\n", beyond.empty() ? " none" : "");
   for (const auto& line : beyond) std::printf("%s\n", line.c_str());
   return 0;

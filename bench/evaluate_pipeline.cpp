@@ -321,10 +321,8 @@ std::string camber_columns(const Case& c, int id, const SectionTruth& truth, Sec
   e.tmax = std::abs(cs.max_thickness);
   e.rle = std::abs(cs.le_radius);
   e.rte = std::abs(cs.te_radius);
-  const double le_sigma = par->at(std::size_t(row), par->column("le_radius_sigma")),
-               te_sigma = par->at(std::size_t(row), par->column("te_radius_sigma"));
-  if (le_sigma > 0) W.le_z.push_back(e.rle * truth.le_radius / le_sigma);
-  if (te_sigma > 0) W.te_z.push_back(e.rte * truth.te_radius / te_sigma);
+  if (cs.le_radius_sigma > 0) W.le_z.push_back(e.rle * truth.le_radius / cs.le_radius_sigma);
+  if (cs.te_radius_sigma > 0) W.te_z.push_back(e.rte * truth.te_radius / cs.te_radius_sigma);
   e.in = std::abs(cs.inlet_angle);
   e.out = std::abs(cs.outlet_angle);
   char buf[256];
@@ -507,26 +505,16 @@ void evaluate_section(const Case& c, std::size_t k, const std::map<std::pair<int
   if (!opt.quiet) std::printf("%s\n", line.c_str());
 }
 
-// How the edge radii's errors compare with their standard errors: |error| / sigma at the
-// median, 90th and 99th percentiles, and the share beyond 2 and 3 sigma (a normal error:
-// 0.67, 1.64, 2.58; 4.6 % and 0.27 %), LE / TE.
-std::string calibration(std::vector<double> le, std::vector<double> te) {
-  std::sort(le.begin(), le.end());
-  std::sort(te.begin(), te.end());
-  const auto at = [](const std::vector<double>& v, double q) {
-    return v[std::size_t(q * double(v.size() - 1))];
-  };
-  const auto beyond = [](const std::vector<double>& v, double k) {
-    return 100.0 * double(std::count_if(v.begin(), v.end(), [&](double z) { return z > k; })) /
-           double(v.size());
-  };
+// How the edge radii's errors compare with their standard errors (LE / TE).
+std::string calibration_line(const std::vector<double>& le_z, const std::vector<double>& te_z) {
+  const Calibration le = calibration(le_z), te = calibration(te_z);
   char buf[320];
   std::snprintf(
       buf, sizeof buf,
       "radius |error| / standard error (LE / TE, %zu / %zu edges): median %.2f / %.2f, 90 %% %.2f / "
       "%.2f, 99 %% %.2f / %.2f, beyond 2 sigma %.1f / %.1f %%, beyond 3 sigma %.1f / %.1f %%",
-      le.size(), te.size(), at(le, 0.5), at(te, 0.5), at(le, 0.9), at(te, 0.9), at(le, 0.99), at(te, 0.99),
-      beyond(le, 2), beyond(te, 2), beyond(le, 3), beyond(te, 3));
+      le.count, te.count, le.median, te.median, le.p90, te.p90, le.p99, te.p99, 100 * le.beyond2,
+      100 * te.beyond2, 100 * le.beyond3, 100 * te.beyond3);
   return buf;
 }
 
@@ -545,7 +533,7 @@ void print_worst(const std::map<std::string, Worst>& worst, const Options& opt) 
           kind.c_str(), W.cam_rms * 1e3, W.cam_max * 1e3, W.chord * 1e3, W.tmax * 1e3, W.rle * 100,
           W.rte * 100, W.in, W.out);
     if (opt.with_camber && !W.le_z.empty() && !W.te_z.empty())
-      std::printf("      %-10s %s\n", kind.c_str(), calibration(W.le_z, W.te_z).c_str());
+      std::printf("      %-10s %s\n", kind.c_str(), calibration_line(W.le_z, W.te_z).c_str());
   }
   std::printf(
       "targets: fit rms <= %s um, max <= %s um; camber rms <= 3 um, max <= 15 um, chord 10 um, "

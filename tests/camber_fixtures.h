@@ -35,15 +35,7 @@ inline BSpline dense_spline(const std::vector<Vector2d>& points, int control_poi
 // Points every `spacing` along the exact profile, moved by Gaussian noise (sigma 5 um)
 // along the exact normal.
 inline std::vector<Vector2d> noisy_profile(const SectionTruth& truth, double spacing, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0, 0.005);
-  std::vector<Vector2d> pts;
-  const int count = static_cast<int>(truth.perimeter / spacing);
-  for (int i = 0; i < count; ++i) {
-    const std::size_t j = static_cast<std::size_t>(i) * truth.profile.size() / count;
-    pts.push_back(truth.profile[j] + noise(rng) * truth.profile_normal[j]);
-  }
-  return pts;
+  return section::noisy_profile(truth, spacing, 0.005, seed);
 }
 
 inline double relative(double a, double b) {

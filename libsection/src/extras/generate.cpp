@@ -8,6 +8,7 @@
 #include "generate_section.h"
 #include "section/error.h"
 
+#include <random>
 #include <string>
 
 namespace section {
@@ -281,6 +282,21 @@ SectionTruth section_truth(const SectionDesign& design, int samples) {
   t.profile_index = idx;
   t.camber_index = build_index(t.camber, false);
   return t;
+}
+
+std::vector<Eigen::Vector2d> noisy_profile(const SectionTruth& truth, double spacing, double sigma,
+                                           std::uint64_t seed) {
+  if (!(spacing > 0) || !(sigma >= 0))
+    throw Error("noisy_profile: spacing must be above 0 and sigma at least 0");
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0, sigma);
+  std::vector<Eigen::Vector2d> pts;
+  const int count = static_cast<int>(truth.perimeter / spacing);
+  for (int i = 0; i < count; ++i) {
+    const std::size_t j = static_cast<std::size_t>(i) * truth.profile.size() / std::size_t(count);
+    pts.push_back(truth.profile[j] + noise(rng) * truth.profile_normal[j]);
+  }
+  return pts;
 }
 
 }  // namespace section

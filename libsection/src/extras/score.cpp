@@ -75,11 +75,36 @@ CamberScore score_camber(const Stream& stream, int section, const SectionTruth& 
   s.max_thickness = v("max_thickness") - truth.max_thickness;
   s.le_radius = v("le_radius") / truth.le_radius - 1;
   s.te_radius = v("te_radius") / truth.te_radius - 1;
+  // A stream from before the standard errors has none (0).
+  auto sigma = [&](const char* c) {
+    const long k = par.find_column(c);
+    return k < 0 ? 0.0 : par.at(static_cast<std::size_t>(row), static_cast<std::size_t>(k));
+  };
+  s.le_radius_sigma = sigma("le_radius_sigma");
+  s.te_radius_sigma = sigma("te_radius_sigma");
   s.inlet_angle = wrap_degrees(v("inlet_angle") - truth.inlet_angle);
   s.outlet_angle = wrap_degrees(v("outlet_angle") - truth.outlet_angle);
   s.le_point = (Eigen::Vector2d(v("le_u"), v("le_v")) - truth.le_point).norm();
   s.te_point = (Eigen::Vector2d(v("te_u"), v("te_v")) - truth.te_point).norm();
   return s;
+}
+
+Calibration calibration(std::vector<double> ratios) {
+  Calibration c;
+  if (ratios.empty()) return c;
+  std::sort(ratios.begin(), ratios.end());
+  const std::size_t n = ratios.size();
+  const auto at = [&](double q) { return ratios[static_cast<std::size_t>(q * double(n - 1))]; };
+  const auto beyond = [&](double k) {
+    return double(ratios.end() - std::upper_bound(ratios.begin(), ratios.end(), k)) / double(n);
+  };
+  c.count = n;
+  c.median = at(0.5);
+  c.p90 = at(0.9);
+  c.p99 = at(0.99);
+  c.beyond2 = beyond(2);
+  c.beyond3 = beyond(3);
+  return c;
 }
 
 }  // namespace section

@@ -105,6 +105,13 @@ struct SectionTruth {
 /// be the medial axis).
 SectionTruth section_truth(const SectionDesign& design, int samples = 20000);
 
+/// Points every `spacing` (mm, at least) along a true profile, from its LE point, each moved
+/// along the exact outward normal by Gaussian noise of standard deviation `sigma` (mm;
+/// std::mt19937_64 seeded with `seed`): a measured 2D profile whose every error is known.
+/// Throws section::Error unless spacing > 0 and sigma >= 0.
+std::vector<Eigen::Vector2d> noisy_profile(const SectionTruth& truth, double spacing, double sigma,
+                                           std::uint64_t seed);
+
 /// Where a point lies relative to a true profile.
 struct ProfileLocation {
   double distance = 0;  ///< unsigned distance to the profile

@@ -44,11 +44,25 @@ struct CamberScore {
   double le_radius = 0, te_radius = 0;       ///< signed, relative (0.01 = 1 %)
   double inlet_angle = 0, outlet_angle = 0;  ///< signed, degrees in (-180, 180]
   double le_point = 0, te_point = 0;         ///< distances of the edge points from the true ones
+  /// The params' standard errors of the radii (lengths; 0: none reported)
+  double le_radius_sigma = 0, te_radius_sigma = 0;
 };
 
 /// Scores section `section` of a stream that holds camber's tables (camber, params).
 /// Throws section::Error when the stream has no params row for the section.
 CamberScore score_camber(const Stream& stream, int section, const SectionTruth& truth);
+
+/// How errors compare with the standard errors reported with them, from |error| / sigma of
+/// each value: a normal error gives a median of 0.67, a 90th percentile of 1.64, a 99th of
+/// 2.58, 4.6 % beyond 2 and 0.27 % beyond 3.
+struct Calibration {
+  std::size_t count = 0;                ///< values
+  double median = 0, p90 = 0, p99 = 0;  ///< percentiles of |error| / sigma
+  double beyond2 = 0, beyond3 = 0;      ///< fractions beyond 2 and 3 sigma
+};
+
+/// The calibration of `ratios` (|error| / sigma each); all zero when empty.
+Calibration calibration(std::vector<double> ratios);
 
 /// Angle wrapped to (-180, 180] degrees.
 double wrap_degrees(double angle);
