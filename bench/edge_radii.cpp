@@ -19,7 +19,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -99,12 +98,13 @@ int main(int argc, char** argv) {
       given.profile_noise = opt.noise;
       const CamberResult c[2] = {camber_line(spline), camber_line(spline, given, pts)};
       for (int w = 0; w < 2; ++w) {
-        const double le = std::abs(c[w].le.radius - truth.le_radius) / truth.le_radius,
-                     te = std::abs(c[w].te.radius - truth.te_radius) / truth.te_radius;
+        const double dle = std::abs(c[w].le.radius - truth.le_radius),
+                     dte = std::abs(c[w].te.radius - truth.te_radius);
+        const double le = dle / truth.le_radius, te = dte / truth.te_radius;
         errors[w].le.push_back(le);
         errors[w].te.push_back(te);
-        if (c[w].le.radius_sigma > 0) errors[w].le_z.push_back(le * truth.le_radius / c[w].le.radius_sigma);
-        if (c[w].te.radius_sigma > 0) errors[w].te_z.push_back(te * truth.te_radius / c[w].te.radius_sigma);
+        if (c[w].le.radius_sigma > 0) errors[w].le_z.push_back(dle / c[w].le.radius_sigma);
+        if (c[w].te.radius_sigma > 0) errors[w].te_z.push_back(dte / c[w].te.radius_sigma);
         if (le > 0.03 || te > 0.10) {
           char line[160];
           std::snprintf(line, sizeof line,
