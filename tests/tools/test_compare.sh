@@ -55,6 +55,12 @@ assert "verdict" in s["verdicts"] and len(s["zones"]) >= 1 and len(s["compared"]
 ' "$TMP/out"
 fi
 
+# The compared stream reads back: plot draws it (one row per zone and item of a section is
+# not a duplicated row), and the page opens with the blade's verdict.
+expect 0 "plot reads compare's stream" -- "$BIN/plot" "$TMP/compared.csv" --html -o "$TMP/blade.html"
+check "the page gives the blade's verdict" -- grep -q "Blade: PASS" "$TMP/blade.html"
+expect 0 "tocad reads compare's stream" -- "$BIN/tocad" "$TMP/compared.csv" -o "$TMP/params.json"
+
 # A tolerance too tight for the scan's noise fails: exit 4, the report says which.
 sed 's/^profile,\*,-0.03,0.03/profile,*,-0.002,0.002/' "$TMP/tol.csv" > "$TMP/tight.csv"
 expect 4 "a tight profile tolerance fails" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal.stl" \

@@ -26,10 +26,11 @@ const std::map<std::string, std::map<std::string, std::string>>& units() {
   return table;
 }
 
-// Throws when two rows of `t` have the same ids: each row of a table is one thing.
+// Throws when two rows of `t` have the same ids: each row of a table is one thing (compare's
+// zones and compared values are one per zone and item of a section).
 void check_unique_ids(const Table& t, const std::string& source) {
   std::vector<std::size_t> key;
-  for (const char* name : {"section", "loop", "side", "index"})
+  for (const char* name : {"section", "loop", "side", "zone", "item", "index"})
     if (const long c = t.find_column(name); c >= 0) key.push_back(static_cast<std::size_t>(c));
   const std::size_t rows = t.rows();
   if (key.empty() || rows < 2) return;
