@@ -69,6 +69,29 @@ TEST_CASE("checks: every check has a name of its own and a bit of its own", "[ch
   CHECK(all == (1u << std::size(section::check_names)) - 1);
 }
 
+TEST_CASE("checks: the checks flagging a params column are those that list it", "[checks]") {
+  using section::bit;
+  using section::Check;
+  using section::checks_flagging;
+  const std::uint32_t layers = bit(Check::layers), le_choice = bit(Check::le_choice),
+                      units = bit(Check::units), te_circle = bit(Check::te_circle);
+  CHECK(checks_flagging(0, "le_radius") == 0);
+  CHECK(checks_flagging(layers, "le_radius") == layers);
+  CHECK(checks_flagging(layers, "chord") == 0);
+  CHECK(checks_flagging(layers | te_circle, "te_radius") == (layers | te_circle));
+  CHECK(checks_flagging(layers | te_circle, "chord") == te_circle);  // the chord ends at the TE point
+  CHECK(checks_flagging(te_circle, "le_radius") == 0);
+  // Which end is the LE moves every value that is not the same from either end.
+  for (const char* column : {"stagger", "le_radius", "te_radius", "inlet_angle", "max_thickness_pos"})
+    CHECK(checks_flagging(le_choice, column) == le_choice);
+  for (const char* column : {"chord", "max_thickness", "area", "camber_length", "caliper_chord"})
+    CHECK(checks_flagging(le_choice, column) == 0);
+  for (const char* column : {"chord", "area", "fit_rms", "le_radius"})
+    CHECK(checks_flagging(units | layers, column) & units);
+  // A word inside another column's name is not that column.
+  CHECK(checks_flagging(bit(Check::chord), "caliper_chord") == 0);
+}
+
 TEST_CASE("checks: correct values of exact sections are not flagged", "[checks]") {
   // Five designs (thin and thick, 20-115 degrees of turning, edge radii 0.15-2.5 mm).
   for (const SectionDesign& design : designs()) {

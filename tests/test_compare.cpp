@@ -13,7 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <thread>
+#include <utility>
 #include <vector>
 
 using namespace compare_test;
@@ -382,6 +384,41 @@ TEST_CASE("compare: a hole leaves its zone not measured, and verdicts follow the
   CHECK(section::find_tolerance(rows, "chord", 2)->high == 0.2);
   CHECK(section::find_tolerance(rows, "chord", 1)->high == 0.1);
   CHECK(section::find_tolerance(rows, "area", 1) == nullptr);
+}
+
+TEST_CASE("compare: a value known to +- U passes or fails only beyond U from its limits", "[compare]") {
+  using section::Verdict;
+  const section::Tolerance band{"le_radius", -1, -0.02, 0.03};
+  const auto judged = [&](double x, double u) { return section::verdict(band, x, x, true, u); };
+  // Exact (U = 0): by the value alone, a value on a limit passes.
+  CHECK(judged(0.03, 0) == Verdict::pass);
+  CHECK(judged(0.0301, 0) == Verdict::fail);
+  CHECK(judged(-0.02, 0) == Verdict::pass);
+  // U = 0.004: pass inside [-0.016, 0.026], fail outside [-0.024, 0.034], uncertain between.
+  for (const auto& [x, expected] : std::vector<std::pair<double, Verdict>>{{0.0, Verdict::pass},
+                                                                           {0.0259, Verdict::pass},
+                                                                           {0.0261, Verdict::uncertain},
+                                                                           {0.03, Verdict::uncertain},
+                                                                           {0.0339, Verdict::uncertain},
+                                                                           {0.0341, Verdict::fail},
+                                                                           {-0.0159, Verdict::pass},
+                                                                           {-0.0161, Verdict::uncertain},
+                                                                           {-0.0239, Verdict::uncertain},
+                                                                           {-0.0241, Verdict::fail}}) {
+    INFO("x = " << x);
+    CHECK(judged(x, 0.004) == expected);
+  }
+  // A band narrower than 2 U holds no proven pass; one bound alone guards one side.
+  CHECK(judged(0.005, 0.03) == Verdict::uncertain);
+  const section::Tolerance most{"te_radius", -1, -std::numeric_limits<double>::infinity(), 0.01};
+  CHECK(section::verdict(most, -5, -5, true, 0.004) == Verdict::pass);
+  CHECK(section::verdict(most, 0.007, 0.007, true, 0.004) == Verdict::uncertain);
+  // An uncertainty that is not a number decides nothing but a clear failure; a hole still
+  // wins over uncertain, a failure over a hole.
+  CHECK(judged(0.0, std::nan("")) == Verdict::uncertain);
+  CHECK(judged(0.5, std::nan("")) == Verdict::fail);
+  CHECK(section::verdict(band, 0.028, 0.028, false, 0.004) == Verdict::not_measured);
+  CHECK(section::verdict(band, 0.05, 0.05, false, 0.004) == Verdict::fail);
 }
 
 TEST_CASE("compare: outliers are left out of the fit and the zones", "[compare]") {

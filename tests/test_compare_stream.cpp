@@ -3,6 +3,7 @@
 // section and whole-blade fits), nominals from a stream and from points, verdicts over a
 // dent and a hole, sections that cannot be compared, and the tolerance file.
 #include "compare_fixtures.h"
+#include "section/checks.h"
 #include "section/error.h"
 #include "section/extras/generate.h"
 #include "section/extras/plot.h"
@@ -251,6 +252,141 @@ TEST_CASE("compare stream: verdicts over a dent and a hole, and sections that ca
   const std::string html = section::plot_html(s);
   CHECK(html.find("Blade: FAIL") < html.find("<table class=\"summary\""));
   CHECK(html.find("failing sections: 0") != std::string::npos);
+}
+
+namespace {
+
+// Two measured sections of one design (points every 0.03 mm, 5 um of noise, two seeds) through
+// fitspline and camber, the exact profile's points as their nominal, compared without a fit.
+struct NoisyCase {
+  section::Stream measured, nominal;
+  section::CompareStreamOptions options;
+};
+
+NoisyCase noisy_case() {
+  const Case c = make_case(section::design_family()[1]);
+  NoisyCase out;
+  section::Table pts = schema::points.table();
+  section::Table nominal("nominal", {"section", "u", "v"});
+  for (int id = 0; id < 2; ++id) {
+    std::vector<Vector2d> normals;
+    const std::vector<Vector2d> p = profile_points(c.truth, 0.03, 0.005, 11 + id, &normals);
+    for (std::size_t i = 0; i < p.size(); ++i) schema::points.add(pts, {id, 0, i, p[i], normals[i], 0.0});
+    for (std::size_t i = 0; i < c.truth.profile.size(); i += 5)
+      nominal.add_row({double(id), c.truth.profile[i].x(), c.truth.profile[i].y()});
+  }
+  out.measured.put(pts);
+  section::fit_spline_stream(out.measured);
+  section::camber_stream(out.measured);
+  section::NominalSource source;
+  source.points = &nominal;
+  out.options.compare.fit.freedom = section::FitFreedom::none;
+  out.nominal = section::nominal_stream(source, {{0, {}}, {1, {}}}, out.options);
+  return out;
+}
+
+// The value of an item's `column` in the compared table of a section.
+double compared_column(const section::Stream& s, int section, const std::string& item, const char* name) {
+  const auto& items = section::compared_items();
+  const double code = static_cast<double>(std::find(items.begin(), items.end(), item) - items.begin());
+  const section::Table& t = schema::compared.get(s);
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    if (t.at(r, 0) == section && t.at(r, t.column("item")) == code) return t.at(r, t.column(name));
+  return std::nan("");
+}
+
+}  // namespace
+
+TEST_CASE("compare stream: a radius within its uncertainty of a limit is uncertain (guarded rule)",
+          "[compare]") {
+  const NoisyCase nc = noisy_case();
+  const auto sigma = column(nc.measured, "params", "le_radius_sigma");
+  const auto nominal_sigma = column(nc.nominal, "params", "le_radius_sigma");
+  REQUIRE(column(nc.measured, "params", "flags").at(0) == 0);
+  // 5 um of noise on ~60 points of the LE arc: a standard error of a micrometre or two.
+  CHECK(sigma.at(0) > 2e-4);
+  CHECK(sigma.at(0) < 5e-3);
+  CHECK(nominal_sigma.at(0) < 0.1 * sigma.at(0));
+  using Rule = section::DecisionRule;
+  // compare with le_radius's upper limit `high` on section 0 (the rule, coverage as given).
+  const auto run = [&](double high, Rule rule, double coverage = 2) {
+    section::Stream s = nc.measured;
+    section::CompareStreamOptions o = nc.options;
+    o.decision = rule;
+    o.coverage = coverage;
+    o.tolerances = {{"le_radius", 0, -1, high}, {"chord", -1, -0.05, 0.05}};
+    section::compare_stream(s, nc.nominal, o);
+    return s;
+  };
+  const section::Stream loose = run(1, Rule::guarded);
+  const double deviation = compared(loose, "le_radius").at(0)[1];
+  const double u = compared_column(loose, 0, "le_radius", "uncertainty");
+  CHECK(u == Approx(2 * std::hypot(sigma.at(0), nominal_sigma.at(0))).epsilon(1e-12));
+  CHECK(compared(loose, "le_radius").at(0)[2] == 0);
+  CHECK(compared_column(loose, 0, "chord", "uncertainty") == 0);  // no standard error known
+  // The limit moved about the deviation: guarded decides only beyond U, simple at the limit.
+  const struct {
+    double high;
+    Rule rule;
+    int verdict;
+  } cases[] = {
+      {deviation + 2 * u, Rule::guarded, 0},   {deviation + 0.5 * u, Rule::guarded, 3},
+      {deviation - 0.5 * u, Rule::guarded, 3}, {deviation - 2 * u, Rule::guarded, 1},
+      {deviation + 0.5 * u, Rule::simple, 0},  {deviation - 0.5 * u, Rule::simple, 1},
+  };
+  for (const auto& k : cases) {
+    INFO("high = deviation + " << (k.high - deviation) / u << " U, rule " << static_cast<int>(k.rule));
+    const section::Stream s = run(k.high, k.rule);
+    CHECK(compared(s, "le_radius").at(0)[2] == k.verdict);
+    CHECK(column(s, "verdicts", "verdict").at(0) == k.verdict);
+    CHECK(column(s, "verdicts", "verdict").at(1) == 0);
+    CHECK(section::stream_verdict(s) == k.verdict);
+  }
+  // A larger coverage factor widens the guard: 1.5 U inside passes at k = 2, not at k = 6.
+  CHECK(compared(run(deviation + 1.5 * u, Rule::guarded), "le_radius").at(0)[2] == 0);
+  CHECK(compared(run(deviation + 1.5 * u, Rule::guarded, 6), "le_radius").at(0)[2] == 3);
+}
+
+TEST_CASE("compare stream: a value camber flagged is uncertain however loose its limits", "[compare]") {
+  const NoisyCase nc = noisy_case();
+  // Section 1 as if camber had found two layers of points: its radii and thickness are then
+  // uncertain under either rule; its chord (not flagged) still passes.
+  section::Stream layered = nc.measured;
+  section::Table& params = *layered.find("params");
+  const std::size_t cs = params.column("section"), cf = params.column("flags");
+  for (std::size_t r = 0; r < params.rows(); ++r)
+    if (params.at(r, cs) == 1)
+      params.values[r * params.columns.size() + cf] = section::bit(section::Check::layers);
+  for (const auto rule : {section::DecisionRule::guarded, section::DecisionRule::simple}) {
+    section::Stream s = layered;
+    section::CompareStreamOptions o = nc.options;
+    o.decision = rule;
+    o.tolerances = {{"le_radius", -1, -1, 1}, {"max_thickness", -1, -1, 1}, {"chord", -1, -0.05, 0.05}};
+    section::compare_stream(s, nc.nominal, o);
+    CHECK(compared(s, "le_radius").at(1)[2] == 3);
+    CHECK(compared(s, "max_thickness").at(1)[2] == 3);
+    CHECK(compared_column(s, 1, "le_radius", "flags") == section::bit(section::Check::layers));
+    CHECK(compared(s, "chord").at(1)[2] == 0);
+    CHECK(compared(s, "le_radius").at(0)[2] == 0);
+    const auto verdicts = column(s, "verdicts", "verdict");
+    CHECK(verdicts.at(0) == 0);
+    CHECK(verdicts.at(1) == 3);
+    CHECK(column(s, "verdicts", "uncertain").at(1) == 2);
+    CHECK(section::stream_verdict(s) == 3);
+    const std::string report = section::compare_report(s);
+    CHECK(report.rfind("blade: UNCERTAIN", 0) == 0);
+    CHECK(report.find("section 1: uncertain (1 passed, 0 failed, 0 not measured, 2 uncertain)") !=
+          std::string::npos);
+    CHECK(report.find("uncertain (flagged: layers)") != std::string::npos);
+    CHECK(section::plot_svg(s, 1).find("UNCERTAIN (") != std::string::npos);
+  }
+  // A failure outweighs an uncertain value in the section's verdict.
+  section::Stream s = layered;
+  section::CompareStreamOptions o = nc.options;
+  o.tolerances = {{"le_radius", -1, -1, 1}, {"chord", 1, 0.1, 0.2}};
+  section::compare_stream(s, nc.nominal, o);
+  CHECK(column(s, "verdicts", "verdict").at(1) == 1);
+  CHECK(section::stream_verdict(s) == 1);
 }
 
 TEST_CASE("compare stream: the tolerance file is read, and refused naming the line", "[compare]") {

@@ -168,6 +168,14 @@ TEST_CASE("tool options: compare reads its fit, freedom and zones into the stage
   CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--center", "1,2,3"}).code == 2);
   CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--weights", "middle=2"}).code == 2);
   CHECK(parsed<CompareArgs>({"--help"}).out.find("Exit status") != std::string::npos);
+  // The decision rule: guarded with two standard errors unless told.
+  CHECK(p.args.options.decision == section::DecisionRule::guarded);
+  CHECK(p.args.options.coverage == 2);
+  const auto simple =
+      parsed<CompareArgs>({"--nominal", "n.stl", "--decision-rule", "simple", "--coverage-factor", "3"});
+  REQUIRE(simple.code == -1);
+  CHECK(simple.args.options.decision == section::DecisionRule::simple);
+  CHECK(simple.args.options.coverage == 3);
 }
 #endif
 

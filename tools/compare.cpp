@@ -113,7 +113,10 @@ int run_compare(const CompareArgs& a, const std::string& history) {
     section::write_file(a.common.output, section::format_json(all, {all.find("verdicts"), all.find("zones"),
                                                                     all.find("compared")}));
   const int verdict = section::stream_verdict(all);
-  return verdict == 1 ? section::tool::exit_failed : verdict == 2 ? section::tool::exit_not_measured : 0;
+  return verdict == 1   ? section::tool::exit_failed
+         : verdict == 2 ? section::tool::exit_not_measured
+         : verdict == 3 ? section::tool::exit_uncertain
+                        : 0;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 
@@ -22,6 +23,33 @@ const char* check_name(Check check) {
   for (const auto& c : check_names)
     if (c.check == check) return c.name;
   return "unknown";
+}
+
+namespace {
+
+// True when the space-separated `list` holds the word `word`.
+bool lists(const char* list, const char* word) {
+  const std::size_t n = std::strlen(word);
+  for (const char* p = std::strstr(list, word); p; p = std::strstr(p + 1, word))
+    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+  return false;
+}
+
+// The columns that are the same whichever end is the LE.
+constexpr const char* either_end = "chord camber_length max_thickness area caliper_chord centroid";
+
+}  // namespace
+
+std::uint32_t checks_flagging(std::uint32_t flags, const char* column) {
+  std::uint32_t out = 0;
+  for (const auto& c : check_names) {
+    if (!(flags & bit(c.check))) continue;
+    const bool flagged = c.check == Check::units       ? true
+                         : c.check == Check::le_choice ? !lists(either_end, column)
+                                                       : lists(c.columns, column);
+    if (flagged) out |= bit(c.check);
+  }
+  return out;
 }
 
 namespace {

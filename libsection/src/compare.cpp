@@ -371,9 +371,12 @@ BladeComparison compare_blade(const std::vector<ComparedSection>& sections, cons
   return out;
 }
 
-Verdict verdict(const Tolerance& t, double lowest, double highest, bool measured) {
-  if (lowest < t.low || highest > t.high) return Verdict::fail;
+Verdict verdict(const Tolerance& t, double lowest, double highest, bool measured, double uncertainty) {
+  const double u = uncertainty > 0 ? uncertainty : 0;
+  if (lowest < t.low - u || highest > t.high + u) return Verdict::fail;
   if (!measured || std::isnan(lowest) || std::isnan(highest)) return Verdict::not_measured;
+  // An uncertainty that is not a number decides nothing.
+  if (std::isnan(uncertainty) || lowest < t.low + u || highest > t.high - u) return Verdict::uncertain;
   return Verdict::pass;
 }
 

@@ -30,14 +30,6 @@ double wrapped(double degrees) {
   return a;
 }
 
-// True when the space-separated `list` holds the word `word`.
-bool lists(const char* list, const char* word) {
-  const std::size_t n = std::strlen(word);
-  for (const char* p = std::strstr(list, word); p; p = std::strstr(p + 1, word))
-    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
-  return false;
-}
-
 // The stack's coordinates: axial A, tangential T, span S of a 3D point, and back.
 struct Axes {
   bool rotor = false;
@@ -203,17 +195,7 @@ bool params_flagged(std::uint32_t flags, const char* column) {
   if (std::strcmp(column, "centroid") == 0 &&
       (flags & (section::bit(Check::le_measured) | section::bit(Check::te_measured))))
     return true;
-  for (const auto& c : check_names) {
-    if (!(flags & section::bit(c.check))) continue;
-    if (c.check == Check::units) return true;
-    if (c.check == Check::le_choice) {
-      for (const char* w : {"stagger", "le_point", "te_point"})
-        if (std::strcmp(w, column) == 0) return true;
-      continue;
-    }
-    if (lists(c.columns, column)) return true;
-  }
-  return false;
+  return checks_flagging(flags, column) != 0;
 }
 
 const char* stack_check_name(StackCheck check) {

@@ -9,6 +9,9 @@ compare="$BIN/compare"
 expect 0 "compare --help" -- "$compare" --help
 check "--help documents the exit codes" -- grep -q "4 a value failed its tolerance" "$TMP/out"
 check "--help documents 'not measured'" -- grep -q "5 none failed but a value was not measured" "$TMP/out"
+check "--help documents 'uncertain'" -- grep -q "6 none failed or was not measured but a value was uncertain" "$TMP/out"
+expect 2 "compare --decision-rule loose" -- "$compare" --nominal x.stl --decision-rule loose
+expect 2 "compare --coverage-factor 0" -- "$compare" --nominal x.stl --coverage-factor 0
 expect 2 "compare without --nominal" -- "$compare" -
 expect 2 "compare --fit sideways" -- "$compare" --nominal x.stl --fit sideways
 expect 2 "compare --freedom along without --direction" -- "$compare" --nominal x.stl --freedom along
@@ -67,6 +70,19 @@ expect 4 "a tight profile tolerance fails" -- "$compare" "$TMP/measured.csv" --n
   --tolerances "$TMP/tight.csv" --report -
 check "the report names the failed value" -- grep -q "^  profile .*FAIL" "$TMP/err"
 check "the blade fails" -- grep -q "^blade: FAIL" "$TMP/err"
+
+# An LE radius whose upper limit lies within its uncertainty (half of U above its deviation)
+# is uncertain: exit 6 under the guarded rule (the default), 0 when judged by the value alone.
+le=$(awk -F, '/^# table compared/ { f = 1; next } /^#/ { f = 0 } f && $1 == "section" { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  f && $1 == 0 && $c["item"] == 4 { printf "%.9f %.9f", $c["deviation"], $c["uncertainty"] }' "$TMP/compared.csv")
+check "the LE radius has an uncertainty" -- awk -v u="${le#* }" 'BEGIN { exit !(u > 0 && u < 0.02) }'
+printf 'item,section,low,high\nle_radius,0,-1,%s\n' "$(awk -v d="${le% *}" -v u="${le#* }" 'BEGIN { printf "%.9f", d + 0.5 * u }')" > "$TMP/guard.csv"
+expect 6 "a limit within the uncertainty: uncertain" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal.stl" \
+  --tolerances "$TMP/guard.csv" --report -
+check "the report says uncertain, with the +- U" -- grep -q "^  le_radius .* +- .*uncertain" "$TMP/err"
+check "the blade is uncertain" -- grep -q "^blade: UNCERTAIN" "$TMP/err"
+expect 0 "--decision-rule simple: by the value" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal.stl" \
+  --tolerances "$TMP/guard.csv" --decision-rule simple -o /dev/null
 
 # Minimum zone, weighted and whole-blade fits run; the minimum zone's largest deviation is
 # no larger than least squares'.

@@ -19,10 +19,13 @@ const char* const CompareArgs::description =
     "outside), the zones (leading and trailing edge: --edge-zone of the chord from each edge\n"
     "point; pressure side; suction side; whole) with their extremes, form and holes, and\n"
     "every params value's deviation. Adds the tables 'fits', 'deviations', 'zones',\n"
-    "'compared' and 'verdicts'. With --tolerances, each toleranced value passes, fails, or\n"
-    "is not measured (a hole over its zone is never a pass).\n\n"
+    "'compared' and 'verdicts'. With --tolerances, each toleranced value passes, fails, is\n"
+    "not measured (a hole over its zone is never a pass) or is uncertain: camber flagged it,\n"
+    "or a limit lies within its uncertainty (the edge radii's standard errors, times\n"
+    "--coverage-factor; --decision-rule).\n\n"
     "Exit status: 0 every toleranced value passed (or none is toleranced), 1 bad data,\n"
-    "2 bad usage, 4 a value failed its tolerance, 5 none failed but a value was not measured.\n\n"
+    "2 bad usage, 4 a value failed its tolerance, 5 none failed but a value was not measured,\n"
+    "6 none failed or was not measured but a value was uncertain.\n\n"
     "Example: slice scan.ply --at 12,20,28 | smooth | fitspline | camber |\n"
     "         compare --nominal blade.stl --tolerances tolerances.csv --report -";
 
@@ -123,6 +126,12 @@ void CompareArgs::declare(CLI::App& app) {
       ->check(count_check("--center", 2, 3));
   app.add_option("--weights", weights,
                  "--fit weighted: ZONE=W,... for the zones le, te, pressure, suction (default 1)");
+  add_checked(app, "--decision-rule", decision,
+              "guarded: a value passes (fails) only when it lies inside (outside) its limits by more than "
+              "its uncertainty, else it is uncertain (ISO 14253-1); simple: by the value alone",
+              CLI::IsMember({"guarded", "simple"}));
+  add_checked(app, "--coverage-factor", options.coverage,
+              "The expanded uncertainty: this many standard errors (2: about 95 %)", positive);
   app.add_flag("--whole-blade", options.whole, "One rigid motion for all sections (parallel planes)");
   add_checked(app, "--edge-zone", options.compare.edge_zone,
               "The edge zones: the profile from each edge point to this fraction of the chord",
@@ -142,6 +151,7 @@ void CompareArgs::declare(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   app.callback([this] {
     read_fit(*this);
+    options.decision = decision == "simple" ? DecisionRule::simple : DecisionRule::guarded;
     if (keep_outliers) options.compare.outlier_distance = -1;
     if (!le_direction.empty()) {
       const auto v = numbers(le_direction, "--le-direction");

@@ -12,6 +12,7 @@ namespace section::tool {
 /// compare's exit codes beside 0 (every toleranced value passed), 1 and 2 (tool.h).
 inline constexpr int exit_failed = 4;        ///< a value failed its tolerance
 inline constexpr int exit_not_measured = 5;  ///< none failed, and a value was not measured
+inline constexpr int exit_uncertain = 6;     ///< none failed or was not measured, and one was uncertain
 
 struct CompareArgs {
   static constexpr const char* name = "compare";
@@ -25,6 +26,7 @@ struct CompareArgs {
   /// zones, compared values and issues per section); "" = table at a terminal, else stream.
   std::string format;
   std::string method = "least-squares", freedom = "all";  ///< --fit, --freedom as given
+  std::string decision = "guarded";                       ///< --decision-rule as given
   std::string direction, center, weights, le_direction;   ///< those flags as given
   bool keep_outliers = false;
   /// Declares the options on `app`, bound to these fields.

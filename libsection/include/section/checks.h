@@ -113,6 +113,12 @@ constexpr std::uint32_t bit(Check c) {
 /// The name of a check ("le_radius", ...).
 const char* check_name(Check check);
 
+/// The bits of `flags` (a params row's) whose checks flag the params column `column`: each
+/// check the columns check_names lists for it, units every column, le_choice every column
+/// that is not the same whichever end is the LE (all but chord, camber_length,
+/// max_thickness, area, caliper_chord and centroid). 0 when none does.
+std::uint32_t checks_flagging(std::uint32_t flags, const char* column);
+
 /// Options of check_section (lengths in the profile's units, angles in degrees).
 struct CheckOptions {
   double noise = 0;          ///< rms of the measured points about the profile (0 = unknown)

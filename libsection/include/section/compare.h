@@ -191,7 +191,19 @@ BladeComparison compare_blade(const std::vector<ComparedSection>& sections,
                               const CompareOptions& options = {});
 
 /// The verdict of a value against its tolerance.
-enum class Verdict : int { pass = 0, fail = 1, not_measured = 2 };
+enum class Verdict : int {
+  pass = 0,          ///< within its limits (by more than its uncertainty)
+  fail = 1,          ///< outside its limits (by more than its uncertainty)
+  not_measured = 2,  ///< a hole over what it rests on, or its section could not be compared
+  uncertain = 3,     ///< measured, but the measurement cannot decide: a limit lies within its
+                     ///< uncertainty, or camber flagged the value
+};
+
+/// How a value's measurement uncertainty enters its verdict (docs/COMPARE.md).
+enum class DecisionRule {
+  guarded,  ///< ISO 14253-1: pass and fail only when proven (value +- U on one side of each limit)
+  simple,   ///< by the value alone, its uncertainty ignored
+};
 
 /// A tolerance on one value: limits on its deviation from the nominal (or on the value).
 struct Tolerance {
@@ -203,10 +215,13 @@ struct Tolerance {
   std::string where;      ///< where it was read (FILE:LINE), for messages
 };
 
-/// The verdict on values ranging from `lowest` to `highest` (one value: both the same):
-/// fail when any lies outside [low, high]; else not measured when `measured` is false or a
-/// value is NaN; else pass. A hole is never a pass.
-Verdict verdict(const Tolerance& tolerance, double lowest, double highest, bool measured);
+/// The verdict on values ranging from `lowest` to `highest` (one value: both the same), each
+/// known to +- `uncertainty` (an expanded uncertainty U >= 0; 0: exact): fail when any lies
+/// outside [low - U, high + U]; else not measured when `measured` is false or a value is
+/// NaN; else uncertain when any lies outside [low + U, high - U]; else pass. A hole is
+/// never a pass; with U = 0 no value is uncertain.
+Verdict verdict(const Tolerance& tolerance, double lowest, double highest, bool measured,
+                double uncertainty = 0);
 
 /// The tolerance of `item` for `section`: the row naming the section, else the row for
 /// every section, else nullptr.

@@ -63,11 +63,12 @@ void collect_compare(const Stream& stream, int section, SectionData& d) {
   for (const auto& r : rows_of(stream, "zones", section, {"zone", "bounds", "low", "high", "verdict"}))
     d.bands[static_cast<int>(r[0])] = {static_cast<int>(r[1]), r[2], r[3], static_cast<int>(r[4])};
   for (const auto& r :
-       rows_of(stream, "verdicts", section, {"verdict", "passed", "failed", "not_measured"})) {
+       rows_of(stream, "verdicts", section, {"verdict", "passed", "failed", "not_measured", "uncertain"})) {
     d.verdict = static_cast<int>(r[0]);
     d.passed = static_cast<int>(r[1]);
     d.failed = static_cast<int>(r[2]);
     d.not_measured = static_cast<int>(r[3]);
+    d.uncertain = std::isfinite(r[4]) ? static_cast<int>(r[4]) : 0;  // NaN: compared before it was counted
   }
   for (const auto& r : rows_of(stream, "zones", section, {"zone", "verdict", "form_verdict"}))
     for (const auto& [v, what] : {std::pair{r[1], "profile"}, std::pair{r[2], "form"}}) {
@@ -81,6 +82,7 @@ void collect_compare(const Stream& stream, int section, SectionData& d) {
     if (k >= items.size()) continue;
     if (r[1] == 1) d.failed_items.push_back(items[k]);
     if (r[1] == 2) d.unmeasured_items.push_back(items[k]);
+    if (r[1] == 3) d.uncertain_items.push_back(items[k]);
   }
 }
 
@@ -131,10 +133,11 @@ std::string verdict_line(const SectionData& d) {
   if (d.verdict == -2) return "";
   std::string line = d.verdict == 1   ? "FAIL"
                      : d.verdict == 2 ? "NOT MEASURED"
+                     : d.verdict == 3 ? "UNCERTAIN"
                      : d.verdict == 0 ? "PASS"
                                       : "nothing toleranced";
   line += " (" + std::to_string(d.passed) + " passed, " + std::to_string(d.failed) + " failed, " +
-          std::to_string(d.not_measured) + " not measured)";
+          std::to_string(d.not_measured) + " not measured, " + std::to_string(d.uncertain) + " uncertain)";
   auto list = [](const std::vector<std::string>& v) {
     std::string out;
     for (const auto& s : v) out += (out.empty() ? "" : ", ") + s;
@@ -142,6 +145,7 @@ std::string verdict_line(const SectionData& d) {
   };
   if (!d.failed_items.empty()) line += "; failed: " + list(d.failed_items);
   if (!d.unmeasured_items.empty()) line += "; not measured: " + list(d.unmeasured_items);
+  if (!d.uncertain_items.empty()) line += "; uncertain: " + list(d.uncertain_items);
   return line;
 }
 
@@ -153,7 +157,7 @@ std::string whisker_legend(const SectionData& d) {
 }
 
 std::string blade_verdict_html(const std::vector<SectionData>& data) {
-  int compared = 0, passed = 0, failed = 0, not_measured = 0;
+  int compared = 0, passed = 0, failed = 0, not_measured = 0, uncertain = 0;
   std::string failing;
   for (const auto& d : data) {
     if (d.verdict == -2) continue;
@@ -161,19 +165,21 @@ std::string blade_verdict_html(const std::vector<SectionData>& data) {
     passed += d.passed;
     failed += d.failed;
     not_measured += d.not_measured;
+    uncertain += d.uncertain;
     if (d.verdict == 1) failing += (failing.empty() ? "" : ", ") + std::to_string(d.id);
   }
   if (!compared) return "";
   const std::string verdict = failed         ? "FAIL"
                               : not_measured ? "NOT MEASURED"
+                              : uncertain    ? "UNCERTAIN"
                               : passed       ? "PASS"
                                              : "nothing toleranced";
-  const std::string colour = failed ? "#c00" : not_measured ? "#b07800" : "#080";
+  const std::string colour = failed ? "#c00" : not_measured || uncertain ? "#b07800" : "#080";
   return "<p class=\"verdict\" style=\"font-size:22px;font-weight:bold;color:" + colour +
          "\">Blade: " + verdict + "</p>\n<p>" + std::to_string(passed) + " values passed, " +
-         std::to_string(failed) + " failed, " + std::to_string(not_measured) + " not measured, over " +
-         std::to_string(compared) + " sections" + (failing.empty() ? "" : "; failing sections: " + failing) +
-         ".</p>\n";
+         std::to_string(failed) + " failed, " + std::to_string(not_measured) + " not measured, " +
+         std::to_string(uncertain) + " uncertain, over " + std::to_string(compared) + " sections" +
+         (failing.empty() ? "" : "; failing sections: " + failing) + ".</p>\n";
 }
 
 }  // namespace section::detail::plot

@@ -90,11 +90,11 @@ struct SectionData {
   std::map<std::string, double> fit;     // loop 0's splines row
   std::vector<std::string> issues;       // "stage: message" lines
   // compare's tables (plot_compare.cpp): whiskers, zone bands, the section's verdict
-  // (-2 not compared) with its counts and the values failed or not measured.
+  // (-2 not compared) with its counts and the values failed, not measured or uncertain.
   std::vector<Whisker> whiskers;
   std::map<int, ZoneBand> bands;
-  int verdict = -2, passed = 0, failed = 0, not_measured = 0;
-  std::vector<std::string> failed_items, unmeasured_items;
+  int verdict = -2, passed = 0, failed = 0, not_measured = 0, uncertain = 0;
+  std::vector<std::string> failed_items, unmeasured_items, uncertain_items;
 };
 
 // The spline tables read once per stream; an unreadable set becomes a note, not an error.

@@ -208,7 +208,7 @@ void title(Page& p) {
   lines(p, "subtitle", sub.empty() ? "units " + d.units : sub + "; units " + d.units, 13, 16);
   p.y -= 4;
   // compare's verdict and what its whiskers show (plot_compare.cpp).
-  const char* colour = d.verdict == 1 ? "#c00" : d.verdict == 2 ? "#b07800" : "#080";
+  const char* colour = d.verdict == 1 ? "#c00" : d.verdict == 2 || d.verdict == 3 ? "#b07800" : "#080";
   for (const auto& [text, style] :
        {std::pair{verdict_line(d), std::string("font-weight:bold;fill:") + colour},
         std::pair{whisker_legend(d), std::string("font-size:11px;fill:#555")}}) {

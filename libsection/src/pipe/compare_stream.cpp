@@ -3,6 +3,7 @@
 // compared values and verdicts out.
 #include "section/pipe/compare_stream.h"
 
+#include "section/checks.h"
 #include "section/error.h"
 #include "section/io/stream.h"
 #include "section/pipe/fit_spline_stream.h"
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -133,13 +135,28 @@ enum : std::size_t { fit_rows, deviation_rows, zone_rows, compared_rows, verdict
 
 // Counts verdicts toward the section's.
 struct Tally {
-  int passed = 0, failed = 0, not_measured = 0;
+  int passed = 0, failed = 0, not_measured = 0, uncertain = 0;
   int add(Verdict v) {
-    (v == Verdict::pass ? passed : v == Verdict::fail ? failed : not_measured)++;
+    (v == Verdict::pass        ? passed
+     : v == Verdict::fail      ? failed
+     : v == Verdict::uncertain ? uncertain
+                               : not_measured)++;
     return static_cast<int>(v);
   }
-  int verdict() const { return failed ? 1 : not_measured ? 2 : passed ? 0 : -1; }
+  int verdict() const { return failed ? 1 : not_measured ? 2 : uncertain ? 3 : passed ? 0 : -1; }
 };
+
+// A params value of a row: its column, else `otherwise`.
+double value_of(const Row& row, const std::string& column, double otherwise = 0) {
+  const auto v = row.find(column);
+  return v != row.end() ? v->second : otherwise;
+}
+
+// The checks of a params row (its `flags` column) that flag `column`.
+std::uint32_t flagging(const Row& row, const char* column) {
+  const double flags = value_of(row, "flags");
+  return flags > 0 && flags < 4294967296.0 ? checks_flagging(static_cast<std::uint32_t>(flags), column) : 0;
+}
 
 double wrapped(double degrees) {
   double d = std::fmod(degrees, 360.0);
@@ -171,29 +188,46 @@ void judge(int id, const SectionComparison* c, const Input& in, const CompareStr
     bool measured = c != nullptr;
     for (int z = 1; z < zone_count && measured; ++z)
       if (item.zones >> (z - 1) & 1) measured = c->zones[z].measured;
+    const Tolerance* t = find_tolerance(tol, item.name, id);
+    const bool on_value = t && t->on_value;
+    double sigma2 = 0;  // the variance of what the limits bound
+    std::uint32_t flags = 0, nominal_flags = 0;
     if (c && item.name == std::string("fit_shift")) {
       value = c->fit.motion.translation.norm();
     } else if (c && item.name == std::string("fit_rotation")) {
       value = c->fit.motion.angle;
     } else if (c) {
-      const auto mv = p->second.find(item.name), nv = n->second.find(item.name);
+      const auto mv = p->second.find(item.name);
       measured = measured && mv != p->second.end();
       value = mv != p->second.end() ? mv->second : 0.0;
-      nominal = nv != n->second.end() ? nv->second : 0.0;
+      nominal = value_of(n->second, item.name);
+      // The standard errors camber gives (the edge radii's), and the checks it failed.
+      const std::string sigma = item.name + std::string("_sigma");
+      sigma2 =
+          std::pow(value_of(p->second, sigma), 2) + (on_value ? 0 : std::pow(value_of(n->second, sigma), 2));
+      flags = flagging(p->second, item.name);
+      nominal_flags = on_value ? 0 : flagging(n->second, item.name);
     }
     if (!measured) value = 0;
     const double deviation = measured ? (item.angle ? wrapped(value - nominal) : value - nominal) : 0.0;
-    const Tolerance* t = find_tolerance(tol, item.name, id);
+    const double uncertainty = measured ? o.coverage * std::sqrt(sigma2) : 0.0;
     int v = -1;
-    if (t)
-      v = tally.add(measured
-                        ? verdict(*t, t->on_value ? value : deviation, t->on_value ? value : deviation, true)
-                        : Verdict::not_measured);
-    schema::compared.append(slot.rows[compared_rows],
-                            {id, static_cast<int>(k), measured, value, nominal, deviation, t, v});
+    if (t) {
+      const double x = on_value ? value : deviation;
+      // A measured value camber flagged may be off by an amount nobody knows, so no limit can
+      // judge it. The nominal's flags are reported beside the verdict, not counted: on exact or
+      // faceted geometry camber's checks also see the spline's and the facets' sub-micrometre
+      // departures (docs/COMPARE.md).
+      v = tally.add(!measured ? Verdict::not_measured
+                    : flags
+                        ? Verdict::uncertain
+                        : verdict(*t, x, x, true, o.decision == DecisionRule::guarded ? uncertainty : 0.0));
+    }
+    schema::compared.append(slot.rows[compared_rows], {id, static_cast<int>(k), measured, value, nominal,
+                                                       deviation, t, v, uncertainty, flags, nominal_flags});
   }
-  schema::verdicts.append(slot.rows[verdict_rows],
-                          {id, tally.verdict(), tally.passed, tally.failed, tally.not_measured});
+  schema::verdicts.append(slot.rows[verdict_rows], {id, tally.verdict(), tally.passed, tally.failed,
+                                                    tally.not_measured, tally.uncertain});
 }
 
 // The fit and deviations rows of a compared section.
@@ -247,6 +281,7 @@ int stream_verdict(const Stream& stream) {
     const int v = static_cast<int>(t->at(r, cv));
     if (v == 1) return 1;
     if (v == 2) worst = 2;
+    if (v == 3 && worst == 0) worst = 3;
   }
   return worst;
 }

@@ -395,15 +395,23 @@ constexpr auto compared_columns = by_section<ComparedRow>({
     {"high", "item", "the highest allowed (0 when unbounded)",
      [](auto& r) { return r.tolerance ? finite_or_0(r.tolerance->high) : 0.0; }},
     {"verdict", "code", "its verdict (verdicts below)", [](auto& r) { return double(r.verdict); }},
+    {"uncertainty", "item", "the expanded uncertainty U of the value judged; 0 when none is known",
+     [](auto& r) { return r.uncertainty; }},
+    {"flags", "code", "the checks camber flagged the value by (params flags bits; then uncertain); 0 none",
+     [](auto& r) { return double(r.flags); }},
+    {"nominal_flags", "code", "those of the nominal's value (shown, not counted in the verdict)",
+     [](auto& r) { return double(r.nominal_flags); }},
 });
 
 constexpr auto verdict_columns = by_section<VerdictRow>({
     {"verdict", "code",
-     "1 when a value failed, else 2 when one was not measured, else 0; -1 when none is toleranced",
+     "1 when a value failed, else 2 when one was not measured, else 3 when one was uncertain, else 0; -1 "
+     "when none is toleranced",
      [](auto& r) { return double(r.verdict); }},
     {"passed", "count", "values that passed", [](auto& r) { return double(r.passed); }},
     {"failed", "count", "values that failed", [](auto& r) { return double(r.failed); }},
     {"not_measured", "count", "values not measured", [](auto& r) { return double(r.not_measured); }},
+    {"uncertain", "count", "values uncertain", [](auto& r) { return double(r.uncertain); }},
 });
 
 // The names of a column: its own, or a point's prefix with each axis.
@@ -558,10 +566,6 @@ std::vector<TableDoc> tables() {
 }
 
 }  // namespace schema
-
-}  // namespace section
-
-namespace section {
 
 void convert_to_mm(Stream& stream) {
   const double mm = mm_per_unit(stream.units);

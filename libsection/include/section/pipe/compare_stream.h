@@ -24,9 +24,13 @@ namespace section {
 struct CompareStreamOptions {
   CompareOptions compare;             ///< the fit, zones, holes and outliers
   std::vector<Tolerance> tolerances;  ///< the values' tolerances (io/tolerances.h reads them)
-  bool whole = false;                 ///< one motion for every section (compare_blade)
-  CamberOptions camber;               ///< the nominal's camber line and params
-  FitSplineOptions fit_spline;        ///< the nominal's spline (mesh sections, points)
+  /// How a value's uncertainty (the params' standard errors, `<column>_sigma`) enters its
+  /// verdict; a value camber flagged is uncertain under either rule.
+  DecisionRule decision = DecisionRule::guarded;
+  double coverage = 2;            ///< the expanded uncertainty U = coverage x the standard error
+  bool whole = false;             ///< one motion for every section (compare_blade)
+  CamberOptions camber;           ///< the nominal's camber line and params
+  FitSplineOptions fit_spline;    ///< the nominal's spline (mesh sections, points)
   double plane_tolerance = 1e-3;  ///< length: a nominal section or point this near a measured plane is on it
   int threads = 0;                ///< worker threads over the sections; 0 = all cores
 };
@@ -64,7 +68,7 @@ const std::vector<std::string>& compared_items();
 std::vector<std::string> tolerance_items();
 
 /// The stream's worst verdict over the "verdicts" table: 1 when a value failed, else 2 when
-/// one was not measured, else 0 (also without a verdict).
+/// one was not measured, else 3 when one was uncertain, else 0 (also without a verdict).
 int stream_verdict(const Stream& stream);
 
 }  // namespace section

@@ -261,12 +261,14 @@ struct ComparedRow {
   double value, nominal, deviation;
   const Tolerance* tolerance;
   int verdict;
+  double uncertainty;                  ///< the expanded uncertainty of what the limits bound (0: none known)
+  std::uint32_t flags, nominal_flags;  ///< camber's checks flagging the measured and the nominal value
 };
 struct VerdictRow {
   int section;
-  int verdict;  ///< the section's: 1 when a value failed, else 2 when one was not measured, else 0 (-1: none
-                ///< toleranced)
-  int passed, failed, not_measured;
+  int verdict;  ///< the section's: 1 when a value failed, else 2 when one was not measured, else 3 when one
+                ///< was uncertain, else 0 (-1: none toleranced)
+  int passed, failed, not_measured, uncertain;
 };
 
 // blade's rows (docs/BLADE.md).
