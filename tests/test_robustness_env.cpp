@@ -203,6 +203,15 @@ TEST_CASE("robustness: a stream is held to its schema", "[robustness][stream]") 
              Catch::Contains("column 'points' is -5, a count must be a whole number of 0 or more"));
   CHECK_THAT(refused("# table splines\nsection,loop,degree,closed\n0,0,3,2\n"),
              Catch::Contains("column 'closed' is 2, a flag must be 0 or 1"));
+  CHECK_THAT(refused("# table params\nsection,flags\n0,-5\n"),
+             Catch::Contains("column 'flags' is -5, check bits must be a whole number from 0 to 2^32 - 1"));
+  CHECK_THAT(refused("# table params\nsection,flags\n0,2.5\n"), Catch::Contains("column 'flags' is 2.5"));
+  CHECK_THAT(refused("# table params\nsection,le_radius_sigma\n0,-0.001\n"),
+             Catch::Contains("column 'le_radius_sigma' is -0.001, a standard error must not be negative"));
+  // Compare's zones and compared values: one row per zone or item of a section.
+  CHECK(refused("# table zones\nsection,zone\n0,0\n0,1\n# table compared\nsection,item\n0,0\n0,1\n") ==
+        "no error");
+  CHECK_THAT(refused("# table compared\nsection,item\n0,4\n0,4\n"), Catch::Contains("section 0 item 4"));
   CHECK_THAT(refused("# table points\nsection,loop,index,u,v\n0,-1,0,0,0\n"), Catch::Contains("negative id"));
   CHECK_THAT(refused("# table points\nsection,loop,index,u,u\n0,0,0,0,0\n"),
              Catch::Contains("column 'u' appears twice"));

@@ -56,20 +56,30 @@ void check_unique_ids(const Table& t, const std::string& source) {
   }
 }
 
-// Throws for a count that is not a whole number of 0 or more, or a flag that is not 0 or 1.
+// Throws for a count that is not a whole number of 0 or more, a flag that is not 0 or 1, a set
+// of check bits (flags) that is not a whole number below 2^32, or a standard error (_sigma)
+// below 0.
 void check_values(const Table& t, const std::map<std::string, std::string>& unit, const std::string& source) {
   const long cs = t.find_column("section");
   for (std::size_t c = 0; c < t.columns.size(); ++c) {
     const auto u = unit.find(t.columns[c]);
-    if (u == unit.end() || (u->second != "count" && u->second != "flag")) continue;
-    const bool flag = u->second == "flag";
+    if (u == unit.end()) continue;
+    const std::string& name = t.columns[c];
+    const bool flag = u->second == "flag", count = u->second == "count",
+               bits = u->second == "code" && (name == "flags" || name == "nominal_flags"),
+               sigma = name.size() > 6 && name.compare(name.size() - 6, 6, "_sigma") == 0;
+    if (!flag && !count && !bits && !sigma) continue;
     for (std::size_t r = 0; r < t.rows(); ++r) {
       const double v = t.at(r, c);
-      if (flag ? (v == 0 || v == 1) : (v >= 0 && v == std::floor(v))) continue;
+      const bool whole = v >= 0 && v == std::floor(v);
+      if (flag ? (v == 0 || v == 1) : count ? whole : bits ? whole && v < 4294967296.0 : v >= 0) continue;
       throw Error("pipe: " + source + ": table '" + t.name + "' data row " + std::to_string(r + 1) +
                   (cs >= 0 ? " (section " + format_number(t.at(r, std::size_t(cs))) + ")" : std::string()) +
-                  ": column '" + t.columns[c] + "' is " + format_number(v) + ", " +
-                  (flag ? "a flag must be 0 or 1" : "a count must be a whole number of 0 or more"));
+                  ": column '" + name + "' is " + format_number(v) + ", " +
+                  (flag    ? "a flag must be 0 or 1"
+                   : count ? "a count must be a whole number of 0 or more"
+                   : bits  ? "check bits must be a whole number from 0 to 2^32 - 1"
+                           : "a standard error must not be negative"));
     }
   }
 }
