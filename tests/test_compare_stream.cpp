@@ -389,6 +389,38 @@ TEST_CASE("compare stream: a value camber flagged is uncertain however loose its
   CHECK(section::stream_verdict(s) == 1);
 }
 
+TEST_CASE("pipe: a stage run again replaces its issues and drops what the later stages wrote",
+          "[compare][pipe]") {
+  const NoisyCase nc = noisy_case();
+  const auto stage_issues = [](const section::Stream& s, const std::string& stage) {
+    return std::count_if(s.issues.begin(), s.issues.end(), [&](const auto& i) { return i.stage == stage; });
+  };
+  // A camber warning on section 0 (as a flagged value gets), compared and stacked after.
+  section::Stream later = nc.measured;
+  later.issues.push_back({0, 0, "camber", "a warning"});
+  section::CompareStreamOptions o = nc.options;
+  o.tolerances = {{"chord", -1, -0.05, 0.05}};
+  section::compare_stream(later, nc.nominal, o);
+  REQUIRE(later.find("verdicts"));
+  // camber again: its own issues replaced (not added to), compare's tables gone.
+  section::Stream again = later;
+  section::camber_stream(again);
+  CHECK(stage_issues(again, "camber") == stage_issues(nc.measured, "camber"));
+  CHECK(!again.find("verdicts"));
+  CHECK(!again.find("compared"));
+  CHECK(again.find("params"));
+  // fitspline again: every section refitted (a camber warning does not hold one back as
+  // failed), camber's and compare's tables and issues gone; camber after it measures the same.
+  section::Stream refit = later;
+  section::fit_spline_stream(refit);
+  CHECK(schema::splines.get(refit).rows() == 2);
+  CHECK(stage_issues(refit, "camber") == 0);
+  for (const char* table : {"params", "camber", "thickness", "sides", "zones", "verdicts"})
+    CHECK(!refit.find(table));
+  section::camber_stream(refit);
+  CHECK(section::format_stream(refit) == section::format_stream(nc.measured));
+}
+
 TEST_CASE("compare stream: the tolerance file is read, and refused naming the line", "[compare]") {
   const auto t = tolerances(
       "# "

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 
 namespace section::pipe {
 
@@ -40,11 +42,24 @@ std::map<std::pair<int, int>, LoopRows> loop_rows(const Table& t, const std::str
   return loops;
 }
 
-void clear_issues(Stream& stream, const std::string& stage) {
+void restage(Stream& stream, const std::string& stage) {
+  // The stages whose output rests on each one's (compare and blade both on camber's).
+  static const std::map<std::string, std::set<std::string>> later = {
+      {"slice", {"smooth", "fitspline", "camber", "compare", "blade"}},
+      {"smooth", {"fitspline", "camber", "compare", "blade"}},
+      {"fitspline", {"camber", "compare", "blade"}},
+      {"camber", {"compare", "blade"}},
+      {"compare", {}},
+      {"blade", {}}};
+  const auto after = later.find(stage);
+  const std::set<std::string> none;
+  const std::set<std::string>& gone = after != later.end() ? after->second : none;
   auto& issues = stream.issues;
-  issues.erase(
-      std::remove_if(issues.begin(), issues.end(), [&](const SectionIssue& i) { return i.stage == stage; }),
-      issues.end());
+  issues.erase(std::remove_if(issues.begin(), issues.end(),
+                              [&](const SectionIssue& i) { return i.stage == stage || gone.count(i.stage); }),
+               issues.end());
+  for (const schema::TableDoc& t : schema::tables())
+    if (gone.count(t.written_by)) stream.erase(t.name);
 }
 
 void vanished_sections(Stream& stream, const std::set<int>& present, const std::string& stage,

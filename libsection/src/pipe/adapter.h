@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What the stream stages (smooth_stream, fit_spline_stream, camber_stream) share: a table's
-// rows by loop, a rerun's issues cleared, and items run in parallel into slots merged in order.
+// rows by loop, a rerun's issues and later stages' tables cleared, and items run in parallel into slots
+// merged in order.
 #include "section/io/stream.h"
 
 #include <Eigen/Core>
@@ -24,8 +25,12 @@ using LoopRows = std::vector<std::pair<double, Eigen::Vector2d>>;
 /// non-finite section or loop id`.
 std::map<std::pair<int, int>, LoopRows> loop_rows(const Table& t, const std::string& component);
 
-/// Removes the issues `stage` recorded before: a rerun replaces them along with its tables.
-void clear_issues(Stream& stream, const std::string& stage);
+/// Readies a stream for `stage` (smooth, fitspline, camber, compare or blade) run on it
+/// again: the issues it recorded before go (the rerun replaces them along with its tables),
+/// and so do the tables and issues of the stages that rest on its output (fitspline: camber,
+/// compare and blade), which would otherwise stand beside the new output they do not
+/// describe, or, as issues, hold their sections back as failed.
+void restage(Stream& stream, const std::string& stage);
 
 /// Adds the issue `no WHAT in the stream for this section` (stage `stage`) for each section
 /// the frames table lists that is not in `present` and has no issue yet: a section does not

@@ -376,6 +376,7 @@ Stream profile_stream(const BSpline& spline, double rms) {
 }
 
 void camber_stream(Stream& stream, const CamberOptions& options) {
+  pipe::restage(stream, "camber");
   const CamberInput in = gather(stream);
   Table camber = schema::camber.table(), params = schema::params.table(),
         thickness = schema::thickness.table(), sides = schema::sides.table();

@@ -287,7 +287,7 @@ int stream_verdict(const Stream& stream) {
 }
 
 void compare_stream(Stream& stream, const Stream& nominal, const CompareStreamOptions& options) {
-  pipe::clear_issues(stream, "compare");
+  pipe::restage(stream, "compare");
   const Input in = gather(stream, nominal);
   Table fit = schema::fits.table(), deviations = schema::deviations.table(), zones = schema::zones.table(),
         compared = schema::compared.table(), verdicts = schema::verdicts.table();

@@ -94,7 +94,7 @@ void fit_spline_stream(Stream& stream, const FitSplineOptions& options) {
   if (schema::frames.find(stream)) in.frames = frames(stream);
   in.options = options;
   in.samples = options.samples > 0 || options.sample_spacing > 0;
-  pipe::clear_issues(stream, "fitspline");
+  pipe::restage(stream, "fitspline");
   std::vector<Table> tables = {schema::splines.table(), schema::spline_knots.table(),
                                schema::spline_ctrl.table(), schema::gaps.table(), schema::samples.table()};
   std::vector<std::pair<std::pair<int, int>, const pipe::LoopRows*>> work;

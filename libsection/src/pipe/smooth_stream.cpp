@@ -32,7 +32,7 @@ void smooth_loop(int section, int loop, const pipe::LoopRows& rows, const Smooth
 
 void smooth_stream(Stream& stream, const SmoothOptions& options) {
   const auto loops = pipe::loop_rows(schema::points.get(stream), "smooth");
-  pipe::clear_issues(stream, "smooth");
+  pipe::restage(stream, "smooth");
   Table smoothed = schema::smoothed.table(), stats = schema::smooth_stats.table();
   std::vector<std::pair<std::pair<int, int>, const pipe::LoopRows*>> work;
   std::set<int> present;

@@ -4,6 +4,7 @@
 
 #include "section/error.h"
 #include "section/pipe/schema.h"
+#include "pipe/adapter.h"
 
 #include <cmath>
 #include <cstdint>
@@ -53,6 +54,7 @@ std::vector<StackedSection> stacked_sections(const Stream& stream) {
 
 StackingResult stacking_stream(Stream& stream, const StackingOptions& options) {
   convert_to_mm(stream);
+  pipe::restage(stream, "blade");
   // A section whose values are not all finite is left out with an issue; the others go on.
   std::vector<StackedSection> sections;
   for (const StackedSection& s : stacked_sections(stream)) {
