@@ -345,6 +345,16 @@ TEST_CASE("pipe: plain CSV tables and 2D profiles", "[pipe]") {
   REQUIRE(prof.size() == 3);
   CHECK(prof[1].y() == 0.06);
   REQUIRE_THROWS_WITH(parse_profile("1 0\n0.5 x\n", "p.dat"), Catch::Contains("p.dat:2"));
+  // A header names the columns: x and y wherever they stand; three or more names without
+  // them leave the profile's columns unknown (the first two were a point number and x).
+  const auto named = parse_profile("id,y,x\n1,2,3\n2,4,5\n", "named.csv");
+  REQUIRE(named.size() == 2);
+  CHECK(named[1] == Eigen::Vector2d(5, 4));
+  REQUIRE_THROWS_WITH(
+      parse_profile("point,x_mm,y_mm\n1,0,0\n2,1,0.1\n", "cmm.csv"),
+      Catch::Contains("cmm.csv:1: the header names the columns point, x_mm, y_mm but none x and y"));
+  // A title of three words over two columns is a title.
+  CHECK(parse_profile("LS89 vane profile\n0 0\n1 0.1\n", "t.dat").size() == 2);
 }
 
 TEST_CASE("frame: a +z normal gives u = x, v = y and the frame is orthonormal", "[pipe]") {

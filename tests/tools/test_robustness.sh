@@ -204,7 +204,7 @@ done
 refuse smooth "$R/no_version_stream.csv" ":1: not a libsection stream"
 refuse fitspline "$R/no_version_stream.csv" ":1: not a libsection stream"
 refuse smooth "$R/good_profile.dat" ":1: not a libsection stream"
-refuse camber "$R/no_version_stream.csv" "all points lie on a line"  # read as a profile: x = section, y = loop
+refuse camber "$R/no_version_stream.csv" ":3: the header names the columns section, loop"  # not a profile either
 
 # A BOM before a stream is skipped: smooth and fitspline read it as the plain stream.
 for tool in smooth fitspline; do

@@ -85,6 +85,9 @@ std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::str
   detail::skip_bom(text);
   bool data = false;
   std::size_t cx = 0, cy = 1;  // x and y: the first two columns, unless a header names them
+  // A header of 3 or more names, none of them x and y: which two are the profile is unknown.
+  std::size_t unnamed_line = 0, unnamed_fields = 0;
+  std::string unnamed;
   for_each_line(text, [&](std::string_view line, std::size_t line_no) {
     const auto fields = fields_of(line);
     double x = 0, y = 0;
@@ -93,12 +96,22 @@ std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::str
     if (!numeric) {
       if (!data) {  // a title line, or a header naming the columns x and y
         std::size_t hx = fields.size(), hy = fields.size();
+        bool names = fields.size() >= 3;
         for (std::size_t c = 0; c < fields.size(); ++c) {
           const std::string name = detail::lower(std::string(trim(fields[c])));
           if (name == "x" || name == "\"x\"") hx = c;
           if (name == "y" || name == "\"y\"") hy = c;
+          double v = 0;
+          names = names && !parse_double(trim(fields[c]), v);
         }
-        if (hx < fields.size() && hy < fields.size()) cx = hx, cy = hy;
+        if (hx < fields.size() && hy < fields.size()) {
+          cx = hx, cy = hy, unnamed_fields = 0;
+        } else if (names) {
+          unnamed_line = line_no, unnamed_fields = fields.size(), unnamed.clear();
+          for (std::size_t c = 0; c < fields.size() && c < 6; ++c)
+            unnamed += (c ? ", " : "") + std::string(trim(fields[c]).substr(0, 20));
+          if (fields.size() > 6) unnamed += ", ...";
+        }
         return;
       }
       stream_fail(source, line_no,
@@ -106,6 +119,10 @@ std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::str
                       ? "expected x and y, found " + std::to_string(fields.size()) + " value(s)"
                       : "expected two numbers x, y, found '" + std::string(line.substr(0, 40)) + "'");
     }
+    if (!data && unnamed_fields == fields.size())
+      stream_fail(source, unnamed_line,
+                  "the header names the columns " + unnamed +
+                      " but none x and y: name the profile's two columns x and y (or give x y alone)");
     data = true;
     if (!std::isfinite(x) || !std::isfinite(y)) stream_fail(source, line_no, "non-finite coordinate");
     if (std::abs(x) > detail::max_coordinate || std::abs(y) > detail::max_coordinate)
