@@ -84,6 +84,14 @@ check "the blade is uncertain" -- grep -q "^blade: UNCERTAIN" "$TMP/err"
 expect 0 "--decision-rule simple: by the value" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal.stl" \
   --tolerances "$TMP/guard.csv" --decision-rule simple -o /dev/null
 
+# A tolerance row naming a section the stream does not have (9: only 0 and 1 were sliced)
+# judges nothing: a warning naming the row, its values not measured (exit 5).
+printf 'item,section,low,high\nchord,*,-0.05,0.05\nle_radius,9,-0.05,0.05\n' > "$TMP/absent.csv"
+expect 5 "a tolerance for a section not in the stream" -- "$compare" "$TMP/measured.csv" \
+  --nominal "$TMP/nominal.stl" --tolerances "$TMP/absent.csv" --report "$TMP/absent.txt" -o /dev/null
+check "the warning names the row" -- grep -q "section 9: the tolerances name this section (.*absent.csv:3)" "$TMP/err"
+check "the report lists it not measured" -- grep -q "^section 9: not measured (0 passed, 0 failed, 2 not measured" "$TMP/absent.txt"
+
 # Minimum zone, weighted and whole-blade fits run; the minimum zone's largest deviation is
 # no larger than least squares'.
 expect 0 "minimum zone" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal.stl" --fit minimum-zone -o "$TMP/mz.csv"

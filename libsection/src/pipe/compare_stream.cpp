@@ -15,7 +15,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 namespace section {
@@ -336,6 +338,35 @@ void compare_stream(Stream& stream, const Stream& nominal, const CompareStreamOp
         return SectionIssue{in.ids[k], -1, "compare", message};
       });
   for (Table* t : tables) stream.put(std::move(*t));
+}
+
+void judge_absent_sections(Stream& compared, const CompareStreamOptions& options) {
+  std::set<int> present;
+  if (const Table* v = schema::verdicts.find(compared))
+    for (std::size_t r = 0; r < v->rows(); ++r) present.insert(static_cast<int>(v->at(r, 0)));
+  std::map<int, std::string> absent;  // section -> the first tolerance row naming it
+  for (const Tolerance& t : options.tolerances)
+    if (t.section >= 0 && !present.count(t.section) && !absent.count(t.section)) absent[t.section] = t.where;
+  const Input none;
+  for (const auto& [id, where] : absent) {
+    pipe::Slot slot;
+    slot.rows.resize(verdict_rows + 1);
+    judge(id, nullptr, none, options, slot);
+    for (const auto& [k, schema_name] :
+         {std::pair{zone_rows, schema::zones.name}, std::pair{compared_rows, schema::compared.name},
+          std::pair{verdict_rows, schema::verdicts.name}}) {
+      if (!compared.find(schema_name))
+        compared.put(k == zone_rows       ? schema::zones.table()
+                     : k == compared_rows ? schema::compared.table()
+                                          : schema::verdicts.table());
+      Table& t = *compared.find(schema_name);
+      t.values.insert(t.values.end(), slot.rows[k].begin(), slot.rows[k].end());
+    }
+    compared.issues.push_back(
+        {id, -1, "compare",
+         "the tolerances name this section (" + (where.empty() ? "a row" : where) +
+             "), which the measured stream does not have; its values are not measured"});
+  }
 }
 
 }  // namespace section

@@ -59,6 +59,13 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
 /// gets an issue and every toleranced value of it is not measured; the others go on.
 void compare_stream(Stream& stream, const Stream& nominal, const CompareStreamOptions& options = {});
 
+/// For each section a tolerance row names (not every section's `*` row) that `compared` has no
+/// verdict for (compare_stream's tables over the whole blade, as the compare tool gathers its
+/// parts): its rows in "zones", "compared" and "verdicts" with every toleranced value not
+/// measured, and an issue naming the tolerance row. A tolerance that judges nothing is not
+/// left silent (a section id mistyped, or a plane not sliced).
+void judge_absent_sections(Stream& compared, const CompareStreamOptions& options);
+
 /// The values compare_stream compares (the "compared" table's item codes, in order): params
 /// columns, then fit_shift and fit_rotation.
 const std::vector<std::string>& compared_items();
