@@ -13,9 +13,14 @@
 #include "section/pipe/compare_stream.h"
 #include "section/pipe/run_stage.h"
 #include "section/pipe/schema.h"
+#include "section/units.h"
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <iostream>
 #include <memory>
+#include <vector>
 
 namespace {
 
@@ -30,22 +35,56 @@ struct Nominal {
   section::NominalSource source;
 };
 
-std::unique_ptr<Nominal> read_nominal(const std::string& path) {
+// The unit of a nominal mesh or points `extent` across (given or guessed), said on standard error.
+double nominal_mm(const std::string& given, double extent, const std::string& path) {
+  const section::InputUnits units = section::input_units(given, extent, "--nominal-units");
+  if (units.doubtful)
+    std::cerr << "compare: warning: " << path << ": the nominal is " << section::format_length(extent)
+              << " across if in mm, though it looks like " << (units.unit == "in" ? "inches" : "micrometres")
+              << ": give --nominal-units " << units.unit << " if it is (or --nominal-units mm)\n";
+  else if (!units.warning.empty())
+    std::cerr << "compare: warning: " << path << ": " << units.warning << "\n";
+  return units.mm;
+}
+
+std::unique_ptr<Nominal> read_nominal(const std::string& path, const std::string& units) {
   auto n = std::make_unique<Nominal>();
   n->source.name = path;
   for (const char* ext : {".stl", ".obj", ".off", ".ply", ".STL", ".OBJ", ".OFF", ".PLY"})
     if (section::tool::ends_with(path, ext)) {
       n->mesh = section::read_mesh(path);
+      Eigen::AlignedBox3d box;
+      for (const auto& v : n->mesh.vertices) box.extend(v);
+      const double mm = nominal_mm(units, n->mesh.vertices.empty() ? 0 : box.sizes().maxCoeff(), path);
+      for (auto& v : n->mesh.vertices) v *= mm;
       n->source.mesh = &n->mesh;
       return n;
     }
   const std::string text = section::read_file(path);
   section::tool::with_input(path, [&] {
     if (text.rfind("# libsection-stream", 0) == 0) {
+      if (!units.empty()) throw section::Error("--nominal-units: a stream says its own unit (# units)");
       n->stream = section::parse_stream(text, path);
+      section::convert_to_mm(n->stream);
       n->source.stream = &n->stream;
     } else {
       n->points = section::parse_csv(text, path);
+      // The coordinates' columns (x, y, z or u, v), scaled together; the extent their widest range.
+      section::Table& t = n->points;
+      double extent = 0;
+      std::vector<std::size_t> columns;
+      for (const char* name : {"x", "y", "z", "u", "v"}) {
+        const long c = t.find_column(name);
+        if (c < 0 || t.rows() == 0) continue;
+        columns.push_back(static_cast<std::size_t>(c));
+        double low = t.at(0, columns.back()), high = low;
+        for (std::size_t r = 1; r < t.rows(); ++r)
+          low = std::min(low, t.at(r, columns.back())), high = std::max(high, t.at(r, columns.back()));
+        extent = std::max(extent, high - low);
+      }
+      const double mm = nominal_mm(units, extent, path);
+      for (std::size_t r = 0; r < t.rows(); ++r)
+        for (const std::size_t c : columns) t.values[r * t.columns.size() + c] *= mm;
       n->source.points = &n->points;
     }
   });
@@ -56,7 +95,7 @@ int run_compare(const CompareArgs& a, const std::string& history) {
   CompareArgs args = a;
   if (!a.tolerances.empty())
     args.options.tolerances = section::read_tolerances(a.tolerances, section::tolerance_items());
-  const std::unique_ptr<Nominal> nominal = read_nominal(a.nominal);
+  const std::unique_ptr<Nominal> nominal = read_nominal(a.nominal, a.nominal_units);
   const section::CompareStreamOptions& o = args.options;
   // Errors name the file they come from: the nominal's or the measured stream's.
   auto stage = [&](section::Stream& s, int threads) {

@@ -32,7 +32,7 @@ UnitGuess guess_unit(double extent) {
   return {"mm", false};
 }
 
-InputUnits input_units(const std::string& given, double extent) {
+InputUnits input_units(const std::string& given, double extent, const std::string& flag) {
   InputUnits in;
   if (!given.empty()) {
     in.unit = given;
@@ -46,17 +46,17 @@ InputUnits input_units(const std::string& given, double extent) {
     in.unit = "m";
     in.mm = 1000;
     std::snprintf(text, sizeof text,
-                  "the input is %.3g across: taken to be in metres and converted to mm (give --units to "
+                  "the input is %.3g across: taken to be in metres and converted to mm (give %s to "
                   "say which unit it is in)",
-                  extent);
+                  extent, flag.c_str());
     in.warning = text;
     in.note = "units_from m (guessed from the extent; converted to mm)";
   } else if (guess.doubtful) {
     const bool inches = guess.unit == "in";
     std::snprintf(text, sizeof text,
-                  "the input is %.3g across: read as mm, though it looks like %s; give --units %s if it is, "
-                  "or --units mm (its parameters are flagged 'units' until then)",
-                  extent, inches ? "inches" : "micrometres", guess.unit.c_str());
+                  "the input is %.3g across: read as mm, though it looks like %s; give %s %s if it is, "
+                  "or %s mm (its parameters are flagged 'units' until then)",
+                  extent, inches ? "inches" : "micrometres", flag.c_str(), guess.unit.c_str(), flag.c_str());
     in.warning = text;
     in.doubtful = true;
     in.note = "units_doubtful " + guess.unit + " (read as mm; the extent suggests " +

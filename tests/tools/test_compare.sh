@@ -84,6 +84,18 @@ check "the blade is uncertain" -- grep -q "^blade: UNCERTAIN" "$TMP/err"
 expect 0 "--decision-rule simple: by the value" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal.stl" \
   --tolerances "$TMP/guard.csv" --decision-rule simple -o /dev/null
 
+# A nominal mesh in metres (a CAD export) is taken as metres from its extent, with a warning,
+# and compares as the same mesh in mm; told it is mm, no plane meets it: not measured.
+"$BIN/bladegen" --kind compressor --mesh --profile-points 2000 --layers 16 --units m -o "$TMP/nominal_m.stl" || exit 1
+expect 0 "a nominal in metres" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal_m.stl" \
+  --tolerances "$TMP/tol.csv" -o /dev/null
+check "the warning says metres" -- grep -q "nominal_m.stl: the input is 0.0.* across: taken to be in metres" "$TMP/err"
+expect 0 "--nominal-units m" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal_m.stl" --nominal-units m \
+  --tolerances "$TMP/tol.csv" -o /dev/null
+expect 5 "--nominal-units mm on a mesh in metres" -- "$compare" "$TMP/measured.csv" --nominal "$TMP/nominal_m.stl" \
+  --nominal-units mm --tolerances "$TMP/tol.csv" -o /dev/null
+expect 2 "--nominal-units ft" -- "$compare" --nominal x.stl --nominal-units ft
+
 # A tolerance row naming a section the stream does not have (9: only 0 and 1 were sliced)
 # judges nothing: a warning naming the row, its values not measured (exit 5).
 printf 'item,section,low,high\nchord,*,-0.05,0.05\nle_radius,9,-0.05,0.05\n' > "$TMP/absent.csv"

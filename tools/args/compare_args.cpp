@@ -104,6 +104,11 @@ void CompareArgs::declare(CLI::App& app) {
   add_common(app, common);
   app.add_option("--nominal", nominal, "The nominal: a mesh, a stream, or a CSV of section points")
       ->required();
+  app.add_option("--nominal-units", nominal_units,
+                 "Length unit of a nominal mesh or CSV of points (" + length_unit_names() +
+                     "): converted to mm, the stream's unit; default mm, or m for a nominal under 1 across "
+                     "(with a warning). A stream says its own unit.")
+      ->check(length_unit);
   app.add_option("--tolerances", tolerances,
                  "Tolerance file (CSV: item,section,low,high,on; docs/COMPARE.md)");
   app.add_option("--report", report, "Write the verdicts as text to FILE (- = standard error)");

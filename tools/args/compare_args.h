@@ -20,8 +20,9 @@ struct CompareArgs {
   Common common;
   CompareStreamOptions options;  ///< every other flag, read into it once parsed
   std::string nominal;           ///< --nominal: a mesh, a stream or a CSV of section points
-  std::string tolerances;        ///< --tolerances: the tolerance file (CSV)
-  std::string report;            ///< --report: the verdicts as text to FILE ("-" = standard error)
+  std::string nominal_units;  ///< --nominal-units: the nominal mesh's or points' unit ("" = from its extent)
+  std::string tolerances;     ///< --tolerances: the tolerance file (CSV)
+  std::string report;         ///< --report: the verdicts as text to FILE ("-" = standard error)
   /// --format: what goes to the output: "stream", "table" (the report) or "json" (verdicts,
   /// zones, compared values and issues per section); "" = table at a terminal, else stream.
   std::string format;

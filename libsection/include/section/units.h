@@ -46,8 +46,9 @@ struct InputUnits {
 /// The unit of an input `extent` across (numbers as in the file; 0 = unknown): `given` when
 /// not empty (throws section::Error for an unknown unit), else mm unless the extent says
 /// metres (converted, with a warning); an extent that suggests inches or micrometres is
-/// read as mm, with a warning, and marked doubtful (the params rows are then flagged).
-InputUnits input_units(const std::string& given, double extent);
+/// read as mm, with a warning, and marked doubtful (the params rows are then flagged). The
+/// warnings name `flag`, the option that gives the unit.
+InputUnits input_units(const std::string& given, double extent, const std::string& flag = "--units");
 
 /// Numbers in messages (warnings, issues, errors) for people: three significant digits,
 /// no exponent, trailing zeros dropped, and the unit. The stream and CSV keep every digit.
