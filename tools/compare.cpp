@@ -13,14 +13,9 @@
 #include "section/pipe/compare_stream.h"
 #include "section/pipe/run_stage.h"
 #include "section/pipe/schema.h"
-#include "section/units.h"
 
-#include <Eigen/Geometry>
-
-#include <algorithm>
 #include <iostream>
 #include <memory>
-#include <vector>
 
 namespace {
 
@@ -35,16 +30,11 @@ struct Nominal {
   section::NominalSource source;
 };
 
-// The unit of a nominal mesh or points `extent` across (given or guessed), said on standard error.
-double nominal_mm(const std::string& given, double extent, const std::string& path) {
-  const section::InputUnits units = section::input_units(given, extent, "--nominal-units");
-  if (units.doubtful)
-    std::cerr << "compare: warning: " << path << ": the nominal is " << section::format_length(extent)
-              << " across if in mm, though it looks like " << (units.unit == "in" ? "inches" : "micrometres")
-              << ": give --nominal-units " << units.unit << " if it is (or --nominal-units mm)\n";
-  else if (!units.warning.empty())
-    std::cerr << "compare: warning: " << path << ": " << units.warning << "\n";
-  return units.mm;
+// A nominal mesh or points in mm (their unit given or guessed), the guess said on standard error.
+void to_mm(Nominal& n, const std::string& units, const std::string& path) {
+  const section::InputUnits in =
+      section::nominal_to_mm(n.source.mesh ? &n.mesh : nullptr, n.source.points ? &n.points : nullptr, units);
+  if (!in.warning.empty()) std::cerr << "compare: warning: " << path << ": " << in.warning << "\n";
 }
 
 std::unique_ptr<Nominal> read_nominal(const std::string& path, const std::string& units) {
@@ -53,11 +43,8 @@ std::unique_ptr<Nominal> read_nominal(const std::string& path, const std::string
   for (const char* ext : {".stl", ".obj", ".off", ".ply", ".STL", ".OBJ", ".OFF", ".PLY"})
     if (section::tool::ends_with(path, ext)) {
       n->mesh = section::read_mesh(path);
-      Eigen::AlignedBox3d box;
-      for (const auto& v : n->mesh.vertices) box.extend(v);
-      const double mm = nominal_mm(units, n->mesh.vertices.empty() ? 0 : box.sizes().maxCoeff(), path);
-      for (auto& v : n->mesh.vertices) v *= mm;
       n->source.mesh = &n->mesh;
+      to_mm(*n, units, path);
       return n;
     }
   const std::string text = section::read_file(path);
@@ -69,23 +56,8 @@ std::unique_ptr<Nominal> read_nominal(const std::string& path, const std::string
       n->source.stream = &n->stream;
     } else {
       n->points = section::parse_csv(text, path);
-      // The coordinates' columns (x, y, z or u, v), scaled together; the extent their widest range.
-      section::Table& t = n->points;
-      double extent = 0;
-      std::vector<std::size_t> columns;
-      for (const char* name : {"x", "y", "z", "u", "v"}) {
-        const long c = t.find_column(name);
-        if (c < 0 || t.rows() == 0) continue;
-        columns.push_back(static_cast<std::size_t>(c));
-        double low = t.at(0, columns.back()), high = low;
-        for (std::size_t r = 1; r < t.rows(); ++r)
-          low = std::min(low, t.at(r, columns.back())), high = std::max(high, t.at(r, columns.back()));
-        extent = std::max(extent, high - low);
-      }
-      const double mm = nominal_mm(units, extent, path);
-      for (std::size_t r = 0; r < t.rows(); ++r)
-        for (const std::size_t c : columns) t.values[r * t.columns.size() + c] *= mm;
       n->source.points = &n->points;
+      to_mm(*n, units, path);
     }
   });
   return n;

@@ -11,10 +11,13 @@
 #include "section/pipe/schema.h"
 #include "section/slice.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace section {
 
@@ -156,6 +159,41 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
   co.threads = options.threads;
   camber_stream(out, co);
   return out;
+}
+
+InputUnits nominal_to_mm(Mesh* mesh, Table* points, const std::string& unit) {
+  // The extent: the widest range of the coordinates; then every coordinate scaled.
+  double extent = 0;
+  std::vector<std::size_t> columns;
+  if (mesh && !mesh->vertices.empty()) {
+    Eigen::AlignedBox3d box;
+    for (const auto& v : mesh->vertices) box.extend(v);
+    extent = box.sizes().maxCoeff();
+  }
+  for (const char* name : {"x", "y", "z", "u", "v"}) {
+    const long c = points ? points->find_column(name) : -1;
+    if (c < 0 || points->rows() == 0) continue;
+    columns.push_back(static_cast<std::size_t>(c));
+    double low = points->at(0, columns.back()), high = low;
+    for (std::size_t r = 1; r < points->rows(); ++r)
+      low = std::min(low, points->at(r, columns.back())),
+      high = std::max(high, points->at(r, columns.back()));
+    extent = std::max(extent, high - low);
+  }
+  InputUnits in = input_units(unit, extent, "--nominal-units");
+  if (in.doubtful) {  // read as mm: said without input_units' word on flagged params (a nominal has none)
+    const std::string likely = guess_unit(extent).unit;
+    in.warning = "the nominal is " + format_length(extent) + " across if in mm, though it looks like " +
+                 (likely == "in" ? "inches" : "micrometres") + ": give --nominal-units " + likely +
+                 " if it is (or --nominal-units mm)";
+  }
+  if (in.mm == 1) return in;
+  if (mesh)
+    for (auto& v : mesh->vertices) v *= in.mm;
+  if (points)
+    for (std::size_t r = 0; r < points->rows(); ++r)
+      for (const std::size_t c : columns) points->values[r * points->columns.size() + c] *= in.mm;
+  return in;
 }
 
 }  // namespace section

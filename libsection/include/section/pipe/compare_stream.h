@@ -13,6 +13,7 @@
 #include "section/frame.h"
 #include "section/io/stream.h"
 #include "section/mesh.h"
+#include "section/units.h"
 
 #include <map>
 #include <string>
@@ -44,6 +45,13 @@ struct NominalSource {
   const Table* points = nullptr;
   std::string name;  ///< the nominal's file, for messages
 };
+
+/// Converts a nominal mesh or table of points (columns x, y, z or u, v) given in `unit` to
+/// mm in place (the stream's unit); `unit` "" takes it from the nominal's extent as
+/// input_units does (under 1 across: metres, with a warning). Returns how the unit was taken:
+/// its `warning` says what to check (the option named `--nominal-units`). Throws
+/// section::Error for an unknown unit.
+InputUnits nominal_to_mm(Mesh* mesh, Table* points, const std::string& unit);
 
 /// The nominal of each measured section (`frames`, by id), in its frame and under its id:
 /// the tables "frames", "points" (mesh, points), "splines", "spline_knots", "spline_ctrl"
