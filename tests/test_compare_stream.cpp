@@ -423,7 +423,7 @@ TEST_CASE("pipe: a stage run again replaces its issues and drops what the later 
 
 TEST_CASE("compare stream: a nominal in metres or inches is converted or said to look so", "[compare]") {
   // A 40 mm section's points in metres: taken as metres from the extent, scaled to mm, the
-  // section column left as it is; told mm, left as they are.
+  // section column left as it is; told mm, left as they are, with a word on their size.
   section::Table points("nominal", {"section", "u", "v"});
   for (int i = 0; i < 8; ++i) points.add_row({3, 0.02 * std::cos(i * 0.785), 0.004 * std::sin(i * 0.785)});
   section::Table metres = points;
@@ -434,7 +434,8 @@ TEST_CASE("compare stream: a nominal in metres or inches is converted or said to
   CHECK(metres.at(0, 0) == 3);
   CHECK(metres.at(0, 1) == Approx(20));
   section::Table as_mm = points;
-  CHECK(section::nominal_to_mm(nullptr, &as_mm, "mm").warning.empty());
+  CHECK(section::nominal_to_mm(nullptr, &as_mm, "mm").warning.find("0.04 mm: smaller than a blade") !=
+        std::string::npos);
   CHECK(as_mm.values == points.values);
   // A mesh 1.6 across looks like inches: read as mm, with a word on it; given in, scaled.
   section::Mesh mesh;

@@ -40,7 +40,16 @@ TEST_CASE("units: the likely unit of a blade from its extent", "[units]") {
 TEST_CASE("units: an input's unit, given or guessed", "[units]") {
   const InputUnits given = input_units("in", 0.5);
   CHECK(given.mm == 25.4);
-  CHECK(given.warning.empty());  // a unit given is not second-guessed
+  CHECK(given.warning.empty());  // a unit given is not second-guessed ...
+  // ... unless it makes the input larger or smaller than any blade (a scan in mm said to be in
+  // m, one in m said to be in um): converted as given, with a warning naming the option.
+  const InputUnits huge = input_units("m", 41.6, "--nominal-units");
+  CHECK(huge.mm == 1000);
+  CHECK(huge.warning ==
+        "the input is 41.6 m across, 4.16e+04 mm: larger than a blade (1 mm to 10 m); check "
+        "--nominal-units");
+  CHECK(input_units("um", 60).warning.find("0.06 mm: smaller than a blade") != std::string::npos);
+  CHECK(input_units("m", 0.06).warning.empty());
   const InputUnits metres = input_units("", 0.21);
   CHECK(metres.unit == "m");
   CHECK(metres.mm == 1000);

@@ -34,14 +34,22 @@ UnitGuess guess_unit(double extent) {
 
 InputUnits input_units(const std::string& given, double extent, const std::string& flag) {
   InputUnits in;
+  char text[256];
   if (!given.empty()) {
     in.unit = given;
     in.mm = mm_per_unit(given);
     if (in.mm != 1) in.note = "units_from " + given + " (given; converted to mm)";
+    // A unit given by mistake (a scan in mm said to be in m) makes a blade of another size.
+    const double mm = extent * in.mm;
+    if (extent > 0 && (mm < 1 || mm > 10000)) {
+      std::snprintf(text, sizeof text,
+                    "the input is %.3g %s across, %.3g mm: %s than a blade (1 mm to 10 m); check %s", extent,
+                    given.c_str(), mm, mm < 1 ? "smaller" : "larger", flag.c_str());
+      in.warning = text;
+    }
     return in;
   }
   const UnitGuess guess = guess_unit(extent);
-  char text[256];
   if (guess.unit == "m") {
     in.unit = "m";
     in.mm = 1000;
