@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <random>
 #include <vector>
 
 namespace compare_test {
@@ -40,16 +39,7 @@ inline Case make_case(const section::SectionDesign& design) {
 inline std::vector<Vector2d> profile_points(const SectionTruth& t, double spacing, double sigma = 0,
                                             std::uint64_t seed = 1,
                                             std::vector<Vector2d>* normals = nullptr) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0, sigma > 0 ? sigma : 1);
-  std::vector<Vector2d> out;
-  const int count = static_cast<int>(t.perimeter / spacing);
-  for (int i = 0; i < count; ++i) {
-    const std::size_t j = static_cast<std::size_t>(i) * t.profile.size() / count;
-    out.push_back(t.profile[j] + (sigma > 0 ? noise(rng) : 0.0) * t.profile_normal[j]);
-    if (normals) normals->push_back(t.profile_normal[j]);
-  }
-  return out;
+  return section::noisy_profile(t, spacing, sigma, seed, normals);
 }
 
 /// Signed distance of p to the true profile, positive outside (exact to ~1e-14 mm).

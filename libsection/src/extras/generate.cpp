@@ -285,16 +285,18 @@ SectionTruth section_truth(const SectionDesign& design, int samples) {
 }
 
 std::vector<Eigen::Vector2d> noisy_profile(const SectionTruth& truth, double spacing, double sigma,
-                                           std::uint64_t seed) {
+                                           std::uint64_t seed, std::vector<Eigen::Vector2d>* normals) {
   if (!(spacing > 0) || !(sigma >= 0))
     throw Error("noisy_profile: spacing must be above 0 and sigma at least 0");
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0, sigma);
+  // A normal distribution needs a deviation above 0: sigma 0 draws nothing.
+  std::normal_distribution<double> noise(0, sigma > 0 ? sigma : 1);
   std::vector<Eigen::Vector2d> pts;
   const int count = static_cast<int>(truth.perimeter / spacing);
   for (int i = 0; i < count; ++i) {
     const std::size_t j = static_cast<std::size_t>(i) * truth.profile.size() / std::size_t(count);
-    pts.push_back(truth.profile[j] + noise(rng) * truth.profile_normal[j]);
+    pts.push_back(truth.profile[j] + (sigma > 0 ? noise(rng) : 0.0) * truth.profile_normal[j]);
+    if (normals) normals->push_back(truth.profile_normal[j]);
   }
   return pts;
 }

@@ -107,10 +107,12 @@ SectionTruth section_truth(const SectionDesign& design, int samples = 20000);
 
 /// Points every `spacing` (mm, at least) along a true profile, from its LE point, each moved
 /// along the exact outward normal by Gaussian noise of standard deviation `sigma` (mm;
-/// std::mt19937_64 seeded with `seed`): a measured 2D profile whose every error is known.
-/// Throws section::Error unless spacing > 0 and sigma >= 0.
+/// std::mt19937_64 seeded with `seed`; sigma 0: the exact points): a measured 2D profile whose
+/// every error is known. `normals`, when given, gets the exact normal of each point. Throws
+/// section::Error unless spacing > 0 and sigma >= 0.
 std::vector<Eigen::Vector2d> noisy_profile(const SectionTruth& truth, double spacing, double sigma,
-                                           std::uint64_t seed);
+                                           std::uint64_t seed,
+                                           std::vector<Eigen::Vector2d>* normals = nullptr);
 
 /// Where a point lies relative to a true profile.
 struct ProfileLocation {
