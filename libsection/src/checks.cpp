@@ -11,6 +11,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <string>
 
 namespace section {
 
@@ -39,6 +40,17 @@ bool lists(const char* list, const char* word) {
 constexpr const char* either_end = "chord camber_length max_thickness area caliper_chord centroid";
 
 }  // namespace
+
+std::uint32_t flags_mask(double value) {
+  return value > 0 && value < 4294967296.0 ? static_cast<std::uint32_t>(value) : 0;
+}
+
+std::string check_names_text(std::uint32_t flags, const char* separator) {
+  std::string out;
+  for (const auto& c : check_names)
+    if (flags & bit(c.check)) out += (out.empty() ? "" : separator) + std::string(c.name);
+  return out;
+}
 
 std::uint32_t checks_flagging(std::uint32_t flags, const char* column) {
   std::uint32_t out = 0;

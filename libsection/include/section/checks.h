@@ -11,6 +11,7 @@
 #include "section/params.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace section {
@@ -112,6 +113,14 @@ constexpr std::uint32_t bit(Check c) {
 
 /// The name of a check ("le_radius", ...).
 const char* check_name(Check check);
+
+/// The check bits a flags column's value holds: 0 for a value that is no mask (negative,
+/// fractional parts dropped as a cast would, 2^32 or more, not a number).
+std::uint32_t flags_mask(double value);
+
+/// The names of the checks in `flags` ("le_radius", ...), in bit order, joined by
+/// `separator`; "" for none.
+std::string check_names_text(std::uint32_t flags, const char* separator = ", ");
 
 /// The bits of `flags` (a params row's) whose checks flag the params column `column`: each
 /// check the columns check_names lists for it, units every column, le_choice every column

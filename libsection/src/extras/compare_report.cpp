@@ -8,7 +8,6 @@
 #include "section/pipe/schema.h"
 #include "plot_parts.h"
 
-#include <cstdint>
 #include <map>
 #include <string>
 
@@ -31,17 +30,6 @@ const char* word(int verdict) {
 double at_or_0(const Table& t, std::size_t r, const char* column) {
   const long c = t.find_column(column);
   return c >= 0 ? t.at(r, static_cast<std::size_t>(c)) : 0.0;
-}
-
-// The names of the checks in a flags column's value, comma-separated ("" for none, or for a
-// value that is no mask).
-std::string check_names_of(double flags) {
-  if (!(flags > 0 && flags < 4294967296.0)) return "";
-  const auto mask = static_cast<std::uint32_t>(flags);
-  std::string out;
-  for (const auto& c : check_names)
-    if (mask & bit(c.check)) out += (out.empty() ? "" : ",") + std::string(c.name);
-  return out;
 }
 
 // "[low, high]" of a row with columns bounds, low, high; `on` names what they bound.
@@ -93,8 +81,9 @@ std::string section_lines(int id, const Table& zones, const Table& compared) {
                                  fixed(compared.at(r, compared.column("deviation")), 4);
     if (u > 0) what += " +- " + fixed(u, 4);
     // Why a value is uncertain: the checks camber flagged it (or the nominal's) by.
-    const std::string flags = check_names_of(at_or_0(compared, r, "flags")),
-                      nominal_flags = check_names_of(at_or_0(compared, r, "nominal_flags"));
+    const std::string flags = check_names_text(flags_mask(at_or_0(compared, r, "flags")), ","),
+                      nominal_flags =
+                          check_names_text(flags_mask(at_or_0(compared, r, "nominal_flags")), ",");
     std::string why;
     if (!flags.empty()) why += " (flagged: " + flags + ")";
     if (!nominal_flags.empty()) why += " (nominal flagged: " + nominal_flags + ")";

@@ -78,10 +78,7 @@ std::string side_word(double code) {
 // The checks of a flags mask by name, ", "-separated; "none" for 0.
 std::string check_words(double flags) {
   if (!std::isfinite(flags)) return "-";
-  const auto mask = static_cast<std::uint32_t>(flags);
-  std::string out;
-  for (const auto& c : check_names)
-    if (mask & bit(c.check)) out += (out.empty() ? "" : ", ") + std::string(c.name);
+  const std::string out = check_names_text(static_cast<std::uint32_t>(flags));
   return out.empty() ? "none" : out;
 }
 

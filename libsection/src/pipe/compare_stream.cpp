@@ -156,8 +156,7 @@ double value_of(const Row& row, const std::string& column, double otherwise = 0)
 
 // The checks of a params row (its `flags` column) that flag `column`.
 std::uint32_t flagging(const Row& row, const char* column) {
-  const double flags = value_of(row, "flags");
-  return flags > 0 && flags < 4294967296.0 ? checks_flagging(static_cast<std::uint32_t>(flags), column) : 0;
+  return checks_flagging(flags_mask(value_of(row, "flags")), column);
 }
 
 double wrapped(double degrees) {
