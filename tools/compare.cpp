@@ -115,9 +115,9 @@ int run_compare(const CompareArgs& a, const std::string& history) {
   // A tolerance naming a section the stream does not have judges nothing: said, and not measured.
   const std::size_t issues = all.issues.size();
   section::judge_absent_sections(all, o);
-  for (std::size_t k = issues; k < all.issues.size(); ++k)
-    std::cerr << "compare: warning: section " << all.issues[k].section << ": " << all.issues[k].message
-              << "\n";
+  section::Stream absent;  // the new issues alone, said as the parts' were
+  absent.issues.assign(all.issues.begin() + static_cast<std::ptrdiff_t>(issues), all.issues.end());
+  section::tool::warn_issues("compare", absent, false);
   if (!a.report.empty()) {
     const std::string text = section::compare_report(all);
     if (a.report == "-")
