@@ -513,3 +513,35 @@ TEST_CASE("sampling: a point's k nearest are the first k of its K nearest, ties 
     }
   }
 }
+
+TEST_CASE("sampling: a quick look settles a plain dense scan alone, and nothing near a line", "[sampling]") {
+  // Dense scans of both blades at three densities are settled measuring a fifth of the
+  // first look's points; a grid on levels and a scan with exact copies go on to the first
+  // look (or the whole one) and are what it says.
+  for (const BladeDesign& blade : {turbine_blade(), compressor_blade()})
+    for (const double spacing : {0.78, 0.35, 0.2}) {
+      ScanOptions o;
+      o.spacing = spacing;
+      o.noise = 0.005;
+      o.seed = 4;
+      const std::vector<Vec3> points = generate_scan(blade, o).cloud.points;
+      const Sampling s = sampling_of(points, Vec3::UnitZ());
+      INFO(points.size() << " points, " << s.describe());
+      CHECK(s.kind == SamplingKind::dense);
+      REQUIRE(points.size() >= 5'000);
+      CHECK(s.measured <= 1'500);  // the first look measures 5 000 or more
+    }
+  const Cloud grid = chordwise_grid(turbine_blade(), 24, 36, 0.4, 0.1);
+  const Sampling lines = sampling_of(grid.points, Vec3::UnitZ());
+  CHECK(lines.kind == SamplingKind::lines);
+  CHECK(lines.measured == grid.points.size());
+  ScanOptions o;
+  o.spacing = 0.35;
+  o.seed = 4;
+  std::vector<Vec3> copies = generate_scan(compressor_blade(), o).cloud.points;
+  for (std::size_t i = 0, n = copies.size(); i < n; i += 50) copies.push_back(copies[i]);
+  const Sampling copied = sampling_of(copies, Vec3::UnitZ());
+  CHECK(copied.kind == SamplingKind::dense);
+  CHECK(copied.duplicates > 0);
+  CHECK(copied.measured >= 5'000);
+}

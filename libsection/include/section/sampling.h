@@ -68,15 +68,14 @@ struct Sampling {
 /// the spacing in the surface (nearest distinct neighbour) against the spacing along the
 /// normal (nearest neighbour within 45 degrees of it), both medians over up to `queries` of
 /// the first `max_points` points (a first look at 50 000 of them, 5 000 measured, settles a
-/// dense scan); when the latter is over `anisotropy` times the former (or
-/// over the former, on levels: its quartiles within 20 % of each other), the
-/// points are split into rows (points joined to their 16 nearest neighbours across the
-/// normal, within 30 degrees of the plane; a piece lying in a larger one's plane joins it)
-/// and each row gets its best plane. Rows covering 90 % of the points are `rows` when neighbours lie
-/// more than `sparse` of a row's size apart (or there is only one), else `lines`; without
-/// such rows the points are `lines` with the slab from the spacing along the normal. Exact
-/// copies of a point are not neighbours (they do not shrink the spacing). Throws
-/// section::Error for a zero or non-finite normal.
+/// dense scan; a quick one measuring 1 000 of them settles a plainly dense one); when the latter is over
+/// `anisotropy` times the former (or over the former, on levels: its quartiles within 20 % of each other),
+/// the points are split into rows (points joined to their 16 nearest neighbours across the normal, within 30
+/// degrees of the plane; a piece lying in a larger one's plane joins it) and each row gets its best plane.
+/// Rows covering 90 % of the points are `rows` when neighbours lie more than `sparse` of a row's size apart
+/// (or there is only one), else `lines`; without such rows the points are `lines` with the slab from the
+/// spacing along the normal. Exact copies of a point are not neighbours (they do not shrink the spacing).
+/// Throws section::Error for a zero or non-finite normal.
 Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
                      const SamplingOptions& options = {});
 
