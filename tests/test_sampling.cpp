@@ -529,7 +529,7 @@ TEST_CASE("sampling: a quick look settles a plain dense scan alone, and nothing 
       INFO(points.size() << " points, " << s.describe());
       CHECK(s.kind == SamplingKind::dense);
       REQUIRE(points.size() >= 5'000);
-      CHECK(s.measured <= 1'500);  // the first look measures 5 000 or more
+      CHECK(s.measured <= 2'000);  // a fifth of the first look's 5 000 to 10 000
     }
   const Cloud grid = chordwise_grid(turbine_blade(), 24, 36, 0.4, 0.1);
   const Sampling lines = sampling_of(grid.points, Vec3::UnitZ());

@@ -28,7 +28,7 @@ using Vec3 = Eigen::Vector3d;
 // point lies on it.
 constexpr int wanted = 16, searched = 24;
 // The first look: this many points (at most), this many of them measured; a quick look
-// measures fewer of the same points first.
+// measures at least quick_queries of the same points first.
 constexpr std::size_t first_look = 50'000, first_queries = 5'000, quick_queries = 1'000;
 // Within 45 degrees of the normal a neighbour is above or below; within 30 degrees of the
 // plane it is beside, in the same row.
@@ -100,22 +100,30 @@ bool plainly_dense(const Sampling& s, const SamplingOptions& options) {
          s.normal_low < 0.72 * s.normal_high;
 }
 
+// The neighbours of every step-th point of `first`, as one look measured them.
+struct Look {
+  std::size_t step = 0;
+  std::vector<Near> near;  // of points 0, step, 2 step, ...
+};
+
 // The spacing in the surface and along the normal, medians over every step-th point; the
-// neighbours of each point into `known` when every point is measured (else it is empty),
-// what mean_spacing takes from them into `nearest_d2` (one entry a point).
+// neighbours of each point into `look`, taken from `before` (a look on the same tree) where
+// it measured the point, and what mean_spacing takes from them into `nearest_d2` (one entry
+// a point).
 void measure_spacings(const detail::NearestPoints<3>& tree, const std::vector<Vec3>& first, const Vec3& n,
-                      const SamplingOptions& options, Sampling& s, std::vector<double>& heights,
-                      std::vector<Near>& known, std::vector<double>& nearest_d2) {
-  const std::size_t step = step_of(first.size(), options.queries);
+                      std::size_t step, int threads, const Look& before, Sampling& s,
+                      std::vector<double>& heights, Look& look, std::vector<double>& nearest_d2) {
   const std::size_t count = (first.size() + step - 1) / step;
   std::vector<double> nearest(count, std::numeric_limits<double>::infinity());
   heights.assign(count, std::numeric_limits<double>::infinity());
   std::vector<char> copied(count, 0);
-  known.assign(step == 1 ? count : 0, Near{});
-  detail::parallel_for(count, options.threads, [&](std::size_t q) {
+  look.step = step;
+  look.near.assign(count, Near{});
+  detail::parallel_for(count, threads, [&](std::size_t q) {
     const std::size_t i = q * step;
-    const Near near = near_of(tree, first, i, &nearest_d2[i]);
-    if (step == 1) known[q] = near;
+    const bool seen = before.step > 0 && i % before.step == 0 && i / before.step < before.near.size();
+    const Near& near = look.near[q] =
+        seen ? before.near[i / before.step] : near_of(tree, first, i, &nearest_d2[i]);
     copied[q] = near.copied;
     for (int j = 0; j < near.count; ++j) {
       const Vec3 d = first[std::size_t(near.index[j])] - first[i];
@@ -396,6 +404,15 @@ namespace detail {
 
 namespace {
 
+// Lines that do not come apart into rows (slanted, or crossing): the slab bridges the gap
+// along the normal that nine in ten points see (0 when none has one).
+double lines_slab(const std::vector<double>& heights) {
+  std::vector<double> finite;
+  for (double h : heights)
+    if (std::isfinite(h)) finite.push_back(h);
+  return quantile(finite, 0.9);
+}
+
 Sampling sample_points(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
                        const SamplingOptions& options, SpacingSearch& search) {
   if (!normal.allFinite() || !(normal.norm() > 0))
@@ -404,16 +421,18 @@ Sampling sample_points(const std::vector<Eigen::Vector3d>& points, const Eigen::
   const std::size_t all = std::min(points.size(), std::max<std::size_t>(options.max_points, 1));
   // A first look at fewer points, fewer of them measured, settles a dense scan for a
   // fraction of the cost (a small cloud too); the rest only when they are not one, on the
-  // same tree when the first look held all the points. A quick look before it, measuring
-  // a fifth as many of its points, settles only what is plainly a dense scan.
+  // same tree when the first look held all the points. A quick look before it, at every
+  // fifth of its points (1 000 or more), settles only what is plainly a dense scan. Each
+  // look takes the neighbours of the points the look before it measured on the same tree.
   const std::size_t look = std::min(all, first_look);
-  const bool quick_differs = step_of(look, std::min(options.queries, quick_queries)) !=
-                             step_of(look, std::min(options.queries, first_queries));
+  const std::size_t first_step = step_of(look, std::min(options.queries, first_queries));
+  const bool quick_look = (look + 5 * first_step - 1) / (5 * first_step) >= quick_queries;
   std::unique_ptr<std::vector<Vec3>> first;
   std::unique_ptr<detail::NearestPoints<3>>& tree = search.tree;
+  Look before;
   for (const int stage : {0, 1, 2}) {
     const bool quick = stage == 0, partial = stage < 2;
-    if (quick && !quick_differs) continue;
+    if (quick && !quick_look) continue;
     const std::size_t m = partial ? look : all;
     Sampling s;
     s.points = m;
@@ -423,19 +442,22 @@ Sampling sample_points(const std::vector<Eigen::Vector3d>& points, const Eigen::
       first = std::make_unique<std::vector<Vec3>>(points.begin(), points.begin() + std::ptrdiff_t(m));
       tree = std::make_unique<detail::NearestPoints<3>>(*first);
       search.nearest_d2.assign(m, -1);
+      before = Look{};
     }
-    std::vector<double> heights;
-    std::vector<Near> known;
-    SamplingOptions o = options;
-    if (partial) o.queries = std::min(o.queries, quick ? quick_queries : first_queries);
+    const std::size_t step = quick ? 5 * first_step : partial ? first_step : step_of(m, options.queries);
     // A first look measuring what the whole one would is the whole one.
-    const bool whole =
-        !partial || (!quick && m == all && step_of(m, o.queries) == step_of(m, options.queries));
-    measure_spacings(*tree, *first, n, o, s, heights, known, search.nearest_d2);
+    const bool whole = !partial || (!quick && m == all && step == step_of(m, options.queries));
+    std::vector<double> heights;
+    Look measured;
+    measure_spacings(*tree, *first, n, step, options.threads, before, s, heights, measured,
+                     search.nearest_d2);
+    before = std::move(measured);
     if (quick) {
       if (plainly_dense(s, options)) return s;
       continue;
     }
+    // Every point's neighbours when every point was measured.
+    const std::vector<Near> none, &known = before.step == 1 ? before.near : none;
     // Heights on levels (the quartiles of the gaps along the normal close together, where
     // a dense scan's spread over a factor of two) wider apart than the spacing are lines
     // too: a slab of the spacing would fall between them.
@@ -461,12 +483,7 @@ Sampling sample_points(const std::vector<Eigen::Vector3d>& points, const Eigen::
       s.kind = SamplingKind::dense;  // close levels that do not come apart: a slab as for a scan
       return s;
     }
-    // Lines that do not come apart into rows (slanted, or crossing): the slab bridges the
-    // gap along the normal that nine in ten points see.
-    std::vector<double> finite;
-    for (double h : heights)
-      if (std::isfinite(h)) finite.push_back(h);
-    s.slab = quantile(finite, 0.9);
+    s.slab = lines_slab(heights);
     if (!(s.slab > 0)) s.kind = SamplingKind::dense;
     return s;
   }

@@ -9,6 +9,9 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace section::pipe {
 
@@ -58,8 +61,15 @@ void restage(Stream& stream, const std::string& stage) {
   issues.erase(std::remove_if(issues.begin(), issues.end(),
                               [&](const SectionIssue& i) { return i.stage == stage || gone.count(i.stage); }),
                issues.end());
-  for (const schema::TableDoc& t : schema::tables())
-    if (gone.count(t.written_by)) stream.erase(t.name);
+  // Each table's writer, gathered once: the schema's documents cost a stage's part more than
+  // its smoothing on a small section.
+  static const std::vector<std::pair<std::string, std::string>> writers = [] {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const schema::TableDoc& t : schema::tables()) out.emplace_back(t.name, t.written_by);
+    return out;
+  }();
+  for (const auto& [name, writer] : writers)
+    if (gone.count(writer)) stream.erase(name);
 }
 
 void vanished_sections(Stream& stream, const std::set<int>& present, const std::string& stage,
