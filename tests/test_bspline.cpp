@@ -228,3 +228,41 @@ TEST_CASE("bspline: sample spreads points evenly in parameter", "[bspline]") {
   REQUIRE(s.size() == 100);
   REQUIRE((s.front() - s.back()).norm() > 0.05);  // the end point is not repeated
 }
+
+TEST_CASE("bspline: check_spline names the knot vector or point that defines no curve", "[bspline]") {
+  const BSpline good = fit_circle(2, 200, 16);
+  REQUIRE_NOTHROW(section::check_spline(good));
+  auto message = [](const BSpline& c) {
+    try {
+      section::check_spline(c);
+    } catch (const section::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  BSpline c = good;
+  c.knots.back() = c.knots.front();  // a period of 0 (knot 16 also below knot 15)
+  REQUIRE(message(c).find("knot 16 (") != std::string::npos);
+  for (double& k : c.knots) k = 0;
+  REQUIRE(message(c) ==
+          "bspline: the curve's parameter range is empty: the last knot equals the first, a period of 0");
+  c = good;
+  c.knots[3] = std::nan("");
+  REQUIRE(message(c) == "bspline: knot 3 is not finite");
+  c = good;
+  c.control[5].y() = INFINITY;
+  REQUIRE(message(c) == "bspline: control point 5 is not finite");
+  // Five equal knots in a row on a cubic, across the seam (knot 8 is knot 0 one period on).
+  c.control = section::sample(good, 8);
+  c.knots = {0, 0, 0, 1, 2, 3, 5, 5, 5};
+  REQUIRE(message(c) == "bspline: 5 equal knots in a row at knot 2; a curve of degree 3 allows at most 4");
+  c.knots = {0, 0, 0, 1, 2, 3, 4, 5, 5};  // four in a row: a cubic's limit, accepted
+  REQUIRE(message(c) == "no error");
+  BSpline open;
+  open.degree = 1;
+  open.control = {{0, 0}, {1, 0}};
+  open.knots = {0, 1, 1, 1};  // knot 1 equals knot 2: no parameter range
+  REQUIRE(message(open) == "bspline: the curve's parameter range is empty: knot 1 equals knot 2");
+  open.knots = {0, 0, 1, 1};
+  REQUIRE(message(open) == "no error");
+}

@@ -130,6 +130,17 @@ TEST_CASE("flatten: a polyline within its tolerance of a thin ellipse", "[bsplin
   }
   REQUIRE(thrown([&] { section::flatten(c, 0); }) ==
           "bspline: a polyline's tolerance must be above 0, got 0 mm");
+  // A polyline that would outgrow its bound, or a tolerance finer than the coordinates
+  // resolve (9e14 mm from the origin they step by 0.125 mm), is refused at once.
+  REQUIRE(thrown([&] { section::flatten(c, 1e-4, 100); }) ==
+          "bspline: a polyline within 0.0001 mm of the curve needs more than 100 points; a larger tolerance "
+          "is needed");
+  BSpline far = c;
+  for (Vector2d& p : far.control) p.x() -= 9e14;
+  REQUIRE(thrown([&] {
+            section::flatten(far, 1e-3);
+          }).find("is below the resolution of the curve's coordinates") != std::string::npos);
+  REQUIRE(section::flatten(far, 100).size() > 4);
 }
 
 TEST_CASE("format_dxf: one SPLINE per curve through its control points in 3D", "[cad]") {

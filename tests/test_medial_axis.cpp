@@ -3,6 +3,7 @@
 // ellipse's medial axis and inscribed circles; the sampled profile's searches against full
 // scans.
 #include "section/medial_axis.h"
+#include "section/error.h"
 
 #include "camber_fixtures.h"
 #include "detail/sampled_profile.h"
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -110,5 +112,21 @@ TEST_CASE("sampled profile: the nearest sample is the first one a full scan find
     CHECK(pr.nearest(q) == full);
     for (const int hint : {full, (full + n / 2) % n, 0, n - 1}) CHECK(pr.nearest(q, hint) == full);
     CHECK(pr.sample_distance(q) == (pr.samples[full] - q).norm());
+  }
+}
+
+TEST_CASE("medial_axis: a profile flat on one line has no inside and is refused, not crashed on",
+          "[medial_axis]") {
+  BSpline line;
+  line.degree = 3;
+  line.closed = true;
+  for (int i = 0; i < 12; ++i) line.control.push_back({i <= 6 ? i : 12 - i, 0.5 * (i <= 6 ? i : 12 - i)});
+  for (int i = 0; i <= 12; ++i) line.knots.push_back(i);
+  try {
+    section::medial_axis(line);
+    FAIL("no error");
+  } catch (const section::Error& e) {
+    REQUIRE(std::string(e.what()) ==
+            "camber: the profile encloses no area to triangulate (flat on a line, or self-intersecting)");
   }
 }

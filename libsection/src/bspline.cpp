@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 namespace section {
@@ -308,6 +309,40 @@ void weigh_basis(const BSpline& curve, long span, int nd, const double* table, E
 
 }  // namespace detail
 
+void check_spline(const BSpline& c) {
+  check_curve(c);
+  auto number = [](double x) {
+    std::ostringstream o;
+    o << x;
+    return o.str();
+  };
+  for (std::size_t i = 0; i < c.control.size(); ++i)
+    if (!c.control[i].allFinite())
+      throw Error("bspline: control point " + std::to_string(i) + " is not finite");
+  for (std::size_t i = 0; i < c.knots.size(); ++i) {
+    if (!std::isfinite(c.knots[i])) throw Error("bspline: knot " + std::to_string(i) + " is not finite");
+    if (i > 0 && c.knots[i] < c.knots[i - 1])
+      throw Error("bspline: knot " + std::to_string(i) + " (" + number(c.knots[i]) + ") is below knot " +
+                  std::to_string(i - 1) + " (" + number(c.knots[i - 1]) + "); knots must not decrease");
+  }
+  if (!(c.t_max() > c.t_min()))
+    throw Error(
+        std::string("bspline: the curve's parameter range is empty: ") +
+        (c.closed ? "the last knot equals the first, a period of 0"
+                  : "knot " + std::to_string(c.degree) + " equals knot " + std::to_string(c.control.size())));
+  // Runs of equal knots (across the wrap): de Boor divides by knot differences degree apart.
+  const long stored = static_cast<long>(c.closed ? c.control.size() : c.knots.size());
+  const long n = c.closed ? 2 * stored : stored;
+  long run = 1;
+  for (long i = 1; i < n; ++i) {
+    run = knot(c, i) == knot(c, i - 1) ? run + 1 : 1;
+    if (run > c.degree + 1)
+      throw Error("bspline: " + std::to_string(run) + " equal knots in a row at knot " +
+                  std::to_string(i % stored) + "; a curve of degree " + std::to_string(c.degree) +
+                  " allows at most " + std::to_string(c.degree + 1));
+  }
+}
+
 double BSpline::t_min() const {
   return closed ? knots.front() : knots[degree];
 }
@@ -398,16 +433,6 @@ ClosestPoint closest_point_near(const BSpline& curve, const Eigen::Vector2d& q, 
   const int best = static_cast<int>(std::min_element(g.begin(), g.end()) - g.begin());
   const double lo = ts[std::max(best - 1, 0)], hi = ts[std::min(best + 1, m - 1)];
   return make_closest(curve, q, minimise_bracket(curve, q, lo, hi, ts[best]));
-}
-
-std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& points, bool closed) {
-  std::vector<double> t;
-  if (points.empty()) return t;
-  t.reserve(points.size() + 1);
-  t.push_back(0);
-  for (std::size_t i = 1; i < points.size(); ++i) t.push_back(t.back() + (points[i] - points[i - 1]).norm());
-  if (closed) t.push_back(t.back() + (points.front() - points.back()).norm());
-  return t;
 }
 
 BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& parameters,
@@ -535,20 +560,6 @@ BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOpti
   return fit_control_points(points, s, shape, options.fairness, {});
 }
 
-std::vector<Eigen::Vector2d> sample(const BSpline& curve, int count) {
-  check_curve(curve);
-  std::vector<Eigen::Vector2d> out;
-  if (count <= 0) return out;
-  out.reserve(count);
-  const double a = curve.t_min(), b = curve.t_max();
-  for (int i = 0; i < count; ++i) {
-    const double t =
-        curve.closed ? a + (b - a) * i / count : (count == 1 ? a : a + (b - a) * i / (count - 1));
-    out.push_back(curve.point(t));
-  }
-  return out;
-}
-
 double arc_length(const BSpline& curve, double a, double b) {
   check_curve(curve);
   if (b < a) std::swap(a, b);
@@ -584,15 +595,6 @@ double arc_length(const BSpline& curve, double a, double b) {
     if (!curve.closed && j >= j_end) break;
   }
   return total;
-}
-
-std::vector<double> span_samples(const BSpline& c, int per_span) {
-  std::vector<double> ts;
-  ts.reserve(c.control.size() * per_span);
-  for (std::size_t j = 0; j + 1 < c.knots.size(); ++j)
-    for (int s = 0; s < per_span; ++s)
-      ts.push_back(c.knots[j] + (c.knots[j + 1] - c.knots[j]) * s / per_span);
-  return ts;
 }
 
 }  // namespace section

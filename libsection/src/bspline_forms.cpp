@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Other forms of a B-spline: the clamped open form CAD formats read, and a polyline within
-// a tolerance of the curve.
+// Other forms of a B-spline: samples and chord-length parameters, the clamped open form CAD
+// formats read, and a polyline within a tolerance of the curve.
 #include "section/bspline.h"
 
 #include "section/error.h"
 #include "section/units.h"
 
 #include <algorithm>
+#include <limits>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -80,12 +81,22 @@ double off_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen
   return (q - (a + s * chord)).norm();
 }
 
+struct Flattening {
+  double tolerance;
+  std::size_t max_points;
+};
+
 // Chordal bisection of [a, b]: appends the parameters after a up to b (b excluded). A piece
 // is kept when the curve at its quarter points and midpoint lies within half the tolerance
 // of its chord: the quarter points catch an inflection that puts the midpoint on the chord,
 // and the half covers the curve between the points checked.
 void bisect(const BSpline& c, double a, double b, const Eigen::Vector2d& pa, const Eigen::Vector2d& pb,
-            double tolerance, int depth, std::vector<double>& out) {
+            const Flattening& f, int depth, std::vector<double>& out) {
+  if (out.size() >= f.max_points)
+    throw Error("bspline: a polyline within " + format_length(f.tolerance) +
+                " of the curve needs more than " + std::to_string(f.max_points) +
+                " points; a larger tolerance is needed");
+  const double tolerance = f.tolerance;
   const double mid = 0.5 * (a + b);
   const Eigen::Vector2d pm = c.point(mid);
   if (depth > 0) {
@@ -93,15 +104,48 @@ void bisect(const BSpline& c, double a, double b, const Eigen::Vector2d& pa, con
                                  off_chord(pa, pb, c.point(0.5 * (mid + b)))});
     if (off <= 0.5 * tolerance || depth >= 40) return;
   }
-  bisect(c, a, mid, pa, pm, tolerance, depth + 1, out);
+  bisect(c, a, mid, pa, pm, f, depth + 1, out);
   out.push_back(mid);
-  bisect(c, mid, b, pm, pb, tolerance, depth + 1, out);
+  bisect(c, mid, b, pm, pb, f, depth + 1, out);
 }
 
 }  // namespace
 
+std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& points, bool closed) {
+  std::vector<double> t;
+  if (points.empty()) return t;
+  t.reserve(points.size() + 1);
+  t.push_back(0);
+  for (std::size_t i = 1; i < points.size(); ++i) t.push_back(t.back() + (points[i] - points[i - 1]).norm());
+  if (closed) t.push_back(t.back() + (points.front() - points.back()).norm());
+  return t;
+}
+
+std::vector<Eigen::Vector2d> sample(const BSpline& curve, int count) {
+  check_spline(curve);
+  std::vector<Eigen::Vector2d> out;
+  if (count <= 0) return out;
+  out.reserve(count);
+  const double a = curve.t_min(), b = curve.t_max();
+  for (int i = 0; i < count; ++i) {
+    const double t =
+        curve.closed ? a + (b - a) * i / count : (count == 1 ? a : a + (b - a) * i / (count - 1));
+    out.push_back(curve.point(t));
+  }
+  return out;
+}
+
+std::vector<double> span_samples(const BSpline& c, int per_span) {
+  std::vector<double> ts;
+  ts.reserve(c.control.size() * per_span);
+  for (std::size_t j = 0; j + 1 < c.knots.size(); ++j)
+    for (int s = 0; s < per_span; ++s)
+      ts.push_back(c.knots[j] + (c.knots[j + 1] - c.knots[j]) * s / per_span);
+  return ts;
+}
+
 BSpline clamped(const BSpline& curve) {
-  (void)curve.point(0);  // checks the curve (degree, counts) before its knots are read
+  check_spline(curve);
   if (!curve.closed) return curve;
   const int p = curve.degree;
   OpenForm f = unwrap(curve);
@@ -120,10 +164,16 @@ BSpline clamped(const BSpline& curve) {
   return out;
 }
 
-std::vector<double> flatten(const BSpline& curve, double tolerance) {
+std::vector<double> flatten(const BSpline& curve, double tolerance, std::size_t max_points) {
   if (!(tolerance > 0))
     throw Error("bspline: a polyline's tolerance must be above 0, got " + format_length(tolerance));
-  (void)curve.point(0);
+  check_spline(curve);
+  // Below a few units in the last place of the coordinates no chord test can pass.
+  double extent = 0;
+  for (const auto& p : curve.control) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+  if (tolerance < 64 * std::numeric_limits<double>::epsilon() * extent)
+    throw Error("bspline: a polyline's tolerance of " + format_length(tolerance) +
+                " is below the resolution of the curve's coordinates (up to " + format_length(extent) + ")");
   std::vector<double> breaks;
   for (double k : curve.knots)
     if (k >= curve.t_min() && k <= curve.t_max() && (breaks.empty() || k > breaks.back()))
@@ -131,8 +181,8 @@ std::vector<double> flatten(const BSpline& curve, double tolerance) {
   std::vector<double> out;
   for (std::size_t j = 0; j + 1 < breaks.size(); ++j) {
     out.push_back(breaks[j]);
-    bisect(curve, breaks[j], breaks[j + 1], curve.point(breaks[j]), curve.point(breaks[j + 1]), tolerance, 0,
-           out);
+    bisect(curve, breaks[j], breaks[j + 1], curve.point(breaks[j]), curve.point(breaks[j + 1]),
+           {tolerance, max_points}, 0, out);
   }
   if (!curve.closed) out.push_back(breaks.back());
   return out;

@@ -60,7 +60,8 @@ std::vector<Eigen::Vector2d> seed_branch(const SampledProfile& pr, const MedialA
   if (seed.empty()) {
     seed = detail::medial_axis_seed(pr.samples).points;
     if (seed.size() < 2)
-      throw Error("camber: the profile has no inside triangles (is it self-intersecting?)");
+      throw Error(
+          "camber: the profile encloses no area to triangulate (flat on a line, or self-intersecting)");
   }
   return seed;
 }

@@ -63,11 +63,11 @@ def stl_binary(tris, count=None):
     return data
 
 
-def stream(tables, header="# libsection-stream 1\n# units mm\n"):
+def stream(tables, header="# libsection-stream 1\n# units mm\n", fmt="%.12g"):
     out = header
     for name, cols, rows in tables:
         out += "# table %s\n%s\n" % (name, ",".join(cols))
-        out += "".join(",".join("%.12g" % v for v in r) + "\n" for r in rows)
+        out += "".join(",".join(fmt % v for v in r) + "\n" for r in rows)
     return out
 
 
@@ -95,6 +95,37 @@ def figure_eight(n=200, a=10.0):
     # Lemniscate of Gerono: crosses itself at the origin.
     return [(a * math.sin(2 * math.pi * i / n), a * math.sin(2 * math.pi * i / n) *
              math.cos(2 * math.pi * i / n)) for i in range(n)]
+
+
+SPLINE_COLS = ["section", "loop", "degree", "closed", "control_points", "rms", "max", "p95", "iterations",
+               "spacing", "max_gap", "gap_start", "gap_end", "layers", "layers_length"]
+FRAME_COLS = ["section", "origin_x", "origin_y", "origin_z", "u_x", "u_y", "u_z", "v_x", "v_y", "v_z",
+              "n_x", "n_y", "n_z"]
+
+
+def spline_stream(sections):
+    # sections: (id, knots, control points) of closed cubic splines, as fitspline writes them.
+    return stream([
+        ("frames", FRAME_COLS, [(s, 0, 0, 10 * s, 1, 0, 0, 0, 1, 0, 0, 0, 1) for s, _, _ in sections]),
+        ("splines", SPLINE_COLS, [(s, 0, 3, 1, len(c), 0.005, 0.02, 0.01, 12, 0.03, 0.3, 0, 0, 0, 0)
+                                  for s, _, c in sections]),
+        ("spline_knots", ["section", "loop", "index", "knot"],
+         [(s, 0, i, k) for s, ks, _ in sections for i, k in enumerate(ks)]),
+        ("spline_ctrl", ["section", "loop", "index", "u", "v"],
+         [(s, 0, i, u, v) for s, _, c in sections for i, (u, v) in enumerate(c)])], fmt="%.17g")
+
+
+def spline_streams():
+    # Spline tables camber, compare and tocad crashed or hung on (mutation testing).
+    n = 12
+    good = [(20 * math.cos(2 * math.pi * i / n), 3 * math.sin(2 * math.pi * i / n)) for i in range(n)]
+    knots = list(range(n + 1))
+    line = [(0, min(i, n - i)) for i in range(n)]
+    put("spline_collinear_stream.csv", spline_stream([(0, knots, good), (1, knots, line), (2, knots, good)]))
+    put("spline_equal_knots_stream.csv", spline_stream([(0, knots, good), (1, [0] * (n + 1), good)]))
+    put("spline_decreasing_knots_stream.csv", spline_stream([(0, knots, good), (1, knots[:-1] + [0], good)]))
+    put("spline_huge_stream.csv", spline_stream([(0, knots, [(u * 1e9, v * 1e9) for u, v in good])]))
+    put("spline_far_stream.csv", spline_stream([(0, knots, [(u - 9e14, v) for u, v in good])]))
 
 
 def main():
@@ -219,6 +250,8 @@ def main():
     put("collinear_stream.csv", stream([("points", POINT_COLS, sec0 +
                                          points_rows(1, [(i * 0.1, 0) for i in range(100)]) +
                                          points_rows(2, ellipse2d(a=16)))]))
+
+    spline_streams()
 
     # ---- 2D profiles (camber reads them)
     put("good_profile.dat", "ellipse\n" + "".join("%.12g %.12g\n" % p for p in ellipse2d()))

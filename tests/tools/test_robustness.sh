@@ -228,6 +228,24 @@ for f in three_points repeated_point collinear figure_eight; do
         on { s[$1] = 1 } END { exit (0 in s) && (2 in s) && !(1 in s) ? 0 : 1 }' "$TMP/pipe.txt"
 done
 
+# ---------------------------------------------------------------- spline tables (camber, compare, tocad)
+# Every reader of splines refuses a knot vector that defines no curve, naming the section.
+for f in equal_knots decreasing_knots; do
+  refuse camber "$R/spline_${f}_stream.csv" "spline of section 1 loop 0 is not a curve: bspline: "
+  refuse tocad "$R/spline_${f}_stream.csv" "spline of section 1 loop 0 is not a curve" -f iges -o "$TMP/out.igs"
+  refuse_args compare "spline_${f}_stream.csv" "spline of section 1 loop 0 is not a curve" \
+    "$R/spline_collinear_stream.csv" --nominal "$R/spline_${f}_stream.csv"
+done
+check "tocad: no IGES file left after a refused stream" -- test ! -e "$TMP/out.igs"
+# Control points on one line: no inside to triangulate, the section fails alone.
+KEEP="0 2" TABLE=params partial camber "$R/spline_collinear_stream.csv" 1 --allow-partial
+# A DXF polyline the tolerance cannot reach (the curve 1e10 mm across, or 9e14 mm from the
+# origin where coordinates resolve to 0.125 mm) is refused at once, not written for minutes.
+refuse tocad "$R/spline_huge_stream.csv" "polyline of section 0 loop 0: .*more than 1000000 points" -f dxf \
+  -o "$TMP/out.dxf"
+refuse tocad "$R/spline_far_stream.csv" "polyline of section 0 loop 0: .*below the resolution" -f dxf \
+  -o "$TMP/out.dxf"
+
 # ---------------------------------------------------------------- profiles (camber)
 refuse camber "$R/empty_profile.dat" "no profile points"
 refuse camber "$R/text_profile.dat" ":3: expected two numbers x, y, found '3 four'"

@@ -4,6 +4,7 @@
 /// Planar cubic (or any degree) B-spline curves, open (clamped) or closed (periodic):
 /// evaluation, derivatives, closest-point projection, least-squares fitting.
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 namespace section {
@@ -34,6 +35,14 @@ struct BSpline {
   /// Used to linearise fits in the control points.
   void basis(double t, std::vector<int>& index, std::vector<double>& value) const;
 };
+
+/// Throws section::Error naming the first defect of a curve the functions here cannot
+/// evaluate: a degree outside 1..7, control point and knot counts that do not match, a
+/// knot or control point that is not finite, knots that decrease, more than degree + 1
+/// equal knots in a row, or an empty parameter range (closed: a period not above 0).
+/// The functions that take a curve from outside (clamped, flatten, camber, compare)
+/// call it; evaluation checks only the degree and counts, to stay cheap.
+void check_spline(const BSpline& curve);
 
 /// Closest point of a curve to a query point.
 struct ClosestPoint {
@@ -98,7 +107,9 @@ BSpline clamped(const BSpline& curve);
 /// until the curve at each piece's midpoint and quarter points in parameter lies within
 /// half the tolerance of the piece's chord.
 /// Ascending from t_min(); closed curves do not repeat the end (t_max() is t_min()).
-/// Throws section::Error when the tolerance is not above 0.
-std::vector<double> flatten(const BSpline& curve, double tolerance);
+/// Throws section::Error when the tolerance is not above 0 or below the resolution of
+/// the coordinates (64 units in the last place of the largest), or when the polyline
+/// would need more than `max_points` points.
+std::vector<double> flatten(const BSpline& curve, double tolerance, std::size_t max_points = 1000000);
 
 }  // namespace section

@@ -58,12 +58,15 @@ void mark_domains(Cdt& cdt) {
 
 // Points first (spatially sorted, fast), then the polygon edges as constraints: on a
 // dense sampling nearly all of them are Delaunay edges already and only get marked.
-void triangulate(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
+// False, with no constraints marked, when the points all lie on one line: such a
+// triangulation has no faces, and its edges no neighbours to mark across.
+bool triangulate(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
   const int n = static_cast<int>(polygon.size());
   std::vector<std::pair<K::Point_2, int>> points;
   points.reserve(n);
   for (int i = 0; i < n; ++i) points.emplace_back(K::Point_2(polygon[i].x(), polygon[i].y()), i);
   cdt.insert(points.begin(), points.end());
+  if (cdt.dimension() < 2) return false;
   std::vector<Cdt::Vertex_handle> vertex(n);
   for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) vertex[v->info()] = v;
   for (int i = 0; i < n; ++i)  // duplicates share the vertex kept
@@ -81,6 +84,7 @@ void triangulate(const std::vector<Eigen::Vector2d>& polygon, Cdt& cdt) {
     }
   }
   mark_domains(cdt);
+  return true;
 }
 
 // The dual tree of the inside triangles: a node per triangle at its circumcentre, with
@@ -173,7 +177,7 @@ MedialSeed medial_axis_seed(const std::vector<Eigen::Vector2d>& polygon) {
   MedialSeed seed;
   if (polygon.size() < 3) return seed;
   Cdt cdt;
-  triangulate(polygon, cdt);
+  if (!triangulate(polygon, cdt)) return seed;
   const DualTree tree = dual_tree(polygon, cdt);
   seed.triangles = static_cast<int>(tree.node.size());
   if (tree.node.empty()) return seed;

@@ -41,7 +41,17 @@ SampledProfile::Segment segment_of(const std::vector<Eigen::Vector2d>& samples, 
 
 }  // namespace
 
-SampledProfile::SampledProfile(const BSpline& c, int count) : SampledProfile(c, PiecewiseCurve(c), count) {}
+namespace {
+
+// The curve checked before its pieces are built: every public entry reaches it from here.
+PiecewiseCurve checked_pieces(const BSpline& c) {
+  check_spline(c);
+  return PiecewiseCurve(c);
+}
+
+}  // namespace
+
+SampledProfile::SampledProfile(const BSpline& c, int count) : SampledProfile(c, checked_pieces(c), count) {}
 
 SampledProfile::SampledProfile(const BSpline& c, PiecewiseCurve f, int count, bool with_runs)
     : curve(c), fast(std::move(f)) {

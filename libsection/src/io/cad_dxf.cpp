@@ -6,6 +6,7 @@
 // *Model_Space and *Paper_Space, OBJECTS with the root dictionary and ACAD_GROUP), then a
 // SPLINE (and a 3D POLYLINE) per curve.
 #include "section/io/cad.h"
+#include "section/error.h"
 
 #include "io/cad_common.h"
 
@@ -14,6 +15,7 @@
 #include <string>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 namespace section {
 
@@ -217,7 +219,14 @@ void polyline(Dxf& d, const CadCurve& c, double tolerance, unsigned& next) {
   d.num(66, 1);
   d.point(10, Eigen::Vector3d::Zero());
   d.num(70, 8 + (c.spline.closed ? 1 : 0));  // 3D, closed
-  for (double t : flatten(c.spline, tolerance)) {
+  std::vector<double> ts;
+  try {
+    ts = flatten(c.spline, tolerance);
+  } catch (const Error& e) {
+    throw Error("dxf: the polyline of section " + std::to_string(c.section) + " loop " +
+                std::to_string(c.loop) + ": " + e.what());
+  }
+  for (double t : ts) {
     d.entity("VERTEX", next++, owner, layer);
     d.tag(100, "AcDbVertex");
     d.tag(100, "AcDb3dPolylineVertex");

@@ -176,6 +176,12 @@ std::map<std::pair<int, int>, BSpline> splines(const Stream& stream) {
       throw Error("fit_spline: the spline of section " + std::to_string(key.first) + " loop " +
                   std::to_string(key.second) + " has " + std::to_string(b.control.size()) +
                   " control points and " + std::to_string(b.knots.size()) + " knots, which do not match");
+    try {
+      check_spline(b);
+    } catch (const Error& e) {
+      throw Error("fit_spline: the spline of section " + std::to_string(key.first) + " loop " +
+                  std::to_string(key.second) + " is not a curve: " + e.what());
+    }
   }
   return out;
 }
