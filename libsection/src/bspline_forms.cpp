@@ -7,8 +7,8 @@
 #include "section/units.h"
 
 #include <algorithm>
-#include <limits>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>

@@ -6,9 +6,9 @@
 // *Model_Space and *Paper_Space, OBJECTS with the root dictionary and ACAD_GROUP), then a
 // SPLINE (and a 3D POLYLINE) per curve.
 #include "section/io/cad.h"
-#include "section/error.h"
 
 #include "io/cad_common.h"
+#include "section/error.h"
 
 #include <cstdio>
 #include <set>
