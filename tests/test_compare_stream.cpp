@@ -20,7 +20,9 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -118,6 +120,41 @@ TEST_CASE("compare stream: a blade mesh moved rigidly is fitted back, per sectio
     for (const auto& [id, row] : compared(s, "stagger")) CHECK(row[1] == Approx(angle).margin(0.002));
     CHECK(section::stream_verdict(s) == 0);
   }
+}
+
+TEST_CASE("compare stream: a nominal in another unit is refused per section, not fitted", "[compare]") {
+  // The nominal mesh in inches read as millimetres (25.4 times larger), and in micrometres
+  // read as millimetres the other way round: the fit hunted feet for a minute and reported
+  // millimetres of deviation.
+  const section::BladeDesign blade = section::turbine_blade();
+  const section::Mesh mesh = section::generate_mesh(blade, 2000, 16);
+  const std::vector<double> zs{12, 20, 28};
+  for (double scale : {25.4, 1 / 2.0}) {
+    INFO("scale " << scale);
+    section::Mesh scaled = mesh;
+    for (auto& v : scaled.vertices) v = Eigen::Vector3d(v.x() * scale, v.y() * scale, v.z());
+    section::Stream s = measured_stream(mesh, zs);
+    section::CompareStreamOptions o;
+    section::NominalSource source;
+    source.mesh = &scaled;
+    section::compare_stream(s, section::nominal_stream(source, section::frames(s), o), o);
+    int refused = 0;
+    for (const auto& i : s.issues)
+      if (i.stage == "compare" &&
+          i.message.find(scale > 1 ? "25.4 times larger" : "2 times smaller") != std::string::npos)
+        ++refused;
+    CHECK(refused == 3);
+    CHECK(column(s, "fits", "angle").empty());
+  }
+  // The same size within the room given: compared.
+  section::Mesh larger = mesh;
+  for (auto& v : larger.vertices) v = Eigen::Vector3d(v.x() * 1.3, v.y() * 1.3, v.z());
+  section::Stream s = measured_stream(mesh, zs);
+  section::CompareStreamOptions o;
+  section::NominalSource source;
+  source.mesh = &larger;
+  section::compare_stream(s, section::nominal_stream(source, section::frames(s), o), o);
+  CHECK(column(s, "fits", "angle").size() == 3);
 }
 
 TEST_CASE("compare stream: nominals from a stream in other frames and from x, y, z points agree",
@@ -387,6 +424,16 @@ TEST_CASE("compare stream: a value camber flagged is uncertain however loose its
   section::compare_stream(s, nc.nominal, o);
   CHECK(column(s, "verdicts", "verdict").at(1) == 1);
   CHECK(section::stream_verdict(s) == 1);
+  // Bounds far past any blade (the API takes what the tolerance reader refuses) are written
+  // out in full: the report once showed the formatter's uninitialised buffer beyond 1e59.
+  section::Stream wide = layered;
+  o.tolerances = {{"chord", 1, -1e300, 1e300}};
+  section::compare_stream(wide, nc.nominal, o);
+  const std::string report = section::compare_report(wide);
+  // 1e300 has 301 digits before the point.
+  CHECK(std::regex_search(report, std::regex(R"(\[-1[0-9]{300}\.0000, 1[0-9]{300}\.0000\])")));
+  CHECK(
+      std::all_of(report.begin(), report.end(), [](char c) { return c == '\n' || (c >= ' ' && c <= '~'); }));
 }
 
 TEST_CASE("pipe: a stage run again replaces its issues and drops what the later stages wrote",
@@ -475,6 +522,7 @@ TEST_CASE("compare stream: the tolerance file is read, and refused naming the li
   refused("item,low,high\nchrod,-1,1\n", "tol.csv:2: unknown item 'chrod'");
   refused("item,low,high\nchord,-1,x\n", "tol.csv:2: high: expected a number");
   refused("item,low,high\nchord,1,-1\n", "tol.csv:2: low is above high");
+  refused("item,low,high\nchord,-1e20,1\n", "tol.csv:2: low: -1e20 is beyond +-1e9");  // a typo, not a limit
   refused("item,low,high\nchord,,\n", "tol.csv:2: neither low nor high");
   refused("item,low,high\nchord,-1,1\n\nchord,-2,2\n",
           "tol.csv:4: a second row for 'chord' (the first: tol.csv:2)");

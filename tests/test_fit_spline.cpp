@@ -407,6 +407,27 @@ TEST_CASE("fit_spline: stream stage writes splines that read back, failures beco
       section::closest_point(c, {3 * std::cos(2 * pi * 115 / 300), 3 * std::sin(2 * pi * 115 / 300)}).t));
 }
 
+TEST_CASE("fit_spline: stream samples are bounded, however fine the spacing", "[fit_spline]") {
+  section::Stream s;
+  section::Table pts{"points", {"section", "loop", "index", "u", "v", "nu", "nv"}, {}};
+  for (int i = 0; i < 300; ++i) {
+    const double a = 2 * pi * i / 300;
+    pts.add_row({0, 0, double(i), 3 * std::cos(a), 3 * std::sin(a), std::cos(a), std::sin(a)});
+  }
+  s.put(pts);
+  FitSplineOptions o;
+  // 2e10 samples: the count overflowed int and came out 3, silently.
+  o.sample_spacing = 1e-9;
+  section::fit_spline_stream(s, o);
+  REQUIRE(s.failed(0));
+  CHECK(s.issues.at(0).message.find("more than 1000000 a loop") != std::string::npos);
+  CHECK(s.find("samples")->rows() == 0);
+  o.sample_spacing = 0;
+  o.samples = FitSplineOptions::max_samples + 1;
+  const auto p = curve_points([](double a) { return Vector2d(3 * std::cos(a), 3 * std::sin(a)); }, 300, 0, 1);
+  CHECK_THROWS_WITH(section::fit_spline(p, p, o), Catch::Contains("samples must be 0 to 1000000"));
+}
+
 TEST_CASE("fit_spline: change-of-curvature penalty keeps arcs and lines, sparse noisy edges stay close",
           "[fit_spline]") {
   // Stadium: two semicircles of radius 0.25 mm (a thin blade edge) joined by 10 mm lines,

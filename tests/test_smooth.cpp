@@ -438,6 +438,13 @@ TEST_CASE("smooth: bad input is refused or repaired", "[smooth]") {
   SmoothOptions o;
   o.b = 0;
   REQUIRE_THROWS_WITH(section::smooth(p, o), Catch::StartsWith("smooth: b"));
+  // A smoothing length far beyond the loop: CHOLMOD failed to factor at 1000 mm on a 45 mm
+  // section, and the message said nothing of why.
+  o = SmoothOptions();
+  o.smoothing_length = 30;  // the unit circle's extent is about 2 * sqrt(2)
+  REQUIRE_THROWS_WITH(section::smooth(p, o), Catch::Contains("over 10 times the loop's extent"));
+  o.smoothing_length = 1e300;
+  REQUIRE_THROWS_WITH(section::smooth(p, o), Catch::Contains("a smoothing length of 1e+300"));
   REQUIRE(section::parse_smooth_solver("gauss-seidel") == SmoothSolver::gauss_seidel);
   REQUIRE_THROWS_AS(section::parse_smooth_solver("jacobi"), section::Error);
 }

@@ -169,6 +169,13 @@ TEST_CASE("stacking: a rotor: turning a section about the axis adds radius x ang
     CHECK(c.sections[k].sweep == Approx(a.sections[k].sweep).margin(1e-9));
     CHECK(c.sections[k].twist == Approx(a.sections[k].twist).margin(1e-9));
   }
+  // The axis direction at any length: 1e200 overflowed its squared norm into a zero axis.
+  for (double length : {1e200, 1e-200}) {
+    o.axis_direction = {length, 0, 0};
+    const StackingResult far = stacking(turned, o);
+    for (std::size_t k = 0; k < zs.size(); ++k)
+      CHECK(far.sections[k].lean == Approx(c.sections[k].lean).margin(1e-12));
+  }
 }
 
 TEST_CASE("stacking: flagged params flag the blade values that rest on them", "[stacking]") {

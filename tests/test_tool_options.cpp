@@ -84,6 +84,25 @@ TEST_CASE("tool options: bad usage is refused with exit code 2 and names the fla
   CHECK(parsed<BladegenArgs>({"--truth", "t.csv"}).code == 2);  // no --at
 }
 
+TEST_CASE("tool options: an empty value is refused, not read as the option left out or as 0", "[tools]") {
+  // What an unset shell variable gives: `compare --tolerances "$TOL"` judged nothing, exit 0.
+  const auto tolerances = parsed<CompareArgs>({"--nominal", "n.stl", "--tolerances", ""});
+  CHECK(tolerances.code == 2);
+  CHECK(tolerances.err.find("--tolerances: an empty value") != std::string::npos);
+  CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--report", ""}).code == 2);
+  CHECK(parsed<SliceArgs>({"blade.ply", "--at", ""}).code == 2);  // sliced at 0
+  CHECK(parsed<PlotArgs>({"--section", ""}).code == 2);           // section 0
+  CHECK(parsed<CamberArgs>({"--params", ""}).code == 2);
+  CHECK(parsed<BladeArgs>({"--lines", " "}).code == 2);
+  CHECK(parsed<FitsplineArgs>({"-o", ""}).code == 2);
+  CHECK(parsed<SmoothArgs>({"--report", "r.csv"}).code == -1);
+}
+
+TEST_CASE("tool options: fitspline's samples are bounded", "[tools]") {
+  CHECK(parsed<FitsplineArgs>({"--samples", "1000000"}).code == -1);
+  CHECK(parsed<FitsplineArgs>({"--samples", "1000001"}).code == 2);  // 4.7 GB at 10 million
+}
+
 TEST_CASE("tool options: --help answers with exit code 0 without the required flags", "[tools]") {
   const auto help = parsed<SliceArgs>({"--help"});
   CHECK(help.code == 0);

@@ -103,6 +103,10 @@ void check_options(const FitSplineOptions& o) {
                 " must not be negative");
   if (!(o.bridge_factor >= 0) || !std::isfinite(o.bridge_factor))
     throw Error("fit_spline: bridge factor must be 0 (off) or a positive number of spacings");
+  if (o.samples < 0 || o.samples > FitSplineOptions::max_samples || !(o.sample_spacing >= 0) ||
+      !std::isfinite(o.sample_spacing))
+    throw Error("fit_spline: samples must be 0 to " + std::to_string(FitSplineOptions::max_samples) +
+                " a loop, and the sample spacing 0 or a positive length");
 }
 
 // First curve: least squares through the ordered profile on uniform chord-length knots.

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <string>
@@ -313,6 +314,19 @@ Problem prepare(const Points& points, const SmoothOptions& options, SmoothResult
     hi = hi.cwiseMax(x);
   }
   p.size = (hi - lo).norm();
+  // Far longer than the loop, the strain term swamps the springs: the solve loses its
+  // precision and the shape would be gone even if it did not.
+  const double length =
+      options.smoothing_length > 0 ? options.smoothing_length : smoothing_length(p.a, p.h, p.b);
+  if (!(length <= 10 * p.size)) {
+    char text[160];
+    std::snprintf(
+        text, sizeof text,
+        "smooth: a smoothing length of %.4g is over 10 times the loop's extent (%.4g): it would smooth "
+        "the shape away",
+        length, p.size);
+    throw Error(text);
+  }
   return p;
 }
 

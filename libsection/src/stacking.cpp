@@ -65,7 +65,9 @@ Axes axes_of(const std::vector<StackedSection>& sections, const StackedSection& 
   if (o.rotor) {
     x.rotor = true;
     x.point = o.axis_point;
-    x.a = o.axis_direction.normalized();
+    // 1e200 or 1e-200 long, the squared norm over- or underflows: then the stable form.
+    x.a = std::isnormal(o.axis_direction.squaredNorm()) ? o.axis_direction.normalized()
+                                                        : o.axis_direction.stableNormalized();
     const Eigen::Vector3d q = ref.frame.to_world(ref.params.centroid) - o.axis_point;
     const Eigen::Vector3d r = q - q.dot(x.a) * x.a;
     if (r.norm() < 1e-9 * std::max(1.0, q.norm()))
@@ -89,7 +91,8 @@ void check_input(const std::vector<StackedSection>& sections, const StackingOpti
     throw Error("stacking: " + std::to_string(sections.size()) +
                 " section(s) measured: at least 2 are needed for a stacking line");
   if (o.samples < 2) throw Error("stacking: samples must be 2 or more");
-  if (o.rotor && !(o.axis_direction.norm() > 0 && o.axis_direction.allFinite() && o.axis_point.allFinite()))
+  if (o.rotor &&
+      !(o.axis_direction.stableNorm() > 0 && o.axis_direction.allFinite() && o.axis_point.allFinite()))
     throw Error("stacking: the axis direction must be finite and not zero");
   std::set<int> ids;
   for (const auto& sec : sections) {

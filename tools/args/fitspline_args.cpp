@@ -27,7 +27,7 @@ void declare_counts(CLI::App& app, FitSplineOptions& options) {
                           "Systematic deviation allowed per knot span before a knot is inserted", positive);
   ctrl->excludes(tol);
   auto* n = app.add_option("--samples", options.samples, "Write N curve samples per loop")
-                ->check(CLI::Range(3, 10000000));
+                ->check(CLI::Range(3, FitSplineOptions::max_samples));
   auto* d = app.add_option("--spacing", options.sample_spacing,
                            "Write curve samples every D length units along the curve")
                 ->check(positive);

@@ -115,6 +115,17 @@ void refuse_non_finite(CLI::App& app) {
   }
 }
 
+// An option given an empty value ("--tolerances ''", "--at ''"): an unset shell variable,
+// which would otherwise read as the option left out, or as 0.
+void refuse_empty(CLI::App& app) {
+  for (const CLI::Option* o : app.get_options()) {
+    if (o->get_type_size_min() <= 0) continue;  // a flag
+    for (const std::string& text : o->results())
+      if (text.find_first_not_of(" \t") == std::string::npos)
+        throw CLI::ValidationError(o->get_name(), "an empty value (is a shell variable unset?)");
+  }
+}
+
 }  // namespace
 
 int parse_args(const std::string& name, const std::string& description, int argc, char** argv,
@@ -130,6 +141,7 @@ int parse_app(CLI::App& app, const std::string& name, int argc, char** argv,
   try {
     declare(app);
     app.parse(argc, argv);
+    refuse_empty(app);
     refuse_non_finite(app);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e, out, err);

@@ -43,6 +43,8 @@ struct FitSplineOptions {
   double layer_ratio = 1.6;        ///< residual spread (noise sigmas) marking two layers; 0 = off
   double layer_separation = 2;     ///< noise sigmas: least separation of two layers reported
   int threads = 0;                 ///< stream stage: worker threads over the loops; 0 = all cores
+  /// The most samples a loop gets (`samples`, or its length over `sample_spacing`): beyond, an error.
+  static constexpr int max_samples = 1000000;
 };
 
 /// What fit_spline returns: the fitted curve and its fit diagnostics.

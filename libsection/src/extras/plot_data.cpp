@@ -14,8 +14,9 @@
 namespace section::detail::plot {
 
 std::string fixed(double value, int decimals) {
-  char buf[64];
+  char buf[400];  // room for the largest double in fixed notation (309 digits) and its decimals
   const auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::fixed, decimals);
+  if (r.ec != std::errc()) return "?";  // never the buffer's bytes
   std::string s(buf, r.ptr);
   if (s == "-0" || (s.rfind("-0.", 0) == 0 && s.find_first_not_of("0.", 1) == std::string::npos))
     s.erase(0, 1);  // no "-0.00"

@@ -13,8 +13,9 @@ namespace {
 // `value` with `decimals` digits, "-" when not finite, never "-0.000".
 std::string number(double value, int decimals) {
   if (!std::isfinite(value)) return "-";
-  char buf[64];
+  char buf[400];  // room for the largest double in fixed notation (309 digits) and its decimals
   const auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::fixed, decimals);
+  if (r.ec != std::errc()) return "?";  // never the buffer's bytes
   std::string text(buf, r.ptr);
   if (text[0] == '-' && text.find_first_not_of("-0.") == std::string::npos) text.erase(0, 1);
   return text;

@@ -60,6 +60,10 @@ double limit(std::string_view cell, double unbounded, const std::string& where, 
   double v = 0;
   if (!detail::parse_double(cell, v) || !std::isfinite(v))
     throw Error(where + what + ": expected a number or nothing, found '" + std::string(cell) + "'");
+  // Far beyond any blade in any unit: a typo, which would print as a wall of digits.
+  if (std::abs(v) > 1e9)
+    throw Error(where + what + ": " + std::string(cell) +
+                " is beyond +-1e9, not a tolerance (leave it empty for none)");
   return v;
 }
 

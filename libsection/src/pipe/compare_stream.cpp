@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <set>
@@ -122,6 +123,29 @@ std::vector<Eigen::Vector2d> measured_points(const Input& in, int id, std::vecto
 }
 
 // Why a section cannot be compared ("" when it can).
+double diagonal(const std::vector<Eigen::Vector2d>& points) {
+  Eigen::AlignedBox2d box;
+  for (const auto& p : points) box.extend(p);
+  return box.isEmpty() ? 0 : box.diagonal().norm();
+}
+
+// Measured and nominal profiles of sizes no fit can match: mostly a nominal in another unit,
+// whose fit hunted feet for a minute to report millimetres of deviation. A measured profile
+// smaller than its nominal may be a partial scan, so that side is given room.
+std::string size_mismatch(const Input& in, int id) {
+  const auto measured = in.curves.find({id, 0});
+  if (measured == in.curves.end()) return "";
+  const double m = diagonal(measured->second.control), n = diagonal(in.nominals.at(id).curve.control);
+  if (m <= 1.5 * n && n <= 8 * m) return "";
+  char text[240];
+  std::snprintf(
+      text, sizeof text,
+      "the measured profile is %.4g across and its nominal %.4g, %.3g times %s (a nominal in another "
+      "unit? see --nominal-units)",
+      m, n, m > n ? m / n : n / m, m > n ? "smaller" : "larger");
+  return text;
+}
+
 std::string unusable(const Input& in, int id, std::size_t points) {
   if (!in.nominals.count(id)) {
     const auto i = in.nominal_issue.find(id);
@@ -130,7 +154,7 @@ std::string unusable(const Input& in, int id, std::size_t points) {
   }
   if (points == 0) return "no measured profile (loop 0) in the stream";
   if (!in.params.count(id)) return "no params row: the measured section has not been through camber";
-  return "";
+  return size_mismatch(in, id);
 }
 
 enum : std::size_t { fit_rows, deviation_rows, zone_rows, compared_rows, verdict_rows };

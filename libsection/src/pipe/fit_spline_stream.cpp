@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <string>
@@ -33,8 +34,18 @@ void add_samples(int section, int loop, const BSpline& c, const Frame& frame, co
     cum[i + 1] = cum[i] + arc_length(c, ts[i], i + 1 < ts.size() ? ts[i + 1] : c.t_max());
   const double length = cum.back();
   int count = options.samples;
-  if (options.sample_spacing > 0)
-    count = std::max(3, static_cast<int>(std::ceil(length / options.sample_spacing)));
+  if (options.sample_spacing > 0) {
+    const double wanted = std::ceil(length / options.sample_spacing);
+    // Checked before the cast: a tiny spacing overflowed int into 3 samples.
+    if (!(wanted <= FitSplineOptions::max_samples)) {
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "a sample spacing of %.4g gives %.4g samples on a curve %.4g long, more than %d a loop",
+                    options.sample_spacing, wanted, length, FitSplineOptions::max_samples);
+      throw Error(text);
+    }
+    count = std::max(3, static_cast<int>(wanted));
+  }
   std::size_t seg = 0;
   for (int i = 0; i < count; ++i) {
     const double target = length * i / count;
