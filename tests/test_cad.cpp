@@ -141,6 +141,8 @@ TEST_CASE("flatten: a polyline within its tolerance of a thin ellipse", "[bsplin
             section::flatten(far, 1e-3);
           }).find("is below the resolution of the curve's coordinates") != std::string::npos);
   REQUIRE(section::flatten(far, 100).size() > 4);
+  REQUIRE(thrown([&] { section::flatten(c, 1e-300); }).find("a polyline's tolerance of 1e-300 mm is below") !=
+          std::string::npos);  // it read "0 mm"
 }
 
 TEST_CASE("format_dxf: one SPLINE per curve through its control points in 3D", "[cad]") {

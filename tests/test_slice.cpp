@@ -44,6 +44,22 @@ TEST_CASE("slice: points exactly on a slab plane belong to the slab, the next do
   REQUIRE_THROWS_AS(slab_points(pts, planes, -1.0), Error);
 }
 
+TEST_CASE("slice: a normal 1e308 or 1e-200 long is the direction it gives", "[slice]") {
+  // Its squared length overflowed to infinity or underflowed to 0: 'the plane normal must be
+  // finite and non-zero', or a frame without a normal.
+  for (double length : {1e308, 1e-200, 1.0}) {
+    INFO("length " << length);
+    const auto planes = planes_at({0, 0, length}, {2.0});
+    REQUIRE(planes.size() == 1);
+    CHECK(planes[0].origin == Eigen::Vector3d(0, 0, 2));
+    CHECK(planes[0].normal.normalized() == Eigen::Vector3d(0, 0, 1));
+    const auto across = planes_across({{0, 0, 0}, {0, 0, 4}}, {0, 0, length}, 1);
+    CHECK(across[0].origin == Eigen::Vector3d(0, 0, 2));
+  }
+  CHECK(usable_normal({1, 2, 2}) == Eigen::Vector3d(1, 2, 2));  // unchanged where the square is fine
+  CHECK(usable_normal({3e200, 0, -4e200}) == Eigen::Vector3d(0.75, 0, -1));
+}
+
 TEST_CASE("slice: many planes in one pass give what each plane alone gives", "[slice]") {
   std::vector<Eigen::Vector3d> pts;
   for (int i = 0; i < 20000; ++i) pts.emplace_back(std::sin(i * 0.37), std::cos(i * 0.11), 0.001 * i);

@@ -78,6 +78,9 @@ TEST_CASE("tool options: bad usage is refused with exit code 2 and names the fla
   CHECK(stations.code == 2);
   CHECK(stations.err.find("stations must lie in [0, 1]") != std::string::npos);
   CHECK(parsed<CamberArgs>({"--le-direction", "0,0"}).code == 2);
+  CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--le-direction", "0,0,0"}).code == 2);
+  CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--freedom", "along", "--direction", "0,0"}).code == 2);
+  CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--center", "0,0"}).code == -1);  // a point may be 0
   CHECK(parsed<CamberArgs>({"--edge", "square"}).code == 2);
   CHECK(parsed<PlotArgs>({"--section", "1", "--html"}).code == 2);
   CHECK(parsed<BladegenArgs>({"--points"}).code == 2);          // no -o

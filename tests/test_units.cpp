@@ -106,6 +106,7 @@ TEST_CASE("units: numbers in messages get three digits and their unit", "[units]
   CHECK(format_length(0.00012) == "0.0001 mm");
   CHECK(format_length(-0.0123456) == "-0.0123 mm");
   CHECK(format_length(0) == "0 mm");
+  CHECK(format_length(-1e300) == "-1e+300 mm");  // the first 63 digits of 301 before
   CHECK(format_angle(0.178123) == "0.178 deg");
   CHECK(format_angle(-72.8081) == "-72.8 deg");
   CHECK(format_angle(0.0001) == "0 deg");

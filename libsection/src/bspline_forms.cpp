@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <utility>
@@ -171,9 +172,12 @@ std::vector<double> flatten(const BSpline& curve, double tolerance, std::size_t 
   // Below a few units in the last place of the coordinates no chord test can pass.
   double extent = 0;
   for (const auto& p : curve.control) extent = std::max(extent, p.cwiseAbs().maxCoeff());
-  if (tolerance < 64 * std::numeric_limits<double>::epsilon() * extent)
-    throw Error("bspline: a polyline's tolerance of " + format_length(tolerance) +
+  if (tolerance < 64 * std::numeric_limits<double>::epsilon() * extent) {
+    char text[32];  // with an exponent: format_length shows 1e-300 as 0
+    std::snprintf(text, sizeof text, "%.3g mm", tolerance);
+    throw Error("bspline: a polyline's tolerance of " + std::string(text) +
                 " is below the resolution of the curve's coordinates (up to " + format_length(extent) + ")");
+  }
   std::vector<double> breaks;
   for (double k : curve.knots)
     if (k >= curve.t_min() && k <= curve.t_max() && (breaks.empty() || k > breaks.back()))

@@ -22,7 +22,14 @@
 
 namespace section {
 
-std::vector<Plane> planes_at(const Eigen::Vector3d& normal, const std::vector<double>& offsets) {
+Eigen::Vector3d usable_normal(const Eigen::Vector3d& normal) {
+  const double largest = normal.cwiseAbs().maxCoeff();
+  if (std::isnormal(normal.squaredNorm()) || !(largest > 0) || !std::isfinite(largest)) return normal;
+  return normal / largest;
+}
+
+std::vector<Plane> planes_at(const Eigen::Vector3d& given, const std::vector<double>& offsets) {
+  const Eigen::Vector3d normal = usable_normal(given);
   const double len = normal.norm();
   if (!(len > 0) || !std::isfinite(len)) throw Error("slice: the plane normal must be finite and non-zero");
   std::vector<Plane> planes;
@@ -33,8 +40,9 @@ std::vector<Plane> planes_at(const Eigen::Vector3d& normal, const std::vector<do
   return planes;
 }
 
-std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& given,
                                  int count) {
+  const Eigen::Vector3d normal = usable_normal(given);
   const double len = normal.norm();
   if (!(len > 0) || !std::isfinite(len)) throw Error("slice: the plane normal must be finite and non-zero");
   if (count < 1) throw Error("slice: --count must be at least 1");

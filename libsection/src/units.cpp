@@ -84,6 +84,11 @@ std::string short_number(double value, int decimals, const char* unit) {
     return text;
   }
   const double size = std::abs(value);
+  // Past 1e15 the digits would not fit the text (and mean nothing): with an exponent.
+  if (size >= 1e15) {
+    std::snprintf(text, sizeof text, "%.3g%s", value, unit);
+    return text;
+  }
   const int leading = size > 0 ? static_cast<int>(std::floor(std::log10(size))) : 0;
   const int shown = std::max(0, std::min(decimals, 2 - leading));
   std::snprintf(text, sizeof text, "%.*f", shown, value);

@@ -179,6 +179,8 @@ void SliceArgs::declare(CLI::App& app) {
     if (normal.size() != 3) throw CLI::ValidationError("--normal takes three comma-separated numbers");
     if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0)
       throw CLI::ValidationError("--normal", "must not be 0,0,0 (a plane needs a direction)");
+    const Eigen::Vector3d n = usable_normal({normal[0], normal[1], normal[2]});
+    normal = {n.x(), n.y(), n.z()};
     check_surfaces(*this);
     options.sampling.threads = options.threads;  // --threads 1: no thread in the sampling either
   });

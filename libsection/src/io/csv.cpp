@@ -145,9 +145,12 @@ std::vector<Plane> parse_planes(std::string_view csv, const std::string& source)
   std::vector<Plane> planes;
   for (std::size_t r = 0; r < t.rows(); ++r) {
     Plane p{{t.at(r, c[0]), t.at(r, c[1]), t.at(r, c[2])}, {t.at(r, c[3]), t.at(r, c[4]), t.at(r, c[5])}};
-    if (!(p.normal.norm() > 0))
-      throw Error("slice: " + source + ": plane " + std::to_string(r) + " (data row " +
-                  std::to_string(r + 1) + ") has a zero normal");
+    const std::string plane =
+        "slice: " + source + ": plane " + std::to_string(r) + " (data row " + std::to_string(r + 1) + ")";
+    if (p.normal.isZero(0)) throw Error(plane + " has a zero normal");
+    p.normal = usable_normal(p.normal);
+    if (p.origin.cwiseAbs().maxCoeff() > detail::max_coordinate)
+      throw Error(plane + " has an origin coordinate beyond +-1e15 (corrupt file?)");
     planes.push_back(p);
   }
   if (planes.empty()) throw Error("slice: " + source + ": no planes");

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
 namespace section {
@@ -98,6 +99,7 @@ Tolerance row(const std::vector<std::string_view>& c, const Header& h, const std
 std::vector<Tolerance> parse_tolerances(std::string_view text, const std::string& source,
                                         const std::vector<std::string>& items) {
   std::vector<Tolerance> out;
+  std::map<std::pair<std::string, int>, std::size_t> row_of;  // (item, section) -> its row in out
   Header h;
   bool have_header = false;
   std::size_t pos = 0, line_no = 0;
@@ -120,11 +122,11 @@ std::vector<Tolerance> parse_tolerances(std::string_view text, const std::string
                   " columns");
     Tolerance t = row(c, h, items, where);
     t.where = source + ":" + std::to_string(line_no);
-    for (const Tolerance& o : out)
-      if (o.item == t.item && o.section == t.section)
-        throw Error(where + "a second row for '" + t.item + "'" +
-                    (t.section < 0 ? std::string() : " section " + std::to_string(t.section)) +
-                    " (the first: " + o.where + ")");
+    const auto [first, fresh] = row_of.emplace(std::pair(t.item, t.section), out.size());
+    if (!fresh)
+      throw Error(where + "a second row for '" + t.item + "'" +
+                  (t.section < 0 ? std::string() : " section " + std::to_string(t.section)) +
+                  " (the first: " + out[first->second].where + ")");
     out.push_back(std::move(t));
   }
   if (!have_header) throw Error("tolerances: " + source + ": no header line (item,section,low,high,on)");
