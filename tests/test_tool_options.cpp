@@ -83,8 +83,14 @@ TEST_CASE("tool options: bad usage is refused with exit code 2 and names the fla
   CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--center", "0,0"}).code == -1);  // a point may be 0
   CHECK(parsed<CamberArgs>({"--edge", "square"}).code == 2);
   CHECK(parsed<PlotArgs>({"--section", "1", "--html"}).code == 2);
-  CHECK(parsed<BladegenArgs>({"--points"}).code == 2);          // no -o
-  CHECK(parsed<BladegenArgs>({"--truth", "t.csv"}).code == 2);  // no --at
+  const auto inset = parsed<PlotArgs>({"--inset", "10"});  // was exit 1 naming inset_size
+  CHECK(inset.code == 2);
+  CHECK(inset.err.find("--inset: 0 (none) or 80 to") != std::string::npos);
+  CHECK(parsed<PlotArgs>({"--inset", "10", "--no-insets"}).code == -1);
+  CHECK(parsed<PlotArgs>({"--inset", "300", "--width", "500"}).code == 2);
+  CHECK(parsed<PlotArgs>({"--width", "500"}).args.options.inset_size == 230);  // the default inset narrowed
+  CHECK(parsed<BladegenArgs>({"--points"}).code == 2);                         // no -o
+  CHECK(parsed<BladegenArgs>({"--truth", "t.csv"}).code == 2);                 // no --at
 }
 
 TEST_CASE("tool options: an empty value is refused, not read as the option left out or as 0", "[tools]") {

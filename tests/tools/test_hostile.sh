@@ -181,6 +181,12 @@ run "6: a column twice in a header" 1 "column 'u' appears twice" "" -- "$B/smoot
 printf 'origin_x,origin_y,origin_z,normal_x,normal_y,normal_z,normal_z\n0,0,12,0,0,1,1\n' >dup_planes.csv
 run "6: a column twice in a planes CSV" 1 "dup_planes.csv:1: column 'normal_z' appears twice" "" -- \
   "$B/slice blade.xyz --planes dup_planes.csv"
+run "6: a report into a directory that does not exist, refused before the work" 1 \
+  "report no-such-dir/r.txt: the directory no-such-dir does not exist" "" -- \
+  "$B/smooth s.csv --report no-such-dir/r.txt > smoothed-unwritable.csv"
+check "6: ... and no stream written" -- test ! -s smoothed-unwritable.csv
+run "6: an output into a directory that does not exist" 1 "the directory no-such-dir does not exist" "" -- \
+  "$B/fitspline s.csv -o no-such-dir/f.csv"
 printf 'origin_x,origin_y,origin_z,normal_x,normal_y,normal_z\n0,0,1e300,0,0,1\n' >far_planes.csv
 run "6: a planes CSV with an origin 1e300 away" 1 "far_planes.csv: plane 0 .data row 1. has an origin coordinate beyond" "" -- \
   "$B/slice blade.xyz --planes far_planes.csv"

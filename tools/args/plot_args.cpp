@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "args/plot_args.h"
 
+#include <algorithm>
+#include <string>
+
 namespace section::tool {
 
 const char* const PlotArgs::description =
@@ -25,18 +28,25 @@ void PlotArgs::declare(CLI::App& app) {
   auto* section_flag = app.add_option("--section", only, "Draw only section N (SVG)");
   app.add_flag("--html", html, "Write one HTML page holding every section")->excludes("--section");
   add_checked(app, "--width", options.width, "Drawing width, px", CLI::Range(300.0, 20000.0));
-  add_checked(app, "--inset", options.inset_size, "Edge inset side, px (0 = no insets)",
-              CLI::Range(0.0, 10000.0));
+  auto* inset_flag = add_checked(app, "--inset", options.inset_size,
+                                 "Edge inset side, px (0 = no insets; at most half of --width, less 20)",
+                                 CLI::Range(0.0, 10000.0));
   add_checked(app, "--inset-radii", options.inset_radii, "Inset half-width in edge radii",
               CLI::Range(1.05, 100.0));
   app.add_flag("--no-points", no_points, "Do not draw the measured points");
   app.add_flag("--no-stations", no_stations, "Do not draw the thickness-station circles");
   app.add_flag("--no-insets", no_insets, "Do not draw the edge insets");
   app.add_flag("--no-dimensions", no_dimensions, "Do not draw the dimension lines");
-  app.callback([this, section_flag] {
+  app.callback([this, section_flag, inset_flag] {
     options.points = !no_points;
     options.stations = !no_stations;
     if (no_insets) options.inset_size = 0;
+    const double widest = options.width / 2 - 20;  // the library's bound, said with the flags' names
+    if (inset_flag->count() == 0)
+      options.inset_size = std::min(options.inset_size, widest);  // a narrow --width
+    if (options.inset_size != 0 && !(options.inset_size >= 80 && options.inset_size <= widest))
+      throw CLI::ValidationError("--inset", "0 (none) or 80 to " + std::to_string(static_cast<int>(widest)) +
+                                                " px (half of --width, less 20)");
     options.dimensions = !no_dimensions;
     one = section_flag->count() > 0;
     if (!one && ends_with(common.output, ".html")) html = true;

@@ -175,6 +175,11 @@ int run_tool(const std::string& name, const std::string& description, int argc, 
     std::cerr << name << ": usage error: " << clash << "\n";
     return 2;
   }
+  // Before the work: a report that cannot be written once the stream has been.
+  if (const std::string unwritable = unwritable_outputs(app); !unwritable.empty()) {
+    std::cerr << name << ": error: " << unwritable << "\n";
+    return exit_bad_data;
+  }
   const CLI::Option* input = app.get_option_no_throw("--input");
   if (input && (input->count() == 0 || input->as<std::string>() == "-") && input_is_terminal("-")) {
     // Waiting on a terminal's keyboard without a word looks like a hang.
@@ -320,6 +325,21 @@ std::string same_files(CLI::App& app) {
         return outputs[k].first + " " + outputs[k].second + " is the output of " + outputs[j].first +
                " too: give each output its own file";
     }
+  }
+  return "";
+}
+
+std::string unwritable_outputs(CLI::App& app) {
+  for (const auto& [flag, path] : paths_of(
+           app, {"--output", "--params", "--thickness", "--report", "--second-view", "--truth", "--plot"})) {
+    if (path.empty() || path == "-") continue;
+    const auto slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+      return flag + " " + path + ": the directory " + dir + " does not exist";
+    if (::access(dir.c_str(), W_OK) != 0 && ::access(path.c_str(), W_OK) != 0)
+      return flag + " " + path + ": " + dir + " cannot be written to";
   }
   return "";
 }

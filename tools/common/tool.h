@@ -103,6 +103,11 @@ int parse_app(CLI::App& app, const std::string& name, int argc, char** argv,
 /// do not); "" when none does.
 std::string same_files(CLI::App& app);
 
+/// Why an output (-o, --params, --thickness, --report, --second-view, --truth, --plot) cannot be
+/// written, checked before any work: its directory does not exist or cannot be written to;
+/// "" when every one can.
+std::string unwritable_outputs(CLI::App& app);
+
 /// Installs the handlers of SIGINT, SIGTERM, SIGHUP and SIGQUIT that remove the outputs'
 /// temporary files (section::remove_temporary_files) and end the tool as the signal would;
 /// ignores SIGXFSZ, so that a write past `ulimit -f` fails with an error naming the file.
