@@ -122,7 +122,6 @@ std::vector<Eigen::Vector2d> measured_points(const Input& in, int id, std::vecto
   return out;
 }
 
-// Why a section cannot be compared ("" when it can).
 double diagonal(const std::vector<Eigen::Vector2d>& points) {
   Eigen::AlignedBox2d box;
   for (const auto& p : points) box.extend(p);
@@ -146,6 +145,7 @@ std::string size_mismatch(const Input& in, int id) {
   return text;
 }
 
+// Why a section cannot be compared ("" when it can).
 std::string unusable(const Input& in, int id, std::size_t points) {
   if (!in.nominals.count(id)) {
     const auto i = in.nominal_issue.find(id);
