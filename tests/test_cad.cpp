@@ -241,6 +241,13 @@ TEST_CASE("format_json: tables by section, rows as objects or columns", "[cad][j
   const std::string json = section::format_json(s, {&params, &thickness});
   REQUIRE(json.find("\"history\": [\"camber --params p.csv\"]") != std::string::npos);
   REQUIRE(json.find("\"message\": \"a \\\"quoted\\\"\\u0009message\"") != std::string::npos);
+  // Bytes that are not UTF-8 (a stray 0xFF, a cut sequence) made the file unreadable as JSON:
+  // each is U+FFFD; well-formed text (a degree sign) is kept.
+  section::Stream odd = s;
+  odd.issues = {{2, -1, "camber", "bad \xFF byte, cut \xE2\x82, 20\xC2\xB0"}};
+  const std::string odd_json = section::format_json(odd, {&params});
+  CHECK(odd_json.find("bad \xEF\xBF\xBD byte, cut \xEF\xBF\xBD\xEF\xBF\xBD, 20\xC2\xB0") !=
+        std::string::npos);
   REQUIRE(
       json.find(
           "{\"section\": 0,\n     \"params\": {\"chord\": 41.25, \"le_radius\": null},\n"

@@ -218,6 +218,14 @@ TEST_CASE("pipe: a stream split into parts reads as the whole stream and must en
   bad.insert(bad.rfind("# end"), "# table frames\nsection,z\n");
   CHECK_THAT(message(bad), Catch::Contains("appears twice in a part"));
   CHECK_THAT(message(t.parted + "0,0\n"), Catch::Contains("after '# end'"));
+  // One unit a stream: blade and tocad scaled every section by a '# units in' inside part 1,
+  // camber dropped it.
+  bad = t.parted;
+  bad.insert(bad.find("# part 1\n") + 9, "# units in\n");
+  CHECK_THAT(message(bad), Catch::Contains("'# units' in a part: a stream has one unit"));
+  CHECK_THAT(message("# libsection-stream 1\n# units mm\n# units in\n"),
+             Catch::Contains("a second '# units' line (in; line 2 said mm)"));
+  CHECK_NOTHROW(parse_stream("# libsection-stream 1\n# units mm\n# units mm\n", "same"));
 }
 
 TEST_CASE("pipe: PartReader hands out the parts as they come and refuses a cut stream", "[pipe]") {

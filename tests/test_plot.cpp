@@ -165,6 +165,17 @@ TEST_CASE("plot: a full section is drawn to scale with v up and the curve on the
   }
 }
 
+TEST_CASE("plot: an issue's control characters and stray bytes do not break the SVG", "[plot]") {
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(0), 8000);
+  section::Stream stream = full_stream(truth, 800, 300);
+  stream.issues.push_back({0, -1, "camber", "a bell \x07, a stray \xFF, 20\xC2\xB0"});
+  const std::string svg = section::plot_svg(stream, 0);
+  // XML 1.0 has no control characters but tab, line feed and return, and is UTF-8 here.
+  CHECK(svg.find('\x07') == std::string::npos);
+  CHECK(svg.find('\xFF') == std::string::npos);
+  CHECK(svg.find("a bell \xEF\xBF\xBD, a stray \xEF\xBF\xBD, 20\xC2\xB0") != std::string::npos);
+}
+
 TEST_CASE("plot: a stream that stops after slice draws its points and no more", "[plot]") {
   // Noisy ellipse, a = 15, b = 2, as the slice stage would write it.
   std::mt19937 rng(7);

@@ -208,6 +208,14 @@ TEST_CASE("robustness: a stream is held to its schema", "[robustness][stream]") 
   CHECK_THAT(refused("# table params\nsection,flags\n0,2.5\n"), Catch::Contains("column 'flags' is 2.5"));
   CHECK_THAT(refused("# table params\nsection,le_radius_sigma\n0,-0.001\n"),
              Catch::Contains("column 'le_radius_sigma' is -0.001, a standard error must not be negative"));
+  // Params no section can have: blade, compare, plot and tocad showed them as measured.
+  CHECK_THAT(refused("# table params\nsection,chord\n0,40\n1,-5\n"),
+             Catch::Contains("data row 2 (section 1): column 'chord' is -5, it cannot be negative"));
+  CHECK_THAT(
+      refused("# table params\nsection,max_thickness_pos\n0,5\n"),
+      Catch::Contains("column 'max_thickness_pos' is 5, a place along the camber line lies in [0, 1]"));
+  CHECK(refused("# table params\nsection,chord,le_radius,max_thickness_pos,stagger\n0,40,0,1,-55\n") ==
+        "no error");  // 0 radius (a sharp edge), a position at the TE, a negative angle
   // Compare's zones and compared values: one row per zone or item of a section.
   CHECK(refused("# table zones\nsection,zone\n0,0\n0,1\n# table compared\nsection,item\n0,0\n0,1\n") ==
         "no error");

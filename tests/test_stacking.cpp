@@ -6,6 +6,7 @@
 #include "section/error.h"
 #include "section/extras/generate.h"
 #include "section/extras/stacking_truth.h"
+#include "section/io/blade_text.h"
 #include "section/pipe/schema.h"
 #include "section/pipe/slice_stream.h"
 #include "section/pipe/stacking_stream.h"
@@ -280,4 +281,19 @@ TEST_CASE("stacking: the stream stage leaves out a section whose values are not 
   CHECK(stream.issues[0].message.find("not finite") != std::string::npos);
   // The truth of all four heights: the same reference and ends (ids index it).
   check_against(r, stacking_truth(b, zs), 1e-9, 1e-9);
+}
+
+TEST_CASE("stacking: the blade table keeps its columns apart at any size", "[stacking]") {
+  // A span of 20138.6485 mm fills its 10 columns: it ran into the section id ("120138.6485").
+  section::StackingResult r;
+  r.sections.resize(2);
+  r.sections[0].id = 0;
+  r.sections[0].reference = true;
+  r.sections[1].id = 1;
+  r.sections[1].span = 20138.6485;
+  r.sections[1].chord = 123456.5;
+  const std::string text = section::format_blade_text(r);
+  CHECK(text.find("      1 20138.6485") != std::string::npos);
+  CHECK(text.find(" 123456.5000") != std::string::npos);
+  CHECK(text.find("     0*    0.0000 ") != std::string::npos);  // a usual width: as before
 }

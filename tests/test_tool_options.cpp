@@ -76,7 +76,8 @@ TEST_CASE("tool options: bad usage is refused with exit code 2 and names the fla
   CHECK(parsed<FitsplineArgs>({"--samples", "10", "--spacing", "1"}).code == 2);
   const auto stations = parsed<CamberArgs>({"--stations", "0.5,2"});
   CHECK(stations.code == 2);
-  CHECK(stations.err.find("stations must lie in [0, 1]") != std::string::npos);
+  CHECK(stations.err.find("stations must lie between 0 and 1") != std::string::npos);
+  CHECK(parsed<CamberArgs>({"--stations", "0,0.5"}).code == 2);  // an edge point: the whole section failed
   CHECK(parsed<CamberArgs>({"--le-direction", "0,0"}).code == 2);
   CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--le-direction", "0,0,0"}).code == 2);
   CHECK(parsed<CompareArgs>({"--nominal", "n.stl", "--freedom", "along", "--direction", "0,0"}).code == 2);

@@ -66,8 +66,9 @@ CLI::Validator numbers_check(const std::string& flag, std::string (*ok)(const st
 }
 
 std::string stations_ok(const std::vector<double>& v) {
-  for (double f : v)
-    if (!(f >= 0 && f <= 1)) return "stations must lie in [0, 1]";
+  for (double f : v)  // at 0 and 1, the edge points, the camber normal runs along the profile
+    if (!(f > 0 && f < 1))
+      return "stations must lie between 0 and 1 (the edge points, where there is no thickness)";
   return "";
 }
 
@@ -116,8 +117,9 @@ void CamberArgs::declare(CLI::App& app) {
   add_common(app, common);
   app.add_option("--params", params_file, "Also write the 'params' table to FILE (CSV)");
   app.add_option("--thickness", thickness_file, "Also write the 'thickness' table to FILE (CSV)");
-  app.add_option("--stations", stations,
-                 "Thickness stations, fractions of the camber length (default 0.05,0.1,...,0.95)")
+  app.add_option(
+         "--stations", stations,
+         "Thickness stations, fractions of the camber length between 0 and 1 (default 0.05,0.1,...,0.95)")
       ->check(numbers_check("--stations", stations_ok));
   app.add_option("--le-direction", le_direction,
                  "u,v (in each section's plane) or x,y,z (in 3D, e.g. upstream along the machine "

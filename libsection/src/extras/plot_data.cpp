@@ -3,6 +3,7 @@
 // drawing: see plot_parts.h.
 #include "plot_parts.h"
 
+#include "io/text.h"
 #include "section/error.h"
 #include "section/fit_spline.h"
 #include "section/io/stream.h"
@@ -34,7 +35,11 @@ std::string trimmed(double value, int decimals) {
 
 std::string escape(const std::string& text) {
   std::string out;
-  for (char c : text) {
+  for (char c : detail::well_formed_utf8(text)) {  // XML is UTF-8 without control characters
+    if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') {
+      out += "\xEF\xBF\xBD";
+      continue;
+    }
     switch (c) {
       case '&':
         out += "&amp;";

@@ -24,7 +24,9 @@ std::string number(double value, int decimals) {
 // number() right-aligned in `width` columns, then '!' when flagged (else a blank).
 std::string cell(double value, int decimals, std::size_t width, bool flagged) {
   std::string text = number(value, decimals);
-  if (text.size() < width) text.insert(0, width - text.size(), ' ');
+  // Right-aligned, and a blank before a number as wide as its column (a span of 20138 mm ran into
+  // the section id).
+  text.insert(0, text.size() < width ? width - text.size() : 1, ' ');
   return text + (flagged ? "!" : " ");
 }
 

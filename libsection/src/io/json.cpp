@@ -2,6 +2,7 @@
 // Stream tables as JSON, grouped by section.
 #include "section/io/json.h"
 
+#include "io/text.h"
 #include "section/error.h"
 
 #include <cmath>
@@ -15,7 +16,8 @@ namespace section {
 
 namespace {
 
-std::string json_string(const std::string& s) {
+std::string json_string(const std::string& text) {
+  const std::string s = detail::well_formed_utf8(text);  // JSON is UTF-8: a stray byte made it unreadable
   std::string out = "\"";
   for (unsigned char c : s) {
     if (c == '"' || c == '\\') {

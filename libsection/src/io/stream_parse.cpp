@@ -238,6 +238,7 @@ private:
   std::size_t line_no_;
   // Parts (docs/FORMAT.md): a table may come again in a later part, with the same header.
   std::size_t parts_ = 0;
+  std::size_t units_line_ = 0;  // the line of the '# units' seen (0: none)
   bool ended_ = false;
   std::vector<std::string> in_part_;            // tables seen in the current part
   std::vector<std::string> continued_columns_;  // header a continued table must repeat (empty: a new table)
@@ -309,6 +310,13 @@ void StreamParser::meta(std::string_view line) {
     ended_ = true;
   } else if (key == "units") {
     if (rest.empty()) fail("'# units' without a unit");
+    // One unit a stream: a second line changed every length read before it, or after it.
+    if (part_.is_part || parts_ > 0)
+      fail("'# units' in a part: a stream has one unit, said before its first part");
+    if (units_line_ > 0 && rest != stream_.units)
+      fail("a second '# units' line (" + printable(rest) + "; line " + std::to_string(units_line_) +
+           " said " + stream_.units + "): a stream has one unit");
+    units_line_ = line_no_;
     stream_.units = std::string(rest);
   } else if (key == "history") {
     stream_.history.emplace_back(rest);

@@ -86,6 +86,35 @@ inline bool skip_bom(std::string_view& s) {
   return false;
 }
 
+/// `t` with every byte that does not belong to a well-formed UTF-8 sequence (a stray
+/// continuation byte, a cut or overlong sequence, a surrogate, beyond U+10FFFF) replaced by
+/// U+FFFD: text from a stream's issue or history line bound for JSON or SVG, which must be UTF-8.
+inline std::string well_formed_utf8(std::string_view t) {
+  std::string out;
+  out.reserve(t.size());
+  for (std::size_t i = 0; i < t.size();) {
+    const auto b = [&](std::size_t k) { return static_cast<unsigned char>(t[k]); };
+    const unsigned char c = b(i);
+    std::size_t n = c < 0x80                 ? 1
+                    : c >= 0xC2 && c <= 0xDF ? 2
+                    : c >= 0xE0 && c <= 0xEF ? 3
+                    : c >= 0xF0 && c <= 0xF4 ? 4
+                                             : 0;
+    bool ok = n > 0 && i + n <= t.size();
+    for (std::size_t k = 1; ok && k < n; ++k) ok = (b(i + k) & 0xC0) == 0x80;
+    if (ok && n == 3) ok = !(c == 0xE0 && b(i + 1) < 0xA0) && !(c == 0xED && b(i + 1) >= 0xA0);
+    if (ok && n == 4) ok = !(c == 0xF0 && b(i + 1) < 0x90) && !(c == 0xF4 && b(i + 1) >= 0x90);
+    if (ok) {
+      out.append(t.substr(i, n));
+      i += n;
+    } else {
+      out += "\xEF\xBF\xBD";
+      ++i;
+    }
+  }
+  return out;
+}
+
 /// Why the start of a text file cannot be text we read, or nullptr: UTF-16 (by its byte-order
 /// mark or NUL bytes between ASCII characters), other binary data (a NUL byte), or CR-only
 /// line ends (a '\r' and no '\n' in the first 64 KiB).

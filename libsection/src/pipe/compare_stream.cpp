@@ -371,6 +371,15 @@ void compare_stream(Stream& stream, const Stream& nominal, const CompareStreamOp
         try {
           const SectionComparison c = blade ? blade->sections[position[k]]
                                             : compare_section(in.nominals.at(id), pts[k], options.compare);
+          if (!c.fit.converged) {  // its deviations are not the best fit's: no verdict rests on them
+            char text[240];
+            std::snprintf(
+                text, sizeof text,
+                "the fit did not settle in %d iterations (rms %.4g mm, %.4g before): is the nominal "
+                "this section's, and near it?",
+                c.fit.iterations, c.fit.rms_after, c.fit.rms_before);
+            throw Error(text);
+          }
           describe(id, c, index[k], frame_of(in, id), options, blade ? &blade->translation : nullptr, slot);
           judge(id, &c, in, by_section.of(id), options, slot);
         } catch (const Error& e) {

@@ -84,6 +84,29 @@ void check_values(const Table& t, const std::map<std::string, std::string>& unit
   }
 }
 
+// Throws for a params value no section can have: a length or area below 0, a place along the
+// camber line outside [0, 1] (NaN, a value not measured, passes). blade, compare, plot and tocad
+// showed a chord of -5 as a measurement.
+void check_params(const Table& t, const std::string& source) {
+  if (t.name != "params") return;
+  const long cs = t.find_column("section");
+  for (const char* name :
+       {"chord", "camber_length", "max_thickness", "max_thickness_pos", "le_radius", "te_radius",
+        "le_curvature_radius", "te_curvature_radius", "area", "caliper_chord"}) {
+    const long c = t.find_column(name);
+    if (c < 0) continue;
+    const bool share = std::string(name) == "max_thickness_pos";
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      const double v = t.at(r, std::size_t(c));
+      if (!(v < 0) && !(share && v > 1)) continue;
+      throw Error("pipe: " + source + ": table 'params' data row " + std::to_string(r + 1) +
+                  (cs >= 0 ? " (section " + format_number(t.at(r, std::size_t(cs))) + ")" : std::string()) +
+                  ": column '" + name + "' is " + format_number(v) + ", " +
+                  (share ? "a place along the camber line lies in [0, 1]" : "it cannot be negative"));
+    }
+  }
+}
+
 }  // namespace
 
 void validate_stream(const Stream& stream, const std::string& source) {
@@ -93,6 +116,7 @@ void validate_stream(const Stream& stream, const std::string& source) {
     if (unit == known.end()) continue;
     check_unique_ids(t, source);
     check_values(t, unit->second, source);
+    check_params(t, source);
   }
 }
 
