@@ -298,7 +298,12 @@ TEST_CASE("compare stream: verdicts over a dent and a hole, and sections that ca
   CHECK(compared(s, "chord").at(2)[0] == 0);
   CHECK(section::stream_verdict(s) == 1);
   bool issue = false;
-  for (const auto& i : s.issues) issue = issue || (i.section == 2 && i.stage == "compare");
+  // The reason is the nominal's, not fitspline's "no points in the stream for this section"
+  // (fitspline's restage dropped it).
+  for (const auto& i : s.issues)
+    issue =
+        issue || (i.section == 2 && i.stage == "compare" &&
+                  i.message.find("the nominal points have no section on this plane") != std::string::npos);
   CHECK(issue);
   const std::string report = section::compare_report(s);
   CHECK(report.rfind("blade: FAIL", 0) == 0);

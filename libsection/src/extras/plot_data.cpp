@@ -175,8 +175,10 @@ SectionData collect(const Stream& stream, int section, const Curves& curves) {
         d.has_frame = true;
         d.frame = it->second;
       }
-    } catch (const Error&) {
-      // A malformed frames table only costs the title its plane.
+    } catch (const Error& e) {
+      // A malformed frames table only costs the title its plane, said with the section's issues.
+      d.issues.push_back(std::string("plot: the frames table is unreadable, the plane not shown: ") +
+                         e.what());
     }
     for (const auto& row : rows_of(stream, "frames", section, {"radius"}))
       if (std::isfinite(row[0])) d.radius = row[0];

@@ -54,7 +54,7 @@ Mesh crossing(const Mesh& mesh, const Frame& f) {
 }
 
 // Loop 0 of the mesh's section on each measured plane, in the measured frame.
-Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, Stream& out) {
+Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, std::vector<SectionIssue>& misses) {
   Loops loops;
   for (const auto& [id, f] : frames) {
     const Mesh band = crossing(mesh, f);
@@ -64,9 +64,9 @@ Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, Stream
     else
       s = slice(band, {Plane{f.origin, f.n}}).sections.front();
     if (!s.error.empty() || s.morphology.loops.empty()) {
-      out.issues.push_back({id, -1, "compare",
-                            "the nominal mesh has no section on this plane" +
-                                (s.error.empty() ? std::string() : ": " + s.error)});
+      misses.push_back({id, -1, "compare",
+                        "the nominal mesh has no section on this plane" +
+                            (s.error.empty() ? std::string() : ": " + s.error)});
       continue;
     }
     for (const auto& p : s.morphology.loops[0].points) loops[id].push_back(f.to_plane(s.frame.to_world(p)));
@@ -98,7 +98,7 @@ Loops point_sections(const Table& t, const std::map<int, Frame>& frames, const C
 // The nominal stream's section on each measured plane: its splines moved into the measured
 // frame (the same plane, facing the same way).
 void matched_sections(const Stream& nominal, const std::map<int, Frame>& frames,
-                      const CompareStreamOptions& o, Stream& out) {
+                      const CompareStreamOptions& o, Stream& out, std::vector<SectionIssue>& misses) {
   const std::map<int, Frame> theirs =
       schema::frames.find(nominal) ? section::frames(nominal) : std::map<int, Frame>{};
   const auto curves = splines(nominal);
@@ -111,7 +111,7 @@ void matched_sections(const Stream& nominal, const std::map<int, Frame>& frames,
     if (theirs.empty() && curves.count({id, 0})) match = id;  // no frames: matched by id
     const auto curve = curves.find({match, 0});
     if (curve == curves.end()) {
-      out.issues.push_back({id, -1, "compare", "the nominal stream has no section on this plane"});
+      misses.push_back({id, -1, "compare", "the nominal stream has no section on this plane"});
       continue;
     }
     BSpline b = curve->second;
@@ -135,11 +135,12 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
                       const CompareStreamOptions& options) {
   Stream out;
   put_frames(out, frames);
+  std::vector<SectionIssue> misses;  // planes without a nominal section, said after the stages
   if (source.stream) {
-    matched_sections(*source.stream, frames, options, out);
+    matched_sections(*source.stream, frames, options, out, misses);
   } else {
     Loops loops;
-    if (source.mesh) loops = mesh_sections(*source.mesh, frames, out);
+    if (source.mesh) loops = mesh_sections(*source.mesh, frames, misses);
     if (source.points) loops = point_sections(*source.points, frames, options);
     Table pts = schema::points.table();
     for (const auto& [id, loop] : loops) {
@@ -149,7 +150,7 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
     }
     for (const auto& [id, f] : frames)
       if (!loops.count(id) && !source.mesh)
-        out.issues.push_back({id, -1, "compare", "the nominal points have no section on this plane"});
+        misses.push_back({id, -1, "compare", "the nominal points have no section on this plane"});
     out.put(pts);
     FitSplineOptions fo = options.fit_spline;
     fo.threads = options.threads;
@@ -158,6 +159,9 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
   CamberOptions co = options.camber;
   co.threads = options.threads;
   camber_stream(out, co);
+  // After the stages: fitspline's restage dropped them as a later stage's, and the reason
+  // compare gave was then fitspline's "no points in the stream for this section".
+  out.issues.insert(out.issues.begin(), misses.begin(), misses.end());
   return out;
 }
 
