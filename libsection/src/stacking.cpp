@@ -4,6 +4,7 @@
 
 #include "section/checks.h"
 #include "section/error.h"
+#include "section/slice.h"
 
 #include <algorithm>
 #include <array>
@@ -65,9 +66,7 @@ Axes axes_of(const std::vector<StackedSection>& sections, const StackedSection& 
   if (o.rotor) {
     x.rotor = true;
     x.point = o.axis_point;
-    // 1e200 or 1e-200 long, the squared norm over- or underflows: then the stable form.
-    x.a = std::isnormal(o.axis_direction.squaredNorm()) ? o.axis_direction.normalized()
-                                                        : o.axis_direction.stableNormalized();
+    x.a = usable_normal(o.axis_direction).normalized();  // 1e200 or 1e-200 long too
     const Eigen::Vector3d q = ref.frame.to_world(ref.params.centroid) - o.axis_point;
     const Eigen::Vector3d r = q - q.dot(x.a) * x.a;
     if (r.norm() < 1e-9 * std::max(1.0, q.norm()))

@@ -147,6 +147,9 @@ run "5: smooth s2.csv --report s2.csv" 2 "--report s2.csv is the input" "" -- "$
 check "5: the input is left alone" -- cmp -s s.csv s2.csv
 ln -s s2.csv link.csv
 run "5: an output that is a link to the input" 2 "is the input" "" -- "$B/smooth s2.csv -o link.csv"
+cp c.csv c2.csv
+run "5: blade c2.csv --plot c2.csv" 2 "--plot c2.csv is the input" "" -- "$B/blade c2.csv --plot c2.csv"
+check "5: ... the stream is left alone" -- cmp -s c.csv c2.csv
 run "5: /dev/null twice is fine" 0 "" "" -- "$B/camber f.csv --params /dev/null -o /dev/null"
 "$B/slice" blade.ply --count 30 >many.csv 2>/dev/null
 for sig in TERM:-15 INT:-2 HUP:-1; do

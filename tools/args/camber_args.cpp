@@ -78,6 +78,14 @@ std::string direction_ok(const std::vector<double>& v) {
   return "";
 }
 
+}  // namespace
+
+CLI::Validator direction_check(const std::string& flag) {
+  return numbers_check(flag, direction_ok);
+}
+
+namespace {
+
 // The edge model and the edge circles' fit.
 void declare_edges(CLI::App& app, CamberArgs& a) {
   CamberOptions& o = a.options;
@@ -127,7 +135,7 @@ void CamberArgs::declare(CLI::App& app) {
                  "farther along this direction (default: the end nearer the maximum thickness, which "
                  "is wrong on blades thickest aft of mid-chord, e.g. transonic compressor rotors: "
                  "give it when known)")
-      ->check(numbers_check("--le-direction", direction_ok));
+      ->check(direction_check("--le-direction"));
   declare_edges(app, *this);
   add_checked(app, "--tangent-span", options.tangent_span,
               "Fraction of the medial axis over which the end tangents are fitted (0 = spline end slope)",

@@ -34,4 +34,8 @@ struct CamberArgs {
 /// whole item, a leading '+' allowed); throws CLI::ValidationError naming the flag.
 std::vector<double> numbers(const std::string& text, const std::string& flag);
 
+/// Accepts a direction for `flag`: two numbers u,v or three x,y,z, not all 0 (--le-direction,
+/// compare's --direction).
+CLI::Validator direction_check(const std::string& flag);
+
 }  // namespace section::tool

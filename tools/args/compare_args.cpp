@@ -3,7 +3,6 @@
 
 #include "args/camber_args.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace section::tool {
@@ -32,18 +31,14 @@ const char* const CompareArgs::description =
 
 namespace {
 
-// `a` or `b` numbers; for a direction (`direction`), not all 0.
-CLI::Validator count_check(const std::string& flag, std::size_t a, std::size_t b, bool direction = false) {
+CLI::Validator count_check(const std::string& flag, std::size_t a, std::size_t b) {
   return CLI::Validator(
-      [flag, a, b, direction](std::string& text) {
+      [flag, a, b](std::string& text) {
         try {
           const auto v = numbers(text, flag);
-          if (v.size() != a && v.size() != b)
-            return "expected " + std::to_string(a) + " or " + std::to_string(b) +
-                   " numbers separated by commas";
-          if (direction && std::all_of(v.begin(), v.end(), [](double x) { return x == 0; }))
-            return std::string("a direction, not all 0");
-          return std::string();
+          return v.size() == a || v.size() == b ? std::string()
+                                                : "expected " + std::to_string(a) + " or " +
+                                                      std::to_string(b) + " numbers separated by commas";
         } catch (const CLI::ValidationError& e) {
           return std::string(e.what());
         }
@@ -129,7 +124,7 @@ void CompareArgs::declare(CLI::App& app) {
               "(about --center) or all",
               CLI::IsMember({"none", "translation", "along", "rotation", "all"}));
   app.add_option("--direction", direction, "u,v: the direction of --freedom along (x,y,z with --whole-blade)")
-      ->check(count_check("--direction", 2, 3, true));
+      ->check(direction_check("--direction"));
   app.add_option(
          "--center", center,
          "u,v: the centre of --freedom rotation (x,y,z with --whole-blade); default the nominal's centroid")
@@ -154,7 +149,7 @@ void CompareArgs::declare(CLI::App& app) {
               CLI::NonNegativeNumber);
   app.add_flag("--keep-outliers", keep_outliers, "Leave no point out");
   app.add_option("--le-direction", le_direction, "The nominal's camber: as camber --le-direction")
-      ->check(count_check("--le-direction", 2, 3, true));
+      ->check(direction_check("--le-direction"));
   add_checked(app, "--plane-tolerance", options.plane_tolerance,
               "A nominal section or point this near a measured plane lies on it", positive);
   app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")

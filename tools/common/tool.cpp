@@ -271,6 +271,12 @@ struct FileId {
   bool operator==(const FileId& o) const { return dev == o.dev && ino == o.ino && name == o.name; }
 };
 
+// The directory `path` names a file in: "." for a bare name, "/" at the root.
+std::string directory_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+}
+
 // The identity of `path`; false for "-", a file that cannot be checked, or one that is not
 // a regular file (/dev/null may be given for several outputs).
 bool file_id(const std::string& path, FileId& id) {
@@ -281,11 +287,14 @@ bool file_id(const std::string& path, FileId& id) {
     return S_ISREG(st.st_mode);
   }
   const auto slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
-  if (::stat(dir.c_str(), &st) != 0) return false;
+  if (::stat(directory_of(path).c_str(), &st) != 0) return false;
   id = {st.st_dev, st.st_ino, path.substr(slash == std::string::npos ? 0 : slash + 1)};
   return true;
 }
+
+// The flags that name output files, for every tool: a new one is added here.
+const std::initializer_list<const char*> output_flags = {
+    "--output", "--params", "--thickness", "--report", "--second-view", "--truth", "--plot"};
 
 // Every path given to the options named in `flags`, with the flag.
 std::vector<std::pair<std::string, std::string>> paths_of(CLI::App& app,
@@ -306,10 +315,9 @@ extern "C" void remove_and_reraise(int sig) {
 }  // namespace
 
 std::string same_files(CLI::App& app) {
-  // The flags that name files, for every tool: a new one is added here.
+  // The flags that name input files, for every tool: a new one is added here.
   const auto inputs = paths_of(app, {"--input", "--view", "--planes"});
-  const auto outputs =
-      paths_of(app, {"--output", "--params", "--thickness", "--report", "--second-view", "--truth"});
+  const auto outputs = paths_of(app, output_flags);
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     FileId out;
     if (!file_id(outputs[k].second, out)) continue;
@@ -330,11 +338,9 @@ std::string same_files(CLI::App& app) {
 }
 
 std::string unwritable_outputs(CLI::App& app) {
-  for (const auto& [flag, path] : paths_of(
-           app, {"--output", "--params", "--thickness", "--report", "--second-view", "--truth", "--plot"})) {
+  for (const auto& [flag, path] : paths_of(app, output_flags)) {
     if (path.empty() || path == "-") continue;
-    const auto slash = path.find_last_of('/');
-    const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    const std::string dir = directory_of(path);
     struct stat st {};
     if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
       return flag + " " + path + ": the directory " + dir + " does not exist";

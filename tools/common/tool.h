@@ -98,7 +98,7 @@ int parse_app(CLI::App& app, const std::string& name, int argc, char** argv,
               const std::function<void(CLI::App&)>& declare, std::ostream& out, std::ostream& err);
 
 /// Why the command line names one file twice where that would lose data: an output
-/// (-o, --params, --thickness, --report, --second-view, --truth) that is an input (the input, --view,
+/// (-o, --params, --thickness, --report, --second-view, --truth, --plot) that is an input (the input, --view,
 /// --planes) or another output, by device and inode (a symlink or hard link to it counts; /dev/null and "-"
 /// do not); "" when none does.
 std::string same_files(CLI::App& app);
