@@ -259,6 +259,45 @@ TEST_CASE("checks: blade: a section that jumps from its neighbours is flagged wi
   CHECK(section::check_blade({bad[0], bad[4]}).empty());
 }
 
+TEST_CASE("checks: blade: an end plane far from the others is not measured against an extrapolation",
+          "[checks]") {
+  // Nine sections 7.5 mm apart whose trends fall with height, and a tenth plane 1e14 mm
+  // up (a stream's origin edited): the line through its neighbours gave it an LE radius of
+  // -4.6e11 mm and a jump of as much. Each value at the far plane continues the trend of its
+  // neighbours over one spacing, so none departs.
+  std::vector<section::BladeSection> blade;
+  for (int k = 0; k < 10; ++k) {
+    section::BladeSection s;
+    s.height = k < 9 ? 7.5 * k : 1e14;
+    const double z = std::min(s.height, 67.5) / 60;
+    s.params.chord = 40 - 2 * z;
+    s.params.max_thickness = 8 - 1 * z;
+    s.params.stagger = -10 - 4 * z;
+    s.params.inlet_angle = 45 - 5 * z;
+    s.params.outlet_angle = -65 - 3 * z;
+    s.params.camber_angle = s.params.inlet_angle - s.params.outlet_angle;
+    s.params.le_radius = 2 - 0.2 * z;
+    s.params.te_radius = 0.5 - 0.05 * z;
+    blade.push_back(s);
+  }
+  CHECK(section::check_blade(blade).empty());
+  // A far plane's LE radius doubled is still a jump, against a value its neighbours give.
+  blade[9].params.le_radius *= 2;
+  const std::vector<section::Jump> jumps = section::check_blade(blade);
+  REQUIRE(jumps.size() == 1);
+  CHECK(jumps[0].index == 9);
+  CHECK(jumps[0].check == Check::jump_le_radius);
+  CHECK(jumps[0].expected > 1.5);
+  CHECK(jumps[0].expected < 2);
+  // Radii falling fast toward the tip are never expected below zero.
+  for (int k = 0; k < 10; ++k) {
+    blade[k].height = 7.5 * k;
+    blade[k].params.te_radius = k < 9 ? 0.5 - 0.055 * k : 0.02;
+  }
+  for (const auto& j : section::check_blade(blade))
+    if (j.check == Check::jump_te_radius) CHECK(j.expected >= 0);
+}
+
 TEST_CASE("checks: the stream's params rows carry the blade check's flags and issues", "[checks]") {
   // Five sections' params rows (centroids 10 apart along z), the third with a chord 30 % short.
   section::Stream stream;

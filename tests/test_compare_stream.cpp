@@ -39,6 +39,24 @@ section::Stream measured_stream(const section::Mesh& mesh, const std::vector<dou
   return s;
 }
 
+// The measured stream of `mesh` at `zs`, compared with `nominal` (default options).
+section::Stream compared_with(const section::Mesh& mesh, const section::Mesh& nominal,
+                              const std::vector<double>& zs) {
+  section::Stream s = measured_stream(mesh, zs);
+  section::CompareStreamOptions o;
+  section::NominalSource source;
+  source.mesh = &nominal;
+  section::compare_stream(s, section::nominal_stream(source, section::frames(s), o), o);
+  return s;
+}
+
+// How many issues of stage compare hold `text`.
+int compare_issues(const section::Stream& s, const std::string& text) {
+  int count = 0;
+  for (const auto& i : s.issues) count += i.stage == "compare" && i.message.find(text) != std::string::npos;
+  return count;
+}
+
 // True when no issue of stage compare was recorded (camber's notes on edges may be there).
 bool compared_all(const section::Stream& s) {
   for (const auto& i : s.issues)
@@ -158,28 +176,32 @@ TEST_CASE("compare stream: a nominal in another unit is refused per section, not
     INFO("scale " << scale);
     section::Mesh scaled = mesh;
     for (auto& v : scaled.vertices) v = Eigen::Vector3d(v.x() * scale, v.y() * scale, v.z());
-    section::Stream s = measured_stream(mesh, zs);
-    section::CompareStreamOptions o;
-    section::NominalSource source;
-    source.mesh = &scaled;
-    section::compare_stream(s, section::nominal_stream(source, section::frames(s), o), o);
-    int refused = 0;
-    for (const auto& i : s.issues)
-      if (i.stage == "compare" &&
-          i.message.find(scale > 1 ? "25.4 times larger" : "2 times smaller") != std::string::npos)
-        ++refused;
-    CHECK(refused == 3);
+    const section::Stream s = compared_with(mesh, scaled, zs);
+    CHECK(compare_issues(s, scale > 1 ? "25.4 times larger" : "2 times smaller") == 3);
     CHECK(column(s, "fits", "angle").empty());
   }
   // The same size within the room given: compared.
   section::Mesh larger = mesh;
   for (auto& v : larger.vertices) v = Eigen::Vector3d(v.x() * 1.3, v.y() * 1.3, v.z());
-  section::Stream s = measured_stream(mesh, zs);
-  section::CompareStreamOptions o;
-  section::NominalSource source;
-  source.mesh = &larger;
-  section::compare_stream(s, section::nominal_stream(source, section::frames(s), o), o);
-  CHECK(column(s, "fits", "angle").size() == 3);
+  CHECK(column(compared_with(mesh, larger, zs), "fits", "angle").size() == 3);
+}
+
+TEST_CASE("compare stream: a nominal far beyond its size from the section is refused, not fitted",
+          "[compare]") {
+  // The nominal moved 1e14 mm (a frame's origin edited): the fit's nearest-point searches had
+  // nothing to prune, and it took 47 s to say it did not settle. 600 mm (13 sizes) is as far
+  // beyond any fit; 30 mm is within reach and fitted.
+  const section::BladeDesign blade = section::turbine_blade();
+  const section::Mesh mesh = section::generate_mesh(blade, 2000, 16);
+  const std::vector<double> zs{12, 20};
+  for (double shift : {1e14, 600.0, 3.0}) {
+    INFO("shift " << shift);
+    section::Mesh moved = mesh;
+    for (auto& v : moved.vertices) v += Eigen::Vector3d(shift, 0, 0);
+    const section::Stream s = compared_with(mesh, moved, zs);
+    CHECK(compare_issues(s, "times its size") == (shift > 100 ? 2 : 0));
+    CHECK(column(s, "fits", "angle").size() == (shift > 100 ? 0u : 2u));
+  }
 }
 
 TEST_CASE("compare stream: nominals from a stream in other frames and from x, y, z points agree",

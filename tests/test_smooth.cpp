@@ -449,6 +449,35 @@ TEST_CASE("smooth: bad input is refused or repaired", "[smooth]") {
   REQUIRE_THROWS_AS(section::parse_smooth_solver("jacobi"), section::Error);
 }
 
+TEST_CASE("smooth: a lone spike is dropped, a sparse sharp tip is kept", "[smooth]") {
+  // A stray point 60 mm and 1e8 mm off a 10 mm circle (a hand-edited loop): kept as a spike,
+  // or merging the whole loop into 2 points by a merge distance that follows the mean spacing.
+  const Points p = noisy_circle(10, 785, 0.005, 7);
+  const SmoothResult clean = section::smooth(p);
+  for (double off : {60.0, 1e8}) {
+    INFO("off " << off);
+    Points spiked = p;
+    spiked.insert(spiked.begin() + 300, Eigen::Vector2d(off, 3));
+    const SmoothResult r = section::smooth(spiked);
+    CHECK(r.repaired == 1);
+    REQUIRE(r.points.size() == p.size());
+    double worst = 0;
+    for (std::size_t k = 0; k < p.size(); ++k)
+      worst = std::max(worst, (r.points[k] - clean.points[k]).norm());
+    CHECK(worst < 1e-9);
+  }
+  // A wedge 5.7 degrees wide whose flank points (0.05 mm apart) stop 3 mm short of its tip:
+  // the tip stands 60 spacings from both neighbours, 0.3 mm apart, and is the profile's.
+  Points wedge;
+  for (double x = 0; x <= 17 + 1e-9; x += 0.05) wedge.emplace_back(x, -1 + x / 20);
+  wedge.emplace_back(20, 0);
+  for (double x = 17; x >= -1e-9; x -= 0.05) wedge.emplace_back(x, 1 - x / 20);
+  for (double y = 0.95; y >= -0.95 - 1e-9; y -= 0.05) wedge.emplace_back(0, y);
+  const SmoothResult w = section::smooth(wedge);
+  CHECK(w.repaired == 0);
+  CHECK(w.points.size() == wedge.size());
+}
+
 TEST_CASE("smooth: stream stage smooths every loop and reports failures", "[smooth]") {
   section::Stream s;
   section::Table pts{"points", {"section", "loop", "index", "u", "v", "nu", "nv"}, {}};

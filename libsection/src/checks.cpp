@@ -432,7 +432,17 @@ void residuals(const std::vector<BladeSection>& sections, const std::vector<std:
     const std::size_t a = k == 0 ? 1 : k == n - 1 ? n - 3 : k - 1;
     const std::size_t b = k == 0 ? 2 : k == n - 1 ? n - 2 : k + 1;
     const BladeSection &s = sections[active[k]], &sa = sections[active[a]], &sb = sections[active[b]];
-    expected[k] = line_at(s.height, sa.height, q.get(sa.params), sb.height, q.get(sb.params), q.angle);
+    // At an end, the line is followed no farther out than twice the neighbours' spacing: a
+    // plane far from the others (a stream's origin edited by 1e14) gave a radius of -4.6e11.
+    double h = s.height;
+    if (k == 0 || k == n - 1) {
+      const BladeSection& nearer = k == 0 ? sa : sb;
+      const double reach = 2 * std::abs(sb.height - sa.height);
+      h = std::clamp(h, nearer.height - reach, nearer.height + reach);
+    }
+    expected[k] = line_at(h, sa.height, q.get(sa.params), sb.height, q.get(sb.params), q.angle);
+    // A length or radius is never negative: neither is what its neighbours give.
+    if (!q.angle) expected[k] = std::max(expected[k], 0.0);
     residual[k] =
         q.angle ? detail::wrap_degrees(q.get(s.params) - expected[k]) : q.get(s.params) - expected[k];
     if (k == 0 || k == n - 1) weight[k] = 0.5;

@@ -196,6 +196,39 @@ double mean_spacing(const Points& p, bool closed) {
   return segments ? total / static_cast<double>(segments) : 0.0;
 }
 
+/// Drops each point that stands alone far off a profile whose points on either side of it
+/// lie close together: over 50 median spacings from both neighbours, which are nearer each
+/// other than a twentieth of that (a spike under 3 degrees wide). A stray point of a
+/// hand-edited loop was kept as a 60 mm spike (fitspline: "the loop crosses itself"); one
+/// 1e8 away made the merge distance, from the mean spacing, swallow the whole loop. A
+/// sharp edge has its neighbours both near it or wide apart. Returns how many were dropped.
+int drop_strays(Points& p, bool closed) {
+  const std::size_t n = p.size();
+  if (n < 5) return 0;
+  std::vector<double> gaps;
+  gaps.reserve(n);
+  for (std::size_t k = 1; k < n; ++k) gaps.push_back((p[k] - p[k - 1]).norm());
+  if (closed) gaps.push_back((p[0] - p[n - 1]).norm());
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  const double far = 50 * gaps[gaps.size() / 2];
+  if (!(far > 0)) return 0;
+  std::vector<char> stray(n, 0);
+  int count = 0;
+  for (std::size_t k = closed ? 0 : 1; k < (closed ? n : n - 1); ++k) {
+    const Eigen::Vector2d& before = p[(k + n - 1) % n];
+    const Eigen::Vector2d& after = p[(k + 1) % n];
+    const double a = (p[k] - before).norm(), b = (p[k] - after).norm();
+    if (a > far && b > far && (after - before).norm() < std::min(a, b) / 20) stray[k] = 1, ++count;
+  }
+  if (count == 0) return 0;
+  Points kept;
+  kept.reserve(n - count);
+  for (std::size_t k = 0; k < n; ++k)
+    if (!stray[k]) kept.push_back(p[k]);
+  p.swap(kept);
+  return count;
+}
+
 /// Merges runs of consecutive points closer than `threshold` into their mean (the closing
 /// pair too when closed); returns how many points were removed.
 int merge_duplicates(Points& p, bool closed, double threshold) {
@@ -291,9 +324,10 @@ Problem prepare(const Points& points, const SmoothOptions& options, SmoothResult
                 std::to_string(min_points) + " are needed");
   Problem p;
   p.q0 = points;
+  const int strays = drop_strays(p.q0, options.closed);
   const double raw_spacing = mean_spacing(p.q0, options.closed);
   if (!(raw_spacing > 0)) throw Error("smooth: all points coincide");
-  result.repaired = merge_duplicates(p.q0, options.closed, options.merge_distance * raw_spacing);
+  result.repaired = strays + merge_duplicates(p.q0, options.closed, options.merge_distance * raw_spacing);
   if (p.q0.size() < static_cast<std::size_t>(min_points))
     throw Error("smooth: " + std::to_string(p.q0.size()) + " distinct points (after merging " +
                 std::to_string(result.repaired) + " duplicates), at least " + std::to_string(min_points) +

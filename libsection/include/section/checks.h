@@ -217,7 +217,8 @@ struct Jump {
 
 /// The values that jump from their neighbours across the sections of one blade (any
 /// order; sorted by height): a value is compared with the line through its two neighbours
-/// (the two nearest at an end, where the limit doubles) and flagged when it departs by more
+/// (the two nearest at an end, where the limit doubles, followed no farther out than twice
+/// their spacing; a length is expected at 0 or more) and flagged when it departs by more
 /// than the limit and more than its neighbours do.
 std::vector<Jump> check_blade(const std::vector<BladeSection>& sections,
                               const BladeCheckOptions& options = {});

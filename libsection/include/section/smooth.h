@@ -55,7 +55,7 @@ struct SmoothResult {
   std::vector<double> energy_history;   ///< E after each outer iteration, energy_before first
   double rms_move = 0;                  ///< RMS distance from input (after merging) to smoothed points
   double max_move = 0;                  ///< largest distance between an input and its smoothed point
-  int repaired = 0;                     ///< input points merged away (duplicates, zero-length segments)
+  int repaired = 0;                     ///< input points merged away (duplicates) or dropped (lone spikes)
   double a = 0;                         ///< the curvature weight actually used
   double spacing = 0;                   ///< mean distance between consecutive input points (after merging)
   bool converged = false;               ///< a tolerance was met, or no step lowers E, before max_iterations

@@ -145,6 +145,28 @@ std::string size_mismatch(const Input& in, int id) {
   return text;
 }
 
+// A measured profile farther from its nominal than ten times the larger one's size: no fit
+// reaches it (one 2.2 sizes off did not settle), and the distances to the nominal, far
+// beyond the curves' scale, leave the nearest-point searches nothing to prune (a frame's
+// origin edited by 1e14 took 47 s to say the fit did not settle).
+std::string position_mismatch(const Input& in, int id) {
+  const auto measured = in.curves.find({id, 0});
+  if (measured == in.curves.end()) return "";
+  Eigen::AlignedBox2d m, n;
+  for (const auto& p : measured->second.control) m.extend(p);
+  for (const auto& p : in.nominals.at(id).curve.control) n.extend(p);
+  if (m.isEmpty() || n.isEmpty()) return "";
+  const double size = std::max(m.diagonal().norm(), n.diagonal().norm());
+  const double apart = (m.center() - n.center()).norm();
+  if (!(apart > 10 * size)) return "";
+  char text[240];
+  std::snprintf(text, sizeof text,
+                "the measured profile lies %.4g from its nominal, %.3g times its size: are the section's "
+                "frame and the nominal in one coordinate system?",
+                apart, apart / size);
+  return text;
+}
+
 // Why a section cannot be compared ("" when it can).
 std::string unusable(const Input& in, int id, std::size_t points) {
   if (!in.nominals.count(id)) {
@@ -154,7 +176,8 @@ std::string unusable(const Input& in, int id, std::size_t points) {
   }
   if (points == 0) return "no measured profile (loop 0) in the stream";
   if (!in.params.count(id)) return "no params row: the measured section has not been through camber";
-  return size_mismatch(in, id);
+  const std::string size = size_mismatch(in, id);
+  return size.empty() ? position_mismatch(in, id) : size;
 }
 
 enum : std::size_t { fit_rows, deviation_rows, zone_rows, compared_rows, verdict_rows };

@@ -136,7 +136,8 @@ constexpr auto smooth_stats_columns = by_loop<SmoothStatsRow>({
     {"iterations", "count", "outer iterations done", [](auto& r) { return double(r.result.iterations); }},
     {"rms_move", "length", "root mean square move of the points", smoothing<&SmoothResult::rms_move>},
     {"max_move", "length", "largest move of a point", smoothing<&SmoothResult::max_move>},
-    {"repaired", "count", "duplicate points merged", [](auto& r) { return double(r.result.repaired); }},
+    {"repaired", "count", "duplicate points merged, and lone spikes dropped",
+     [](auto& r) { return double(r.result.repaired); }},
 });
 
 constexpr auto spline_columns = by_loop<SplineRow>({
