@@ -39,6 +39,32 @@ TEST_CASE("params: thickness stations match the true inscribed diameters", "[par
   }
 }
 
+TEST_CASE("params: stations microns from an edge point are measured across the profile", "[params]") {
+  // A station 2 um short of the trailing edge point (on a 48 mm camber line) lay outside the
+  // sampled polygon, whose chords cut the edge's arc: the rays across missed it, and the
+  // section lost every param. The crossings are now found on the exact profile.
+  const SectionTruth truth = section::section_truth(section::turbine_blade().at(30), 20000);
+  const BSpline profile = dense_spline(truth.profile);
+  const section::CamberResult c = section::camber_line(profile);
+  for (int edge = 0; edge < 2; ++edge) {
+    double last = 0;
+    for (double depth : {0.02, 0.005, 0.002}) {  // mm from the edge point, inward
+      CAPTURE(edge, depth);
+      const double fraction = edge == 0 ? depth / c.length : 1 - depth / c.length;
+      std::vector<section::ThicknessStation> st;
+      REQUIRE_NOTHROW(st = section::thickness_stations(profile, c, {fraction}));
+      const Vector2d tangent = edge == 0 ? c.le_tangent : c.te_tangent;
+      for (const Vector2d& side : {st[0].pressure, st[0].suction}) {
+        CHECK(section::locate(truth, side).distance < 1e-4);
+        CHECK(std::abs((side - st[0].point).dot(tangent)) < 1e-6);
+      }
+      CHECK(st[0].thickness == Approx((st[0].pressure - st[0].suction).norm()));
+      if (last > 0) CHECK(st[0].thickness < last);  // narrower toward the edge point
+      last = st[0].thickness;
+    }
+  }
+}
+
 TEST_CASE("params: a thickness station outside [0, 1] is refused", "[params]") {
   const SectionTruth truth = section::section_truth(SectionDesign{}, 8000);
   const BSpline profile = dense_spline(truth.profile, 800);

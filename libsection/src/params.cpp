@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -51,6 +52,41 @@ std::vector<int> convex_hull(const std::vector<Eigen::Vector2d>& p) {
   }
   h.resize(k);
   return h;
+}
+
+// The two crossings of the exact profile with the line through m along `normal`, found
+// from the edge point at parameter t_edge outward along each side (`ahead`: from m toward
+// the edge point): for a station so near the edge point (2 um on a 48 mm camber line) that
+// m lies outside the sampled polygon, whose chords cut the edge's arc, and the rays from m
+// miss it. `left` gets the crossing on the side of `normal`, `right` the other.
+bool edge_crossings(const detail::SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Vector2d& ahead,
+                    const Eigen::Vector2d& normal, double t_edge, Eigen::Vector2d& left,
+                    Eigen::Vector2d& right) {
+  const auto g = [&](double t) { return ahead.dot(pr.fast.point(pr.wrap(t)) - m); };
+  if (!(g(t_edge) > 0)) return false;  // m is not short of the edge point
+  const double step = pr.period / static_cast<double>(pr.samples.size()) / 8;
+  Eigen::Vector2d hit[2];
+  for (int side = 0; side < 2; ++side) {
+    const double dir = side == 0 ? 1 : -1;
+    double a = t_edge, b = a;
+    bool found = false;
+    for (int k = 1; k <= 64 && !found; ++k) {  // within 8 samples of the edge point
+      b = t_edge + dir * k * step;
+      found = !(g(b) > 0);
+      if (!found) a = b;
+    }
+    if (!found) return false;
+    for (int it = 0; it < 60; ++it) {  // g(a) > 0 >= g(b)
+      const double c = 0.5 * (a + b);
+      (g(c) > 0 ? a : b) = c;
+    }
+    hit[side] = pr.fast.point(pr.wrap(0.5 * (a + b)));
+  }
+  const double h0 = (hit[0] - m).dot(normal), h1 = (hit[1] - m).dot(normal);
+  if (!(std::max(h0, h1) >= 0 && std::min(h0, h1) <= 0)) return false;
+  left = h0 >= h1 ? hit[0] : hit[1];
+  right = h0 >= h1 ? hit[1] : hit[0];
+  return true;
 }
 
 // Profile parameter where the projection onto e is extreme, refined from a sample.
@@ -257,13 +293,22 @@ std::vector<ThicknessStation> detail::thickness_stations(const SampledProfile& p
       st.thickness = 2 * c.radius;
     } else {
       // On an extension (or where no circle fits): the width across the camber normal.
-      const Eigen::Vector2d d = st.s <= camber.ext_le ? camber.le_tangent : camber.te_tangent;
+      const bool at_le = st.s <= camber.ext_le;
+      const Eigen::Vector2d d = at_le ? camber.le_tangent : camber.te_tangent;
       double tl = 0, tr = 0;
-      if (!detail::ray_hit(pr, c.center, left_normal(d), tl) ||
-          !detail::ray_hit(pr, c.center, -left_normal(d), tr))
-        throw Error("params: the camber normal at station " + std::to_string(f) + " misses the profile");
-      c.left = pr.fast.point(tl);
-      c.right = pr.fast.point(tr);
+      if (detail::ray_hit(pr, c.center, left_normal(d), tl) &&
+          detail::ray_hit(pr, c.center, -left_normal(d), tr)) {
+        c.left = pr.fast.point(tl);
+        c.right = pr.fast.point(tr);
+      } else if (!edge_crossings(pr, c.center, at_le ? Eigen::Vector2d(-d) : d, left_normal(d),
+                                 at_le ? camber.le.t : camber.te.t, c.left, c.right)) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "params: the camber normal at station %.9g misses the profile (%.3g from the %s edge "
+                      "point)",
+                      f, at_le ? st.s : camber.length - st.s, at_le ? "leading" : "trailing");
+        throw Error(text);
+      }
       st.thickness = (c.left - c.right).norm();
     }
     st.point = c.center;
