@@ -343,11 +343,17 @@ void check_spline(const BSpline& c) {
   }
 }
 
+// A curve with too few knots for its parameter range (a default BSpline: no knots) is an
+// error, not a read past the vector.
 double BSpline::t_min() const {
+  if (knots.size() <= (closed ? 0 : static_cast<std::size_t>(std::max(degree, 0))))
+    throw Error("bspline: the curve has " + std::to_string(knots.size()) + " knots, too few for its range");
   return closed ? knots.front() : knots[degree];
 }
 
 double BSpline::t_max() const {
+  if (knots.size() <= (closed ? 0 : control.size()))
+    throw Error("bspline: the curve has " + std::to_string(knots.size()) + " knots, too few for its range");
   return closed ? knots.back() : knots[control.size()];
 }
 
@@ -395,6 +401,9 @@ void BSpline::basis(double t, std::vector<int>& index, std::vector<double>& valu
 
 ClosestPoint closest_point(const BSpline& curve, const Eigen::Vector2d& q, int samples) {
   check_curve(curve);
+  if (!q.allFinite()) throw Error("bspline: the point to project is not finite");
+  if (samples > 1000000)
+    throw Error("bspline: " + std::to_string(samples) + " samples a knot span, at most 1000000");
   samples = std::max(samples, 2);
   std::vector<double> ts;
   const int n = control_count(curve);
@@ -406,7 +415,10 @@ ClosestPoint closest_point(const BSpline& curve, const Eigen::Vector2d& q, int s
     for (int s = 0; s < samples; ++s) ts.push_back(a + (b - a) * s / samples);
   }
   if (!curve.closed) ts.push_back(curve.t_max());
-  return refine_samples(curve, q, ts, 4);
+  const ClosestPoint c = refine_samples(curve, q, ts, 4);
+  if (!std::isfinite(c.distance))  // squared distances overflowed: the foot is not known
+    throw Error("bspline: the point to project lies too far from the curve (its distance overflows)");
+  return c;
 }
 
 ClosestPoint closest_point_near(const BSpline& curve, const Eigen::Vector2d& q, double t_guess) {
@@ -440,6 +452,10 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   check_curve(shape);
   const int n = control_count(shape);
   const int m = static_cast<int>(points.size());
+  if (m == 0) throw Error("fit_curve: no points to fit");
+  if (!weights.empty() && weights.size() != points.size())
+    throw Error("fit_curve: " + std::to_string(weights.size()) + " weights for " + std::to_string(m) +
+                " points");
   if (static_cast<int>(parameters.size()) < m)
     throw Error("fit_curve: " + std::to_string(m) + " points but only " + std::to_string(parameters.size()) +
                 " parameters");
@@ -508,61 +524,17 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   return out;
 }
 
-BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOptions& options) {
-  const int m = static_cast<int>(points.size());
-  const int p = options.degree;
-  if (p < 1 || p > max_degree)
-    throw Error("fit_curve: degree " + std::to_string(p) + " is not in 1.." + std::to_string(max_degree));
-  const int n = options.control_points > 0 ? options.control_points : std::max(8, m / 4);
-  if (n < p + 1)
-    throw Error("fit_curve: " + std::to_string(n) + " control points are too few for degree " +
-                std::to_string(p) + ", at least " + std::to_string(p + 1) + " are needed");
-  if (m < n)
-    throw Error("fit_curve: " + std::to_string(m) + " points are fewer than the " + std::to_string(n) +
-                " control points");
-  for (const auto& q : points)
-    if (!q.allFinite()) throw Error("fit_curve: a point is not finite");
-  // Degeneracy from the spread of the points: all equal, or all on a line for closed curves.
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const auto& q : points) mean += q;
-  mean /= m;
-  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (const auto& q : points) cov += (q - mean) * (q - mean).transpose();
-  // Eigenvalues of the symmetric 2x2 scatter matrix.
-  const double half_trace = 0.5 * (cov(0, 0) + cov(1, 1));
-  const double root = std::hypot(0.5 * (cov(0, 0) - cov(1, 1)), cov(0, 1));
-  const double big = half_trace + root, small = std::max(0.0, half_trace - root);
-  if (!(big > 0) || std::sqrt(big / m) <= 1e-12 * std::max(1.0, mean.norm()))
-    throw Error("fit_curve: all " + std::to_string(m) + " points are equal");
-  if (options.closed && small <= 1e-14 * big)
-    throw Error("fit_curve: all points lie on a line, no closed curve fits them");
-
-  const std::vector<double> s = chord_length_parameters(points, options.closed);
-  const double length = s.back();
-  BSpline shape;
-  shape.degree = p;
-  shape.closed = options.closed;
-  shape.control.assign(n, Eigen::Vector2d::Zero());
-  if (options.closed) {
-    shape.knots.resize(n + 1);
-    for (int i = 0; i <= n; ++i) shape.knots[i] = length * i / n;
-  } else {
-    shape.knots.assign(n + p + 1, 0.0);
-    for (int i = 0; i < n + p + 1; ++i) {
-      if (i <= p)
-        shape.knots[i] = 0;
-      else if (i >= n)
-        shape.knots[i] = length;
-      else
-        shape.knots[i] = length * (i - p) / (n - p);
-    }
-  }
-  return fit_control_points(points, s, shape, options.fairness, {});
-}
-
 double arc_length(const BSpline& curve, double a, double b) {
   check_curve(curve);
+  if (!std::isfinite(a) || !std::isfinite(b)) throw Error("bspline: an arc length's bound is not finite");
   if (b < a) std::swap(a, b);
+  // Whole periods of a closed curve counted once, not span by span (1e12 periods ran for
+  // hours).
+  if (curve.closed && b - a > period(curve)) {
+    const double periods = std::floor((b - a) / period(curve));
+    const double rest = (b - a) - periods * period(curve);
+    return periods * arc_length(curve, curve.t_min(), curve.t_max()) + arc_length(curve, a, a + rest);
+  }
   if (!curve.closed) {
     a = std::clamp(a, curve.t_min(), curve.t_max());
     b = std::clamp(b, curve.t_min(), curve.t_max());

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Other forms of a B-spline: samples and chord-length parameters, the clamped open form CAD
-// formats read, and a polyline within a tolerance of the curve.
+// Other forms of a B-spline: the least-squares fit through points, samples and chord-length
+// parameters, the clamped open form CAD formats read, and a polyline within a tolerance of
+// the curve.
 #include "section/bspline.h"
 
 #include "section/error.h"
 #include "section/units.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <limits>
@@ -122,10 +124,62 @@ std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& 
   return t;
 }
 
+BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOptions& options) {
+  const int m = static_cast<int>(points.size());
+  const int p = options.degree;
+  if (p < 1 || p > 7) throw Error("fit_curve: degree " + std::to_string(p) + " is not in 1..7");
+  const int n = options.control_points > 0 ? options.control_points : std::max(8, m / 4);
+  if (n < p + 1)
+    throw Error("fit_curve: " + std::to_string(n) + " control points are too few for degree " +
+                std::to_string(p) + ", at least " + std::to_string(p + 1) + " are needed");
+  if (m < n)
+    throw Error("fit_curve: " + std::to_string(m) + " points are fewer than the " + std::to_string(n) +
+                " control points");
+  for (const auto& q : points)
+    if (!q.allFinite()) throw Error("fit_curve: a point is not finite");
+  // Degeneracy from the spread of the points: all equal, or all on a line for closed curves.
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& q : points) mean += q;
+  mean /= m;
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const auto& q : points) cov += (q - mean) * (q - mean).transpose();
+  // Eigenvalues of the symmetric 2x2 scatter matrix.
+  const double half_trace = 0.5 * (cov(0, 0) + cov(1, 1));
+  const double root = std::hypot(0.5 * (cov(0, 0) - cov(1, 1)), cov(0, 1));
+  const double big = half_trace + root, small = std::max(0.0, half_trace - root);
+  if (!(big > 0) || std::sqrt(big / m) <= 1e-12 * std::max(1.0, mean.norm()))
+    throw Error("fit_curve: all " + std::to_string(m) + " points are equal");
+  if (options.closed && small <= 1e-14 * big)
+    throw Error("fit_curve: all points lie on a line, no closed curve fits them");
+
+  const std::vector<double> s = chord_length_parameters(points, options.closed);
+  const double length = s.back();
+  BSpline shape;
+  shape.degree = p;
+  shape.closed = options.closed;
+  shape.control.assign(n, Eigen::Vector2d::Zero());
+  if (options.closed) {
+    shape.knots.resize(n + 1);
+    for (int i = 0; i <= n; ++i) shape.knots[i] = length * i / n;
+  } else {
+    shape.knots.assign(n + p + 1, 0.0);
+    for (int i = 0; i < n + p + 1; ++i) {
+      if (i <= p)
+        shape.knots[i] = 0;
+      else if (i >= n)
+        shape.knots[i] = length;
+      else
+        shape.knots[i] = length * (i - p) / (n - p);
+    }
+  }
+  return fit_control_points(points, s, shape, options.fairness, {});
+}
+
 std::vector<Eigen::Vector2d> sample(const BSpline& curve, int count) {
   check_spline(curve);
   std::vector<Eigen::Vector2d> out;
   if (count <= 0) return out;
+  if (count > 100000000) throw Error("bspline: " + std::to_string(count) + " samples, at most 100000000");
   out.reserve(count);
   const double a = curve.t_min(), b = curve.t_max();
   for (int i = 0; i < count; ++i) {
@@ -137,6 +191,11 @@ std::vector<Eigen::Vector2d> sample(const BSpline& curve, int count) {
 }
 
 std::vector<double> span_samples(const BSpline& c, int per_span) {
+  if (per_span < 1 || per_span > 1000000)
+    throw Error("bspline: " + std::to_string(per_span) + " samples a knot span, not in 1..1000000");
+  if (c.knots.size() * static_cast<double>(per_span) > 1e8)
+    throw Error("bspline: " + std::to_string(per_span) + " samples on each of " +
+                std::to_string(c.knots.size()) + " knot spans, over 100000000");
   std::vector<double> ts;
   ts.reserve(c.control.size() * per_span);
   for (std::size_t j = 0; j + 1 < c.knots.size(); ++j)

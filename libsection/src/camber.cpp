@@ -525,6 +525,8 @@ Eigen::Vector2d extension_point(const CamberResult& camber, double s) {
 
 CamberResult camber_line(const BSpline& profile, const CamberOptions& options,
                          const std::vector<Eigen::Vector2d>& measured) {
+  detail::check_options(options);
+  detail::check_profile_degree(profile);
   return detail::camber_line(SampledProfile(profile, options.medial.samples), options, measured, nullptr);
 }
 

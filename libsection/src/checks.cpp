@@ -3,6 +3,7 @@
 
 #include "detail/sampled_profile.h"
 #include "detail/section_checks.h"
+#include "section/error.h"
 
 #include <Eigen/Cholesky>
 
@@ -46,6 +47,7 @@ std::uint32_t flags_mask(double value) {
 }
 
 std::string check_names_text(std::uint32_t flags, const char* separator) {
+  if (!separator) throw Error("checks: check_names_text needs a separator, not a null pointer");
   std::string out;
   for (const auto& c : check_names)
     if (flags & bit(c.check)) out += (out.empty() ? "" : separator) + std::string(c.name);
@@ -53,6 +55,7 @@ std::string check_names_text(std::uint32_t flags, const char* separator) {
 }
 
 std::uint32_t checks_flagging(std::uint32_t flags, const char* column) {
+  if (!column) throw Error("checks: checks_flagging needs a column name, not a null pointer");
   std::uint32_t out = 0;
   for (const auto& c : check_names) {
     if (!(flags & bit(c.check))) continue;
@@ -300,13 +303,29 @@ struct Checker {
 
 }  // namespace
 
+namespace {
+
+// Options a NaN or a negative value would turn off without a word: every check silenced.
+void check_options(const CheckOptions& o) {
+  const double values[] = {o.noise,        o.points_noise, o.points,         o.accuracy,
+                           o.noise_factor, o.floor,        o.tangent_length, o.angle_floor,
+                           o.fit_model,    o.vertex_reach, o.arc_shortfall};
+  for (double v : values)
+    if (!(v >= 0) || !std::isfinite(v)) throw Error("checks: an option is negative or not finite");
+}
+
+}  // namespace
+
 PointsNoise points_noise(const BSpline& profile, const std::vector<Eigen::Vector2d>& points) {
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!points[i].allFinite()) throw Error("checks: point " + std::to_string(i) + " is not finite");
   if (points.size() < 12) return {};
   return detail::points_noise(SampledProfile(profile, detail::check_samples), points);
 }
 
 SectionCheck check_section(const BSpline& profile, const CamberResult& camber, const SectionParams& params,
                            const CheckOptions& options) {
+  check_options(options);
   return detail::check_section(SampledProfile(profile, detail::check_samples), camber, params, options);
 }
 
@@ -452,25 +471,34 @@ void residuals(const std::vector<BladeSection>& sections, const std::vector<std:
 }  // namespace
 
 std::vector<Jump> check_blade(const std::vector<BladeSection>& sections, const BladeCheckOptions& options) {
+  for (double v : {options.angle, options.length, options.radius, options.thickness, options.spread})
+    if (!(v >= 0) || !std::isfinite(v)) throw Error("checks: a blade check option is negative or not finite");
   std::vector<Jump> out;
   const std::size_t n = sections.size();
   const std::size_t least = static_cast<std::size_t>(std::max(options.min_sections, 3));
   if (n < least) return out;
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t(0));
+  // A height or value that is not a number stays out of the comparisons (it ordered the
+  // sections at random, and as a neighbour it hid a 50 % jump of the chord).
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < n; ++k)
+    if (std::isfinite(sections[k].height)) order.push_back(k);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return sections[a].height < sections[b].height; });
   std::vector<double> expected, residual, weight;
   for (const Quantity& q : quantities) {
+    std::vector<std::size_t> active;
+    for (std::size_t k : order)
+      if (std::isfinite(q.get(sections[k].params))) active.push_back(k);
+    const std::size_t m = active.size();
+    if (m < least) continue;
     // The blade's own spread of residuals (median absolute, robust to the jumps themselves).
-    residuals(sections, order, q, expected, residual, weight);
+    residuals(sections, active, q, expected, residual, weight);
     std::vector<double> spread_of;
-    for (std::size_t k = 0; k < n; ++k) spread_of.push_back(std::abs(residual[k]) * weight[k]);
-    std::nth_element(spread_of.begin(), spread_of.begin() + n / 2, spread_of.end());
-    const double spread = n >= 7 ? options.spread * 1.4826 * spread_of[n / 2] : 0.0;
+    for (std::size_t k = 0; k < m; ++k) spread_of.push_back(std::abs(residual[k]) * weight[k]);
+    std::nth_element(spread_of.begin(), spread_of.begin() + m / 2, spread_of.end());
+    const double spread = m >= 7 ? options.spread * 1.4826 * spread_of[m / 2] : 0.0;
     // The section departing most (against its limit) is flagged and left out, and the
     // others compared again: a jump drags its neighbours' residuals, never flags them.
-    std::vector<std::size_t> active = order;
     while (active.size() >= least) {
       residuals(sections, active, q, expected, residual, weight);
       std::size_t worst = 0;

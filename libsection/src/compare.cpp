@@ -73,6 +73,8 @@ void check_points(const std::vector<Eigen::Vector2d>& measured, int dof) {
   for (std::size_t i = 0; i < measured.size(); ++i)
     if (!std::isfinite(measured[i].x()) || !std::isfinite(measured[i].y()))
       throw Error("compare: measured point " + std::to_string(i) + " is not finite");
+    else if (!(measured[i].cwiseAbs().maxCoeff() <= 1e15))  // squared distances overflowed from 1e154
+      throw Error("compare: measured point " + std::to_string(i) + " has a coordinate beyond +-1e15");
   if (measured.size() < static_cast<std::size_t>(std::max(dof + 1, 3)))
     throw Error("compare: " + std::to_string(measured.size()) + " measured points; at least " +
                 std::to_string(std::max(dof + 1, 3)) + " are needed");
@@ -260,7 +262,8 @@ SectionComparison compare_on(const Geometry& g, const std::vector<Eigen::Vector2
 
 const char* zone_name(Zone zone) {
   static const char* const names[] = {"whole", "le", "te", "pressure", "suction"};
-  return names[static_cast<int>(zone)];
+  const int z = static_cast<int>(zone);
+  return z >= 0 && z < 5 ? names[z] : "unknown";
 }
 
 Eigen::Vector2d Motion2::apply(const Eigen::Vector2d& p) const {
@@ -304,6 +307,11 @@ BladeComparison compare_blade(const std::vector<ComparedSection>& sections, cons
   out.axis = f0.n;
   std::deque<Geometry> geos;  // not moved as it grows: the blocks point at them
   for (const ComparedSection& s : sections) {
+    if (!s.nominal || !s.measured)
+      throw Error("compare: a section of the blade has no nominal or no measured points");
+    if (!s.frame.origin.allFinite() || !s.frame.n.allFinite() || !s.frame.u.allFinite() ||
+        !s.frame.v.allFinite())
+      throw Error("compare: a section's frame is not finite");
     check_points(*s.measured, freedoms(options.fit.freedom));
     if (std::abs(std::abs(s.frame.n.dot(f0.n)) - 1) > 1e-9)
       throw Error("compare: a whole-blade fit needs parallel section planes");
@@ -372,6 +380,12 @@ BladeComparison compare_blade(const std::vector<ComparedSection>& sections, cons
 }
 
 Verdict verdict(const Tolerance& t, double lowest, double highest, bool measured, double uncertainty) {
+  // Limits that are not numbers, or a negative uncertainty, passed every value.
+  if (std::isnan(t.low) || std::isnan(t.high) || t.low > t.high)
+    throw Error("compare: a tolerance's limits are not numbers or not in order" +
+                (t.where.empty() ? std::string() : " (" + t.where + ")"));
+  if (uncertainty < 0) throw Error("compare: a negative uncertainty");
+  if (lowest > highest) std::swap(lowest, highest);  // a range given the other way round
   const double u = uncertainty > 0 ? uncertainty : 0;
   if (lowest < t.low - u || highest > t.high + u) return Verdict::fail;
   if (!measured || std::isnan(lowest) || std::isnan(highest)) return Verdict::not_measured;

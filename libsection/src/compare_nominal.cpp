@@ -48,6 +48,11 @@ double crossing(const Geometry& g, const std::vector<double>& x, std::size_t sta
 const BSpline& checked(const BSpline& curve) {
   if (!curve.closed || curve.control.size() < static_cast<std::size_t>(curve.degree + 1))
     throw Error("compare: the nominal profile is not a closed curve");
+  check_spline(curve);
+  for (const auto& c : curve.control)
+    if (!(c.cwiseAbs().maxCoeff() <= 1e15))
+      throw Error(
+          "compare: the nominal profile has a control point beyond +-1e15 (corrupt or in another unit?)");
   return curve;
 }
 

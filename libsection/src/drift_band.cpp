@@ -2,6 +2,7 @@
 #include "section/drift_band.h"
 
 #include "drift_fit.h"
+#include "section/error.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -147,6 +148,9 @@ std::vector<Eigen::Vector2d> drift_band(const MorphologyResult& ordered,
 
 double band_half_width(std::size_t slab_points, double length, double slab, double spacing,
                        double max_widths) {
+  if (!(slab >= 0) || !std::isfinite(slab) || std::isnan(length) || std::isnan(spacing) ||
+      std::isnan(max_widths))
+    throw Error("drift_band: the slab must be 0 or more and finite, and the lengths numbers");
   if (!(spacing > 0) || !(length > 0) || slab_points == 0) return 0.5 * slab;
   // Points per length grow with the band's width: slab_points / length in the slab.
   const double wanted = 0.5 * slab * (length / double(slab_points)) / spacing;

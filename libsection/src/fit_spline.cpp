@@ -103,6 +103,15 @@ void check_options(const FitSplineOptions& o) {
                 " must not be negative");
   if (!(o.bridge_factor >= 0) || !std::isfinite(o.bridge_factor))
     throw Error("fit_spline: bridge factor must be 0 (off) or a positive number of spacings");
+  if (o.max_control_points < 8 || o.max_rounds < 0 || o.max_iterations < 1 || !(o.convergence >= 0) ||
+      !(o.fairness >= 0) || !(o.gap_factor > 0) || !(o.layer_ratio >= 0) || !(o.layer_separation >= 0) ||
+      !(o.min_span_points >= 0) || !(o.exact_min_span_points >= 0) || !(o.exact_noise >= 0) ||
+      !(o.outlier_distance >= 0) ||
+      !std::isfinite(o.fairness + o.gap_factor + o.convergence + o.layer_ratio + o.layer_separation +
+                     o.min_span_points + o.exact_noise))
+    throw Error(
+        "fit_spline: max_control_points must be 8 or more, max_iterations 1 or more, gap_factor above 0, "
+        "and rounds, convergence, fairness, layer and span options 0 or more and finite");
   if (o.samples < 0 || o.samples > FitSplineOptions::max_samples || !(o.sample_spacing >= 0) ||
       !std::isfinite(o.sample_spacing))
     throw Error("fit_spline: samples must be 0 to " + std::to_string(FitSplineOptions::max_samples) +

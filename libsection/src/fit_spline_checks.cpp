@@ -221,10 +221,9 @@ std::vector<XSpan> x_spans_sorted(const Points& p) {
 }  // namespace fit
 
 bool self_intersects(const BSpline& curve) {
+  check_spline(curve);  // equal or decreasing knots crashed the conversion below
   const std::vector<double> ts = span_samples(curve, 16);
   if (ts.empty()) return false;
-  Eigen::Vector2d d[2];
-  curve.derivatives(ts[0], 1, d);  // throws section::Error on an invalid curve, before the conversion
   return fit::self_intersects(curve, detail::PiecewiseCurve(curve));
 }
 

@@ -2,6 +2,7 @@
 #include "section/medial_axis.h"
 
 #include "detail/axis_curve.h"
+#include "detail/camber_line.h"
 #include "detail/cgal_medial_axis.h"
 #include "detail/inscribed.h"
 #include "detail/sampled_profile.h"
@@ -122,6 +123,10 @@ std::vector<InscribedCircle> branch_circles(const SampledProfile& pr, const Axis
 
 bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point, const Eigen::Vector2d& normal,
                       double t_left, double t_right, InscribedCircle& circle) {
+  check_spline(profile);
+  if (!point.allFinite() || !normal.allFinite() || normal.isZero() || !std::isfinite(t_left) ||
+      !std::isfinite(t_right))
+    throw Error("medial_axis: inscribed_circle needs a finite point and parameters and a non-zero normal");
   double scale = 0;
   for (const auto& c : profile.control) scale = std::max(scale, (c - profile.control[0]).norm());
   return detail::solve_circle(detail::PiecewiseCurve(profile), point, normal.normalized(), t_left, t_right,
@@ -129,6 +134,7 @@ bool inscribed_circle(const BSpline& profile, const Eigen::Vector2d& point, cons
 }
 
 MedialAxis medial_axis(const BSpline& profile, const MedialAxisOptions& options) {
+  detail::check_options(options);
   return detail::medial_axis(SampledProfile(profile, options.samples), options);
 }
 

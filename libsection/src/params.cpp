@@ -159,7 +159,11 @@ double area_of(const BSpline& curve, const detail::PiecewiseCurve& f, Eigen::Vec
 }  // namespace
 
 double enclosed_area(const BSpline& curve, Eigen::Vector2d* centroid) {
-  return area_of(curve, detail::PiecewiseCurve(curve), centroid);
+  check_spline(curve);
+  const double area = area_of(curve, detail::PiecewiseCurve(curve), centroid);
+  if (!std::isfinite(area))
+    throw Error("params: the enclosed area overflows (the curve's coordinates are too large)");
+  return area;
 }
 
 namespace {
@@ -227,7 +231,20 @@ void caliper(const detail::PiecewiseCurve& f, const CamberResult& camber, Sectio
 
 }  // namespace
 
+namespace {
+
+// The profile and camber line a caller hands in: a default BSpline or CamberResult (not from
+// camber_line) crashed the functions below.
+void check_inputs(const BSpline& profile, const CamberResult& camber) {
+  check_spline(profile);
+  if (camber.medial.circles.size() < 2 || !(camber.length > 0) || camber.medial.curve.control.empty())
+    throw Error("params: the camber line is empty (a CamberResult from camber_line is needed)");
+}
+
+}  // namespace
+
 SectionParams section_params(const BSpline& profile, const CamberResult& camber) {
+  check_inputs(profile, camber);
   return detail::section_params(profile, detail::PiecewiseCurve(profile), camber);
 }
 
@@ -255,6 +272,7 @@ SectionParams detail::section_params(const BSpline& profile, const PiecewiseCurv
 
 std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const CamberResult& camber,
                                                  const std::vector<double>& fractions) {
+  check_inputs(profile, camber);
   const detail::AxisCurve ax(camber.medial.curve);
   const detail::ArcLengthTable table(ax.f, 4 * static_cast<int>(camber.medial.circles.size()));
   return detail::thickness_stations(detail::SampledProfile(profile, detail::thickness_samples), {ax, table},
@@ -274,6 +292,11 @@ std::vector<ThicknessStation> detail::thickness_stations(const SampledProfile& p
     ThicknessStation st;
     st.fraction = f;
     st.s = f * camber.length;
+    if (f == 0 || f == 1) {  // the edge point itself: no width across it
+      st.point = st.pressure = st.suction = f == 0 ? camber.le.point : camber.te.point;
+      out.push_back(st);
+      continue;
+    }
     InscribedCircle c;
     bool solved = false;
     if (st.s > camber.ext_le && st.s < camber.length - camber.ext_te) {
@@ -320,11 +343,13 @@ std::vector<ThicknessStation> detail::thickness_stations(const SampledProfile& p
 }
 
 Sides split_sides(const BSpline& profile, const CamberResult& camber, int count) {
+  check_inputs(profile, camber);
   return detail::split_sides(detail::PiecewiseCurve(profile), camber, count);
 }
 
 Sides detail::split_sides(const PiecewiseCurve& f, const CamberResult& camber, int count) {
-  if (count < 2) throw Error("params: a side needs at least 2 samples");
+  if (count < 2 || count > 10000000)
+    throw Error("params: " + std::to_string(count) + " samples a side, not in 2..10000000");
   const double period = f.t_max() - f.t_min();
   auto forward = [&](double a, double b) { return std::fmod(std::fmod(b - a, period) + period, period); };
   const double le = camber.le.t, te = camber.te.t;

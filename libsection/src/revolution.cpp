@@ -346,6 +346,7 @@ Eigen::Vector3d reference_of(const std::vector<Eigen::Vector3d>& points, const E
 Eigen::Vector2d radius_range(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& axis_point,
                              const Eigen::Vector3d& axis) {
   const Eigen::Vector3d n = unit_axis(axis_point, axis);
+  if (points.empty()) throw Error("revolution: no points to take the radius range of");
   Eigen::Vector2d range(std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
   for (const auto& p : points) {
     const Eigen::Vector3d d = p - axis_point;

@@ -396,6 +396,8 @@ std::string Sampling::describe() const {
 
 Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
                      const SamplingOptions& options) {
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (!points[k].allFinite()) throw Error("slice: point " + std::to_string(k) + " is not finite");
   detail::SpacingSearch unused;
   return detail::sampling_of(points, normal, options, unused);
 }
@@ -413,10 +415,23 @@ double lines_slab(const std::vector<double>& heights) {
   return quantile(finite, 0.9);
 }
 
+// Options that made no sense: queries 0 took the whole cloud as one slab.
+void check_options(const SamplingOptions& options) {
+  if (options.queries < 1 || options.max_points < 1)
+    throw Error(
+        "slice: the sampling needs at least 1 point and 1 query (queries 0 took the whole cloud as one "
+        "slab)");
+  if (!(options.anisotropy > 1) || !std::isfinite(options.anisotropy) || !(options.sparse > 0) ||
+      !(options.flatness > 0) || !std::isfinite(options.sparse) || !std::isfinite(options.flatness))
+    throw Error(
+        "slice: the sampling's anisotropy must be a finite number above 1, sparse and flatness above 0");
+}
+
 Sampling sample_points(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
                        const SamplingOptions& options, SpacingSearch& search) {
   if (!normal.allFinite() || !(normal.norm() > 0))
     throw Error("slice: the plane normal must be finite and non-zero");
+  check_options(options);
   const Vec3 n = normal.normalized();
   const std::size_t all = std::min(points.size(), std::max<std::size_t>(options.max_points, 1));
   // A first look at fewer points, fewer of them measured, settles a dense scan for a

@@ -45,7 +45,7 @@ std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, con
   const Eigen::Vector3d normal = usable_normal(given);
   const double len = normal.norm();
   if (!(len > 0) || !std::isfinite(len)) throw Error("slice: the plane normal must be finite and non-zero");
-  if (count < 1) throw Error("slice: --count must be at least 1");
+  if (count < 1 || count > 10000000) throw Error("slice: --count must be 1 to 10000000");
   if (points.empty()) throw Error("slice: no points to spread planes over");
   const Eigen::Vector3d n = normal / len;
   double lo = INFINITY, hi = -INFINITY;
@@ -417,6 +417,9 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
   if (options.fill_gaps) check_gap_fill_options(options.fill);
   detail::check_band_options(options);
   if (cloud.points.empty()) throw Error("slice: the cloud has no points");
+  // (The readers refuse them; a cloud built in memory may hold one: it moved the spacing.)
+  for (std::size_t k = 0; k < cloud.points.size(); ++k)
+    if (!cloud.points[k].allFinite()) throw Error("slice: point " + std::to_string(k) + " is not finite");
   SliceResult result;
   result.points = cloud.points.size();
   result.slab = options.slab;

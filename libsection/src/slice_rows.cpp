@@ -320,6 +320,9 @@ SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const Slice
   if (sampling.points < cloud.points.size())
     throw Error("slice: the rows were found on the first " + std::to_string(sampling.points) + " of " +
                 std::to_string(cloud.points.size()) + " points only");
+  if (sampling.points > cloud.points.size())  // another cloud's: its rows index past this one
+    throw Error("slice: the rows were found on " + std::to_string(sampling.points) +
+                " points, the cloud has " + std::to_string(cloud.points.size()));
   SliceResult result;
   result.points = cloud.points.size();
   result.sampling = sampling;

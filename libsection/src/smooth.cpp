@@ -280,15 +280,22 @@ SmoothSolver parse_smooth_solver(const std::string& name) {
 }
 
 double smoothing_weight(double length, double spacing, double b) {
+  if (!(length >= 0) || !(spacing > 0) || !(b > 0) || !std::isfinite(length + spacing + b))
+    throw Error(
+        "smooth: a smoothing weight needs a length of 0 or more, and a spacing and b above 0, all finite");
   const double x = length / two_pi;
   return 2 * b * x * x * x * x / spacing;
 }
 
 double smoothing_length(double a, double spacing, double b) {
+  if (!(a >= 0) || !(spacing > 0) || !(b > 0) || !std::isfinite(a + spacing + b))
+    throw Error("smooth: a smoothing length needs a of 0 or more, and a spacing and b above 0, all finite");
   return two_pi * std::pow(a * spacing / (2 * b), 0.25);
 }
 
 double smooth_energy(const Points& points, const Points& reference, double a, double b, bool closed) {
+  if (!(a >= 0) || !(b >= 0) || !std::isfinite(a + b))
+    throw Error("smooth: a and b must be 0 or more and finite");
   if (points.size() != reference.size())
     throw Error("smooth: energy of " + std::to_string(points.size()) + " points against " +
                 std::to_string(reference.size()) + " reference points");

@@ -89,7 +89,7 @@ void check_input(const std::vector<StackedSection>& sections, const StackingOpti
   if (sections.size() < 2)
     throw Error("stacking: " + std::to_string(sections.size()) +
                 " section(s) measured: at least 2 are needed for a stacking line");
-  if (o.samples < 2) throw Error("stacking: samples must be 2 or more");
+  if (o.samples < 2 || o.samples > 1000000) throw Error("stacking: samples must be 2 to 1000000");
   if (o.rotor &&
       !(o.axis_direction.stableNorm() > 0 && o.axis_direction.allFinite() && o.axis_point.allFinite()))
     throw Error("stacking: the axis direction must be finite and not zero");
@@ -193,6 +193,7 @@ void fit_lines(StackingResult& r, const Axes& x, const std::array<std::vector<Ei
 }  // namespace
 
 bool params_flagged(std::uint32_t flags, const char* column) {
+  if (!column) throw Error("stacking: params_flagged needs a column name, not a null pointer");
   // The area centroid rests on the whole profile: an edge bridging a hole moves it.
   if (std::strcmp(column, "centroid") == 0 &&
       (flags & (section::bit(Check::le_measured) | section::bit(Check::te_measured))))

@@ -16,7 +16,8 @@
 namespace section {
 
 /// Options of camber_line and camber_stream (lengths in the profile's units, angles in
-/// degrees; "stream" marks what only camber_stream reads).
+/// degrees; "stream" marks what only camber_stream reads). Both refuse an option outside its
+/// range with a section::Error naming it (the ranges: docs/ROBUSTNESS.md, "The library's API").
 struct CamberOptions {
   MedialAxisOptions medial;           ///< medial-axis seeding and refinement
   EdgeModel edge = EdgeModel::round;  ///< edge model, see EdgeModel

@@ -41,7 +41,7 @@ enum class FitFreedom {
 enum class Zone : int { whole = 0, leading_edge = 1, trailing_edge = 2, pressure = 3, suction = 4 };
 inline constexpr int zone_count = 5;
 
-/// A zone's name: "whole", "le", "te", "pressure", "suction".
+/// A zone's name: "whole", "le", "te", "pressure", "suction" ("unknown" for another value).
 const char* zone_name(Zone zone);
 
 /// Options of the fit (lengths in the profile's units).
@@ -219,7 +219,8 @@ struct Tolerance {
 /// known to +- `uncertainty` (an expanded uncertainty U >= 0; 0: exact): fail when any lies
 /// outside [low - U, high + U]; else not measured when `measured` is false or a value is
 /// NaN; else uncertain when any lies outside [low + U, high - U]; else pass. A hole is
-/// never a pass; with U = 0 no value is uncertain.
+/// never a pass; with U = 0 no value is uncertain. Throws section::Error for limits that are
+/// not numbers or not in order, or a negative uncertainty.
 Verdict verdict(const Tolerance& tolerance, double lowest, double highest, bool measured,
                 double uncertainty = 0);
 

@@ -48,7 +48,9 @@ struct ThicknessStation {
   Eigen::Vector2d pressure{0, 0}, suction{0, 0};  ///< contact points on each side
 };
 
-/// Thickness at `fractions` of the camber length (values outside [0, 1] are an error).
+/// Thickness at `fractions` of the camber length (values outside [0, 1] are an error; at 0
+/// and 1, the edge points, it is 0). Throws section::Error for a profile check_spline
+/// refuses or a camber line not from camber_line.
 std::vector<ThicknessStation> thickness_stations(const BSpline& profile, const CamberResult& camber,
                                                  const std::vector<double>& fractions);
 

@@ -177,6 +177,7 @@ struct SectionCamber {
 SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, CamberOptions& opt,
                       const Measured& q) {
   SectionCamber m;
+  detail::check_profile_degree(curve);
   // The camber line's samples and final axis serve the thickness stations too when they
   // sample the profile alike (the default).
   std::unique_ptr<detail::CamberAxis> axis;
@@ -376,6 +377,7 @@ Stream profile_stream(const BSpline& spline, double rms) {
 }
 
 void camber_stream(Stream& stream, const CamberOptions& options) {
+  detail::check_options(options);
   pipe::restage(stream, "camber");
   const CamberInput in = gather(stream);
   Table camber = schema::camber.table(), params = schema::params.table(),
