@@ -24,6 +24,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -107,8 +108,12 @@ TEST_CASE("api: counts and bounds that ran out of memory or time are refused", "
   CHECK(refuses([&] { closest_point(c, {1e155, 0}); }, "too far"));
   // Arc length over 1e12 periods walked every span (hours); over an infinite range, forever.
   const double one = arc_length(c, c.t_min(), c.t_max());
-  CHECK(arc_length(c, c.t_min(), c.t_min() + 1e6 * (c.t_max() - c.t_min())) == Approx(1e6 * one).epsilon(1e-9));
+  CHECK(arc_length(c, c.t_min(), c.t_min() + 1e6 * (c.t_max() - c.t_min())) ==
+        Approx(1e6 * one).epsilon(1e-9));
   CHECK(refuses([&] { arc_length(c, 0, std::numeric_limits<double>::infinity()); }, "not finite"));
+  BSpline backwards = c;  // knots falling: a period below 0 recursed until the stack ran out
+  std::reverse(backwards.knots.begin(), backwards.knots.end());
+  CHECK(refuses([&] { arc_length(backwards, 0, 1); }, "period is not above 0"));
   CHECK(refuses([] { split_sides(blade().profile, blade().camber, INT_MAX); }, "samples a side"));
   CHECK(refuses([] { planes_across({{0, 0, 0}, {0, 0, 1}}, {0, 0, 1}, INT_MAX); }, "--count must be 1 to"));
   // fit_control_points read past a weights vector shorter than its points.
@@ -161,8 +166,11 @@ TEST_CASE("api: stations at the edge points have no width; other options are che
   // A NaN noise silenced every check; NaN tolerance limits, or a negative uncertainty, passed.
   CheckOptions co;
   co.noise = not_a_number;
-  CHECK(refuses([&] { check_section(blade().profile, blade().camber, section_params(blade().profile, blade().camber), co); },
-                "not finite"));
+  CHECK(refuses(
+      [&] {
+        check_section(blade().profile, blade().camber, section_params(blade().profile, blade().camber), co);
+      },
+      "not finite"));
   Tolerance t;
   t.low = not_a_number;
   CHECK(refuses([&] { verdict(t, 0, 0, true); }, "not numbers"));
@@ -212,6 +220,10 @@ TEST_CASE("api: compare refuses what it cannot measure", "[api]") {
   Points huge = blade().points;
   for (auto& q : huge) q *= 1e155;  // squared distances overflowed: SIGSEGV in the foot search
   CHECK(refuses([&] { compare_section(n, huge); }, "beyond +-1e15"));
+  CompareOptions forever;  // INT_MAX iterations that never converge ran for hours
+  forever.fit.max_iterations = INT_MAX;
+  forever.fit.convergence = 0;
+  CHECK(refuses([&] { compare_section(n, blade().points, forever); }, "1 to 10000"));
   std::vector<ComparedSection> none(2);  // null pointers
   CHECK(refuses([&] { compare_blade(none); }, "no nominal or no measured points"));
   std::vector<ComparedSection> v(2);
@@ -231,8 +243,11 @@ TEST_CASE("api: compare refuses what it cannot measure", "[api]") {
 TEST_CASE("api: slicing refuses clouds and meshes it would read past", "[api]") {
   Mesh m = generate_mesh(turbine_blade(), 200, 20);
   m.triangles[0] = {0, 1, 99999999};
-  CHECK(refuses([&] { slice(m, std::vector<Revolution>{cylinder_surface({0, -100, 22}, {1, 0, 0}, 100)}); },
-                "index out of range"));
+  CHECK(refuses(
+      [&] {
+        slice(m, std::vector<Revolution>{cylinder_surface({0, -100, 22}, {1, 0, 0}, 100)});
+      },
+      "index out of range"));
   const Cloud rows = generate_rows(turbine_blade(), RowsOptions{});
   const Sampling s = sampling_of(rows.points, {0, 0, 1});
   Cloud small;

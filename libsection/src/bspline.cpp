@@ -527,6 +527,7 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
 double arc_length(const BSpline& curve, double a, double b) {
   check_curve(curve);
   if (!std::isfinite(a) || !std::isfinite(b)) throw Error("bspline: an arc length's bound is not finite");
+  if (curve.closed && !(period(curve) > 0)) throw Error("bspline: the closed curve's period is not above 0");
   if (b < a) std::swap(a, b);
   // Whole periods of a closed curve counted once, not span by span (1e12 periods ran for
   // hours).

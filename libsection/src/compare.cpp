@@ -37,6 +37,10 @@ void check(const CompareOptions& o) {
     throw Error("compare: a weighted fit needs a zone of weight above 0");
   if (!(o.fit.direction.norm() > 0) || !std::isfinite(o.fit.direction.norm()))
     throw Error("compare: the fit's direction must be a finite vector other than 0");
+  // INT_MAX iterations with a convergence of 0 ran for hours.
+  if (o.fit.max_iterations < 1 || o.fit.max_iterations > 10000 || !(o.fit.convergence >= 0) ||
+      !std::isfinite(o.fit.convergence))
+    throw Error("compare: the fit's iterations must be 1 to 10000, its convergence 0 or more and finite");
 }
 
 int freedoms(FitFreedom f) {
