@@ -12,8 +12,15 @@
 #include "section/extras/generate.h"
 #include "section/fit_spline.h"
 #include "section/frame.h"
+#include "section/io/json.h"
+#include "section/io/stream.h"
 #include "section/medial_axis.h"
 #include "section/params.h"
+#include "section/pipe/camber_stream.h"
+#include "section/pipe/compare_stream.h"
+#include "section/pipe/fit_spline_stream.h"
+#include "section/pipe/schema.h"
+#include "section/pipe/slice_stream.h"
 #include "section/revolution.h"
 #include "section/sampling.h"
 #include "section/slice.h"
@@ -268,4 +275,40 @@ TEST_CASE("api: slicing refuses clouds and meshes it would read past", "[api]") 
   StackingOptions sto;
   sto.samples = INT_MAX;
   CHECK(refuses([&] { stacking(st, sto); }, "samples must be 2 to"));
+}
+
+TEST_CASE("api: streams built in memory are refused where they would not read back", "[api]") {
+  // From a probe of the stream stages with tables edited in memory (parse_stream refuses
+  // each of these in text): a NaN frame origin gave NaN camber points without an issue; a
+  // partial row or a note "end" was written into a stream that did not read back; a NaN
+  // verdict counted as a pass; null tables and streams crashed.
+  const Mesh mesh = generate_mesh(turbine_blade(), 400, 20);
+  Stream s = to_stream(slice(mesh, planes_at({0, 0, 1}, {10, 20, 30})), "slice");
+  fit_spline_stream(s);
+  camber_stream(s);
+  Stream bad_origin = s;
+  Table& frames_table = *bad_origin.find("frames");
+  frames_table.values[frames_table.column("origin_x")] = not_a_number;
+  CHECK(refuses([&] { frames(bad_origin); }, "origin that is not finite"));
+  Stream partial = s;
+  partial.find("params")->values.pop_back();
+  CHECK(refuses([&] { format_stream(partial); }, "not whole rows"));
+  Stream noted = s;
+  noted.notes.push_back("end");
+  CHECK(refuses([&] { format_stream(noted); }, "would read as a '# end' line"));
+  noted.notes.back() = "ending well";  // a note like any other
+  CHECK(parse_stream(format_stream(noted), "noted").notes.back() == "ending well");
+  Stream judged = s;
+  Table verdicts;
+  verdicts.name = "verdicts";
+  verdicts.columns = {"section", "loop", "item", "zone", "verdict"};
+  verdicts.values = {0, 0, 0, 0, not_a_number};
+  judged.put(verdicts);
+  CHECK(stream_verdict(judged) == 2);
+  CHECK(refuses([&] { format_json(s, {nullptr}); }, "null pointer"));
+  CHECK(refuses([] { check_blade_stream({nullptr}); }, "null pointer"));
+  Stream inches = s;
+  inches.units = "in";
+  inches.find("points")->columns.clear();  // values without columns: a division by 0
+  CHECK_NOTHROW(convert_to_mm(inches));
 }

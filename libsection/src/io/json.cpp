@@ -90,6 +90,7 @@ std::string format_json(const Stream& stream, const std::vector<const Table*>& t
   std::vector<std::size_t> section_column(tables.size());
   std::set<int> sections;
   for (std::size_t k = 0; k < tables.size(); ++k) {
+    if (!tables[k]) throw Error("json: a table to write is missing (a null pointer)");
     const Table& t = *tables[k];
     if (t.find_column("section") < 0) throw Error("json: table '" + t.name + "' has no 'section' column");
     section_column[k] = t.column("section");

@@ -128,6 +128,10 @@ void format_table(const Table& t, Pieces& pieces) {
   }
   *out += '\n';
   const std::size_t cols = t.columns.size();
+  // A partial row was written as it was, and the stream did not read back.
+  if (cols == 0 ? !t.values.empty() : t.values.size() % cols != 0)
+    throw Error("pipe: refusing to write table '" + t.name + "': its " + std::to_string(t.values.size()) +
+                " values are not whole rows of its " + std::to_string(cols) + " columns");
   if (cols == 0) return;
   if (unchanged_since_read(t)) {
     const std::string_view rows = t.source->rows;
@@ -146,12 +150,18 @@ void format_table(const Table& t, Pieces& pieces) {
   detail::parallel_for(
       parts, 0, [&](std::size_t k) { piece[k] = format_rows(t, rows * k / parts, rows * (k + 1) / parts); });
   pieces.add(piece);
-  out = &pieces.text();
-  char buf[32];
-  for (std::size_t i = rows * cols; i < t.values.size(); ++i) {  // a partial last row (not made by add_row)
-    out->append(buf, put_number(buf, t.values[i]));
-    *out += (i % cols == cols - 1) ? '\n' : ',';
-  }
+}
+
+// A note's line; one whose first word is a keyword of the format ("end", "table x", ...)
+// would be read back as that line, not as a note.
+std::string note_line(const std::string& note) {
+  const std::string text = one_line(note);
+  const std::string key = text.substr(0, text.find(' '));
+  for (const char* reserved : {"libsection-stream", "units", "history", "issue", "table", "part", "end"})
+    if (key == reserved)
+      throw Error("pipe: refusing to write the note '" + text.substr(0, 40) + "': it would read as a '# " +
+                  key + "' line");
+  return "# " + text + "\n";
 }
 
 }  // namespace
@@ -160,7 +170,7 @@ std::string format_preamble(const Stream& stream) {
   std::string out = "# libsection-stream " + std::to_string(stream_version) + "\n";
   out += "# units " + one_line(stream.units) + "\n";
   for (const auto& h : stream.history) out += "# history " + one_line(h) + "\n";
-  for (const auto& n : stream.notes) out += "# " + one_line(n) + "\n";
+  for (const auto& n : stream.notes) out += note_line(n);
   return out;
 }
 
@@ -171,7 +181,7 @@ FormattedStream format_parts(const Stream& stream, const std::string& part_line)
     out += format_preamble(stream);
   } else {
     out += part_line;
-    for (const auto& n : stream.notes) out += "# " + one_line(n) + "\n";
+    for (const auto& n : stream.notes) out += note_line(n);
   }
   for (const auto& i : stream.issues)
     out += "# issue section=" + std::to_string(i.section) + " loop=" + std::to_string(i.loop) +

@@ -302,6 +302,8 @@ Eigen::Vector3d mean_normal(const std::vector<Stream*>& streams) {
 }  // namespace
 
 void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOptions& options) {
+  for (const Stream* s : streams)
+    if (!s) throw Error("pipe: a stream to check is missing (a null pointer)");
   std::vector<HeldRow> rows;
   std::vector<BladeSection> sections;
   const Eigen::Vector3d n = mean_normal(streams);

@@ -350,7 +350,9 @@ int stream_verdict(const Stream& stream) {
   const std::size_t cv = t->column("verdict");
   int worst = 0;
   for (std::size_t r = 0; r < t->rows(); ++r) {
-    const int v = static_cast<int>(t->at(r, cv));
+    const double x = t->at(r, cv);
+    // A verdict that is not one of the codes (a NaN counted as a pass) is not measured.
+    const int v = x >= -1 && x <= 3 && x == std::floor(x) ? static_cast<int>(x) : 2;
     if (v == 1) return 1;
     if (v == 2) worst = 2;
     if (v == 3 && worst == 0) worst = 3;

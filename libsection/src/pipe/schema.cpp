@@ -578,6 +578,7 @@ void convert_to_mm(Stream& stream) {
   for (const auto& doc : schema::tables()) {
     Table* t = stream.find(doc.name);
     if (!t) continue;
+    if (t->columns.empty()) continue;  // values without columns divided by 0 below (writing refuses them)
     std::vector<double> factor(t->columns.size(), 1.0);
     for (const auto& column : doc.columns) {
       const int p = power(column.unit);

@@ -84,6 +84,10 @@ std::map<int, Frame> frames(const Stream& stream) {
         (f.u.cross(f.v) - f.n).norm() > 1e-6)
       throw Error("pipe: the frame of section " + format_number(t.at(r, c[0])) +
                   " is not a right-handed orthonormal frame");
+    // (parse_stream refuses these; a stream built in memory gave NaN camber points.)
+    if (!(f.origin.cwiseAbs().maxCoeff() <= 1e15))
+      throw Error("pipe: the frame of section " + format_number(t.at(r, c[0])) +
+                  " has an origin that is not finite or lies beyond +-1e15");
     if (surfaces) f.surface = surface_of(t, r, c, plane.size(), meridian);
     out[static_cast<int>(t.at(r, c[0]))] = f;
   }
