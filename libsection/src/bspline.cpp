@@ -18,7 +18,7 @@ namespace section {
 
 namespace {
 
-constexpr int max_degree = 7;
+constexpr int max_degree = max_spline_degree;
 
 int control_count(const BSpline& c) {
   return static_cast<int>(c.control.size());
@@ -527,13 +527,14 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
 double arc_length(const BSpline& curve, double a, double b) {
   check_curve(curve);
   if (!std::isfinite(a) || !std::isfinite(b)) throw Error("bspline: an arc length's bound is not finite");
-  if (curve.closed && !(period(curve) > 0)) throw Error("bspline: the closed curve's period is not above 0");
+  const double one = curve.closed ? period(curve) : 0;
+  if (curve.closed && !(one > 0)) throw Error("bspline: the closed curve's period is not above 0");
   if (b < a) std::swap(a, b);
   // Whole periods of a closed curve counted once, not span by span (1e12 periods ran for
   // hours).
-  if (curve.closed && b - a > period(curve)) {
-    const double periods = std::floor((b - a) / period(curve));
-    const double rest = (b - a) - periods * period(curve);
+  if (curve.closed && b - a > one) {
+    const double periods = std::floor((b - a) / one);
+    const double rest = (b - a) - periods * one;
     return periods * arc_length(curve, curve.t_min(), curve.t_max()) + arc_length(curve, a, a + rest);
   }
   if (!curve.closed) {

@@ -127,7 +127,9 @@ std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& 
 BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOptions& options) {
   const int m = static_cast<int>(points.size());
   const int p = options.degree;
-  if (p < 1 || p > 7) throw Error("fit_curve: degree " + std::to_string(p) + " is not in 1..7");
+  if (p < 1 || p > max_spline_degree)
+    throw Error("fit_curve: degree " + std::to_string(p) + " is not in 1.." +
+                std::to_string(max_spline_degree));
   const int n = options.control_points > 0 ? options.control_points : std::max(8, m / 4);
   if (n < p + 1)
     throw Error("fit_curve: " + std::to_string(n) + " control points are too few for degree " +

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <numeric>
 #include <string>
 
 namespace section {
@@ -300,10 +299,6 @@ struct Checker {
     if (model > limit) fail(c, model, limit);
   }
 };
-
-}  // namespace
-
-namespace {
 
 // Options a NaN or a negative value would turn off without a word: every check silenced.
 void check_options(const CheckOptions& o) {

@@ -3,6 +3,7 @@
 #include "section/compare.h"
 
 #include "compare_steps.h"
+#include "io/text.h"
 #include "section/error.h"
 #include "section/units.h"
 
@@ -77,7 +78,8 @@ void check_points(const std::vector<Eigen::Vector2d>& measured, int dof) {
   for (std::size_t i = 0; i < measured.size(); ++i)
     if (!std::isfinite(measured[i].x()) || !std::isfinite(measured[i].y()))
       throw Error("compare: measured point " + std::to_string(i) + " is not finite");
-    else if (!(measured[i].cwiseAbs().maxCoeff() <= 1e15))  // squared distances overflowed from 1e154
+    else if (!(measured[i].cwiseAbs().maxCoeff() <=
+               detail::max_coordinate))  // squared distances overflowed from 1e154
       throw Error("compare: measured point " + std::to_string(i) + " has a coordinate beyond +-1e15");
   if (measured.size() < static_cast<std::size_t>(std::max(dof + 1, 3)))
     throw Error("compare: " + std::to_string(measured.size()) + " measured points; at least " +

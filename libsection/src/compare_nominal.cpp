@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The nominal of compare prepared for foot points: arc length along it and its zones.
 #include "compare_steps.h"
+#include "io/text.h"
 
 #include "section/error.h"
 #include "section/params.h"
@@ -50,7 +51,7 @@ const BSpline& checked(const BSpline& curve) {
     throw Error("compare: the nominal profile is not a closed curve");
   check_spline(curve);
   for (const auto& c : curve.control)
-    if (!(c.cwiseAbs().maxCoeff() <= 1e15))
+    if (!(c.cwiseAbs().maxCoeff() <= detail::max_coordinate))
       throw Error(
           "compare: the nominal profile has a control point beyond +-1e15 (corrupt or in another unit?)");
   return curve;

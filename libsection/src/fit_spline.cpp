@@ -89,8 +89,9 @@ struct FoldError : Error {
 };
 
 void check_options(const FitSplineOptions& o) {
-  if (o.degree < 1 || o.degree > 7)
-    throw Error("fit_spline: degree " + std::to_string(o.degree) + " is not in 1..7");
+  if (o.degree < 1 || o.degree > max_spline_degree)
+    throw Error("fit_spline: degree " + std::to_string(o.degree) + " is not in 1.." +
+                std::to_string(max_spline_degree));
   if (o.control_points != 0 && o.control_points < o.degree + 1)
     throw Error("fit_spline: " + std::to_string(o.control_points) + " control points are too few, at least " +
                 std::to_string(o.degree + 1) + " are needed");

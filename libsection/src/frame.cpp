@@ -7,13 +7,14 @@
 
 namespace section {
 
+Eigen::Vector3d usable_normal(const Eigen::Vector3d& normal) {
+  const double largest = normal.cwiseAbs().maxCoeff();
+  if (std::isnormal(normal.squaredNorm()) || !(largest > 0) || !std::isfinite(largest)) return normal;
+  return normal / largest;
+}
+
 Frame make_frame(const Eigen::Vector3d& origin, const Eigen::Vector3d& given) {
-  // A finite normal whose length overflows or underflows (1e300, 1e-200) is scaled first.
-  const double largest = given.cwiseAbs().maxCoeff();
-  const double raw = given.norm();
-  const Eigen::Vector3d normal = (std::isfinite(raw) && raw > 0) || !(largest > 0) || !std::isfinite(largest)
-                                     ? given
-                                     : Eigen::Vector3d(given / largest);
+  const Eigen::Vector3d normal = usable_normal(given);  // 1e300 or 1e-200 long too
   const double length = normal.norm();
   if (!std::isfinite(length) || length == 0 || !origin.allFinite())
     throw Error("frame: a section plane needs a finite origin and a non-zero normal");

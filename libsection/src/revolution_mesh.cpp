@@ -10,7 +10,6 @@
 
 #include <array>
 #include <cmath>
-#include <algorithm>
 #include <map>
 #include <utility>
 
@@ -98,11 +97,7 @@ std::vector<std::vector<Eigen::Vector3d>> cut_mesh(const Mesh& mesh, const detai
 }  // namespace
 
 SliceResult slice(const Mesh& mesh, const std::vector<Revolution>& surfaces, const SliceOptions&) {
-  if (mesh.triangles.empty()) throw Error("slice: the mesh has no triangles");
-  const int nv = static_cast<int>(std::min<std::size_t>(mesh.vertices.size(), 2147483647));
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k)
-      if (t[k] < 0 || t[k] >= nv) throw Error("slice: mesh triangle index out of range");
+  detail::check_mesh(mesh);
   for (const auto& v : mesh.vertices)
     if (!v.allFinite()) throw Error("slice: a mesh vertex is not finite");
   const std::vector<Revolution> given = detail::with_references(surfaces, mesh.vertices);

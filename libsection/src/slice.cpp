@@ -22,12 +22,6 @@
 
 namespace section {
 
-Eigen::Vector3d usable_normal(const Eigen::Vector3d& normal) {
-  const double largest = normal.cwiseAbs().maxCoeff();
-  if (std::isnormal(normal.squaredNorm()) || !(largest > 0) || !std::isfinite(largest)) return normal;
-  return normal / largest;
-}
-
 std::vector<Plane> planes_at(const Eigen::Vector3d& given, const std::vector<double>& offsets) {
   const Eigen::Vector3d normal = usable_normal(given);
   const double len = normal.norm();
@@ -75,6 +69,14 @@ void check_planes(const std::vector<Plane>& planes) {
   for (const auto& p : planes)
     if (!p.origin.allFinite() || !p.normal.allFinite() || !(p.normal.norm() > 0))
       throw Error("slice: every section plane needs a finite origin and a non-zero normal");
+}
+
+void check_mesh(const Mesh& mesh) {
+  if (mesh.triangles.empty()) throw Error("slice: the mesh has no triangles");
+  const std::size_t nv = mesh.vertices.size();
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      if (t[k] < 0 || std::size_t(t[k]) >= nv) throw Error("slice: mesh triangle index out of range");
 }
 
 void check_slab(double slab) {
@@ -507,7 +509,7 @@ void mesh_loops(const std::vector<std::vector<Eigen::Vector3d>>& lines,
 
 SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options) {
   detail::check_planes(planes);
-  if (mesh.triangles.empty()) throw Error("slice: the mesh has no triangles");
+  detail::check_mesh(mesh);
   std::vector<Eigen::Vector3d> origins, normals;
   for (const auto& p : planes) {
     origins.push_back(p.origin);

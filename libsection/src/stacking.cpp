@@ -4,7 +4,7 @@
 
 #include "section/checks.h"
 #include "section/error.h"
-#include "section/slice.h"
+#include "section/frame.h"
 
 #include <algorithm>
 #include <array>

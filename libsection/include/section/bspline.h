@@ -9,6 +9,9 @@
 
 namespace section {
 
+/// Highest degree the functions here evaluate and fit.
+inline constexpr int max_spline_degree = 7;
+
 /// A planar B-spline curve.
 /// Open curves use a clamped knot vector of size control.size() + degree + 1.
 /// Closed curves store the n distinct control points once; the knot vector holds the

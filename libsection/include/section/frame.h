@@ -45,7 +45,12 @@ struct Frame {
   }
 };
 
-/// The frame of the plane through `origin` with normal `normal` (need not be unit length).
+/// `normal` scaled by its largest component where its squared length over- or underflows
+/// (1e308 or 1e-200 long: every use of it would read it as infinite or zero), else as it is.
+Eigen::Vector3d usable_normal(const Eigen::Vector3d& normal);
+
+/// The frame of the plane through `origin` with normal `normal` (need not be unit length,
+/// nor of a length whose square is a normal number: see usable_normal).
 /// u is the projection of the world axis least aligned with the normal (x before y before z
 /// on ties), so a normal of +z gives u = +x, v = +y. Throws section::Error on a zero or
 /// non-finite normal.

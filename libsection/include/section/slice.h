@@ -25,10 +25,6 @@ struct Plane {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< plane normal
 };
 
-/// `normal` scaled by its largest component where its squared length over- or underflows
-/// (1e308 or 1e-200 long: every use of it would read it as infinite or zero), else as it is.
-Eigen::Vector3d usable_normal(const Eigen::Vector3d& normal);
-
 /// Planes with one normal at signed offsets along it: origin = offset * normal / |normal|.
 std::vector<Plane> planes_at(const Eigen::Vector3d& normal, const std::vector<double>& offsets);
 

@@ -14,7 +14,8 @@ int orientation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
                 const Eigen::Vector3d& q);
 
 /// Intersection polylines of a triangle mesh with planes (CGAL::Polygon_mesh_slicer),
-/// one list per plane; a closed polyline repeats its first point at the end.
+/// one list per plane; a closed polyline repeats its first point at the end. The mesh's
+/// triangle indices must lie within its vertices (check_mesh, detail/slice_steps.h).
 std::vector<std::vector<std::vector<Eigen::Vector3d>>> mesh_slices(
     const Mesh& mesh, const std::vector<Eigen::Vector3d>& origins,
     const std::vector<Eigen::Vector3d>& normals);

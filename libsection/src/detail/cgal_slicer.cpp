@@ -23,10 +23,7 @@ std::vector<std::vector<std::vector<Eigen::Vector3d>>> mesh_slices(
   for (const auto& v : mesh.vertices) points.emplace_back(v.x(), v.y(), v.z());
   std::vector<std::vector<std::size_t>> polygons;
   polygons.reserve(mesh.triangles.size());
-  const int nv = static_cast<int>(mesh.vertices.size());
-  for (const auto& t : mesh.triangles) {
-    for (int k = 0; k < 3; ++k)
-      if (t[k] < 0 || t[k] >= nv) throw Error("slice: mesh triangle index out of range");
+  for (const auto& t : mesh.triangles) {                         // (indices checked by check_mesh)
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;  // degenerate: cuts nothing
     polygons.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
   }

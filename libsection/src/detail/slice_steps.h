@@ -12,6 +12,8 @@
 namespace section::detail {
 
 void check_planes(const std::vector<Plane>& planes);
+/// Throws for a mesh without triangles, or with a triangle index outside its vertices.
+void check_mesh(const Mesh& mesh);
 void check_slab(double slab);
 void check_band_options(const SliceOptions& options);
 

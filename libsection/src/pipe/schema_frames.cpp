@@ -3,6 +3,7 @@
 // included (their meridians in the meridians table; docs/REVOLUTION.md).
 #include "section/pipe/schema.h"
 
+#include "io/text.h"
 #include "section/error.h"
 #include "section/revolution.h"
 
@@ -85,7 +86,7 @@ std::map<int, Frame> frames(const Stream& stream) {
       throw Error("pipe: the frame of section " + format_number(t.at(r, c[0])) +
                   " is not a right-handed orthonormal frame");
     // (parse_stream refuses these; a stream built in memory gave NaN camber points.)
-    if (!(f.origin.cwiseAbs().maxCoeff() <= 1e15))
+    if (!(f.origin.cwiseAbs().maxCoeff() <= detail::max_coordinate))
       throw Error("pipe: the frame of section " + format_number(t.at(r, c[0])) +
                   " has an origin that is not finite or lies beyond +-1e15");
     if (surfaces) f.surface = surface_of(t, r, c, plane.size(), meridian);
