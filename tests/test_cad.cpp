@@ -182,6 +182,34 @@ TEST_CASE("format_dxf: one SPLINE per curve through its control points in 3D", "
           "cad: unknown length unit 'furlong' (known: mm, cm, m, in, um)");
 }
 
+TEST_CASE("format_dxf: a tolerance that is not a number, or polylines too long in all, are refused",
+          "[cad]") {
+  const std::vector<section::CadCurve> two = {tilted_curve(0), tilted_curve(3)};
+  section::CadOptions o;
+  for (double t : {std::nan(""), -0.001, HUGE_VAL}) {
+    o.polyline_tolerance = t;
+    CHECK(thrown([&] {
+            section::format_dxf(two, o);
+          }).find("polyline tolerance must be 0 (none) or a length") !=
+          std::string::npos);  // a NaN wrote splines only, as if 0 were asked
+  }
+  // Each curve's polyline within its own limit, all of them beyond the file's.
+  o.polyline_tolerance = 1e-6;
+  const std::size_t each = section::flatten(two[0].spline, o.polyline_tolerance).size();
+  o.max_polyline_vertices = 20 * each + each / 2;
+  std::vector<section::CadCurve> many(21, tilted_curve(0));
+  for (std::size_t k = 0; k < many.size(); ++k) many[k].section = static_cast<int>(k);
+  const std::string message = thrown([&] { section::format_dxf(many, o); });
+  CHECK(message.find("dxf: the polyline of section " + std::to_string(many.size() - 1)) != std::string::npos);
+  CHECK(message.find("within 1e-06 mm of the curve needs more than " + std::to_string(each / 2)) !=
+        std::string::npos);
+  CHECK(message.find("may hold " + std::to_string(o.max_polyline_vertices) + " vertices in all") !=
+        std::string::npos);
+  CHECK(section::CadOptions{}.max_polyline_vertices == 2000000);
+  many.pop_back();
+  CHECK(section::format_dxf(many, o).find("SEQEND") != std::string::npos);  // within the limit
+}
+
 TEST_CASE("format_iges: 80-column records whose entity 126 reads back as the curve", "[cad]") {
   const std::vector<section::CadCurve> curves = {tilted_curve(0), tilted_curve(1)};
   const std::string text = section::format_iges(curves, {});

@@ -520,35 +520,6 @@ TEST_CASE("pipe: a stage run again replaces its issues and drops what the later 
   CHECK(section::format_stream(refit) == section::format_stream(nc.measured));
 }
 
-TEST_CASE("compare stream: a nominal in metres or inches is converted or said to look so", "[compare]") {
-  // A 40 mm section's points in metres: taken as metres from the extent, scaled to mm, the
-  // section column left as it is; told mm, left as they are, with a word on their size.
-  section::Table points("nominal", {"section", "u", "v"});
-  for (int i = 0; i < 8; ++i) points.add_row({3, 0.02 * std::cos(i * 0.785), 0.004 * std::sin(i * 0.785)});
-  section::Table metres = points;
-  const section::InputUnits in = section::nominal_to_mm(nullptr, &metres, "");
-  CHECK(in.mm == 1000);
-  CHECK(in.warning.find("taken to be in metres") != std::string::npos);
-  CHECK(in.warning.find("--nominal-units") != std::string::npos);
-  CHECK(metres.at(0, 0) == 3);
-  CHECK(metres.at(0, 1) == Approx(20));
-  section::Table as_mm = points;
-  CHECK(section::nominal_to_mm(nullptr, &as_mm, "mm").warning.find("0.04 mm: smaller than a blade") !=
-        std::string::npos);
-  CHECK(as_mm.values == points.values);
-  // A mesh 1.6 across looks like inches: read as mm, with a word on it; given in, scaled.
-  section::Mesh mesh;
-  mesh.vertices = {{0, 0, 0}, {1.6, 0, 0}, {0, 0.3, 1}};
-  mesh.triangles = {{0, 1, 2}};
-  section::Mesh inches = mesh;
-  const section::InputUnits doubtful = section::nominal_to_mm(&inches, nullptr, "");
-  CHECK(doubtful.mm == 1);
-  CHECK(doubtful.warning.find("looks like inches: give --nominal-units in") != std::string::npos);
-  CHECK(section::nominal_to_mm(&inches, nullptr, "in").mm == 25.4);
-  CHECK(inches.vertices[1].x() == Approx(1.6 * 25.4));
-  CHECK_THROWS(section::nominal_to_mm(&inches, nullptr, "ft"));
-}
-
 TEST_CASE("compare stream: the tolerance file is read, and refused naming the line", "[compare]") {
   const auto t = tolerances(
       "# "

@@ -95,10 +95,12 @@ struct Flattening {
 // and the half covers the curve between the points checked.
 void bisect(const BSpline& c, double a, double b, const Eigen::Vector2d& pa, const Eigen::Vector2d& pb,
             const Flattening& f, int depth, std::vector<double>& out) {
-  if (out.size() >= f.max_points)
-    throw Error("bspline: a polyline within " + format_length(f.tolerance) +
-                " of the curve needs more than " + std::to_string(f.max_points) +
-                " points; a larger tolerance is needed");
+  if (out.size() >= f.max_points) {
+    char text[32];  // with an exponent: format_length shows 1e-6 as 0
+    std::snprintf(text, sizeof text, "%.3g mm", f.tolerance);
+    throw Error("bspline: a polyline within " + std::string(text) + " of the curve needs more than " +
+                std::to_string(f.max_points) + " points; a larger tolerance is needed");
+  }
   const double tolerance = f.tolerance;
   const double mid = 0.5 * (a + b);
   const Eigen::Vector2d pm = c.point(mid);

@@ -9,7 +9,10 @@
 
 #include "io/cad_common.h"
 #include "section/error.h"
+#include "section/io/stream.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <string>
@@ -211,7 +214,9 @@ void spline(Dxf& d, const CadCurve& c, unsigned h) {
   for (const auto& p : s.control) d.point(10, p);
 }
 
-void polyline(Dxf& d, const CadCurve& c, double tolerance, unsigned& next) {
+// `budget`: the vertices the file may still take.
+void polyline(Dxf& d, const CadCurve& c, const CadOptions& o, unsigned& next, std::size_t& budget) {
+  const double tolerance = o.polyline_tolerance;
   const std::string layer = layer_name(c);
   const unsigned owner = next++;
   d.entity("POLYLINE", owner, handle::model_record, layer);
@@ -219,13 +224,20 @@ void polyline(Dxf& d, const CadCurve& c, double tolerance, unsigned& next) {
   d.num(66, 1);
   d.point(10, Eigen::Vector3d::Zero());
   d.num(70, 8 + (c.spline.closed ? 1 : 0));  // 3D, closed
+  // A curve's own limit is flatten's; the file's budget binds when less is left of it.
+  const std::size_t own = 1000000, limit = std::min(own, budget);
   std::vector<double> ts;
   try {
-    ts = flatten(c.spline, tolerance);
+    ts = flatten(c.spline, tolerance, limit);
   } catch (const Error& e) {
+    std::string why = e.what();
+    if (limit < own)
+      why +=
+          " (the file's polylines may hold " + std::to_string(o.max_polyline_vertices) + " vertices in all)";
     throw Error("dxf: the polyline of section " + std::to_string(c.section) + " loop " +
-                std::to_string(c.loop) + ": " + e.what());
+                std::to_string(c.loop) + ": " + why);
   }
+  budget -= ts.size();
   for (double t : ts) {
     d.entity("VERTEX", next++, owner, layer);
     d.tag(100, "AcDbVertex");
@@ -247,6 +259,10 @@ void section(Dxf& out, const char* name, const std::string& body) {
 
 std::string format_dxf(const std::vector<CadCurve>& curves, const CadOptions& options) {
   const detail::CadUnit& unit = detail::cad_unit(options.units);
+  if (!(options.polyline_tolerance >= 0) || !std::isfinite(options.polyline_tolerance))
+    throw Error("dxf: the polyline tolerance must be 0 (none) or a length above 0, got " +
+                format_number(options.polyline_tolerance));
+  std::size_t budget = options.max_polyline_vertices;
   unsigned next = handle::first_free;
   std::set<std::string> names;
   for (const auto& c : curves) names.insert(layer_name(c));
@@ -257,7 +273,7 @@ std::string format_dxf(const std::vector<CadCurve>& curves, const CadOptions& op
   blocks(blocks_section);
   for (const auto& c : curves) {
     spline(entities, c, next++);
-    if (options.polyline_tolerance > 0) polyline(entities, c, options.polyline_tolerance, next);
+    if (options.polyline_tolerance > 0) polyline(entities, c, options, next, budget);
   }
   objects.tag(0, "DICTIONARY");
   objects.tag(5, hex(handle::root_dictionary));

@@ -137,7 +137,8 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
   put_frames(out, frames);
   std::vector<SectionIssue> misses;  // planes without a nominal section, said after the stages
   if (source.stream) {
-    matched_sections(*source.stream, frames, options, out, misses);
+    Stream copy;
+    matched_sections(in_mm(*source.stream, copy), frames, options, out, misses);
   } else {
     Loops loops;
     if (source.mesh) loops = mesh_sections(*source.mesh, frames, misses);

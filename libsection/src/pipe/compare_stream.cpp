@@ -79,9 +79,28 @@ struct Input {
   std::map<int, std::string> nominal_issue;
 };
 
-Input gather(const Stream& stream, const Stream& nominal) {
+// A nominal from nominal_stream holds the frames it was made on: they must be the stream's
+// (frames of a stream in metres, passed as they were, made a nominal in the wrong unit).
+void check_same_frames(const std::map<int, Frame>& ours, const Stream& nominal, double tolerance) {
+  if (ours.empty() || !schema::frames.find(nominal)) return;
+  for (const auto& [id, g] : frames(nominal)) {
+    const auto f = ours.find(id);
+    if (f == ours.end()) continue;
+    const double off = (f->second.origin - g.origin).norm();
+    if (off <= tolerance && f->second.n.dot(g.n) > 1 - 1e-9) continue;
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "the nominal was made on other frames than this stream's: section %d's origin lies %.6g mm "
+                  "from the nominal's (nominal_stream takes the measured frames in mm)",
+                  id, off);
+    throw Error(text);
+  }
+}
+
+Input gather(const Stream& stream, const Stream& nominal, double plane_tolerance) {
   Input in;
   if (schema::frames.find(stream)) in.frames = frames(stream);
+  check_same_frames(in.frames, nominal, plane_tolerance);
   if (const Table* t = schema::points.find(stream)) in.points = pipe::loop_rows(*t, "compare");
   if (schema::splines.find(stream)) in.curves = splines(stream);
   in.params = by_section(schema::params.find(stream));
@@ -360,9 +379,14 @@ int stream_verdict(const Stream& stream) {
   return worst;
 }
 
-void compare_stream(Stream& stream, const Stream& nominal, const CompareStreamOptions& options) {
+void compare_stream(Stream& stream, const Stream& nominal_any, const CompareStreamOptions& options) {
+  // Both in mm, the unit of the options, the tolerances and the tables written: a stream in
+  // metres compared as it is gave deviations a thousandth of the true ones.
+  convert_to_mm(stream);
+  Stream copy;
+  const Stream& nominal = in_mm(nominal_any, copy);
   pipe::restage(stream, "compare");
-  const Input in = gather(stream, nominal);
+  const Input in = gather(stream, nominal, options.plane_tolerance);
   Table fit = schema::fits.table(), deviations = schema::deviations.table(), zones = schema::zones.table(),
         compared = schema::compared.table(), verdicts = schema::verdicts.table();
   const std::vector<Table*> tables{&fit, &deviations, &zones, &compared, &verdicts};

@@ -23,9 +23,12 @@ struct CadCurve {
 
 /// What the CAD writers add around the curves.
 struct CadOptions {
-  std::string units = "mm";                   ///< the coordinates' length unit: mm, cm, m, in or um
-  double polyline_tolerance = 0;              ///< DXF: also a 3D polyline per curve within this length of
-                                              ///< it (bspline.h, flatten); 0 = splines only
+  std::string units = "mm";       ///< the coordinates' length unit: mm, cm, m, in or um
+  double polyline_tolerance = 0;  ///< DXF: also a 3D polyline per curve within this length of
+                                  ///< it (bspline.h, flatten); 0 = splines only
+  /// DXF: the polylines' vertices in all, at most (about 130 bytes each): a tolerance far below
+  /// the curves' size on many sections grew the text without bound
+  std::size_t max_polyline_vertices = 2000000;
   std::string source;                         ///< the input's name, written into the file's header
   std::string timestamp = "19700101.000000";  ///< IGES: date and time of the file, YYYYMMDD.HHNNSS (UTC)
 };
@@ -34,8 +37,9 @@ struct CadOptions {
 /// (its clamped form, bspline.h `clamped`: degree, knots, 3D control points; flags planar
 /// and, for a closed loop, closed; extrusion the plane's normal) on the layer `section_S`
 /// (`section_S_loop_L` for loops other than 0), followed by a closed 3D POLYLINE when
-/// options.polyline_tolerance > 0. Throws section::Error for an unknown unit or a
-/// non-finite number.
+/// options.polyline_tolerance > 0. Throws section::Error for an unknown unit, a
+/// non-finite number, a polyline tolerance that is not 0 or above, or polylines that would
+/// need more than options.max_polyline_vertices vertices.
 std::string format_dxf(const std::vector<CadCurve>& curves, const CadOptions& options = {});
 
 /// The curves as an IGES 5.3 file (fixed 80-column ASCII): each curve one entity 126

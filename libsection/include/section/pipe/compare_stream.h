@@ -56,6 +56,8 @@ InputUnits nominal_to_mm(Mesh* mesh, Table* points, const std::string& unit);
 /// The nominal of each measured section (`frames`, by id), in its frame and under its id:
 /// the tables "frames", "points" (mesh, points), "splines", "spline_knots", "spline_ctrl"
 /// and camber_stream's tables. A section without a nominal gets an issue (stage "compare").
+/// `frames` are in mm (those of a stream after convert_to_mm); a nominal stream in another
+/// unit is read as converted to mm, a mesh or points are taken as in mm (nominal_to_mm).
 /// Throws section::Error on a nominal that cannot be used at all (no section matches, a
 /// table without the columns needed).
 Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& frames,
@@ -65,6 +67,9 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
 /// "params") with `nominal` (from nominal_stream) and writes the tables "fits",
 /// "deviations", "zones", "compared" and "verdicts" (docs/FORMAT.md). A section that fails
 /// gets an issue and every toleranced value of it is not measured; the others go on.
+/// `stream` is converted to mm first (convert_to_mm: the options and tolerances are in mm),
+/// `nominal` read as converted; throws section::Error when the nominal was made on frames
+/// other than the stream's (farther than `plane_tolerance`: frames given in another unit).
 void compare_stream(Stream& stream, const Stream& nominal, const CompareStreamOptions& options = {});
 
 /// For each section a tolerance row names (not every section's `*` row) that `compared` has no

@@ -41,6 +41,10 @@ void put_frames(Stream& stream, const std::map<int, Frame>& frames);
 /// (length, area, length^2, 1/length). Throws section::Error for an unknown unit.
 void convert_to_mm(Stream& stream);
 
+/// `stream` itself when its unit is mm, else `copy`, made of it and converted to mm: for a
+/// stage that reads a stream it may not change (a nominal) in the unit of its options.
+const Stream& in_mm(const Stream& stream, Stream& copy);
+
 namespace schema {
 
 /// Names of the columns that readers look up (the lists use them; u and v are a point's).
