@@ -179,8 +179,9 @@ TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a f
           section::format_stream(section::to_stream(section::slice(cloud, planes, held), "t")));
     return r;
   };
-  SECTION("planes spread over the extent: the first look finds it") {
-    same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 1);
+  SECTION("planes spread over the extent: the first look finds it, and keeps the band's points") {
+    const section::SliceResult r = same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 1);
+    for (const auto& sec : r.sections) CHECK(sec.band_points > sec.slab_points);  // no read for them
   }
   SECTION("explicit planes, the slab estimated") {
     same_as_held(scan.cloud, section::PlaneSpec{section::planes_at({0, 0, 1}, {15, 30, 45}), {0, 0, 1}, 0},
@@ -190,7 +191,7 @@ TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a f
     so.holes = 40;
     so.spacing = 0.1;
     const section::Scan holed = section::generate_scan(section::turbine_blade(), so);
-    const section::SliceResult r = same_as_held(holed.cloud, section::PlaneSpec{{}, {0, 0, 1}, 6}, 1);
+    const section::SliceResult r = same_as_held(holed.cloud, section::PlaneSpec{{}, {0, 0, 1}, 6}, 2);
     int filled = 0;
     for (const auto& sec : r.sections) filled += sec.fill.gaps_filled;
     CHECK(filled > 0);

@@ -84,13 +84,16 @@ void check_slab(double slab) {
     throw Error("slice: the slab width must be finite and not negative");
 }
 
+double band_reach(const SliceOptions& options, double slab) {
+  // drift_band reads the points within max(2 half width, 3 slabs, the sparse half width).
+  return options.band_spacing > 0
+             ? std::max({2 * std::max(0.5, options.band_max), options.band_sparse_max, 3.0}) * slab
+             : 0;
+}
+
 double fill_reach(const SliceOptions& options, double slab) {
   const double fill = options.fill_gaps ? gap_fill_reach(options.fill, slab) : 0;
-  const double band =
-      options.band_spacing > 0
-          ? std::max({2 * std::max(0.5, options.band_max), options.band_sparse_max, 3.0}) * slab
-          : 0;
-  return std::max(fill, band);
+  return std::max(fill, band_reach(options, slab));
 }
 
 void check_band_options(const SliceOptions& options) {
@@ -288,6 +291,26 @@ std::vector<Eigen::Vector3d> near_about(const NearFn& near_of, std::size_t i, co
   return near;
 }
 
+// A section's near points (near_about), asked for once each: all of them, and those the
+// band reads (band_near_of's, when given; else all of them).
+struct SectionNear {
+  const NearFn& near_of;
+  const NearFn& band_near_of;
+  std::size_t i;
+  Eigen::Vector2d local;
+  std::optional<std::vector<Eigen::Vector3d>> points, band_points;
+
+  const std::vector<Eigen::Vector3d>& all() {
+    if (!points) points = near_about(near_of, i, local);
+    return *points;
+  }
+  const std::vector<Eigen::Vector3d>& band() {
+    if (!band_near_of) return all();
+    if (!band_points) band_points = near_about(band_near_of, i, local);
+    return *band_points;
+  }
+};
+
 // Fills the gaps of s's profile from the near points (none: s as it is).
 void fill_from(SectionSlice& s, const std::vector<Eigen::Vector3d>& near, double slab, std::size_t first,
                const SliceOptions& options) {
@@ -338,7 +361,7 @@ void fill_waiting(const std::vector<Waiting>& waiting, const NearFn& near_of, co
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
                  const std::vector<Plane>& planes, double slab, const SliceOptions& options,
                  SliceResult& result, const SectionFn& sink, const OrderFn& order,
-                 const NearPrefetch& prefetch) {
+                 const NearPrefetch& prefetch, const NearFn& band_near_of) {
   result.sections.resize(planes.size());
   InOrder in_order(planes.size(), sink);
   // With `prefetch`, a section with gaps to fill whose near points no band asked for waits
@@ -367,11 +390,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         for (auto& p : slabs[i]) p -= local;
         s.frame.origin = s.frame.to_world(local);
       }
-      std::optional<std::vector<Eigen::Vector3d>> near_points;
-      const auto near = [&]() -> const std::vector<Eigen::Vector3d>& {
-        if (!near_points) near_points = near_about(near_of, i, local);
-        return *near_points;
-      };
+      SectionNear near{near_of, band_near_of, i, local};
       // The band's half width when a band is to be tried, else 0. A band less than twice
       // as wide as the slab is not worth a second ordering and the later stages' time for
       // its points (the slab is dense enough then).
@@ -380,7 +399,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         const Loop& profile = m.loops[0];
         const double half = band_half_width(profile.points.size(), profile.length, slab, options.band_spacing,
                                             options.band_max);
-        return half >= slab && !near().empty() ? half : 0.0;
+        return half >= slab && !near.band().empty() ? half : 0.0;
       };
       // The slab's ordering is kept to order a band on its loops (no second raster); when a
       // band is likely, it leaves its skeleton out until no band is tried after all.
@@ -390,20 +409,21 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
       std::shared_ptr<const detail::KeptOrdering> kept = order_slab(s, slabs[i], order, slab_options);
       std::size_t first = slabs[i].size();
       if (const double half = band_half(s.morphology); half > 0) {
-        if (order_band(s, near(), slabs[i].size(), slab, half, options, kept.get()))
+        if (order_band(s, near.band(), slabs[i].size(), slab, half, options, kept.get()))
           first = s.band_points;
         else if (slab_options.skeleton_if)  // the slab's ordering stays: with its skeleton
           detail::add_skeleton(*kept, s.morphology);
       }
       kept.reset();
+      near.band_points.reset();
       // The points beside the plane only for a profile with gaps (the look for gaps
       // needs none of them, and fill_gaps finds none then).
       if (options.fill_gaps && fill_gaps(s.morphology, {}, slab, first, options.fill).gaps > 0) {
-        if (prefetch && !near_points) {
+        if (prefetch && !near.points) {
           waiting[i] = {true, local, first};
           return;
         }
-        fill_from(s, near(), slab, first, options);
+        fill_from(s, near.all(), slab, first, options);
       }
       check_loops_hold(slabs[i], s.morphology, std::max(3 * slab, 10 * s.morphology.cell));
     });

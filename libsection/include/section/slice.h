@@ -67,7 +67,7 @@ struct SliceResult {
   double slab = 0;                     ///< slab width used (0: rows taken as they lie, or a mesh)
   Sampling sampling;                   ///< what the points are (when the slab was chosen from them)
   std::size_t points = 0;              ///< points in the cloud (or mesh vertices)
-  int file_passes = 0;                 ///< slice_file: times the file was read (1 or 2); 0 in memory
+  int file_passes = 0;                 ///< slice_file: times the file was read (1 to 3); 0 in memory
 };
 
 /// Points of `points` in the closed slab |(p - origin) . n| <= slab / 2 of each plane,

@@ -21,6 +21,9 @@ void check_band_options(const SliceOptions& options);
 /// drift fit (drift_band); 0 when neither runs.
 double fill_reach(const SliceOptions& options, double slab);
 
+/// How far from the plane the drift band's fit reads points (drift_band): 0 without a band.
+double band_reach(const SliceOptions& options, double slab);
+
 /// The points beside plane i (fill_reach) as (u, v, signed distance), asked for only when
 /// a section has a band to build or a gap to fill.
 using NearFn = std::function<std::vector<Eigen::Vector3d>(std::size_t i)>;
@@ -42,11 +45,14 @@ using OrderFn =
 /// count once. A section of result.sections set beforehand keeps its row fields, and its
 /// error when its slab is empty (why: between rows, say). With `prefetch`, the sections
 /// that need near points only to fill gaps ask for them after all the others are ordered,
-/// `prefetch` told first which they are.
+/// `prefetch` told first which they are. With `band_near_of` (the points within band_reach,
+/// at hand without a read of the file), the band is built on those, and a section whose
+/// gaps are to be filled waits for near_of's like one without a band: the band reads no
+/// point beyond band_reach, so the sections are the same.
 void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn& near_of,
                  const std::vector<Plane>& planes, double slab, const SliceOptions& options,
                  SliceResult& result, const SectionFn& sink = {}, const OrderFn& order = {},
-                 const NearPrefetch& prefetch = {});
+                 const NearPrefetch& prefetch = {}, const NearFn& band_near_of = {});
 
 /// A row's points ordered into its profile: the morphology's loop when it closes a single
 /// one keeping nearly all of them, in an order that does not cross itself; else (a thin profile sampled

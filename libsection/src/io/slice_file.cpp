@@ -11,9 +11,11 @@
 #include "detail/slab_scan.h"
 #include "detail/slice_steps.h"
 #include "detail/spacing_search.h"
+#include "io/reservoir.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <mutex>
 #include <numeric>
@@ -37,6 +39,7 @@ struct Guess {
   bool active = false;                    // false: no guess; pass 2 reads the file again
   std::vector<Plane> planes;              // the guessed planes
   double half_width = 0;                  // points within this of a guessed plane are kept
+  bool band = false;                      // half_width holds the band's reach (band_reach) too
   double share = 0;                       // estimated share of the points kept
   std::vector<detail::SlabGroup> groups;  // the guessed planes with slabs 2 half_width wide
   // Per guessed plane, blocks of the points kept, in file order (blocks are moved in as
@@ -69,6 +72,20 @@ struct Guess {
       if (!(f.n == g.n)) return false;
       const double shift = std::abs(f.n.dot(found[k].origin) - g.n.dot(planes[k].origin));
       if (!(shift + need <= half_width)) return false;
+    }
+    return true;
+  }
+
+  // True when the points kept hold every point within `reach` of each found plane (covers
+  // holds): the band's points need no read of the file then.
+  bool covers_band(const std::vector<Plane>& found, double reach, double largest) const {
+    if (!band || !(reach > 0)) return false;
+    const double tol = 1e-12 * (std::max(2 * largest, reach) + 1) * (1 + 1e-6);
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      const Frame f = make_frame(found[k].origin, found[k].normal),
+                  g = make_frame(planes[k].origin, planes[k].normal);
+      const double shift = std::abs(f.n.dot(found[k].origin) - g.n.dot(planes[k].origin));
+      if (!(shift + reach + 3 * tol <= half_width)) return false;
     }
     return true;
   }
@@ -127,37 +144,16 @@ std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& pa
   return near;
 }
 
-// A uniform random sample of the points read, 50000 at most (reservoir sampling by skips,
-// Li's algorithm L: random numbers only for the points taken, O(k log(n / k)) of them,
-// instead of one per point).
-class Reservoir {
-public:
-  static constexpr std::size_t size = 50000;
-  Reservoir() {
-    w_ = std::exp(std::log(u01()) / size);
-    skip();
-  }
-  // Offers the next `count` points of the file.
-  void take(const Eigen::Vector3d* p, std::size_t count) {
-    for (std::size_t i = 0; i < count && points.size() < size; ++i) points.push_back(p[i]);
-    for (; next_ < seen_ + count; skip())
-      points[std::uniform_int_distribution<std::size_t>(0, size - 1)(rng_)] = p[next_ - seen_];
-    seen_ += count;
-  }
-  std::vector<Eigen::Vector3d> points;
-
-private:
-  double u01() { return std::max(unit_(rng_), 1e-300); }
-  void skip() {
-    next_ += std::size_t(std::floor(std::log(u01()) / std::log1p(-w_))) + 1;
-    w_ *= std::exp(std::log(u01()) / size);
-  }
-  std::mt19937_64 rng_{12345};
-  std::uniform_real_distribution<double> unit_{0.0, 1.0};
-  double w_ = 0;
-  std::size_t next_ = size - 1;  // index of the next point to take once the sample is full
-  std::size_t seen_ = 0;
-};
+// Whether the sections of a scan likely get a band (band_half_width at least a slab): its
+// slabs hold fewer than 1 / (2 band_spacing) points per mm of profile. The density from
+// the peek's mean nearest-neighbour spacing d at full density, that of random points
+// (1 / (4 d^2) per mm^2); a scan in even rows is denser for its d, and likely gets none.
+// A guess for speed only: the sections are the same either way.
+bool band_likely(double spacing, double slab, const SliceOptions& options) {
+  if (!(options.band_spacing > 0) || !(spacing > 0)) return false;
+  const double per_length = slab * 0.25 / (spacing * spacing);
+  return 0.5 / options.band_spacing >= 0.75 * per_length;
+}
 
 // The guess for slice_file: planes from the extent of 4096 points read here and there
 // (peek_cloud: binary PLY files only), the slab from their spacing scaled to the full
@@ -168,12 +164,16 @@ private:
 Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
                    const CloudReadOptions& read) {
   Guess guess;
-  if (peek_cloud(path, 1, read).total <= Reservoir::size) return guess;
+  if (peek_cloud(path, 1, read).total <= detail::Reservoir::size) return guess;
   const CloudPeek peek = peek_cloud(path, 4096, read);
   if (peek.points.size() < 256) return guess;
+  // The mean spacing at full density (the band's guess needs it, and the slab when not given).
+  const double spacing =
+      options.slab == 0 || options.band_spacing > 0
+          ? mean_spacing(peek.points) * std::sqrt(double(peek.points.size()) / double(peek.total))
+          : 0;
   double slab = options.slab;
-  if (slab == 0)
-    slab = mean_spacing(peek.points) * std::sqrt(double(peek.points.size()) / double(peek.total)) / 0.47;
+  if (slab == 0) slab = spacing / 0.47;
   if (!(slab > 0) || !std::isfinite(slab)) return guess;
   const auto extent_along = [&](const Eigen::Vector3d& normal, double& lo, double& hi) {
     const Eigen::Vector3d n = normal.normalized();
@@ -199,15 +199,29 @@ Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOp
   } else {
     guess.planes = spec.planes;
   }
-  guess.half_width = 1.5 * 0.5 * slab + shift;
-  // Worth it while the kept points are at most half the cloud (else pass 2 is cheaper).
-  double share = 0;
-  for (const auto& p : guess.planes) {
-    double lo, hi;
-    extent_along(p.normal, lo, hi);
-    share += hi > lo ? 2 * guess.half_width / (hi - lo) : 1;
+  const auto share_of = [&](double half_width) {
+    double share = 0;
+    for (const auto& p : guess.planes) {
+      double lo, hi;
+      extent_along(p.normal, lo, hi);
+      share += hi > lo ? 2 * half_width / (hi - lo) : 1;
+    }
+    return share;
+  };
+  // The band's points too, when the sections likely get a band: on such a scan (0.25-1 M
+  // points) the read of the file for the points beside the planes is spared, and fewer are
+  // held than that read gathers (they reach as far as the gap fill's reach). Else the slabs
+  // alone, while they are at most half the cloud (else pass 2 is cheaper).
+  const double band = band_likely(spacing, slab, options) ? 1.5 * detail::band_reach(options, slab) : 0;
+  guess.half_width = std::max(1.5 * 0.5 * slab, band) + shift;
+  guess.band = band > 0;
+  double share = share_of(guess.half_width);
+  if (guess.band && !(share <= std::max(0.75, share_of(detail::fill_reach(options, slab))))) {
+    guess.half_width = 1.5 * 0.5 * slab + shift;
+    guess.band = false;
+    share = share_of(guess.half_width);
   }
-  if (!(share <= 0.5)) return guess;
+  if (!(share <= 0.5) && !guess.band) return guess;
   guess.share = share;
   guess.groups = detail::group_planes(guess.planes, 2 * guess.half_width);
   guess.kept.resize(guess.planes.size());
@@ -281,7 +295,7 @@ Scanned scan_chunk(const Eigen::Vector3d* p, std::size_t count, int threads, con
 struct FirstPass {
   double lo = INFINITY, hi = -INFINITY, largest = 0;  // extent along the normal, largest coordinate
   std::size_t total = 0;                              // points
-  Reservoir sample;                                   // filled when `sampled`
+  detail::Reservoir sample;                           // filled when `sampled`
   std::size_t hold = 0;                               // when `sampled`: the first this many points are kept
   std::vector<Eigen::Vector3d> first;                 // those, in file order (their sampling: sampling_of)
 };
@@ -313,10 +327,16 @@ void first_pass(const std::string& path, const CloudReadOptions& read, const Eig
 // The sections from the points kept around the guessed planes, when the planes found lie
 // near enough to them: the same slab points, in the same order, as pass 2 would give.
 SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes, double slab, Guess& guess,
-                       std::size_t total, const SliceOptions& options, const CloudReadOptions& read_chunks,
-                       const SectionSink& sink, detail::HeldBytes& held) {
+                       std::size_t total, double largest, const SliceOptions& options,
+                       const CloudReadOptions& read_chunks, const SectionSink& sink,
+                       detail::HeldBytes& held) {
   std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
   const double reach = detail::fill_reach(options, slab);
+  // The band's points from those kept too, when they hold them: a hair wider than the band
+  // reads, so that no rounding of the near test leaves out a point it reads.
+  const double band = detail::band_reach(options, slab) * (1 + 1e-9);
+  const bool band_kept = guess.covers_band(planes, band, largest);
+  std::vector<std::vector<Eigen::Vector3d>> band_near(band_kept ? planes.size() : 0);
   detail::parallel_for(planes.size(), options.threads, [&](std::size_t k) {
     const std::vector<Plane> one{planes[k]};
     std::vector<std::vector<Eigen::Vector2d>> slab_k(1);
@@ -325,6 +345,13 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
     for (const auto& block : guess.kept[k])
       detail::add_slab_points(block.data(), block.size(), slab_groups, frame, slab, slab_k);
     slabs[k] = std::move(slab_k[0]);
+    if (band_kept) {
+      std::vector<std::vector<Eigen::Vector3d>> near_k(1);
+      const auto near_groups = detail::group_planes(one, 2 * band);
+      for (const auto& block : guess.kept[k])
+        detail::add_near_points_parallel(block.data(), block.size(), near_groups, frame, band, 1, near_k);
+      band_near[k] = std::move(near_k[0]);
+    }
     std::vector<std::vector<Eigen::Vector3d>>().swap(guess.kept[k]);
   });
   // A plane's near points, when its section asks: from a pass over the file for every
@@ -333,6 +360,7 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
   std::vector<char> read(planes.size(), 0);
   std::mutex near_mutex;
+  int near_reads = 0;
   const auto read_planes = [&](const std::vector<std::size_t>& which) {
     std::vector<std::size_t> ids;
     std::vector<Plane> some;
@@ -340,6 +368,7 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
       if (!read[k]) ids.push_back(k), some.push_back(planes[k]);
     if (ids.empty()) return;
     auto got = read_near_points(path, some, reach, read_chunks, held);
+    ++near_reads;
     for (std::size_t m = 0; m < ids.size(); ++m) near[ids[m]] = std::move(got[m]), read[ids[m]] = 1;
   };
   std::vector<std::size_t> every(planes.size());
@@ -358,8 +387,10 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
   SliceResult result;
   result.points = total;
   result.slab = slab;
-  result.file_passes = 1;
-  detail::order_slabs(slabs, near_of, planes, slab, options, result, sink, {}, prefetch);
+  detail::NearFn band_near_of;
+  if (band_kept) band_near_of = [&](std::size_t k) { return std::move(band_near[k]); };
+  detail::order_slabs(slabs, near_of, planes, slab, options, result, sink, {}, prefetch, band_near_of);
+  result.file_passes = 1 + near_reads;
   return result;
 }
 
@@ -473,53 +504,6 @@ std::size_t bytes_of(const SectionSlice& s) {
 
 }  // namespace
 
-bool looks_like_profile(std::string_view head) {
-  if (head.substr(0, 3) == "ply") return false;
-  int titles = 0, rows = 0;
-  for (std::size_t pos = 0; pos < head.size() && rows < 16;) {
-    const std::size_t nl = head.find('\n', pos);
-    if (nl == std::string_view::npos && rows > 0) break;  // a line cut by the end of the look
-    const std::string_view line = detail::trim(head.substr(pos, std::min(nl, head.size()) - pos));
-    pos = std::min(nl, head.size()) + 1;
-    if (line.empty() || line[0] == '#' || line.substr(0, 2) == "//") continue;
-    std::vector<std::string_view> fields;
-    detail::split_fields(line, [&](std::string_view f) {
-      fields.push_back(detail::trim(f));
-      return fields.size() < 3;
-    });
-    double x = 0, y = 0;
-    if (rows == 0 && (fields.empty() || !detail::parse_double(fields[0], x))) {
-      if (++titles > 8) return false;  // a title line, as in airfoil .dat files
-      continue;
-    }
-    // Two numbers on every data line looked at (a count such as `241 21` over rows of
-    // three is a header, not a profile).
-    if (fields.size() != 2 || !detail::parse_double(fields[0], x) || !detail::parse_double(fields[1], y))
-      return false;
-    ++rows;
-  }
-  return rows > 0;
-}
-
-std::optional<Cloud> profile_cloud(std::string_view text, const std::string& name) {
-  if (!looks_like_profile(text.substr(0, std::size_t(1) << 16))) return std::nullopt;
-  Cloud cloud;
-  for (const Eigen::Vector2d& p : parse_profile(text, name)) cloud.points.emplace_back(p.x(), p.y(), 0.0);
-  return cloud;
-}
-
-std::optional<Cloud> read_profile_cloud(const std::string& path) {
-  // Spooled: a pipe looked at here is read again, whole, by read_cloud.
-  const auto any = [](std::string_view) {};
-  {
-    detail::ByteSource src(path, "read_cloud: ", any);
-    src.fetch(std::size_t(1) << 16);
-    if (!looks_like_profile(src.bytes())) return std::nullopt;
-  }
-  detail::ByteSource src(path, "read_cloud: ", any);
-  return profile_cloud(src.read_all(), src.name());
-}
-
 SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
                        const CloudReadOptions& read, const SectionSink& given_sink,
                        const SamplingSink& on_sampling) {
@@ -582,7 +566,8 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     }
     check_slab_width(slab);
     if (guess.active && guess.covers(planes, slab, first.largest)) {
-      SliceResult r = slice_kept(path, planes, slab, guess, first.total, options, read_chunks, sink, held);
+      SliceResult r =
+          slice_kept(path, planes, slab, guess, first.total, first.largest, options, read_chunks, sink, held);
       r.sampling = std::move(found);
       return r;
     }
