@@ -14,6 +14,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <random>
 #include <unistd.h>
 #include <algorithm>
@@ -389,4 +390,55 @@ TEST_CASE("read_cloud: a packed double PLY file is read in parts by the threads,
                     Catch::Contains("truncated"));
   CHECK(handed == 0);
   std::remove(path.c_str());
+}
+
+TEST_CASE("read_cloud_chunks_parallel: chunks not wanted are passed over, the others in order", "[cloud]") {
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 10000; ++i) pts.emplace_back(i * 0.5, std::sin(i), -i / 7.0);
+  // A packed double PLY (read side by side, the chunks not wanted not read) and a float PLY
+  // (read in turn): the same chunks either way.
+  const std::string packed = temp_path(".ply"), floats = temp_path(".ply");
+  write_cloud(packed, Cloud{pts});
+  std::string body;
+  for (const auto& p : pts)
+    for (int c = 0; c < 3; ++c) {
+      const float f = static_cast<float>(p[c]);
+      body.append(reinterpret_cast<const char*>(&f), 4);
+    }
+  std::ofstream(floats, std::ios::binary)
+      << "ply\nformat binary_little_endian 1.0\nelement vertex " << pts.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+      << body;
+  for (const std::string& path : {packed, floats})
+    for (int threads : {1, 2}) {
+      INFO(path << " threads " << threads);
+      CloudReadOptions opt;
+      opt.chunk_points = 999;
+      opt.threads = threads;
+      std::mutex mutex;
+      std::vector<std::size_t> worked, merged;
+      std::vector<double> xs;
+      const std::size_t total = read_cloud_chunks_parallel(
+          path,
+          [&](std::size_t k, const Eigen::Vector3d*, std::size_t, int) {
+            std::lock_guard<std::mutex> lock(mutex);
+            worked.push_back(k);
+          },
+          [&](std::size_t k, const Eigen::Vector3d* p, std::size_t n) {
+            merged.push_back(k);
+            for (std::size_t i = 0; i < n; ++i) xs.push_back(p[i].x());
+          },
+          opt, [](std::size_t k) { return k % 3 == 1; });
+      CHECK(total == pts.size());
+      std::sort(worked.begin(), worked.end());
+      const std::vector<std::size_t> wanted{1, 4, 7, 10};
+      CHECK(worked == wanted);
+      CHECK(merged == wanted);
+      REQUIRE(xs.size() == 3 * 999 + 10);  // the last chunk holds 10 points
+      CHECK(xs.front() == pts[999].x());
+      CHECK(xs[999] == pts[4 * 999].x());
+      CHECK(xs.back() == pts[9999].x());
+    }
+  std::remove(packed.c_str());
+  std::remove(floats.c_str());
 }

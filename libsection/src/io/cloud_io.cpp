@@ -120,7 +120,9 @@ public:
         scale_(options.scale),
         first_bad_(chunks_) {}
 
-  void run(const ChunkWorkFn& work, const IndexedChunkFn& merge, int threads) {
+  void run(const ChunkWorkFn& work, const IndexedChunkFn& merge, int threads,
+           const std::function<bool(std::size_t)>& wanted) {
+    wanted_ = &wanted;
     const std::size_t workers = std::min<std::size_t>(chunks_, detail::worker_count(threads));
     std::vector<std::thread> pool = detail::start_threads(workers - 1, [&] { worker(work, merge); });
     worker(work, merge);
@@ -154,6 +156,14 @@ private:
   // earlier chunk failed.
   bool one(std::size_t k, std::vector<Eigen::Vector3d>& buf, const ChunkWorkFn& work,
            const IndexedChunkFn& merge) {
+    if (*wanted_ && !(*wanted_)(k)) {  // passed over, in its turn
+      std::unique_lock<std::mutex> lock(mutex_);
+      merged_one_.wait(lock, [&] { return next_merge_ == k || first_bad_ < k; });
+      if (first_bad_ < k) return false;
+      ++next_merge_;
+      merged_one_.notify_all();
+      return true;
+    }
     const unsigned long long first = static_cast<unsigned long long>(k) * chunk_;
     const std::size_t m = static_cast<std::size_t>(std::min<unsigned long long>(chunk_, count_ - first));
     buf.resize(m);
@@ -189,6 +199,7 @@ private:
   std::size_t next_merge_ = 0;
   std::size_t first_bad_;     // lowest chunk that failed
   std::exception_ptr error_;  // its error
+  const std::function<bool(std::size_t)>* wanted_ = nullptr;
 };
 
 }  // namespace
@@ -200,7 +211,8 @@ std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_ch
 }
 
 std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work,
-                                       const IndexedChunkFn& merge, const CloudReadOptions& options) {
+                                       const IndexedChunkFn& merge, const CloudReadOptions& options,
+                                       const std::function<bool(std::size_t)>& wanted) {
   // Packed doubles in a regular file: pread anywhere, no conversion.
   const std::unique_ptr<ByteSource> src = open_cloud(path, options);
   const std::optional<detail::BinaryVertices> layout = detail::binary_vertices(*src, path, options);
@@ -210,13 +222,15 @@ std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkF
     return read_cloud_chunks(
         path,
         [&](const Eigen::Vector3d* p, std::size_t n) {
-          work(index, p, n, options.threads);
-          merge(index, p, n);
+          if (!wanted || wanted(index)) {
+            work(index, p, n, options.threads);
+            merge(index, p, n);
+          }
           ++index;
         },
         options);
   }
-  PackedChunks(src->regular_fd(), *layout, src->name(), options).run(work, merge, options.threads);
+  PackedChunks(src->regular_fd(), *layout, src->name(), options).run(work, merge, options.threads, wanted);
   return static_cast<std::size_t>(layout->count);
 }
 

@@ -12,6 +12,7 @@
 #include "detail/slice_steps.h"
 #include "detail/spacing_search.h"
 #include "io/reservoir.h"
+#include "io/slice_guess.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,76 +27,18 @@ namespace section {
 
 namespace {
 
-// `count` planes with `normal` spread evenly over [lo, hi] (as planes_across).
-std::vector<Plane> spread(const Eigen::Vector3d& normal, double lo, double hi, int count) {
-  std::vector<double> offsets;
-  for (int k = 0; k < count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (count + 1));
-  return planes_at(normal, offsets);
-}
+using detail::Guess;
+using detail::guess_planes;
+using detail::spread;
 
-// Planes (and slab) guessed from a first look at a cloud file (peek_cloud), and the points
-// kept around them while pass 1 of slice_file reads the file.
-struct Guess {
-  bool active = false;                    // false: no guess; pass 2 reads the file again
-  std::vector<Plane> planes;              // the guessed planes
-  double half_width = 0;                  // points within this of a guessed plane are kept
-  bool band = false;                      // half_width holds the band's reach (band_reach) too
-  double share = 0;                       // estimated share of the points kept
-  std::vector<detail::SlabGroup> groups;  // the guessed planes with slabs 2 half_width wide
-  // Per guessed plane, blocks of the points kept, in file order (blocks are moved in as
-  // the threads collect them, not copied).
-  std::vector<std::vector<std::vector<Eigen::Vector3d>>> kept;
-
-  // Appends q to the list in `out` of each guessed plane within half_width of it; `tests`
-  // are those of `groups` (made once for a loop over points: see detail::SlabTests).
-  void keep(const Eigen::Vector3d& q, const std::vector<detail::SlabTests>& tests,
-            std::vector<std::vector<Eigen::Vector3d>>& out) const {
-    for (const detail::SlabTests& t : tests) {
-      const double s = t.n.dot(q);
-      if (t.far_from_slabs(s)) continue;
-      for (std::size_t k = t.first_at_least(s - half_width); k < t.planes && t.offset[k] <= s + half_width;
-           ++k)
-        out[t.plane[k]].push_back(q);
-    }
-  }
-
-  // True when every point the slab test of `found` (slab width `slab`) can take was kept:
-  // each found plane lies close enough to its guess. `largest` bounds the points'
-  // coordinates (the exact slab test's tolerance).
-  bool covers(const std::vector<Plane>& found, double slab, double largest) const {
-    if (found.size() != planes.size()) return false;
-    const double tol = 1e-12 * (std::max(2 * largest, slab) + 1) * (1 + 1e-6);
-    const double need = 0.5 * slab + 3 * tol;
-    for (std::size_t k = 0; k < found.size(); ++k) {
-      const Frame f = make_frame(found[k].origin, found[k].normal),
-                  g = make_frame(planes[k].origin, planes[k].normal);
-      if (!(f.n == g.n)) return false;
-      const double shift = std::abs(f.n.dot(found[k].origin) - g.n.dot(planes[k].origin));
-      if (!(shift + need <= half_width)) return false;
-    }
-    return true;
-  }
-
-  // True when the points kept hold every point within `reach` of each found plane (covers
-  // holds): the band's points need no read of the file then.
-  bool covers_band(const std::vector<Plane>& found, double reach, double largest) const {
-    if (!band || !(reach > 0)) return false;
-    const double tol = 1e-12 * (std::max(2 * largest, reach) + 1) * (1 + 1e-6);
-    for (std::size_t k = 0; k < found.size(); ++k) {
-      const Frame f = make_frame(found[k].origin, found[k].normal),
-                  g = make_frame(planes[k].origin, planes[k].normal);
-      const double shift = std::abs(f.n.dot(found[k].origin) - g.n.dot(planes[k].origin));
-      if (!(shift + reach + 3 * tol <= half_width)) return false;
-    }
-    return true;
-  }
-};
+// Whether a chunk of a file (by index) may hold points asked for (read_cloud_chunks_parallel).
+using ChunkFilter = std::function<bool(std::size_t)>;
 
 // read_cloud_chunks_parallel with a result per chunk: `scan(points, count, threads)` makes
 // it on a worker thread, `take(result, points, count)` receives it in file order.
 template <class Scan, class Take>
 std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, const Scan& scan,
-                        const Take& take) {
+                        const Take& take, const ChunkFilter& wanted = {}) {
   using Result = decltype(scan(static_cast<const Eigen::Vector3d*>(nullptr), std::size_t(0), 1));
   std::mutex mutex;
   std::map<std::size_t, Result> made;  // by chunk, from scan to take
@@ -116,7 +59,7 @@ std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, c
         }
         take(r, p, count);
       },
-      read);
+      read, wanted);
 }
 
 // The points within `reach` of each plane in the file, as (u, v, signed distance), in file
@@ -124,7 +67,8 @@ std::size_t scan_chunks(const std::string& path, const CloudReadOptions& read, c
 std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& path,
                                                            const std::vector<Plane>& planes, double reach,
                                                            const CloudReadOptions& read,
-                                                           detail::HeldBytes& held) {
+                                                           detail::HeldBytes& held,
+                                                           const ChunkFilter& wanted) {
   const auto groups = detail::group_planes(planes, 2 * reach);
   const auto frame = detail::frames_of(planes);
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
@@ -140,93 +84,9 @@ std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& pa
           held.add(sizeof(Eigen::Vector3d) * f[k].size());
           near[k].insert(near[k].end(), f[k].begin(), f[k].end());
         }
-      });
+      },
+      wanted);
   return near;
-}
-
-// Whether the sections of a scan likely get a band (band_half_width at least a slab): its
-// slabs hold fewer than 1 / (2 band_spacing) points per mm of profile. The density from
-// the peek's mean nearest-neighbour spacing d at full density, that of random points
-// (1 / (4 d^2) per mm^2); a scan in even rows is denser for its d, and likely gets none.
-// A guess for speed only: the sections are the same either way.
-bool band_likely(double spacing, double slab, const SliceOptions& options) {
-  if (!(options.band_spacing > 0) || !(spacing > 0)) return false;
-  const double per_length = slab * 0.25 / (spacing * spacing);
-  return 0.5 / options.band_spacing >= 0.75 * per_length;
-}
-
-// The guess for slice_file: planes from the extent of 4096 points read here and there
-// (peek_cloud: binary PLY files only), the slab from their spacing scaled to the full
-// density as pass 1 scales its sample's. Inactive when the points kept around the
-// guessed planes would be a large part of the cloud, or when pass 1 samples the whole
-// cloud: a second read of at most 50 000 points costs less than the first look's spacing
-// (at 10 000 points, 1.6 M instructions against 17 M).
-Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOptions& options,
-                   const CloudReadOptions& read) {
-  Guess guess;
-  if (peek_cloud(path, 1, read).total <= detail::Reservoir::size) return guess;
-  const CloudPeek peek = peek_cloud(path, 4096, read);
-  if (peek.points.size() < 256) return guess;
-  // The mean spacing at full density (the band's guess needs it, and the slab when not given).
-  const double spacing =
-      options.slab == 0 || options.band_spacing > 0
-          ? mean_spacing(peek.points) * std::sqrt(double(peek.points.size()) / double(peek.total))
-          : 0;
-  double slab = options.slab;
-  if (slab == 0) slab = spacing / 0.47;
-  if (!(slab > 0) || !std::isfinite(slab)) return guess;
-  const auto extent_along = [&](const Eigen::Vector3d& normal, double& lo, double& hi) {
-    const Eigen::Vector3d n = normal.normalized();
-    lo = INFINITY;
-    hi = -INFINITY;
-    for (const auto& p : peek.points) {
-      lo = std::min(lo, n.dot(p));
-      hi = std::max(hi, n.dot(p));
-    }
-  };
-  // Measured on generated blades: the peek's spacing is 3-18 % above the one pass 1
-  // finds, its extent within 0.025 mm of 60 mm. Planes spread over the extent move by up
-  // to the extent's error once it is known; explicit planes stay. Only the slabs are
-  // kept: the points beside a plane, which a section with a gap or a band needs, are
-  // read again for it (rare on dense scans, where the guess pays).
-  double shift = 0;
-  if (spec.count > 0) {
-    double lo, hi;
-    extent_along(spec.normal, lo, hi);
-    if (!(hi > lo)) return guess;
-    shift = std::max(1e-3 * (hi - lo), 2 * slab);
-    guess.planes = spread(spec.normal, lo, hi, spec.count);
-  } else {
-    guess.planes = spec.planes;
-  }
-  const auto share_of = [&](double half_width) {
-    double share = 0;
-    for (const auto& p : guess.planes) {
-      double lo, hi;
-      extent_along(p.normal, lo, hi);
-      share += hi > lo ? 2 * half_width / (hi - lo) : 1;
-    }
-    return share;
-  };
-  // The band's points too, when the sections likely get a band: on such a scan (0.25-1 M
-  // points) the read of the file for the points beside the planes is spared, and fewer are
-  // held than that read gathers (they reach as far as the gap fill's reach). Else the slabs
-  // alone, while they are at most half the cloud (else pass 2 is cheaper).
-  const double band = band_likely(spacing, slab, options) ? 1.5 * detail::band_reach(options, slab) : 0;
-  guess.half_width = std::max(1.5 * 0.5 * slab, band) + shift;
-  guess.band = band > 0;
-  double share = share_of(guess.half_width);
-  if (guess.band && !(share <= std::max(0.75, share_of(detail::fill_reach(options, slab))))) {
-    guess.half_width = 1.5 * 0.5 * slab + shift;
-    guess.band = false;
-    share = share_of(guess.half_width);
-  }
-  if (!(share <= 0.5) && !guess.band) return guess;
-  guess.share = share;
-  guess.groups = detail::group_planes(guess.planes, 2 * guess.half_width);
-  guess.kept.resize(guess.planes.size());
-  guess.active = true;
-  return guess;
 }
 
 // What pass 1 finds in a chunk (or a part of one): the extent along the normal, the
@@ -293,11 +153,13 @@ Scanned scan_chunk(const Eigen::Vector3d* p, std::size_t count, int threads, con
 
 // What pass 1 found in the whole file.
 struct FirstPass {
-  double lo = INFINITY, hi = -INFINITY, largest = 0;  // extent along the normal, largest coordinate
-  std::size_t total = 0;                              // points
-  detail::Reservoir sample;                           // filled when `sampled`
-  std::size_t hold = 0;                               // when `sampled`: the first this many points are kept
-  std::vector<Eigen::Vector3d> first;                 // those, in file order (their sampling: sampling_of)
+  double lo = INFINITY, hi = -INFINITY, largest = 0;   // extent along the normal, largest coordinate
+  std::size_t total = 0;                               // points
+  detail::Reservoir sample;                            // filled when `sampled`
+  std::size_t hold = 0;                                // when `sampled`: the first this many points are kept
+  std::vector<Eigen::Vector3d> first;                  // those, in file order (their sampling: sampling_of)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // the unit normal the extents are along
+  std::vector<std::pair<double, double>> chunk_range;  // per chunk of the file, its extent along it
 };
 
 // Pass 1: the extent along the normal and, when `sampled`, a uniform random sample for the
@@ -305,12 +167,14 @@ struct FirstPass {
 // read and scanned side by side, and taken in file order.
 void first_pass(const std::string& path, const CloudReadOptions& read, const Eigen::Vector3d& n, bool sampled,
                 Guess& guess, FirstPass& pass, detail::HeldBytes& held) {
+  pass.normal = n;
   pass.total = scan_chunks(
       path, read,
       [&](const Eigen::Vector3d* p, std::size_t count, int threads) {
         return scan_chunk(p, count, threads, n, guess);
       },
       [&](Scanned& r, const Eigen::Vector3d* p, std::size_t count) {
+        pass.chunk_range.emplace_back(r.lo, r.hi);
         pass.lo = std::min(pass.lo, r.lo);
         pass.hi = std::max(pass.hi, r.hi);
         pass.largest = std::max(pass.largest, r.big);
@@ -324,10 +188,30 @@ void first_pass(const std::string& path, const CloudReadOptions& read, const Eig
       });
 }
 
+// The chunks of the file that may hold points within `reach` of `planes`, from the extents
+// pass 1 found (every chunk when a plane's normal is not the one they are along). A hair
+// wider than the reach: the near test's arithmetic differs from pass 1's in the last bits.
+ChunkFilter chunks_near(const FirstPass& first, const std::vector<Plane>& planes, double reach) {
+  std::vector<double> offsets;
+  for (const auto& p : planes) {
+    const Eigen::Vector3d n = make_frame(p.origin, p.normal).n;
+    if (!((n - first.normal).norm() <= 1e-12)) return {};
+    offsets.push_back(first.normal.dot(p.origin));
+  }
+  std::sort(offsets.begin(), offsets.end());
+  const double margin = reach + 1e-8 * (first.largest + reach + 1);
+  return [&first, offsets, margin](std::size_t chunk) {
+    if (chunk >= first.chunk_range.size()) return true;
+    const auto [lo, hi] = first.chunk_range[chunk];
+    const auto at = std::lower_bound(offsets.begin(), offsets.end(), lo - margin);
+    return at != offsets.end() && *at <= hi + margin;
+  };
+}
+
 // The sections from the points kept around the guessed planes, when the planes found lie
 // near enough to them: the same slab points, in the same order, as pass 2 would give.
 SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes, double slab, Guess& guess,
-                       std::size_t total, double largest, const SliceOptions& options,
+                       const FirstPass& first, const SliceOptions& options,
                        const CloudReadOptions& read_chunks, const SectionSink& sink,
                        detail::HeldBytes& held) {
   std::vector<std::vector<Eigen::Vector2d>> slabs(planes.size());
@@ -335,7 +219,7 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
   // The band's points from those kept too, when they hold them: a hair wider than the band
   // reads, so that no rounding of the near test leaves out a point it reads.
   const double band = detail::band_reach(options, slab) * (1 + 1e-9);
-  const bool band_kept = guess.covers_band(planes, band, largest);
+  const bool band_kept = guess.covers_band(planes, band, first.largest);
   std::vector<std::vector<Eigen::Vector3d>> band_near(band_kept ? planes.size() : 0);
   detail::parallel_for(planes.size(), options.threads, [&](std::size_t k) {
     const std::vector<Plane> one{planes[k]};
@@ -367,7 +251,7 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
     for (std::size_t k : which)
       if (!read[k]) ids.push_back(k), some.push_back(planes[k]);
     if (ids.empty()) return;
-    auto got = read_near_points(path, some, reach, read_chunks, held);
+    auto got = read_near_points(path, some, reach, read_chunks, held, chunks_near(first, some, reach));
     ++near_reads;
     for (std::size_t m = 0; m < ids.size(); ++m) near[ids[m]] = std::move(got[m]), read[ids[m]] = 1;
   };
@@ -385,7 +269,7 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
     read_planes(which);
   };
   SliceResult result;
-  result.points = total;
+  result.points = first.total;
   result.slab = slab;
   detail::NearFn band_near_of;
   if (band_kept) band_near_of = [&](std::size_t k) { return std::move(band_near[k]); };
@@ -566,8 +450,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     }
     check_slab_width(slab);
     if (guess.active && guess.covers(planes, slab, first.largest)) {
-      SliceResult r =
-          slice_kept(path, planes, slab, guess, first.total, first.largest, options, read_chunks, sink, held);
+      SliceResult r = slice_kept(path, planes, slab, guess, first, options, read_chunks, sink, held);
       r.sampling = std::move(found);
       return r;
     }

@@ -63,10 +63,13 @@ using ChunkWorkFn =
 /// after it for every chunk in file order, one at a time. Other files go through
 /// read_cloud_chunks, `work` (told it may use options.threads) then `merge` on each chunk.
 /// Throws as read_cloud_chunks, for the first bad vertex in file order; `merge` is not
-/// called for a chunk at or after it.
+/// called for a chunk at or after it. With `wanted`, a chunk it says false of is passed
+/// over, neither worked on nor merged (a packed file's is not even read; a file read once
+/// already, whose chunks are known to hold nothing asked for).
 /// @return the number of points read
 std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work,
-                                       const IndexedChunkFn& merge, const CloudReadOptions& options = {});
+                                       const IndexedChunkFn& merge, const CloudReadOptions& options = {},
+                                       const std::function<bool(std::size_t index)>& wanted = {});
 
 /// A first look at a cloud file (peek_cloud).
 struct CloudPeek {
