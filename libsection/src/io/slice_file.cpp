@@ -108,14 +108,25 @@ void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eig
     // restored around every kept point's append); the extent in locals, which an append
     // cannot change (r's could, for all the compiler knew).
     std::vector<detail::SlabTests> tests(guess.groups.begin(), guess.groups.end());
+    // Planes along the normal of the extent (--count): the keep test's n . q is the extent's.
+    const bool along = tests.size() == 1 && tests[0].n == n;
     double lo = r.lo, hi = r.hi, big = r.big;
-    for (std::size_t i = a; i < e; ++i) {
-      const Eigen::Vector3d& q = p[i];
-      const double s = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
-      lo = s < lo ? s : lo;
-      hi = s > hi ? s : hi;
-      big = std::max({big, std::abs(q.x()), std::abs(q.y()), std::abs(q.z())});
-      guess.keep(q, tests, r.kept);
+    // In blocks: the extents over a block (no append between them), then its appends.
+    constexpr std::size_t block = 256;
+    double s[block];
+    for (std::size_t i0 = a; i0 < e; i0 += block) {
+      const std::size_t m = std::min(block, e - i0);
+      const Eigen::Vector3d* q = p + i0;
+      for (std::size_t j = 0; j < m; ++j) {
+        s[j] = n.x() * q[j].x() + n.y() * q[j].y() + n.z() * q[j].z();
+        lo = s[j] < lo ? s[j] : lo;
+        hi = s[j] > hi ? s[j] : hi;
+        big = std::max({big, std::abs(q[j].x()), std::abs(q[j].y()), std::abs(q[j].z())});
+      }
+      if (along)
+        for (std::size_t j = 0; j < m; ++j) guess.keep_at(q[j], s[j], tests[0], r.kept);
+      else
+        for (std::size_t j = 0; j < m; ++j) guess.keep(q[j], tests, r.kept);
     }
     r.lo = lo, r.hi = hi, r.big = big;
   } else {

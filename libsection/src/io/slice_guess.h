@@ -36,13 +36,14 @@ struct Guess {
   // are those of `groups` (made once for a loop over points: see detail::SlabTests).
   void keep(const Eigen::Vector3d& q, const std::vector<detail::SlabTests>& tests,
             std::vector<std::vector<Eigen::Vector3d>>& out) const {
-    for (const detail::SlabTests& t : tests) {
-      const double s = t.n.dot(q);
-      if (t.far_from_slabs(s)) continue;
-      for (std::size_t k = t.first_at_least(s - half_width); k < t.planes && t.offset[k] <= s + half_width;
-           ++k)
-        out[t.plane[k]].push_back(q);
-    }
+    for (const detail::SlabTests& t : tests) keep_at(q, t.n.dot(q), t, out);
+  }
+  // keep for one group's test, n . q = s known.
+  void keep_at(const Eigen::Vector3d& q, double s, const detail::SlabTests& t,
+               std::vector<std::vector<Eigen::Vector3d>>& out) const {
+    if (t.far_from_slabs(s)) return;
+    for (std::size_t k = t.first_at_least(s - half_width); k < t.planes && t.offset[k] <= s + half_width; ++k)
+      out[t.plane[k]].push_back(q);
   }
 
   // True when every point the slab test of `found` (slab width `slab`) can take was kept:
