@@ -245,6 +245,24 @@ TEST_CASE("api: compare refuses what it cannot measure", "[api]") {
   CHECK(refuses([] { checks_flagging(1, nullptr); }, "null pointer"));
   CHECK(refuses([] { check_names_text(7, nullptr); }, "null pointer"));
   CHECK(refuses([] { params_flagged(1, nullptr); }, "null pointer"));
+  // Nominal points built in memory: one at 1e300 read as 'all points are equal', a NaN
+  // section id as section -2147483648.
+  std::map<int, Frame> frames{{0, make_frame({0, 0, 0}, {0, 0, 1})}};
+  Table uv("nominal", {"section", "u", "v"});
+  for (int i = 0; i < 40; ++i) uv.add_row({0, 20 * std::cos(i * 0.157), 3 * std::sin(i * 0.157)});
+  uv.values[3 * 7 + 1] = 1e300;
+  NominalSource source;
+  source.points = &uv;
+  CHECK(refuses([&] { nominal_stream(source, frames); },
+                "nominal point 8: column 'u' is 1e+300, not a coordinate"));
+  uv.values[3 * 7 + 1] = 20;
+  uv.values[3 * 9] = not_a_number;
+  CHECK(
+      refuses([&] { nominal_stream(source, frames); }, "nominal point 10: section nan is not a section id"));
+  Table xyz("nominal", {"x", "y", "z"});
+  xyz.add_row({1, 2, std::numeric_limits<double>::infinity()});
+  source.points = &xyz;
+  CHECK(refuses([&] { nominal_stream(source, frames); }, "column 'z' is inf"));
 }
 
 TEST_CASE("api: slicing refuses clouds and meshes it would read past", "[api]") {

@@ -10,6 +10,7 @@
 #include "section/pipe/fit_spline_stream.h"
 #include "section/pipe/schema.h"
 #include "section/slice.h"
+#include "io/text.h"
 
 #include <Eigen/Geometry>
 
@@ -76,18 +77,39 @@ Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, std::v
 
 // The points of a table by section: section, u, v as they are, or x, y, z on the plane
 // they lie on.
+// Throws for a value of row r in columns `cols` that no reader passes (a table made in
+// memory): not finite or beyond +-1e15 (one such point read as 'all points equal'), or a
+// section id that is not a whole number of 0 or more (a NaN id read as -2147483648).
+void check_point_row(const Table& t, std::size_t r, std::initializer_list<long> cols, long id_col) {
+  for (const long c : cols) {
+    const double v = t.at(r, std::size_t(c));
+    if (!(std::abs(v) <= detail::max_coordinate))
+      throw Error("compare: nominal point " + std::to_string(r + 1) + ": column '" +
+                  t.columns[std::size_t(c)] + "' is " + format_number(v) +
+                  ", not a coordinate (finite, within +-1e15)");
+  }
+  if (id_col < 0) return;
+  const double id = t.at(r, std::size_t(id_col));
+  if (!(id >= 0 && id <= 2147483647.0 && id == std::floor(id)))
+    throw Error("compare: nominal point " + std::to_string(r + 1) + ": section " + format_number(id) +
+                " is not a section id (a whole number of 0 or more)");
+}
+
 Loops point_sections(const Table& t, const std::map<int, Frame>& frames, const CompareStreamOptions& o) {
   Loops loops;
   const long cs = t.find_column("section"), cu = t.find_column("u"), cv = t.find_column("v");
   const long cx = t.find_column("x"), cy = t.find_column("y"), cz = t.find_column("z");
   if (cs >= 0 && cu >= 0 && cv >= 0) {
-    for (std::size_t r = 0; r < t.rows(); ++r)
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      check_point_row(t, r, {cu, cv}, cs);
       loops[static_cast<int>(t.at(r, cs))].push_back({t.at(r, cu), t.at(r, cv)});
+    }
     return loops;
   }
   if (cx < 0 || cy < 0 || cz < 0)
     throw Error("compare: the nominal points need the columns section, u, v or x, y, z");
   for (std::size_t r = 0; r < t.rows(); ++r) {
+    check_point_row(t, r, {cx, cy, cz}, -1);
     const Eigen::Vector3d p(t.at(r, cx), t.at(r, cy), t.at(r, cz));
     for (const auto& [id, f] : frames)
       if (std::abs(f.height(p)) <= o.plane_tolerance) loops[id].push_back(f.to_plane(p));
