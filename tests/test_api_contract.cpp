@@ -13,6 +13,7 @@
 #include "section/fit_spline.h"
 #include "section/frame.h"
 #include "section/io/json.h"
+#include "section/io/params_text.h"
 #include "section/io/stream.h"
 #include "section/medial_axis.h"
 #include "section/params.h"
@@ -329,4 +330,13 @@ TEST_CASE("api: streams built in memory are refused where they would not read ba
   inches.units = "in";
   inches.find("points")->columns.clear();  // values without columns: a division by 0
   CHECK_NOTHROW(convert_to_mm(inches));
+  Stream bad_id = s;  // a NaN section id was printed as section -2147483648
+  Table& params_table = *bad_id.find("params");
+  params_table.values[params_table.columns.size()] = not_a_number;
+  CHECK(refuses([&] { format_params_text(bad_id); },
+                "table 'params' data row 2: section nan is not a section id"));
+  CHECK(
+      refuses([&] { format_json(bad_id, {&params_table}); }, "data row 2: section nan is not a section id"));
+  params_table.values[params_table.columns.size()] = 1.5;
+  CHECK(refuses([&] { format_json(bad_id, {&params_table}); }, "section 1.5 is not a section id"));
 }

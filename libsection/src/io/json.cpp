@@ -95,7 +95,7 @@ std::string format_json(const Stream& stream, const std::vector<const Table*>& t
     if (t.find_column("section") < 0) throw Error("json: table '" + t.name + "' has no 'section' column");
     section_column[k] = t.column("section");
     for (std::size_t r = 0; r < t.rows(); ++r) {
-      const int s = static_cast<int>(t.at(r, section_column[k]));
+      const int s = detail::section_id(t.at(r, section_column[k]), t.name, r);
       rows[k][s].push_back(r);
       sections.insert(s);
     }

@@ -6,6 +6,7 @@
 #include "section/edge.h"
 #include "section/error.h"
 #include "section/units.h"
+#include "io/text.h"
 
 #include <cmath>
 #include <cstdio>
@@ -54,7 +55,7 @@ RowView row_of(const Table* table, int s) {
   const long c = table->find_column("section");
   if (c < 0) return view;
   for (std::size_t r = 0; r < table->rows(); ++r)
-    if (int(table->at(r, std::size_t(c))) == s) {
+    if (table->at(r, std::size_t(c)) == s) {
       view.row = long(r);
       break;
     }
@@ -151,7 +152,8 @@ std::string format_params_text(const Stream& stream, const ParamsTextOptions& op
   std::set<int> sections;
   const long sc = params.find_column("section");
   if (sc < 0) throw Error("params: the table has no 'section' column");
-  for (std::size_t r = 0; r < params.rows(); ++r) sections.insert(int(params.at(r, std::size_t(sc))));
+  for (std::size_t r = 0; r < params.rows(); ++r)
+    sections.insert(detail::section_id(params.at(r, std::size_t(sc)), params.name, r));
   std::map<int, std::vector<std::string>> issues;
   for (const auto& i : stream.issues)
     if (i.section >= 0) {

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/text.h"
 
+#include "section/error.h"
+
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 
 namespace section::detail {
@@ -56,6 +59,14 @@ const char* text_encoding_problem(std::string_view head) {
   const bool be = head.size() >= 4 && head[0] == '\0' && head[2] == '\0' && head[1] && head[3];
   if (le || be) return "UTF-16 text (save it as UTF-8 or ASCII)";
   return "binary data in a text file";
+}
+
+int section_id(double value, const std::string& table, std::size_t row) {
+  if (value >= 0 && value <= 2147483647.0 && value == std::floor(value)) return static_cast<int>(value);
+  char number[32];
+  std::snprintf(number, sizeof number, "%g", value);
+  throw Error("pipe: table '" + table + "' data row " + std::to_string(row + 1) + ": section " + number +
+              " is not a section id (a whole number of 0 or more)");
 }
 
 }  // namespace section::detail

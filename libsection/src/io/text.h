@@ -77,6 +77,11 @@ inline std::string quoted(std::string_view t) {
 /// distances and 3x3 determinants overflow, so such a value is a corrupt file, not a part.
 constexpr double max_coordinate = 1e15;
 
+/// A section id written as a double (a whole number in [0, 2^31)) as an int; throws
+/// section::Error naming `table` and its data row (0-based `row`) for any other value (a
+/// table built in memory: a NaN id was written as section -2147483648).
+int section_id(double value, const std::string& table, std::size_t row);
+
 /// Drops a UTF-8 byte-order mark (some Windows editors write one); returns true if there was one.
 inline bool skip_bom(std::string_view& s) {
   if (s.size() >= 3 && s.compare(0, 3, "\xEF\xBB\xBF") == 0) {
