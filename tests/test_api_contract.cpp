@@ -12,6 +12,7 @@
 #include "section/extras/generate.h"
 #include "section/fit_spline.h"
 #include "section/frame.h"
+#include "section/io/csv.h"
 #include "section/io/json.h"
 #include "section/io/params_text.h"
 #include "section/io/stream.h"
@@ -312,6 +313,9 @@ TEST_CASE("api: streams built in memory are refused where they would not read ba
   Stream partial = s;
   partial.find("params")->values.pop_back();
   CHECK(refuses([&] { format_stream(partial); }, "not whole rows"));
+  CHECK(refuses([&] { format_csv(*partial.find("params")); }, "csv: refusing to write table 'params'"));
+  Table gathered = *s.find("params");
+  CHECK(refuses([&] { append_rows(gathered, *partial.find("params")); }, "not whole rows"));
   Stream noted = s;
   noted.notes.push_back("end");
   CHECK(refuses([&] { format_stream(noted); }, "would read as a '# end' line"));

@@ -82,6 +82,11 @@ void append_rows(Table& to, const Table& from) {
   } else if (to.columns != from.columns) {
     throw Error("pipe: table '" + from.name + "' has other columns than before");
   }
+  // A partial row would shift every row appended after it.
+  const std::size_t cols = from.columns.size();
+  if (cols == 0 ? !from.values.empty() : from.values.size() % cols != 0)
+    throw Error("pipe: table '" + from.name + "': its " + std::to_string(from.values.size()) +
+                " values are not whole rows of its " + std::to_string(cols) + " columns, to append");
   to.values.insert(to.values.end(), from.values.begin(), from.values.end());
 }
 

@@ -26,7 +26,9 @@ Table parse_csv(std::string_view text, const std::string& source);
 std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::string& source);
 
 /// Formats one table as a plain CSV file (header row, then the rows; no `#` lines), for
-/// tools that also write a table on its own (camber --params, smooth --report).
+/// tools that also write a table on its own (camber --params, smooth --report); a value
+/// that is not a number is written `nan`. Throws section::Error for values that are not
+/// whole rows of the columns.
 std::string format_csv(const Table& table);
 /// Planes from a CSV table with columns origin_x, origin_y, origin_z, normal_x, normal_y,
 /// normal_z (extra columns ignored). `source` names it in error messages.

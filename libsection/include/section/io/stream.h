@@ -141,7 +141,7 @@ private:
 
 /// Appends the rows of `from` to `to`, taking its name and columns when `to` has none
 /// (to gather a table over the parts of a stream). Throws section::Error when the columns
-/// differ.
+/// differ or `from` holds a partial row.
 void append_rows(Table& to, const Table& from);
 
 /// Shortest round-trip decimal text of a double.
