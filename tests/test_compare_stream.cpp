@@ -3,6 +3,7 @@
 // section and whole-blade fits), nominals from a stream and from points, verdicts over a
 // dent and a hole, sections that cannot be compared, and the tolerance file.
 #include "compare_fixtures.h"
+#include "compare_stream_fixtures.h"
 #include "section/checks.h"
 #include "section/error.h"
 #include "section/extras/generate.h"
@@ -28,16 +29,9 @@
 
 using namespace compare_test;
 namespace schema = section::schema;
+using namespace compare_stream_test;
 
 namespace {
-
-// The measured stream of a mesh: sliced at `zs`, fitted, through camber.
-section::Stream measured_stream(const section::Mesh& mesh, const std::vector<double>& zs) {
-  section::Stream s = section::to_stream(section::slice(mesh, section::planes_at({0, 0, 1}, zs)), "slice");
-  section::fit_spline_stream(s);
-  section::camber_stream(s);
-  return s;
-}
 
 // The measured stream of `mesh` at `zs`, compared with `nominal` (default options).
 section::Stream compared_with(const section::Mesh& mesh, const section::Mesh& nominal,
@@ -57,32 +51,12 @@ int compare_issues(const section::Stream& s, const std::string& text) {
   return count;
 }
 
-// True when no issue of stage compare was recorded (camber's notes on edges may be there).
-bool compared_all(const section::Stream& s) {
-  for (const auto& i : s.issues)
-    if (i.stage == "compare") return false;
-  return true;
-}
-
 // A column of a table by section (the first row of each).
 std::map<int, double> column(const section::Stream& s, const char* table, const char* name) {
   const section::Table& t = s.get(table, "compare");
   std::map<int, double> out;
   for (std::size_t r = 0; r < t.rows(); ++r)
     out.emplace(static_cast<int>(t.at(r, 0)), t.at(r, t.column(name)));
-  return out;
-}
-
-// The rows of "compared" for one item: section -> (measured, deviation, verdict).
-std::map<int, std::array<double, 3>> compared(const section::Stream& s, const std::string& item) {
-  const auto& items = section::compared_items();
-  const double code = static_cast<double>(std::find(items.begin(), items.end(), item) - items.begin());
-  const section::Table& t = schema::compared.get(s);
-  std::map<int, std::array<double, 3>> out;
-  for (std::size_t r = 0; r < t.rows(); ++r)
-    if (t.at(r, t.column("item")) == code)
-      out[static_cast<int>(t.at(r, 0))] = {t.at(r, t.column("measured")), t.at(r, t.column("deviation")),
-                                           t.at(r, t.column("verdict"))};
   return out;
 }
 
