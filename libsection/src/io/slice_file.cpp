@@ -16,7 +16,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <mutex>
 #include <numeric>
@@ -108,7 +107,8 @@ void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eig
     // restored around every kept point's append); the extent in locals, which an append
     // cannot change (r's could, for all the compiler knew).
     std::vector<detail::SlabTests> tests(guess.groups.begin(), guess.groups.end());
-    // Planes along the normal of the extent (--count): the keep test's n . q is the extent's.
+    // Planes along the normal of the extent (--count): the keep test's n . q is the extent's
+    // (to the last bits of another order of sums: the kept width's edge is no slab's).
     const bool along = tests.size() == 1 && tests[0].n == n;
     double lo = r.lo, hi = r.hi, big = r.big;
     // In blocks: the extents over a block (no append between them), then its appends.
@@ -250,8 +250,9 @@ SliceResult slice_kept(const std::string& path, const std::vector<Plane>& planes
     std::vector<std::vector<Eigen::Vector3d>>().swap(guess.kept[k]);
   });
   // A plane's near points, when its section asks: from a pass over the file for every
-  // plane not read yet, made when a section with a band first asks, or after the ordering
-  // for the planes whose sections have gaps to fill alone (order_slabs' prefetch).
+  // plane not read yet, made when a section with a band first asks (its points not kept),
+  // or after the ordering for the planes whose sections have gaps to fill (order_slabs'
+  // prefetch); a pass reads only the chunks near the planes it reads for (chunks_near).
   std::vector<std::vector<Eigen::Vector3d>> near(planes.size());
   std::vector<char> read(planes.size(), 0);
   std::mutex near_mutex;

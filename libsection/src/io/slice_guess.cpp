@@ -63,9 +63,9 @@ Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOp
   };
   // Measured on generated blades: the peek's spacing is 3-18 % above the one pass 1
   // finds, its extent within 0.025 mm of 60 mm. Planes spread over the extent move by up
-  // to the extent's error once it is known; explicit planes stay. Only the slabs are
-  // kept: the points beside a plane, which a section with a gap or a band needs, are
-  // read again for it (rare on dense scans, where the guess pays).
+  // to the extent's error once it is known; explicit planes stay. The slabs are kept, and
+  // the band's points where a band is likely (below); the points beside a plane that a
+  // section with a gap needs are read again for it.
   double shift = 0;
   if (spec.count > 0) {
     double lo, hi;
