@@ -275,6 +275,20 @@ TEST_CASE("api: slicing refuses clouds and meshes it would read past", "[api]") 
         slice(m, std::vector<Revolution>{cylinder_surface({0, -100, 22}, {1, 0, 0}, 100)});
       },
       "index out of range"));
+  Mesh far = generate_mesh(turbine_blade(), 200, 20);  // a spurious loop on the plane below it
+  far.vertices[100] = {1e300, 0, 30};
+  CHECK(refuses(
+      [&] {
+        slice(far, planes_at({0, 0, 1}, {10, 30}));
+      },
+      "mesh vertex 100 is not finite or lies beyond"));
+  far.vertices[100].x() = not_a_number;  // open polylines
+  CHECK(refuses([&] { slice(far, planes_at({0, 0, 1}, {10, 30})); }, "mesh vertex 100"));
+  CHECK(refuses(
+      [&] {
+        slice(far, std::vector<Revolution>{cylinder_surface({0, -100, 22}, {1, 0, 0}, 100)});
+      },
+      "mesh vertex 100"));
   const Cloud rows = generate_rows(turbine_blade(), RowsOptions{});
   const Sampling s = sampling_of(rows.points, {0, 0, 1});
   Cloud small;

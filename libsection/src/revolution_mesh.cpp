@@ -98,8 +98,6 @@ std::vector<std::vector<Eigen::Vector3d>> cut_mesh(const Mesh& mesh, const detai
 
 SliceResult slice(const Mesh& mesh, const std::vector<Revolution>& surfaces, const SliceOptions&) {
   detail::check_mesh(mesh);
-  for (const auto& v : mesh.vertices)
-    if (!v.allFinite()) throw Error("slice: a mesh vertex is not finite");
   const std::vector<Revolution> given = detail::with_references(surfaces, mesh.vertices);
   SliceResult result;
   result.points = mesh.vertices.size();

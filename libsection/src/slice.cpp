@@ -9,6 +9,7 @@
 #include "detail/parallel.h"
 #include "detail/slab_scan.h"
 #include "detail/slice_steps.h"
+#include "io/text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -74,6 +75,12 @@ void check_planes(const std::vector<Plane>& planes) {
 void check_mesh(const Mesh& mesh) {
   if (mesh.triangles.empty()) throw Error("slice: the mesh has no triangles");
   const std::size_t nv = mesh.vertices.size();
+  // What the mesh readers refuse (a mesh built in memory): a vertex at 1e300 cut the plane
+  // in a spurious loop, a NaN one in open polylines.
+  for (std::size_t v = 0; v < nv; ++v)
+    if (!(mesh.vertices[v].cwiseAbs().maxCoeff() <= max_coordinate))
+      throw Error("slice: mesh vertex " + std::to_string(v) +
+                  " is not finite or lies beyond +-1e15 (a coordinate no mesh file gives)");
   for (const auto& t : mesh.triangles)
     for (int k = 0; k < 3; ++k)
       if (t[k] < 0 || std::size_t(t[k]) >= nv) throw Error("slice: mesh triangle index out of range");
