@@ -297,11 +297,16 @@ std::string format_dxf(const std::vector<CadCurve>& curves, const CadOptions& op
   header.num(70, unit.dxf);
   header.tag(9, "$MEASUREMENT");
   header.num(70, unit.iges == 1 ? 0 : 1);  // 0 imperial, 1 metric
+  // The file in one allocation: grown by doubling it held up to twice the entities' text
+  // beside them (575 MB for the 95 MB of 1 000 sections with polylines).
+  out.text.reserve(header.text.size() + tables.text.size() + blocks_section.text.size() +
+                   entities.text.size() + objects.text.size() + 256);
   section(out, "HEADER", header.text);
   section(out, "CLASSES", "");
   section(out, "TABLES", tables.text);
   section(out, "BLOCKS", blocks_section.text);
   section(out, "ENTITIES", entities.text);
+  std::string().swap(entities.text);
   section(out, "OBJECTS", objects.text);
   out.tag(0, "EOF");
   return out.text;
