@@ -397,7 +397,7 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
         for (auto& p : slabs[i]) p -= local;
         s.frame.origin = s.frame.to_world(local);
       }
-      SectionNear near{near_of, band_near_of, i, local};
+      SectionNear near{near_of, band_near_of, i, local, {}, {}};
       // The band's half width when a band is to be tried, else 0. A band less than twice
       // as wide as the slab is not worth a second ordering and the later stages' time for
       // its points (the slab is dense enough then).

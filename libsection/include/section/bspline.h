@@ -105,6 +105,9 @@ std::vector<double> span_samples(const BSpline& curve, int per_span);
 /// Throws section::Error for a curve bspline.h does not accept (degree, knot counts).
 BSpline clamped(const BSpline& curve);
 
+/// The points a polyline of flatten may take by default.
+inline constexpr std::size_t max_flatten_points = 1000000;
+
 /// Parameters of a polyline through the curve that stays within `tolerance` (in the
 /// control points' units) of it: every knot span is bisected (into 2 pieces at least)
 /// until the curve at each piece's midpoint and quarter points in parameter lies within
@@ -113,6 +116,7 @@ BSpline clamped(const BSpline& curve);
 /// Throws section::Error when the tolerance is not above 0 or below the resolution of
 /// the coordinates (64 units in the last place of the largest), or when the polyline
 /// would need more than `max_points` points.
-std::vector<double> flatten(const BSpline& curve, double tolerance, std::size_t max_points = 1000000);
+std::vector<double> flatten(const BSpline& curve, double tolerance,
+                            std::size_t max_points = max_flatten_points);
 
 }  // namespace section

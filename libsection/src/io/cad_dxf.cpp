@@ -225,7 +225,7 @@ void polyline(Dxf& d, const CadCurve& c, const CadOptions& o, unsigned& next, st
   d.point(10, Eigen::Vector3d::Zero());
   d.num(70, 8 + (c.spline.closed ? 1 : 0));  // 3D, closed
   // A curve's own limit is flatten's; the file's budget binds when less is left of it.
-  const std::size_t own = 1000000, limit = std::min(own, budget);
+  const std::size_t own = max_flatten_points, limit = std::min(own, budget);
   std::vector<double> ts;
   try {
     ts = flatten(c.spline, tolerance, limit);

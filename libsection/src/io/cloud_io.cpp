@@ -120,8 +120,7 @@ public:
         scale_(options.scale),
         first_bad_(chunks_) {}
 
-  void run(const ChunkWorkFn& work, const IndexedChunkFn& merge, int threads,
-           const std::function<bool(std::size_t)>& wanted) {
+  void run(const ChunkWorkFn& work, const IndexedChunkFn& merge, int threads, const ChunkFilter& wanted) {
     wanted_ = &wanted;
     const std::size_t workers = std::min<std::size_t>(chunks_, detail::worker_count(threads));
     std::vector<std::thread> pool = detail::start_threads(workers - 1, [&] { worker(work, merge); });
@@ -199,7 +198,7 @@ private:
   std::size_t next_merge_ = 0;
   std::size_t first_bad_;     // lowest chunk that failed
   std::exception_ptr error_;  // its error
-  const std::function<bool(std::size_t)>* wanted_ = nullptr;
+  const ChunkFilter* wanted_ = nullptr;
 };
 
 }  // namespace
@@ -212,7 +211,7 @@ std::size_t read_cloud_chunks(const std::string& path, const PointChunkFn& on_ch
 
 std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work,
                                        const IndexedChunkFn& merge, const CloudReadOptions& options,
-                                       const std::function<bool(std::size_t)>& wanted) {
+                                       const ChunkFilter& wanted) {
   // Packed doubles in a regular file: pread anywhere, no conversion.
   const std::unique_ptr<ByteSource> src = open_cloud(path, options);
   const std::optional<detail::BinaryVertices> layout = detail::binary_vertices(*src, path, options);

@@ -159,11 +159,8 @@ std::vector<Plane> parse_planes(std::string_view csv, const std::string& source)
 
 std::string format_csv(const Table& table) {
   // A partial row (a table built in memory) was left out without a word.
-  const std::size_t cols = table.columns.size();
-  if (cols == 0 ? !table.values.empty() : table.values.size() % cols != 0)
-    throw Error("csv: refusing to write table '" + table.name + "': its " +
-                std::to_string(table.values.size()) + " values are not whole rows of its " +
-                std::to_string(cols) + " columns");
+  if (const std::string why = detail::partial_rows(table); !why.empty())
+    throw Error("csv: refusing to write table '" + table.name + "': " + why);
   std::string out;
   for (std::size_t c = 0; c < table.columns.size(); ++c) out += (c ? "," : "") + table.columns[c];
   out += '\n';

@@ -30,9 +30,6 @@ using detail::Guess;
 using detail::guess_planes;
 using detail::spread;
 
-// Whether a chunk of a file (by index) may hold points asked for (read_cloud_chunks_parallel).
-using ChunkFilter = std::function<bool(std::size_t)>;
-
 // read_cloud_chunks_parallel with a result per chunk: `scan(points, count, threads)` makes
 // it on a worker thread, `take(result, points, count)` receives it in file order.
 template <class Scan, class Take>

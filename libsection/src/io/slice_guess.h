@@ -50,29 +50,28 @@ struct Guess {
   // each found plane lies close enough to its guess. `largest` bounds the points'
   // coordinates (the exact slab test's tolerance).
   bool covers(const std::vector<Plane>& found, double slab, double largest) const {
+    return holds(found, 0.5 * slab, slab, largest);
+  }
+
+  // True when the points kept hold every point within `reach` of each found plane: the
+  // band's points need no read of the file then.
+  bool covers_band(const std::vector<Plane>& found, double reach, double largest) const {
+    return band && reach > 0 && holds(found, reach, reach, largest);
+  }
+
+private:
+  // Whether each found plane has its guess's normal and lies within half_width - `half` of
+  // it, less three times the tolerance of a test `width` wide on coordinates up to `largest`.
+  bool holds(const std::vector<Plane>& found, double half, double width, double largest) const {
     if (found.size() != planes.size()) return false;
-    const double tol = 1e-12 * (std::max(2 * largest, slab) + 1) * (1 + 1e-6);
-    const double need = 0.5 * slab + 3 * tol;
+    const double tol = 1e-12 * (std::max(2 * largest, width) + 1) * (1 + 1e-6);
+    const double need = half + 3 * tol;
     for (std::size_t k = 0; k < found.size(); ++k) {
       const Frame f = make_frame(found[k].origin, found[k].normal),
                   g = make_frame(planes[k].origin, planes[k].normal);
       if (!(f.n == g.n)) return false;
       const double shift = std::abs(f.n.dot(found[k].origin) - g.n.dot(planes[k].origin));
       if (!(shift + need <= half_width)) return false;
-    }
-    return true;
-  }
-
-  // True when the points kept hold every point within `reach` of each found plane (covers
-  // holds): the band's points need no read of the file then.
-  bool covers_band(const std::vector<Plane>& found, double reach, double largest) const {
-    if (!band || !(reach > 0)) return false;
-    const double tol = 1e-12 * (std::max(2 * largest, reach) + 1) * (1 + 1e-6);
-    for (std::size_t k = 0; k < found.size(); ++k) {
-      const Frame f = make_frame(found[k].origin, found[k].normal),
-                  g = make_frame(planes[k].origin, planes[k].normal);
-      const double shift = std::abs(f.n.dot(found[k].origin) - g.n.dot(planes[k].origin));
-      if (!(shift + reach + 3 * tol <= half_width)) return false;
     }
     return true;
   }

@@ -83,10 +83,8 @@ void append_rows(Table& to, const Table& from) {
     throw Error("pipe: table '" + from.name + "' has other columns than before");
   }
   // A partial row would shift every row appended after it.
-  const std::size_t cols = from.columns.size();
-  if (cols == 0 ? !from.values.empty() : from.values.size() % cols != 0)
-    throw Error("pipe: table '" + from.name + "': its " + std::to_string(from.values.size()) +
-                " values are not whole rows of its " + std::to_string(cols) + " columns, to append");
+  if (const std::string why = detail::partial_rows(from); !why.empty())
+    throw Error("pipe: table '" + from.name + "': " + why + ", to append");
   to.values.insert(to.values.end(), from.values.begin(), from.values.end());
 }
 
@@ -114,6 +112,13 @@ Error truncated_parts(const std::string& source) {
   return Error("pipe: " + source +
                ": the stream is split into parts but lacks its closing '# end' line (truncated "
                "stream, or the tool that wrote it failed)");
+}
+
+std::string partial_rows(const Table& t) {
+  const std::size_t cols = t.columns.size();
+  if (cols == 0 ? t.values.empty() : t.values.size() % cols == 0) return {};
+  return "its " + std::to_string(t.values.size()) + " values are not whole rows of its " +
+         std::to_string(cols) + " columns";
 }
 
 std::string one_line(std::string s) {

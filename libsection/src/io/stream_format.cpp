@@ -129,9 +129,8 @@ void format_table(const Table& t, Pieces& pieces) {
   *out += '\n';
   const std::size_t cols = t.columns.size();
   // A partial row was written as it was, and the stream did not read back.
-  if (cols == 0 ? !t.values.empty() : t.values.size() % cols != 0)
-    throw Error("pipe: refusing to write table '" + t.name + "': its " + std::to_string(t.values.size()) +
-                " values are not whole rows of its " + std::to_string(cols) + " columns");
+  if (const std::string why = partial_rows(t); !why.empty())
+    throw Error("pipe: refusing to write table '" + t.name + "': " + why);
   if (cols == 0) return;
   if (unchanged_since_read(t)) {
     const std::string_view rows = t.source->rows;

@@ -66,6 +66,10 @@ inline std::size_t count_lines(std::string_view s) {
 /// `s` with its line ends made spaces, for a `#` line.
 std::string one_line(std::string s);
 
+/// "its N values are not whole rows of its C columns" when `t`'s values end in a partial
+/// row (a table built in memory), else empty.
+std::string partial_rows(const Table& t);
+
 /// A part of a stream split into parts is parsed alone: no version line, its lines numbered
 /// from `first_line`.
 struct PartText {

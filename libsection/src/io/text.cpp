@@ -4,7 +4,6 @@
 #include "section/error.h"
 
 #include <cctype>
-#include <cmath>
 #include <cstdio>
 
 namespace section::detail {
@@ -62,7 +61,7 @@ const char* text_encoding_problem(std::string_view head) {
 }
 
 int section_id(double value, const std::string& table, std::size_t row) {
-  if (value >= 0 && value <= 2147483647.0 && value == std::floor(value)) return static_cast<int>(value);
+  if (is_section_id(value)) return static_cast<int>(value);
   char number[32];
   std::snprintf(number, sizeof number, "%g", value);
   throw Error("pipe: table '" + table + "' data row " + std::to_string(row + 1) + ": section " + number +

@@ -2,6 +2,7 @@
 #pragma once
 // Number and token parsing shared by the readers and the stream parser (no locale, no streams).
 #include <charconv>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -76,6 +77,11 @@ inline std::string quoted(std::string_view t) {
 /// Largest coordinate magnitude the readers accept (in the file's units): beyond it squared
 /// distances and 3x3 determinants overflow, so such a value is a corrupt file, not a part.
 constexpr double max_coordinate = 1e15;
+
+/// True for a section id written as a double: a whole number in [0, 2^31).
+inline bool is_section_id(double value) {
+  return value >= 0 && value <= 2147483647.0 && value == std::floor(value);
+}
 
 /// A section id written as a double (a whole number in [0, 2^31)) as an int; throws
 /// section::Error naming `table` and its data row (0-based `row`) for any other value (a

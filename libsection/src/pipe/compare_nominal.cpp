@@ -90,7 +90,7 @@ void check_point_row(const Table& t, std::size_t r, std::initializer_list<long> 
   }
   if (id_col < 0) return;
   const double id = t.at(r, std::size_t(id_col));
-  if (!(id >= 0 && id <= 2147483647.0 && id == std::floor(id)))
+  if (!detail::is_section_id(id))
     throw Error("compare: nominal point " + std::to_string(r + 1) + ": section " + format_number(id) +
                 " is not a section id (a whole number of 0 or more)");
 }

@@ -57,6 +57,9 @@ using IndexedChunkFn =
 using ChunkWorkFn =
     std::function<void(std::size_t index, const Eigen::Vector3d* points, std::size_t count, int threads)>;
 
+/// Whether chunk `index` of a cloud file is wanted (read_cloud_chunks_parallel).
+using ChunkFilter = std::function<bool(std::size_t index)>;
+
 /// Reads the points of `path` in chunks of options.chunk_points, several chunks at a time
 /// when the file allows it (a binary PLY file of packed little-endian doubles, as
 /// write_cloud writes): `work` runs on worker threads, each on a whole chunk, and `merge`
@@ -69,7 +72,7 @@ using ChunkWorkFn =
 /// @return the number of points read
 std::size_t read_cloud_chunks_parallel(const std::string& path, const ChunkWorkFn& work,
                                        const IndexedChunkFn& merge, const CloudReadOptions& options = {},
-                                       const std::function<bool(std::size_t index)>& wanted = {});
+                                       const ChunkFilter& wanted = {});
 
 /// A first look at a cloud file (peek_cloud).
 struct CloudPeek {
