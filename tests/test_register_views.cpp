@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <vector>
 
 using namespace section;
@@ -99,5 +100,38 @@ TEST_CASE("register_views: views that do not overlap, and bad input, are refused
     const RegisterResult r = register_views({views[0]});
     REQUIRE(r.views.size() == 1);
     CHECK(r.views[0].transform.isApprox(Eigen::Isometry3d::Identity()));
+  }
+}
+
+TEST_CASE("register_views: a reach that is far from the views' misalignment is refused", "[register]") {
+  // A reach of 1.5 mm for views 0.015 mm apart pairs points of the compressor blade's view
+  // with its far side: the motion found slid the view 1.2 mm along the surface, with no
+  // word (2-10 mm, the same on both blades: 1.5-6.8 mm). The default reach (0.187 mm, 3
+  // spacings) for views 0.375 mm apart moved the view 0.08 mm of the way. On the thicker
+  // turbine blade a reach of 1.5 mm, and a reach of 1 mm for views 0.375 mm apart, still
+  // register the view, to the views' noise.
+  for (const auto& [turbine, shift, reach, refused] :
+       {std::tuple<bool, double, double, bool>{false, 0.012, 1.5, true},
+        std::tuple<bool, double, double, bool>{false, 0.3, 0, true},
+        std::tuple<bool, double, double, bool>{true, 0.012, 1.5, false},
+        std::tuple<bool, double, double, bool>{true, 0.3, 1, false}}) {
+    std::vector<Cloud> views = two_views(turbine ? turbine_blade() : compressor_blade(), turbine ? 40 : 41);
+    const Cloud original = views[1];
+    const Eigen::Vector3d move(shift, -0.75 * shift, 0);
+    for (auto& p : views[1].points) p += move;
+    RegisterOptions o;
+    o.reach = reach;
+    INFO((turbine ? "turbine" : "compressor") << ", shift " << shift << " mm, reach " << reach << " mm");
+    if (refused) {
+      CHECK_THROWS_WITH(register_views(views, o),
+                        Catch::Contains("view 1 is left off the reference surface by the motion found") &&
+                            Catch::Contains("give a reach a little above the misalignment"));
+    } else {
+      const ViewRegistration v = register_views(views, o).views[1];
+      Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
+      moved.translation() = move;
+      CHECK(largest_in_plane_error(original, v.transform * moved) < 0.05);
+      CHECK(v.rms_after < 0.01);
+    }
   }
 }

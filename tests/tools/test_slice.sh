@@ -99,6 +99,11 @@ check "registration moved the view ~15 um" -- awk -F'[ =,]' '/^# register/ { d =
 awk '{ printf "%.9f %s %s\n", $1 + 5, $2, $3 }' "$TMP/view1.xyz" > "$TMP/far.xyz"
 expect 1 "a view 5 mm off" -- "$BIN/slice" "$TMP/view0.ply" --view "$TMP/far.xyz" --at 30
 check "far view named" -- grep -q "far.xyz" "$TMP/err"
+# A reach far wider than the misregistration pairs points with the blade's other side: the
+# motion found slid the view 1.6-1.9 mm along the surface, and was taken (exit 0).
+expect 1 "a reach that slides the view along the surface" -- "$BIN/slice" "$TMP/view0.ply" --view "$TMP/view1.xyz" --at 30 --view-reach 10
+check "slid view named and refused" -- grep -q "view 1 is left off the reference surface.*give a reach a little above the misalignment.*view1.xyz" "$TMP/err"
+check "nothing written for the slid view" -- test ! -s "$TMP/out"
 expect 1 "a missing view" -- "$BIN/slice" "$TMP/view0.ply" --view "$TMP/none.ply" --at 30
 check "missing view named" -- grep -q "none.ply" "$TMP/err"
 

@@ -44,8 +44,9 @@ struct RegisterResult {
 };
 
 /// Registers views[1..] onto views[0]. Throws section::Error naming the view when it
-/// shares too little surface with the reference (fewer than min_pairs pairs) or the
-/// problem is degenerate.
+/// shares too little surface with the reference (fewer than min_pairs pairs), when the
+/// motion found leaves it off the reference surface at 3 spacings (a reach far wider than
+/// the views' misalignment: docs/REGISTRATION.md, "Check"), or the problem is degenerate.
 RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOptions& options = {});
 
 /// One line for the stream's notes: `register view=NAME translation=x,y,z rotation=DEG
