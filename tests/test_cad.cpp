@@ -1,18 +1,24 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/bspline.h"
 #include "section/io/cad.h"
+#include "section/error.h"
+#include "section/io/file.h"
 #include "section/io/json.h"
 #include "thrown.h"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <random>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
@@ -208,6 +214,41 @@ TEST_CASE("format_dxf: a tolerance that is not a number, or polylines too long i
   CHECK(section::CadOptions{}.max_polyline_vertices == 2000000);
   many.pop_back();
   CHECK(section::format_dxf(many, o).find("SEQEND") != std::string::npos);  // within the limit
+}
+
+TEST_CASE("write_dxf: format_dxf's file, written a curve at a time; a curve refused leaves no file",
+          "[cad]") {
+  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                           "/libsection_write_dxf_test_" + std::to_string(::getpid()) + ".dxf";
+  std::vector<section::CadCurve> curves = {tilted_curve(0), tilted_curve(3), tilted_curve(5)};
+  section::CadOptions o;
+  o.polyline_tolerance = 0.001;
+  section::write_dxf(path, curves, o);
+  CHECK(section::read_file(path) == section::format_dxf(curves, o));  // $HANDSEED counted ahead
+  o.polyline_tolerance = 0;
+  section::write_dxf(path, curves, o);
+  CHECK(section::read_file(path) == section::format_dxf(curves, o));
+  std::remove(path.c_str());
+  // The last curve's number that is not finite, or its polyline past the file's limit, is
+  // refused before the first byte (the curves before it were written by then), named by
+  // the input when given.
+  o.source = "blade.csv";
+  curves.back().spline.control[2].y() = std::nan("");
+  CHECK(thrown([&] { section::write_dxf(path, curves, o); }) ==
+        "blade.csv: bspline: control point 2 is not finite");
+  CHECK_THROWS_AS(section::read_file(path), section::Error);
+  curves.back() = tilted_curve(5);
+  curves.back().frame.n.z() = std::nan("");  // written as the SPLINE's extrusion only
+  CHECK(thrown([&] { section::write_dxf(path, curves, o); }) ==
+        "blade.csv: cad: a curve has a number that is not finite (nan)");
+  CHECK_THROWS_AS(section::read_file(path), section::Error);
+  curves.back() = tilted_curve(5);
+  o.polyline_tolerance = 1e-6;
+  o.max_polyline_vertices = 2 * section::flatten(curves[0].spline, 1e-6).size() + 10;
+  CHECK(thrown([&] {
+          section::write_dxf(path, curves, o);
+        }).find("blade.csv: dxf: the polyline of section 5") == 0);
+  CHECK_THROWS_AS(section::read_file(path), section::Error);
 }
 
 TEST_CASE("format_iges: 80-column records whose entity 126 reads back as the curve", "[cad]") {

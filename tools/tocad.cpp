@@ -41,15 +41,16 @@ void warn_missing(const section::Stream& stream, const std::vector<section::CadC
                 << i.message << ")\n";
 }
 
-std::string cad_file(const TocadArgs& a, const section::Stream& stream) {
-  const std::vector<section::CadCurve> curves = section::cad_curves(stream, !a.profiles_only);
+// The stream's curves and the options they are written with; throws when it has none.
+std::vector<section::CadCurve> cad_curves(const TocadArgs& a, const section::Stream& stream,
+                                          section::CadOptions& o) {
+  std::vector<section::CadCurve> curves = section::cad_curves(stream, !a.profiles_only);
   warn_missing(stream, curves);
   if (curves.empty()) throw section::Error("the stream has no fitted curve (every section failed?)");
-  section::CadOptions o;
   o.polyline_tolerance = a.polyline_tolerance;
   o.source = section::tool::input_name(a.common.input);
   o.timestamp = timestamp();
-  return a.format == "dxf" ? section::format_dxf(curves, o) : section::format_iges(curves, o);
+  return curves;
 }
 
 std::string json_file(const TocadArgs& a, const section::Stream& stream) {
@@ -64,12 +65,27 @@ std::string json_file(const TocadArgs& a, const section::Stream& stream) {
 
 void run_tocad(const TocadArgs& a) {
   std::string text;
+  section::CadOptions o;
+  std::vector<section::CadCurve> curves;
   section::tool::with_input(a.common.input, [&] {
-    section::Stream stream = section::read_stream(a.common.input);
-    section::convert_to_mm(stream);
-    text = a.format == "json" ? json_file(a, stream) : cad_file(a, stream);
+    const section::Stream stream = [&] {
+      section::Stream s = section::read_stream(a.common.input);
+      section::convert_to_mm(s);
+      return s;
+    }();
+    if (a.format == "json") {
+      text = json_file(a, stream);
+    } else {
+      curves = cad_curves(a, stream, o);
+      if (a.format == "iges") text = section::format_iges(curves, o);
+    }
   });
-  section::write_file(a.common.output, text);
+  // DXF: written a curve at a time (its text is never whole), after every check of the
+  // curves (their errors name the input: CadOptions::source).
+  if (a.format == "dxf")
+    section::write_dxf(a.common.output, curves, o);
+  else
+    section::write_file(a.common.output, text);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 // SPLINE (and a 3D POLYLINE) per curve.
 #include "section/io/cad.h"
 
+#include "io/byte_source.h"
 #include "io/cad_common.h"
 #include "section/error.h"
 #include "section/io/stream.h"
@@ -198,8 +199,7 @@ void blocks(Dxf& d) {
   }
 }
 
-void spline(Dxf& d, const CadCurve& c, unsigned h) {
-  const detail::CadSpline s = detail::cad_spline(c);
+void spline(Dxf& d, const CadCurve& c, const detail::CadSpline& s, unsigned h) {
   d.entity("SPLINE", h, handle::model_record, layer_name(c));
   d.tag(100, "AcDbSpline");
   d.point(210, c.frame.n);
@@ -214,21 +214,13 @@ void spline(Dxf& d, const CadCurve& c, unsigned h) {
   for (const auto& p : s.control) d.point(10, p);
 }
 
-// `budget`: the vertices the file may still take.
-void polyline(Dxf& d, const CadCurve& c, const CadOptions& o, unsigned& next, std::size_t& budget) {
-  const double tolerance = o.polyline_tolerance;
-  const std::string layer = layer_name(c);
-  const unsigned owner = next++;
-  d.entity("POLYLINE", owner, handle::model_record, layer);
-  d.tag(100, "AcDb3dPolyline");
-  d.num(66, 1);
-  d.point(10, Eigen::Vector3d::Zero());
-  d.num(70, 8 + (c.spline.closed ? 1 : 0));  // 3D, closed
+// The parameters of c's polyline vertices; `budget`: the vertices the file may still take.
+std::vector<double> polyline_parameters(const CadCurve& c, const CadOptions& o, std::size_t& budget) {
   // A curve's own limit is flatten's; the file's budget binds when less is left of it.
   const std::size_t own = max_flatten_points, limit = std::min(own, budget);
   std::vector<double> ts;
   try {
-    ts = flatten(c.spline, tolerance, limit);
+    ts = flatten(c.spline, o.polyline_tolerance, limit);
   } catch (const Error& e) {
     std::string why = e.what();
     if (limit < own)
@@ -238,6 +230,17 @@ void polyline(Dxf& d, const CadCurve& c, const CadOptions& o, unsigned& next, st
                 std::to_string(c.loop) + ": " + why);
   }
   budget -= ts.size();
+  return ts;
+}
+
+void polyline(Dxf& d, const CadCurve& c, const std::vector<double>& ts, unsigned& next) {
+  const std::string layer = layer_name(c);
+  const unsigned owner = next++;
+  d.entity("POLYLINE", owner, handle::model_record, layer);
+  d.tag(100, "AcDb3dPolyline");
+  d.num(66, 1);
+  d.point(10, Eigen::Vector3d::Zero());
+  d.num(70, 8 + (c.spline.closed ? 1 : 0));  // 3D, closed
   for (double t : ts) {
     d.entity("VERTEX", next++, owner, layer);
     d.tag(100, "AcDbVertex");
@@ -255,26 +258,65 @@ void section(Dxf& out, const char* name, const std::string& body) {
   out.tag(0, "ENDSEC");
 }
 
-}  // namespace
+void finite_or_refuse(double x) {
+  if (!std::isfinite(x)) detail::cad_real(x);  // (its message)
+}
 
-std::string format_dxf(const std::vector<CadCurve>& curves, const CadOptions& options) {
-  const detail::CadUnit& unit = detail::cad_unit(options.units);
+// What the file needs before its first byte: every curve's clamped form and polyline,
+// checked, so that a curve the file cannot hold is refused before anything is written.
+struct Prepared {
+  const detail::CadUnit* unit = nullptr;
+  std::vector<detail::CadSpline> splines;
+  std::vector<std::vector<double>> polylines;  // parameters of each curve's vertices
+};
+
+Prepared prepare_curves(const std::vector<CadCurve>& curves, const CadOptions& options) {
+  Prepared p;
+  p.unit = &detail::cad_unit(options.units);
   if (!(options.polyline_tolerance >= 0) || !std::isfinite(options.polyline_tolerance))
     throw Error("dxf: the polyline tolerance must be 0 (none) or a length above 0, got " +
                 format_number(options.polyline_tolerance));
   std::size_t budget = options.max_polyline_vertices;
+  for (const auto& c : curves) {
+    detail::CadSpline s = detail::cad_spline(c);
+    for (double k : s.knots) finite_or_refuse(k);
+    for (const auto& q : s.control)
+      for (int i = 0; i < 3; ++i) finite_or_refuse(q[i]);
+    for (int i = 0; i < 3; ++i) finite_or_refuse(c.frame.n[i]);
+    p.splines.push_back(std::move(s));
+    p.polylines.push_back(options.polyline_tolerance > 0 ? polyline_parameters(c, options, budget)
+                                                         : std::vector<double>{});
+  }
+  return p;
+}
+
+// prepare_curves, its errors naming options.source (the input) when they do not already.
+Prepared prepare(const std::vector<CadCurve>& curves, const CadOptions& options) {
+  try {
+    return prepare_curves(curves, options);
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (options.source.empty() || what.find(options.source) != std::string::npos) throw;
+    throw Error(options.source + ": " + what);
+  }
+}
+
+// The file, piece by piece to `put`: the header (whose $HANDSEED follows the last handle),
+// the tables and blocks, then the entities a curve at a time, then the objects.
+template <class Put>
+void emit(const std::vector<CadCurve>& curves, const CadOptions& options, const Prepared& p, Put&& put) {
+  const bool polylines = options.polyline_tolerance > 0;
   unsigned next = handle::first_free;
   std::set<std::string> names;
   for (const auto& c : curves) names.insert(layer_name(c));
-  Dxf tables, entities, objects, blocks_section;
+  Dxf tables, blocks_section, objects;
   vport_and_ltypes(tables);
   layers(tables, names, next);
   other_tables(tables);
   blocks(blocks_section);
-  for (const auto& c : curves) {
-    spline(entities, c, next++);
-    if (options.polyline_tolerance > 0) polyline(entities, c, options, next, budget);
-  }
+  unsigned seed = next;
+  for (std::size_t k = 0; k < curves.size(); ++k)
+    seed += 1 + (polylines ? 2 + static_cast<unsigned>(p.polylines[k].size()) : 0);
   objects.tag(0, "DICTIONARY");
   objects.tag(5, hex(handle::root_dictionary));
   objects.tag(330, "0");
@@ -288,28 +330,61 @@ std::string format_dxf(const std::vector<CadCurve>& curves, const CadOptions& op
   objects.tag(100, "AcDbDictionary");
   objects.num(281, 1);
 
-  Dxf header, out;
+  Dxf header, head;
   header.tag(9, "$ACADVER");
   header.tag(1, "AC1015");
   header.tag(9, "$HANDSEED");
-  header.tag(5, hex(next));
+  header.tag(5, hex(seed));
   header.tag(9, "$INSUNITS");
-  header.num(70, unit.dxf);
+  header.num(70, p.unit->dxf);
   header.tag(9, "$MEASUREMENT");
-  header.num(70, unit.iges == 1 ? 0 : 1);  // 0 imperial, 1 metric
-  // The file in one allocation: grown by doubling it held up to twice the entities' text
-  // beside them (575 MB for the 95 MB of 1 000 sections with polylines).
-  out.text.reserve(header.text.size() + tables.text.size() + blocks_section.text.size() +
-                   entities.text.size() + objects.text.size() + 256);
-  section(out, "HEADER", header.text);
-  section(out, "CLASSES", "");
-  section(out, "TABLES", tables.text);
-  section(out, "BLOCKS", blocks_section.text);
-  section(out, "ENTITIES", entities.text);
-  std::string().swap(entities.text);
-  section(out, "OBJECTS", objects.text);
-  out.tag(0, "EOF");
-  return out.text;
+  header.num(70, p.unit->iges == 1 ? 0 : 1);  // 0 imperial, 1 metric
+  section(head, "HEADER", header.text);
+  section(head, "CLASSES", "");
+  section(head, "TABLES", tables.text);
+  section(head, "BLOCKS", blocks_section.text);
+  head.tag(0, "SECTION");
+  head.tag(2, "ENTITIES");
+  put(std::move(head.text));
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    Dxf d;
+    spline(d, curves[k], p.splines[k], next++);
+    if (polylines) polyline(d, curves[k], p.polylines[k], next);
+    put(std::move(d.text));
+  }
+  Dxf tail;
+  tail.tag(0, "ENDSEC");
+  section(tail, "OBJECTS", objects.text);
+  tail.tag(0, "EOF");
+  put(std::move(tail.text));
+}
+
+}  // namespace
+
+std::string format_dxf(const std::vector<CadCurve>& curves, const CadOptions& options) {
+  const Prepared p = prepare(curves, options);
+  // The pieces joined in one allocation: grown by doubling the text held up to twice the
+  // entities' beside them (575 MB for the 95 MB of 1 000 sections with polylines).
+  std::vector<std::string> pieces;
+  std::size_t size = 0;
+  emit(curves, options, p, [&](std::string&& piece) {
+    size += piece.size();
+    pieces.push_back(std::move(piece));
+  });
+  std::string text;
+  text.reserve(size);
+  for (auto& piece : pieces) {
+    text += piece;
+    std::string().swap(piece);
+  }
+  return text;
+}
+
+void write_dxf(const std::string& path, const std::vector<CadCurve>& curves, const CadOptions& options) {
+  const Prepared p = prepare(curves, options);
+  detail::ByteSink out(path, "");
+  emit(curves, options, p, [&](std::string&& piece) { out.write(piece); });
+  out.close();
 }
 
 }  // namespace section

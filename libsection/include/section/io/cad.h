@@ -29,7 +29,7 @@ struct CadOptions {
   /// DXF: the polylines' vertices in all, at most (about 130 bytes each): a tolerance far below
   /// the curves' size on many sections grew the text without bound
   std::size_t max_polyline_vertices = 2000000;
-  std::string source;                         ///< the input's name, written into the file's header
+  std::string source;  ///< the input's name: in the IGES file's header, and leading the DXF writers' errors
   std::string timestamp = "19700101.000000";  ///< IGES: date and time of the file, YYYYMMDD.HHNNSS (UTC)
 };
 
@@ -39,8 +39,16 @@ struct CadOptions {
 /// (`section_S_loop_L` for loops other than 0), followed by a closed 3D POLYLINE when
 /// options.polyline_tolerance > 0. Throws section::Error for an unknown unit, a
 /// non-finite number, a polyline tolerance that is not 0 or above, or polylines that would
-/// need more than options.max_polyline_vertices vertices.
+/// need more than options.max_polyline_vertices vertices, the message led by options.source
+/// when that is given.
 std::string format_dxf(const std::vector<CadCurve>& curves, const CadOptions& options = {});
+
+/// format_dxf's file written to `path` ("-" = standard output) as it is made, a curve at a
+/// time: its text is never held whole (1 000 sections with polylines, 95 MB of DXF).
+/// Everything format_dxf refuses is refused before the first byte; a file is written under
+/// a temporary name in its directory and renamed when whole, so that a failure leaves none.
+/// Throws section::Error as format_dxf, and when the output cannot be written.
+void write_dxf(const std::string& path, const std::vector<CadCurve>& curves, const CadOptions& options = {});
 
 /// The curves as an IGES 5.3 file (fixed 80-column ASCII): each curve one entity 126
 /// (rational B-spline curve, form 0) with the clamped form's knots and 3D control points,
