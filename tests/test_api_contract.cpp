@@ -164,6 +164,24 @@ TEST_CASE("api: camber options out of range are refused by name", "[api]") {
   CHECK_NOTHROW(camber_line(blade().profile, edges));
 }
 
+TEST_CASE("api: check_section flags a chord that is not its edge points' distance", "[api]") {
+  // A params row edited (or made by other code) is checked against the profile: a chord 20 %
+  // long, or not a number, passed unflagged; camber's own is its edge points' distance.
+  const SectionParams own = section_params(blade().profile, blade().camber);
+  const auto chord_finding = [&](const SectionParams& p) {
+    const SectionCheck c = check_section(blade().profile, blade().camber, p);
+    for (const Finding& f : c.findings)
+      if (f.check == Check::chord) return f.value;
+    return -1.0;
+  };
+  CHECK(chord_finding(own) == -1.0);
+  SectionParams edited = own;
+  edited.chord *= 1.2;
+  CHECK(chord_finding(edited) == Approx(0.2 * own.chord).epsilon(1e-9));
+  edited.chord = not_a_number;
+  CHECK(std::isnan(chord_finding(edited)));
+}
+
 TEST_CASE("api: stations at the edge points have no width; other options are checked", "[api]") {
   // [0, 1] is documented; a station at 1 threw "the camber normal misses the profile".
   const auto st = thickness_stations(blade().profile, blade().camber, {0.0, 1.0});

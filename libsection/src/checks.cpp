@@ -244,12 +244,18 @@ struct Checker {
   }
 
   // The chord: its edge points at the ends of the profile (a point up a flank makes it
-  // short), and the caliper chord the profile's extent along its line.
+  // short), the chord stated their distance (a params row edited, or made by other code,
+  // is not this profile's), and the caliper chord the profile's extent along its line.
   void chord() {
     double gap_le = 0, gap_te = 0, limit_le = 0, limit_te = 0;
     edge_end(camber.le, -camber.le_tangent, gap_le, limit_le);
     edge_end(camber.te, camber.te_tangent, gap_te, limit_te);
-    if (gap_le - limit_le > gap_te - limit_te) {
+    const double stated = std::abs(params.chord - (params.te_point - params.le_point).norm());
+    // The largest excess over its limit, if any (a chord that is not a number: flagged).
+    const double excess_le = gap_le - limit_le, excess_te = gap_te - limit_te;
+    if (!(stated <= tol) && (std::isnan(stated) || stated - tol >= std::max(excess_le, excess_te))) {
+      fail(Check::chord, stated, tol);
+    } else if (excess_le > excess_te) {
       if (gap_le > limit_le) fail(Check::chord, gap_le, limit_le);
     } else if (gap_te > limit_te) {
       fail(Check::chord, gap_te, limit_te);

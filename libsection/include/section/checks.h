@@ -169,7 +169,9 @@ struct SectionCheck {
 ///   the edge), limit twice that limit (flagged below a 60 deg wedge);
 /// - chord: the profile's extent along the chord line minus the chord, limit
 ///   sum of R (1 - cos a) over both edges (a: the end tangent against the chord line) +
-///   the distance limit; also flagged when negative beyond that limit;
+///   the distance limit; also flagged when negative beyond that limit, and when the chord
+///   differs from its edge points' distance by more than the distance limit (a params row
+///   edited or made elsewhere; NaN);
 /// - caliper: |caliper chord - the profile's extent along the caliper line|, the distance limit;
 /// - angles: |end tangent - the end direction extrapolated from the camber line's two
 ///   chords of tangent_length x camber length from the edge|, limit max(angle_floor, the
