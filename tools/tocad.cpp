@@ -42,8 +42,8 @@ void warn_missing(const section::Stream& stream, const std::vector<section::CadC
 }
 
 // The stream's curves and the options they are written with; throws when it has none.
-std::vector<section::CadCurve> cad_curves(const TocadArgs& a, const section::Stream& stream,
-                                          section::CadOptions& o) {
+std::vector<section::CadCurve> curves_of(const TocadArgs& a, const section::Stream& stream,
+                                         section::CadOptions& o) {
   std::vector<section::CadCurve> curves = section::cad_curves(stream, !a.profiles_only);
   warn_missing(stream, curves);
   if (curves.empty()) throw section::Error("the stream has no fitted curve (every section failed?)");
@@ -68,15 +68,12 @@ void run_tocad(const TocadArgs& a) {
   section::CadOptions o;
   std::vector<section::CadCurve> curves;
   section::tool::with_input(a.common.input, [&] {
-    const section::Stream stream = [&] {
-      section::Stream s = section::read_stream(a.common.input);
-      section::convert_to_mm(s);
-      return s;
-    }();
+    section::Stream stream = section::read_stream(a.common.input);
+    section::convert_to_mm(stream);
     if (a.format == "json") {
       text = json_file(a, stream);
     } else {
-      curves = cad_curves(a, stream, o);
+      curves = curves_of(a, stream, o);
       if (a.format == "iges") text = section::format_iges(curves, o);
     }
   });

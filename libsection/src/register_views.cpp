@@ -245,6 +245,11 @@ Eigen::Isometry3d icp_step(const Pairs& pairs, double weak, const std::string& w
   return step;
 }
 
+// The angle a motion turns by, in degrees.
+double rotation_degrees(const Eigen::Isometry3d& T) {
+  return Eigen::AngleAxisd(T.linear()).angle() * 180 / 3.14159265358979323846;
+}
+
 // The view moved by T must lie on the reference surface at the points' own scale (3
 // spacings): its pairs there within 4 times the surface's own noise (the residuals of the
 // reference points paired, 0.02 spacings at least) or 0.3 spacings, rms. A registered view
@@ -271,9 +276,9 @@ void check_on_surface(Reference& ref, const std::vector<Eigen::Vector3d>& moving
   const double noise = std::max(n > 0 ? std::sqrt(ss / static_cast<double>(n)) : 0.0, 0.02 * spacing);
   const double off = rms(on.r);
   if (on.r.size() >= o.min_pairs && off <= std::max(4 * noise, 0.3 * spacing)) return;
-  const double degrees = Eigen::AngleAxisd(T.linear()).angle() * 180 / 3.14159265358979323846;
   const std::string moved_by = " is left off the reference surface by the motion found (" +
-                               format_length(T.translation().norm()) + ", " + format_angle(degrees) + "): ";
+                               format_length(T.translation().norm()) + ", " +
+                               format_angle(rotation_degrees(T)) + "): ";
   const std::string lie = on.r.size() < o.min_pairs
                               ? "only " + std::to_string(on.r.size()) + " of its points lie within " +
                                     format_length(tight) + " (3 spacings) of it"
@@ -346,7 +351,7 @@ RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOpt
 
 std::string describe(const ViewRegistration& r, const std::string& name) {
   const Eigen::Vector3d t = r.transform.translation();
-  const double degrees = Eigen::AngleAxisd(r.transform.linear()).angle() * 180 / 3.14159265358979323846;
+  const double degrees = rotation_degrees(r.transform);
   char buf[512];
   std::snprintf(
       buf, sizeof buf,

@@ -75,8 +75,6 @@ Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, std::v
   return loops;
 }
 
-// The points of a table by section: section, u, v as they are, or x, y, z on the plane
-// they lie on.
 // Throws for a value of row r in columns `cols` that no reader passes (a table made in
 // memory): not finite or beyond +-1e15 (one such point read as 'all points equal'), or a
 // section id that is not a whole number of 0 or more (a NaN id read as -2147483648).
@@ -95,6 +93,8 @@ void check_point_row(const Table& t, std::size_t r, std::initializer_list<long> 
                 " is not a section id (a whole number of 0 or more)");
 }
 
+// The points of a table by section: section, u, v as they are, or x, y, z on the plane
+// they lie on.
 Loops point_sections(const Table& t, const std::map<int, Frame>& frames, const CompareStreamOptions& o) {
   Loops loops;
   const long cs = t.find_column("section"), cu = t.find_column("u"), cv = t.find_column("v");
