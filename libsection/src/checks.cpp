@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/checks.h"
 
+#include "detail/flanks.h"
 #include "detail/sampled_profile.h"
 #include "detail/section_checks.h"
 #include "section/error.h"
@@ -206,12 +207,24 @@ struct Checker {
   void edge_point(const Edge& e, Check c, Check vertex) {
     const double d = foot(pr, e.point).distance;
     const double limit = options.noise_factor * options.noise + options.floor * pr.scale;
-    if (d > limit) fail(c, d, limit);
-    if (!e.vertex) return;
-    // A sharp edge's flanks meet at a wedge of 2a: a shift of the profile by `limit` moves
-    // the vertex by limit / sin(a) along the edge (a thin wedge: far).
+    if (!e.vertex) {
+      if (d > limit) fail(c, d, limit);
+      return;
+    }
+    // A sharp edge's vertex is where its flanks meet, off the fitted curve's rounding of
+    // the corner. Its flanks meet at a wedge of 2a: a shift of the profile by `limit` moves
+    // the vertex by limit / sin(a) along the edge (a thin wedge: far); and the flanks taken
+    // farther out (2-6 % of the camber length, beyond camber's 1-4 % of the profile's
+    // size) must meet where these did.
     const double sine = wedge_sine(e.point, options.vertex_reach * camber.length);
-    if (sine > 0 && limit / sine > 2 * limit) fail(vertex, limit / sine, 2 * limit);
+    double off = sine > 0 ? limit / sine : 0;
+    const detail::FlankVertex farther =
+        detail::flank_meeting(pr, e.point, options.vertex_reach * camber.length,
+                              3 * options.vertex_reach * camber.length, options.noise);
+    // (Counted where its lines' and parabolas' meetings agree to better than half that.)
+    const double apart = (farther.point - e.point).norm();
+    if (farther.found && apart > 2 * farther.models_apart) off = std::max(off, apart);
+    if (off > 2 * limit) fail(vertex, off, 2 * limit);
   }
 
   // The sine of the half angle between the profile's two flanks seen from `vertex`, each
@@ -239,8 +252,9 @@ struct Checker {
     gap = 0;
     for (const auto& p : pr.samples)
       if ((p - e.point).norm() < reach) gap = std::max(gap, (p - e.point).dot(out_dir));
-    limit =
-        options.noise_factor * std::max(options.noise, e.fit_rms) + options.floor * pr.scale + 0.5 * e.face;
+    // A vertex lies off the fitted curve's rounding (or overshoot) of the corner by as much.
+    limit = options.noise_factor * std::max(options.noise, e.fit_rms) + options.floor * pr.scale +
+            0.5 * e.face + (e.vertex ? foot(pr, e.point).distance : 0);
   }
 
   // The chord: its edge points at the ends of the profile (a point up a flank makes it

@@ -60,7 +60,8 @@ struct Edge {
   /// the radius is 0.
   double radius_sigma = 0;
   /// Sharp (closed) edge: the medial branch runs into a vertex of the profile, which is
-  /// the edge point (radius 0, centre = point, no arc).
+  /// the edge point (radius 0, centre = point, no arc): where the profile's flanks meet,
+  /// off the fitted curve's rounding of the corner (docs/CAMBER.md, "Sharp (closed) edges").
   bool vertex = false;
 };
 

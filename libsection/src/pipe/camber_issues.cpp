@@ -294,9 +294,9 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
     case Check::te_vertex:
       std::snprintf(
           text, sizeof text,
-          "%s vertex fails check %s: its flanks meet at so thin a wedge that a shift of the profile "
-          "within its noise moves it by %s along the edge (at most %s): the edge point, chord and "
-          "the camber line's end are uncertain by that much",
+          "%s vertex fails check %s: it moves by %s (at most %s) with a shift of the profile within "
+          "its noise (its flanks meeting at a thin wedge) or with the flanks taken farther out: the "
+          "edge point, chord and the camber line's end are uncertain by that much",
           k.check == Check::le_vertex ? "sharp leading-edge" : "sharp trailing-edge", name,
           format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
