@@ -252,9 +252,10 @@ struct Checker {
     gap = 0;
     for (const auto& p : pr.samples)
       if ((p - e.point).norm() < reach) gap = std::max(gap, (p - e.point).dot(out_dir));
-    // A vertex lies off the fitted curve's rounding (or overshoot) of the corner by as much.
+    // A vertex lies off the fitted curve's tip, the curve's rounding or overshoot of the
+    // corner (te_vertex checks the vertex itself).
     limit = options.noise_factor * std::max(options.noise, e.fit_rms) + options.floor * pr.scale +
-            0.5 * e.face + (e.vertex ? foot(pr, e.point).distance : 0);
+            0.5 * e.face + (e.vertex ? (pr.fast.point(e.t) - e.point).norm() : 0);
   }
 
   // The chord: its edge points at the ends of the profile (a point up a flank makes it
