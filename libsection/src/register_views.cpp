@@ -184,10 +184,11 @@ double rms(const std::vector<double>& r) {
 void check_views(const std::vector<Cloud>& views, const RegisterOptions& o) {
   if (views.empty()) throw Error("register_views: no views given");
   if (!(o.reach >= 0) || !std::isfinite(o.reach) || !(o.tolerance > 0) || !(o.trim > 0) ||
-      o.neighbours < 10 || !(o.weak >= 0 && o.weak < 1) || o.max_iterations < 1 || o.reference_points < 1 ||
-      o.moving_points < 1)
+      o.neighbours < 10 || !(o.weak >= 0 && o.weak < 1) || !(o.fine_weak >= 0 && o.fine_weak < 1) ||
+      o.max_iterations < 1 || o.reference_points < 1 || o.moving_points < 1)
     throw Error(
-        "register_views: reach must be >= 0, tolerance and trim positive, weak in [0, 1), neighbours >= 10, "
+        "register_views: reach must be >= 0, tolerance and trim positive, weak and fine_weak in [0, 1), "
+        "neighbours >= 10, "
         "iterations and point counts >= 1");
   for (std::size_t v = 0; v < views.size(); ++v)
     for (const auto& p : views[v].points)
@@ -250,17 +251,36 @@ double rotation_degrees(const Eigen::Isometry3d& T) {
   return Eigen::AngleAxisd(T.linear()).angle() * 180 / 3.14159265358979323846;
 }
 
+// The rms residual of the points against their own surface patches (every k-th point of
+// at most 5 000, NaN-free; 0 without any): a view's noise, somewhat below it (each patch
+// was fitted to its point too).
+double own_noise(const std::vector<Eigen::Vector3d>& points, int neighbours) {
+  if (points.empty()) return 0;
+  Reference own(points, neighbours);
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / 5000);
+  double ss = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    const double r = own.own_residual(static_cast<int>(i));
+    if (!std::isnan(r)) ss += r * r, ++n;
+  }
+  return n > 0 ? std::sqrt(ss / static_cast<double>(n)) : 0.0;
+}
+
 // The view moved by T must lie on the reference surface at the points' own scale (3
 // spacings): its pairs there within 4 times the surface's own noise (the residuals of the
-// reference points paired, 0.02 spacings at least) or 0.3 spacings, rms. A registered view
-// lies within 1.3-2 times that noise (0.15 spacings at most, 5 um on 62 um; a view of 6
-// times the reference's noise 4.2 times, within 0.3 spacings). A reach wider than the
-// views' misalignment lets points pair with another part of the surface (the far side of a
-// thin blade), and the motion then slides the view along it, 23-55 times that noise off
-// (0.8-1.8 spacings: pairs at random within the 3 spacings) while its pairs at the reach
-// look close: 6.8 mm for a 0.015 mm misregistration at a reach of 10 mm. A reach shorter
-// than the misalignment moves the view part of the way: 0.3 mm apart at a reach of 0.187,
-// 0.08 mm moved, 5.4 times the noise off.
+// reference points paired, 0.02 spacings at least), 3 times the two views' noise together
+// (the view's own residuals too; 0.5 spacings at most) or 0.3 spacings, rms. A registered
+// view lies within 1.3-2 times the surface's noise (0.15 spacings at most, 5 um on 62 um)
+// and 0.82-0.94 times the two views' (1.1 for a view 6 times as noisy as the reference, 6.7
+// times the surface's: refused before the second term). A reach wider than the views'
+// misalignment lets points pair with another part of the surface (the far side of a thin
+// blade), and the motion then slides the view along it, 23-55 times that noise off (0.8-1.8
+// spacings: pairs at random within the 3 spacings, whatever the views' noise: hence the
+// cap) while its pairs at the reach look close: 6.8 mm for a 0.015 mm misregistration at a
+// reach of 10 mm. A reach shorter than the misalignment moves the
+// view part of the way: 0.375 mm apart at a reach of 0.187, 0.08 mm moved, 5.4 times the
+// surface's noise off, 3.75 times the two views'.
 void check_on_surface(Reference& ref, const std::vector<Eigen::Vector3d>& moving, const Eigen::Isometry3d& T,
                       double reach, double spacing, const RegisterOptions& o, const std::string& who) {
   const double tight = 3 * spacing;
@@ -275,7 +295,11 @@ void check_on_surface(Reference& ref, const std::vector<Eigen::Vector3d>& moving
   }
   const double noise = std::max(n > 0 ? std::sqrt(ss / static_cast<double>(n)) : 0.0, 0.02 * spacing);
   const double off = rms(on.r);
-  if (on.r.size() >= o.min_pairs && off <= std::max(4 * noise, 0.3 * spacing)) return;
+  const double view_noise = own_noise(moving, o.neighbours);
+  const double both = std::sqrt(noise * noise + view_noise * view_noise);
+  if (on.r.size() >= o.min_pairs &&
+      off <= std::max({4 * noise, std::min(3 * both, 0.5 * spacing), 0.3 * spacing}))
+    return;
   const std::string moved_by = " is left off the reference surface by the motion found (" +
                                format_length(T.translation().norm()) + ", " +
                                format_angle(rotation_degrees(T)) + "): ";
@@ -285,34 +309,32 @@ void check_on_surface(Reference& ref, const std::vector<Eigen::Vector3d>& moving
                               : "its points within " + format_length(tight) + " (3 spacings) of it lie " +
                                     format_length(off) +
                                     " rms from it, more than 4 times the surface's noise (" +
-                                    format_length(noise) + ") and 0.3 spacings";
+                                    format_length(noise) + "), 3 times the two views' noise together (" +
+                                    format_length(both) + "; 0.5 spacings at most) and 0.3 spacings";
   throw Error(who + moved_by + lie + ". A reach of " + format_length(reach) +
               " is either less than the views' misalignment (the view then moves part of the way) "
               "or so much more that points pair with another part of the surface: give a reach a "
               "little above the misalignment");
 }
 
-// Moves one view onto the reference by ICP.
-ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d>& points, double reach,
-                               double spacing, const RegisterOptions& o, const std::string& who) {
-  std::vector<Eigen::Vector3d> moving = evenly(points, o.moving_points);
-  keep_near(ref, reach, moving);
-  ViewRegistration out;
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+// ICP of the points `moving` from T at `reach`, directions constrained under `weak` of the
+// best left alone (icp_step): the motion found, its iterations, pairs and rms added to
+// `out`. False when fewer than min_pairs points pair (out.pairs says how many).
+bool icp(Reference& ref, const std::vector<Eigen::Vector3d>& moving, double reach, double weak,
+         const RegisterOptions& o, const std::string& who, Eigen::Isometry3d& T, ViewRegistration& out) {
   std::vector<Eigen::Vector3d> moved(moving.size());
   Pairs pairs;
   for (int it = 0; it <= o.max_iterations; ++it) {
     for (std::size_t i = 0; i < moving.size(); ++i) moved[i] = T * moving[i];
     pairs = pair_up(ref, moved, reach, o.trim);
-    if (pairs.r.size() < o.min_pairs)
-      throw Error(who + " shares too little surface with view 0: " + std::to_string(pairs.r.size()) +
-                  " point pairs within " + format_length(reach) + " (at least " +
-                  std::to_string(o.min_pairs) + " are needed; are the views roughly aligned?)");
-    if (it == 0) out.rms_before = rms(pairs.r);
+    out.pairs = pairs.r.size();
+    if (pairs.r.size() < o.min_pairs) return false;
+    if (out.iterations == 0) out.rms_before = rms(pairs.r);
+    out.rms_after = rms(pairs.r);
     if (it == o.max_iterations) break;
-    const Eigen::Isometry3d step = icp_step(pairs, o.weak, who);
+    const Eigen::Isometry3d step = icp_step(pairs, weak, who);
     T = step * T;
-    out.iterations = it + 1;
+    ++out.iterations;
     // Converged when the step changes the pairs' plane distances by less than the
     // tolerance (rms); a direction the overlap hardly constrains may still creep.
     double change = 0;
@@ -320,10 +342,34 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
       change += std::pow(pairs.n[i].dot(step * pairs.p[i] - pairs.p[i]), 2);
     if (std::sqrt(change / pairs.p.size()) < o.tolerance) break;
   }
+  return true;
+}
+
+// Moves one view onto the reference by ICP: at the reach with the weak directions of
+// `weak` left alone, then from there at 3 spacings (or the reach, if shorter) with only
+// those of `fine_weak`. A direction the first pass leaves alone may hold a real
+// misalignment: a compressor view 0.25 mm away at a reach of 0.3 mm kept 62 um of it in
+// the section plane (a direction constrained at 2 % of the best), on the surface and so
+// unflagged; the second pass, its pairs at the points' own scale, takes it out.
+ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d>& points, double reach,
+                               double spacing, const RegisterOptions& o, const std::string& who) {
+  std::vector<Eigen::Vector3d> moving = evenly(points, o.moving_points);
+  keep_near(ref, reach, moving);
+  ViewRegistration out;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  if (!icp(ref, moving, reach, o.weak, o, who, T, out))
+    throw Error(who + " shares too little surface with view 0: " + std::to_string(out.pairs) +
+                " point pairs within " + format_length(reach) + " (at least " + std::to_string(o.min_pairs) +
+                " are needed; are the views roughly aligned?)");
+  // Too few pairs at the points' scale: the view is off the surface, as the check says.
+  Eigen::Isometry3d fine = T;
+  ViewRegistration settled = out;
+  if (icp(ref, moving, std::min(reach, 3 * spacing), o.fine_weak, o, who, fine, settled)) {
+    T = fine;
+    out = settled;
+  }
   check_on_surface(ref, moving, T, reach, spacing, o, who);
   out.transform = T;
-  out.pairs = pairs.r.size();
-  out.rms_after = rms(pairs.r);
   return out;
 }
 

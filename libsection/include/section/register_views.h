@@ -26,6 +26,7 @@ struct RegisterOptions {
   double tolerance = 1e-5;                 ///< stop when a step moves the pairs by less (rms, along normals)
   std::size_t min_pairs = 100;             ///< fewer pairs: the views do not overlap enough (Error)
   double weak = 0.05;                      ///< motions constrained under this share of the best: not made
+  double fine_weak = 0.01;                 ///< the same in the last pass, at 3 spacings
   double trim = 3;                         ///< pairs farther than this many robust sigmas are left out
 };
 
