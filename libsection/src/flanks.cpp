@@ -111,8 +111,9 @@ FlankVertex meet_flanks(const std::vector<Eigen::Vector2d> (&x)[2], double far, 
   FlankVertex by_curves = meet(curve, far);
   if (!by_curves.found) return by_lines;
   const double apart = (by_curves.point - by_lines.point).norm();
-  FlankVertex v = apart > 4 * noise / by_lines.sine ? by_curves : by_lines;
-  v.parabolas = apart > 4 * noise / by_lines.sine;
+  const bool parabolas = apart > 4 * noise / by_lines.sine;
+  FlankVertex v = parabolas ? by_curves : by_lines;
+  v.parabolas = parabolas;
   v.models_apart = apart;
   return v;
 }

@@ -188,8 +188,7 @@ void check_views(const std::vector<Cloud>& views, const RegisterOptions& o) {
       o.max_iterations < 1 || o.reference_points < 1 || o.moving_points < 1)
     throw Error(
         "register_views: reach must be >= 0, tolerance and trim positive, weak and fine_weak in [0, 1), "
-        "neighbours >= 10, "
-        "iterations and point counts >= 1");
+        "neighbours >= 10, iterations and point counts >= 1");
   for (std::size_t v = 0; v < views.size(); ++v)
     for (const auto& p : views[v].points)
       if (!p.allFinite())
@@ -278,9 +277,9 @@ double own_noise(const std::vector<Eigen::Vector3d>& points, int neighbours) {
 // blade), and the motion then slides the view along it, 23-55 times that noise off (0.8-1.8
 // spacings: pairs at random within the 3 spacings, whatever the views' noise: hence the
 // cap) while its pairs at the reach look close: 6.8 mm for a 0.015 mm misregistration at a
-// reach of 10 mm. A reach shorter than the misalignment moves the
-// view part of the way: 0.375 mm apart at a reach of 0.187, 0.08 mm moved, 5.4 times the
-// surface's noise off, 3.75 times the two views'.
+// reach of 10 mm. A reach shorter than the misalignment moves the view part of the way:
+// 0.375 mm apart at a reach of 0.187, 0.08 mm moved, 5.4 times the surface's noise off,
+// 3.75 times the two views'.
 void check_on_surface(Reference& ref, const std::vector<Eigen::Vector3d>& moving, const Eigen::Isometry3d& T,
                       double reach, double spacing, const RegisterOptions& o, const std::string& who) {
   const double tight = 3 * spacing;
@@ -295,11 +294,11 @@ void check_on_surface(Reference& ref, const std::vector<Eigen::Vector3d>& moving
   }
   const double noise = std::max(n > 0 ? std::sqrt(ss / static_cast<double>(n)) : 0.0, 0.02 * spacing);
   const double off = rms(on.r);
+  if (on.r.size() >= o.min_pairs && off <= std::max(4 * noise, 0.3 * spacing)) return;
+  // The view's own noise (a kd-tree over its points) only where the surface's does not pass it.
   const double view_noise = own_noise(moving, o.neighbours);
   const double both = std::sqrt(noise * noise + view_noise * view_noise);
-  if (on.r.size() >= o.min_pairs &&
-      off <= std::max({4 * noise, std::min(3 * both, 0.5 * spacing), 0.3 * spacing}))
-    return;
+  if (on.r.size() >= o.min_pairs && off <= std::min(3 * both, 0.5 * spacing)) return;
   const std::string moved_by = " is left off the reference surface by the motion found (" +
                                format_length(T.translation().norm()) + ", " +
                                format_angle(rotation_degrees(T)) + "): ";
