@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -102,6 +103,9 @@ TEST_CASE("register_views: views that do not overlap, and bad input, are refused
     o = {};
     o.reach = NAN;
     CHECK_THROWS_AS(register_views(views, o), Error);
+    o = {};
+    o.reach_check = 0.5;
+    CHECK_THROWS_WITH(register_views(views, o), Catch::Contains("reach_check 0 or above 1"));
   }
   SECTION("a point that is not finite") {
     views[1].points[7].y() = NAN;
@@ -183,6 +187,50 @@ TEST_CASE("register_views: a view six times as noisy as the reference registers"
       double rms_after = 0;
       CHECK(error_after(views, original, move, o, rms_after) < 0.005);
       CHECK(rms_after < 0.035);  // the noisy view's own 30 um
+    }
+  }
+}
+
+TEST_CASE("register_views: a motion farther than the reach is found again at twice the reach", "[register]") {
+  // A reach just short of the views' misalignment pairs only part of the overlap, and the
+  // motion may settle on the surface and be wrong: the compressor's views 0.3 mm apart at
+  // the default reach (0.19 mm) turned 0.77 deg and a point moved 0.55 mm off; the
+  // turbine's 0.45 mm apart, 0.25 mm off. Both passed the surface check and were noted as
+  // registered. At twice the reach they register (5-6 um); the two motions disagree, and
+  // the view is refused. Where no motion at twice the reach lies on the surface, a motion
+  // of over 1.5 reaches is refused (0.375 mm apart: 0.66 mm off, 2.7 reaches), a shorter
+  // one stands. Views whose motion the wider reach confirms register.
+  struct Case {
+    bool turbine;
+    std::uint64_t seed;
+    Eigen::Vector3d move;
+    double reach;
+    const char* refusal;  // nullptr: registers
+  };
+  const auto along = [](double mm, double x, double y) -> Eigen::Vector3d {
+    return Eigen::Vector3d(x, y, 0).normalized() * mm;
+  };
+  const char* const depends = "view 1: the motion found depends on the reach";
+  const char* const unconfirmed = "no motion leaves it on the reference surface";
+  for (const Case& c : {Case{false, 41, along(0.3, 0.615, -0.79), 0, depends},
+                        Case{true, 44, along(0.45, 1, 0.3), 0, depends},
+                        Case{false, 44, along(0.375, 0.2, 1), 0, unconfirmed},
+                        Case{false, 40, along(0.3, 0.615, -0.79), 0, nullptr},
+                        Case{false, 41, along(0.3, 0.2, 1), 0.3, nullptr}}) {
+    std::vector<Cloud> views = two_views(c.turbine ? turbine_blade() : compressor_blade(), c.seed);
+    const Cloud original = views[1];
+    for (auto& p : views[1].points) p += c.move;
+    RegisterOptions o;
+    o.reach = c.reach;
+    INFO((c.turbine ? "turbine" : "compressor")
+         << ", seed " << c.seed << ", move " << c.move.transpose() << " mm, reach " << c.reach << " mm");
+    double rms_after = 0;
+    if (c.refusal) {
+      CHECK_THROWS_WITH(register_views(views, o), Catch::Contains(c.refusal));
+      o.reach_check = 0;  // the check off: the wrong motion, as before it
+      CHECK(error_after(views, original, c.move, o, rms_after) > 0.2);
+    } else {
+      CHECK(error_after(views, original, c.move, o, rms_after) < 0.01);
     }
   }
 }
