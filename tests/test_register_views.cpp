@@ -191,7 +191,7 @@ TEST_CASE("register_views: a view six times as noisy as the reference registers"
   }
 }
 
-TEST_CASE("register_views: a motion farther than the reach is found again at twice the reach", "[register]") {
+TEST_CASE("register_views: a motion far from the reach is found again at a second reach", "[register]") {
   // A reach just short of the views' misalignment pairs only part of the overlap, and the
   // motion may settle on the surface and be wrong: the compressor's views 0.3 mm apart at
   // the default reach (0.19 mm) turned 0.77 deg and a point moved 0.55 mm off; the
@@ -199,7 +199,9 @@ TEST_CASE("register_views: a motion farther than the reach is found again at twi
   // registered. At twice the reach they register (5-6 um); the two motions disagree, and
   // the view is refused. Where no motion at twice the reach lies on the surface, a motion
   // of over 1.5 reaches is refused (0.375 mm apart: 0.66 mm off, 2.7 reaches), a shorter
-  // one stands. Views whose motion the wider reach confirms register.
+  // one stands. Views whose motion the wider reach confirms register. A reach far above the
+  // misalignment (1 mm for turbine views 0.2 mm apart) slid the view 60 um along the
+  // surface; at twice its motion it registers, and the two disagree.
   struct Case {
     bool turbine;
     std::uint64_t seed;
@@ -212,11 +214,12 @@ TEST_CASE("register_views: a motion farther than the reach is found again at twi
   };
   const char* const depends = "view 1: the motion found depends on the reach";
   const char* const unconfirmed = "no motion leaves it on the reference surface";
-  for (const Case& c : {Case{false, 41, along(0.3, 0.615, -0.79), 0, depends},
-                        Case{true, 44, along(0.45, 1, 0.3), 0, depends},
-                        Case{false, 44, along(0.375, 0.2, 1), 0, unconfirmed},
-                        Case{false, 40, along(0.3, 0.615, -0.79), 0, nullptr},
-                        Case{false, 41, along(0.3, 0.2, 1), 0.3, nullptr}}) {
+  for (const Case& c :
+       {Case{false, 41, along(0.3, 0.615, -0.79), 0, depends},
+        Case{true, 44, along(0.45, 1, 0.3), 0, depends},
+        Case{false, 44, along(0.375, 0.2, 1), 0, unconfirmed}, Case{true, 41, along(0.2, 1, 0.3), 1, depends},
+        Case{false, 40, along(0.3, 0.615, -0.79), 0, nullptr},
+        Case{false, 41, along(0.3, 0.2, 1), 0.3, nullptr}}) {
     std::vector<Cloud> views = two_views(c.turbine ? turbine_blade() : compressor_blade(), c.seed);
     const Cloud original = views[1];
     for (auto& p : views[1].points) p += c.move;
@@ -228,7 +231,7 @@ TEST_CASE("register_views: a motion farther than the reach is found again at twi
     if (c.refusal) {
       CHECK_THROWS_WITH(register_views(views, o), Catch::Contains(c.refusal));
       o.reach_check = 0;  // the check off: the wrong motion, as before it
-      CHECK(error_after(views, original, c.move, o, rms_after) > 0.2);
+      CHECK(error_after(views, original, c.move, o, rms_after) > 0.03);
     } else {
       CHECK(error_after(views, original, c.move, o, rms_after) < 0.01);
     }

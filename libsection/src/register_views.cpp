@@ -383,18 +383,21 @@ double farthest_apart(const std::vector<Eigen::Vector3d>& points, const Eigen::I
 }
 
 // Registers one view (settle), then checks it: on the reference surface (off_surface),
-// and, where the motion found moves a point farther than the reach (the views lay about
-// the reach apart or more, and the pairs at the start could not span it), found again
-// from where the view lay at `reach_check` times the reach. Such a motion may settle on
-// the surface and be wrong: compressor views 0.3 mm apart at the default reach of 0.19 mm
-// turned 0.77 deg, a point moved 0.55 mm off, their pairs at 2.9 times the two views'
-// noise (off_surface allows 3). At twice the reach the same views register (5-6 um) and the two
-// motions lie 0.55 mm apart. Over 1 024 registrations of the generated views (docs/
-// REGISTRATION.md, "Found again at twice the reach"), registered views moved that far lay within 0.37
-// spacings of the motion at twice the reach; half a spacing apart refuses 20 of the 41 wrong ones, none
-// right. Where the wider reach slides (a thin blade, points pairing across it), its motion is off the surface
-// and tells nothing: the first stands if it moved the view up to 1.5 reaches (right ones 1.0-1.1), else it is
-// refused (wrong ones 1.8-3.0: 4 more).
+// and found again from where the view lay at a second reach where the reach and the motion
+// lie far apart. Where the motion moves a point farther than the reach (the views lay about
+// the reach apart or more; the pairs at the start could not span it), at `reach_check`
+// times the reach: such a motion may settle on the surface and be wrong. Compressor views
+// 0.3 mm apart at the default reach of 0.19 mm turned 0.77 deg, a point 0.55 mm off, their
+// pairs at 2.9 times the two views' noise (off_surface allows 3); at twice the reach they
+// register (5-6 um), the two motions 0.55 mm apart. Where the reach is over twice the
+// motion (and 3 spacings), at twice the motion: a reach far above the misalignment lets
+// points pair with other parts of the surface (turbine views 0.2-0.45 mm apart at 1 mm slid
+// 10-86 um along it, on it). Over 1 024 generated registrations (docs/REGISTRATION.md,
+// "Found again at a second reach"), right ones lay within 0.37 spacings of their motion at
+// the second reach; half a spacing apart refuses 25 of the 41 wrong ones, none right. Where
+// the second reach leaves no motion on the surface (twice the reach on a thin blade: points
+// pair across it), it tells nothing: the first stands if it moved the view up to 1.5
+// reaches (right ones 1.0-1.1), else it is refused (wrong ones 1.8-3.0: 4 more).
 ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d>& points, double reach,
                                double spacing, const RegisterOptions& o, const std::string& who) {
   std::vector<Eigen::Vector3d> moving;
@@ -409,27 +412,33 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
                 ": " + off + reach_advice(reach));
   // Over all the view's points: those the sections take, not only those paired.
   const double moved = farthest_apart(points, out.transform, Eigen::Isometry3d::Identity());
-  if (!(o.reach_check > 0) || moved <= reach) return out;
-  const double wide = o.reach_check * reach;
-  std::vector<Eigen::Vector3d> wide_moving;
+  if (!(o.reach_check > 0)) return out;
+  const bool beyond = moved > reach;
+  const double fine = std::max(2 * moved, 3 * spacing);
+  if (!beyond && !(fine < reach)) return out;
+  const double second = beyond ? o.reach_check * reach : fine;
+  std::vector<Eigen::Vector3d> second_moving;
   ViewRegistration again;
-  if (!settle(ref, points, wide, spacing, o, who, wide_moving, again) ||
-      !off_surface(ref, wide_moving, again.transform, spacing, o).empty()) {
+  if (!settle(ref, points, second, spacing, o, who, second_moving, again) ||
+      !off_surface(ref, second_moving, again.transform, spacing, o).empty()) {
     if (moved <= 1.5 * reach) return out;
     throw Error(who + ": the motion found" + motion_text(out.transform) + " moves its points up to " +
                 format_length(moved) + ", more than 1.5 times the reach (" + format_length(reach) +
-                "), and at " + format_length(wide) +
+                "), and at " + format_length(second) +
                 " no motion leaves it on the reference surface: the views' misalignment is above the "
                 "reach, and the motion may be wrong: give a reach a little above the misalignment");
   }
   const double apart = farthest_apart(points, out.transform, again.transform);
   if (apart > 0.5 * spacing)
     throw Error(who + ": the motion found depends on the reach: at " + format_length(reach) +
-                motion_text(out.transform) + ", at " + format_length(wide) + motion_text(again.transform) +
+                motion_text(out.transform) + ", at " + format_length(second) + motion_text(again.transform) +
                 ", the view's points up to " + format_length(apart) + " apart (more than half the spacing, " +
-                format_length(0.5 * spacing) +
-                "); either may be wrong, both lie on the surface. The views' misalignment is near the reach "
-                "or above it: give a reach a little above the misalignment");
+                format_length(0.5 * spacing) + "); either may be wrong, both lie on the surface. " +
+                (beyond
+                     ? std::string("The views' misalignment is near the reach or above it")
+                     : "The reach is far above the views' misalignment, and points pair with other parts of "
+                       "the surface") +
+                ": give a reach a little above the misalignment");
   return out;
 }
 

@@ -29,8 +29,9 @@ struct RegisterOptions {
   double fine_weak = 0.01;                 ///< the same in the last pass, at 3 spacings
   double trim = 3;                         ///< pairs farther than this many robust sigmas are left out
   /// A view whose motion moves a point farther than the reach is registered again at this
-  /// many times the reach, and refused where the two motions, both on the surface, move its
-  /// points over half a spacing apart (docs/REGISTRATION.md, "Check"); 0 = not checked
+  /// many times the reach (one whose reach is over twice its motion, at twice the motion),
+  /// and refused where the two motions, both on the surface, move its points over half a
+  /// spacing apart (docs/REGISTRATION.md, "Found again at a second reach"); 0 = not checked
   double reach_check = 2;
 };
 
@@ -51,9 +52,9 @@ struct RegisterResult {
 /// Registers views[1..] onto views[0]. Throws section::Error naming the view when it
 /// shares too little surface with the reference (fewer than min_pairs pairs), when the
 /// motion found leaves it off the reference surface at 3 spacings (a reach far wider than
-/// the views' misalignment: docs/REGISTRATION.md, "Check"), when a motion that moves it
-/// farther than the reach differs from the one found at `reach_check` times the reach, or
-/// the problem is degenerate.
+/// the views' misalignment: docs/REGISTRATION.md, "Check"), when its motion differs from
+/// the one found at a second reach (where the reach and the motion lie far apart), or the
+/// problem is degenerate.
 RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOptions& options = {});
 
 /// One line for the stream's notes: `register view=NAME translation=x,y,z rotation=DEG
