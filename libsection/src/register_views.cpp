@@ -439,7 +439,9 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
                      : "The reach is far above the views' misalignment, and points pair with other parts of "
                        "the surface") +
                 ": give a reach a little above the misalignment");
-  return out;
+  // The two agree: the motion of the reach sized to it is kept (where the first moved the
+  // view beyond its reach, 10-17 um off against under 7 at twice the reach, 201 views).
+  return again;
 }
 
 }  // namespace

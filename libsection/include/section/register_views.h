@@ -31,7 +31,8 @@ struct RegisterOptions {
   /// A view whose motion moves a point farther than the reach is registered again at this
   /// many times the reach (one whose reach is over twice its motion, at twice the motion),
   /// and refused where the two motions, both on the surface, move its points over half a
-  /// spacing apart (docs/REGISTRATION.md, "Found again at a second reach"); 0 = not checked
+  /// spacing apart; where they agree, the second is kept (docs/REGISTRATION.md, "Found again
+  /// at a second reach"); 0 = not checked
   double reach_check = 2;
 };
 
