@@ -8,9 +8,10 @@
 // per case and the counts: right (error under 10 um), refused (and why), wrong.
 // Usage: evaluate_registration [--seeds 40,41,44] [--reaches 0,0.3,0.5,1]
 //                              [--misalignments 0.012,0.1,0.2,0.25,0.3,0.33,0.375,0.45]
-//                              [--noisy-seed 44] [--reach-check F] [--quiet]
+//                              [--noisy-seed 44] [--reach-check F] [--whole-span] [--quiet]
 // The defaults are the 1 024 registrations of docs/REGISTRATION.md ("Found again at twice
-// the reach"): both presets, four directions, the noisy view on seed 44 only.
+// the reach"): both presets, four directions, the noisy view on seed 44 only. --whole-span
+// scans the whole blade (60 mm of span) instead of 10 mm.
 #include "section/error.h"
 #include "section/extras/generate.h"
 #include "section/register_views.h"
@@ -43,6 +44,7 @@ struct Options {
       misalignments{0.012, 0.1, 0.2, 0.25, 0.3, 0.33, 0.375, 0.45};
   double noisy_seed = 44;
   double reach_check = RegisterOptions{}.reach_check;
+  bool whole_span = false;
   bool quiet = false;
 };
 
@@ -53,6 +55,8 @@ Options parse(int argc, char** argv) {
     const bool has_value = i + 1 < argc;
     if (!std::strcmp(a, "--quiet")) {
       o.quiet = true;
+    } else if (!std::strcmp(a, "--whole-span")) {
+      o.whole_span = true;
     } else if (has_value && !std::strcmp(a, "--seeds")) {
       o.seeds = numbers(argv[++i]);
     } else if (has_value && !std::strcmp(a, "--reaches")) {
@@ -64,20 +68,24 @@ Options parse(int argc, char** argv) {
     } else if (has_value && !std::strcmp(a, "--reach-check")) {
       o.reach_check = std::stod(argv[++i]);
     } else {
-      throw Error(
-          std::string("evaluate_registration: unknown or incomplete option ") + a +
-          " (--seeds, --reaches, --misalignments: comma-separated; --noisy-seed, --reach-check, --quiet)");
+      throw Error(std::string("evaluate_registration: unknown or incomplete option ") + a +
+                  " (--seeds, --reaches, --misalignments: comma-separated; --noisy-seed, --reach-check, "
+                  "--whole-span, "
+                  "--quiet)");
     }
   }
   return o;
 }
 
-// The scan's two views, the second 30 um noisy instead of 5 when `noisy`.
-std::vector<Cloud> two_views(const BladeDesign& blade, std::uint64_t seed, bool noisy) {
+// The scan's two views (10 mm of span around z = 30, or the whole blade), the second 30 um
+// noisy instead of 5 when `noisy`.
+std::vector<Cloud> two_views(const BladeDesign& blade, std::uint64_t seed, bool noisy, bool whole_span) {
   ScanOptions so = inspection_scan();
   so.seed = seed;
-  so.z_min = 25;
-  so.z_max = 35;
+  if (!whole_span) {
+    so.z_min = 25;
+    so.z_max = 35;
+  }
   std::vector<Cloud> views = views_of(generate_scan(blade, so));
   if (noisy) {
     so.noise = 0.03;
@@ -98,7 +106,7 @@ int main(int argc, char** argv) try {
     for (const double seed : opt.seeds) {
       for (const bool noisy : {false, true}) {
         if (noisy && seed != opt.noisy_seed) continue;
-        const std::vector<Cloud> base = two_views(blade, std::uint64_t(seed), noisy);
+        const std::vector<Cloud> base = two_views(blade, std::uint64_t(seed), noisy, opt.whole_span);
         for (const double mm : opt.misalignments) {
           for (const Eigen::Vector3d& d : directions) {
             const Eigen::Vector3d move = d.normalized() * mm;
