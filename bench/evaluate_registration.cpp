@@ -122,9 +122,10 @@ int main(int argc, char** argv) try {
                 const Eigen::Isometry3d T = register_views(views, ro).views[1].transform;
                 for (const auto& p : base[1].points)
                   error = std::max(error, ((T * (p + move)) - p).head<2>().norm());
-                outcome = error < 0.01 ? "right" : "wrong";
-                (error < 0.01 ? worst_right : worst_wrong) =
-                    std::max(error < 0.01 ? worst_right : worst_wrong, error);
+                const bool right = error < 0.01;
+                outcome = right ? "right" : "wrong";
+                double& worst = right ? worst_right : worst_wrong;
+                worst = std::max(worst, error);
               } catch (const Error& e) {
                 const std::string what = e.what();
                 outcome = what.find("depends on the reach") != std::string::npos
@@ -136,14 +137,13 @@ int main(int argc, char** argv) try {
                               : "refused: other";
               }
               ++counts[outcome];
-              if (!opt.quiet)
-                std::printf(
-                    "%-10s seed %2.0f%s misalignment %.3f mm along (%.3g, %.3g) reach %.3g mm: %s%s\n",
-                    turbine ? "turbine" : "compressor", seed, noisy ? " noisy" : "", mm, d.x(), d.y(), reach,
-                    outcome.c_str(),
-                    outcome == "right" || outcome == "wrong"
-                        ? (" (" + std::to_string(error * 1000).substr(0, 6) + " um)").c_str()
-                        : "");
+              if (!opt.quiet) {
+                std::printf("%-10s seed %2.0f%s misalignment %.3f mm along (%.3g, %.3g) reach %.3g mm: %s",
+                            turbine ? "turbine" : "compressor", seed, noisy ? " noisy" : "", mm, d.x(), d.y(),
+                            reach, outcome.c_str());
+                if (outcome == "right" || outcome == "wrong") std::printf(" (%.3f um)", error * 1000);
+                std::printf("\n");
+              }
               std::fflush(stdout);
             }
           }

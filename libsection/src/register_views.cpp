@@ -267,19 +267,20 @@ double own_noise(const std::vector<Eigen::Vector3d>& points, int neighbours) {
   return n > 0 ? std::sqrt(ss / static_cast<double>(n)) : 0.0;
 }
 
-// The view moved by T must lie on the reference surface at the points' own scale (3
-// spacings); returns "" where it does, else why not: its pairs there within 4 times the surface's own noise
-// (the residuals of the reference points paired, 0.02 spacings at least), 3 times the two views' noise
-// together (the view's own residuals too; 0.5 spacings at most) or 0.3 spacings, rms. A registered view lies
-// within 1.3-2 times the surface's noise (0.15 spacings at most, 5 um on 62 um) and 0.82-0.94 times the two
-// views' (1.1 for a view 6 times as noisy as the reference, 6.7 times the surface's: refused before the
-// second term). A reach wider than the views' misalignment lets points pair with another part of the surface
-// (the far side of a thin blade), and the motion then slides the view along it, 23-55 times that noise off
-// (0.8-1.8 spacings: pairs at random within the 3 spacings, whatever the views' noise: hence the cap) while
-// its pairs at the reach look close: 6.8 mm for a 0.015 mm misregistration at a reach of 10 mm. A reach
-// shorter than the misalignment moves the view part of the way: 0.375 mm apart at a reach of 0.187, 0.08 mm
-// moved, 5.4 times the surface's noise off, 3.75 times the two views'. Returns "" when the view lies on the
-// surface, else why not (for the refusal).
+// Why the view moved by T does not lie on the reference surface at the points' own scale
+// (3 spacings), for the refusal; "" where it does: its pairs there within 4 times the
+// surface's own noise (the residuals of the reference points paired, 0.02 spacings at
+// least), 3 times the two views' noise together (the view's own residuals too; 0.5
+// spacings at most) or 0.3 spacings, rms. A registered view lies within 1.3-2 times the
+// surface's noise (0.15 spacings at most, 5 um on 62 um) and 0.82-0.94 times the two views'
+// (1.1 for a view 6 times as noisy as the reference, 6.7 times the surface's: refused
+// before the second term). A reach wider than the views' misalignment lets points pair
+// with another part of the surface (the far side of a thin blade), and the motion then
+// slides the view along it, 23-55 times that noise off (0.8-1.8 spacings: pairs at random
+// within the 3 spacings, whatever the views' noise: hence the cap) while its pairs at the
+// reach look close: 6.8 mm for a 0.015 mm misregistration at a reach of 10 mm. A reach
+// shorter than the misalignment moves the view part of the way: 0.375 mm apart at a reach
+// of 0.187, 0.08 mm moved, 5.4 times the surface's noise off, 3.75 times the two views'.
 std::string off_surface(Reference& ref, const std::vector<Eigen::Vector3d>& moving,
                         const Eigen::Isometry3d& T, double spacing, const RegisterOptions& o) {
   const double tight = 3 * spacing;
@@ -410,13 +411,13 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
   if (!off.empty())
     throw Error(who + " is left off the reference surface by the motion found" + motion_text(out.transform) +
                 ": " + off + reach_advice(reach));
+  if (!(o.reach_check > 0)) return out;
   // Over all the view's points: those the sections take, not only those paired.
   const double moved = farthest_apart(points, out.transform, Eigen::Isometry3d::Identity());
-  if (!(o.reach_check > 0)) return out;
   const bool beyond = moved > reach;
-  const double fine = std::max(2 * moved, 3 * spacing);
-  if (!beyond && !(fine < reach)) return out;
-  const double second = beyond ? o.reach_check * reach : fine;
+  const double sized = std::max(2 * moved, 3 * spacing);  // a reach sized to the motion
+  if (!beyond && !(sized < reach)) return out;
+  const double second = beyond ? o.reach_check * reach : sized;
   std::vector<Eigen::Vector3d> second_moving;
   ViewRegistration again;
   if (!settle(ref, points, second, spacing, o, who, second_moving, again) ||
