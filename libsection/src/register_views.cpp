@@ -390,12 +390,14 @@ double farthest_apart(const std::vector<Eigen::Vector3d>& points, const Eigen::I
 // times the reach: such a motion may settle on the surface and be wrong. Compressor views
 // 0.3 mm apart at the default reach of 0.19 mm turned 0.77 deg, a point 0.55 mm off, their
 // pairs at 2.9 times the two views' noise (off_surface allows 3); at twice the reach they
-// register (5-6 um), the two motions 0.55 mm apart. Where the reach is over twice the
-// motion (and 3 spacings), at twice the motion: a reach far above the misalignment lets
-// points pair with other parts of the surface (turbine views 0.2-0.45 mm apart at 1 mm slid
-// 10-86 um along it, on it). Over 1 024 generated registrations (docs/REGISTRATION.md,
+// register (5-6 um), the two motions 0.55 mm apart. Where the reach is over 1.25 times the
+// motion (and 3 spacings), at 1.25 times the motion: a reach far above the misalignment
+// lets points pair with other parts of the surface (turbine views 0.2-0.45 mm apart at 1 mm
+// slid 10-86 um along it, on it). Twice the motion, still far above the misalignment, let
+// 6 of them slide alike (34-86 um; 1.5 times, 1); a quarter above it leaves the pairs
+// their partners and little else. Over 1 024 generated registrations (docs/REGISTRATION.md,
 // "Found again at a second reach"), right ones lay within 0.37 spacings of their motion at
-// the second reach; half a spacing apart refuses 25 of the 41 wrong ones, none right. Where
+// the second reach; half a spacing apart refuses 31 of the 41 wrong ones, none right. Where
 // the second reach leaves no motion on the surface (twice the reach on a thin blade: points
 // pair across it), it tells nothing: the first stands if it moved the view up to 1.5
 // reaches (right ones 1.0-1.1), else it is refused (wrong ones 1.8-3.0: 4 more).
@@ -415,7 +417,7 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
   // Over all the view's points: those the sections take, not only those paired.
   const double moved = farthest_apart(points, out.transform, Eigen::Isometry3d::Identity());
   const bool beyond = moved > reach;
-  const double sized = std::max(2 * moved, 3 * spacing);  // a reach sized to the motion
+  const double sized = std::max(1.25 * moved, 3 * spacing);  // a reach sized to the motion
   if (!beyond && !(sized < reach)) return out;
   const double second = beyond ? o.reach_check * reach : sized;
   std::vector<Eigen::Vector3d> second_moving;

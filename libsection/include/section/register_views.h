@@ -29,7 +29,7 @@ struct RegisterOptions {
   double fine_weak = 0.01;                 ///< the same in the last pass, at 3 spacings
   double trim = 3;                         ///< pairs farther than this many robust sigmas are left out
   /// A view whose motion moves a point farther than the reach is registered again at this
-  /// many times the reach (one whose reach is over twice its motion, at twice the motion),
+  /// many times the reach (one whose reach is over 1.25 times its motion, at 1.25 times it),
   /// and refused where the two motions, both on the surface, move its points over half a
   /// spacing apart; where they agree, the second is kept (docs/REGISTRATION.md, "Found again
   /// at a second reach"); 0 = not checked
