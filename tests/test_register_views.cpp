@@ -239,3 +239,42 @@ TEST_CASE("register_views: a motion far from the reach is found again at a secon
     }
   }
 }
+
+TEST_CASE("register_views: a motion nearly as far as the reach is kept and said unconfirmed", "[register]") {
+  // Compressor views 0.33 mm apart along the blade's normal, at a reach of 0.5 mm: the motion
+  // turns the view 0.8 deg and leaves it 0.58 mm off, on the surface, moving its points 0.42
+  // mm, 0.84 reaches. No second reach tells it from a right one (docs/REGISTRATION.md, "Near
+  // the reach"): it is kept, said unconfirmed. A view whose motion lies well within the
+  // reach, or that a second reach confirmed, is not.
+  const auto along = [](double mm, double x, double y) -> Eigen::Vector3d {
+    return Eigen::Vector3d(x, y, 0).normalized() * mm;
+  };
+  struct Case {
+    std::uint64_t seed;
+    Eigen::Vector3d move;
+    double reach;
+    bool unconfirmed;
+  };
+  for (const Case& c : {Case{46, along(0.33, 0.2, 1), 0.5, true}, Case{46, along(0.2, 0.2, 1), 0.5, false},
+                        Case{40, along(0.3, 0.615, -0.79), 0, false}}) {
+    std::vector<Cloud> views = two_views(compressor_blade(), c.seed);
+    const Cloud original = views[1];
+    for (auto& p : views[1].points) p += c.move;
+    RegisterOptions o;
+    o.reach = c.reach;
+    INFO("seed " << c.seed << ", move " << c.move.transpose() << " mm, reach " << c.reach << " mm");
+    const ViewRegistration v = register_views(views, o).views[1];
+    Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
+    moved.translation() = c.move;
+    const double error = largest_in_plane_error(original, v.transform * moved);
+    if (c.unconfirmed) {
+      CHECK_THAT(v.caution, Catch::Contains("nearly as far as the reach") && Catch::Contains("unconfirmed"));
+      CHECK(error > 0.3);  // what the word is for
+      CHECK_THAT(describe(v, "b.ply"), Catch::EndsWith(" unconfirmed=1"));
+    } else {
+      CHECK(v.caution.empty());
+      CHECK(error < 0.01);
+      CHECK_THAT(describe(v, "b.ply"), !Catch::Contains("unconfirmed"));
+    }
+  }
+}

@@ -137,8 +137,12 @@ section::Cloud merged_views(const SliceArgs& a, const std::vector<section::Cloud
         what += " (view " + std::to_string(k) + ": " + a.views[k - 1] + ")";
     throw section::Error(what);
   }
-  for (std::size_t k = 1; k < clouds.size(); ++k)
+  for (std::size_t k = 1; k < clouds.size(); ++k) {
     out.notes.push_back(section::describe(reg.views[k], a.views[k - 1]));
+    if (!reg.views[k].caution.empty())
+      std::cerr << "slice: warning: register_views: view " << k << " (" << a.views[k - 1]
+                << "): " << reg.views[k].caution << "\n";
+  }
   return section::merge_views(clouds, reg);
 }
 

@@ -94,6 +94,7 @@ check "not rows, said" -- grep -q "are not rows of points" "$TMP/err"
   --seed 4 -o "$TMP/view0.ply" --second-view "$TMP/view1.xyz" 2>/dev/null
 expect 0 "views registered" -- "$BIN/slice" "$TMP/view0.ply" --view "$TMP/view1.xyz" --at 30
 check "registration noted" -- grep -q "^# register view=$TMP/view1.xyz translation=" "$TMP/out"
+check "a motion well within the reach: not said unconfirmed" -- bash -c "! grep -q unconfirmed '$TMP/out' '$TMP/err'"
 # The view moved by about the misregistration (15 um) in the plane.
 check "registration moved the view ~15 um" -- awk -F'[ =,]' '/^# register/ { d = sqrt($6*$6 + $7*$7); exit !(d > 0.013 && d < 0.017) }' "$TMP/out"
 awk '{ printf "%.9f %s %s\n", $1 + 5, $2, $3 }' "$TMP/view1.xyz" > "$TMP/far.xyz"

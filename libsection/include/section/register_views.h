@@ -43,6 +43,11 @@ struct ViewRegistration {
   double rms_before = 0;  ///< rms distance of the pairs from the reference surface before
   double rms_after = 0;   ///< ... and after
   int iterations = 0;     ///< ICP iterations run
+  /// Why the motion cannot be stood behind though it was kept (empty: nothing to say). Set
+  /// where it moves the view's points nearly as far as the reach (over 0.8 of it) and no
+  /// second reach was tried: such a motion may have slid and turned the view along the
+  /// surface (docs/REGISTRATION.md, "Near the reach").
+  std::string caution;
 };
 
 /// Result of register_views: one entry per view, the first (the reference) the identity.
@@ -55,11 +60,13 @@ struct RegisterResult {
 /// motion found leaves it off the reference surface at 3 spacings (a reach far wider than
 /// the views' misalignment: docs/REGISTRATION.md, "Check"), when its motion differs from
 /// the one found at a second reach (where the reach and the motion lie far apart), or the
-/// problem is degenerate.
+/// problem is degenerate. A motion kept though it could not be confirmed says so in its
+/// `caution`.
 RegisterResult register_views(const std::vector<Cloud>& views, const RegisterOptions& options = {});
 
 /// One line for the stream's notes: `register view=NAME translation=x,y,z rotation=DEG
-/// pairs=N rms_before=R0 rms_after=R1 iterations=K` (lengths in the cloud's units).
+/// pairs=N rms_before=R0 rms_after=R1 iterations=K` (lengths in the cloud's units), then
+/// ` unconfirmed=1` where the registration has a caution.
 std::string describe(const ViewRegistration& registration, const std::string& name);
 
 /// The views merged into one cloud, each moved by its registration.
