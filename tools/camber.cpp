@@ -56,10 +56,12 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     if (!units.note.empty()) stream.notes.push_back(units.note);
     return stream;
   };
-  // A doubtful unit (slice's or the plain profile's note) flags every row.
-  bool doubtful_units = false;
+  // A doubtful unit (slice's or the plain profile's note) or a view registered unconfirmed (slice's note)
+  // flags every row.
+  bool doubtful_units = false, unconfirmed = false;
   run.preamble = [&](const section::Stream& head) {
     doubtful_units = section::units_doubtful(head);
+    unconfirmed = section::registration_unconfirmed(head);
     summary.units = head.units;
     summary.history = head.history;
     summary.history.push_back(history);
@@ -69,6 +71,8 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     section::check_blade_stream(parts);
     if (doubtful_units)
       for (section::Stream* part : parts) section::flag_doubtful_units(*part);
+    if (unconfirmed)
+      for (section::Stream* part : parts) section::flag_unconfirmed_registration(*part);
   };
   section::tool::SectionTally tally("splines", "params");
   run.written = [&](const section::Stream& stream) {

@@ -59,7 +59,7 @@ std::uint32_t checks_flagging(std::uint32_t flags, const char* column) {
   std::uint32_t out = 0;
   for (const auto& c : check_names) {
     if (!(flags & bit(c.check))) continue;
-    const bool flagged = c.check == Check::units       ? true
+    const bool flagged = c.check == Check::units || c.check == Check::registration ? true
                          : c.check == Check::le_choice ? !lists(either_end, column)
                                                        : lists(c.columns, column);
     if (flagged) out |= bit(c.check);

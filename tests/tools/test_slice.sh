@@ -95,6 +95,13 @@ check "not rows, said" -- grep -q "are not rows of points" "$TMP/err"
 expect 0 "views registered" -- "$BIN/slice" "$TMP/view0.ply" --view "$TMP/view1.xyz" --at 30
 check "registration noted" -- grep -q "^# register view=$TMP/view1.xyz translation=" "$TMP/out"
 check "a motion well within the reach: not said unconfirmed" -- bash -c "! grep -q unconfirmed '$TMP/out' '$TMP/err'"
+# A registration kept unconfirmed (its note ends in unconfirmed=1) flags every params row.
+sed '/^# register /s/$/ unconfirmed=1/' "$TMP/out" > "$TMP/unconfirmed.csv"
+"$BIN/smooth" "$TMP/unconfirmed.csv" 2>/dev/null | "$BIN/fitspline" 2>/dev/null |
+  "$BIN/camber" --params "$TMP/unconfirmed_params.csv" > "$TMP/unconfirmed_camber.csv" 2>"$TMP/unconfirmed.err"
+check "unconfirmed registration: an issue" -- grep -q "fail check registration" "$TMP/unconfirmed_camber.csv"
+check "unconfirmed registration: the row flagged" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "flags") c = i; next }
+  { if (int($c / 2147483648) % 2 == 1) found = 1 } END { exit !found }' "$TMP/unconfirmed_params.csv"
 # The view moved by about the misregistration (15 um) in the plane.
 check "registration moved the view ~15 um" -- awk -F'[ =,]' '/^# register/ { d = sqrt($6*$6 + $7*$7); exit !(d > 0.013 && d < 0.017) }' "$TMP/out"
 awk '{ printf "%.9f %s %s\n", $1 + 5, $2, $3 }' "$TMP/view1.xyz" > "$TMP/far.xyz"

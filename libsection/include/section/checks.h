@@ -47,8 +47,9 @@ enum class Check : std::uint32_t {
   le_sharp = 1u << 26,   ///< LE taken as sharp (radius 0), but the points resolve a small round edge there
   te_sharp = 1u << 27,   ///< the same at the TE
   noise = 1u << 28,  ///< the fit follows the points' noise: its rms hides a scatter that every length carries
-  inlet_fit = 1u << 29,   ///< inlet angle set by the end fit: a cubic and a quartic over its span disagree
-  outlet_fit = 1u << 30,  ///< the same at the TE
+  inlet_fit = 1u << 29,     ///< inlet angle set by the end fit: a cubic and a quartic over its span disagree
+  outlet_fit = 1u << 30,    ///< the same at the TE
+  registration = 1u << 31,  ///< a view merged into the input was registered but not confirmed (slice --view)
 };
 
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
@@ -90,6 +91,7 @@ inline constexpr CheckName check_names[] = {
     {Check::jump_le_radius, "jump_le_radius", "le_radius"},
     {Check::jump_te_radius, "jump_te_radius", "te_radius"},
     {Check::units, "units", "every length column (and, through the defaults, every value)"},
+    {Check::registration, "registration", "every value (a view's points may lie slid and turned)"},
     {Check::layers, "layers",
      "max_thickness max_thickness_pos thickness camber_line le_radius te_radius inlet_angle outlet_angle "
      "camber_angle"},

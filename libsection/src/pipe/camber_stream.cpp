@@ -343,19 +343,42 @@ bool units_doubtful(const Stream& stream) {
   return false;
 }
 
-void flag_doubtful_units(Stream& stream) {
+namespace {
+
+// Sets `check` on every params row of `stream`, with an issue per section saying `why`.
+void flag_every_row(Stream& stream, Check check, const std::string& why) {
   Table* t = stream.find(schema::params.name);
   if (!t || t->rows() == 0) return;
   const std::size_t flags = t->column("flags"), id = t->column(col::section);
   for (std::size_t r = 0; r < t->rows(); ++r) {
     double& f = t->values[r * t->columns.size() + flags];
-    f = double(static_cast<std::uint32_t>(f) | bit(Check::units));
-    stream.issues.push_back(
-        {static_cast<int>(t->at(r, id)), 0, "camber",
-         "its values fail check units: the input was read as mm though its extent suggests "
-         "another unit (see slice's warning); give --units"});
+    f = double(static_cast<std::uint32_t>(f) | bit(check));
+    stream.issues.push_back({static_cast<int>(t->at(r, id)), 0, "camber", why});
   }
   t->source.reset();  // changed: formatted from its values
+}
+
+}  // namespace
+
+void flag_doubtful_units(Stream& stream) {
+  flag_every_row(stream, Check::units,
+                 "its values fail check units: the input was read as mm though its extent suggests "
+                 "another unit (see slice's warning); give --units");
+}
+
+bool registration_unconfirmed(const Stream& stream) {
+  const std::string mark = " unconfirmed=1";
+  for (const auto& note : stream.notes)
+    if (note.rfind("register ", 0) == 0 && note.size() >= mark.size() &&
+        note.compare(note.size() - mark.size(), mark.size(), mark) == 0)
+      return true;
+  return false;
+}
+
+void flag_unconfirmed_registration(Stream& stream) {
+  flag_every_row(stream, Check::registration,
+                 "its values fail check registration: a view merged into the input was registered but "
+                 "not confirmed (see slice's warning), its points may lie slid and turned");
 }
 
 Stream profile_stream(const BSpline& spline, double rms) {

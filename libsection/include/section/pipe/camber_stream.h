@@ -32,6 +32,14 @@ bool units_doubtful(const Stream& stream);
 /// defaults shaped, may be misscaled.
 void flag_doubtful_units(Stream& stream);
 
+/// True when the stream's notes say a view merged into its input was registered but not
+/// confirmed (slice --view: a `register` note ending in `unconfirmed=1`, docs/REGISTRATION.md).
+bool registration_unconfirmed(const Stream& stream);
+
+/// Sets the `registration` check's bit on every params row of `stream` and says so in an
+/// issue per section: a view's points, merged into the sections, may lie slid and turned.
+void flag_unconfirmed_registration(Stream& stream);
+
 /// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
 /// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain
 /// profile (an airfoil .dat file, a CMM section).
