@@ -10,9 +10,9 @@
 // Usage: evaluate_registration [--seeds 40,41,44] [--reaches 0,0.3,0.5,1]
 //                              [--misalignments 0.012,0.1,0.2,0.25,0.3,0.33,0.375,0.45]
 //                              [--noisy-seed 44] [--reach-check F] [--whole-span] [--quiet]
-// The defaults are the 1 024 registrations of docs/REGISTRATION.md ("Found again at twice
-// the reach"): both presets, four directions, the noisy view on seed 44 only. --whole-span
-// scans the whole blade (60 mm of span) instead of 10 mm.
+// The defaults are the 1 024 registrations of docs/REGISTRATION.md ("Found again at a second
+// reach" and "Near the reach"): both presets, four directions, the noisy view on seed 44
+// only. --whole-span scans the whole blade (60 mm of span) instead of 10 mm.
 #include "section/error.h"
 #include "section/extras/generate.h"
 #include "section/register_views.h"
