@@ -71,8 +71,7 @@ Options parse(int argc, char** argv) {
     } else {
       throw Error(std::string("evaluate_registration: unknown or incomplete option ") + a +
                   " (--seeds, --reaches, --misalignments: comma-separated; --noisy-seed, --reach-check, "
-                  "--whole-span, "
-                  "--quiet)");
+                  "--whole-span, --quiet)");
     }
   }
   return o;

@@ -243,9 +243,9 @@ TEST_CASE("register_views: a motion far from the reach is found again at a secon
 TEST_CASE("register_views: a motion nearly as far as the reach is kept and said unconfirmed", "[register]") {
   // Compressor views 0.33 mm apart along the blade's normal, at a reach of 0.5 mm: the motion
   // turns the view 0.8 deg and leaves it 0.58 mm off, on the surface, moving its points 0.42
-  // mm, 0.84 reaches. No second reach tells it from a right one (docs/REGISTRATION.md, "Near
-  // the reach"): it is kept, said unconfirmed. A view whose motion lies well within the
-  // reach, or that a second reach confirmed, is not.
+  // mm, 0.84 reaches. At 0.8 of the reach another motion is found, as it is for some right
+  // ones (docs/REGISTRATION.md, "Near the reach"): it is kept, said unconfirmed. A view
+  // whose motion lies well within the reach, or that a second reach confirmed, is not.
   const auto along = [](double mm, double x, double y) -> Eigen::Vector3d {
     return Eigen::Vector3d(x, y, 0).normalized() * mm;
   };

@@ -383,6 +383,20 @@ double farthest_apart(const std::vector<Eigen::Vector3d>& points, const Eigen::I
   return d;
 }
 
+// What a kept motion that could not be confirmed asks of the user.
+const char* const confirm_advice =
+    "Register again with the views aligned closer, or at another reach: a motion found alike at two reaches, "
+    "each a little above the misalignment, can be taken";
+
+// The view registered again from where it lay, at `reach`, into `again`: false where no
+// motion leaves it on the reference surface there.
+bool found_again(Reference& ref, const std::vector<Eigen::Vector3d>& points, double reach, double spacing,
+                 const RegisterOptions& o, const std::string& who, ViewRegistration& again) {
+  std::vector<Eigen::Vector3d> moving;
+  return settle(ref, points, reach, spacing, o, who, moving, again) &&
+         off_surface(ref, moving, again.transform, spacing, o).empty();
+}
+
 // Registers one view (settle), then checks it: on the reference surface (off_surface),
 // and found again from where the view lay at a second reach where the reach and the motion
 // lie far apart. Where the motion moves a point farther than the reach (the views lay about
@@ -401,11 +415,6 @@ double farthest_apart(const std::vector<Eigen::Vector3d>& points, const Eigen::I
 // the second reach leaves no motion on the surface (twice the reach on a thin blade: points
 // pair across it), it tells nothing: the first stands if it moved the view up to 1.5
 // reaches (right ones 1.0-1.1), else it is refused (wrong ones 1.8-3.0: 4 more).
-// What a kept motion that could not be confirmed asks of the user.
-const char* const confirm_advice =
-    "Register again with the views aligned closer, or at another reach: a motion found alike at two reaches, "
-    "each a little above the misalignment, can be taken";
-
 ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d>& points, double reach,
                                double spacing, const RegisterOptions& o, const std::string& who) {
   std::vector<Eigen::Vector3d> moving;
@@ -431,11 +440,9 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
     // 0.8 reaches they register; but that reach lies below a right motion there, and views
     // 0.45 mm apart, right, turned alike at it (7 of 1 792): a motion found alike at 0.8
     // reaches is taken, any other kept and said to be unconfirmed, not refused.
-    std::vector<Eigen::Vector3d> near_moving;
     ViewRegistration again;
     const double narrower = 0.8 * reach;
-    const bool alike = settle(ref, points, narrower, spacing, o, who, near_moving, again) &&
-                       off_surface(ref, near_moving, again.transform, spacing, o).empty() &&
+    const bool alike = found_again(ref, points, narrower, spacing, o, who, again) &&
                        farthest_apart(points, out.transform, again.transform) <= 0.5 * spacing;
     if (!alike)
       out.caution = "the motion found" + motion_text(out.transform) + " moves its points up to " +
@@ -447,10 +454,8 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
     return out;
   }
   const double second = beyond ? o.reach_check * reach : sized;
-  std::vector<Eigen::Vector3d> second_moving;
   ViewRegistration again;
-  if (!settle(ref, points, second, spacing, o, who, second_moving, again) ||
-      !off_surface(ref, second_moving, again.transform, spacing, o).empty()) {
+  if (!found_again(ref, points, second, spacing, o, who, again)) {
     if (moved <= 1.5 * reach) {
       out.caution = "the motion found" + motion_text(out.transform) + " moves its points up to " +
                     format_length(moved) + " at a reach of " + format_length(reach) + ", and at " +

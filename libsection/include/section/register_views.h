@@ -44,9 +44,10 @@ struct ViewRegistration {
   double rms_after = 0;   ///< ... and after
   int iterations = 0;     ///< ICP iterations run
   /// Why the motion cannot be stood behind though it was kept (empty: nothing to say). Set
-  /// where it moves the view's points nearly as far as the reach (over 0.8 of it) and no
-  /// second reach was tried: such a motion may have slid and turned the view along the
-  /// surface (docs/REGISTRATION.md, "Near the reach").
+  /// where it moves the view's points nearly as far as the reach (over 0.8 of it) and 0.8
+  /// of the reach does not find it again, or where a second reach leaves no motion on the
+  /// surface: such a motion may have slid and turned the view along the surface
+  /// (docs/REGISTRATION.md, "Near the reach").
   std::string caution;
 };
 
