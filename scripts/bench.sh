@@ -29,8 +29,9 @@ BUILD="${BUILD_DIR:-build}"
 WORK="${BENCH_DIR:-/tmp/libsection-bench}"
 REPEAT="${REPEAT:-1}"
 PEER="${PEER:-1}"
-# The peers' interpreter: a virtual environment with numpy, scipy, trimesh and plyfile keeps
-# their PyPI versions away from the Debian numpy that the Python module's tests import.
+# The peers' interpreter: a virtual environment with numpy, scipy, trimesh, networkx (trimesh
+# 4 sections a mesh with it) and plyfile keeps their PyPI versions away from the Debian
+# numpy that the Python module's tests import.
 PEER_PYTHON="${PEER_PYTHON:-python3}"
 # A build tree is brought up to date; a copy of built tools and libraries (tools/, bench/,
 # libsection/, as /work/baseline-*) is run as it is.
