@@ -4,6 +4,7 @@
 #include "section/extras/generate.h"
 #include "section/io/stream.h"
 #include "section/pipe/fit_spline_stream.h"
+#include "truth_error.h"
 
 #include <catch2/catch.hpp>
 
@@ -268,18 +269,6 @@ GeneratedSection generated_section(const section::BladeDesign& blade, double z, 
   std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& r : rows) g.points.push_back(r.second);
   return g;
-}
-
-// RMS and largest distance of the fitted curve to the true profile.
-std::pair<double, double> truth_error(const section::BSpline& c, const section::SectionTruth& t) {
-  double ss = 0, worst = 0;
-  const auto s = section::sample(c, 8000);
-  for (const auto& p : s) {
-    const double d = section::locate(t, p).distance;
-    ss += d * d;
-    worst = std::max(worst, d);
-  }
-  return {std::sqrt(ss / s.size()), worst};
 }
 
 // The exact profile's points every `step` mm along it.

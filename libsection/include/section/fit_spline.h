@@ -21,7 +21,7 @@ struct FitSplineOptions {
   int control_points = 0;            ///< control points per loop; 0 = adaptive to `tolerance`
   double tolerance = 0.00025;        ///< mm, adaptive: systematic RMS deviation a span may keep
   double initial_span = 2.0;         ///< mm, adaptive: knot spacing of the first curve
-  double min_span = 0.04;            ///< mm, adaptive: spans are not split below this length
+  double min_span = 0.04;            ///< mm, adaptive: shortest span (half of it on a gross misfit)
   double min_span_points = 2;        ///< adaptive: fewest measured points per knot span
   double exact_min_span_points = 4;  ///< adaptive: the same on near-exact data (noise below exact_noise)
   double exact_noise = 0.001;        ///< mm: noise sigma below which the data count as near-exact
