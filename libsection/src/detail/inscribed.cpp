@@ -25,7 +25,15 @@ bool solve_circle(const PiecewiseCurve& curve, const Eigen::Vector2d& p, const E
     j << -a1.squaredNorm() + (c - a).dot(a2), 0, n.dot(a1),  //
         0, -b1.squaredNorm() + (c - b).dot(b2), n.dot(b1),   //
         -f(0), f(1), (b - a).dot(n);
-    Eigen::Vector3d dx = -j.fullPivLu().solve(f);
+    // The cofactor inverse, unless the system is near singular (the contacts merging at a
+    // branch's end): an LU with full pivoting there, at several times the cost. Either
+    // gives a Newton step; the circle is where f vanishes, whichever solved for it.
+    Eigen::Matrix3d inverse;
+    bool invertible = false;
+    j.computeInverseWithCheck(inverse, invertible,
+                              1e-10 * j.row(0).norm() * j.row(1).norm() * j.row(2).norm());
+    Eigen::Vector3d dx =
+        invertible ? Eigen::Vector3d(-(inverse * f)) : Eigen::Vector3d(-j.fullPivLu().solve(f));
     if (!dx.allFinite()) return false;
     const double sa = a1.norm(), sb = b1.norm();
     const double r = std::max(0.5 * ((c - a).norm() + (c - b).norm()), 1e-6 * scale);
