@@ -434,6 +434,10 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
   const double sized = std::max(1.25 * moved, 3 * spacing);  // a reach sized to the motion
   const bool near = !beyond && moved > 0.8 * reach;
   if (!beyond && !near && !(sized < reach)) return out;
+  const auto moves = [&] {  // how far the motion kept so far moves the view, for the messages
+    return "the motion found" + motion_text(out.transform) + " moves its points up to " +
+           format_length(moved);
+  };
   if (near) {
     // Near the reach a wrong motion may settle on the surface: compressor views 0.33 mm apart
     // at 0.5 mm turned 0.8 deg and came 0.59 mm off, a point moved 0.84-0.92 reaches. At
@@ -445,9 +449,8 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
     const bool alike = found_again(ref, points, narrower, spacing, o, who, again) &&
                        farthest_apart(points, out.transform, again.transform) <= 0.5 * spacing;
     if (!alike)
-      out.caution = "the motion found" + motion_text(out.transform) + " moves its points up to " +
-                    format_length(moved) + ", nearly as far as the reach (" + format_length(reach) +
-                    "), and at " + format_length(narrower) +
+      out.caution = moves() + ", nearly as far as the reach (" + format_length(reach) + "), and at " +
+                    format_length(narrower) +
                     " it is not found again: unconfirmed, it may have slid and turned the view along the "
                     "surface. " +
                     confirm_advice;
@@ -457,14 +460,11 @@ ViewRegistration register_view(Reference& ref, const std::vector<Eigen::Vector3d
   ViewRegistration again;
   if (!found_again(ref, points, second, spacing, o, who, again)) {
     if (moved <= 1.5 * reach) {
-      out.caution = "the motion found" + motion_text(out.transform) + " moves its points up to " +
-                    format_length(moved) + " at a reach of " + format_length(reach) + ", and at " +
-                    format_length(second) + " no motion leaves it on the reference surface: unconfirmed. " +
-                    confirm_advice;
+      out.caution = moves() + " at a reach of " + format_length(reach) + ", and at " + format_length(second) +
+                    " no motion leaves it on the reference surface: unconfirmed. " + confirm_advice;
       return out;
     }
-    throw Error(who + ": the motion found" + motion_text(out.transform) + " moves its points up to " +
-                format_length(moved) + ", more than 1.5 times the reach (" + format_length(reach) +
+    throw Error(who + ": " + moves() + ", more than 1.5 times the reach (" + format_length(reach) +
                 "), and at " + format_length(second) +
                 " no motion leaves it on the reference surface: the views' misalignment is above the "
                 "reach, and the motion may be wrong: give a reach a little above the misalignment");
