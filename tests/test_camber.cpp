@@ -166,6 +166,43 @@ TEST_CASE("camber: stream stage writes the tables and flags a two-loop section",
   CHECK(cut.issues[0].message.find("cut off by a gap") != std::string::npos);
 }
 
+TEST_CASE("camber: a whole stream's notes flag every row, once, unless checked across parts", "[camber]") {
+  // A doubtful unit and an unconfirmed registration, as slice notes them: camber_stream on a
+  // whole stream (a program's, the Python module's) flags the rows as the camber tool does.
+  const SectionTruth truth = section::section_truth(section::compressor_blade().at(30), 4000);
+  const BSpline profile = dense_spline(truth.profile, 600);
+  const auto noted = [&] {
+    section::Stream s = section::profile_stream(profile);
+    s.notes = {"units_doubtful in (read as mm; the extent suggests inches)",
+               "register view=b.ply translation=0,0,0 rotation=0,0,0 unconfirmed=1"};
+    return s;
+  };
+  const auto flags_of = [](const section::Stream& s) {
+    const section::Table& t = *s.find("params");
+    REQUIRE(t.rows() == 1);
+    return static_cast<std::uint32_t>(t.at(0, t.column("flags")));
+  };
+  const std::uint32_t both = section::bit(section::Check::units) | section::bit(section::Check::registration);
+  section::Stream whole = noted();
+  section::camber_stream(whole);
+  CHECK((flags_of(whole) & both) == both);
+  REQUIRE(whole.issues.size() == 2);
+  CHECK(whole.issues[0].message.find("fail check units") != std::string::npos);
+  CHECK(whole.issues[1].message.find("fail check registration") != std::string::npos);
+  // Flagged again (a caller's own hold step): the same bits, no second issue.
+  section::flag_doubtful_units(whole);
+  section::flag_unconfirmed_registration(whole);
+  section::check_blade_stream({&whole});
+  CHECK(whole.issues.size() == 2);
+  // One part of a split stream: left to the check across the parts.
+  section::Stream part = noted();
+  section::CamberOptions o;
+  o.across_sections = false;
+  section::camber_stream(part, o);
+  CHECK((flags_of(part) & both) == 0);
+  CHECK(part.issues.empty());
+}
+
 TEST_CASE("camber: a 3D leading-edge direction is projected onto each section's plane", "[camber]") {
   const SectionTruth truth = section::section_truth(section::compressor_blade().at(30), 4000);
   const BSpline profile = dense_spline(truth.profile, 600);

@@ -37,7 +37,10 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   const std::string format = !a.format.empty()                                    ? a.format
                              : section::tool::output_is_terminal(a.common.output) ? "table"
                                                                                   : "stream";
-  section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::camber_stream);
+  // Parts are checked across the blade in the hold step below, not each by itself.
+  section::CamberOptions per_part = a.options;
+  per_part.across_sections = false;
+  section::StageRun run = section::tool::stage_run(a.common, history, per_part, section::camber_stream);
   if (format != "stream") run.output = "/dev/null";  // the stream's place takes the params
   section::Stream summary;  // units and issues of every section, for the params output
   // A plain profile (x y per line): its spline is fitted to its points.

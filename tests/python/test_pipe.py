@@ -77,3 +77,18 @@ def test_progress_reports_and_cancels():
     with pytest.raises(ls.Cancelled, match="slice: cancelled"):
         ls.slice(EXAMPLE, normal=(0, 0, 1), at=[12, 20, 28], progress=lambda stage, done, total: done < 2)
     assert issubclass(ls.Cancelled, ls.Error)
+
+
+def test_a_doubtful_unit_flags_every_row_as_the_tools_do(tmp_path):
+    # The example blade in inches, read without --units: taken as mm, its extent doubtful.
+    # camber_stream flags every row as the camber tool does (it did not before, from Python).
+    inches = tmp_path / "inches.xyz"
+    np.savetxt(inches, ls.read_cloud(EXAMPLE) / 25.4, fmt="%.12g")
+    at = [f"{z / 25.4:.12g}" for z in (12, 20, 28)]
+    expected = tools_params(tmp_path, [tool("slice"), str(inches), "--normal", "0,0,1", "--at", ",".join(at)])
+    with pytest.warns(UserWarning, match="--units in"):
+        s = ls.slice(str(inches), normal=(0, 0, 1), at=[float(z) for z in at])
+    s = ls.camber(ls.fit_spline(ls.smooth(s)))
+    assert ls.to_csv(s.params) == expected
+    assert all(int(f) & (1 << 22) for f in s.params["flags"])
+    assert sum("fail check units" in i["message"] for i in s.issues) == 3

@@ -58,6 +58,11 @@ struct CamberOptions {
                                0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95};
   int side_samples = 201;  ///< stream: points per side in the "sides" table
   int threads = 0;         ///< stream: worker threads over the sections (0 = all cores)
+  /// Stream: check the sections against each other (check_blade_stream) and flag every
+  /// params row when the stream's notes say its unit is doubtful or a view was registered
+  /// unconfirmed. Off for one part of a stream split into parts: the check needs every
+  /// section, so the caller does it across the parts (as `camber`'s StageRun::hold does).
+  bool across_sections = true;
 };
 
 /// The mean-camber line from the LE point to the TE point.

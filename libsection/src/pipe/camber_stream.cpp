@@ -331,6 +331,7 @@ void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOpt
     const HeldRow& h = rows[j.index];
     Table& t = *h.stream->find(schema::params.name);
     double& flags = t.values[h.row * t.columns.size() + t.column("flags")];
+    if (static_cast<std::uint32_t>(flags) & bit(j.check)) continue;  // checked before: said once
     flags = double(static_cast<std::uint32_t>(flags) | bit(j.check));
     t.source.reset();  // changed: formatted from its values
     h.stream->issues.push_back({h.section, 0, "camber", pipe::jump_note(j)});
@@ -352,6 +353,7 @@ void flag_every_row(Stream& stream, Check check, const std::string& why) {
   const std::size_t flags = t->column("flags"), id = t->column(col::section);
   for (std::size_t r = 0; r < t->rows(); ++r) {
     double& f = t->values[r * t->columns.size() + flags];
+    if (static_cast<std::uint32_t>(f) & bit(check)) continue;  // flagged before: said once
     f = double(static_cast<std::uint32_t>(f) | bit(check));
     stream.issues.push_back({static_cast<int>(t->at(r, id)), 0, "camber", why});
   }
@@ -427,6 +429,11 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   stream.put(params);
   stream.put(thickness);
   stream.put(sides);
+  if (options.across_sections) {
+    check_blade_stream({&stream});
+    if (units_doubtful(stream)) flag_doubtful_units(stream);
+    if (registration_unconfirmed(stream)) flag_unconfirmed_registration(stream);
+  }
 }
 
 }  // namespace section

@@ -181,6 +181,7 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
   }
   CamberOptions co = options.camber;
   co.threads = options.threads;
+  co.across_sections = false;  // the nominal's sections are the reference, not a measurement to check
   camber_stream(out, co);
   // After the stages: fitspline's restage dropped them as a later stage's, and the reason
   // compare gave was then fitspline's "no points in the stream for this section".

@@ -13,14 +13,19 @@ namespace section {
 /// Stream stage: reads the closed splines (tables "splines", "spline_knots",
 /// "spline_ctrl"), processes loop 0 of every section and writes the tables "camber",
 /// "params", "thickness" and "sides" (docs/FORMAT.md). A section that fails, or has
-/// more than one loop, gets an issue and the others go on.
+/// more than one loop, gets an issue and the others go on. With
+/// `options.across_sections` (the default) it then runs check_blade_stream on the stream
+/// and flags every row for a doubtful unit or an unconfirmed registration its notes tell
+/// of, as the `camber` tool does; a caller staging the parts of a split stream one by one
+/// turns it off and does the three across the parts (the notes are in the first part).
 void camber_stream(Stream& stream, const CamberOptions& options = {});
 
 /// The blade check (check_blade, section/checks.h) across the sections of the streams
 /// given (the parts of one stream, or one whole stream), after camber_stream: each value
 /// that jumps from its neighbouring sections sets its check's bit in the section's params
 /// row (`flags`) and adds an issue (stage "camber") to the stream holding it. Heights: the
-/// sections' centroids along the frames' mean normal.
+/// sections' centroids along the frames' mean normal. A check already set on a row is
+/// left as it is, without a second issue: running it twice changes nothing.
 void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOptions& options = {});
 
 /// True when the stream's notes say its input's unit is doubtful (slice's or camber's
@@ -29,7 +34,7 @@ bool units_doubtful(const Stream& stream);
 
 /// Sets the `units` check's bit on every params row of `stream` and says so in an issue per
 /// section: the input's unit is doubtful, so every length, and every value the length
-/// defaults shaped, may be misscaled.
+/// defaults shaped, may be misscaled. Rows flagged before are left as they are.
 void flag_doubtful_units(Stream& stream);
 
 /// True when the stream's notes say a view merged into its input was registered but not
@@ -38,6 +43,7 @@ bool registration_unconfirmed(const Stream& stream);
 
 /// Sets the `registration` check's bit on every params row of `stream` and says so in an
 /// issue per section: a view's points, merged into the sections, may lie slid and turned.
+/// Rows flagged before are left as they are.
 void flag_unconfirmed_registration(Stream& stream);
 
 /// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
