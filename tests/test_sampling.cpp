@@ -285,6 +285,29 @@ TEST_CASE("sampling: sparse rows are sections as they lie; a plane between rows 
   CHECK(r.sections[2].error.find("above the highest row, at height 55") != std::string::npos);
 }
 
+TEST_CASE("sampling: with no planes, rows are the sections; other points say what to give", "[sampling]") {
+  // slice_by_rows: what `slice` and ls.slice do given no planes.
+  const BladeDesign blade = turbine_blade();
+  const SliceResult rows = slice_by_rows(rows_at(blade, {10, 25, 40}, 1.0), {0, 0, 1}, {}, false);
+  REQUIRE(rows.sections.size() == 3);
+  CHECK(rows.sections[1].frame.origin.z() == Approx(25));
+  const Cloud grid = chordwise_grid(blade, 29, 31, 0.4, 0.1);  // 6 lines 0.4 mm apart
+  CHECK_THROWS_WITH(
+      slice_by_rows(grid, {0, 0, 1}, {}, false),
+      Catch::Contains("not sparse rows") && Catch::Contains("--rows to take each of its 6 lines"));
+  CHECK(slice_by_rows(grid, {0, 0, 1}, {}, true).sections.size() == 6);
+  ScanOptions so = inspection_scan();
+  so.seed = 3;
+  const Cloud dense = scan_bands(blade, {30.0}, so, 1.0);
+  CHECK_THROWS_WITH(slice_by_rows(dense, {0, 0, 1}, {}, false), Catch::Contains("but a dense scan"));
+  CHECK_THROWS_WITH(
+      slice_by_rows(dense, {0, 0, 1}, {}, true),
+      Catch::StartsWith("--rows: the points hold no rows or lines") && Catch::Contains("dense scan"));
+  Cloud few;
+  few.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 2, 0}};
+  CHECK_THROWS_WITH(slice_by_rows(few, {0, 0, 1}, {}, false), Catch::Contains("5 points make no row"));
+}
+
 TEST_CASE("sampling: a tilted row is taken in its best plane; a row curved around an axis is refused",
           "[sampling]") {
   const BladeDesign blade = turbine_blade();

@@ -95,28 +95,6 @@ std::vector<section::Cloud> read_views(const SliceArgs& a) {
   return clouds;
 }
 
-// With no planes (or --rows): each row of points a section as it lies, when the points are
-// rows (sparse rows, a single profile; with --rows also lines close together).
-section::SliceResult slice_by_rows(const SliceArgs& a, const section::Cloud& cloud,
-                                   const Eigen::Vector3d& n) {
-  section::SamplingOptions all = a.options.sampling;  // a row is a section only with all its points
-  all.max_points = std::max(all.max_points, cloud.points.size());
-  const section::Sampling sampling = section::sampling_of(cloud.points, n, all);
-  if (!(sampling.spacing > 0) || cloud.points.size() < 8)
-    throw section::Error("no section planes given, and " + std::to_string(cloud.points.size()) + " points" +
-                         (sampling.spacing > 0 ? "" : ", all equal,") +
-                         " make no row (a section needs 8 distinct points or more)");
-  if (!a.rows && sampling.kind != section::SamplingKind::rows)
-    throw section::Error(
-        "no section planes given, and the points are not sparse rows (each a section's worth) "
-        "but " +
-        sampling.describe() + ": give planes (--at, --count or --planes)" +
-        (sampling.rows.empty() ? std::string()
-                               : ", or --rows to take each of its " + std::to_string(sampling.rows.size()) +
-                                     " lines as a section"));
-  return section::slice_rows(cloud, sampling, a.options);
-}
-
 // What the points are, said in the stream and, unless a dense scan, on standard error.
 void say_sampling(const section::Sampling& sampling, SectionWriter& out) {
   if (sampling.kind == section::SamplingKind::dense) return;
@@ -203,7 +181,7 @@ void run_slice(const SliceArgs& given, const std::string& history) {
     if (a.count > 0 && a.axis.empty()) planes = section::planes_across(merged.points, n, a.count);
     section::tool::with_input(input, [&] {
       result = !a.axis.empty() ? section::slice(merged, a.surfaces(merged.points, units.mm), a.options)
-               : a.by_rows()   ? slice_by_rows(a, merged, n)
+               : a.by_rows()   ? section::slice_by_rows(merged, n, a.options, a.rows)
                                : section::slice(merged, planes, a.options);
     });
     if (a.options.slab == 0) say_sampling(result.sampling, out);

@@ -333,4 +333,26 @@ SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const Slice
   return result;
 }
 
+SliceResult slice_by_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options,
+                          bool any_lines) {
+  SamplingOptions all = options.sampling;  // a row is a section only with all its points
+  all.max_points = std::max(all.max_points, cloud.points.size());
+  const Sampling sampling = sampling_of(cloud.points, normal, all);
+  if (!(sampling.spacing > 0) || cloud.points.size() < 8)
+    throw Error("no section planes given, and " + std::to_string(cloud.points.size()) + " points" +
+                (sampling.spacing > 0 ? "" : ", all equal,") +
+                " make no row (a section needs 8 distinct points or more)");
+  if (!any_lines && sampling.kind != SamplingKind::rows)
+    throw Error("no section planes given, and the points are not sparse rows (each a section's worth) but " +
+                sampling.describe() + ": give planes (--at, --count or --planes)" +
+                (sampling.rows.empty() ? std::string()
+                                       : ", or --rows to take each of its " +
+                                             std::to_string(sampling.rows.size()) + " lines as a section"));
+  // A scan settled dense on a first look has no rows (and was looked at in part only).
+  if (sampling.rows.empty())
+    throw Error("--rows: the points hold no rows or lines to take as sections, they are " +
+                sampling.describe() + ": give planes (--at, --count or --planes)");
+  return slice_rows(cloud, sampling, options);
+}
+
 }  // namespace section

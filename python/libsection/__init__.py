@@ -31,7 +31,9 @@ def slice(cloud, planes=None, progress=None, **flags):
 
     cloud: an (N, 3) array of points, or the path of a cloud file (sliced as it is read) or a
     mesh file. planes: an optional (P, 6) array, each row an origin and a normal; else the
-    flags normal=(x, y, z) with at=[offsets] or count=N. Other flags as the tool's (slab,
+    flags normal=(x, y, z) with at=[offsets] or count=N; with none, the cloud's sparse rows (or
+    a plain 2D profile file) are the sections; axis=(px, py, pz, dx, dy, dz) cuts surfaces of
+    revolution (with radius, cone or streamline). Other flags as the tool's (slab,
     cell, band_spacing, no_fill, units, threads, ...). Returns a Stream (tables frames, loops,
     points, skeleton); failed sections are in its issues. Raises ValueError when no section
     can be sliced or a flag is bad. progress(stage, done, total), for a file, is told each

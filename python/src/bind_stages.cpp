@@ -58,22 +58,32 @@ std::vector<Plane> planes_of(const py::object& planes, double mm) {
 
 // What slice reads: a cloud array, or a file (a cloud is sliced as it is read, a mesh whole).
 struct SliceInput {
-  std::optional<std::string> path;
-  Cloud cloud;
-  std::optional<Mesh> mesh;
+  std::optional<std::string> path;  ///< a cloud file sliced as it is read
+  Cloud cloud;                      ///< else the cloud in memory,
+  std::optional<Mesh> mesh;         ///< or a mesh
   double extent = 0;
 };
 
-SliceInput slice_input(const py::object& cloud) {
+// As the tool reads its input: a mesh whole; a plain profile (two columns), or a cloud to be
+// cut on surfaces of revolution or taken row by row (`whole`), in memory; any other cloud
+// file as it is sliced.
+SliceInput slice_input(const py::object& cloud, bool whole) {
   SliceInput in;
   if (py::isinstance<py::str>(cloud) || py::hasattr(cloud, "__fspath__")) {
-    in.path = py::str(py::module_::import("os").attr("fspath")(cloud)).cast<std::string>();
+    const std::string path = py::str(py::module_::import("os").attr("fspath")(cloud)).cast<std::string>();
     py::gil_scoped_release unlocked;
-    if (is_mesh_file(*in.path)) {
-      in.mesh = read_mesh(*in.path);
+    if (is_mesh_file(path)) {
+      in.mesh = read_mesh(path);
       in.extent = extent_of(in.mesh->vertices);
+    } else if (auto profile = read_profile_cloud(path)) {
+      in.cloud = std::move(*profile);
+      in.extent = extent_of(in.cloud.points);
+    } else if (whole) {
+      in.cloud = read_cloud(path);
+      in.extent = extent_of(in.cloud.points);
     } else {
-      in.extent = sample_extent(*in.path);
+      in.path = path;
+      in.extent = sample_extent(path);
     }
   } else {
     in.cloud.points = points3(cloud.cast<Array>(), "slice: cloud");
@@ -82,8 +92,10 @@ SliceInput slice_input(const py::object& cloud) {
   return in;
 }
 
-// slice as the tool runs it: the input's unit (given or guessed) converted to mm, the planes
-// from `planes` or the flags, a cloud file sliced as it is read.
+// slice as the tool runs it: the input's unit (given or guessed) converted to mm; the planes
+// from `planes` or the flags, surfaces of revolution (`axis`), or the cloud's rows when no
+// planes are given; a cloud file sliced as it is read. The stream's notes as the tool's: the
+// unit's, then the sampling's (unless a dense scan).
 Stream slice_stream(const py::object& cloud, const py::object& planes, const py::object& progress,
                     const py::kwargs& kwargs) {
   // With `planes` the tool's "one of --at, --count or --planes" is met by a placeholder --at.
@@ -91,26 +103,36 @@ Stream slice_stream(const py::object& cloud, const py::object& planes, const py:
       kwargs, planes.is_none() ? std::vector<std::string>{} : std::vector<std::string>{"--at", "0"});
   if (!given.views.empty() || !given.planes_file.empty())
     throw py::value_error("slice: view and planes files are the tool's; pass planes as an array");
-  SliceInput in = slice_input(cloud);
+  const bool rows = planes.is_none() && given.by_rows(), revolution = !given.axis.empty();
+  SliceInput in = slice_input(cloud, rows || revolution);
+  if (in.mesh && rows) throw py::value_error("slice: a mesh is cut by planes: give planes, at or count");
   const InputUnits units = input_units(given.units, in.extent);
   const tool::SliceArgs a = given.in_mm(units.mm);
   const Eigen::Vector3d n(a.normal[0], a.normal[1], a.normal[2]);
   const std::vector<Plane> chosen = planes.is_none() ? planes_at(n, a.at) : planes_of(planes, units.mm);
   const ProgressFn fn = progress_fn(progress);
   SliceResult result;
+  std::optional<Sampling> streamed;  // the sampling of a file sliced as it is read
   {
     py::gil_scoped_release unlocked;
     for (auto& p : in.cloud.points) p *= units.mm;
     if (in.mesh)
       for (auto& v : in.mesh->vertices) v *= units.mm;
-    const int count = planes.is_none() ? a.count : 0;
+    const int count = planes.is_none() && !revolution ? a.count : 0;
     if (in.mesh) {
-      result = section::slice(*in.mesh, count > 0 ? planes_across(in.mesh->vertices, n, count) : chosen,
-                              a.options);
+      result = revolution
+                   ? section::slice(*in.mesh, a.surfaces(in.mesh->vertices, units.mm), a.options)
+                   : section::slice(*in.mesh, count > 0 ? planes_across(in.mesh->vertices, n, count) : chosen,
+                                    a.options);
     } else if (in.path) {
       CloudReadOptions read;
       read.scale = units.mm;
-      result = slice_file(*in.path, PlaneSpec{chosen, n, count}, a.options, read, {}, fn);
+      result = slice_file(*in.path, PlaneSpec{chosen, n, count}, a.options, read, {}, fn,
+                          [&](const Sampling& s) { streamed = s; });
+    } else if (revolution) {
+      result = section::slice(in.cloud, a.surfaces(in.cloud.points, units.mm), a.options);
+    } else if (rows) {
+      result = slice_by_rows(in.cloud, n, a.options, a.rows);
     } else {
       result =
           section::slice(in.cloud, count > 0 ? planes_across(in.cloud.points, n, count) : chosen, a.options);
@@ -119,6 +141,9 @@ Stream slice_stream(const py::object& cloud, const py::object& planes, const py:
   if (!units.warning.empty()) PyErr_WarnEx(PyExc_UserWarning, ("slice: " + units.warning).c_str(), 1);
   Stream out = to_stream(result, history("slice", kwargs), "mm");
   if (!units.note.empty()) out.notes.push_back(units.note);
+  const Sampling& sampling = streamed ? *streamed : result.sampling;
+  if (!in.mesh && (streamed || a.options.slab == 0) && sampling.kind != SamplingKind::dense)
+    out.notes.push_back(sampling_note(sampling));
   if (!result.sections.empty() && out.issues.size() >= result.sections.size())
     throw py::value_error("slice: no section could be sliced: " + out.issues.front().message);
   return out;

@@ -92,3 +92,20 @@ def test_a_doubtful_unit_flags_every_row_as_the_tools_do(tmp_path):
     assert ls.to_csv(s.params) == expected
     assert all(int(f) & (1 << 22) for f in s.params["flags"])
     assert sum("fail check units" in i["message"] for i in s.issues) == 3
+
+
+def test_rows_and_surfaces_of_revolution_as_the_tools_take_them(tmp_path):
+    # No planes: sparse rows are the sections (slice ROWS); axis: a rotor's rows cut on their
+    # cylinders (slice --axis). Both were refused from Python as "no section planes given".
+    rows, rotor = tmp_path / "rows.xyz", tmp_path / "rotor.xyz"
+    pipe([[tool("bladegen"), "--kind", "turbine", "--rows", "3", "--row-pitch", "3", "--spacing", "0.2",
+           "--noise", "0.003", "--seed", "3", "-o", str(rows)]])
+    pipe([[tool("bladegen"), "--kind", "compressor", "--rotor", "cylinder", "--rows", "2", "--spacing", "0.1",
+           "-o", str(rotor)]])
+    for cloud, words, flags in [(rows, [], {}), (rotor, ["--axis", "0,0,0,1,0,0"], {"axis": (0, 0, 0, 1, 0, 0)})]:
+        expected = tools_params(tmp_path, [tool("slice"), str(cloud), *words])
+        s = ls.slice(str(cloud), **flags)
+        assert s.notes[-1].startswith("sampling kind=rows")
+        assert ls.to_csv(ls.camber(ls.fit_spline(ls.smooth(s))).params) == expected
+    with pytest.raises(ls.Error, match="not sparse rows .* but a dense scan"):
+        ls.slice(EXAMPLE)

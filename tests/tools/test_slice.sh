@@ -86,7 +86,7 @@ check "nothing written" -- test ! -s "$TMP/out"
 # (ring.xyz lies on 9 levels: lines, which --rows takes; a ring at every height is dense)
 awk 'BEGIN { for (i = 0; i < 3600; i++) { a = 6.283185307179586 * i / 400; printf "%.9f %.9f %.4f\n", 10*cos(a), 5*sin(a), -0.2 + 0.4 * ((i * 7919) % 3600) / 3600 } }' > "$TMP/dense_ring.xyz"
 expect 1 "--rows on a dense ring" -- "$BIN/slice" "$TMP/dense_ring.xyz" --rows --slab 0.1
-check "not rows, said" -- grep -q "are not rows of points" "$TMP/err"
+check "not rows, said" -- grep -q -- "--rows: the points hold no rows or lines to take as sections, they are a dense scan" "$TMP/err"
 
 # Views apart: the second view of a generated scan, misregistered by 15 um, is registered
 # onto the first before slicing; the stream notes it. A view far off is refused, named.

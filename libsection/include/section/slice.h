@@ -99,6 +99,13 @@ SliceResult slice_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const 
 /// (sampling_of with max_points at least their number).
 SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const SliceOptions& options = {});
 
+/// What `slice` does given no planes (no --at, --count or --planes): the rows of the cloud
+/// as sections (slice_rows) when its points are sparse rows, each a section's worth, or, with
+/// `any_lines` (`--rows`), whatever lines its sampling finds. Throws section::Error saying
+/// what the points are and what to give instead, or that they are too few for a row.
+SliceResult slice_by_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options,
+                          bool any_lines);
+
 /// Slices a mesh exactly (CGAL's polygon mesh slicer): each closed intersection polyline is
 /// a loop, oriented counterclockwise in (u, v), loop 0 the largest; its vertices are the points.
 SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options = {});

@@ -22,13 +22,17 @@ Cloud read_cloud(const std::string& path, const CloudReadOptions& options, const
 }
 
 SliceResult slice_file(const std::string& path, const PlaneSpec& planes, const SliceOptions& options,
-                       const CloudReadOptions& read, const SectionSink& sink, const ProgressFn& progress) {
+                       const CloudReadOptions& read, const SectionSink& sink, const ProgressFn& progress,
+                       const SamplingSink& on_sampling) {
   const std::size_t total = planes.count > 0 ? static_cast<std::size_t>(planes.count) : planes.planes.size();
   ProgressCounter counter(progress, "slice", total);
-  return slice_file(path, planes, options, read, [&](const SectionSlice& s) {
-    if (sink) sink(s);
-    counter.add(1);
-  });
+  return slice_file(
+      path, planes, options, read,
+      [&](const SectionSlice& s) {
+        if (sink) sink(s);
+        counter.add(1);
+      },
+      on_sampling);
 }
 
 }  // namespace section

@@ -18,8 +18,10 @@ Cloud read_cloud(const std::string& path, const CloudReadOptions& options, const
 /// slice_file, telling `progress` each section done (stage "slice"; total: the planes) as
 /// `sink` receives it, in plane order. Throws Cancelled when `progress` returns false: no
 /// further section is started (those under way finish first), else as slice_file. The
-/// file's reading is not reported (docs/API.md says where that hook goes).
+/// file's reading is not reported (docs/API.md says where that hook goes). `on_sampling`
+/// as slice_file's.
 SliceResult slice_file(const std::string& path, const PlaneSpec& planes, const SliceOptions& options,
-                       const CloudReadOptions& read, const SectionSink& sink, const ProgressFn& progress);
+                       const CloudReadOptions& read, const SectionSink& sink, const ProgressFn& progress,
+                       const SamplingSink& on_sampling = {});
 
 }  // namespace section
