@@ -155,6 +155,33 @@ TEST_CASE("parallel: XYZ text parsed by several threads keeps points and line nu
   }
 }
 
+TEST_CASE("slice: a cloud in memory hands each section on as it is done, in plane order, the sampling first",
+          "[parallel][slice]") {
+  // (The slice tool writes each to the pipe from there, for standard input and views.)
+  const section::Scan scan = band_scan(section::turbine_blade(), 11, 7);
+  const auto planes = section::planes_at({0, 0, 1}, {11.5, 12.5, 13.5, 40});
+  for (int threads : {1, 2}) {
+    section::SliceOptions opt;
+    opt.threads = threads;
+    std::vector<std::string> told;
+    section::SliceResult sunk;
+    const section::SliceResult r = section::slice(
+        scan.cloud, planes, opt,
+        [&](const section::SectionSlice& s) {
+          told.push_back("section " + std::to_string(s.id));
+          sunk.sections.push_back(s);
+        },
+        [&](const section::Sampling& s) { told.push_back(section::sampling_kind_name(s.kind)); });
+    CHECK(told == std::vector<std::string>{"dense", "section 0", "section 1", "section 2", "section 3"});
+    sunk.slab = r.slab;
+    sunk.sampling = r.sampling;
+    sunk.points = r.points;
+    CHECK(section::format_stream(section::to_stream(sunk, "t")) ==
+          section::format_stream(section::to_stream(r, "t")));
+    CHECK_FALSE(r.sections[3].error.empty());  // the plane off the band fails, handed on in its place
+  }
+}
+
 TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a first look hold, two when not",
           "[parallel][slice]") {
   section::ScanOptions so;

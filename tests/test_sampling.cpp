@@ -288,7 +288,11 @@ TEST_CASE("sampling: sparse rows are sections as they lie; a plane between rows 
 TEST_CASE("sampling: with no planes, rows are the sections; other points say what to give", "[sampling]") {
   // slice_by_rows: what `slice` and ls.slice do given no planes.
   const BladeDesign blade = turbine_blade();
-  const SliceResult rows = slice_by_rows(rows_at(blade, {10, 25, 40}, 1.0), {0, 0, 1}, {}, false);
+  std::vector<int> told;  // the sampling (-1), then each row as it is done
+  const SliceResult rows = slice_by_rows(
+      rows_at(blade, {10, 25, 40}, 1.0), {0, 0, 1}, {}, false,
+      [&](const SectionSlice& s) { told.push_back(s.id); }, [&](const Sampling&) { told.push_back(-1); });
+  CHECK(told == std::vector<int>{-1, 0, 1, 2});
   REQUIRE(rows.sections.size() == 3);
   CHECK(rows.sections[1].frame.origin.z() == Approx(25));
   const Cloud grid = chordwise_grid(blade, 29, 31, 0.4, 0.1);  // 6 lines 0.4 mm apart

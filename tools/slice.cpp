@@ -179,12 +179,19 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   if (!clouds.empty()) {
     const section::Cloud merged = a.views.empty() ? std::move(clouds[0]) : merged_views(a, clouds, out);
     if (a.count > 0 && a.axis.empty()) planes = section::planes_across(merged.points, n, a.count);
+    // On planes and rows each section is written as soon as it is done (the next tool starts
+    // on it meanwhile), the sampling said before the first.
+    const auto said = [&](const section::Sampling& sampling) { say_sampling(sampling, out); };
     section::tool::with_input(input, [&] {
-      result = !a.axis.empty() ? section::slice(merged, a.surfaces(merged.points, units.mm), a.options)
-               : a.by_rows()   ? section::slice_by_rows(merged, n, a.options, a.rows)
-                               : section::slice(merged, planes, a.options);
+      if (!a.axis.empty()) {
+        result = section::slice(merged, a.surfaces(merged.points, units.mm), a.options);
+        if (a.options.slab == 0) say_sampling(result.sampling, out);
+      } else if (a.by_rows()) {
+        section::slice_by_rows(merged, n, a.options, a.rows, std::ref(out), said);
+      } else {
+        section::slice(merged, planes, a.options, std::ref(out), said);
+      }
     });
-    if (a.options.slab == 0) say_sampling(result.sampling, out);
   } else if (mesh) {
     if (a.count > 0 && a.axis.empty()) planes = section::planes_across(mesh->vertices, n, a.count);
     section::tool::with_input(input, [&] {

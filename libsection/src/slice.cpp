@@ -441,7 +441,8 @@ void order_slabs(std::vector<std::vector<Eigen::Vector2d>>& slabs, const NearFn&
 
 }  // namespace detail
 
-SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options) {
+SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options,
+                  const SectionSink& sink, const SamplingSink& on_sampling) {
   detail::check_planes(planes);
   if (options.fill_gaps) check_gap_fill_options(options.fill);
   detail::check_band_options(options);
@@ -456,13 +457,14 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
     detail::SpacingSearch search;
     result.sampling = detail::sample_all(cloud.points, planes[0].normal, options.sampling, search);
     const Sampling& s = result.sampling;
+    if (on_sampling) on_sampling(s);
     if (s.kind == SamplingKind::rows) {
-      detail::slice_through_rows(cloud.points, planes, options, result, {});
+      detail::slice_through_rows(cloud.points, planes, options, result, sink);
       return result;
     }
     result.slab = detail::sampled_slab(cloud.points, s, search);
     if (s.kind == SamplingKind::lines && !s.rows.empty() && s.points == cloud.points.size()) {
-      detail::slice_between_lines(cloud.points, planes, options, result, {});
+      detail::slice_between_lines(cloud.points, planes, options, result, sink);
       return result;
     }
   }
@@ -484,7 +486,7 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
     });
     return std::move(near[i]);
   };
-  detail::order_slabs(slabs, near_of, planes, result.slab, options, result);
+  detail::order_slabs(slabs, near_of, planes, result.slab, options, result, sink);
   return result;
 }
 

@@ -334,7 +334,7 @@ SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const Slice
 }
 
 SliceResult slice_by_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options,
-                          bool any_lines) {
+                          bool any_lines, const SectionSink& sink, const SamplingSink& on_sampling) {
   SamplingOptions all = options.sampling;  // a row is a section only with all its points
   all.max_points = std::max(all.max_points, cloud.points.size());
   const Sampling sampling = sampling_of(cloud.points, normal, all);
@@ -352,7 +352,13 @@ SliceResult slice_by_rows(const Cloud& cloud, const Eigen::Vector3d& normal, con
   if (sampling.rows.empty())
     throw Error("--rows: the points hold no rows or lines to take as sections, they are " +
                 sampling.describe() + ": give planes (--at, --count or --planes)");
-  return slice_rows(cloud, sampling, options);
+  if (sampling.points != cloud.points.size()) return slice_rows(cloud, sampling, options);  // refused there
+  if (on_sampling && options.slab == 0) on_sampling(sampling);
+  SliceResult result;
+  result.points = cloud.points.size();
+  result.sampling = sampling;
+  detail::rows_as_sections(cloud.points, options, result, sink);
+  return result;
 }
 
 }  // namespace section

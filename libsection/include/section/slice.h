@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,13 @@ struct SliceResult {
   int file_passes = 0;                 ///< slice_file: times the file was read (1 to 3); 0 in memory
 };
 
+/// Receives each section as soon as it and the sections before it are done, in plane
+/// order, from one thread at a time (slice_file, slice of a cloud, slice_by_rows).
+using SectionSink = std::function<void(const SectionSlice&)>;
+
+/// Receives what was found of the points' sampling (with slab 0), before any section.
+using SamplingSink = std::function<void(const Sampling&)>;
+
 /// Points of `points` in the closed slab |(p - origin) . n| <= slab / 2 of each plane,
 /// projected onto it, in cloud order. All planes in one pass: cost O(points log planes)
 /// per distinct normal. Points on a slab boundary are decided by CGAL's exact orientation
@@ -85,8 +93,10 @@ std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::V
 /// takes that row, and a plane between rows fails, naming the rows beside it.
 /// Sections that fail (no points, no closed loop) carry their error; the others go on.
 /// Exact copies of a point count once. Throws section::Error for bad options (no planes,
-/// a zero normal, a negative slab).
-SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options = {});
+/// a zero normal, a negative slab). `sink` and `on_sampling`, when set, receive each section
+/// as it is done and the sampling found before any (the result holds them all the same).
+SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const SliceOptions& options = {},
+                  const SectionSink& sink = {}, const SamplingSink& on_sampling = {});
 
 /// Each row of points of a cloud taken as a section as it lies (`slice --rows`): the rows
 /// across `normal` (sampling_of), each in its best plane (frame origin the plane's point
@@ -103,8 +113,9 @@ SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const Slice
 /// as sections (slice_rows) when its points are sparse rows, each a section's worth, or, with
 /// `any_lines` (`--rows`), whatever lines its sampling finds. Throws section::Error saying
 /// what the points are and what to give instead, or that they are too few for a row.
+/// `sink` and `on_sampling` as slice's (the sampling told with slab 0 only).
 SliceResult slice_by_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options,
-                          bool any_lines);
+                          bool any_lines, const SectionSink& sink = {}, const SamplingSink& on_sampling = {});
 
 /// Slices a mesh exactly (CGAL's polygon mesh slicer): each closed intersection polyline is
 /// a loop, oriented counterclockwise in (u, v), loop 0 the largest; its vertices are the points.

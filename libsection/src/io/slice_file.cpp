@@ -376,10 +376,8 @@ SliceResult slice_held(const std::string& path, const std::vector<Plane>& planes
   }
   // All the points are no rows after all (the first ones looked like rows).
   Cloud cloud{std::move(points)};
-  SliceResult lines = slice(cloud, planes, options);
+  SliceResult lines = slice(cloud, planes, options, sink);
   lines.file_passes = result.file_passes;
-  if (sink)
-    for (const auto& s : lines.sections) sink(s);
   return lines;
 }
 
@@ -410,11 +408,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     // A pipe cannot be read twice: hold the cloud.
     const Cloud cloud = read_cloud(path, read);
     const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
-    SliceResult result = slice(cloud, planes, options);
-    if (on_sampling && options.slab == 0) on_sampling(result.sampling);
-    if (given_sink)
-      for (const auto& s : result.sections) given_sink(s);
-    return result;
+    return slice(cloud, planes, options, given_sink, on_sampling);
   }
   // The points held for the planes (slabs, the points beside them, the sections made) stay
   // within half the memory limit: about 4 kB a plane before any point, refused at once.

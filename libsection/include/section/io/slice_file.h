@@ -32,12 +32,6 @@ struct PlaneSpec {
   int count = 0;                                      ///< planes spread as planes_across; 0 = `planes`
 };
 
-/// Receives each section of slice_file as soon as it and the sections before it are done.
-using SectionSink = std::function<void(const SectionSlice&)>;
-
-/// Receives what slice_file found of the points' sampling (with slab 0), before any section.
-using SamplingSink = std::function<void(const Sampling&)>;
-
 /// Slices the cloud of a file without holding it: reads it in chunks and keeps only the
 /// slab points of each plane. A file is read once when the planes and the slab width are
 /// given, or when those guessed from a first look at a binary PLY file hold; twice
