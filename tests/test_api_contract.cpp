@@ -35,6 +35,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -323,6 +324,20 @@ TEST_CASE("api: slicing refuses clouds and meshes it would read past", "[api]") 
   CHECK(refuses([&] { slice(c, planes_at({0, 0, 1}, {22}), o); }, "1 query"));
   c.points[10] = {not_a_number, not_a_number, not_a_number};
   CHECK(refuses([&] { slice(c, planes_at({0, 0, 1}, {22})); }, "point 10 is not finite"));
+  // A point the cloud readers refuse, in a cloud built in memory (ls.slice of an array): it
+  // made a raster of 1.8e21 cells, refused without naming the point.
+  c.points[10] = {1e20, 0, 22};
+  for (const auto& cut : std::vector<std::function<void()>>{
+           [&] {
+             slice(c, planes_at({0, 0, 1}, {22}));
+           },
+           [&] {
+             slice_by_rows(c, {0, 0, 1}, {}, true);
+           },
+           [&] {
+             slice(c, std::vector<Revolution>{cylinder_surface({0, -100, 22}, {1, 0, 0}, 100)});
+           }})
+    CHECK(refuses(cut, "point 10 lies beyond +-1e15"));
   std::vector<StackedSection> st(3);
   StackingOptions sto;
   sto.samples = INT_MAX;

@@ -5,6 +5,7 @@
 
 #include "section/error.h"
 #include "revolution_map.h"
+#include "detail/spacing_search.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -103,8 +104,9 @@ std::vector<Revolution> with_references(const std::vector<Revolution>& surfaces,
 }  // namespace detail
 
 SliceResult slice(const Cloud& cloud, const std::vector<Revolution>& surfaces, const SliceOptions& options) {
-  const std::vector<Revolution> given = detail::with_references(surfaces, cloud.points);
   if (cloud.points.empty()) throw Error("slice: the cloud has no points");
+  detail::check_points(cloud.points);
+  const std::vector<Revolution> given = detail::with_references(surfaces, cloud.points);
   SliceResult result;
   result.points = cloud.points.size();
   result.sections.resize(given.size());

@@ -6,6 +6,7 @@
 #include "detail/flann_nearest.h"
 #include "detail/parallel.h"
 #include "detail/spacing_search.h"
+#include "io/text.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -396,13 +397,20 @@ std::string Sampling::describe() const {
 
 Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
                      const SamplingOptions& options) {
-  for (std::size_t k = 0; k < points.size(); ++k)
-    if (!points[k].allFinite()) throw Error("slice: point " + std::to_string(k) + " is not finite");
+  detail::check_points(points);
   detail::SpacingSearch unused;
   return detail::sampling_of(points, normal, options, unused);
 }
 
 namespace detail {
+
+void check_points(const std::vector<Eigen::Vector3d>& points) {
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (!(points[k].cwiseAbs().maxCoeff() <= max_coordinate))
+      throw Error("slice: point " + std::to_string(k) +
+                  (points[k].allFinite() ? " lies beyond +-1e15 (a coordinate no cloud file gives)"
+                                         : " is not finite"));
+}
 
 namespace {
 

@@ -9,6 +9,7 @@
 #include "detail/parallel.h"
 #include "detail/slab_scan.h"
 #include "detail/slice_steps.h"
+#include "detail/spacing_search.h"
 #include "io/text.h"
 
 #include <algorithm>
@@ -448,8 +449,7 @@ SliceResult slice(const Cloud& cloud, const std::vector<Plane>& planes, const Sl
   detail::check_band_options(options);
   if (cloud.points.empty()) throw Error("slice: the cloud has no points");
   // (The readers refuse them; a cloud built in memory may hold one: it moved the spacing.)
-  for (std::size_t k = 0; k < cloud.points.size(); ++k)
-    if (!cloud.points[k].allFinite()) throw Error("slice: point " + std::to_string(k) + " is not finite");
+  detail::check_points(cloud.points);
   SliceResult result;
   result.points = cloud.points.size();
   result.slab = options.slab;

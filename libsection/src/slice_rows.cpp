@@ -335,6 +335,7 @@ SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const Slice
 
 SliceResult slice_by_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options,
                           bool any_lines, const SectionSink& sink, const SamplingSink& on_sampling) {
+  if (cloud.points.empty()) throw Error("slice: the cloud has no points");
   SamplingOptions all = options.sampling;  // a row is a section only with all its points
   all.max_points = std::max(all.max_points, cloud.points.size());
   const Sampling sampling = sampling_of(cloud.points, normal, all);

@@ -22,6 +22,11 @@ struct SpacingSearch {
   std::vector<double> nearest_d2;
 };
 
+/// Refuses a cloud built in memory with a point the cloud readers refuse: not finite, or a
+/// coordinate beyond +-1e15 (whose squares overflow; one point at 1e20 made the raster
+/// exceed its cells). Names the point.
+void check_points(const std::vector<Eigen::Vector3d>& points);
+
 /// sampling_of(points, normal, options), its searches kept in `search`.
 Sampling sampling_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
                      const SamplingOptions& options, SpacingSearch& search);
