@@ -36,8 +36,9 @@ def slice(cloud, planes=None, progress=None, **flags):
     revolution (with radius, cone or streamline). Other flags as the tool's (slab,
     cell, band_spacing, no_fill, units, threads, ...). Returns a Stream (tables frames, loops,
     points, skeleton); failed sections are in its issues. Raises ValueError when no section
-    can be sliced or a flag is bad. progress(stage, done, total), for a file, is told each
-    section done; returning False cancels the call (raises Cancelled)."""
+    can be sliced or a flag is bad. progress(stage, done, total), for a file or an array cut
+    on planes or taken by rows (total 0: not known before), is told each section done;
+    returning False cancels the call (raises Cancelled)."""
     return _libsection.slice_stream(cloud, planes, progress, **flags)
 
 

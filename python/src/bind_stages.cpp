@@ -131,11 +131,18 @@ Stream slice_stream(const py::object& cloud, const py::object& planes, const py:
                           [&](const Sampling& s) { streamed = s; });
     } else if (revolution) {
       result = section::slice(in.cloud, a.surfaces(in.cloud.points, units.mm), a.options);
-    } else if (rows) {
-      result = slice_by_rows(in.cloud, n, a.options, a.rows);
     } else {
-      result =
-          section::slice(in.cloud, count > 0 ? planes_across(in.cloud.points, n, count) : chosen, a.options);
+      // A cloud in memory: each section done told to `progress` (rows: their count not known before).
+      const std::vector<Plane> cut = rows        ? std::vector<Plane>{}
+                                     : count > 0 ? planes_across(in.cloud.points, n, count)
+                                                 : chosen;
+      std::optional<ProgressCounter> counter;
+      if (fn) counter.emplace(fn, "slice", cut.size());
+      const SectionSink told = [&](const SectionSlice&) {
+        if (counter) counter->add(1);
+      };
+      result = rows ? slice_by_rows(in.cloud, n, a.options, a.rows, told)
+                    : section::slice(in.cloud, cut, a.options, told);
     }
   }
   if (!units.warning.empty()) PyErr_WarnEx(PyExc_UserWarning, ("slice: " + units.warning).c_str(), 1);

@@ -76,6 +76,12 @@ def test_progress_reports_and_cancels():
     assert len(s.table("frames")["section"]) == 3
     with pytest.raises(ls.Cancelled, match="slice: cancelled"):
         ls.slice(EXAMPLE, normal=(0, 0, 1), at=[12, 20, 28], progress=lambda stage, done, total: done < 2)
+    # An array held in memory is told the same way (it was not told at all).
+    told = []
+    ls.slice(cloud, normal=(0, 0, 1), at=[12, 20, 28], progress=lambda *e: told.append(e))
+    assert told == sections
+    with pytest.raises(ls.Cancelled, match="slice: cancelled"):
+        ls.slice(cloud, normal=(0, 0, 1), at=[12, 20, 28], progress=lambda stage, done, total: done < 2)
     assert issubclass(ls.Cancelled, ls.Error)
 
 
