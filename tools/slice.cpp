@@ -176,16 +176,16 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   if (mesh)
     for (auto& v : mesh->vertices) v *= units.mm;
   section::SliceResult result;
+  // On planes and rows each section is written as soon as it is done (the next tool starts
+  // on it meanwhile), the sampling said before the first.
+  const auto said = [&](const section::Sampling& sampling) { say_sampling(sampling, out); };
   if (!clouds.empty()) {
     const section::Cloud merged = a.views.empty() ? std::move(clouds[0]) : merged_views(a, clouds, out);
     if (a.count > 0 && a.axis.empty()) planes = section::planes_across(merged.points, n, a.count);
-    // On planes and rows each section is written as soon as it is done (the next tool starts
-    // on it meanwhile), the sampling said before the first.
-    const auto said = [&](const section::Sampling& sampling) { say_sampling(sampling, out); };
     section::tool::with_input(input, [&] {
       if (!a.axis.empty()) {
         result = section::slice(merged, a.surfaces(merged.points, units.mm), a.options);
-        if (a.options.slab == 0) say_sampling(result.sampling, out);
+        if (a.options.slab == 0) said(result.sampling);
       } else if (a.by_rows()) {
         section::slice_by_rows(merged, n, a.options, a.rows, std::ref(out), said);
       } else {
@@ -205,7 +205,7 @@ void run_slice(const SliceArgs& given, const std::string& history) {
     read.scale = units.mm;
     section::tool::with_input(input, [&] {
       section::slice_file(input, section::PlaneSpec{planes, n, a.count}, a.options, read, std::ref(out),
-                          [&](const section::Sampling& sampling) { say_sampling(sampling, out); });
+                          said);
     });
   }
   for (const auto& s : result.sections) out(s);

@@ -309,36 +309,50 @@ void rows_as_sections(const std::vector<Eigen::Vector3d>& points, const SliceOpt
 
 }  // namespace detail
 
-SliceResult slice_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options) {
+namespace {
+
+// The sampling of all of a cloud's points: a row is a section only with all its points.
+Sampling all_points_sampling(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options) {
   if (cloud.points.empty()) throw Error("slice: the cloud has no points");
-  SamplingOptions all = options.sampling;  // a row is a section only with all its points
+  SamplingOptions all = options.sampling;
   all.max_points = std::max(all.max_points, cloud.points.size());
-  return slice_rows(cloud, sampling_of(cloud.points, normal, all), options);
+  return sampling_of(cloud.points, normal, all);
 }
 
-SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const SliceOptions& options) {
+// slice_rows on `sampling`, each section handed to `sink` as it is done (the sampling to
+// `on_sampling` first, with slab 0).
+SliceResult rows_sliced(const Cloud& cloud, const Sampling& sampling, const SliceOptions& options,
+                        const SectionSink& sink, const SamplingSink& on_sampling) {
   if (sampling.points < cloud.points.size())
     throw Error("slice: the rows were found on the first " + std::to_string(sampling.points) + " of " +
                 std::to_string(cloud.points.size()) + " points only");
   if (sampling.points > cloud.points.size())  // another cloud's: its rows index past this one
     throw Error("slice: the rows were found on " + std::to_string(sampling.points) +
                 " points, the cloud has " + std::to_string(cloud.points.size()));
+  if (sampling.rows.empty())
+    throw Error("slice: the points are not rows of points, each a section's worth, but " +
+                sampling.describe() + ": give section planes (--at, --count or --planes)");
+  if (on_sampling && options.slab == 0) on_sampling(sampling);
   SliceResult result;
   result.points = cloud.points.size();
   result.sampling = sampling;
-  if (result.sampling.rows.empty())
-    throw Error("slice: the points are not rows of points, each a section's worth, but " +
-                result.sampling.describe() + ": give section planes (--at, --count or --planes)");
-  detail::rows_as_sections(cloud.points, options, result, {});
+  detail::rows_as_sections(cloud.points, options, result, sink);
   return result;
+}
+
+}  // namespace
+
+SliceResult slice_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options) {
+  return rows_sliced(cloud, all_points_sampling(cloud, normal, options), options, {}, {});
+}
+
+SliceResult slice_rows(const Cloud& cloud, const Sampling& sampling, const SliceOptions& options) {
+  return rows_sliced(cloud, sampling, options, {}, {});
 }
 
 SliceResult slice_by_rows(const Cloud& cloud, const Eigen::Vector3d& normal, const SliceOptions& options,
                           bool any_lines, const SectionSink& sink, const SamplingSink& on_sampling) {
-  if (cloud.points.empty()) throw Error("slice: the cloud has no points");
-  SamplingOptions all = options.sampling;  // a row is a section only with all its points
-  all.max_points = std::max(all.max_points, cloud.points.size());
-  const Sampling sampling = sampling_of(cloud.points, normal, all);
+  const Sampling sampling = all_points_sampling(cloud, normal, options);
   if (!(sampling.spacing > 0) || cloud.points.size() < 8)
     throw Error("no section planes given, and " + std::to_string(cloud.points.size()) + " points" +
                 (sampling.spacing > 0 ? "" : ", all equal,") +
@@ -353,13 +367,7 @@ SliceResult slice_by_rows(const Cloud& cloud, const Eigen::Vector3d& normal, con
   if (sampling.rows.empty())
     throw Error("--rows: the points hold no rows or lines to take as sections, they are " +
                 sampling.describe() + ": give planes (--at, --count or --planes)");
-  if (sampling.points != cloud.points.size()) return slice_rows(cloud, sampling, options);  // refused there
-  if (on_sampling && options.slab == 0) on_sampling(sampling);
-  SliceResult result;
-  result.points = cloud.points.size();
-  result.sampling = sampling;
-  detail::rows_as_sections(cloud.points, options, result, sink);
-  return result;
+  return rows_sliced(cloud, sampling, options, sink, on_sampling);
 }
 
 }  // namespace section
