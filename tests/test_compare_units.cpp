@@ -1,14 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of compare's units: nominals in metres or inches, measured and nominal streams in
-// metres compared in mm, and nominals made on frames in another unit.
+// metres compared in mm, nominals made on frames in another unit, and the nominal's file.
 #include "compare_stream_fixtures.h"
 #include "section/extras/generate.h"
+#include "section/io/file.h"
+#include "section/io/mesh_io.h"
+#include "section/pipe/nominal_file.h"
 #include "section/pipe/compare_stream.h"
 #include "section/pipe/schema.h"
 
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 using namespace compare_stream_test;
@@ -82,4 +89,55 @@ TEST_CASE("compare stream: a measured stream in metres is compared in mm, on its
   section::compare_stream(third, n_m, o);
   const auto c = compared(third, "chord");
   for (const auto& [id, row] : a) CHECK(c.at(id)[1] == Approx(row[1]).margin(1e-6));
+}
+
+namespace {
+
+std::string temp_file(const std::string& name, const std::string& text) {
+  const std::string path = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                           "/libsection_nominal_" + std::to_string(::getpid()) + "_" + name;
+  section::write_file(path, text);
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("read_nominal: a mesh by its extension, a stream by its first line, else points", "[compare]") {
+  // Points 40 mm across written in metres: read as points, taken as metres, in mm.
+  const std::string points =
+      temp_file("points.csv", "section,u,v\n3,0.02,0\n3,0,0.004\n3,-0.02,0\n3,0,-0.004\n");
+  const section::NominalFile p = section::read_nominal(points);
+  CHECK(p.kind == section::NominalFile::Kind::points);
+  CHECK(p.source().points == &p.points);
+  CHECK(p.source().mesh == nullptr);
+  CHECK(p.units.mm == 1000);
+  CHECK(p.points.at(0, 1) == Approx(20));
+  CHECK(section::read_nominal(points, "mm").points.at(0, 1) == 0.02);
+  // A stream in metres: in mm, and no unit may be given for it.
+  section::Stream s;
+  s.units = "m";
+  section::Table frames("frames", {"section", "origin_x", "origin_y", "origin_z", "u_x", "u_y", "u_z", "v_x",
+                                   "v_y", "v_z", "n_x", "n_y", "n_z"});
+  frames.add_row({0, 0, 0, 0.016, 1, 0, 0, 0, 1, 0, 0, 0, 1});
+  s.put(frames);
+  const std::string stream = temp_file("stream.csv", section::format_stream(s));
+  const section::NominalFile n = section::read_nominal(stream);
+  CHECK(n.kind == section::NominalFile::Kind::stream);
+  CHECK(n.stream.units == "mm");
+  CHECK(section::frames(n.stream).at(0).origin.z() == Approx(16));
+  CHECK_THROWS_WITH(section::read_nominal(stream, "m"),
+                    Catch::Contains(stream + ": --nominal-units: a stream says its own unit"));
+  // A mesh by its extension, whatever the case; a file that is none of them names itself.
+  section::Mesh mesh;
+  mesh.vertices = {{0, 0, 0}, {40, 0, 0}, {0, 8, 1}, {0, 0, 2}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
+  const std::string stl = temp_file("mesh.STL", "");
+  section::write_mesh(stl, mesh);
+  const section::NominalFile m = section::read_nominal(stl);
+  CHECK(m.kind == section::NominalFile::Kind::mesh);
+  CHECK(m.mesh.vertices.size() == 4);
+  CHECK(m.units.mm == 1);
+  const std::string bad = temp_file("bad.csv", "section,u,v\n3,nan,0\n");
+  CHECK_THROWS_WITH(section::read_nominal(bad), Catch::Contains(bad));
+  for (const std::string& f : {points, stream, stl, bad}) std::remove(f.c_str());
 }

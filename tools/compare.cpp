@@ -4,10 +4,9 @@
 
 #include "section/error.h"
 #include "section/extras/report.h"
-#include "section/io/csv.h"
 #include "section/io/file.h"
 #include "section/io/json.h"
-#include "section/io/mesh_io.h"
+#include "section/pipe/nominal_file.h"
 #include "section/io/stream.h"
 #include "section/io/tolerances.h"
 #include "section/pipe/compare_stream.h"
@@ -15,51 +14,15 @@
 #include "section/pipe/schema.h"
 
 #include <iostream>
-#include <memory>
 
 namespace {
 
 using section::tool::CompareArgs;
 
-// The nominal file: a mesh by its extension, else a stream by its first line, else a CSV
-// table of section points.
-struct Nominal {
-  section::Mesh mesh;
-  section::Stream stream;
-  section::Table points;
-  section::NominalSource source;
-};
-
-// A nominal mesh or points in mm (their unit given or guessed), the guess said on standard error.
-void to_mm(Nominal& n, const std::string& units, const std::string& path) {
-  const section::InputUnits in =
-      section::nominal_to_mm(n.source.mesh ? &n.mesh : nullptr, n.source.points ? &n.points : nullptr, units);
-  if (!in.warning.empty()) std::cerr << "compare: warning: " << path << ": " << in.warning << "\n";
-}
-
-std::unique_ptr<Nominal> read_nominal(const std::string& path, const std::string& units) {
-  auto n = std::make_unique<Nominal>();
-  n->source.name = path;
-  for (const char* ext : {".stl", ".obj", ".off", ".ply", ".STL", ".OBJ", ".OFF", ".PLY"})
-    if (section::tool::ends_with(path, ext)) {
-      n->mesh = section::read_mesh(path);
-      n->source.mesh = &n->mesh;
-      to_mm(*n, units, path);
-      return n;
-    }
-  const std::string text = section::read_file(path);
-  section::tool::with_input(path, [&] {
-    if (text.rfind("# libsection-stream", 0) == 0) {
-      if (!units.empty()) throw section::Error("--nominal-units: a stream says its own unit (# units)");
-      n->stream = section::parse_stream(text, path);
-      section::convert_to_mm(n->stream);
-      n->source.stream = &n->stream;
-    } else {
-      n->points = section::parse_csv(text, path);
-      n->source.points = &n->points;
-      to_mm(*n, units, path);
-    }
-  });
+// The nominal (mesh, stream or points), its unit's doubt said on standard error.
+section::NominalFile read_nominal(const std::string& path, const std::string& units) {
+  section::NominalFile n = section::read_nominal(path, units);
+  if (!n.units.warning.empty()) std::cerr << "compare: warning: " << path << ": " << n.units.warning << "\n";
   return n;
 }
 
@@ -67,7 +30,8 @@ int run_compare(const CompareArgs& a, const std::string& history) {
   CompareArgs args = a;
   if (!a.tolerances.empty())
     args.options.tolerances = section::read_tolerances(a.tolerances, section::tolerance_items());
-  const std::unique_ptr<Nominal> nominal = read_nominal(a.nominal, a.nominal_units);
+  const section::NominalFile nominal = read_nominal(a.nominal, a.nominal_units);
+  const section::NominalSource source = nominal.source();
   const section::CompareStreamOptions& o = args.options;
   // Errors name the file they come from: the nominal's or the measured stream's.
   auto stage = [&](section::Stream& s, int threads) {
@@ -78,7 +42,7 @@ int run_compare(const CompareArgs& a, const std::string& history) {
     section::tool::with_input(a.common.input, [&] {
       if (section::schema::frames.find(s)) frames = section::frames(s);
     });
-    section::tool::with_input(a.nominal, [&] { n = section::nominal_stream(nominal->source, frames, part); });
+    section::tool::with_input(a.nominal, [&] { n = section::nominal_stream(source, frames, part); });
     section::tool::with_input(a.common.input, [&] { section::compare_stream(s, n, part); });
   };
   const std::string format = !a.format.empty()                                    ? a.format

@@ -12,15 +12,19 @@ Each stage takes a Stream and returns a new one, as its tool does, with the tool
 keywords (`slab=0.05` for `--slab 0.05`, `no_fill=True` for `--no-fill`; `TOOL --help`
 lists them); the same options give the same numbers as the tools. On one curve instead:
 `smooth(points)` -> points, `fit_spline(points)` -> Spline, `camber(spline)` -> dict.
-`read_tables(path)` reads a stream written by the tools into pandas DataFrames.
+`read_tables(path)` reads a stream written by the tools into pandas DataFrames. The
+inspection, as the compare tool runs it: `compare_stream(s, "nominal.stl",
+tolerances="tolerances.csv")`, then `verdict(...)` and `compare_report(...)`.
 """
 import numpy as _np
 
 from . import _libsection
-from ._libsection import Cancelled, Error, Nominal, Spline, Stream, generate, parse_stream, read_cloud, read_stream
+from ._libsection import (Cancelled, Error, Nominal, Spline, Stream, compare_report, generate, parse_stream,
+                          read_cloud, read_stream, verdict)
 from .tables import format_number, read_tables, table, to_csv
 
-__all__ = ["slice", "smooth", "fit_spline", "camber", "compare", "prepare_nominal", "Nominal", "Stream", "Spline",
+__all__ = ["slice", "smooth", "fit_spline", "camber", "compare", "compare_stream", "compare_report", "verdict",
+           "prepare_nominal", "Nominal", "Stream", "Spline",
            "Error", "Cancelled", "read_stream",
            "parse_stream", "read_cloud", "read_tables", "table", "format_number", "to_csv", "generate"]
 __version__ = "0.1.0"
@@ -106,3 +110,16 @@ def compare(nominal, points, **flags):
         nominal = prepare_nominal(nominal, **flags)
         flags = {}
     return _libsection.compare_points(nominal, points, **flags)
+
+
+def compare_stream(stream, nominal, **flags):
+    """Every section of a measured stream (through camber) against its nominal, as the compare
+    tool runs (docs/COMPARE.md): nominal the path of a mesh (.stl .obj .off .ply, sliced on
+    the measured planes), of a stream or of a CSV of section points, or a Stream. Flags as the
+    tool's (tolerances='file.csv', nominal_units, fit, freedom, decision_rule, whole, ...).
+    Returns a copy of the stream with the tables 'fits', 'deviations', 'zones', 'compared' and
+    'verdicts'; a section a tolerance names that the stream lacks is judged not measured, with
+    an issue. verdict(result) and compare_report(result) give the tool's outcome and report.
+    Raises Error naming the file for a nominal or tolerance file that cannot be used, and
+    ValueError for bad flags; a doubtful nominal unit is a UserWarning."""
+    return _libsection.compare_stream(stream, nominal, **flags)

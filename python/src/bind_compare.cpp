@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // compare on arrays: a nominal prepared once (Nominal: its geometry and foot search, see
-// section/compare.h prepare_nominal) and measured sections compared with it, the options
-// being the compare tool's flags as keywords.
+// section/compare.h prepare_nominal) and measured sections compared with it; and on a
+// whole stream against a nominal file or stream, as the compare tool runs. The options are
+// the compare tool's flags as keywords.
 #include "convert.h"
 
 #include "args/compare_args.h"
 #include "section/compare.h"
+#include "section/extras/report.h"
+#include "section/pipe/nominal_file.h"
+#include "section/io/tolerances.h"
+#include "section/pipe/compare_stream.h"
+#include "section/pipe/schema.h"
 
 #include <string>
 
@@ -115,6 +121,63 @@ py::dict compare_points(const Nominal& nominal, const Array& measured, const py:
   return out;
 }
 
+// The compare tool on a whole stream: `nominal` a file (mesh, stream or CSV points) or a
+// Stream; the tables fits, deviations, zones, compared and verdicts added to a copy of
+// `measured`, and every section a tolerance names but the stream lacks judged not measured
+// (the tool says those in its report and exit code).
+Stream compare_measured(const Stream& measured, const py::object& nominal, const py::kwargs& kwargs) {
+  for (const char* own : {"nominal", "format", "report"})
+    if (kwargs.contains(own))
+      throw py::value_error(std::string("compare_stream: ") + own +
+                            " is the tool's; pass the nominal as the second argument, and "
+                            "compare_report(stream) or verdict(stream) for the outcome");
+  const tool::CompareArgs a = tool_args<tool::CompareArgs>(kwargs, {"--nominal", "-"});
+  const bool given_stream = py::isinstance<Stream>(nominal);
+  if (given_stream && !a.nominal_units.empty())
+    throw py::value_error("compare_stream: nominal_units: a stream says its own unit (# units)");
+  std::string path;
+  NominalFile file;
+  if (given_stream) {
+    file.stream = nominal.cast<const Stream&>();
+    file.kind = NominalFile::Kind::stream;
+    file.name = "the nominal stream";
+  } else {
+    path = py::str(py::module_::import("os").attr("fspath")(nominal)).cast<std::string>();
+  }
+  Stream out = measured;
+  {
+    py::gil_scoped_release unlocked;
+    CompareStreamOptions o = a.options;
+    if (!a.tolerances.empty()) o.tolerances = read_tolerances(a.tolerances, tolerance_items());
+    if (given_stream)
+      convert_to_mm(file.stream);
+    else
+      file = read_nominal(path, a.nominal_units);
+    convert_to_mm(out);
+    const std::map<int, Frame> frames =
+        schema::frames.find(out) ? section::frames(out) : std::map<int, Frame>{};
+    compare_stream(out, nominal_stream(file.source(), frames, o), o);
+    judge_absent_sections(out, o);
+  }
+  if (!file.units.warning.empty())
+    PyErr_WarnEx(PyExc_UserWarning, ("compare_stream: " + path + ": " + file.units.warning).c_str(), 1);
+  out.history.push_back(history("compare_stream", kwargs));
+  return out;
+}
+
+std::string verdict_of(const Stream& compared) {
+  switch (stream_verdict(compared)) {
+    case 1:
+      return "failed";
+    case 2:
+      return "not measured";
+    case 3:
+      return "uncertain";
+    default:
+      return "passed";
+  }
+}
+
 }  // namespace
 
 void bind_compare(py::module_& m) {
@@ -130,6 +193,14 @@ void bind_compare(py::module_& m) {
            "that leave no room for the sides.")
       .def_property_readonly("edge_zone", [](const Nominal& n) { return n.options.edge_zone; });
   m.def("compare_points", &compare_points, py::arg("nominal"), py::arg("points"));
+  m.def("compare_stream", &compare_measured, py::arg("stream"), py::arg("nominal"));
+  m.def("verdict", &verdict_of, py::arg("stream"),
+        "The worst verdict of a compared stream: 'failed', 'not measured', 'uncertain' or 'passed' "
+        "(the compare tool's exit codes 4, 5, 6 and 0; 'passed' also when nothing was toleranced).");
+  m.def(
+      "compare_report", [](const Stream& s) { return compare_report(s); }, py::arg("stream"),
+      "The compare tool's report of a compared stream (its --report text): per section, each toleranced "
+      "value with its verdict.");
 }
 
 }  // namespace section::python

@@ -34,15 +34,6 @@ double extent_of(const std::vector<Eigen::Vector3d>& points) {
   return points.empty() ? 0 : box.sizes().maxCoeff();
 }
 
-// The history line of a stage run from Python: its name and the flags given.
-std::string history(const char* name, const py::kwargs& kwargs) {
-  std::vector<std::string> words;
-  for (const auto& [key, value] : kwargs) add_flag(words, py::cast<std::string>(key), value);
-  std::string line = std::string("libsection.") + name;
-  for (const auto& w : words) line += " " + w;
-  return line;
-}
-
 // Planes from an (P, 6) array: origin x, y, z, normal x, y, z per row.
 std::vector<Plane> planes_of(const py::object& planes, double mm) {
   const Array a = planes.cast<Array>();

@@ -110,4 +110,12 @@ py::dict table_dict(const Table& t) {
   return out;
 }
 
+std::string history(const char* name, const py::kwargs& kwargs) {
+  std::vector<std::string> words;
+  for (const auto& [key, value] : kwargs) add_flag(words, py::cast<std::string>(key), value);
+  std::string line = std::string("libsection.") + name;
+  for (const auto& w : words) line += " " + w;
+  return line;
+}
+
 }  // namespace section::python

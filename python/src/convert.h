@@ -39,6 +39,9 @@ Array array1(const std::vector<double>& values);
 /// True, nothing for False or None.
 void add_flag(std::vector<std::string>& words, const std::string& name, const py::handle& value);
 
+/// The history line of a stage run from Python: `libsection.NAME` and the flags given.
+std::string history(const char* name, const py::kwargs& kwargs);
+
 /// The tool's command line made of `kwargs` (and `extra` words first) read into its `Args`,
 /// as the tool reads its own; bad usage raises ValueError with the tool's message.
 template <class Args>
