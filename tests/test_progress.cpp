@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The progress and cancel hook (progress.h, io/progress_io.h): the same results as without
-// it, counts that grow to the total, and a cancel that stops the call with Cancelled.
+// it, counts that grow to the total, and a cancel that stops the call with Cancelled; the
+// section sinks of meshes and surfaces of revolution.
 #include "section/extras/generate.h"
+#include "section/extras/generate_rotor.h"
 #include "section/io/progress_io.h"
+#include "section/revolution.h"
 #include "section/slice.h"
 #include "thrown.h"
 
@@ -91,4 +94,74 @@ TEST_CASE("progress: slice_file reports each section in order, and a cancel stop
           }) == "slice: cancelled");
   REQUIRE(reports == 2);
   std::remove(path.c_str());
+}
+
+namespace {
+
+// Runs `cut(sink)` with a sink that records each section's id and its loop 0's points, and
+// checks them against the result: every section, in order, as the result holds it; then a
+// sink that cancels after the first section stops the call there.
+template <class Cut>
+void sinks_each_section(const Cut& cut, std::size_t sections) {
+  std::vector<int> ids;
+  std::vector<std::vector<Eigen::Vector2d>> sunk;
+  const SliceResult result = cut([&](const SectionSlice& s) {
+    ids.push_back(s.id);
+    sunk.push_back(s.morphology.loops.empty() ? std::vector<Eigen::Vector2d>{}
+                                              : s.morphology.loops[0].points);
+  });
+  REQUIRE(result.sections.size() == sections);
+  REQUIRE(ids.size() == sections);
+  for (std::size_t i = 0; i < sections; ++i) {
+    REQUIRE(ids[i] == int(i));
+    REQUIRE(result.sections[i].error.empty());
+    REQUIRE(sunk[i] == result.sections[i].morphology.loops[0].points);
+  }
+  std::size_t calls = 0;
+  REQUIRE(thrown([&] {
+            cut([&](const SectionSlice&) {
+              if (++calls == 1) throw Cancelled("slice");
+            });
+          }) == "slice: cancelled");
+  REQUIRE(calls == 1);
+}
+
+}  // namespace
+
+TEST_CASE("progress: a mesh and surfaces of revolution hand on each section as it is done", "[progress]") {
+  const Mesh blade = generate_mesh(turbine_blade(), 400, 20);
+  const std::vector<Plane> planes = planes_at({0, 0, 1}, {12, 20, 28});
+  sinks_each_section([&](const SectionSink& sink) { return slice(blade, planes, {}, sink); }, 3);
+  const RotorDesign rotor = cylinder_rotor();
+  std::vector<Revolution> surfaces;
+  for (double z : {20.0, 40.5}) surfaces.push_back(rotor.surface(z));
+  const Mesh rotor_blade = rotor_mesh(rotor, 400, 61);
+  sinks_each_section([&](const SectionSink& sink) { return slice(rotor_blade, surfaces, {}, sink); }, 2);
+  // A rotor's sparse rows on their cylinders: the sampling told once, before any section.
+  RowsOptions ro;
+  ro.rows = 3;
+  ro.pitch = 12;
+  ro.spacing = 0.05;
+  const Cloud rows = rotor_cloud(rotor, generate_rows(rotor.blade, ro));
+  surfaces.clear();
+  for (double r : row_radii(rows.points, rotor.axis_point, rotor.axis)) {
+    surfaces.push_back(cylinder_surface(rotor.axis_point, rotor.axis, r));
+    surfaces.back().reference = rotor.reference;
+  }
+  std::vector<std::string> told;
+  sinks_each_section(
+      [&](const SectionSink& sink) {
+        return slice(
+            rows, surfaces, {},
+            [&](const SectionSlice& s) {
+              told.push_back("section");
+              sink(s);
+            },
+            [&](const Sampling& s) { told.push_back(s.kind == SamplingKind::rows ? "rows" : "other"); });
+      },
+      3);
+  REQUIRE(told.size() >= 4);
+  CHECK(told[0] == "rows");
+  CHECK(std::vector<std::string>(told.begin() + 1, told.begin() + 4) ==
+        std::vector<std::string>(3, "section"));
 }

@@ -175,17 +175,15 @@ void run_slice(const SliceArgs& given, const std::string& history) {
     for (auto& p : c.points) p *= units.mm;
   if (mesh)
     for (auto& v : mesh->vertices) v *= units.mm;
-  section::SliceResult result;
-  // On planes and rows each section is written as soon as it is done (the next tool starts
-  // on it meanwhile), the sampling said before the first.
+  // Each section is written as soon as it is done (the next tool starts on it meanwhile),
+  // the sampling said before the first.
   const auto said = [&](const section::Sampling& sampling) { say_sampling(sampling, out); };
   if (!clouds.empty()) {
     const section::Cloud merged = a.views.empty() ? std::move(clouds[0]) : merged_views(a, clouds, out);
     if (a.count > 0 && a.axis.empty()) planes = section::planes_across(merged.points, n, a.count);
     section::tool::with_input(input, [&] {
       if (!a.axis.empty()) {
-        result = section::slice(merged, a.surfaces(merged.points, units.mm), a.options);
-        if (a.options.slab == 0) said(result.sampling);
+        section::slice(merged, a.surfaces(merged.points, units.mm), a.options, std::ref(out), said);
       } else if (a.by_rows()) {
         section::slice_by_rows(merged, n, a.options, a.rows, std::ref(out), said);
       } else {
@@ -195,8 +193,10 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   } else if (mesh) {
     if (a.count > 0 && a.axis.empty()) planes = section::planes_across(mesh->vertices, n, a.count);
     section::tool::with_input(input, [&] {
-      result = a.axis.empty() ? section::slice(*mesh, planes, a.options)
-                              : section::slice(*mesh, a.surfaces(mesh->vertices, units.mm), a.options);
+      if (a.axis.empty())
+        section::slice(*mesh, planes, a.options, std::ref(out));
+      else
+        section::slice(*mesh, a.surfaces(mesh->vertices, units.mm), a.options, std::ref(out));
     });
   } else {
     // Streamed: only the slab points are held, not the cloud, and each section is written
@@ -208,7 +208,6 @@ void run_slice(const SliceArgs& given, const std::string& history) {
                           said);
     });
   }
-  for (const auto& s : result.sections) out(s);
   out.finish();
 }
 

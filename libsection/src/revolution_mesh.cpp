@@ -96,7 +96,8 @@ std::vector<std::vector<Eigen::Vector3d>> cut_mesh(const Mesh& mesh, const detai
 
 }  // namespace
 
-SliceResult slice(const Mesh& mesh, const std::vector<Revolution>& surfaces, const SliceOptions&) {
+SliceResult slice(const Mesh& mesh, const std::vector<Revolution>& surfaces, const SliceOptions&,
+                  const SectionSink& sink) {
   detail::check_mesh(mesh);
   const std::vector<Revolution> given = detail::with_references(surfaces, mesh.vertices);
   SliceResult result;
@@ -127,6 +128,7 @@ SliceResult slice(const Mesh& mesh, const std::vector<Revolution>& surfaces, con
         lines, [&](const Eigen::Vector3d& p) { return shifted.place(p).uv; }, s);
     if (s.error.empty() && s.morphology.loops.empty()) s.error = "the surface does not cut the mesh";
     s.frame = surface_frame(surface);
+    if (sink) sink(s);
   }
   return result;
 }

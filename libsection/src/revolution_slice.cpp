@@ -103,7 +103,8 @@ std::vector<Revolution> with_references(const std::vector<Revolution>& surfaces,
 
 }  // namespace detail
 
-SliceResult slice(const Cloud& cloud, const std::vector<Revolution>& surfaces, const SliceOptions& options) {
+SliceResult slice(const Cloud& cloud, const std::vector<Revolution>& surfaces, const SliceOptions& options,
+                  const SectionSink& sink, const SamplingSink& on_sampling) {
   if (cloud.points.empty()) throw Error("slice: the cloud has no points");
   detail::check_points(cloud.points);
   const std::vector<Revolution> given = detail::with_references(surfaces, cloud.points);
@@ -133,6 +134,8 @@ SliceResult slice(const Cloud& cloud, const std::vector<Revolution>& surfaces, c
     surface.shift += section.frame.origin.head<2>();
     section.id = static_cast<int>(k);
     section.frame = surface_frame(surface);
+    if (k == 0 && on_sampling && options.slab == 0) on_sampling(result.sampling);
+    if (sink) sink(section);
   }
   return result;
 }

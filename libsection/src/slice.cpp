@@ -536,7 +536,8 @@ void mesh_loops(const std::vector<std::vector<Eigen::Vector3d>>& lines,
 
 }  // namespace detail
 
-SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options) {
+SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options,
+                  const SectionSink& sink) {
   detail::check_planes(planes);
   detail::check_mesh(mesh);
   std::vector<Eigen::Vector3d> origins, normals;
@@ -544,25 +545,25 @@ SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const Slic
     origins.push_back(p.origin);
     normals.push_back(p.normal.normalized());
   }
-  const auto cuts = detail::mesh_slices(mesh, origins, normals);
   SliceResult result;
   result.points = mesh.vertices.size();
   result.slab = 0;
   result.sections.resize(planes.size());
-  for (std::size_t i = 0; i < planes.size(); ++i) {
+  detail::mesh_slices(mesh, origins, normals, [&](std::size_t i, detail::PlaneCut&& plane_cut) {
     SectionSlice& s = result.sections[i];
     s.id = static_cast<int>(i);
     s.frame = make_frame(planes[i].origin, planes[i].normal);
     // Far from the plane's origin, the frame's origin moves near the cut (small (u, v)).
     std::vector<Eigen::Vector2d> cut;
-    for (const auto& line : cuts[i])
+    for (const auto& line : plane_cut)
       for (const auto& p : line) cut.push_back(s.frame.to_plane(p));
     const Eigen::Vector2d local = detail::local_origin(cut);
     if (local != Eigen::Vector2d::Zero()) s.frame.origin = s.frame.to_world(local);
     detail::mesh_loops(
-        cuts[i], [&](const Eigen::Vector3d& p) { return s.frame.to_plane(p); }, s);
+        plane_cut, [&](const Eigen::Vector3d& p) { return s.frame.to_plane(p); }, s);
     if (s.error.empty() && s.morphology.loops.empty()) s.error = "the plane does not cut the mesh";
-  }
+    if (sink) sink(s);
+  });
   return result;
 }
 

@@ -110,30 +110,36 @@ Stream slice_stream(const py::object& cloud, const py::object& planes, const py:
     if (in.mesh)
       for (auto& v : in.mesh->vertices) v *= units.mm;
     const int count = planes.is_none() && !revolution ? a.count : 0;
+    // Each section done told to `progress` (rows: their count not known before).
+    std::optional<ProgressCounter> counter;
+    const auto counted = [&](std::size_t total) -> SectionSink {
+      if (fn) counter.emplace(fn, "slice", total);
+      return [&](const SectionSlice&) {
+        if (counter) counter->add(1);
+      };
+    };
     if (in.mesh) {
-      result = revolution
-                   ? section::slice(*in.mesh, a.surfaces(in.mesh->vertices, units.mm), a.options)
-                   : section::slice(*in.mesh, count > 0 ? planes_across(in.mesh->vertices, n, count) : chosen,
-                                    a.options);
+      if (revolution) {
+        const std::vector<Revolution> surfaces = a.surfaces(in.mesh->vertices, units.mm);
+        result = section::slice(*in.mesh, surfaces, a.options, counted(surfaces.size()));
+      } else {
+        const std::vector<Plane> cut = count > 0 ? planes_across(in.mesh->vertices, n, count) : chosen;
+        result = section::slice(*in.mesh, cut, a.options, counted(cut.size()));
+      }
     } else if (in.path) {
       CloudReadOptions read;
       read.scale = units.mm;
       result = slice_file(*in.path, PlaneSpec{chosen, n, count}, a.options, read, {}, fn,
                           [&](const Sampling& s) { streamed = s; });
     } else if (revolution) {
-      result = section::slice(in.cloud, a.surfaces(in.cloud.points, units.mm), a.options);
+      const std::vector<Revolution> surfaces = a.surfaces(in.cloud.points, units.mm);
+      result = section::slice(in.cloud, surfaces, a.options, counted(surfaces.size()));
     } else {
-      // A cloud in memory: each section done told to `progress` (rows: their count not known before).
       const std::vector<Plane> cut = rows        ? std::vector<Plane>{}
                                      : count > 0 ? planes_across(in.cloud.points, n, count)
                                                  : chosen;
-      std::optional<ProgressCounter> counter;
-      if (fn) counter.emplace(fn, "slice", cut.size());
-      const SectionSink told = [&](const SectionSlice&) {
-        if (counter) counter->add(1);
-      };
-      result = rows ? slice_by_rows(in.cloud, n, a.options, a.rows, told)
-                    : section::slice(in.cloud, cut, a.options, told);
+      result = rows ? slice_by_rows(in.cloud, n, a.options, a.rows, counted(0))
+                    : section::slice(in.cloud, cut, a.options, counted(cut.size()));
     }
   }
   if (!units.warning.empty()) PyErr_WarnEx(PyExc_UserWarning, ("slice: " + units.warning).c_str(), 1);

@@ -115,3 +115,21 @@ def test_rows_and_surfaces_of_revolution_as_the_tools_take_them(tmp_path):
         assert ls.to_csv(ls.camber(ls.fit_spline(ls.smooth(s))).params) == expected
     with pytest.raises(ls.Error, match="not sparse rows .* but a dense scan"):
         ls.slice(EXAMPLE)
+    # Both told to progress section by section (they ran without it), and cancelled.
+    told = []
+    ls.slice(str(rotor), axis=(0, 0, 0, 1, 0, 0), progress=lambda *e: told.append(e))
+    assert told == [("slice", 1, 2), ("slice", 2, 2)]
+    with pytest.raises(ls.Cancelled, match="slice: cancelled"):
+        ls.slice(str(rotor), axis=(0, 0, 0, 1, 0, 0), progress=lambda stage, done, total: False)
+
+
+def test_a_mesh_is_told_to_progress_section_by_section(tmp_path):
+    mesh = tmp_path / "blade.stl"
+    pipe([[tool("bladegen"), "--kind", "turbine", "--mesh", "--profile-points", "400", "--layers", "20", "-o",
+           str(mesh)]])
+    told = []
+    s = ls.slice(str(mesh), normal=(0, 0, 1), at=[12, 20, 28], progress=lambda *e: told.append(e))
+    assert told == [("slice", 1, 3), ("slice", 2, 3), ("slice", 3, 3)]
+    assert not s.issues
+    with pytest.raises(ls.Cancelled, match="slice: cancelled"):
+        ls.slice(str(mesh), normal=(0, 0, 1), count=5, progress=lambda stage, done, total: done < 2)

@@ -119,15 +119,19 @@ std::vector<double> row_radii(const std::vector<Eigen::Vector3d>& points, const 
 /// a slab is around a plane. A surface's r_ref of 0 is chosen from the points nearest to it
 /// (their mean radius); a zero reference from reference_of. Each section's frame carries its
 /// surface (Frame::surface) with the shift to its points. Throws section::Error for bad
-/// surfaces or options; a section that fails carries its error.
+/// surfaces or options; a section that fails carries its error. `sink` and `on_sampling` as
+/// slice(Cloud, planes)'s: each section as it is done, and (with slab 0) the sampling of the
+/// first surface's shell before any section.
 SliceResult slice(const Cloud& cloud, const std::vector<Revolution>& surfaces,
-                  const SliceOptions& options = {});
+                  const SliceOptions& options = {}, const SectionSink& sink = {},
+                  const SamplingSink& on_sampling = {});
 
 /// Slices a mesh by surfaces of revolution exactly: each triangle edge that crosses the
 /// surface is cut where the signed distance w is 0 (bisection to the last bit), each
 /// triangle's two cuts joined, the pieces linked into closed loops and unrolled (loop 0 the
-/// largest, counterclockwise in (u, v)). r_ref 0 = the mean radius of the cut.
-SliceResult slice(const Mesh& mesh, const std::vector<Revolution>& surfaces,
-                  const SliceOptions& options = {});
+/// largest, counterclockwise in (u, v)). r_ref 0 = the mean radius of the cut. `sink`, when
+/// set, receives each section as it is done.
+SliceResult slice(const Mesh& mesh, const std::vector<Revolution>& surfaces, const SliceOptions& options = {},
+                  const SectionSink& sink = {});
 
 }  // namespace section

@@ -72,7 +72,8 @@ struct SliceResult {
 };
 
 /// Receives each section as soon as it and the sections before it are done, in plane
-/// order, from one thread at a time (slice_file, slice of a cloud, slice_by_rows).
+/// order, from one thread at a time (slice_file, slice of a cloud or a mesh, on planes or
+/// surfaces of revolution, slice_by_rows).
 using SectionSink = std::function<void(const SectionSlice&)>;
 
 /// Receives what was found of the points' sampling (with slab 0), before any section.
@@ -119,6 +120,8 @@ SliceResult slice_by_rows(const Cloud& cloud, const Eigen::Vector3d& normal, con
 
 /// Slices a mesh exactly (CGAL's polygon mesh slicer): each closed intersection polyline is
 /// a loop, oriented counterclockwise in (u, v), loop 0 the largest; its vertices are the points.
-SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options = {});
+/// `sink`, when set, receives each section as it is done (the result holds them all the same).
+SliceResult slice(const Mesh& mesh, const std::vector<Plane>& planes, const SliceOptions& options = {},
+                  const SectionSink& sink = {});
 
 }  // namespace section

@@ -4,6 +4,7 @@
 #include "section/mesh.h"
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace section::detail {
@@ -13,11 +14,14 @@ namespace section::detail {
 int orientation(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                 const Eigen::Vector3d& q);
 
-/// Intersection polylines of a triangle mesh with planes (CGAL::Polygon_mesh_slicer),
-/// one list per plane; a closed polyline repeats its first point at the end. The mesh's
-/// triangle indices must lie within its vertices (check_mesh, detail/slice_steps.h).
-std::vector<std::vector<std::vector<Eigen::Vector3d>>> mesh_slices(
-    const Mesh& mesh, const std::vector<Eigen::Vector3d>& origins,
-    const std::vector<Eigen::Vector3d>& normals);
+/// The intersection polylines of one plane: a closed polyline repeats its first point at the end.
+using PlaneCut = std::vector<std::vector<Eigen::Vector3d>>;
+
+/// Intersection polylines of a triangle mesh with planes (CGAL::Polygon_mesh_slicer), handed
+/// to `each(i, cut)` plane by plane, in order, as each is cut. The mesh's triangle indices
+/// must lie within its vertices (check_mesh, detail/slice_steps.h).
+void mesh_slices(const Mesh& mesh, const std::vector<Eigen::Vector3d>& origins,
+                 const std::vector<Eigen::Vector3d>& normals,
+                 const std::function<void(std::size_t, PlaneCut&&)>& each);
 
 }  // namespace section::detail

@@ -11,9 +11,9 @@
 
 namespace section::detail {
 
-std::vector<std::vector<std::vector<Eigen::Vector3d>>> mesh_slices(
-    const Mesh& mesh, const std::vector<Eigen::Vector3d>& origins,
-    const std::vector<Eigen::Vector3d>& normals) {
+void mesh_slices(const Mesh& mesh, const std::vector<Eigen::Vector3d>& origins,
+                 const std::vector<Eigen::Vector3d>& normals,
+                 const std::function<void(std::size_t, PlaneCut&&)>& each) {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   using SM = CGAL::Surface_mesh<K::Point_3>;
   namespace PMP = CGAL::Polygon_mesh_processing;
@@ -34,21 +34,21 @@ std::vector<std::vector<std::vector<Eigen::Vector3d>>> mesh_slices(
   PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
 
   CGAL::Polygon_mesh_slicer<SM, K> slicer(sm);
-  std::vector<std::vector<std::vector<Eigen::Vector3d>>> out(origins.size());
   for (std::size_t i = 0; i < origins.size(); ++i) {
     const auto& o = origins[i];
     const auto& n = normals[i];
     std::vector<std::vector<K::Point_3>> polylines;
     slicer(K::Plane_3(K::Point_3(o.x(), o.y(), o.z()), K::Vector_3(n.x(), n.y(), n.z())),
            std::back_inserter(polylines));
+    PlaneCut cut;
     for (const auto& pl : polylines) {
       std::vector<Eigen::Vector3d> line;
       line.reserve(pl.size());
       for (const auto& p : pl) line.emplace_back(p.x(), p.y(), p.z());
-      out[i].push_back(std::move(line));
+      cut.push_back(std::move(line));
     }
+    each(i, std::move(cut));
   }
-  return out;
 }
 
 }  // namespace section::detail
