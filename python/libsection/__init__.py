@@ -23,7 +23,7 @@ from ._libsection import (Cancelled, Error, Nominal, Spline, Stream, compare_rep
                           read_cloud, read_stream, verdict)
 from .tables import format_number, read_tables, table, to_csv
 
-__all__ = ["slice", "smooth", "fit_spline", "camber", "compare", "compare_stream", "compare_report", "verdict",
+__all__ = ["slice", "smooth", "fit_spline", "camber", "blade", "compare", "compare_stream", "compare_report", "verdict",
            "prepare_nominal", "Nominal", "Stream", "Spline",
            "Error", "Cancelled", "read_stream",
            "parse_stream", "read_cloud", "read_tables", "table", "format_number", "to_csv", "generate"]
@@ -78,6 +78,16 @@ def camber(x, **flags):
     out["params"] = {k: float(v[0]) for k, v in params.items() if k != "section"}
     out["issues"] = [i["message"] for i in s.issues]
     return out
+
+
+def blade(stream, **flags):
+    """The whole blade from the sections of a camber stream (the blade tool, docs/BLADE.md):
+    stacking line, twist, lean, bow and sweep. Flags as the tool's (reference, axis,
+    control_points, samples, off_line); its outputs (format, plot, lines) are the tool's.
+    Returns a copy of the stream with the tables 'blade' (one row per section) and
+    'stacking' (the fitted lines); a section left out or flagged is in its issues. Raises
+    Error with fewer than two sections that have params."""
+    return _libsection.blade_stream(stream, **flags)
 
 
 def prepare_nominal(spline, le_point=None, te_point=None, pressure_side=None, **flags):

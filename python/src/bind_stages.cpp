@@ -3,6 +3,7 @@
 // one curve's points. Options are the tools' flags as keywords (tools/args/).
 #include "convert.h"
 
+#include "args/blade_args.h"
 #include "args/camber_args.h"
 #include "args/fitspline_args.h"
 #include "args/slice_args.h"
@@ -17,6 +18,7 @@
 #include "section/pipe/schema.h"
 #include "section/pipe/slice_stream.h"
 #include "section/pipe/smooth_stream.h"
+#include "section/pipe/stacking_stream.h"
 #include "section/smooth.h"
 #include "section/units.h"
 
@@ -168,6 +170,22 @@ Stream stage(const char* name, const Stream& in, const py::kwargs& kwargs,
   return out;
 }
 
+// blade on a copy of `in` (its --format stream): the tables blade and stacking added.
+Stream blade_of(const Stream& in, const py::kwargs& kwargs) {
+  for (const char* own : {"format", "plot", "lines", "allow_partial"})
+    if (kwargs.contains(own))
+      throw py::value_error(std::string("blade: ") + own +
+                            " is the tool's; the tables 'blade' and 'stacking' are in the stream returned");
+  const tool::BladeArgs a = tool_args<tool::BladeArgs>(kwargs);
+  Stream out = in;
+  {
+    py::gil_scoped_release unlocked;
+    stacking_stream(out, a.options);
+  }
+  out.history.push_back(history("blade", kwargs));
+  return out;
+}
+
 void bind_curve_functions(py::module_& m) {
   m.def(
       "smooth_points",
@@ -210,6 +228,7 @@ void bind_stages(py::module_& m) {
   m.def("camber_stream", [](const Stream& s, const py::kwargs& kw) {
     return stage<tool::CamberArgs, CamberOptions>("camber", s, kw, camber_stream);
   });
+  m.def("blade_stream", &blade_of, py::arg("stream"));
   bind_curve_functions(m);
 }
 

@@ -133,3 +133,19 @@ def test_a_mesh_is_told_to_progress_section_by_section(tmp_path):
     assert not s.issues
     with pytest.raises(ls.Cancelled, match="slice: cancelled"):
         ls.slice(str(mesh), normal=(0, 0, 1), count=5, progress=lambda stage, done, total: done < 2)
+
+
+def test_blade_gives_the_tools_tables(tmp_path, example_splines):
+    camber = tmp_path / "camber.csv"
+    camber.write_bytes(pipe([[tool("camber"), str(example_splines)]]))
+    expected = ls.parse_stream(pipe([[tool("blade"), str(camber), "--format", "stream", "--samples", "50"]]).decode())
+    s = ls.blade(ls.read_stream(str(camber)), samples=50)
+    for name in ("blade", "stacking"):
+        assert s.csv(name) == expected.csv(name), name
+    assert len(s.table("blade")["section"]) == 3
+    assert s.history[-1] == "libsection.blade --samples 50"
+    with pytest.raises(ValueError, match="plot is the tool's"):
+        ls.blade(s, plot="blade.svg")
+    one = ls.slice(EXAMPLE, normal=(0, 0, 1), at=[20])
+    with pytest.raises(ls.Error):
+        ls.blade(ls.camber(ls.fit_spline(ls.smooth(one))))  # one section is not a blade
