@@ -363,9 +363,14 @@ TEST_CASE("pipe: plain CSV tables and 2D profiles", "[pipe]") {
       Catch::Contains("cmm.csv:1: the header names the columns point, x_mm, y_mm but none x and y"));
   // A title of three words over two columns is a title.
   CHECK(parse_profile("LS89 vane profile\n0 0\n1 0.1\n", "t.dat").size() == 2);
+  // Exact copies count once, in the order first read: every line twice, a closing point, -0.
+  const auto twice = parse_profile("0 0\n0 0\n1 0\n1 0\n1 1\n1 1\n-0 0\n", "twice.dat");
+  REQUIRE(twice.size() == 3);
+  CHECK(twice[2] == Eigen::Vector2d(1, 1));
 }
 
-TEST_CASE("frame: a +z normal gives u = x, v = y and the frame is orthonormal", "[pipe]") {
+TEST_CASE("frame: a +z normal gives u = x, v = y, the frame is orthonormal and its u keeps to tilts",
+          "[pipe]") {
   const Frame f = make_frame({0, 0, 5}, {0, 0, 3});
   CHECK((f.u - Eigen::Vector3d::UnitX()).norm() < 1e-15);
   CHECK((f.v - Eigen::Vector3d::UnitY()).norm() < 1e-15);
@@ -376,4 +381,19 @@ TEST_CASE("frame: a +z normal gives u = x, v = y and the frame is orthonormal", 
   const Eigen::Vector3d back = g.to_world(g.to_plane(p)) + g.height(p) * g.n;
   CHECK((back - p).norm() < 1e-12);
   REQUIRE_THROWS_AS(make_frame({0, 0, 0}, {0, 0, 0}), Error);
+  // Normals tilted a little off a world axis, either way, keep that axis's u (rows fitted one
+  // by one: u swapped between x and y as the tilt's direction changed): u within the tilt of
+  // the axis's u, and the world axes give what they gave.
+  const double t = 0.05;
+  for (const Eigen::Vector3d& tilt : {Eigen::Vector3d(t, 0, 0), Eigen::Vector3d(0, t, 0),
+                                      Eigen::Vector3d(t, -t / 2, 0), Eigen::Vector3d(-t / 3, t, 0)}) {
+    CHECK(make_frame({0, 0, 0}, Eigen::Vector3d(0, 0, 1) + tilt).u.dot(Eigen::Vector3d::UnitX()) > 1 - t * t);
+    CHECK(make_frame({0, 0, 0}, Eigen::Vector3d(1, tilt.x(), tilt.y())).u.dot(Eigen::Vector3d::UnitY()) >
+          1 - t * t);
+    CHECK(make_frame({0, 0, 0}, Eigen::Vector3d(tilt.x(), 1, tilt.y())).u.dot(Eigen::Vector3d::UnitX()) >
+          1 - t * t);
+  }
+  CHECK(make_frame({0, 0, 0}, {1, 0, 0}).u == Eigen::Vector3d::UnitY());
+  CHECK(make_frame({0, 0, 0}, {0, 1, 0}).u == Eigen::Vector3d::UnitX());
+  CHECK(make_frame({0, 0, 0}, {0, 0, -1}).u == Eigen::Vector3d::UnitX());
 }

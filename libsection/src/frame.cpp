@@ -21,10 +21,14 @@ Frame make_frame(const Eigen::Vector3d& origin, const Eigen::Vector3d& given) {
   Frame f;
   f.origin = origin;
   f.n = normal / length;
-  // The world axis least aligned with n gives a u that is stable and familiar (+z -> u = +x).
-  int axis = 0;
+  // The world axis by n's largest component gives a familiar u (+z -> u = +x) that does not
+  // turn with small tilts: the axis least aligned with n, used before, swapped between x and
+  // y as a normal near z tilted one way or the other (rows' fitted planes: stagger -105, -30
+  // and -139 deg on one smoothly twisted blade).
+  int largest = 0;
   for (int k = 1; k < 3; ++k)
-    if (std::abs(f.n[k]) < std::abs(f.n[axis]) - 1e-12) axis = k;
+    if (std::abs(f.n[k]) > std::abs(f.n[largest])) largest = k;
+  const int axis = largest == 0 ? 1 : 0;
   Eigen::Vector3d e = Eigen::Vector3d::Zero();
   e[axis] = 1;
   f.u = (e - e.dot(f.n) * f.n).normalized();

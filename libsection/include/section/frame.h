@@ -51,9 +51,12 @@ Eigen::Vector3d usable_normal(const Eigen::Vector3d& normal);
 
 /// The frame of the plane through `origin` with normal `normal` (need not be unit length,
 /// nor of a length whose square is a normal number: see usable_normal).
-/// u is the projection of the world axis least aligned with the normal (x before y before z
-/// on ties), so a normal of +z gives u = +x, v = +y. Throws section::Error on a zero or
-/// non-finite normal.
+/// u is the projection of a world axis set by the normal's largest component (x before y
+/// before z on ties): x for a normal mostly along z or y, y for one mostly along x. So a
+/// normal of +z gives u = +x, v = +y, and every normal near one world axis gets the same u:
+/// the sections of a blade cut on slightly different normals (rows fitted one by one, planes
+/// along a curved stacking line) are measured in frames that agree (their angles compare).
+/// Throws section::Error on a zero or non-finite normal.
 Frame make_frame(const Eigen::Vector3d& origin, const Eigen::Vector3d& normal);
 
 }  // namespace section

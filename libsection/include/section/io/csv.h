@@ -21,8 +21,8 @@ Table parse_csv(std::string_view text, const std::string& source);
 /// Parses a plain ordered 2D profile: one point a line, x and y in the first two columns
 /// (comma or blank separated; further columns ignored), or in the columns a header line
 /// names `x` and `y` (`y,x` reads the second column as x); leading title lines and `#`
-/// lines are skipped, as in airfoil .dat files. Throws section::Error naming `source` and
-/// the line.
+/// lines are skipped, as in airfoil .dat files. An exact copy of a point read before counts
+/// once (a closing point repeated). Throws section::Error naming `source` and the line.
 std::vector<Eigen::Vector2d> parse_profile(std::string_view text, const std::string& source);
 
 /// Formats one table as a plain CSV file (header row, then the rows; no `#` lines), for
