@@ -53,7 +53,7 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     section::Stream stream;
     section::tool::with_input(a.common.input, [&] {
       const section::FitSplineResult fit = section::fit_spline(points, points);
-      stream = section::profile_stream(fit.spline, fit.rms);
+      stream = section::profile_stream(fit.spline, fit.rms, points);
     });
     if (!units.warning.empty()) std::cerr << "camber: warning: " << units.warning << "\n";
     if (!units.note.empty()) stream.notes.push_back(units.note);

@@ -280,13 +280,46 @@ struct Checker {
     if (caliper_gap > tol) fail(Check::caliper, caliper_gap, tol);
   }
 
+  // The fit's coefficients per point over the spans about parameter t (two either side of
+  // its span): the share of its noise the profile keeps there. Sparse points between dense
+  // edges leave a coefficient per point mid-chord, where the thickness is measured.
+  double local_share(double t) const {
+    const BSpline& c = pr.curve;
+    const double t0 = c.t_min(), period = c.t_max() - t0;
+    std::vector<double> knots;
+    for (double k : c.knots)
+      if (k >= t0 && k < c.t_max() && (knots.empty() || k > knots.back())) knots.push_back(k);
+    const long count = long(knots.size());
+    if (!(period > 0) || count <= 5) return 1;
+    const auto wrap = [&](double x) { return x - period * std::floor((x - t0) / period); };
+    t = wrap(t);
+    const long j = long(std::upper_bound(knots.begin(), knots.end(), t) - knots.begin()) - 1;
+    const auto knot = [&](long i) {  // knot i, unwrapped about span j
+      const long k = ((i % count) + count) % count;
+      return knots[std::size_t(k)] + period * double((i - k) / count);
+    };
+    const double a = knot(j - 2), b = knot(j + 3);
+    std::size_t inside = 0;
+    for (double u : options.point_params) {
+      double d = wrap(u) - wrap(a);  // u's parameter from a, forward
+      if (d < 0) d += period;
+      if (d < b - a) ++inside;
+    }
+    return inside > 0 ? std::min(1.0, 5.0 / double(inside)) : 1;
+  }
+
   // The profile's own uncertainty: a fit with about as many coefficients as points follows
-  // their noise (its rms then hides it), and every length measured on it carries it.
+  // their noise (its rms then hides it), and every length measured on it carries it; the
+  // thickness its two sides' at the thickest circle's contacts.
   void noise(std::size_t coefficients) {
     if (!(options.points > 0) || !(options.points_noise > 0)) return;
     const double share = std::min(1.0, double(coefficients) / options.points);
-    const double stray =
-        options.noise_factor * std::max(options.points_noise, options.noise) * std::sqrt(share);
+    const double sigma = std::max(options.points_noise, options.noise);
+    double stray = options.noise_factor * sigma * std::sqrt(share);
+    if (!options.point_params.empty() && camber.thickest.radius > 0)
+      stray = std::max(
+          stray, options.noise_factor * sigma *
+                     std::sqrt(local_share(camber.thickest.t_left) + local_share(camber.thickest.t_right)));
     const double limit = options.accuracy * pr.scale;
     if (stray > limit) fail(Check::noise, stray, limit);
   }
@@ -394,7 +427,9 @@ PointsNoise points_noise(const SampledProfile& pr, const std::vector<Eigen::Vect
   }
   if (scatter.size() < 8) return {};
   std::nth_element(scatter.begin(), scatter.begin() + long(scatter.size() / 2), scatter.end());
-  return {1.4826 * scatter[scatter.size() / 2], double(n)};
+  std::vector<double> params;
+  for (const auto& p : order) params.push_back(p.first);
+  return {1.4826 * scatter[scatter.size() / 2], double(n), std::move(params)};
 }
 
 SectionCheck check_section(const SampledProfile& pr, const CamberResult& camber, const SectionParams& params,

@@ -4,6 +4,7 @@
 #include "detail/local_origin.h"
 #include "fit_spline_steps.h"
 #include "section/error.h"
+#include "section/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -119,6 +120,24 @@ void check_options(const FitSplineOptions& o) {
                 " a loop, and the sample spacing 0 or a positive length");
 }
 
+// Why the first curve through `profile` crosses itself: the points out of order, or in
+// order (their polygon simple) but too sparse where the profile turns for its spans.
+std::string crossing_message(const Points& profile) {
+  if (fit::polyline_crosses(profile) || profile.size() < 3)
+    return "fit_spline: the loop crosses itself (its points are not ordered along one profile)";
+  std::size_t widest = 0;
+  double gap = 0;
+  for (std::size_t i = 0; i < profile.size(); ++i) {
+    const double d = (profile[(i + 1) % profile.size()] - profile[i]).norm();
+    if (d > gap) gap = d, widest = i;
+  }
+  return "fit_spline: the curve through the points crosses itself, though they lie in order along one "
+         "profile: they are too sparse for it where the profile turns (the widest gap " +
+         format_length(gap) + ", between points " + std::to_string(widest) + " and " +
+         std::to_string((widest + 1) % profile.size()) + " of " + std::to_string(profile.size()) +
+         "): measure more points there";
+}
+
 // First curve: least squares through the ordered profile on uniform chord-length knots.
 BSpline first_curve(const Points& profile, const FitSplineOptions& o) {
   const std::vector<double> s = chord_length_parameters(profile, true);
@@ -219,8 +238,7 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
     if (!p.allFinite()) throw Error("fit_spline: a measured point is not finite");
   const BSpline curve = first_curve(profile, o);
   const double input_area = polygon_area(profile);
-  if (self_intersects(curve))
-    throw Error("fit_spline: the loop crosses itself (its points are not ordered along one profile)");
+  if (self_intersects(curve)) throw Error(crossing_message(profile));
 
   FitSplineResult result;
   // In adaptive mode the first curve only has to show where the curvature is: its

@@ -247,7 +247,11 @@ bool self_intersects(const BSpline& curve, const detail::PiecewiseCurve& pc) {
   }
   for (double s : speed)
     if (!(s > 1e-9 * speed_max)) return true;  // cusp: the curve stops and turns back
-  if (doubles_back(p)) return true;
+  return doubles_back(p) || polyline_crosses(p);
+}
+
+bool polyline_crosses(const Points& p) {
+  const std::size_t m = p.size();
   // Segments sorted by their lowest x; sweep to test only overlapping boxes. Whether two
   // segments cross does not depend on which of them comes first: any sweep order gives
   // the same answer.

@@ -141,4 +141,7 @@ bool doubles_back(const Points& p);
 /// section::self_intersects on curve c as polynomials (`pc`), which the fit has at hand.
 bool self_intersects(const BSpline& c, const detail::PiecewiseCurve& pc);
 
+/// True when two segments of the closed polyline p that are not neighbours cross.
+bool polyline_crosses(const Points& p);
+
 }  // namespace section::fit

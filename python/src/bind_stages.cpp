@@ -211,7 +211,9 @@ void bind_curve_functions(py::module_& m) {
         return fit_spline(p, q, o).spline;
       },
       py::arg("points"), py::arg("measured") = py::none());
-  m.def("profile_stream", &profile_stream, py::arg("spline"), py::arg("rms") = 0.0);
+  m.def(
+      "profile_stream", [](const BSpline& spline, double rms) { return profile_stream(spline, rms); },
+      py::arg("spline"), py::arg("rms") = 0.0);
 }
 
 }  // namespace

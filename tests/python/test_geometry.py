@@ -79,3 +79,17 @@ def test_generate_refuses_an_unknown_kind():
     assert "turbine" in ls.generate.kinds()
     with pytest.raises(ValueError, match="unknown kind 'rotor'.*known: turbine"):
         ls.generate.truth("rotor", 10)
+
+
+def test_a_curve_crossing_over_sparse_ordered_points_says_they_are_sparse():
+    # 20 points of a compressor section, crowded at its edges and 5-8 mm apart mid-chord: in
+    # order, yet the curve through them crosses itself. It was said "not ordered along one
+    # profile", which sent the user to sort points that were sorted.
+    p = ls.generate.truth("compressor", 40)["profile"]
+    th = np.linspace(0, 2 * np.pi, 20, endpoint=False)
+    idx = np.unique(((th - 0.8 * np.sin(2 * th)) / (2 * np.pi) * len(p)).astype(int) % len(p))
+    with pytest.raises(ls.Error, match="lie in order along one profile: they are too sparse"):
+        ls.fit_spline(p[idx])
+    shuffled = p[idx][np.random.default_rng(3).permutation(len(idx))]
+    with pytest.raises(ls.Error, match="its points are not ordered along one profile"):
+        ls.fit_spline(shuffled)

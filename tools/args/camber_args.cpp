@@ -11,7 +11,8 @@ namespace section::tool {
 const char* const CamberArgs::description =
     "camber: mean-camber line and section parameters (docs/CAMBER.md).\n\n"
     "Reads the stream written by fitspline (docs/FORMAT.md) or a plain ordered 2D profile\n"
-    "(x y per line, an airfoil .dat or CMM section; a title line is skipped), and for the\n"
+    "(x y per line, an airfoil .dat or CMM section; a title line is skipped, exact copies of\n"
+    "a point count once; its points are checked as a scan's), and for the\n"
     "profile (loop 0) of every section computes the mean-camber line (the locus of the\n"
     "inscribed circles' centres, extended along its end tangents to the LE and TE points)\n"
     "and the section parameters. Adds the tables 'camber', 'params', 'thickness' and\n"

@@ -132,9 +132,12 @@ std::uint32_t checks_flagging(std::uint32_t flags, const char* column);
 
 /// Options of check_section (lengths in the profile's units, angles in degrees).
 struct CheckOptions {
-  double noise = 0;          ///< rms of the measured points about the profile (0 = unknown)
-  double points_noise = 0;   ///< the points' own scatter (points_noise(); 0 = unknown) ...
-  double points = 0;         ///< ... over this many independent points (0: the check is not made)
+  double noise = 0;         ///< rms of the measured points about the profile (0 = unknown)
+  double points_noise = 0;  ///< the points' own scatter (points_noise(); 0 = unknown) ...
+  double points = 0;        ///< ... over this many independent points (0: the check is not made)
+  /// ... at these profile parameters (PointsNoise::params; empty: the thickness is not checked
+  /// apart): the thickest circle's contacts, each where its spans hold few of the points.
+  std::vector<double> point_params;
   double accuracy = 1.5e-4;  ///< fraction of the profile's size: a profile uncertain by more flags its values
   double noise_factor = 4;   ///< a distance is off beyond this many noise rms ...
   double floor = 1e-5;       ///< ... plus this fraction of the profile's size
@@ -189,8 +192,9 @@ SectionCheck check_section(const BSpline& profile, const CamberResult& camber, c
 /// Points much closer than half the mean spacing count once (`points`: those counted).
 /// 0 with fewer than 12 points.
 struct PointsNoise {
-  double rms = 0;     ///< the scatter, in the points' unit
-  double points = 0;  ///< the points it rests on (independent ones)
+  double rms = 0;              ///< the scatter, in the points' unit
+  double points = 0;           ///< the points it rests on (independent ones)
+  std::vector<double> params;  ///< their parameters on the profile, ascending
 };
 PointsNoise points_noise(const BSpline& profile, const std::vector<Eigen::Vector2d>& points);
 

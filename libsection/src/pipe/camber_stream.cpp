@@ -266,7 +266,7 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   // Few points for the fit's coefficients: their own scatter, which its rms may hide.
   if (q.all.size() < 16 * local.control.size()) {
     const PointsNoise scatter = detail::points_noise(sampled, q.all);
-    checks.points_noise = scatter.rms, checks.points = scatter.points;
+    checks.points_noise = scatter.rms, checks.points = scatter.points, checks.point_params = scatter.params;
     // The distance limits see the noise the rms hides (a noise left unknown stays so).
     if (checks.noise > 0) checks.noise = std::max(checks.noise, scatter.rms);
   }
@@ -383,7 +383,7 @@ void flag_unconfirmed_registration(Stream& stream) {
                  "not confirmed (see slice's warning), its points may lie slid and turned");
 }
 
-Stream profile_stream(const BSpline& spline, double rms) {
+Stream profile_stream(const BSpline& spline, double rms, const std::vector<Eigen::Vector2d>& measured) {
   Stream stream;
   FitSplineResult fit;
   fit.spline = spline;
@@ -400,6 +400,12 @@ Stream profile_stream(const BSpline& spline, double rms) {
   stream.put(head);
   stream.put(knots);
   stream.put(ctrl);
+  if (!measured.empty()) {
+    Table points = schema::points.table();
+    for (std::size_t i = 0; i < measured.size(); ++i)
+      schema::points.add(points, {0, 0, i, measured[i], Eigen::Vector2d(0, 0), 0.0});
+    stream.put(points);
+  }
   return stream;
 }
 

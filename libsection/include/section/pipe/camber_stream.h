@@ -48,7 +48,10 @@ void flag_unconfirmed_registration(Stream& stream);
 
 /// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
 /// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain
-/// profile (an airfoil .dat file, a CMM section).
-Stream profile_stream(const BSpline& spline, double rms = 0);
+/// profile (an airfoil .dat file, a CMM section). With `measured` (the profile's points),
+/// also the table "points": camber_stream then checks the values against the points as it
+/// does a scan's (their own scatter, the edges refitted to them, holes at the edges).
+Stream profile_stream(const BSpline& spline, double rms = 0,
+                      const std::vector<Eigen::Vector2d>& measured = {});
 
 }  // namespace section
