@@ -123,7 +123,7 @@ void check_options(const FitSplineOptions& o) {
 // Why the first curve through `profile` crosses itself: the points out of order, or in
 // order (their polygon simple) but too sparse where the profile turns for its spans.
 std::string crossing_message(const Points& profile) {
-  if (fit::polyline_crosses(profile) || profile.size() < 3)
+  if (fit::polyline_crosses(profile))
     return "fit_spline: the loop crosses itself (its points are not ordered along one profile)";
   std::size_t widest = 0;
   double gap = 0;
