@@ -4,6 +4,8 @@
 // the curve.
 #include "section/bspline.h"
 
+#include "detail/fit_points.h"
+
 #include "section/error.h"
 #include "section/units.h"
 
@@ -126,19 +128,10 @@ std::vector<double> chord_length_parameters(const std::vector<Eigen::Vector2d>& 
   return t;
 }
 
-BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOptions& options) {
+namespace detail {
+
+void check_fit_points(const std::vector<Eigen::Vector2d>& points, bool closed) {
   const int m = static_cast<int>(points.size());
-  const int p = options.degree;
-  if (p < 1 || p > max_spline_degree)
-    throw Error("fit_curve: degree " + std::to_string(p) + " is not in 1.." +
-                std::to_string(max_spline_degree));
-  const int n = options.control_points > 0 ? options.control_points : std::max(8, m / 4);
-  if (n < p + 1)
-    throw Error("fit_curve: " + std::to_string(n) + " control points are too few for degree " +
-                std::to_string(p) + ", at least " + std::to_string(p + 1) + " are needed");
-  if (m < n)
-    throw Error("fit_curve: " + std::to_string(m) + " points are fewer than the " + std::to_string(n) +
-                " control points");
   for (const auto& q : points)
     if (!q.allFinite()) throw Error("fit_curve: a point is not finite");
   // Degeneracy from the spread of the points: all equal, or all on a line for closed curves.
@@ -153,8 +146,26 @@ BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOpti
   const double big = half_trace + root, small = std::max(0.0, half_trace - root);
   if (!(big > 0) || std::sqrt(big / m) <= 1e-12 * std::max(1.0, mean.norm()))
     throw Error("fit_curve: all " + std::to_string(m) + " points are equal");
-  if (options.closed && small <= 1e-14 * big)
+  if (closed && small <= 1e-14 * big)
     throw Error("fit_curve: all points lie on a line, no closed curve fits them");
+}
+
+}  // namespace detail
+
+BSpline fit_curve(const std::vector<Eigen::Vector2d>& points, const CurveFitOptions& options) {
+  const int m = static_cast<int>(points.size());
+  const int p = options.degree;
+  if (p < 1 || p > max_spline_degree)
+    throw Error("fit_curve: degree " + std::to_string(p) + " is not in 1.." +
+                std::to_string(max_spline_degree));
+  const int n = options.control_points > 0 ? options.control_points : std::max(8, m / 4);
+  if (n < p + 1)
+    throw Error("fit_curve: " + std::to_string(n) + " control points are too few for degree " +
+                std::to_string(p) + ", at least " + std::to_string(p + 1) + " are needed");
+  if (m < n)
+    throw Error("fit_curve: " + std::to_string(m) + " points are fewer than the " + std::to_string(n) +
+                " control points");
+  detail::check_fit_points(points, options.closed);
 
   const std::vector<double> s = chord_length_parameters(points, options.closed);
   const double length = s.back();

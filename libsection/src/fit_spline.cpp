@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/fit_spline.h"
 
+#include "detail/fit_points.h"
 #include "detail/local_origin.h"
 #include "fit_spline_steps.h"
 #include "section/error.h"
@@ -138,7 +139,38 @@ std::string crossing_message(const Points& profile) {
          "): measure more points there";
 }
 
-// First curve: least squares through the ordered profile on uniform chord-length knots.
+// Uniform knots over [0, length] for n spans, merged where the profile is sparse: a run of
+// spans holding fewer than `per_span` of the parameters s (the profile's points) joins the
+// spans after it until it holds that many, so that no span is shaped by the fairness term
+// alone between points (a sparse CMM or CFD row: points 2.3 mm apart mid-chord, spans of 2
+// mm). Where every span holds enough points the knots are the uniform ones.
+std::vector<double> first_knots(const std::vector<double>& s, double length, int n, double per_span,
+                                int fewest) {
+  std::vector<double> uniform(std::size_t(n) + 1);
+  for (int i = 0; i <= n; ++i) uniform[std::size_t(i)] = length * i / n;
+  if (!(length > 0) || !std::isfinite(length)) return uniform;  // degenerate: fit_curve says why
+  std::vector<std::size_t> count(std::size_t(n), 0);
+  for (std::size_t k = 0; k + 1 < s.size(); ++k)  // s closes the loop: its last is length
+    ++count[std::min<std::size_t>(std::size_t(s[k] / length * n), std::size_t(n) - 1)];
+  if (*std::min_element(count.begin(), count.end()) >= per_span) return uniform;
+  std::vector<double> knots{0.0};
+  double held = 0;
+  for (int i = 0; i < n; ++i) {
+    held += double(count[std::size_t(i)]);
+    if (held >= per_span && i + 1 < n) {
+      knots.push_back(uniform[std::size_t(i) + 1]);
+      held = 0;
+    }
+  }
+  knots.push_back(length);
+  // The last run, if short, joins the one before it.
+  if (held < per_span && knots.size() > 2) knots.erase(knots.end() - 2);
+  if (int(knots.size()) - 1 < fewest) return uniform;
+  return knots;
+}
+
+// First curve: least squares through the ordered profile on chord-length knots, uniform
+// where the points allow (first_knots).
 BSpline first_curve(const Points& profile, const FitSplineOptions& o) {
   const std::vector<double> s = chord_length_parameters(profile, true);
   const double perimeter = s.back();
@@ -155,7 +187,17 @@ BSpline first_curve(const Points& profile, const FitSplineOptions& o) {
   fo.fairness = o.fairness;
   fo.closed = true;
   try {
-    return fit_curve(profile, fo);
+    const std::vector<double> knots =
+        o.control_points == 0 ? first_knots(s, perimeter, n, o.min_span_points, std::max(8, o.degree + 1))
+                              : std::vector<double>{};
+    if (knots.empty() || int(knots.size()) - 1 == n) return fit_curve(profile, fo);
+    detail::check_fit_points(profile, true);
+    BSpline shape;
+    shape.degree = o.degree;
+    shape.closed = true;
+    shape.knots = knots;
+    shape.control.assign(knots.size() - 1, Eigen::Vector2d::Zero());
+    return fit_control_points(profile, s, shape, o.fairness);
   } catch (const Error& e) {
     std::string m = e.what();
     if (m.rfind("fit_curve: ", 0) == 0) m = m.substr(11);

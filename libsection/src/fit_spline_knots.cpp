@@ -130,7 +130,13 @@ std::vector<double> curvature_knots(const BSpline& c, const detail::PiecewiseCur
     const double h = h4 >= h4_long    ? o.initial_span
                      : h4 <= h4_short ? o.min_span
                                       : std::clamp(std::pow(h4, 0.25), o.min_span, o.initial_span);
-    const double supported = std::max(1 / o.initial_span, point_density[i] / points_per_span(o, sigma));
+    // Spans hold points_per_span points where the points are sparse, even past initial_span:
+    // a span between two points is shaped by the fairness term alone and swings with their
+    // noise (T-Blade3's tip sections, 1 um of noise: 7 um of thickness). Near-exact data
+    // (points_per_span 4) may still have initial_span where min_span_points points support
+    // it: no noise to follow there, and an edge's curvature needs the knots (LS89's LE).
+    const double supported = std::max(point_density[i] / points_per_span(o, sigma),
+                                      std::min(1 / o.initial_span, point_density[i] / o.min_span_points));
     density[i] = std::min(1 / h, supported);
   }
   // Widen the dense stretches a little: the curvature of a curve that still cuts an
