@@ -90,6 +90,12 @@ TEST_CASE("checks: the checks flagging a params column are those that list it", 
     CHECK(checks_flagging(units | layers, column) & units);
   // A word inside another column's name is not that column.
   CHECK(checks_flagging(bit(Check::chord), "caliper_chord") == 0);
+  // An edge over a hole ends the caliper there on the curve bridging it (parablade Aachen_2D,
+  // every 3rd point: the caliper chord 83 um long, unflagged before).
+  for (const Check edge : {Check::le_measured, Check::te_measured})
+    for (const char* column : {"caliper_chord", "caliper_stagger"})
+      CHECK(checks_flagging(bit(edge), column) == bit(edge));
+  CHECK(checks_flagging(te_circle, "caliper_chord") == 0);  // a circle that does not fit is still measured
 }
 
 TEST_CASE("checks: correct values of exact sections are not flagged", "[checks]") {

@@ -143,9 +143,12 @@ std::string crossing_message(const Points& profile) {
 // spans holding fewer than `per_span` of the parameters s (the profile's points) joins the
 // spans after it until it holds that many, so that no span is shaped by the fairness term
 // alone between points (a sparse CMM or CFD row: points 2.3 mm apart mid-chord, spans of 2
-// mm). Where every span holds enough points the knots are the uniform ones.
+// mm). Where every span holds enough points, or two points lie more than `hole` apart (a
+// hole, not sparse sampling: bridged as before, or refused when the curve crosses itself
+// there, since no later check flags the values a long flank hole spoils), the knots are
+// the uniform ones.
 std::vector<double> first_knots(const std::vector<double>& s, double length, int n, double per_span,
-                                int fewest) {
+                                double hole, int fewest) {
   std::vector<double> uniform(std::size_t(n) + 1);
   for (int i = 0; i <= n; ++i) uniform[std::size_t(i)] = length * i / n;
   if (!(length > 0) || !std::isfinite(length)) return uniform;  // degenerate: fit_curve says why
@@ -153,6 +156,8 @@ std::vector<double> first_knots(const std::vector<double>& s, double length, int
   for (std::size_t k = 0; k + 1 < s.size(); ++k)  // s closes the loop: its last is length
     ++count[std::min<std::size_t>(std::size_t(s[k] / length * n), std::size_t(n) - 1)];
   if (*std::min_element(count.begin(), count.end()) >= per_span) return uniform;
+  for (std::size_t k = 1; k < s.size(); ++k)
+    if (s[k] - s[k - 1] > hole) return uniform;
   std::vector<double> knots{0.0};
   double held = 0;
   for (int i = 0; i < n; ++i) {
@@ -188,8 +193,9 @@ BSpline first_curve(const Points& profile, const FitSplineOptions& o) {
   fo.closed = true;
   try {
     const std::vector<double> knots =
-        o.control_points == 0 ? first_knots(s, perimeter, n, o.min_span_points, std::max(8, o.degree + 1))
-                              : std::vector<double>{};
+        o.control_points == 0
+            ? first_knots(s, perimeter, n, o.min_span_points, 2 * o.initial_span, std::max(8, o.degree + 1))
+            : std::vector<double>{};
     if (knots.empty() || int(knots.size()) - 1 == n) return fit_curve(profile, fo);
     detail::check_fit_points(profile, true);
     BSpline shape;

@@ -69,9 +69,11 @@ inline constexpr CheckName check_names[] = {
     {Check::te_circle, "te_circle",
      "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line"},
     {Check::le_measured, "le_measured",
-     "le_radius le_center le_point inlet_angle camber_angle chord stagger camber_line"},
+     "le_radius le_center le_point inlet_angle camber_angle chord stagger camber_line caliper_chord "
+     "caliper_stagger"},
     {Check::te_measured, "te_measured",
-     "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line"},
+     "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line caliper_chord "
+     "caliper_stagger"},
     {Check::le_point, "le_point", "le_point chord stagger"},
     {Check::te_point, "te_point", "te_point chord stagger"},
     {Check::chord, "chord",
