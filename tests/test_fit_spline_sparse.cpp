@@ -70,3 +70,17 @@ TEST_CASE("fit_spline: flanks measured sparser than the first curve's spans fit,
     }
   }
 }
+
+TEST_CASE("fit_spline: flanks measured more than 1.5 first spans apart are refused, not measured",
+          "[fit_spline]") {
+  // Merged spans over points 3.9 mm apart fitted, and a thin compressor section's thickness
+  // came out 8-9 um off with nothing flagged (0.5 um of noise): gaps over 1.5 initial_span
+  // keep the first curve's uniform knots, which cross themselves there, and the fit is
+  // refused as it was before spans were merged, naming the widest gap.
+  const section::SectionTruth truth = section::section_truth(section::compressor_blade().at(54), 40000);
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const std::vector<Eigen::Vector2d> points = sparse_row(truth, 3.9, 0.0005, seed);
+    INFO("seed " << seed);
+    CHECK_THROWS_WITH(section::fit_spline(points, points), Catch::Contains("too sparse"));
+  }
+}
