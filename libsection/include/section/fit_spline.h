@@ -20,7 +20,7 @@ struct FitSplineOptions {
   int degree = 3;                    ///< spline degree
   int control_points = 0;            ///< control points per loop; 0 = adaptive to `tolerance`
   double tolerance = 0.00025;        ///< mm, adaptive: systematic RMS deviation a span may keep
-  double initial_span = 2.0;         ///< mm, adaptive: knot spacing of the first curve
+  double initial_span = 2.0;         ///< mm, adaptive: knot spacing of the first curve (merged where sparse)
   double min_span = 0.04;            ///< mm, adaptive: shortest span (half of it on a gross misfit)
   double min_span_points = 2;        ///< adaptive: fewest measured points per knot span
   double exact_min_span_points = 4;  ///< adaptive: the same on near-exact data (noise below exact_noise)
