@@ -144,22 +144,23 @@ std::string crossing_message(const Points& profile) {
 // 3.5 mm apart fit to the targets, 3.9 mm did not; 3 mm leaves a margin.
 constexpr double kHoleSpans = 1.5;
 
-// Uniform knots over [0, length] for n spans, merged where the profile is sparse: a run of
-// spans holding fewer than `per_span` of the parameters s (the profile's points) joins the
-// spans after it until it holds that many, so that no span is shaped by the fairness term
-// alone between points (a sparse CMM or CFD row: points 2.3 mm apart mid-chord, spans of 2
-// mm). Where every span holds enough points, or two points lie more than `hole` apart, the
-// knots are the uniform ones: bridged as before, or refused when the curve crosses itself
-// there. Merged spans over flanks 3.9 mm apart fitted a thin section 8-9 um too thick with
-// nothing flagged, and no later check flags the area a long flank hole spoils
-// (tests/test_fit_spline_sparse.cpp).
-std::vector<double> first_knots(const std::vector<double>& s, double length, int n, double per_span,
-                                double hole, int fewest) {
+// n uniform spans over the loop of chord-length parameters s (its last the loop's length),
+// merged where the profile is sparse: a run of spans holding fewer than `per_span` of the
+// profile's points joins the spans after it until it holds that many, so that no span is
+// shaped by the fairness term alone between points (a sparse CMM or CFD row: points 2.3 mm
+// apart mid-chord, spans of 2 mm). Where every span holds enough points, or two points lie
+// more than `hole` apart, the knots are the uniform ones: bridged as before, or refused
+// when the curve crosses itself there. Merged spans over flanks 3.9 mm apart fitted a thin
+// section 8-9 um too thick with nothing flagged, and no later check flags the area a long
+// flank hole spoils (tests/test_fit_spline_sparse.cpp).
+std::vector<double> first_knots(const std::vector<double>& s, int n, double per_span, double hole,
+                                int fewest) {
+  const double length = s.back();
   std::vector<double> uniform(std::size_t(n) + 1);
   for (int i = 0; i <= n; ++i) uniform[std::size_t(i)] = length * i / n;
-  if (!(length > 0) || !std::isfinite(length)) return uniform;  // degenerate: fit_curve says why
+  if (!(length > 0) || !std::isfinite(length)) return uniform;
   std::vector<std::size_t> count(std::size_t(n), 0);
-  for (std::size_t k = 0; k + 1 < s.size(); ++k)  // s closes the loop: its last is length
+  for (std::size_t k = 0; k + 1 < s.size(); ++k)  // the last closes the loop
     ++count[std::min<std::size_t>(std::size_t(s[k] / length * n), std::size_t(n) - 1)];
   if (*std::min_element(count.begin(), count.end()) >= per_span) return uniform;
   for (std::size_t k = 1; k < s.size(); ++k)
@@ -181,34 +182,25 @@ std::vector<double> first_knots(const std::vector<double>& s, double length, int
 }
 
 // First curve: least squares through the ordered profile on chord-length knots, uniform
-// where the points allow (first_knots).
+// where the points allow (first_knots; always with a given number of control points). The
+// uniform knots and parameters are fit_curve's, so its curve is the same.
 BSpline first_curve(const Points& profile, const FitSplineOptions& o) {
   const std::vector<double> s = chord_length_parameters(profile, true);
-  const double perimeter = s.back();
   int n = o.control_points;
-  if (n == 0) n = static_cast<int>(std::ceil(perimeter / o.initial_span));
+  if (n == 0) n = static_cast<int>(std::ceil(s.back() / o.initial_span));
   n = std::max(n, std::max(8, o.degree + 1));
   if (o.control_points == 0) n = std::min<int>(n, static_cast<int>(profile.size()) / 2);
   if (n > static_cast<int>(profile.size()))
     throw Error("fit_spline: " + std::to_string(n) + " control points are more than the " +
                 std::to_string(profile.size()) + " points of the loop");
-  CurveFitOptions fo;
-  fo.degree = o.degree;
-  fo.control_points = n;
-  fo.fairness = o.fairness;
-  fo.closed = true;
   try {
-    const std::vector<double> knots =
-        o.control_points == 0 ? first_knots(s, perimeter, n, o.min_span_points, kHoleSpans * o.initial_span,
-                                            std::max(8, o.degree + 1))
-                              : std::vector<double>{};
-    if (knots.empty() || int(knots.size()) - 1 == n) return fit_curve(profile, fo);
     detail::check_fit_points(profile, true);
     BSpline shape;
     shape.degree = o.degree;
     shape.closed = true;
-    shape.knots = knots;
-    shape.control.assign(knots.size() - 1, Eigen::Vector2d::Zero());
+    shape.knots = first_knots(s, n, o.control_points == 0 ? o.min_span_points : 0,
+                              kHoleSpans * o.initial_span, std::max(8, o.degree + 1));
+    shape.control.assign(shape.knots.size() - 1, Eigen::Vector2d::Zero());
     return fit_control_points(profile, s, shape, o.fairness);
   } catch (const Error& e) {
     std::string m = e.what();
