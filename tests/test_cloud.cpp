@@ -204,7 +204,7 @@ TEST_CASE("formats: the extension picks the reader, the content when there is no
   CHECK(error_of("1 2 3\n", "part.stl") == "read_cloud: part.stl: is a mesh, not a point cloud");
   CHECK(error_of("1 2 3\n", "d.x/scan.fls") ==
         "read_cloud: d.x/scan.fls: unknown point cloud extension '.fls' (use .xyz .asc .txt .pts .csv .ply "
-        ".pcd .las .laz .e57)");
+        ".pcd .las .laz .e57 .dat)");
   CHECK(error_of("1 2 3\n", "d.x/scan") == "no error");  // a dot in a directory is no extension
   // A PLY file is a mesh when its header declares faces.
   const std::string mesh = temp_path(".ply"), cloud = temp_path(".ply");

@@ -87,6 +87,25 @@ TEST_CASE("formats: semicolon text reads decimal commas, PTS count lines are cou
   CHECK_THAT(cloud_error("1;2;x\n", "e.txt"), Catch::Contains("e.txt:1: expected a number in column 3"));
 }
 
+TEST_CASE("formats: T-Blade3's .dat counts its sections of points", "[formats]") {
+  // blade3d.*.dat: `POINTS SECTIONS`, then the sections' x y z rows (its camber lines: rows alone).
+  const Cloud c =
+      parse_cloud("   3   2\n1 2 3\n4 5 6\n7 8 9\n1 2 4\n4 5 7\n7 8 10\n", "blade3d.Case.dat", {});
+  REQUIRE(c.points.size() == 6);
+  CHECK(c.points[0] == Eigen::Vector3d(1, 2, 3));
+  CHECK(c.points[5] == Eigen::Vector3d(7, 8, 10));
+  CHECK(parse_cloud("1 2 3\n4 5 6\n", "meanline.sec1.dat", {}).points.size() == 2);
+  CHECK_THAT(
+      cloud_error("3 2\n1 2 3\n4 5 6\n7 8 9\n1 2 4\n", "t.dat"),
+      Catch::Contains("t.dat: its count line `3 2` (points a section, sections) declares 6 points, the "
+                      "file holds 4"));
+  // Only the first line counts; two numbers later are a short row, a count of 0 is no count.
+  CHECK_THAT(cloud_error("1 2 3\n3 2\n", "u.dat"), Catch::Contains("u.dat:2: expected at least 3 columns"));
+  CHECK_THAT(cloud_error("0 2\n1 2 3\n", "v.dat"), Catch::Contains("v.dat:1: expected at least 3 columns"));
+  CHECK_THAT(cloud_error("2.5 2\n1 2 3\n", "w.dat"), Catch::Contains("w.dat:1: expected at least 3 columns"));
+  CHECK_THAT(cloud_error("3 2\n1 2 3\n", "b.xyz"), Catch::Contains("b.xyz:1: expected at least 3 columns"));
+}
+
 TEST_CASE("formats: bad PCD files are refused by name", "[formats]") {
   CHECK_THAT(cloud_error(bytes_of(dir + "compressed.pcd"), "c.pcd"),
              Catch::Contains("c.pcd: PCD DATA binary_compressed is not supported"));

@@ -99,4 +99,13 @@ check "its message names the file and both lengths" -- grep -q "cut.e57: E57 hea
 printf '3\n1 2 3\n4 5 6\n' > "$TMP/short.pts"
 expect 1 "a PTS count line larger than its points is refused" -- "$BIN/slice" "$TMP/short.pts" --at 1
 check "its message names the file and both counts" -- grep -q "short.pts: its PTS count lines declare 3 points, the file holds 2" "$TMP/err"
+# T-Blade3's .dat: the XYZ's rows after their count line (POINTS SECTIONS, product = rows).
+n=$(grep -c . "$D/blade.xyz")
+{ echo "$n 1"; cat "$D/blade.xyz"; } > "$TMP/blade3d.dat"
+expect 0 "slice a T-Blade3 .dat" -- sections "$TMP/blade3d.dat" "$TMP/dat.out"
+check "the .dat gives the same sections as the XYZ" -- cmp -s "$TMP/ref" "$TMP/dat.out"
+head -n 100 "$TMP/blade3d.dat" > "$TMP/cut.dat"
+expect 1 "a truncated T-Blade3 .dat is refused" -- "$BIN/slice" "$TMP/cut.dat" "${AT[@]}"
+check "its message names the file and both counts" -- grep -q "cut.dat: its count line \`$n 1\` (points a section, sections) declares $n points, the file holds 99" "$TMP/err"
+check "nothing on stdout" -- test ! -s "$TMP/out"
 finish

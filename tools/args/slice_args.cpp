@@ -12,11 +12,12 @@ namespace section::tool {
 
 const char* const SliceArgs::description =
     "slice: cut a blade scan by section planes into ordered section profiles.\n\n"
-    "Reads a point cloud (.xyz .asc .txt .pts .csv .ply .pcd .las; '-' = stdin, XYZ, PLY,\n"
-    "LAS or PCD) or a mesh (.stl .obj .off, or .ply with faces) and writes the pipe stream\n"
-    "(docs/FORMAT.md) with, per section: the plane frame, the measured points of the slab\n"
-    "projected onto the plane and ordered along each closed loop with outward normals, and\n"
-    "the skeleton of the filled profile. Loop 0 is the profile (largest area).\n\n"
+    "Reads a point cloud (.xyz .asc .txt .pts .csv .ply .pcd .las .laz .e57, T-Blade3's .dat;\n"
+    "'-' = stdin: XYZ, PLY, LAS or PCD) or a mesh (.stl .obj .off, or .ply with faces) and\n"
+    "writes the pipe stream (docs/FORMAT.md) with, per section: the plane frame, the\n"
+    "measured points of the slab projected onto the plane and ordered along each closed loop\n"
+    "with outward normals, and the skeleton of the filled profile. Loop 0 is the profile\n"
+    "(largest area).\n\n"
     "Gaps: where the slab leaves a gap longer than --fill-gap slab widths (a hole, a sparse\n"
     "thin edge), scan points up to --fill-reach from the plane are carried onto it along the\n"
     "surface (the section's drift with height is fitted beside the gap) and fill it; the\n"

@@ -102,6 +102,8 @@ std::size_t read_csv_cloud(ByteSource& src, const CloudReadOptions& opt, const P
                            const PointChunkFn& raw);
 std::size_t read_pts_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);
+std::size_t read_dat_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
+                           const PointChunkFn& raw);
 std::size_t read_pcd_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn& raw);
 std::size_t read_las_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,

@@ -21,7 +21,9 @@ struct TextState {
   int cx = 0, cy = 1, cz = 2;  // columns of x, y, z
   int needed = 3;              // columns a row must have at least
   bool require_header = false;
-  bool pts = false;        // a line holding one integer is a PTS count line
+  bool pts = false;  // a line holding one integer is a PTS count line
+  bool dat = false;  // a first line of two whole numbers is T-Blade3's `POINTS SECTIONS`
+  unsigned long long dat_points = 0, dat_sections = 0;  // that line's counts (0: none)
   bool semicolon = false;  // ';' separates the cells and ',' is a decimal comma (first data line holds a ';')
 };
 
@@ -81,6 +83,21 @@ bool try_header(std::string_view line, TextState& st) {
   return true;
 }
 
+// T-Blade3's count line: two whole numbers, the points of a section and the sections
+// (`241 21`), each under 2^31 so that their product cannot overflow.
+bool dat_count_line(std::string_view line, TextState& st) {
+  std::string_view f[3];
+  const int n = split_row(line, f, 3, false);
+  unsigned long long points = 0, sections = 0;
+  const unsigned long long most = 1ull << 31;
+  if (n != 2 || !parse_integer(trim(f[0]), points) || !parse_integer(trim(f[1]), sections) || points == 0 ||
+      sections == 0 || points >= most || sections >= most)
+    return false;
+  st.dat_points = points;
+  st.dat_sections = sections;
+  return true;
+}
+
 template <class Out>
 void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, const std::string& name,
                      Out& out, bool& first_data) {
@@ -89,6 +106,10 @@ void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, 
   unsigned long long count = 0;
   if (st.pts && line.find_first_of(" \t,;") == std::string_view::npos && parse_integer(line, count)) {
     out.declare(count);
+    return;
+  }
+  if (first_data && st.dat && st.dat_sections == 0 && dat_count_line(line, st)) {
+    out.declare(st.dat_points * st.dat_sections);
     return;
   }
   if (first_data) {
@@ -247,12 +268,14 @@ void parse_text_block(std::string_view buf, std::size_t begin, std::size_t end, 
   }
 }
 
-std::size_t read_text(ByteSource& src, bool csv, bool pts, const CloudReadOptions& opt,
-                      const PointChunkFn& fn) {
+enum class TextKind { xyz, csv, pts, dat };
+
+std::size_t read_text(ByteSource& src, TextKind kind, const CloudReadOptions& opt, const PointChunkFn& fn) {
   TextOut out{Chunker(fn, opt.chunk_points)};
   TextState st;
-  st.require_header = csv;
-  st.pts = pts;
+  st.require_header = kind == TextKind::csv;
+  st.pts = kind == TextKind::pts;
+  st.dat = kind == TextKind::dat;
   bool first_data = true;
   std::size_t line_no = 0;
   std::vector<PieceOut> parts;
@@ -293,6 +316,11 @@ std::size_t read_text(ByteSource& src, bool csv, bool pts, const CloudReadOption
   }
   out.chunks.flush();
   const std::size_t total = out.chunks.total();
+  if (st.dat_sections > 0 && out.declared != total)
+    throw Error("read_cloud: " + src.name() + ": its count line `" + std::to_string(st.dat_points) + " " +
+                std::to_string(st.dat_sections) + "` (points a section, sections) declares " +
+                std::to_string(out.declared) + " points, the file holds " + std::to_string(total) +
+                " (truncated file or wrong count?)");
   if (out.counted && out.declared != total)
     throw Error("read_cloud: " + src.name() + ": its PTS count lines declare " +
                 std::to_string(out.declared) + " points, the file holds " + std::to_string(total) +
@@ -305,17 +333,22 @@ std::size_t read_text(ByteSource& src, bool csv, bool pts, const CloudReadOption
 
 std::size_t read_xyz_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn&) {
-  return read_text(src, false, false, opt, fn);
+  return read_text(src, TextKind::xyz, opt, fn);
 }
 
 std::size_t read_pts_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn&) {
-  return read_text(src, false, true, opt, fn);
+  return read_text(src, TextKind::pts, opt, fn);
 }
 
 std::size_t read_csv_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
                            const PointChunkFn&) {
-  return read_text(src, true, false, opt, fn);
+  return read_text(src, TextKind::csv, opt, fn);
+}
+
+std::size_t read_dat_cloud(ByteSource& src, const CloudReadOptions& opt, const PointChunkFn& fn,
+                           const PointChunkFn&) {
+  return read_text(src, TextKind::dat, opt, fn);
 }
 
 }  // namespace section::detail

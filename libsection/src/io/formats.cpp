@@ -29,6 +29,7 @@ const std::vector<InputFormat>& input_formats() {
       {{"pcd"}, {}, C::pcd, read_pcd_cloud, false, "# .PCD|VERSION 0.7|VERSION .7", nullptr, nullptr},
       {{"las", "laz"}, {}, C::las, read_las_cloud, false, "LASF", nullptr, nullptr},
       {{"e57"}, {}, C::e57, read_e57_cloud, false, "ASTM-E57", nullptr, nullptr},
+      {{"dat"}, {}, C::dat, read_dat_cloud, true, nullptr, nullptr, nullptr},
   };
   return formats;
 }

@@ -17,7 +17,8 @@ namespace section {
 
 /// Which reader a file goes to.
 enum class CloudFormat {
-  automatic,  ///< by the extension (.xyz .asc .txt .pts .csv .ply .pcd .las .laz .e57); with none, by content
+  automatic,  ///< by the extension (.xyz .asc .txt .pts .csv .ply .pcd .las .laz .e57 .dat); with none, by
+              ///< content
   xyz,  ///< text, one point a line, separated by space, tab or comma (or ';', with decimal commas); extra
         ///< columns ignored
   csv,  ///< text with a header row naming x, y and z columns
@@ -25,7 +26,9 @@ enum class CloudFormat {
   pts,  ///< Leica PTS: lines of one integer count the points after them, then x y z [i [r g b]]
   pcd,  ///< PCL's PCD (ascii or binary; not binary_compressed); NaN points are dropped
   las,  ///< ASPRS LAS 1.0-1.4, point formats 0-10; LAZ (LASzip-compressed) of point formats 0-3, 6-8
-  e57   ///< ASTM E2807 (E57): every scan's points, in the file's frame (each scan's pose applied)
+  e57,  ///< ASTM E2807 (E57): every scan's points, in the file's frame (each scan's pose applied)
+  dat   ///< T-Blade3's text (blade3d.*.dat): rows x y z, after an optional first line `POINTS SECTIONS`
+        ///< that counts them (POINTS a section, SECTIONS sections)
 };
 
 /// Options of the cloud readers (read_cloud, read_cloud_chunks, parse_cloud).
