@@ -88,6 +88,12 @@ struct Search {
   std::vector<Found> found;
   std::vector<std::size_t> footed;
   std::vector<Foot> feet;
+  // The skeleton made of found loop `skeleton_of` (-1: none kept): it depends on that
+  // loop's pass and component only, so an ordering of other points on the same loops
+  // (order_beside) takes it as it is.
+  int skeleton_of = -1;
+  std::vector<Vec> skeleton;
+  std::vector<double> skeleton_radius;
 };
 
 // Checks the options and points; returns the fewest points a loop needs.
@@ -196,6 +202,11 @@ Loop make_loop(const Points& points, const Found& f, const Pass& pass, int label
 
 // The skeleton of found loop `first` (an index into s.found) into `result`.
 void skeleton_of_found(const Search& s, int first, MorphologyResult& result) {
+  if (first == s.skeleton_of) {
+    result.skeleton = s.skeleton;
+    result.skeleton_radius = s.skeleton_radius;
+    return;
+  }
   const Found& f = s.found[std::size_t(first)];
   const Pass& pass = s.passes[f.pass];
   morph::skeleton_of(pass, pass.components[f.component], result);
@@ -319,6 +330,11 @@ MorphologyResult order_into(const std::vector<Eigen::Vector2d>& points, const Mo
   kept.first = make_loops(points, s, feet_known, h, outlier, min_points, opt, result);
   if (result.loops.empty())
     throw Error("morphology: no loop keeps at least " + std::to_string(min_points) + " points");
+  if (!result.skeleton.empty()) {  // made of loop kept.first: kept for order_beside
+    s.skeleton_of = kept.first;
+    s.skeleton = result.skeleton;
+    s.skeleton_radius = result.skeleton_radius;
+  }
   kept.h = h;
   kept.min_points = min_points;
   kept.loops = result.loops.size();
