@@ -7,20 +7,60 @@
 #include <cstdlib>
 #include <limits>
 #include <tuple>
+#include <utility>
 
 namespace section::morph {
 
 namespace {
 
-// Sorts (key, id) pairs by key; `ids` gets the ids in that order, the table their cells.
+// Groups (key, id) pairs by key, each cell's ids ascending; `ids` gets the ids in that
+// order, the table their cells. A query reads only a cell's ids, in their order, so the
+// order of the cells is free: when the ids come in non-decreasing order (every grid's
+// do), a counting pass by cell keeps each cell's ids as a sort of the pairs would leave
+// them, without the sort (its comparisons were most of a grid's making).
 template <class Id>
 CellTable sorted_cells(std::vector<std::pair<std::int64_t, Id>>& keyed, std::vector<Id>& ids) {
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<std::int64_t> keys(keyed.size());
-  ids.resize(keyed.size());
-  for (std::size_t a = 0; a < keyed.size(); ++a) {
-    keys[a] = keyed[a].first;
-    ids[a] = keyed[a].second;
+  const std::size_t n = keyed.size();
+  std::vector<std::int64_t> keys(n);
+  ids.resize(n);
+  bool ascending = true;
+  for (std::size_t a = 1; a < n && ascending; ++a) ascending = keyed[a - 1].second <= keyed[a].second;
+  if (!ascending) {
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t a = 0; a < n; ++a) {
+      keys[a] = keyed[a].first;
+      ids[a] = keyed[a].second;
+    }
+    return CellTable(keys);
+  }
+  // Each pair's cell, numbered in order of first appearance (an open-addressing table),
+  // then the cells' starts and the pairs placed in input order.
+  std::size_t size = 16;
+  while (size < 2 * n) size *= 2;
+  const std::size_t mask = size - 1;
+  int shift = 0;
+  while ((std::size_t(1) << shift) < size) ++shift;
+  std::vector<std::uint32_t> slot(size, 0);  // cell number + 1; 0 free
+  std::vector<std::int64_t> cell_keys;
+  std::vector<std::uint32_t> cell_of(n), start;
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::int64_t key = keyed[a].first;
+    std::size_t i = std::size_t((std::uint64_t(key) * 0x9E3779B97F4A7C15ULL) >> (64 - shift));
+    while (slot[i] != 0 && cell_keys[slot[i] - 1] != key) i = (i + 1) & mask;
+    if (slot[i] == 0) {
+      cell_keys.push_back(key);
+      start.push_back(0);
+      slot[i] = std::uint32_t(cell_keys.size());
+    }
+    cell_of[a] = slot[i] - 1;
+    ++start[cell_of[a]];
+  }
+  std::uint32_t at = 0;
+  for (std::uint32_t& s : start) at += std::exchange(s, at);
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::uint32_t to = start[cell_of[a]]++;
+    keys[to] = keyed[a].first;
+    ids[to] = keyed[a].second;
   }
   return CellTable(keys);
 }
