@@ -336,6 +336,71 @@ TEST_CASE("pipe: run_stage stages a stream part by part, the same whatever the t
   for (const auto& p : {in, out1, out2}) std::remove(p.c_str());
 }
 
+TEST_CASE("pipe: run_stage leaves columns a stage never reads undecoded, refusing bad cells alike",
+          "[pipe]") {
+  // Two parts whose points tables are large enough to be passed on as text.
+  const std::string path = temp_path("unread_in"), out = temp_path("unread_out");
+  const auto stream = [&](const std::string& units, const std::string& bad) {
+    Stream head;
+    head.units = units;
+    StreamWriter w(path, head);
+    for (int s = 0; s < 2; ++s) {
+      Stream part;
+      Table p{"points", {"section", "loop", "index", "u", "nu"}};
+      for (int i = 0; i < 300; ++i) p.add_row({double(s), 0, double(i), i / 8.0 + s, std::sin(i / 3.0)});
+      part.put(p);
+      w.part(std::to_string(s), part);
+    }
+    w.finish();
+    std::string text = read_file(path);
+    if (!bad.empty()) {  // the last row's nu
+      const std::size_t end = text.rfind("\n# end"), at = text.rfind(',', end) + 1;
+      text.replace(at, end - at, bad);
+    }
+    write_file(path, text);
+    return path;
+  };
+  // Runs a stage reading u alone; returns its output, the nu values it saw NaN, or the error.
+  const auto run = [&](const std::string& in, bool unread, std::size_t& nan) {
+    nan = 0;
+    StageRun r;
+    r.input = in;
+    r.output = out;
+    r.threads = 1;
+    if (unread) r.unread = {{"points", "nu"}};
+    r.stage = [&](Stream& s, int) {
+      const Table& p = s.get("points", "t");
+      Table sum{"sum", {"section", "u"}, {p.at(0, 0), 0}};
+      for (std::size_t k = 0; k < p.rows(); ++k) sum.values[1] += p.at(k, 3), nan += std::isnan(p.at(k, 4));
+      s.put(sum);
+    };
+    const std::string error = thrown([&] { run_stage(r); });
+    return error == "no error" ? read_file(out) : error;
+  };
+  std::size_t nan = 0, none = 0;
+  const std::string mm = stream("mm", "");
+  const std::string passed = run(mm, true, nan);
+  CHECK(nan == 600);                      // undecoded ...
+  CHECK(passed == run(mm, false, none));  // ... and passed on as they came
+  CHECK(none == 0);
+  // In another unit every value is converted, and written from its values: all decoded.
+  CHECK(run(stream("in", ""), true, nan) == run(stream("in", ""), false, none));
+  CHECK(nan == 0);
+  // A bad cell is refused as ever, naming its line (the last).
+  for (const std::string bad : {"x", "1e16", "nan", "-", "1e-400x", "1,2"}) {
+    const std::string in = stream("mm", bad), refused = run(in, false, none);
+    CHECK_THAT(refused, Catch::Contains(":608: ") && Catch::Contains("table 'points'"));
+    CHECK(run(in, true, nan) == refused);
+  }
+  // Cells of other forms a number may take are read as ever.
+  for (const std::string odd : {"1e-5", "+0.5", "0.12345678901234567890123", " 1", "1234567890123456e-3"}) {
+    const std::string in = stream("mm", odd), kept = run(in, false, none);
+    CHECK(kept.find(odd) != std::string::npos);
+    CHECK(run(in, true, nan) == kept);
+  }
+  for (const auto& p : {out, path}) std::remove(p.c_str());
+}
+
 TEST_CASE("pipe: writing refuses NaN rather than passing it on", "[pipe]") {
   Stream s;
   Table t{"t", {"a"}, {}};

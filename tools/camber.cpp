@@ -41,6 +41,7 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   section::CamberOptions per_part = a.options;
   per_part.across_sections = false;
   section::StageRun run = section::tool::stage_run(a.common, history, per_part, section::camber_stream);
+  run.unread = section::camber_unread_columns();
   if (format != "stream") run.output = "/dev/null";  // the stream's place takes the params
   section::Stream summary;  // units and issues of every section, for the params output
   // A plain profile (x y per line): its spline is fitted to its points.

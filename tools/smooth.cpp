@@ -19,6 +19,7 @@ void run_smooth(const SmoothArgs& a, const std::string& history) {
   section::tool::refuse_terminal_output(a.common, "fitspline");
   section::Table stats;
   section::StageRun run = section::tool::stage_run(a.common, history, a.options, section::smooth_stream);
+  run.unread = section::smooth_unread_columns();
   run.written = [&](const section::Stream& part) {
     section::tool::warn_issues("smooth", part, true);
     section::append_rows(stats, section::schema::smooth_stats.get(part));

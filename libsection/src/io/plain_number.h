@@ -135,6 +135,48 @@ inline long digit_run(const char* readable, const char*& p, const char* end, std
   return long(p - start);
 }
 
+/// The end of a number `-?D+(.D+)?` at `p` (before `end`) of at most 15 digits before the
+/// point and 19 in all, or nullptr for any other form: the form alone, without its value.
+/// Every such number is one the stream's parse takes (a finite double, below 1e15 in
+/// magnitude, not one std::from_chars finds out of range), so a cell whose value is never
+/// used is checked by this. Where 32 bytes are there, their digits are found with SSE2 at once.
+inline const char* plain_number_end(const char* p, const char* end) {
+  p += p < end && *p == '-';
+#ifdef __SSE2__
+  if (end - p >= 32) {
+    const auto digits16 = [](const char* at) {
+      const __m128i d =
+          _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at)), _mm_set1_epi8('0'));
+      return std::uint32_t(
+          _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, _mm_set1_epi8(9)), _mm_setzero_si128())));
+    };
+    // Bits 32 on set: the count of digits that lead a shifted mask stops at the window's end.
+    const std::uint64_t other = ~std::uint64_t(digits16(p) | digits16(p + 16) << 16);
+    const unsigned whole = unsigned(__builtin_ctzll(other));
+    if (whole - 1 >= 15) return nullptr;  // none, or over 15
+    if (p[whole] != '.') return p + whole;
+    // (digits up to the window's end: 31 - whole of them, with the whole ones over 19)
+    const unsigned fraction = unsigned(__builtin_ctzll(other >> (whole + 1)));
+    if (fraction == 0 || whole + fraction > 19) return nullptr;
+    return p + whole + 1 + fraction;
+  }
+#endif
+  const auto digit_count = [end](const char* q) {
+    const char* const first = q;
+    while (q < end && static_cast<unsigned>(*q - '0') < 10) ++q;
+    return long(q - first);
+  };
+  const long whole = digit_count(p);
+  if (whole == 0 || whole > 15) return nullptr;
+  p += whole;
+  if (p < end && *p == '.') {
+    const long fraction = digit_count(++p);
+    if (fraction == 0 || whole + fraction > 19) return nullptr;
+    p += fraction;
+  }
+  return p;
+}
+
 /// A number `-?D+(.D+)?` of at most 19 digits at `p` (before `end`; the bytes from
 /// `readable` on may be read, the text before `p` too where it is there): sets `value` to the
 /// double std::from_chars gives for it and returns its end (the caller checks what follows);

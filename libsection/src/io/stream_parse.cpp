@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 namespace section {
 
@@ -66,15 +67,17 @@ inline bool cell_number(const char* readable, std::string_view cell, double& val
   return (read && read == end) || parse_double(cell, value);
 }
 
-// What a row's ids must be: per column 0 (not an id), 1 (an id: an integer, 0 or more) or 2
-// (the section id, equal to `section` in a part of a stream split into parts).
+// What a row's ids must be: per column 0 (not an id), 1 (an id: an integer, 0 or more), 2
+// (the section id, equal to `section` in a part of a stream split into parts) or `unread`
+// (not an id, its value never read: plain_row checks its form and keeps NaN).
 struct IdRules {
+  static constexpr char unread = 3;
   std::vector<char> column;
   double section = -1;      // the part's section, -1 outside parts
   std::size_t leading = 0;  // the first columns, section and loop, that most rows repeat (not all columns)
   // True when `value` in column `col` is a valid id there.
   bool ok(std::size_t col, double value) const {
-    if (!column[col]) return true;
+    if (!column[col] || column[col] == unread) return true;
     // A whole number in [0, 2^31): in that range the cast is exact (std::floor was slower).
     if (!(value >= 0 && value <= 2147483647.0) || double(std::int64_t(value)) != value) return false;
     return column[col] != 2 || section < 0 || value == section;
@@ -135,7 +138,18 @@ inline const char* plain_row(const char* readable, const char* p, const char* en
     }
   }
   for (;; ++col) {
-    if (kind[col]) {
+    if (!kind[col]) {
+      double value = 0;
+      p = plain_number(readable, p, end, value);
+      if (!p || std::abs(value) > max_coordinate) return nullptr;
+      row[col] = value;
+    } else if (kind[col] == IdRules::unread) {
+      // Never read: its form alone, which every such cell of a valid row has. (NaN cannot
+      // be written: the table is passed on as its text, or refused.)
+      p = plain_number_end(p, end);
+      if (!p) return nullptr;
+      row[col] = std::numeric_limits<double>::quiet_NaN();
+    } else {
       // An id as an integer: below 10^9, so a valid id and exact as a double, without the
       // checks of a double that could be one.
       const char* const first = p;
@@ -144,11 +158,6 @@ inline const char* plain_row(const char* readable, const char* p, const char* en
       if (p == first || p - first > 9) return nullptr;
       row[col] = double(id);
       if (kind[col] == 2 && ids.section >= 0 && row[col] != ids.section) return nullptr;
-    } else {
-      double value = 0;
-      p = plain_number(readable, p, end, value);
-      if (!p || std::abs(value) > max_coordinate) return nullptr;
-      row[col] = value;
     }
     if (col + 1 == columns) {
       if (p != end && *p++ != '\n') return nullptr;
@@ -223,7 +232,7 @@ private:
   void table(std::string_view rest);
   void header(std::string_view line);
   void block();
-  bool parse_pieces(std::string_view block, std::size_t parts);
+  bool parse_pieces(std::string_view block, std::size_t parts, const IdRules& ids);
   void keep_source(std::string_view block);
   void row(std::string_view line);
 
@@ -367,6 +376,11 @@ void StreamParser::header(std::string_view line) {
       fail("column '" + n + "' appears twice in the header of table '" + current_->name + "'");
     ids_.column[c] = n == "section" ? 2 : is_id_column(n) ? 1 : 0;
   }
+  if (part_.unread)
+    for (std::size_t c = 0; c < names.size(); ++c)
+      if (!ids_.column[c] && std::find(part_.unread->begin(), part_.unread->end(),
+                                       std::make_pair(current_->name, names[c])) != part_.unread->end())
+        ids_.column[c] = IdRules::unread;
   ids_.leading = 0;
   while (ids_.leading < std::min<std::size_t>(2, names.size() - 1) &&
          (names[ids_.leading] == "section" || names[ids_.leading] == "loop"))
@@ -402,17 +416,26 @@ void StreamParser::block() {
   if (values.capacity() < need) values.reserve(std::max(need, 2 * values.capacity()));  // (later parts)
   const std::size_t parts =
       part_.threads == 1 ? 1 : std::max<std::size_t>(1, std::min<std::size_t>(64, block.size() >> 17));
-  if (parts == 1 ? !parse_rows(block, ids_, values) : !parse_pieces(block, parts)) {
+  // Cells never read are left undecoded only in rows kept as text, written back as they came.
+  const bool keep = continued_columns_.empty() && block.find('\r') == std::string_view::npos;
+  IdRules decoded;
+  const IdRules* ids = &ids_;
+  if (!keep && std::count(ids_.column.begin(), ids_.column.end(), IdRules::unread)) {
+    decoded = ids_;
+    std::replace(decoded.column.begin(), decoded.column.end(), IdRules::unread, char(0));
+    ids = &decoded;
+  }
+  if (parts == 1 ? !parse_rows(block, *ids, values) : !parse_pieces(block, parts, *ids)) {
     values.resize(before);
     return;
   }
-  keep_source(block);
+  if (keep) keep_source(block);
   line_no_ += lines;
   pos_ = block_end;
 }
 
 // The rows of `block` in `parts` pieces, parsed by several cores and appended in order.
-bool StreamParser::parse_pieces(std::string_view block, std::size_t parts) {
+bool StreamParser::parse_pieces(std::string_view block, std::size_t parts, const IdRules& ids) {
   std::vector<std::size_t> cut(parts + 1, 0);
   cut[parts] = block.size();
   for (std::size_t k = 1; k < parts; ++k) {
@@ -423,17 +446,16 @@ bool StreamParser::parse_pieces(std::string_view block, std::size_t parts) {
   std::vector<char> ok(parts, 0);
   detail::parallel_for(parts, part_.threads, [&](std::size_t k) {
     piece[k].reserve((cut[k + 1] - cut[k]) / 8);
-    ok[k] = parse_rows(block.substr(cut[k], cut[k + 1] - cut[k]), ids_, piece[k]);
+    ok[k] = parse_rows(block.substr(cut[k], cut[k + 1] - cut[k]), ids, piece[k]);
   });
   if (!std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) return false;
   for (const auto& v : piece) current_->values.insert(current_->values.end(), v.begin(), v.end());
   return true;
 }
 
-// The rows of a new table kept to be written back as they are (Table::source); not with
-// '\r' line ends, which the written stream does not use.
+// The rows of a new table kept to be written back as they are (Table::source); block() keeps
+// none with '\r' line ends, which the written stream does not use.
 void StreamParser::keep_source(std::string_view block) {
-  if (!continued_columns_.empty() || block.find('\r') != std::string_view::npos) return;
   auto kept = std::make_shared<TableText>();
   if (owner_) {
     kept->text = owner_;

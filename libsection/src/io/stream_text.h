@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #ifdef __SSE2__
@@ -76,6 +77,10 @@ struct PartText {
   bool is_part = false;
   std::size_t first_line = 1;
   int threads = 0;  ///< cores a large table's rows are parsed by (0: all)
+  /// Columns ({table, column}, not ids) whose values the stage never reads: where a table's
+  /// rows are kept as text (Table::source), their cells are checked as the parse checks
+  /// any cell but not decoded, and read as NaN (StageRun::unread).
+  const std::vector<std::pair<std::string, std::string>>* unread = nullptr;
 };
 
 /// parse_stream; the source rows of large tables are kept as parts of `owner` when it holds

@@ -409,6 +409,12 @@ Stream profile_stream(const BSpline& spline, double rms, const std::vector<Eigen
   return stream;
 }
 
+const std::vector<std::pair<std::string, std::string>>& camber_unread_columns() {
+  static const std::vector<std::pair<std::string, std::string>> columns = {
+      {"smoothed", "u"}, {"smoothed", "v"}, {"points", "nu"}, {"points", "nv"}, {"skeleton", "radius"}};
+  return columns;
+}
+
 void camber_stream(Stream& stream, const CamberOptions& options) {
   detail::check_options(options);
   pipe::restage(stream, "camber");

@@ -4,6 +4,7 @@
 #include "section/pipe/run_stage.h"
 
 #include "detail/parallel.h"
+#include "io/stream_text.h"
 #include "section/error.h"
 #include "section/io/stream_reader.h"
 #include "section/pipe/schema.h"
@@ -59,7 +60,9 @@ public:
         units_(units),
         writer_(run.output, head),
         workers_(run.threads > 0 ? std::size_t(run.threads)
-                                 : std::max<std::size_t>(1, std::thread::hardware_concurrency())) {}
+                                 : std::max<std::size_t>(1, std::thread::hardware_concurrency())),
+        // Converted to mm, a table is written from its values: all are decoded then.
+        unread_(run.unread.empty() || mm_per_unit(units) != 1 ? nullptr : &run.unread) {}
 
   void run() {
     std::vector<std::thread> pool = detail::start_threads(workers_, [this] { work(); });
@@ -94,7 +97,9 @@ private:
 
   // Parses and stages a job's part (its text is then released).
   void stage(Job& job) {
-    Stream part = parse_stream_part(job.part, reader_.source(), 1);  // (the parts are the parallel work)
+    // (the parts are the parallel work: one thread a part)
+    Stream part = detail::parse_stream_text(*job.part.text, reader_.source(), job.part.text,
+                                            detail::PartText{true, job.part.first_line, 1, unread_});
     validate_stream(part, reader_.source());
     part.units = units_;
     convert_to_mm(part);
@@ -196,6 +201,7 @@ private:
   const std::string units_;
   StreamWriter writer_;
   const std::size_t workers_;
+  const std::vector<std::pair<std::string, std::string>>* const unread_;  // StageRun::unread, or none
   std::deque<Job> jobs_;           // read and not yet written, in order (references stay valid)
   std::vector<Job> held_;          // staged and held for StageRun::hold, in order
   std::size_t first_job_ = 0;      // index of jobs_.front()

@@ -30,6 +30,13 @@ void smooth_loop(int section, int loop, const pipe::LoopRows& rows, const Smooth
 
 }  // namespace
 
+const std::vector<std::pair<std::string, std::string>>& smooth_unread_columns() {
+  static const std::vector<std::pair<std::string, std::string>> columns = {
+      {"points", "nu"},  {"points", "nv"},  {"points", "offset"},
+      {"skeleton", "u"}, {"skeleton", "v"}, {"skeleton", "radius"}};
+  return columns;
+}
+
 void smooth_stream(Stream& stream, const SmoothOptions& options) {
   const auto loops = pipe::loop_rows(schema::points.get(stream), "smooth");
   pipe::restage(stream, "smooth");

@@ -6,6 +6,8 @@
 #include "section/checks.h"
 #include "section/io/stream.h"
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace section {
@@ -19,6 +21,10 @@ namespace section {
 /// of, as the `camber` tool does; a caller staging the parts of a split stream one by one
 /// turns it off and does the three across the parts (the notes are in the first part).
 void camber_stream(Stream& stream, const CamberOptions& options = {});
+
+/// The columns of its input camber_stream never reads, only passes on (StageRun::unread):
+/// the smoothed points, the measured points' normals and the skeleton's radii.
+const std::vector<std::pair<std::string, std::string>>& camber_unread_columns();
 
 /// The blade check (check_blade, section/checks.h) across the sections of the streams
 /// given (the parts of one stream, or one whole stream), after camber_stream: each value

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace section {
@@ -34,6 +35,11 @@ struct StageRun {
   /// Turns an input that is not a stream into one (camber: a plain profile); unset, such
   /// input is refused.
   std::function<Stream(const std::string& text, const std::string& source)> other_input;
+  /// Columns of the input ({table, column}, none of them ids) whose values the stage never
+  /// reads, only passes on. In the parts of a stream given in mm, where a table's rows are
+  /// passed on as they came (Table::source), such cells are checked as any cell is (the
+  /// same refusal of a bad one) but not decoded: NaN in Table::values.
+  std::vector<std::pair<std::string, std::string>> unread;
 };
 
 /// Runs a stage of the pipe:

@@ -5,6 +5,10 @@
 #include "section/io/stream.h"
 #include "section/smooth.h"
 
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace section {
 
 /// Stream stage: smooths every (section, loop) of the "points" table (closed loops) and
@@ -13,5 +17,9 @@ namespace section {
 /// is recorded in stream.issues (stage "smooth") and the others go on. Throws
 /// section::Error when the "points" table is missing or lacks a column.
 void smooth_stream(Stream& stream, const SmoothOptions& options = {});
+
+/// The columns of its input smooth_stream never reads, only passes on (StageRun::unread):
+/// the points' normals and offsets, the skeleton's points and radii.
+const std::vector<std::pair<std::string, std::string>>& smooth_unread_columns();
 
 }  // namespace section
