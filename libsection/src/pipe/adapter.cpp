@@ -103,8 +103,13 @@ void run_slots(std::size_t count, int threads, const std::vector<Table*>& tables
     }
   });
   for (auto& slot : slots) {
-    for (std::size_t k = 0; k < slot.rows.size(); ++k)
-      tables[k]->values.insert(tables[k]->values.end(), slot.rows[k].begin(), slot.rows[k].end());
+    for (std::size_t k = 0; k < slot.rows.size(); ++k) {
+      std::vector<double>& values = tables[k]->values;
+      if (values.empty())  // (a part's one section: its rows taken, not copied)
+        values = std::move(slot.rows[k]);
+      else
+        values.insert(values.end(), slot.rows[k].begin(), slot.rows[k].end());
+    }
     for (auto& i : slot.issues) issues.push_back(std::move(i));
   }
 }

@@ -23,6 +23,7 @@ void smooth_loop(int section, int loop, const pipe::LoopRows& rows, const Smooth
   q.reserve(rows.size());
   for (const auto& row : rows) q.push_back(row.second);
   const SmoothResult r = smooth(q, options);
+  slot.rows[0].reserve(slot.rows[0].size() + 5 * r.points.size());  // (the smoothed table's 5 columns)
   for (std::size_t i = 0; i < r.points.size(); ++i)
     schema::smoothed.append(slot.rows[0], {section, loop, i, r.points[i]});
   schema::smooth_stats.append(slot.rows[1], {section, loop, r});
