@@ -19,7 +19,7 @@ namespace {
 // do), a counting pass by cell keeps each cell's ids as a sort of the pairs would leave
 // them, without the sort (its comparisons were most of a grid's making).
 template <class Id>
-CellTable sorted_cells(std::vector<std::pair<std::int64_t, Id>>& keyed, std::vector<Id>& ids) {
+CellTable grouped_cells(std::vector<std::pair<std::int64_t, Id>>& keyed, std::vector<Id>& ids) {
   const std::size_t n = keyed.size();
   std::vector<std::int64_t> keys(n);
   ids.resize(n);
@@ -90,7 +90,7 @@ PointGrid::PointGrid(const Points& points, const std::vector<std::size_t>& subse
   std::vector<std::pair<std::int64_t, std::uint32_t>> keyed;
   keyed.reserve(subset.size());
   for (std::size_t k : subset) keyed.emplace_back(key_of(points[k]), std::uint32_t(k));
-  cells_ = sorted_cells(keyed, order_);
+  cells_ = grouped_cells(keyed, order_);
 }
 
 double PointGrid::nearest(std::size_t k, int max_ring) const {
@@ -158,7 +158,7 @@ SegmentGrid::SegmentGrid(const std::vector<const Points*>& loops, double cell) :
           keyed.emplace_back(cell_key(x, j), (std::uint64_t(l) << 32) | i);
     }
   }
-  cells_ = sorted_cells(keyed, ids_);
+  cells_ = grouped_cells(keyed, ids_);
 }
 
 Foot SegmentGrid::foot(std::uint64_t id, const Vec& p, const detail::SegmentFoot& f) const {

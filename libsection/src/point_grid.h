@@ -29,7 +29,7 @@ inline std::int64_t cell_key(std::int64_t i, std::int64_t j) {
 /// std::unordered_map's modulo and node chase).
 class CellTable {
 public:
-  /// `keys` sorted; each run of equal keys is one cell.
+  /// `keys` grouped: each run of equal keys is one cell (no key in two runs; the runs in any order).
   explicit CellTable(const std::vector<std::int64_t>& keys);
 
   /// The range of cell `key`, empty when the cell holds nothing.
