@@ -41,7 +41,6 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   // The feet, the next step and the knots of the next round evaluate the current curve:
   // converted once.
   now.pc = detail::PiecewiseCurve(c, true);  // the basis kept: the steps move the control points only
-  fit::StepSolver solver;
   now.feet = fit::foot_points(c, now.pc, q, start);
   now.weights = weights_for(now.feet);
   now.rms = fit::weighted_rms(now.feet, now.weights);
@@ -52,8 +51,7 @@ Refinement refine(BSpline c, const Points& q, const FitSplineOptions& o, const F
   double best_rms = now.rms;
   int it = 0;
   for (; it < o.max_iterations; ++it) {
-    BSpline next =
-        fit::sdm_step(now.curve, now.pc, q, now.feet, now.weights, o.fairness, o.smoothing_length, solver);
+    BSpline next = fit::sdm_step(now.curve, now.pc, q, now.feet, now.weights, o.fairness, o.smoothing_length);
     detail::PiecewiseCurve npc(next, now.pc);
     Feet nf = fit::foot_points(next, npc, q, &now.feet);
     std::vector<double> nw = weights_for(nf);

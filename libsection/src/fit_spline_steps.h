@@ -67,10 +67,12 @@ std::vector<double> outlier_weights(const Feet& f, const Points& q, double thres
 /// Weighted RMS of the signed distances.
 double weighted_rms(const Feet& f, const std::vector<double>& w);
 
-/// The analysis of the previous step's system, which a step with the same matrix pattern
-/// (the same knots, mostly) takes over: the fill-reducing ordering P (the one
-/// SimplicialLDLT would choose), the matrix P H P' (upper triangle) and where each term of
-/// H lands in it, so that a step writes its terms straight into P H P'.
+/// The analysis of a step's system, which every step with the same matrix pattern takes
+/// over: the fill-reducing ordering P (the one SimplicialLDLT would choose), the matrix
+/// P H P' (upper triangle) and where each term of H lands in it, so that a step writes its
+/// terms straight into P H P'. The pattern is the number of control points, the degree
+/// and the band's blocks left out; sdm_step keeps the analyses of the last few patterns
+/// met on its thread (see fit_spline_step.cpp).
 struct StepSolver {
   int n = 0, p = 0;
   std::vector<char> skipped;  // the band's blocks left out of the pattern analysed
@@ -84,7 +86,7 @@ struct StepSolver {
 /// from curve c (`pc`: c as polynomials) toward the points q with feet f and weights w;
 /// see fit_spline_step.cpp. Throws section::Error when the system is singular.
 BSpline sdm_step(const BSpline& c, const detail::PiecewiseCurve& pc, const Points& q, const Feet& f,
-                 const std::vector<double>& w, double fairness, double smoothing_length, StepSolver& solver);
+                 const std::vector<double>& w, double fairness, double smoothing_length);
 
 /// The curve on new knots: least squares on dense samples of the old curve c (`pc`: c as
 /// polynomials).
