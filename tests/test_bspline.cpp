@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "detail/basis_values.h"
 #include "section/bspline.h"
 #include "section/error.h"
 
@@ -70,6 +71,39 @@ TEST_CASE("bspline: uniform periodic cubic matches the closed-form knot values",
     REQUIRE(sum == Approx(1).margin(1e-14));
     REQUIRE((p - c.point(t)).norm() < 1e-13);
   }
+}
+
+TEST_CASE("bspline: basis_values gives the basis values bit for bit", "[bspline]") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> step(0.05, 1.7), at(0, 1);
+  for (bool closed : {true, false})
+    for (int p = 1; p <= 5; ++p) {
+      BSpline c;
+      c.degree = p;
+      c.closed = closed;
+      c.control.assign(p + 6, Vector2d::Zero());
+      const int n = static_cast<int>(c.control.size()), knots = closed ? n + 1 : n + p + 1;
+      c.knots = {0.0};  // from 0: a closed curve's parameters need no wrapping
+      while (static_cast<int>(c.knots.size()) < knots) c.knots.push_back(c.knots.back() + step(rng));
+      // The knots about every span as the evaluation extends them (knot j at around[j + p]).
+      const double period = c.knots.back() - c.knots.front();
+      std::vector<double> around;
+      for (int i = -p; i <= n + p; ++i) {
+        const int k = closed ? (i >= 0 && i < n ? 0 : (i < 0 ? -1 : i / n)) : 0;
+        around.push_back(closed ? c.knots[i - k * n] + static_cast<double>(k) * period : 0);
+      }
+      if (!closed) around = c.knots;
+      std::vector<int> idx;
+      std::vector<double> val;
+      for (int j = closed ? 0 : p; j < n; ++j)
+        for (int s = 0; s < 20; ++s) {
+          const double t = c.knots[j] + at(rng) * (c.knots[j + 1] - c.knots[j]);
+          double v[8];
+          section::detail::basis_values(&around[j + (closed ? p : 0)], p, t, v);
+          c.basis(t, idx, val);
+          for (int r = 0; r <= p; ++r) REQUIRE(v[r] == val[r]);
+        }
+    }
 }
 
 TEST_CASE("bspline: closed fit of a circle has radius error below 0.01 um", "[bspline]") {

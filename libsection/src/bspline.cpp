@@ -2,6 +2,7 @@
 #include "section/bspline.h"
 
 #include "section/error.h"
+#include "detail/basis_values.h"
 #include "detail/piecewise_curve.h"
 
 #include <Eigen/Sparse>
@@ -256,6 +257,15 @@ ClosestPoint refine_samples(const BSpline& c, const Eigen::Vector2d& q, const st
   return best;
 }
 
+// knot(c, i) for i in [-p, n + p] when closed (the knots when open): the knots about every
+// span, for detail::basis_values without wrapping them one by one.
+std::vector<double> knots_around(const BSpline& c) {
+  if (!c.closed) return c.knots;
+  std::vector<double> out;
+  for (long i = -c.degree; i <= control_count(c) + c.degree; ++i) out.push_back(knot(c, i));
+  return out;
+}
+
 // Where fit_control_points sums a point's terms: a row meets the 2 p + 1 columns within p
 // of it at most: slot p + (column - row), p - a + b for a span's basis functions a, b
 // without a wrap, or the column itself when n <= 2 p + 1 (closed).
@@ -468,7 +478,9 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   std::vector<double> entries(static_cast<std::size_t>(n) * slots, 0.0);
   std::vector<char> used(entries.size(), 0), span_used(static_cast<std::size_t>(n), 0);
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-  BasisTable ders;  // row 0 written, only it read
+  const std::vector<double> around = knots_around(shape);  // knot j at around[j + shift]
+  const long shift = shape.closed ? p : 0;
+  double val[max_degree + 1];  // the basis_derivatives_of values (basis_values)
   double trace = 0;
   long j = -1;  // the last point's span
   for (int i = 0; i < m; ++i) {
@@ -476,8 +488,7 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
     if (w <= 0) continue;
     const double tn = normalise(shape, parameters[i]);  // as BSpline::basis, without its checks
     j = find_span_near(shape, tn, j);
-    basis_derivatives(shape, j, tn, 0, ders);
-    const double* val = ders[0].data();
+    detail::basis_values(&around[static_cast<std::size_t>(j + shift)], p, tn, val);
     at.span(j);
     span_used[static_cast<std::size_t>(j)] = 1;
     for (int a = 0; a <= p; ++a) {
