@@ -279,20 +279,21 @@ struct RowSlots {
     if (d < -p) d += n;
     return d + p;
   }
-  // Takes span j: its control points idx.
+  // Takes span j: its control points idx and the entries of their pairs.
   void span(long j) {
     for (int r = 0; r <= p; ++r) idx[r] = control_index(shape, j - p + r);
-    plain = !by_column && idx[p] == idx[0] + p;
+    const bool plain = !by_column && idx[p] == idx[0] + p;
+    for (int a = 0; a <= p; ++a)
+      for (int b = 0; b <= p; ++b)
+        pair[a][b] = static_cast<std::size_t>(idx[a]) * slots + (plain ? p - a + b : slot_of(idx[a], idx[b]));
   }
   // The entry of the span's basis functions a, b.
-  std::size_t entry(int a, int b) const {
-    return static_cast<std::size_t>(idx[a]) * slots + (plain ? p - a + b : slot_of(idx[a], idx[b]));
-  }
+  std::size_t entry(int a, int b) const { return pair[a][b]; }
   const BSpline& shape;
   const int n, p, slots;
   const bool by_column;
   int idx[max_degree + 1];
-  bool plain = false;
+  std::size_t pair[max_degree + 1][max_degree + 1];
 };
 
 }  // namespace
@@ -487,10 +488,10 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
     const double w = weights.empty() ? 1.0 : weights[i];
     if (w <= 0) continue;
     const double tn = normalise(shape, parameters[i]);  // as BSpline::basis, without its checks
+    const long before = j;
     j = find_span_near(shape, tn, j);
     detail::basis_values(&around[static_cast<std::size_t>(j + shift)], p, tn, val);
-    at.span(j);
-    span_used[static_cast<std::size_t>(j)] = 1;
+    if (j != before) at.span(j), span_used[static_cast<std::size_t>(j)] = 1;  // points in order share spans
     for (int a = 0; a <= p; ++a) {
       rhs.row(at.idx[a]) += w * val[a] * points[i].transpose();
       for (int b = 0; b <= p; ++b) entries[at.entry(a, b)] += w * val[a] * val[b];
