@@ -3,6 +3,7 @@
 
 #include "section/error.h"
 #include "detail/basis_values.h"
+#include "detail/ldlt_patterns.h"
 #include "detail/piecewise_curve.h"
 
 #include <Eigen/Sparse>
@@ -525,7 +526,7 @@ BSpline fit_control_points(const std::vector<Eigen::Vector2d>& points, const std
   }
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(trip.begin(), trip.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+  detail::Ldlt& solver = detail::factored(A);  // as Ldlt solver(A) would
   if (solver.info() != Eigen::Success)
     throw Error("fit_curve: the least-squares system is singular (too few or degenerate points)");
   const Eigen::MatrixXd x = solver.solve(rhs);
