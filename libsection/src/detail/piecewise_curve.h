@@ -278,6 +278,9 @@ double minimise_bracket(F&& f, double a, double b, double t0) {
       else
         b = t;
       double next = ft.ddg > 0 ? t - ft.dg / ft.ddg : 0.5 * (a + b);
+      // Newton's step under the tolerance: t is the root, though a bracket end (bisecting
+      // on from there only halves the bracket down to the tolerance, ~35 times).
+      if (ft.ddg > 0 && std::abs(next - t) < tol) return std::clamp(next, a, b);
       if (!(next > a && next < b)) next = 0.5 * (a + b);
       if (std::abs(next - t) < tol) return next;
       t = next;
