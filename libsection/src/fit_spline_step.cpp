@@ -6,6 +6,7 @@
 // within the radius of curvature rho (Wang, Pottmann and Liu 2006, eq. 9), kept above a
 // small floor so that sliding along the curve stays bounded.
 #include "fit_spline_steps.h"
+#include "detail/recent_cache.h"
 
 #include "section/error.h"
 
@@ -197,21 +198,11 @@ void analyse(const Normal& eq, std::vector<char> skipped, double fairness, StepS
 // new one would. 8 patterns kept miss 24 times there (16: 17), each about 40 KB at 60
 // control points.
 StepSolver& solver_for(const Normal& eq, double fairness) {
-  constexpr std::size_t kept = 8;
-  thread_local std::vector<std::unique_ptr<StepSolver>> recent;  // the last used first
+  thread_local std::vector<std::unique_ptr<StepSolver>> recent;
   std::vector<char> skipped = skipped_blocks(eq);
-  auto same = [&](const std::unique_ptr<StepSolver>& s) {
-    return s->n == eq.n && s->p == eq.p && s->skipped == skipped;
-  };
-  auto found = std::find_if(recent.begin(), recent.end(), same);
-  if (found == recent.end()) {
-    if (recent.size() < kept) recent.emplace_back();
-    found = recent.end() - 1;
-    *found = std::make_unique<StepSolver>();
-    analyse(eq, std::move(skipped), fairness, **found);
-  }
-  std::rotate(recent.begin(), found, found + 1);
-  return *recent.front();
+  return detail::recently_used(
+      recent, 8, [&](const StepSolver& s) { return s.n == eq.n && s.p == eq.p && s.skipped == skipped; },
+      [&](StepSolver& s) { analyse(eq, std::move(skipped), fairness, s); });
 }
 
 // Solves H x = rhs: the terms written into P H P' (of the pattern's analysis), factored,

@@ -2,6 +2,8 @@
 #pragma once
 // Sparse LDLT factorisations of systems whose pattern repeats (the least-squares fits of
 // fit_spline's rounds, and of the sections of a scan: mostly the same knot counts).
+#include "detail/recent_cache.h"
+
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
@@ -21,27 +23,23 @@ inline Ldlt& factored(const Eigen::SparseMatrix<double>& A) {
     std::vector<int> outer, inner;  // the pattern (compressed)
     Ldlt ldlt;
   };
-  constexpr std::size_t kept = 8;
-  thread_local std::vector<std::unique_ptr<Analysed>> recent;  // the last used first
+  thread_local std::vector<std::unique_ptr<Analysed>> recent;
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
   const std::size_t columns = static_cast<std::size_t>(A.outerSize()) + 1;
-  auto same = [&](const std::unique_ptr<Analysed>& a) {
-    return a->outer.size() == columns && std::equal(a->outer.begin(), a->outer.end(), outer) &&
-           std::equal(a->inner.begin(), a->inner.end(), inner);
-  };
-  auto found = std::find_if(recent.begin(), recent.end(), same);
-  if (found == recent.end()) {
-    if (recent.size() < kept) recent.emplace_back();
-    found = recent.end() - 1;
-    *found = std::make_unique<Analysed>();
-    (*found)->ldlt.analyzePattern(A);  // before the pattern is set: a throw leaves no match
-    (*found)->outer.assign(outer, outer + columns);
-    (*found)->inner.assign(inner, inner + A.nonZeros());
-  }
-  std::rotate(recent.begin(), found, found + 1);
-  recent.front()->ldlt.factorize(A);
-  return recent.front()->ldlt;
+  Analysed& kept = recently_used(
+      recent, 8,
+      [&](const Analysed& a) {
+        return a.outer.size() == columns && std::equal(a.outer.begin(), a.outer.end(), outer) &&
+               std::equal(a.inner.begin(), a.inner.end(), inner);
+      },
+      [&](Analysed& a) {
+        a.ldlt.analyzePattern(A);
+        a.outer.assign(outer, outer + columns);
+        a.inner.assign(inner, inner + A.nonZeros());
+      });
+  kept.ldlt.factorize(A);
+  return kept.ldlt;
 }
 
 }  // namespace section::detail
