@@ -46,6 +46,21 @@ check "no file written" -- test ! -e "$TMP/none.csv" -a ! -e "$TMP/none.csv.part
 # To /dev/null: written there, not replaced by a file.
 expect 0 "smooth -o /dev/null" -- "$BIN/smooth" "$TMP/sliced.csv" -o /dev/null
 check "/dev/null is still a device" -- test -c /dev/null
+# A stage writes each part as soon as it is staged, not once its input has ended or a
+# block of 1 MiB has come: here the writer sends part 0 and part 1's first line, then holds
+# the pipe open. smooth must have written part 0 by then (the stage after it starts on it).
+rm -f "$TMP/slow.fifo"; mkfifo "$TMP/slow.fifo"
+part1=$(grep -n '^# part 1' "$TMP/sliced.csv" | cut -d: -f1)
+(head -n "$part1" "$TMP/sliced.csv"; exec sleep 60) > "$TMP/slow.fifo" &
+writer=$!
+"$BIN/smooth" "$TMP/slow.fifo" > "$TMP/early.csv" 2>/dev/null &
+stage=$!
+for _ in $(seq 150); do grep -q '^# part 0' "$TMP/early.csv" && break; sleep 0.1; done
+check "part 0 is written while the input is still open" -- grep -q '^# part 0' "$TMP/early.csv"
+check "nothing after it yet" -- sh -c "! grep -q '^# part 1\|^# end' '$TMP/early.csv'"
+kill "$writer" 2>/dev/null; wait "$writer" 2>/dev/null
+wait "$stage"
+check "the input cut after part 0 is then refused" -- test $? -ne 0
 # The whole pipe through pipes.
 "$BIN/slice" "$TMP/blade.ply" --at 15,20 2>/dev/null | "$BIN/smooth" | "$BIN/fitspline" 2>/dev/null |
   "$BIN/camber" --params "$TMP/params.csv" > "$TMP/camber.csv" 2>/dev/null

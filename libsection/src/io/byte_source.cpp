@@ -230,7 +230,27 @@ void ByteSource::read_error() const {
                                                    : component_ + name_ + ": read error" + why);
 }
 
-std::size_t ByteSource::fetch(std::size_t n) {
+namespace {
+
+// Reads up to n bytes from fd into buf: until all came or the end, or with `first_only` until
+// the first bytes come. Returns how many, or -1 on an error (errno tells). The descriptor is
+// read, never the FILE's buffer: a read would not see what stdio had buffered ahead of it.
+long read_fd(int fd, char* buf, std::size_t n, bool first_only) {
+  std::size_t got = 0;
+  while (got < n) {
+    const ssize_t r = ::read(fd, buf + got, n - got);
+    if (r < 0 && errno == EINTR) continue;
+    if (r < 0) return -1;
+    if (r == 0) break;
+    got += std::size_t(r);
+    if (first_only) break;
+  }
+  return long(got);
+}
+
+}  // namespace
+
+std::size_t ByteSource::fetch(std::size_t n, bool first_only) {
   if (!file_) return 0;  // in memory: all of it is at hand
   // Keep the unconsumed bytes at the front of the buffer, then read after them.
   const std::size_t keep = end_ - start_;
@@ -246,10 +266,10 @@ std::size_t ByteSource::fetch(std::size_t n) {
   start_ = 0;
   end_ = keep;
   errno = 0;
-  const std::size_t got = std::fread(buf_.get() + end_, 1, n, file_);
-  end_ += got;
-  if (got == 0 && std::ferror(file_)) read_error();
-  return got;
+  const long got = read_fd(fileno(file_), buf_.get() + end_, n, first_only);
+  if (got < 0) read_error();
+  end_ += std::size_t(got);
+  return std::size_t(got);
 }
 
 bool ByteSource::next_line(std::string_view& line, std::size_t max_line) {
@@ -273,7 +293,9 @@ bool ByteSource::next_line(std::string_view& line, std::size_t max_line) {
       return true;
     }
     searched = at.size();
-    if (fetch(std::min(block, max_line)) == 0) eof_ = true;
+    // What a pipe's writer has written so far is taken: a stage of the pipe works on each
+    // part as it comes, not once a whole block of the parts after it has come too.
+    if (fetch(std::min(block, max_line), true) == 0) eof_ = true;
   }
 }
 
@@ -294,13 +316,14 @@ std::string ByteSource::read_all() {
       if (size > limit) refuse_size(component_ + name_, limit);
       data.resize(std::min(2 * data.size(), limit + 1));
     }
-    if ((n = std::fread(&data[size], 1, data.size() - size, file_)) == 0) break;
+    const long got = read_fd(fileno(file_), &data[size], data.size() - size, false);
+    if (got < 0) read_error();
+    if ((n = std::size_t(got)) == 0) break;
     size += n;
   }
   if (size > limit) refuse_size(component_ + name_, limit);
   data.resize(size);
   consumed_ += size;
-  if (std::ferror(file_)) read_error();
   return data;
 }
 

@@ -53,7 +53,9 @@ public:
     consumed_ += n;
   }
   /// Makes up to `n` more bytes available after bytes(); returns how many (0 at the end).
-  std::size_t fetch(std::size_t n);
+  /// All `n` unless the input ends first; with `first_only`, the first bytes that come
+  /// (from a pipe, what its writer has written so far).
+  std::size_t fetch(std::size_t n, bool first_only = false);
   /// The next line with its '\n' (the last may lack it), valid until the next call; false
   /// at the end. A line that reaches `max_line` bytes without a '\n' is returned cut there
   /// (without '\n'), for the caller to refuse.

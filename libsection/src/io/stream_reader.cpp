@@ -33,8 +33,12 @@ Stream parse_stream_part(const StreamPart& part, const std::string& source, int 
 PartReader::PartReader(const std::string& path) : in_(std::make_unique<detail::ByteSource>(path, "")) {
   source_ = in_->name();
   // Binary data, UTF-16 or CR-only line ends are told at once, not after a line of
-  // max_text_line bytes (an endless /dev/zero).
-  in_->fetch(1 << 16);
+  // max_text_line bytes (an endless /dev/zero): from the first 64 KiB, or the first line
+  // when it comes sooner (a pipe's writer may write a part, then take its time).
+  constexpr std::size_t first_bytes = 1 << 16;
+  while (in_->bytes().size() < first_bytes && in_->bytes().find('\n') == std::string_view::npos &&
+         in_->fetch(first_bytes - in_->bytes().size(), true) > 0) {
+  }
   if (const char* why = detail::text_encoding_problem(in_->bytes()))
     throw Error("pipe: " + source_ + ": " + why);
   // The preamble: the lines before the first `# part`, `# table` or data line.

@@ -50,8 +50,9 @@ void run_whole(const StageRun& run, PartReader& reader) {
   write_stream(run.output, stream);
 }
 
-// Parts are staged by the workers as they are read, and written in order by the thread that
-// reads them.
+// Parts are staged by the workers as they are read, and written in order by whichever
+// thread finds the front part finished: the worker that finished it, or the thread that
+// reads them (which may wait for input while a finished part is due downstream).
 class PartScheduler {
 public:
   PartScheduler(const StageRun& run, PartReader& reader, const Stream& head, const std::string& units)
@@ -139,36 +140,55 @@ private:
         stage(job);
         lock.lock();
         job.done = true;
+        // Written now if it is at the front: the reading thread may be waiting for the
+        // next part's first line, and the stage after this one for this part.
+        write_front(lock);
       } catch (...) {
-        lock.lock();
+        if (!lock.owns_lock()) lock.lock();
         if (!error_) error_ = std::current_exception();
       }
       changed_.notify_all();
     }
   }
 
-  // Writes the finished parts at the front, in order. With `room`, until fewer than two
-  // parts per worker wait (the memory of a pipe stays that of a few sections); with `all`,
-  // until every part is written.
-  void write_done(bool room, bool all) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    while (!error_) {
-      if (!jobs_.empty() && jobs_.front().done) {
-        Job job = std::move(jobs_.front());
-        jobs_.pop_front();
-        ++first_job_;
-        lock.unlock();
+  // Writes the finished parts at the front, in order, unless another thread is writing
+  // (it writes them). Called and returns with `lock` held.
+  void write_front(std::unique_lock<std::mutex>& lock) {
+    while (!error_ && !writing_ && !jobs_.empty() && jobs_.front().done) {
+      Job job = std::move(jobs_.front());
+      jobs_.pop_front();
+      ++first_job_;
+      writing_ = true;  // one writer at a time: the parts go out in order
+      lock.unlock();
+      try {
         if (run_.hold) {
           held_.push_back(std::move(job));
         } else {
           if (run_.written) run_.written(job.result);
           writer_.part(job.part.label, job.result);
         }
+      } catch (...) {
         lock.lock();
-        continue;
+        writing_ = false;
+        changed_.notify_all();
+        throw;
       }
-      if (all ? jobs_.empty() : !(room && jobs_.size() >= 2 * workers_)) return;
-      changed_.wait(lock, [&] { return error_ || (!jobs_.empty() && jobs_.front().done); });
+      lock.lock();
+      writing_ = false;
+      changed_.notify_all();
+    }
+  }
+
+  // Writes the finished parts at the front, in order (with the workers, which write a part
+  // finished at the front). With `room`, until fewer than two parts per worker wait (the
+  // memory of a pipe stays that of a few sections); with `all`, until every part is written.
+  void write_done(bool room, bool all) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!error_) {
+      write_front(lock);
+      if (error_) return;
+      if (all ? jobs_.empty() && !writing_ : !(room && jobs_.size() >= 2 * workers_)) return;
+      changed_.wait(lock, [&] { return error_ || (!writing_ && (jobs_.empty() || jobs_.front().done)); });
     }
   }
 
@@ -209,6 +229,7 @@ private:
   std::mutex mutex_;
   std::condition_variable changed_;
   bool input_done_ = false;
+  bool writing_ = false;  // a thread is writing a part (taken off jobs_)
   std::exception_ptr error_;
 };
 
