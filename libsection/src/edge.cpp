@@ -295,7 +295,7 @@ std::pair<double, double> grown_arc(const SampledProfile& pr, double t_tip, cons
 // arc without a large angular gap and fix the radius well, and the circle moved little.
 bool refit_on_measured(const SampledProfile& pr, const Edge& e, const Eigen::Vector2d& d,
                        const std::vector<Eigen::Vector2d>& measured, const CamberOptions& options,
-                       CircleFit& fit) {
+                       CircleFit& fit, double& points_sigma) {
   if (measured.size() < 8 || !(fit.radius > 0)) return false;
   auto signed_angle = [&](const Eigen::Vector2d& c, const Eigen::Vector2d& q) {
     const Eigen::Vector2d r = q - c;
@@ -323,6 +323,7 @@ bool refit_on_measured(const SampledProfile& pr, const Edge& e, const Eigen::Vec
     for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
     if (gap > options.edge_point_gap * (hi - lo)) return false;
     const CircleFit next = fit_circle(on_arc);
+    if (std::isfinite(next.radius_sigma)) points_sigma = next.radius_sigma;
     if (!(next.radius > 0) || !std::isfinite(next.radius) ||
         !(next.radius_sigma <= options.edge_point_sigma * next.radius) ||
         std::abs(next.radius - fit.radius) > 0.2 * fit.radius ||
@@ -356,7 +357,7 @@ Edge measure_edge(const SampledProfile& pr, const InscribedCircle& end_circle, c
         grown_arc(pr, e.t, d, end, std::max(end_circle.radius, (e.point - end).norm()), options, fit);
   }
   // The fit rms stays the spline arc's about the circle (the circularity test's measure).
-  if (options.edge_on_points && refit_on_measured(pr, e, d, measured, options, fit)) {
+  if (options.edge_on_points && refit_on_measured(pr, e, d, measured, options, fit, e.points_sigma)) {
     e.radius_sigma = fit.radius_sigma;  // the measured points' own (before rms is the spline's)
     fit.rms = rms_about(arc_points(pr, e.arc_t0, e.arc_t1), fit.center, fit.radius);
     e.on_points = true;
@@ -447,14 +448,10 @@ Edge sharp_vertex(const SampledProfile& pr, const InscribedCircle& end, const Ei
   return e;
 }
 
-// The misfit a fit through sparse exact points leaves about an edge circle: an eighth of
-// the sagitta h^2 / (8 R) of the widest gap h between the measured points on the arc
-// (within a quarter radius of its circle, between its ends' angles). A smooth fit through
-// points on a circle leaves it by far less than the chords do: on exact grids 0.1-0.2 of
-// that sagitta, where the non-circular edges of real CFD sections (parablade's Aachen and
-// impulse blades) leave their circles by 0.4-1.3 of it. 0 when fewer than 8 points lie on
-// the arc or a gap exceeds the radius: such points cannot tell a circle from other curves.
-double arc_sagitta(const SampledProfile& pr, const Edge& e, const std::vector<Eigen::Vector2d>& measured) {
+// The angles, seen from the edge's centre, of the measured points on its arc (within a
+// quarter radius of its circle, between its ends' angles), ascending.
+std::vector<double> arc_angles(const SampledProfile& pr, const Edge& e,
+                               const std::vector<Eigen::Vector2d>& measured) {
   const Eigen::Vector2d d = (e.point - e.center).normalized();
   auto angle = [&](const Eigen::Vector2d& q) {
     const Eigen::Vector2d r = q - e.center;
@@ -468,8 +465,19 @@ double arc_sagitta(const SampledProfile& pr, const Edge& e, const std::vector<Ei
     const double a = angle(q);
     if (a >= lo && a <= hi) angles.push_back(a);
   }
-  if (angles.size() < 8) return 0;
   std::sort(angles.begin(), angles.end());
+  return angles;
+}
+
+// The misfit a fit through sparse exact points leaves about an edge circle: an eighth of
+// the sagitta h^2 / (8 R) of the widest gap h between the measured points on the arc
+// (`angles`: arc_angles). A smooth fit through
+// points on a circle leaves it by far less than the chords do: on exact grids 0.1-0.2 of
+// that sagitta, where the non-circular edges of real CFD sections (parablade's Aachen and
+// impulse blades) leave their circles by 0.4-1.3 of it. 0 when fewer than 8 points lie on
+// the arc or a gap exceeds the radius: such points cannot tell a circle from other curves.
+double arc_sagitta(const Edge& e, const std::vector<double>& angles) {
+  if (angles.size() < 8) return 0;
   double gap = 0;
   for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
   const double h = 2 * e.radius * std::sin(0.5 * gap);
@@ -505,7 +513,11 @@ Edge detect_edge(const SampledProfile& pr, const InscribedCircle& end, const Eig
     e.t = pr.ts[pr.nearest(face.mid)];
   }
   classify_edge(e, max_diameter, options);
-  if (e.radius > 0) e.sampling = arc_sagitta(pr, e, measured);
+  if (e.radius > 0) {
+    const std::vector<double> angles = arc_angles(pr, e, measured);
+    if (!measured.empty()) e.arc_points = static_cast<int>(angles.size());
+    e.sampling = arc_sagitta(e, angles);
+  }
   if (options.profile_noise > 0 && e.radius > 0)
     e.circular = e.fit_rms <=
                  options.edge_circularity * std::max({options.profile_noise, 1e-4 * e.radius, e.sampling});

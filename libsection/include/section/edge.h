@@ -59,6 +59,15 @@ struct Edge {
   /// alone (no measured points given, too few of them on the arc, or a gap among them) or
   /// the radius is 0.
   double radius_sigma = 0;
+  /// The measured points on the edge arc (within a quarter radius of its circle); -1 when no
+  /// measured points were given. Under 8, too few to refit the circle on (`on_points`): its
+  /// radius rests on the fitted curve through a handful of points, each off by the noise.
+  int arc_points = -1;
+  /// Standard error of the radius of the circle fitted on the measured points on the arc,
+  /// whether or not it was taken (`on_points`: taken; not taken when its standard error
+  /// is over edge_point_sigma of its radius, or it moved far): 0 when none was fitted (no
+  /// measured points given, too few on the arc, or a gap among them).
+  double points_sigma = 0;
   /// Sharp (closed) edge: the medial branch runs into a vertex of the profile, which is
   /// the edge point (radius 0, centre = point, no arc): where the profile's flanks meet,
   /// off the fitted curve's rounding of the corner (docs/CAMBER.md, "Sharp (closed) edges").

@@ -246,6 +246,19 @@ std::string angle_note(const Finding& k, const SectionParams& p) {
   return text;
 }
 
+// A failed le_radius/te_radius check by the radius's spread (Finding::spread), in words.
+std::string spread_note(const Finding& k, const SectionParams& p) {
+  char text[320];
+  const bool le = k.check == Check::le_radius;
+  std::snprintf(text, sizeof text,
+                "%s radius %s fails check %s: its points fix it to +-%s only (twice its standard error, or "
+                "the noise where its arc holds too few points to refit it; at most %s): it may be off by "
+                "more than its tolerance",
+                le ? "leading-edge" : "trailing-edge", format_length(le ? p.le_radius : p.te_radius).c_str(),
+                check_name(k.check), format_length(k.value).c_str(), format_length(k.limit).c_str());
+  return text;
+}
+
 // A failed check of section_check in words, with its values.
 std::string finding_note(const Finding& k, const SectionParams& p) {
   char text[320];
@@ -254,6 +267,7 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
     case Check::le_radius:
     case Check::te_radius: {
       const bool le = k.check == Check::le_radius;
+      if (k.spread) return spread_note(k, p);
       std::snprintf(text, sizeof text,
                     "%s radius %s fails check %s: its circle passes or leaves the profile by %s (at most "
                     "%s): it does not fit the blade there",
