@@ -11,6 +11,8 @@
 #            CPU ms per section of each stage and of the whole pipe, and the same pipe
 #            with `slice --band-spacing 0` (the slab alone, no drift-corrected band)
 #   peer     scripts/peers/slice_peer.py: numpy slab mask, NN chaining, splprep per section
+#   first    when the first section's part comes out of `slice | smooth | fitspline`
+#            (scripts/pipe_timeline.py): a section's latency through the pipe
 #   ratios   the peer's wall time per section over the pipe's (> 1: we are faster), and
 #            the pipe's wall time over reading the PLY file (bench_read)
 # then a scan in sparse rows (`bladegen --rows 20 --row-pitch 3 --spacing 0.2`, each row
@@ -110,6 +112,23 @@ pipe_timed() {
   FITTED=$(awk -F, '/^# table params/{t=1; getline; next} /^#/{t=0} t&&NF>1{n++} END{print n+0}' "$WORK/last.out")
 }
 
+# first_fitted SLICE_ARGS...: FIRST = the seconds until the first part comes out of
+# `slice SLICE_ARGS | smooth | fitspline` (scripts/pipe_timeline.py; the least of REPEAT
+# runs): each stage passes a section on as soon as it is done, so this is the latency of a
+# section through the pipe (camber holds every part for its checks across the blade).
+first_fitted() {
+  local args="" a f
+  for a in "$@"; do args+=" '$a'"; done
+  FIRST=""
+  for _ in $(seq "$REPEAT"); do
+    warm "$@"
+    f=$(python3 "$SRC/scripts/pipe_timeline.py" "'$T/slice'$args 2>/dev/null | '$T/smooth' | '$T/fitspline' 2>/dev/null" |
+      sed -nE 's/^parts at ([0-9.]+).*/\1/p')
+    [ -n "$f" ] || { echo "bench: no part came out of slice$args | smooth | fitspline" >&2; return 1; }
+    if [ -z "$FIRST" ] || awk "BEGIN{exit !($f < $FIRST)}"; then FIRST=$f; fi
+  done
+}
+
 row() { printf '%-7s %-22s %9s %9s %s\n' "$@"; }
 per() { awk "BEGIN{printf \"%.1f\", 1000 * $1 / ($2 > 0 ? $2 : 1)}"; }
 
@@ -123,6 +142,8 @@ bench_pipe() {
   if [ -n "${READ_S:-}" ]; then
     row "$m" "pipe / read PLY" "" "" "$(awk "BEGIN{printf \"%.1fx\", $pipe_s / ($READ_S > 0.005 ? $READ_S : 0.005)}")"
   fi
+  first_fitted "$ply" "$@"
+  row "$m" "first section fitted" "$FIRST" "" "its part out of slice | smooth | fitspline (camber holds all)"
   if [ "$PEER" = 1 ]; then
     # shellcheck disable=SC2086
     timed "$PEER_PYTHON" "$SRC/scripts/peers/slice_peer.py" "$ply" $peer_args
