@@ -4,8 +4,10 @@
 // exact sections built as envelopes of circles and dense splines through them, noisy
 // fits, cut-off trailing edges and a NACA 0012.
 #include "section/camber.h"
+#include "section/checks.h"
 #include "section/extras/generate.h"
 #include "section/fit_spline.h"
+#include "section/params.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,6 +32,32 @@ inline BSpline dense_spline(const std::vector<Vector2d>& points, int control_poi
   fo.control_points = control_points;
   fo.fairness = 1e-9;
   return section::fit_curve(points, fo);
+}
+
+// A section measured and checked, with the noise the check is told (test_checks, test_edge).
+struct Checked {
+  section::CamberResult camber;
+  section::SectionParams params;
+  section::SectionCheck check;
+};
+
+inline Checked measure(const BSpline& spline, double noise, const std::vector<Vector2d>& measured = {}) {
+  section::CamberOptions o;
+  o.profile_noise = noise;
+  Checked c;
+  c.camber = section::camber_line(spline, o, measured);
+  c.params = section::section_params(spline, c.camber);
+  section::CheckOptions k;
+  k.noise = noise;
+  c.check = section::check_section(spline, c.camber, c.params, k);
+  return c;
+}
+
+// The checks of a measured section (its values edited, maybe) with another noise.
+inline section::SectionCheck recheck(const BSpline& spline, const Checked& c, double noise) {
+  section::CheckOptions k;
+  k.noise = noise;
+  return section::check_section(spline, c.camber, c.params, k);
 }
 
 // Points every `spacing` along the exact profile, moved by Gaussian noise (sigma 5 um)

@@ -25,31 +25,6 @@ using section::Check;
 
 namespace {
 
-// A section measured and checked, with the noise the check is told.
-struct Checked {
-  section::CamberResult camber;
-  section::SectionParams params;
-  section::SectionCheck check;
-};
-
-Checked measure(const BSpline& spline, double noise, const std::vector<Vector2d>& measured = {}) {
-  section::CamberOptions o;
-  o.profile_noise = noise;
-  Checked c;
-  c.camber = section::camber_line(spline, o, measured);
-  c.params = section::section_params(spline, c.camber);
-  section::CheckOptions k;
-  k.noise = noise;
-  c.check = section::check_section(spline, c.camber, c.params, k);
-  return c;
-}
-
-section::SectionCheck recheck(const BSpline& spline, const Checked& c, double noise) {
-  section::CheckOptions k;
-  k.noise = noise;
-  return section::check_section(spline, c.camber, c.params, k);
-}
-
 std::string names(std::uint32_t flags) {
   std::string out;
   for (const auto& k : section::check_names)

@@ -418,19 +418,8 @@ TEST_CASE("edge: a radius its points cannot fix to its tolerance is flagged (spr
   // radius, 3 % of the LE's.
   const SectionTruth truth = section::section_truth(section::compressor_blade().at(30), 20000);
   const BSpline spline = dense_spline(truth.profile);
-  struct Checked {
-    section::CamberResult camber;
-    section::SectionParams params;
-  };
-  Checked c;
-  c.camber = section::camber_line(spline, section::CamberOptions{});
-  c.params = section::section_params(spline, c.camber);
-  auto recheck = [&](const BSpline& profile, const Checked& m, double noise) {
-    section::CheckOptions k;
-    k.noise = noise;
-    return section::check_section(profile, m.camber, m.params, k);
-  };
-  REQUIRE(recheck(spline, c, 0).flags == 0);
+  const Checked c = measure(spline, 0);
+  REQUIRE(c.check.flags == 0);
   const double r = c.camber.te.radius;
   REQUIRE(r > 0);
   auto te_spread = [](const section::SectionCheck& k) {
@@ -491,14 +480,9 @@ TEST_CASE("edge: a thin trailing edge's radius off its 10 % is flagged, a well-m
   for (double noise : {0.003, 0.0002})
     for (unsigned seed = 1; seed <= 8; ++seed) {
       const std::vector<Vector2d> pts = section::noisy_profile(truth, 0.02, noise, seed * 7919);
-      const BSpline spline = section::fit_spline(pts, pts).spline;
-      section::CamberOptions o;
-      o.profile_noise = noise;
-      const section::CamberResult c = section::camber_line(spline, o, pts);
-      const section::SectionParams p = section::section_params(spline, c);
-      section::CheckOptions k;
-      k.noise = noise;
-      const section::SectionCheck check = section::check_section(spline, c, p, k);
+      const Checked m = measure(section::fit_spline(pts, pts).spline, noise, pts);
+      const section::CamberResult& c = m.camber;
+      const section::SectionCheck& check = m.check;
       ++runs;
       const bool flagged = (check.flags & section::checks_flagging(~0u, "te_radius")) != 0;
       const double error = relative(c.te.radius, truth.te_radius);
