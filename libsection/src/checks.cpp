@@ -157,9 +157,14 @@ struct Checker {
     out.findings.push_back({c, value, limit});
   }
 
+  // A round edge measured by a circle (not a vertex, a face, or radius 0).
+  static bool has_circle(const Edge& e) {
+    return e.shape == EdgeShape::round && !e.vertex && !(e.face > 0) && e.radius > 0;
+  }
+
   // A round edge's circle: inside the blade, and on the profile over its arc.
   void edge_circle(const Edge& e, Check c) {
-    if (e.shape != EdgeShape::round || e.vertex || e.face > 0 || !(e.radius > 0)) return;
+    if (!has_circle(e)) return;
     const Foot f = foot(pr, e.center);
     const double pass = f.inside ? e.radius - f.distance : e.radius + f.distance;
     const double limit = options.noise_factor * std::max(options.noise, e.fit_rms) + options.floor * pr.scale;
@@ -179,17 +184,14 @@ struct Checker {
   }
 
   // A round edge's radius that its points cannot fix to the tolerance: twice its spread
-  // over the tolerance's share of it. The spread is the radius's standard error where its
-  // circle was refitted on the measured points (radius +- 2 sigma holds the truth about 19
-  // times in 20, docs/CAMBER.md), or that of the circle fitted on them and not taken (its
-  // error too large: a 10 um trailing edge measured with 1 um of noise came out 17 % large,
-  // the points' circle +- 7 %); else, where the arc holds too few of them to fit one (under
-  // 8), the noise: the circle rests on the fitted curve through a handful of points, each
-  // off by about the noise, which moves the radius by as much. Checked when the circle
-  // passed the others (one finding a check).
+  // over the tolerance's share of it (docs/CAMBER.md, "Checks"). The spread: the standard
+  // error of the circle fitted on the measured points, taken or not (R +- 2 sigma holds the
+  // truth about 19 times in 20); else, under 8 points on the arc, the noise (the circle
+  // rests on the curve through a handful of points, each off by about the noise). Checked
+  // when the circle passed the others (one finding a check).
   void edge_spread(const Edge& e, Check c) {
     if (out.flags & bit(c)) return;
-    if (e.shape != EdgeShape::round || e.vertex || e.face > 0 || !(e.radius > 0)) return;
+    if (!has_circle(e)) return;
     const double tolerance =
         c == Check::le_radius ? options.le_radius_tolerance : options.te_radius_tolerance;
     const bool few = e.arc_points >= 0 && e.arc_points < 8;
