@@ -451,7 +451,7 @@ std::string where_columns(const Case& c, int id, const SectionTruth& truth, cons
     for (std::size_t r = 0; r < par->rows(); ++r)
       if (int(par->at(r, 0)) == id && par->at(r, par->column("flags")) != 0) {
         line += " flags";
-        const auto flags = static_cast<std::uint32_t>(par->at(r, par->column("flags")));
+        const auto flags = section::flags_mask(par->at(r, par->column("flags")));
         for (const auto& k : check_names)
           if (flags & bit(k.check)) line += std::string(":") + k.name;
       }

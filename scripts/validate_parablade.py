@@ -105,7 +105,7 @@ def stream_notes(path):
 def check_bits():
     """bit -> (check name, the columns it flags; None = every column), from checks.h."""
     text = open(os.path.join(root, "libsection", "include", "section", "checks.h")).read()
-    value = {m[0]: 1 << int(m[1]) for m in re.findall(r"(\w+) = 1u << (\d+),", text)}
+    value = {m[0]: 1 << int(m[1]) for m in re.findall(r"(\w+) = (?:1u|CheckBits\(1\)) << (\d+),", text)}
     bits = {}
     # An entry may be wrapped over lines, its columns split into adjacent string literals.
     for check, name, literals in re.findall(r'\{Check::(\w+),\s*"(\w+)",\s*((?:"[^"]*"\s*)+)\}', text):

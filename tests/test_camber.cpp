@@ -184,9 +184,10 @@ TEST_CASE("camber: a whole stream's notes flag every row, once, unless checked a
   const auto flags_of = [](const section::Stream& s) {
     const section::Table& t = *s.find("params");
     REQUIRE(t.rows() == 1);
-    return static_cast<std::uint32_t>(t.at(0, t.column("flags")));
+    return static_cast<section::CheckBits>(t.at(0, t.column("flags")));
   };
-  const std::uint32_t both = section::bit(section::Check::units) | section::bit(section::Check::registration);
+  const section::CheckBits both =
+      section::bit(section::Check::units) | section::bit(section::Check::registration);
   section::Stream whole = noted();
   section::camber_stream(whole);
   CHECK((flags_of(whole) & both) == both);
@@ -305,7 +306,7 @@ TEST_CASE("camber: a finger the spline leaves beside a trailing edge is measured
         const BSpline spline = dense_spline(pts);
         const section::CamberResult c = section::camber_line(spline);
         const section::SectionParams p = section::section_params(spline, c);
-        const std::uint32_t te_flags =
+        const section::CheckBits te_flags =
             section::bit(section::Check::te_circle) | section::bit(section::Check::te_radius);
         const bool flag = (section::check_section(spline, c, p).flags & te_flags) != 0;
         const bool good = std::abs(p.outlet_angle - truth.outlet_angle) < 0.5 &&
@@ -374,11 +375,66 @@ TEST_CASE("camber: a plain profile's sparse noisy points flag its thickness (noi
     section::camber_stream(s);
     const section::Table& params = s.get("params", "test");
     REQUIRE(params.rows() == 1);
-    const auto flags = static_cast<std::uint32_t>(params.at(0, params.column("flags")));
+    const auto flags = static_cast<section::CheckBits>(params.at(0, params.column("flags")));
     INFO("noise " << with_noise << ": flags " << section::check_names_text(flags) << ", max thickness "
                   << params.at(0, params.column("max_thickness")) << " against " << truth.max_thickness);
     CHECK(((flags & section::bit(section::Check::noise)) != 0) == with_noise);
     if (!with_noise)
       CHECK(std::abs(params.at(0, params.column("max_thickness")) - truth.max_thickness) < 0.005);
   }
+}
+
+TEST_CASE(
+    "camber: the thickest circle touching a hole in the data flags the max thickness "
+    "(thickness_measured), a measured one or evenly sparse points not",
+    "[camber]") {
+  // A turbine section's exact profile, a point every 0.08 mm (a dense scan's spacing).
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30), 40000);
+  std::vector<Eigen::Vector2d> dense;
+  for (std::size_t i = 0, next = 0; i < truth.profile.size(); ++i) {
+    if (double(next) > truth.profile_s[i] * 1e3) continue;  // next: the next point's arc length, in um
+    dense.push_back(truth.profile[i]);
+    next = std::size_t(1e3 * (truth.profile_s[i] + 0.08));
+  }
+  const auto measured = [](const std::vector<Eigen::Vector2d>& points) {
+    const section::FitSplineResult fit = section::fit_spline(points, points);
+    section::Stream s = section::profile_stream(fit.spline, fit.rms, points);
+    section::camber_stream(s);
+    return s;
+  };
+  const auto flagged = [](const section::Stream& s) {
+    const section::Table& params = s.get("params", "test");
+    REQUIRE(params.rows() == 1);
+    const auto flags = section::flags_mask(params.at(0, params.column("flags")));
+    return (flags & section::bit(section::Check::thickness_measured)) != 0;
+  };
+  const section::Stream whole = measured(dense);
+  CHECK_FALSE(flagged(whole));
+  // The contacts of the thickest circle, from the same profile measured whole.
+  const section::CamberResult c = section::camber_line(section::fit_spline(dense, dense).spline);
+  for (const Eigen::Vector2d contact : {c.thickest.left, c.thickest.right}) {
+    // Holes 1 and 4 mm across at the contact (the chord is 40.4 mm: 0.05 of it is 2 mm).
+    for (const double across : {1.0, 4.0}) {
+      std::vector<Eigen::Vector2d> holed;
+      for (const auto& p : dense)
+        if ((p - contact).norm() > across / 2) holed.push_back(p);
+      const section::Stream s = measured(holed);
+      INFO("a hole " << across << " mm across at (" << contact.transpose() << ")");
+      CHECK(flagged(s) == (across > 2));
+      if (across > 2)
+        CHECK(std::any_of(s.issues.begin(), s.issues.end(), [](const section::SectionIssue& i) {
+          return i.message.find("fails check thickness_measured") != std::string::npos;
+        }));
+    }
+  }
+  // Points 2.5 mm apart all along (a CMM row): every stretch is that long, none a hole.
+  std::vector<Eigen::Vector2d> sparse;
+  for (std::size_t i = 0, next = 0; i < truth.profile.size(); ++i) {
+    const double s = truth.profile_s[i];
+    if (double(next) > s * 1e3) continue;
+    sparse.push_back(truth.profile[i]);
+    const double from_edge = std::min({s, std::abs(s - truth.te_s), truth.perimeter - s});
+    next = std::size_t(1e3 * (s + (from_edge < 4 ? 0.05 : 2.5)));
+  }
+  CHECK_FALSE(flagged(measured(sparse)));
 }

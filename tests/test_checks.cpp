@@ -25,7 +25,7 @@ using section::Check;
 
 namespace {
 
-std::string names(std::uint32_t flags) {
+std::string names(section::CheckBits flags) {
   std::string out;
   for (const auto& k : section::check_names)
     if (flags & section::bit(k.check)) out += std::string(out.empty() ? "" : " ") + k.name;
@@ -35,21 +35,22 @@ std::string names(std::uint32_t flags) {
 }  // namespace
 
 TEST_CASE("checks: every check has a name of its own and a bit of its own", "[checks]") {
-  std::uint32_t all = 0;
+  section::CheckBits all = 0;
   for (const auto& k : section::check_names) {
     CHECK((all & section::bit(k.check)) == 0);
     all |= section::bit(k.check);
     CHECK(std::string(section::check_name(k.check)) == k.name);
   }
-  CHECK(all == (std::uint64_t(1) << std::size(section::check_names)) - 1);  // 32 bits: shifted in 64
+  CHECK(std::size(section::check_names) == std::size_t(section::check_count));
+  CHECK(all == (section::CheckBits(1) << section::check_count) - 1);
 }
 
 TEST_CASE("checks: the checks flagging a params column are those that list it", "[checks]") {
   using section::bit;
   using section::Check;
   using section::checks_flagging;
-  const std::uint32_t layers = bit(Check::layers), le_choice = bit(Check::le_choice),
-                      units = bit(Check::units), te_circle = bit(Check::te_circle);
+  const section::CheckBits layers = bit(Check::layers), le_choice = bit(Check::le_choice),
+                           units = bit(Check::units), te_circle = bit(Check::te_circle);
   CHECK(checks_flagging(0, "le_radius") == 0);
   CHECK(checks_flagging(layers, "le_radius") == layers);
   CHECK(checks_flagging(layers, "chord") == 0);
@@ -388,7 +389,7 @@ TEST_CASE("checks: a TE round but under the sharp threshold is flagged te_sharp,
     line(top, Vector2d(0, 5));
     add_slab_nose(pts);
     const section::Table params = profile_params(pts);
-    const auto flags = std::uint32_t(params.at(0, std::size_t(params.find_column("flags"))));
+    const auto flags = section::CheckBits(params.at(0, std::size_t(params.find_column("flags"))));
     INFO((fillet ? "fillet: " : "vertex: ") << names(flags));
     CHECK(params.at(0, std::size_t(params.find_column("te_radius"))) == 0);
     CHECK(((flags & section::bit(Check::te_sharp)) != 0) == fillet);
@@ -445,7 +446,7 @@ TEST_CASE("checks: a sharp vertex between sparse points is where the flanks meet
         return params.at(0, std::size_t(params.find_column(column)));
       };
       const double error = (Vector2d(at("te_u"), at("te_v")) - vertex).norm();
-      const auto flags = std::uint32_t(at("flags"));
+      const auto flags = section::CheckBits(at("flags"));
       INFO((naca ? "NACA 0012" : "slab")
            << ", phase " << phase << ": TE point " << error * 1e3 << " um off; " << names(flags));
       CHECK(at("te_radius") == 0);
@@ -457,13 +458,13 @@ TEST_CASE("checks: a sharp vertex between sparse points is where the flanks meet
 namespace {
 
 // The flags of the params rows the pipe after slice gives a cloud cut at z = 20 and 40.
-std::vector<std::uint32_t> flags_at_20_and_40(const section::Cloud& cloud) {
+std::vector<section::CheckBits> flags_at_20_and_40(const section::Cloud& cloud) {
   const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, {20.0, 40.0}));
   const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
-  std::vector<std::uint32_t> out;
+  std::vector<section::CheckBits> out;
   if (const section::Table* params = s.find("params"))
     for (std::size_t row = 0; row < params->rows(); ++row)
-      out.push_back(std::uint32_t(params->at(row, std::size_t(params->find_column("flags")))));
+      out.push_back(section::CheckBits(params->at(row, std::size_t(params->find_column("flags")))));
   return out;
 }
 
@@ -478,10 +479,10 @@ TEST_CASE("checks: two views merged 15 um apart flag the thickness and camber li
     so.seed = 3;
     so.misregistration = apart;
     const section::Cloud cloud = section::scan_bands(section::compressor_blade(), {20.0, 40.0}, so);
-    const std::vector<std::uint32_t> rows = flags_at_20_and_40(cloud);
+    const std::vector<section::CheckBits> rows = flags_at_20_and_40(cloud);
     REQUIRE(rows.size() == 2);
     for (std::size_t row = 0; row < 2; ++row) {
-      const std::uint32_t flags = rows[row];
+      const section::CheckBits flags = rows[row];
       INFO("views " << apart << " apart, row " << row << ": " << names(flags));
       CHECK(((flags & section::bit(Check::layers)) != 0) == (apart > 0));
     }
@@ -502,10 +503,10 @@ TEST_CASE("checks: a grid's noise that the fit follows is flagged; an exact grid
       g.around = 200;
       g.noise = noise;
       g.seed = 2;
-      const std::vector<std::uint32_t> rows = flags_at_20_and_40(section::generate_grid(blade, g));
+      const std::vector<section::CheckBits> rows = flags_at_20_and_40(section::generate_grid(blade, g));
       REQUIRE(rows.size() == 2);
       for (std::size_t row = 0; row < 2; ++row) {
-        const std::uint32_t flags = rows[row];
+        const section::CheckBits flags = rows[row];
         INFO("noise " << noise << ", row " << row << ": " << names(flags));
         CHECK(((flags & section::bit(Check::noise)) != 0) == (noise > 0));
         if (noise == 0)

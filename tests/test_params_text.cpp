@@ -99,7 +99,7 @@ TEST_CASE("params text: codes in words, other units in mm, issues shortened, a f
           "[params_text]") {
   Stream stream;
   stream.units = "m";
-  const std::uint32_t flags =
+  const section::CheckBits flags =
       section::bit(section::Check::le_circle) | section::bit(section::Check::jump_chord);
   stream.put(Table("params",
                    {"section", "chord", "max_thickness", "le_radius", "le_shape", "te_shape", "pressure_side",

@@ -81,7 +81,7 @@ SectionFlags flags_of(const Stream& stream, const Csv& params, std::size_t row, 
   const double number = std::strtod(cell.c_str(), &end);
   if (!cell.empty() && end && *end == '\0') {
     // Each set bit flags its check's columns; "every ..." (a doubtful unit) the whole row.
-    const auto mask = static_cast<std::uint32_t>(number);
+    const auto mask = section::flags_mask(number);
     for (const auto& check : section::check_names) {
       if (!(mask & section::bit(check.check))) continue;
       if (std::string(check.columns).rfind("every", 0) == 0) f.row_flag = true;

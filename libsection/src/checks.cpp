@@ -42,11 +42,11 @@ constexpr const char* either_end = "chord camber_length max_thickness area calip
 
 }  // namespace
 
-std::uint32_t flags_mask(double value) {
-  return value > 0 && value < 4294967296.0 ? static_cast<std::uint32_t>(value) : 0;
+CheckBits flags_mask(double value) {
+  return value > 0 && value < std::ldexp(1.0, check_count) ? static_cast<CheckBits>(value) : 0;
 }
 
-std::string check_names_text(std::uint32_t flags, const char* separator) {
+std::string check_names_text(CheckBits flags, const char* separator) {
   if (!separator) throw Error("checks: check_names_text needs a separator, not a null pointer");
   std::string out;
   for (const auto& c : check_names)
@@ -54,9 +54,9 @@ std::string check_names_text(std::uint32_t flags, const char* separator) {
   return out;
 }
 
-std::uint32_t checks_flagging(std::uint32_t flags, const char* column) {
+CheckBits checks_flagging(CheckBits flags, const char* column) {
   if (!column) throw Error("checks: checks_flagging needs a column name, not a null pointer");
-  std::uint32_t out = 0;
+  CheckBits out = 0;
   for (const auto& c : check_names) {
     if (!(flags & bit(c.check))) continue;
     const bool flagged = c.check == Check::units || c.check == Check::registration ? true

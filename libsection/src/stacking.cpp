@@ -192,7 +192,7 @@ void fit_lines(StackingResult& r, const Axes& x, const std::array<std::vector<Ei
 
 }  // namespace
 
-bool params_flagged(std::uint32_t flags, const char* column) {
+bool params_flagged(CheckBits flags, const char* column) {
   if (!column) throw Error("stacking: params_flagged needs a column name, not a null pointer");
   // The area centroid rests on the whole profile: an edge bridging a hole moves it.
   if (std::strcmp(column, "centroid") == 0 &&

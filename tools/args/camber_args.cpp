@@ -114,6 +114,14 @@ void declare_edges(CLI::App& app, CamberArgs& a) {
   add_checked(app, "--edge-hole-reach", o.edge_hole_reach,
               "Edge radii along the profile from the edge point within which such a stretch must begin",
               CLI::NonNegativeNumber);
+  add_checked(app, "--thickness-hole", o.thickness_hole,
+              "Chord fraction: the thickest circle touching the profile within a stretch without measured "
+              "points this long (and --thickness-hole-spacings times the points' usual distance there) "
+              "flags the max thickness (check thickness_measured; 0 = not checked)",
+              CLI::Range(0.0, 1.0));
+  add_checked(app, "--thickness-hole-spacings", o.thickness_hole_spacings,
+              "The points' usual distances such a stretch must exceed (evenly sparse points are no hole)",
+              CLI::NonNegativeNumber);
   app.add_flag(
       "--edge-on-spline", a.edge_on_spline,
       "Fit the edge circles to the spline's edge arcs alone (default: refitted to the measured points "

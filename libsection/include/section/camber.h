@@ -29,18 +29,23 @@ struct CamberOptions {
   double edge_circularity = 3;        ///< not circular: fit rms over this x max(noise, 1e-4 R)
   double edge_hole = 1;               ///< stream: a hole this many edge radii long near an edge is an issue
   double edge_hole_reach = 1.2;       ///< stream: ... beginning within this many radii of the edge point
-  double off_axis = 0.1;              ///< stream: inscribed radii off the medial axis that make an issue
-  bool edge_on_points = true;         ///< refit the edge circle to the measured points on the arc
-  double edge_point_gap = 0.25;       ///< ... if no angular gap between them exceeds this fraction of it
-  double edge_point_sigma = 0.05;     ///< ... and the radius's standard error is at most this fraction
-  double edge_max_arc = 240;          ///< degrees: largest edge arc grown
-  double tangent_span = 0.15;         ///< axis length fraction the end tangents are fitted over (0 = spline)
-  double edge_prune = 20;             ///< degrees: end circles whose contacts subtend < 2x this are trimmed
-  double blunt_flatness = 2;          ///< blunt: curvature radius at the edge point over this x radius
-  double blunt_rms = 0.02;            ///< ... and the fit rms over this fraction of the radius
-  double blunt_face = 0.8;            ///< blunt (cut off): a straight cap at least this fraction of W wide
-  double sharp_ratio = 0.01;          ///< sharp: radius below this fraction of the largest diameter
-  double min_slenderness = 2;         ///< not a blade: axis length below this x largest diameter
+  /// Stream: the thickest circle touching the profile within a stretch without measured
+  /// points longer than this fraction of the chord, and longer than thickness_hole_spacings
+  /// times the points' usual distance there, flags the maximum thickness (the fit bridges it).
+  double thickness_hole = 0.05;
+  double thickness_hole_spacings = 4;  ///< stream: see thickness_hole
+  double off_axis = 0.1;               ///< stream: inscribed radii off the medial axis that make an issue
+  bool edge_on_points = true;          ///< refit the edge circle to the measured points on the arc
+  double edge_point_gap = 0.25;        ///< ... if no angular gap between them exceeds this fraction of it
+  double edge_point_sigma = 0.05;      ///< ... and the radius's standard error is at most this fraction
+  double edge_max_arc = 240;           ///< degrees: largest edge arc grown
+  double tangent_span = 0.15;          ///< axis length fraction the end tangents are fitted over (0 = spline)
+  double edge_prune = 20;              ///< degrees: end circles whose contacts subtend < 2x this are trimmed
+  double blunt_flatness = 2;           ///< blunt: curvature radius at the edge point over this x radius
+  double blunt_rms = 0.02;             ///< ... and the fit rms over this fraction of the radius
+  double blunt_face = 0.8;             ///< blunt (cut off): a straight cap at least this fraction of W wide
+  double sharp_ratio = 0.01;           ///< sharp: radius below this fraction of the largest diameter
+  double min_slenderness = 2;          ///< not a blade: axis length below this x largest diameter
   /// The LE is the end farther along this direction when non-zero; zero = the LE is the
   /// blunter end (see le_bluntness), else the end nearer the maximum thickness.
   Eigen::Vector2d le_direction{0, 0};

@@ -16,8 +16,12 @@
 
 namespace section {
 
+/// A mask of check bits: the params table's `flags` column (one bit a check; more checks
+/// than 32, and a double holds every mask exactly).
+using CheckBits = std::uint64_t;
+
 /// The checks, one bit each in the params table's `flags` column (docs/FORMAT.md).
-enum class Check : std::uint32_t {
+enum class Check : CheckBits {
   le_radius = 1u << 0,        ///< LE circle larger than the blade there, or off the profile over its arc
   te_radius = 1u << 1,        ///< the same at the TE
   le_circle = 1u << 2,        ///< LE not circular: its radius and point depend on the arc taken
@@ -50,7 +54,11 @@ enum class Check : std::uint32_t {
   inlet_fit = 1u << 29,     ///< inlet angle set by the end fit: a cubic and a quartic over its span disagree
   outlet_fit = 1u << 30,    ///< the same at the TE
   registration = 1u << 31,  ///< a view merged into the input was registered but not confirmed (slice --view)
+  thickness_measured = CheckBits(1) << 32,  ///< the thickest circle touches a hole in the data
 };
+
+/// How many checks there are: a flags mask is below 2^check_count.
+inline constexpr int check_count = 33;
 
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
 /// edge whose circle is doubtful flags its metal angle too: the camber line is extended to
@@ -108,29 +116,30 @@ inline constexpr CheckName check_names[] = {
      "chord stagger caliper_chord camber_line camber_length inlet_angle outlet_angle camber_angle"},
     {Check::inlet_fit, "inlet_fit", "inlet_angle camber_angle le_point chord stagger"},
     {Check::outlet_fit, "outlet_fit", "outlet_angle camber_angle te_point chord stagger"},
+    {Check::thickness_measured, "thickness_measured", "max_thickness max_thickness_pos"},
 };
 
 /// The bit of a check in a flags mask.
-constexpr std::uint32_t bit(Check c) {
-  return static_cast<std::uint32_t>(c);
+constexpr CheckBits bit(Check c) {
+  return static_cast<CheckBits>(c);
 }
 
 /// The name of a check ("le_radius", ...).
 const char* check_name(Check check);
 
 /// The check bits a flags column's value holds: 0 for a value that is no mask (negative,
-/// fractional parts dropped as a cast would, 2^32 or more, not a number).
-std::uint32_t flags_mask(double value);
+/// fractional parts dropped as a cast would, 2^check_count or more, not a number).
+CheckBits flags_mask(double value);
 
 /// The names of the checks in `flags` ("le_radius", ...), in bit order, joined by
 /// `separator`; "" for none.
-std::string check_names_text(std::uint32_t flags, const char* separator = ", ");
+std::string check_names_text(CheckBits flags, const char* separator = ", ");
 
 /// The bits of `flags` (a params row's) whose checks flag the params column `column`: each
 /// check the columns check_names lists for it, units every column, le_choice every column
 /// that is not the same whichever end is the LE (all but chord, camber_length,
 /// max_thickness, area, caliper_chord and centroid). 0 when none does.
-std::uint32_t checks_flagging(std::uint32_t flags, const char* column);
+CheckBits checks_flagging(CheckBits flags, const char* column);
 
 /// Options of check_section (lengths in the profile's units, angles in degrees).
 struct CheckOptions {
@@ -168,7 +177,7 @@ struct Finding {
 
 /// The checks a section failed.
 struct SectionCheck {
-  std::uint32_t flags = 0;        ///< bits of the failed checks
+  CheckBits flags = 0;            ///< bits of the failed checks
   std::vector<Finding> findings;  ///< one per failed check, in bit order
 };
 

@@ -7,6 +7,7 @@
 /// that rests on a flagged params value, or that the sections cannot define (too few,
 /// out of order), is flagged, never given bare.
 #include "section/bspline.h"
+#include "section/checks.h"
 #include "section/frame.h"
 #include "section/params.h"
 
@@ -56,10 +57,10 @@ inline constexpr StackCheckName stack_check_names[] = {
 
 /// One measured section as the stacking sees it.
 struct StackedSection {
-  int id = 0;               ///< the section id
-  Frame frame;              ///< maps its (u, v) to 3D (to_world)
-  SectionParams params;     ///< centroid, le_point, te_point, chord, max_thickness, stagger read
-  std::uint32_t flags = 0;  ///< camber's checks it failed (section/checks.h bits)
+  int id = 0;            ///< the section id
+  Frame frame;           ///< maps its (u, v) to 3D (to_world)
+  SectionParams params;  ///< centroid, le_point, te_point, chord, max_thickness, stagger read
+  CheckBits flags = 0;   ///< camber's checks it failed (section/checks.h bits)
 };
 
 /// How the blade is measured. Directions need not be unit length.
@@ -127,6 +128,6 @@ const char* stack_check_name(StackCheck check);
 /// listing the column, le_choice for the values that depend on which end is the LE, units
 /// for every value, le_measured and te_measured for the centroid too (the area centroid
 /// rests on the whole profile, and an edge bridging a hole moves it).
-bool params_flagged(std::uint32_t flags, const char* column);
+bool params_flagged(CheckBits flags, const char* column);
 
 }  // namespace section

@@ -79,7 +79,7 @@ std::string side_word(double code) {
 // The checks of a flags mask by name, ", "-separated; "none" for 0.
 std::string check_words(double flags) {
   if (!std::isfinite(flags)) return "-";
-  const std::string out = check_names_text(static_cast<std::uint32_t>(flags));
+  const std::string out = check_names_text(flags_mask(flags));
   return out.empty() ? "none" : out;
 }
 

@@ -133,32 +133,31 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
               : "");
 }
 
-EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
-                           const std::vector<Eigen::Vector2d>& measured, double arc_reach) {
-  EdgeCoverage out;
-  const double size = edge_size(edge);
-  if (measured.empty() || !(size > 0)) return out;
-  const int half = 200;
-  const double reach = 3 * 3.14159265358979 * size, h = reach / half;
-  // Samples every h along the curve, from -reach to +reach around the edge point.
+namespace {
+
+// Which of 2 half + 1 samples of `curve`, every h = reach / half along it from -reach to
+// +reach about parameter t, the `measured` points cover: a point covers its nearest sample
+// if that lies within 2h. Empty where the curve stops advancing (a zero speed).
+std::vector<char> covered_about(const BSpline& curve, double t0, const std::vector<Eigen::Vector2d>& measured,
+                                double reach, int half) {
+  const double h = reach / half;
   std::vector<Eigen::Vector2d> samples(2 * half + 1);
   Eigen::Vector2d jet[2];  // point and first derivative, from one evaluation
-  curve.derivatives(edge.t, 1, jet);
+  curve.derivatives(t0, 1, jet);
   samples[half] = jet[0];
   const double speed0 = jet[1].norm();
   for (int dir : {-1, 1}) {
-    double t = edge.t, speed = speed0;
+    double t = t0, speed = speed0;
     for (int k = 1; k <= half; ++k) {
-      if (!(speed > 0)) return out;
+      if (!(speed > 0)) return {};
       t += dir * h / speed;
       curve.derivatives(t, 1, jet);
       samples[half + dir * k] = jet[0];
       speed = jet[1].norm();
     }
   }
-  // A point covers its nearest sample if that lies within 2h. Samples are bucketed in
-  // cells wider than 2h, so the 3 x 3 cells around a point hold every sample that can
-  // count; ties go to the lowest index, as a scan of all samples would give.
+  // Samples are bucketed in cells wider than 2h, so the 3 x 3 cells around a point hold
+  // every sample that can count; ties go to the lowest index, as a scan of all samples would give.
   const double cell = 2.5 * h;
   Eigen::Vector2d low = samples[half], high = samples[half];
   for (const auto& s : samples)
@@ -190,10 +189,14 @@ EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
         }
     if (best >= 0 && std::sqrt(best_d) <= 2 * h) covered[best] = 1;
   }
-  int lo = half, hi = half;
-  while (lo > 0 && !covered[lo]) --lo;
-  while (hi < 2 * half && !covered[hi]) ++hi;
-  if (!covered[half]) out.around = (hi - lo) * h;
+  return covered;
+}
+
+// The longest uncovered stretch of `covered` (samples h apart about its middle one) that
+// begins within `near` of the middle, into `length` and its `distance` from it (0 when it
+// holds the middle); both left as they are when there is none.
+void longest_hole(const std::vector<char>& covered, double h, double near, double& length, double& distance) {
+  const int half = int(covered.size() / 2);
   for (int k = 0; k <= 2 * half;) {
     if (covered[k]) {
       ++k;
@@ -201,11 +204,49 @@ EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
     }
     int e = k;
     while (e <= 2 * half && !covered[e]) ++e;
-    const double length = (e - k + 1) * h, distance = k > half    ? (k - 1 - half) * h
-                                                      : e <= half ? (half - e) * h
-                                                                  : 0.0;
-    if (distance <= arc_reach * size && length > out.hole) out.hole = length, out.hole_distance = distance;
+    const double l = (e - k + 1) * h, d = k > half ? (k - 1 - half) * h : e <= half ? (half - e) * h : 0.0;
+    if (d <= near && l > length) length = l, distance = d;
     k = e;
+  }
+}
+
+}  // namespace
+
+EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
+                           const std::vector<Eigen::Vector2d>& measured, double arc_reach) {
+  EdgeCoverage out;
+  const double size = edge_size(edge);
+  if (measured.empty() || !(size > 0)) return out;
+  const int half = 200;
+  const double reach = 3 * 3.14159265358979 * size, h = reach / half;
+  const std::vector<char> covered = covered_about(curve, edge.t, measured, reach, half);
+  if (covered.empty()) return out;
+  int lo = half, hi = half;
+  while (lo > 0 && !covered[lo]) --lo;
+  while (hi < 2 * half && !covered[hi]) ++hi;
+  if (!covered[half]) out.around = (hi - lo) * h;
+  longest_hole(covered, h, arc_reach * size, out.hole, out.hole_distance);
+  return out;
+}
+
+ContactCoverage contact_coverage(const BSpline& curve, double t, const std::vector<Eigen::Vector2d>& measured,
+                                 double reach, double near) {
+  ContactCoverage out;
+  if (measured.empty() || !(reach > 0)) return out;
+  const int half = 200;
+  const double h = reach / half;
+  const std::vector<char> covered = covered_about(curve, t, measured, reach, half);
+  if (covered.empty()) return out;
+  std::vector<double> steps;  // between neighbouring covered samples
+  for (int k = 0, last = -1; k <= 2 * half; ++k) {
+    if (!covered[k]) continue;
+    if (last >= 0) steps.push_back((k - last) * h);
+    last = k;
+  }
+  longest_hole(covered, h, near, out.hole, out.hole_distance);
+  if (!steps.empty()) {
+    std::nth_element(steps.begin(), steps.begin() + std::ptrdiff_t(steps.size() / 2), steps.end());
+    out.spacing = steps[steps.size() / 2];
   }
   return out;
 }
@@ -214,8 +255,8 @@ namespace {
 
 // The flags of an edge's notes: a hole at it, a circle that does not fit it (not circular,
 // or a blunt edge fitted as round anyway).
-std::uint32_t edge_flags(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover, bool le) {
-  std::uint32_t flags = 0;
+CheckBits edge_flags(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover, bool le) {
+  CheckBits flags = 0;
   if (!hole_note(e, cover, "", f.options.edge_hole).empty())
     flags |= bit(le ? Check::le_measured : Check::te_measured);
   const bool blunt_as_round = e.shape == EdgeShape::blunt && e.face == 0 && e.radius > 0;
@@ -370,11 +411,44 @@ std::string sharp_but_round(const SectionFacts& f, const Edge& e, const char* wh
   return text;
 }
 
-std::uint32_t describe_issues(const SectionFacts& f, const std::vector<Finding>& findings,
-                              std::vector<SectionIssue>& issues) {
+namespace {
+
+// The thickest circle touching the profile within or beside a hole in the data (a stretch
+// without measured points longer than thickness_hole of the chord and
+// thickness_hole_spacings times the points' usual distance there, beginning within half
+// that length of a contact): the maximum thickness rests on the fit's bridge, not on
+// measurements. "" when none is.
+std::string thickness_hole_note(const SectionFacts& f) {
+  const CamberOptions& opt = f.options;
+  const double limit = opt.thickness_hole * f.params.chord;
+  const ContactCoverage* worst = nullptr;
+  for (const ContactCoverage& c : f.thickest)
+    if (c.hole > limit && c.hole > opt.thickness_hole_spacings * c.spacing &&
+        (!worst || c.hole > worst->hole))
+      worst = &c;
+  if (!worst) return std::string();
+  const std::string where =
+      worst->hole_distance > 0 ? format_length(worst->hole_distance) + " from a stretch of " : "within ";
+  char text[480];
+  std::snprintf(text, sizeof text,
+                "max thickness %s fails check thickness_measured: the thickest circle touches the profile "
+                "%s%s%s that no measured point covers (a hole in the data; the points lie %s apart about it, "
+                "and a hole over %s, %s of the chord, is not measured): the thickness there rests on the "
+                "fit's bridge",
+                format_length(f.params.max_thickness).c_str(), where.c_str(),
+                worst->hole >= 3 * limit ? "at least " : "", format_length(worst->hole).c_str(),
+                worst->spacing > 0 ? format_length(worst->spacing).c_str() : "far",
+                format_length(limit).c_str(), format_share(opt.thickness_hole).c_str());
+  return text;
+}
+
+}  // namespace
+
+CheckBits describe_issues(const SectionFacts& f, const std::vector<Finding>& findings,
+                          std::vector<SectionIssue>& issues) {
   const CamberResult& r = f.camber;
   const CamberOptions& opt = f.options;
-  std::uint32_t flags = edge_flags(f, r.le, f.le, true) | edge_flags(f, r.te, f.te, false);
+  CheckBits flags = edge_flags(f, r.le, f.le, true) | edge_flags(f, r.te, f.te, false);
   for (const bool le : {true, false}) {
     const std::string note = sharp_but_round(f, le ? r.le : r.te, le ? "leading-edge" : "trailing-edge",
                                              le ? "le_sharp" : "te_sharp");
@@ -387,6 +461,10 @@ std::uint32_t describe_issues(const SectionFacts& f, const std::vector<Finding>&
   if (!le_msg.empty() || !te_msg.empty())
     issues.push_back(
         {f.section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
+  if (const std::string note = thickness_hole_note(f); !note.empty()) {
+    issues.push_back({f.section, 0, "camber", note});
+    flags |= bit(Check::thickness_measured);
+  }
   // A camber line that strays from the medial axis (no inscribed circle solved there)
   // is not a measured one: say where and by how much.
   if (r.off_axis > 0) {

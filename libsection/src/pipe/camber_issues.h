@@ -44,6 +44,20 @@ struct EdgeCoverage {
 EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
                            const std::vector<Eigen::Vector2d>& measured, double arc_reach);
 
+/// How well the measured points cover the profile about a point of it (the thickest
+/// circle's contacts; lengths along the profile).
+struct ContactCoverage {
+  /// The longest stretch that no measured point covers beginning within `near` of the
+  /// point, and its distance from it (0 when it holds the point).
+  double hole = 0, hole_distance = 0;
+  double spacing = 0;  ///< the usual distance between the measured points there (median; 0 unknown)
+};
+
+/// The coverage of `curve` about parameter `t` by the `measured` points, over `reach`
+/// along the profile either side (a hole reaching beyond is taken as ending there).
+ContactCoverage contact_coverage(const BSpline& curve, double t, const std::vector<Eigen::Vector2d>& measured,
+                                 double reach, double near);
+
 /// Where a section's other loops lie, for the message that refuses it ("" when it has none).
 std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section);
 
@@ -54,16 +68,18 @@ struct SectionFacts {
   const CamberResult& camber;
   const SectionParams& params;
   EdgeCoverage le, te;
+  ContactCoverage thickest[2];  ///< about the thickest circle's contacts (left, right)
   const Measured& measured;
   const CamberOptions& options;  ///< as the section was measured with
 };
 
 /// Appends the issues of a measured section (stage "camber", loop 0) to `issues`: its edges
-/// (shape, holes, carried points, circularity), a camber line off the medial axis, an LE
+/// (shape, holes, carried points, circularity), a thickest circle touching a hole in the
+/// data, a camber line off the medial axis, an LE
 /// chosen by a near tie, and the checks it failed (`findings`, section/checks.h). Returns
 /// the flags of them all (the params table's `flags`).
-std::uint32_t describe_issues(const SectionFacts& facts, const std::vector<Finding>& findings,
-                              std::vector<SectionIssue>& issues);
+CheckBits describe_issues(const SectionFacts& facts, const std::vector<Finding>& findings,
+                          std::vector<SectionIssue>& issues);
 
 /// The words of a jump across a blade's sections (check_blade), for the section's issue.
 std::string jump_note(const Jump& jump);

@@ -170,6 +170,7 @@ struct SectionCamber {
   std::vector<ThicknessStation> stations;
   Sides sides;
   pipe::EdgeCoverage le, te;
+  pipe::ContactCoverage thickest[2];  // about the thickest circle's contacts
 };
 
 // Measures a section on `pr`, `curve` sampled with opt.medial.samples; a poor skeleton
@@ -195,6 +196,14 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
   m.sides = detail::split_sides(pr.fast, m.camber, opt.side_samples);
   m.le = pipe::edge_coverage(curve, m.camber.le, q.all, opt.edge_hole_reach);
   m.te = pipe::edge_coverage(curve, m.camber.te, q.all, opt.edge_hole_reach);
+  // Holes beginning within half the longest the thickness may bridge, over a window three
+  // times that length (for the points' usual distance there).
+  const double limit = opt.thickness_hole * m.params.chord;
+  if (m.camber.thickest.radius > 0)
+    for (int side = 0; side < 2; ++side)
+      m.thickest[side] =
+          pipe::contact_coverage(curve, side == 0 ? m.camber.thickest.t_left : m.camber.thickest.t_right,
+                                 q.all, 3 * limit, limit / 2);
   return m;
 }
 
@@ -202,7 +211,7 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
 enum : std::size_t { camber_rows, params_rows, thickness_rows, sides_rows };
 
 // A measured section's rows of the tables camber, params, thickness and sides.
-void add_rows(int section, const Frame& f, const SectionCamber& m, std::uint32_t flags, pipe::Slot& slot) {
+void add_rows(int section, const Frame& f, const SectionCamber& m, CheckBits flags, pipe::Slot& slot) {
   const CamberResult& r = m.camber;
   for (std::size_t i = 0; i < r.points.size(); ++i)
     schema::camber.append(slot.rows[camber_rows],
@@ -273,8 +282,9 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   SectionCheck check = detail::check_section(sampled, m.camber, m.params, checks);
   if (const auto l = in.fits.find(section); l != in.fits.end() && l->second.layers > 0)
     check.findings.push_back({Check::layers, l->second.layers, l->second.layers_length});
-  const std::uint32_t flags = pipe::describe_issues({section, local, m.camber, m.params, m.le, m.te, q, opt},
-                                                    check.findings, slot.issues);
+  const CheckBits flags = pipe::describe_issues(
+      {section, local, m.camber, m.params, m.le, m.te, {m.thickest[0], m.thickest[1]}, q, opt},
+      check.findings, slot.issues);
   if (origin != Eigen::Vector2d::Zero()) move(m, origin);
   add_rows(section, f, m, flags, slot);
 }
@@ -331,8 +341,8 @@ void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOpt
     const HeldRow& h = rows[j.index];
     Table& t = *h.stream->find(schema::params.name);
     double& flags = t.values[h.row * t.columns.size() + t.column("flags")];
-    if (static_cast<std::uint32_t>(flags) & bit(j.check)) continue;  // checked before: said once
-    flags = double(static_cast<std::uint32_t>(flags) | bit(j.check));
+    if (static_cast<CheckBits>(flags) & bit(j.check)) continue;  // checked before: said once
+    flags = double(static_cast<CheckBits>(flags) | bit(j.check));
     t.source.reset();  // changed: formatted from its values
     h.stream->issues.push_back({h.section, 0, "camber", pipe::jump_note(j)});
   }
@@ -353,8 +363,8 @@ void flag_every_row(Stream& stream, Check check, const std::string& why) {
   const std::size_t flags = t->column("flags"), id = t->column(col::section);
   for (std::size_t r = 0; r < t->rows(); ++r) {
     double& f = t->values[r * t->columns.size() + flags];
-    if (static_cast<std::uint32_t>(f) & bit(check)) continue;  // flagged before: said once
-    f = double(static_cast<std::uint32_t>(f) | bit(check));
+    if (static_cast<CheckBits>(f) & bit(check)) continue;  // flagged before: said once
+    f = double(static_cast<CheckBits>(f) | bit(check));
     stream.issues.push_back({static_cast<int>(t->at(r, id)), 0, "camber", why});
   }
   t->source.reset();  // changed: formatted from its values

@@ -221,7 +221,7 @@ double value_of(const Row& row, const std::string& column, double otherwise = 0)
 }
 
 // The checks of a params row (its `flags` column) that flag `column`.
-std::uint32_t flagging(const Row& row, const char* column) {
+CheckBits flagging(const Row& row, const char* column) {
   return checks_flagging(flags_mask(value_of(row, "flags")), column);
 }
 
@@ -282,7 +282,7 @@ void judge(int id, const SectionComparison* c, const Input& in, const std::vecto
     const Tolerance* t = find_tolerance(tol, item.name, id);
     const bool on_value = t && t->on_value;
     double sigma2 = 0;  // the variance of what the limits bound
-    std::uint32_t flags = 0, nominal_flags = 0;
+    CheckBits flags = 0, nominal_flags = 0;
     if (c && item.name == std::string("fit_shift")) {
       value = c->fit.motion.translation.norm();
     } else if (c && item.name == std::string("fit_rotation")) {

@@ -46,7 +46,7 @@ std::vector<StackedSection> stacked_sections(const Stream& stream) {
     s.params.stagger = t.at(r, stagger);
     s.params.chord = t.at(r, chord);
     s.params.max_thickness = t.at(r, thick);
-    s.flags = static_cast<std::uint32_t>(t.at(r, flags));
+    s.flags = flags_mask(t.at(r, flags));
     out.push_back(s);
   }
   return out;

@@ -57,7 +57,7 @@ void check_unique_ids(const Table& t, const std::string& source) {
 }
 
 // Throws for a count that is not a whole number of 0 or more, a flag that is not 0 or 1, a set
-// of check bits (flags) that is not a whole number below 2^32, or a standard error (_sigma)
+// of check bits (flags) that is not a whole number below 2^check_count, or a standard error (_sigma)
 // below 0.
 void check_values(const Table& t, const std::map<std::string, std::string>& unit, const std::string& source) {
   const long cs = t.find_column("section");
@@ -72,14 +72,19 @@ void check_values(const Table& t, const std::map<std::string, std::string>& unit
     for (std::size_t r = 0; r < t.rows(); ++r) {
       const double v = t.at(r, c);
       const bool whole = v >= 0 && v == std::floor(v);
-      if (flag ? (v == 0 || v == 1) : count ? whole : bits ? whole && v < 4294967296.0 : v >= 0) continue;
-      throw Error("pipe: " + source + ": table '" + t.name + "' data row " + std::to_string(r + 1) +
-                  (cs >= 0 ? " (section " + format_number(t.at(r, std::size_t(cs))) + ")" : std::string()) +
-                  ": column '" + name + "' is " + format_number(v) + ", " +
-                  (flag    ? "a flag must be 0 or 1"
-                   : count ? "a count must be a whole number of 0 or more"
-                   : bits  ? "check bits must be a whole number from 0 to 2^32 - 1"
-                           : "a standard error must not be negative"));
+      if (flag    ? (v == 0 || v == 1)
+          : count ? whole
+          : bits  ? whole && v < std::ldexp(1.0, check_count)
+                  : v >= 0)
+        continue;
+      throw Error(
+          "pipe: " + source + ": table '" + t.name + "' data row " + std::to_string(r + 1) +
+          (cs >= 0 ? " (section " + format_number(t.at(r, std::size_t(cs))) + ")" : std::string()) +
+          ": column '" + name + "' is " + format_number(v) + ", " +
+          (flag    ? "a flag must be 0 or 1"
+           : count ? "a count must be a whole number of 0 or more"
+           : bits  ? "check bits must be a whole number from 0 to 2^" + std::to_string(check_count) + " - 1"
+                   : "a standard error must not be negative"));
     }
   }
 }

@@ -220,7 +220,7 @@ struct ParamsRow {
   const CamberResult& camber;
   Eigen::Vector3d le, te, centroid;  ///< the edge points and the centroid in 3D
   double le_unmeasured, te_unmeasured;
-  std::uint32_t flags;  ///< the checks the section failed (section/checks.h)
+  CheckBits flags;  ///< the checks the section failed (section/checks.h)
 };
 struct ThicknessRow {
   int section;
@@ -265,8 +265,8 @@ struct ComparedRow {
   double value, nominal, deviation;
   const Tolerance* tolerance;
   int verdict;
-  double uncertainty;                  ///< the expanded uncertainty of what the limits bound (0: none known)
-  std::uint32_t flags, nominal_flags;  ///< camber's checks flagging the measured and the nominal value
+  double uncertainty;              ///< the expanded uncertainty of what the limits bound (0: none known)
+  CheckBits flags, nominal_flags;  ///< camber's checks flagging the measured and the nominal value
 };
 struct VerdictRow {
   int section;

@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""A hole in the scan at the thickest circle: generated scans (bladegen, exact truth) with
+the points within L/2 of a contact of the thickest inscribed circle removed over the whole
+scanned height (no point beside the plane can fill it), each through
+`slice | smooth | fitspline | camber`, the max thickness against the truth and its flags.
+
+Usage: scripts/validate_thickness_hole.py [--bin DIR] [--kinds turbine,compressor,thick-root]
+           [--heights 10,25,50] [--seeds 5,7] [--holes 1.5,2.5,3,3.5,4.5] [--spacing 0.08]
+
+Prints a line per case and, per hole size, the thickness errors over 5 um, those flagged
+by thickness_measured, and those off with no flag covering max_thickness (docs/FORMAT.md).
+"""
+import argparse
+import csv
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TOLERANCE = 0.005  # mm: the max thickness target (docs/ACCURACY.md)
+
+
+def tables(path):
+    """The tables of a stream file: name -> list of rows (dicts of strings)."""
+    out, name, header = {}, None, None
+    for line in open(path):
+        line = line.rstrip("\n")
+        if line.startswith("# table "):
+            name, header = line.split()[2], None
+            out.setdefault(name, [])
+        elif line.startswith("#"):
+            name = None
+        elif name is not None:
+            if header is None:
+                header = line.split(",")
+            else:
+                out[name].append(dict(zip(header, line.split(","))))
+    return out
+
+
+def thickness_bits():
+    """bit -> check name of the checks that flag max_thickness, from checks.h."""
+    text = open(os.path.join(ROOT, "libsection", "include", "section", "checks.h")).read()
+    value = {m[0]: int(m[1]) for m in re.findall(r"(\w+) = (?:1u|CheckBits\(1\)) << (\d+),", text)}
+    bits = {}
+    for check, name, literals in re.findall(r'\{Check::(\w+),\s*"(\w+)",\s*((?:"[^"]*"\s*)+)\}', text):
+        columns = "".join(re.findall(r'"([^"]*)"', literals))
+        if columns.startswith("every") or "max_thickness" in columns.split():
+            bits[value[check]] = name
+    return bits
+
+
+def run(cmd, env):
+    return subprocess.run(cmd, shell=True, env=env, capture_output=True, text=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "tools"))
+    ap.add_argument("--kinds", default="turbine,compressor,thick-root")
+    ap.add_argument("--heights", default="10,25,50")
+    ap.add_argument("--seeds", default="5,7")
+    ap.add_argument("--holes", default="1.5,2.5,3,3.5,4.5")
+    ap.add_argument("--spacing", type=float, default=0.08)
+    a = ap.parse_args()
+    lib = os.path.join(os.path.dirname(os.path.abspath(a.bin)), "libsection")
+    env = dict(os.environ, LD_LIBRARY_PATH=f"{lib}:{lib}/extras:" + os.environ.get("LD_LIBRARY_PATH", ""))
+    t = a.bin
+    pipe = f"{t}/smooth | {t}/fitspline | {t}/camber"
+    flagging = thickness_bits()
+    holes = [float(x) for x in a.holes.split(",")]
+    tally = {h: [0, 0, 0, 0, 0] for h in holes}  # cases, off, flagged by thickness_measured, silent, refused
+    with tempfile.TemporaryDirectory() as work:
+        for kind in a.kinds.split(","):
+            for z in [float(x) for x in a.heights.split(",")]:
+                for seed in [int(x) for x in a.seeds.split(",")]:
+                    scan, truth = f"{work}/scan.xyz", f"{work}/truth.csv"
+                    r = run(f"{t}/bladegen --kind {kind} --points --spacing {a.spacing} --noise 0.005 "
+                            f"--seed {seed} --z-min {z - 4} --z-max {z + 4} -o {scan} --truth {truth} --at {z}",
+                            env)
+                    if r.returncode:
+                        sys.exit(f"bladegen failed: {r.stderr}")
+                    true_thickness = float(next(csv.DictReader(open(truth)))["max_thickness"])
+                    r = run(f"{t}/slice {scan} --at {z} | {pipe} > {work}/whole.csv", env)
+                    whole = tables(f"{work}/whole.csv")
+                    params, frame = whole["params"][0], whole["frames"][0]
+                    at = float(params["max_thickness_pos"])
+                    station = min(whole["thickness"], key=lambda s: abs(float(s["fraction"]) - at))
+                    origin = (float(frame["origin_x"]), float(frame["origin_y"]))
+                    u = (float(frame["u_x"]), float(frame["u_y"]))
+                    v = (float(frame["v_x"]), float(frame["v_y"]))
+                    points = [line.split() for line in open(scan)]
+                    for side in ("pressure", "suction"):
+                        cu, cv = float(station[side + "_u"]), float(station[side + "_v"])
+                        cx = origin[0] + cu * u[0] + cv * v[0]
+                        cy = origin[1] + cu * u[1] + cv * v[1]
+                        for hole in holes:
+                            with open(f"{work}/holed.xyz", "w") as f:
+                                for p in points:
+                                    if (float(p[0]) - cx) ** 2 + (float(p[1]) - cy) ** 2 >= (hole / 2) ** 2:
+                                        f.write(" ".join(p) + "\n")
+                            run(f"{t}/slice {work}/holed.xyz --at {z} | {pipe} > {work}/holed.csv", env)
+                            tally[hole][0] += 1
+                            try:
+                                row = tables(f"{work}/holed.csv")["params"][0]
+                            except (KeyError, IndexError):
+                                tally[hole][4] += 1
+                                print(f"{kind:10s} z {z:4.0f} seed {seed} {side:8s} hole {hole} mm: refused")
+                                continue
+                            flags = int(float(row["flags"]))
+                            names = [n for b, n in sorted(flagging.items()) if flags >> b & 1]
+                            error = float(row["max_thickness"]) - true_thickness
+                            off = abs(error) > TOLERANCE
+                            tally[hole][1] += off
+                            tally[hole][2] += "thickness_measured" in names
+                            tally[hole][3] += off and not names
+                            print(f"{kind:10s} z {z:4.0f} seed {seed} {side:8s} hole {hole} mm: max thickness "
+                                  f"{error * 1e3:+6.1f} um, flagged by {','.join(names) or '-'}", flush=True)
+    print("hole mm  cases  off>5um  thickness_measured  off-unflagged  refused")
+    for hole in holes:
+        n, off, measured, silent, refused = tally[hole]
+        print(f"{hole:7.1f} {n:6d} {off:8d} {measured:19d} {silent:14d} {refused:8d}")
+    return 1 if any(x[3] for x in tally.values()) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
