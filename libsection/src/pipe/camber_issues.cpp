@@ -61,7 +61,7 @@ std::string carried_note(const SectionFacts& f, const Edge& e, const std::string
                          const char* which) {
   const Measured& q = f.measured;
   if (q.carried.empty() || !hole_message.empty()) return std::string();
-  const EdgeCoverage own = edge_coverage(f.curve, e, q.in_slab, f.options.edge_hole_reach);
+  const EdgeCoverage own = edge_coverage(f.fast, e, q.in_slab, f.options.edge_hole_reach);
   if (hole_note(e, own, which, f.options.edge_hole).empty()) return std::string();
   const double size = edge_size(e);
   const Eigen::Vector2d at = f.curve.point(e.t);
@@ -138,22 +138,22 @@ namespace {
 // Which of 2 half + 1 samples of `curve`, every h = reach / half along it from -reach to
 // +reach about parameter t, the `measured` points cover: a point covers its nearest sample
 // if that lies within 2h. Empty where the curve stops advancing (a zero speed).
-std::vector<char> covered_about(const BSpline& curve, double t0, const std::vector<Eigen::Vector2d>& measured,
-                                double reach, int half) {
+std::vector<char> covered_about(const detail::PiecewiseCurve& curve, double t0,
+                                const std::vector<Eigen::Vector2d>& measured, double reach, int half) {
   const double h = reach / half;
   std::vector<Eigen::Vector2d> samples(2 * half + 1);
-  Eigen::Vector2d jet[2];  // point and first derivative, from one evaluation
-  curve.derivatives(t0, 1, jet);
-  samples[half] = jet[0];
-  const double speed0 = jet[1].norm();
+  detail::PiecewiseCurve::Cursor cursor;
+  detail::CurveJet jet = curve.jet(curve.locate(t0, cursor));
+  samples[half] = jet.point;
+  const double speed0 = jet.d1.norm();
   for (int dir : {-1, 1}) {
     double t = t0, speed = speed0;
     for (int k = 1; k <= half; ++k) {
       if (!(speed > 0)) return {};
       t += dir * h / speed;
-      curve.derivatives(t, 1, jet);
-      samples[half + dir * k] = jet[0];
-      speed = jet[1].norm();
+      jet = curve.jet(curve.locate(t, cursor));
+      samples[half + dir * k] = jet.point;
+      speed = jet.d1.norm();
     }
   }
   // Samples are bucketed in cells wider than 2h, so the 3 x 3 cells around a point hold
@@ -212,11 +212,11 @@ void longest_hole(const std::vector<char>& covered, double h, double near, doubl
 
 }  // namespace
 
-EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
+EdgeCoverage edge_coverage(const detail::PiecewiseCurve& curve, const Edge& edge,
                            const std::vector<Eigen::Vector2d>& measured, double arc_reach) {
   EdgeCoverage out;
   const double size = edge_size(edge);
-  if (measured.empty() || !(size > 0)) return out;
+  if (measured.empty() || !(size > 0) || !std::isfinite(edge.t)) return out;
   const int half = 200;
   const double reach = 3 * 3.14159265358979 * size, h = reach / half;
   const std::vector<char> covered = covered_about(curve, edge.t, measured, reach, half);
@@ -229,11 +229,13 @@ EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
   return out;
 }
 
-ContactCoverage contact_coverage(const BSpline& curve, double t, const std::vector<Eigen::Vector2d>& measured,
-                                 double reach, double near) {
+ContactCoverage contact_coverage(const detail::PiecewiseCurve& curve, double t,
+                                 const std::vector<Eigen::Vector2d>& measured, double reach, double near) {
   ContactCoverage out;
-  if (measured.empty() || !(reach > 0)) return out;
-  const int half = 200;
+  if (measured.empty() || !(reach > 0) || !std::isfinite(t)) return out;
+  // Samples every 3 % of the longest hole the thickness may bridge (0.06 mm at the default
+  // 5 % of a 40 mm chord) tell its length to that.
+  const int half = 100;
   const double h = reach / half;
   const std::vector<char> covered = covered_about(curve, t, measured, reach, half);
   if (covered.empty()) return out;

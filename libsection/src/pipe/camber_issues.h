@@ -4,6 +4,7 @@
 // section lie, and the issues of a measured one (edges not round, not measured, measured
 // with carried points or not circular; a camber line off the medial axis; an LE chosen by a
 // near tie), with the edge coverage they rest on.
+#include "detail/piecewise_curve.h"
 #include "section/bspline.h"
 #include "section/camber.h"
 #include "section/checks.h"
@@ -41,7 +42,7 @@ struct EdgeCoverage {
 
 /// The coverage of `edge` of `curve` by the `measured` points; the hole must begin within
 /// `arc_reach` edge sizes (radius, or a blunt edge's face width) of the edge point.
-EdgeCoverage edge_coverage(const BSpline& curve, const Edge& edge,
+EdgeCoverage edge_coverage(const detail::PiecewiseCurve& curve, const Edge& edge,
                            const std::vector<Eigen::Vector2d>& measured, double arc_reach);
 
 /// How well the measured points cover the profile about a point of it (the thickest
@@ -55,8 +56,8 @@ struct ContactCoverage {
 
 /// The coverage of `curve` about parameter `t` by the `measured` points, over `reach`
 /// along the profile either side (a hole reaching beyond is taken as ending there).
-ContactCoverage contact_coverage(const BSpline& curve, double t, const std::vector<Eigen::Vector2d>& measured,
-                                 double reach, double near);
+ContactCoverage contact_coverage(const detail::PiecewiseCurve& curve, double t,
+                                 const std::vector<Eigen::Vector2d>& measured, double reach, double near);
 
 /// Where a section's other loops lie, for the message that refuses it ("" when it has none).
 std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section);
@@ -65,6 +66,7 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
 struct SectionFacts {
   int section;
   const BSpline& curve;
+  const detail::PiecewiseCurve& fast;  ///< `curve` in its piecewise form
   const CamberResult& camber;
   const SectionParams& params;
   EdgeCoverage le, te;

@@ -194,15 +194,15 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
                    ? detail::thickness_stations(pr, *axis, m.camber, opt.stations)
                    : thickness_stations(curve, m.camber, opt.stations);
   m.sides = detail::split_sides(pr.fast, m.camber, opt.side_samples);
-  m.le = pipe::edge_coverage(curve, m.camber.le, q.all, opt.edge_hole_reach);
-  m.te = pipe::edge_coverage(curve, m.camber.te, q.all, opt.edge_hole_reach);
+  m.le = pipe::edge_coverage(pr.fast, m.camber.le, q.all, opt.edge_hole_reach);
+  m.te = pipe::edge_coverage(pr.fast, m.camber.te, q.all, opt.edge_hole_reach);
   // Holes beginning within half the longest the thickness may bridge, over a window three
   // times that length (for the points' usual distance there).
   const double limit = opt.thickness_hole * m.params.chord;
   if (m.camber.thickest.radius > 0)
     for (int side = 0; side < 2; ++side)
       m.thickest[side] =
-          pipe::contact_coverage(curve, side == 0 ? m.camber.thickest.t_left : m.camber.thickest.t_right,
+          pipe::contact_coverage(pr.fast, side == 0 ? m.camber.thickest.t_left : m.camber.thickest.t_right,
                                  q.all, 3 * limit, limit / 2);
   return m;
 }
@@ -283,7 +283,7 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   if (const auto l = in.fits.find(section); l != in.fits.end() && l->second.layers > 0)
     check.findings.push_back({Check::layers, l->second.layers, l->second.layers_length});
   const CheckBits flags = pipe::describe_issues(
-      {section, local, m.camber, m.params, m.le, m.te, {m.thickest[0], m.thickest[1]}, q, opt},
+      {section, local, pr.fast, m.camber, m.params, m.le, m.te, {m.thickest[0], m.thickest[1]}, q, opt},
       check.findings, slot.issues);
   if (origin != Eigen::Vector2d::Zero()) move(m, origin);
   add_rows(section, f, m, flags, slot);
