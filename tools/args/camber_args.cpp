@@ -116,11 +116,11 @@ void declare_edges(CLI::App& app, CamberArgs& a) {
               CLI::NonNegativeNumber);
   add_checked(app, "--thickness-hole", o.thickness_hole,
               "Chord fraction: the thickest circle touching the profile within a stretch without measured "
-              "points this long (and --thickness-hole-spacings times the points' usual distance there) "
+              "points this long (and --thickness-hole-spacings times the points' mean distance there) "
               "flags the max thickness (check thickness_measured; 0 = not checked)",
               CLI::Range(0.0, 1.0));
   add_checked(app, "--thickness-hole-spacings", o.thickness_hole_spacings,
-              "The points' usual distances such a stretch must exceed (evenly sparse points are no hole)",
+              "The points' mean distances such a stretch must exceed (evenly sparse points are no hole)",
               CLI::NonNegativeNumber);
   app.add_flag(
       "--edge-on-spline", a.edge_on_spline,

@@ -136,10 +136,10 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
 namespace {
 
 // Which of 2 half + 1 samples of `curve`, every h = reach / half along it from -reach to
-// +reach about parameter t, the `measured` points cover: a point covers its nearest sample
-// if that lies within 2h. Empty where the curve stops advancing (a zero speed).
-std::vector<char> covered_about(const detail::PiecewiseCurve& curve, double t0,
-                                const std::vector<Eigen::Vector2d>& measured, double reach, int half) {
+// +reach about parameter t, the `measured` points cover, and by how many: a point covers its
+// nearest sample if that lies within 2h. Empty where the curve stops advancing (a zero speed).
+std::vector<int> covered_about(const detail::PiecewiseCurve& curve, double t0,
+                               const std::vector<Eigen::Vector2d>& measured, double reach, int half) {
   const double h = reach / half;
   std::vector<Eigen::Vector2d> samples(2 * half + 1);
   detail::PiecewiseCurve::Cursor cursor;
@@ -175,7 +175,7 @@ std::vector<char> covered_about(const detail::PiecewiseCurve& curve, double t0,
     next[k] = head[c];
     head[c] = k;
   }
-  std::vector<char> covered(samples.size(), 0);
+  std::vector<int> covered(samples.size(), 0);
   for (const auto& q : measured) {
     if ((q - samples[half]).norm() > reach + 2 * h) continue;
     const int cx = cell_of(q.x(), low.x(), nx), cy = cell_of(q.y(), low.y(), ny);
@@ -187,7 +187,7 @@ std::vector<char> covered_about(const detail::PiecewiseCurve& curve, double t0,
           const double d = (q - samples[k]).squaredNorm();
           if (d < best_d || (d == best_d && k < best)) best_d = d, best = k;
         }
-    if (best >= 0 && std::sqrt(best_d) <= 2 * h) covered[best] = 1;
+    if (best >= 0 && std::sqrt(best_d) <= 2 * h) ++covered[best];
   }
   return covered;
 }
@@ -195,7 +195,7 @@ std::vector<char> covered_about(const detail::PiecewiseCurve& curve, double t0,
 // The longest uncovered stretch of `covered` (samples h apart about its middle one) that
 // begins within `near` of the middle, into `length` and its `distance` from it (0 when it
 // holds the middle); both left as they are when there is none.
-void longest_hole(const std::vector<char>& covered, double h, double near, double& length, double& distance) {
+void longest_hole(const std::vector<int>& covered, double h, double near, double& length, double& distance) {
   const int half = int(covered.size() / 2);
   for (int k = 0; k <= 2 * half;) {
     if (covered[k]) {
@@ -219,7 +219,7 @@ EdgeCoverage edge_coverage(const detail::PiecewiseCurve& curve, const Edge& edge
   if (measured.empty() || !(size > 0) || !std::isfinite(edge.t)) return out;
   const int half = 200;
   const double reach = 3 * 3.14159265358979 * size, h = reach / half;
-  const std::vector<char> covered = covered_about(curve, edge.t, measured, reach, half);
+  const std::vector<int> covered = covered_about(curve, edge.t, measured, reach, half);
   if (covered.empty()) return out;
   int lo = half, hi = half;
   while (lo > 0 && !covered[lo]) --lo;
@@ -237,19 +237,15 @@ ContactCoverage contact_coverage(const detail::PiecewiseCurve& curve, double t,
   // 5 % of a 40 mm chord) tell its length to that.
   const int half = 100;
   const double h = reach / half;
-  const std::vector<char> covered = covered_about(curve, t, measured, reach, half);
+  const std::vector<int> covered = covered_about(curve, t, measured, reach, half);
   if (covered.empty()) return out;
-  std::vector<double> steps;  // between neighbouring covered samples
-  for (int k = 0, last = -1; k <= 2 * half; ++k) {
-    if (!covered[k]) continue;
-    if (last >= 0) steps.push_back((k - last) * h);
-    last = k;
-  }
   longest_hole(covered, h, near, out.hole, out.hole_distance);
-  if (!steps.empty()) {
-    std::nth_element(steps.begin(), steps.begin() + std::ptrdiff_t(steps.size() / 2), steps.end());
-    out.spacing = steps[steps.size() / 2];
-  }
+  // The points' mean distance over the window but its longest hole.
+  double longest = 0, at = 0;
+  longest_hole(covered, h, reach, longest, at);
+  double points = 0;
+  for (const int n : covered) points += n;
+  if (points > 0) out.spacing = std::max(0.0, 2 * reach - longest) / points;
   return out;
 }
 
@@ -429,18 +425,20 @@ std::string thickness_hole_note(const SectionFacts& f) {
         (!worst || c.hole > worst->hole))
       worst = &c;
   if (!worst) return std::string();
-  const std::string where =
-      worst->hole_distance > 0 ? format_length(worst->hole_distance) + " from a stretch of " : "within ";
+  const std::string where = worst->hole_distance > 0
+                                ? format_length(worst->hole_distance) + " from a stretch of "
+                                : "within a stretch of ";
+  const std::string apart = worst->spacing > 0
+                                ? "the points about it lie " + format_length(worst->spacing) + " apart"
+                                : "no point lies";
   char text[480];
   std::snprintf(text, sizeof text,
                 "max thickness %s fails check thickness_measured: the thickest circle touches the profile "
-                "%s%s%s that no measured point covers (a hole in the data; the points lie %s apart about it, "
-                "and a hole over %s, %s of the chord, is not measured): the thickness there rests on the "
-                "fit's bridge",
+                "%s%s%s that no measured point covers (a hole in the data, where %s; a hole over %s, %s of "
+                "the chord, is not measured): the thickness there rests on the fit's bridge",
                 format_length(f.params.max_thickness).c_str(), where.c_str(),
                 worst->hole >= 3 * limit ? "at least " : "", format_length(worst->hole).c_str(),
-                worst->spacing > 0 ? format_length(worst->spacing).c_str() : "far",
-                format_length(limit).c_str(), format_share(opt.thickness_hole).c_str());
+                apart.c_str(), format_length(limit).c_str(), format_share(opt.thickness_hole).c_str());
   return text;
 }
 

@@ -51,7 +51,7 @@ struct ContactCoverage {
   /// The longest stretch that no measured point covers beginning within `near` of the
   /// point, and its distance from it (0 when it holds the point).
   double hole = 0, hole_distance = 0;
-  double spacing = 0;  ///< the usual distance between the measured points there (median; 0 unknown)
+  double spacing = 0;  ///< the points' mean distance over the reach, its longest hole left out (0: none)
 };
 
 /// The coverage of `curve` about parameter `t` by the `measured` points, over `reach`
