@@ -413,7 +413,7 @@ namespace {
 
 // The thickest circle touching the profile within or beside a hole in the data (a stretch
 // without measured points longer than thickness_hole of the chord and
-// thickness_hole_spacings times the points' usual distance there, beginning within half
+// thickness_hole_spacings times the points' mean distance there, beginning within half
 // that length of a contact): the maximum thickness rests on the fit's bridge, not on
 // measurements. "" when none is.
 std::string thickness_hole_note(const SectionFacts& f) {

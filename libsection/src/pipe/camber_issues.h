@@ -2,8 +2,8 @@
 #pragma once
 // What camber_stream says of a section beside its rows: where the other loops of a refused
 // section lie, and the issues of a measured one (edges not round, not measured, measured
-// with carried points or not circular; a camber line off the medial axis; an LE chosen by a
-// near tie), with the edge coverage they rest on.
+// with carried points or not circular; a thickest circle over a hole in the data; a camber
+// line off the medial axis; an LE chosen by a near tie), with the coverage they rest on.
 #include "detail/piecewise_curve.h"
 #include "section/bspline.h"
 #include "section/camber.h"

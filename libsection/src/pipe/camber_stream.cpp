@@ -197,7 +197,7 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
   m.le = pipe::edge_coverage(pr.fast, m.camber.le, q.all, opt.edge_hole_reach);
   m.te = pipe::edge_coverage(pr.fast, m.camber.te, q.all, opt.edge_hole_reach);
   // Holes beginning within half the longest the thickness may bridge, over a window three
-  // times that length (for the points' usual distance there).
+  // times that length (for the points' mean distance there).
   const double limit = opt.thickness_hole * m.params.chord;
   if (m.camber.thickest.radius > 0)
     for (int side = 0; side < 2; ++side)
