@@ -6,6 +6,7 @@
 // several seeds.
 #include "section/bspline.h"
 #include "section/camber.h"
+#include "section/checks.h"
 #include "section/fit_spline.h"
 #include "section/extras/generate.h"
 #include "section/io/stream.h"
@@ -289,6 +290,44 @@ TEST_CASE("pipeline: an edge measured only by carried points says so", "[pipelin
       CHECK(messages.find("trailing edge measured with points carried onto the plane") != std::string::npos);
     else
       CHECK(messages.find("trailing edge not measured") != std::string::npos);
+  }
+}
+
+TEST_CASE("pipeline: a scan with a hole at the thickest circle flags the max thickness",
+          "[pipeline][generated]") {
+  // A turbine scan 4 mm high about the plane with a patch 4 mm across unscanned at the
+  // thickest circle's suction contact over the whole height (no gap fill reaches past
+  // it): the thickness is the fit's bridge there, and camber says so; without the patch
+  // (or with one 1 mm across) it does not.
+  const BladeDesign blade = turbine_blade();
+  const double z0 = 30;
+  ScanOptions so = inspection_scan();
+  so.holes = 0;
+  so.density_min = 1;
+  so.outlier_fraction = 0;
+  so.z_min = z0 - 2;
+  so.z_max = z0 + 2;
+  so.seed = 7;
+  const Scan scan = generate_scan(blade, so);
+  const SectionTruth truth = section_truth(blade.at(z0), 8000);
+  const CamberResult exact = camber_line(fit_spline(truth.profile, truth.profile).spline);
+  for (const Eigen::Vector2d& contact : {exact.thickest.left, exact.thickest.right}) {
+    for (const double across : {0.0, 1.0, 4.0}) {
+      Cloud cloud;
+      for (const auto& p : scan.cloud.points)
+        if (!((Eigen::Vector2d(p.x(), p.y()) - contact).norm() < across / 2)) cloud.points.push_back(p);
+      SliceOptions sopt;
+      sopt.slab = 0.08;
+      const Stream stream =
+          test::after_slice(to_stream(slice(cloud, planes_at({0, 0, 1}, {z0}), sopt), "slice"));
+      const Table& params = stream.get("params", "camber");
+      REQUIRE(params.rows() == 1);
+      const CheckBits flags = flags_mask(params.at(0, params.column("flags")));
+      INFO("a patch " << across << " mm across at (" << contact.transpose() << "): flags "
+                      << check_names_text(flags) << ", max thickness "
+                      << params.at(0, params.column("max_thickness")) << " against " << truth.max_thickness);
+      CHECK(((flags & bit(Check::thickness_measured)) != 0) == (across > 2));
+    }
   }
 }
 
