@@ -168,6 +168,18 @@ std::vector<double> planes(const BladeDesign& blade) {
   return {0.3 * blade.span, 0.6 * blade.span};
 }
 
+// A clean inspection scan (no holes, full density, no outliers) of the span z0 +- half.
+ScanOptions clean_band(double z0, double half, std::uint64_t seed) {
+  ScanOptions so = inspection_scan();
+  so.holes = 0;
+  so.density_min = 1;
+  so.outlier_fraction = 0;
+  so.z_min = z0 - half;
+  so.z_max = z0 + half;
+  so.seed = seed;
+  return so;
+}
+
 }  // namespace
 
 TEST_CASE("pipeline: noisy generated blades are measured to micrometres", "[pipeline]") {
@@ -261,14 +273,7 @@ TEST_CASE("pipeline: an edge measured only by carried points says so", "[pipelin
   // says the edge is not measured.
   const BladeDesign blade = compressor_blade();
   const double z0 = 30;
-  ScanOptions so = inspection_scan();
-  so.holes = 0;
-  so.density_min = 1;
-  so.outlier_fraction = 0;
-  so.z_min = z0 - 1.5;
-  so.z_max = z0 + 1.5;
-  so.seed = 5;
-  const Scan scan = generate_scan(blade, so);
+  const Scan scan = generate_scan(blade, clean_band(z0, 1.5, 5));
   const SectionTruth truth = section_truth(blade.at(z0));
   Cloud cloud;
   for (const auto& p : scan.cloud.points)
@@ -301,14 +306,7 @@ TEST_CASE("pipeline: a scan with a hole at the thickest circle flags the max thi
   // (or with one 1 mm across) it does not.
   const BladeDesign blade = turbine_blade();
   const double z0 = 30;
-  ScanOptions so = inspection_scan();
-  so.holes = 0;
-  so.density_min = 1;
-  so.outlier_fraction = 0;
-  so.z_min = z0 - 2;
-  so.z_max = z0 + 2;
-  so.seed = 7;
-  const Scan scan = generate_scan(blade, so);
+  const Scan scan = generate_scan(blade, clean_band(z0, 2, 7));
   const SectionTruth truth = section_truth(blade.at(z0), 8000);
   const CamberResult exact = camber_line(fit_spline(truth.profile, truth.profile).spline);
   for (const Eigen::Vector2d& contact : {exact.thickest.left, exact.thickest.right}) {
