@@ -46,6 +46,7 @@ import argparse, math, os, re, subprocess, sys, tempfile
 
 import numpy as np
 
+from check_bits import check_bits, flagged_by
 from stream_tables import table
 
 here = os.path.dirname(os.path.abspath(__file__))
@@ -100,25 +101,6 @@ def stream_notes(path):
         elif line.startswith("# issue "):
             issues.append(line[8:].strip())
     return scale, sampling, issues
-
-
-def check_bits():
-    """bit -> (check name, the columns it flags; None = every column), from checks.h."""
-    text = open(os.path.join(root, "libsection", "include", "section", "checks.h")).read()
-    value = {m[0]: 1 << int(m[1]) for m in re.findall(r"(\w+) = (?:1u|CheckBits\(1\)) << (\d+),", text)}
-    bits = {}
-    # An entry may be wrapped over lines, its columns split into adjacent string literals.
-    for check, name, literals in re.findall(r'\{Check::(\w+),\s*"(\w+)",\s*((?:"[^"]*"\s*)+)\}', text):
-        columns = "".join(re.findall(r'"([^"]*)"', literals))
-        cols = None if columns.startswith("every") else set(columns.split())
-        bits[value[check]] = (name, cols)
-    return bits
-
-
-def flagged_by(flags, column, bits):
-    """The names of the set bits of `flags` that flag `column`."""
-    flags = int(flags)
-    return [name for b, (name, cols) in sorted(bits.items()) if flags & b and (cols is None or column in cols)]
 
 
 # ----- independent geometry from the raw points (mm) ---------------------------------------

@@ -14,43 +14,15 @@ by thickness_measured, and those off with no flag covering max_thickness (docs/F
 import argparse
 import csv
 import os
-import re
 import subprocess
 import sys
 import tempfile
 
+from check_bits import check_bits, flagged_by
+from stream_tables import table
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TOLERANCE = 0.005  # mm: the max thickness target (docs/ACCURACY.md)
-
-
-def tables(path):
-    """The tables of a stream file: name -> list of rows (dicts of strings)."""
-    out, name, header = {}, None, None
-    for line in open(path):
-        line = line.rstrip("\n")
-        if line.startswith("# table "):
-            name, header = line.split()[2], None
-            out.setdefault(name, [])
-        elif line.startswith("#"):
-            name = None
-        elif name is not None:
-            if header is None:
-                header = line.split(",")
-            else:
-                out[name].append(dict(zip(header, line.split(","))))
-    return out
-
-
-def thickness_bits():
-    """bit -> check name of the checks that flag max_thickness, from checks.h."""
-    text = open(os.path.join(ROOT, "libsection", "include", "section", "checks.h")).read()
-    value = {m[0]: int(m[1]) for m in re.findall(r"(\w+) = (?:1u|CheckBits\(1\)) << (\d+),", text)}
-    bits = {}
-    for check, name, literals in re.findall(r'\{Check::(\w+),\s*"(\w+)",\s*((?:"[^"]*"\s*)+)\}', text):
-        columns = "".join(re.findall(r'"([^"]*)"', literals))
-        if columns.startswith("every") or "max_thickness" in columns.split():
-            bits[value[check]] = name
-    return bits
 
 
 def run(cmd, env):
@@ -70,7 +42,7 @@ def main():
     env = dict(os.environ, LD_LIBRARY_PATH=f"{lib}:{lib}/extras:" + os.environ.get("LD_LIBRARY_PATH", ""))
     t = a.bin
     pipe = f"{t}/smooth | {t}/fitspline | {t}/camber"
-    flagging = thickness_bits()
+    bits = check_bits()
     holes = [float(x) for x in a.holes.split(",")]
     tally = {h: [0, 0, 0, 0, 0] for h in holes}  # cases, off, flagged by thickness_measured, silent, refused
     with tempfile.TemporaryDirectory() as work:
@@ -85,16 +57,16 @@ def main():
                         sys.exit(f"bladegen failed: {r.stderr}")
                     true_thickness = float(next(csv.DictReader(open(truth)))["max_thickness"])
                     r = run(f"{t}/slice {scan} --at {z} | {pipe} > {work}/whole.csv", env)
-                    whole = tables(f"{work}/whole.csv")
-                    params, frame = whole["params"][0], whole["frames"][0]
-                    at = float(params["max_thickness_pos"])
-                    station = min(whole["thickness"], key=lambda s: abs(float(s["fraction"]) - at))
-                    origin = (float(frame["origin_x"]), float(frame["origin_y"]))
-                    u = (float(frame["u_x"]), float(frame["u_y"]))
-                    v = (float(frame["v_x"]), float(frame["v_y"]))
+                    whole = f"{work}/whole.csv"
+                    frame = table(whole, "frames")[0]
+                    at = table(whole, "params")[0]["max_thickness_pos"]
+                    station = min(table(whole, "thickness"), key=lambda s: abs(s["fraction"] - at))
+                    origin = (frame["origin_x"], frame["origin_y"])
+                    u = (frame["u_x"], frame["u_y"])
+                    v = (frame["v_x"], frame["v_y"])
                     points = [line.split() for line in open(scan)]
                     for side in ("pressure", "suction"):
-                        cu, cv = float(station[side + "_u"]), float(station[side + "_v"])
+                        cu, cv = station[side + "_u"], station[side + "_v"]
                         cx = origin[0] + cu * u[0] + cv * v[0]
                         cy = origin[1] + cu * u[1] + cv * v[1]
                         for hole in holes:
@@ -104,15 +76,14 @@ def main():
                                         f.write(" ".join(p) + "\n")
                             run(f"{t}/slice {work}/holed.xyz --at {z} | {pipe} > {work}/holed.csv", env)
                             tally[hole][0] += 1
-                            try:
-                                row = tables(f"{work}/holed.csv")["params"][0]
-                            except (KeyError, IndexError):
+                            rows = table(f"{work}/holed.csv", "params")
+                            if not rows:
                                 tally[hole][4] += 1
                                 print(f"{kind:10s} z {z:4.0f} seed {seed} {side:8s} hole {hole} mm: refused")
                                 continue
-                            flags = int(float(row["flags"]))
-                            names = [n for b, n in sorted(flagging.items()) if flags >> b & 1]
-                            error = float(row["max_thickness"]) - true_thickness
+                            row = rows[0]
+                            names = flagged_by(row["flags"], "max_thickness", bits)
+                            error = row["max_thickness"] - true_thickness
                             off = abs(error) > TOLERANCE
                             tally[hole][1] += off
                             tally[hole][2] += "thickness_measured" in names

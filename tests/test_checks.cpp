@@ -26,10 +26,7 @@ using section::Check;
 namespace {
 
 std::string names(section::CheckBits flags) {
-  std::string out;
-  for (const auto& k : section::check_names)
-    if (flags & section::bit(k.check)) out += std::string(out.empty() ? "" : " ") + k.name;
-  return out;
+  return section::check_names_text(flags, " ");
 }
 
 }  // namespace

@@ -293,6 +293,15 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
 
 namespace {
 
+// Sets `check`'s bit in a params row's flags cell; false when it was set already (its
+// issue was said then).
+bool set_flag(double& flags, Check check) {
+  const CheckBits bits = static_cast<CheckBits>(flags);
+  if (bits & bit(check)) return false;
+  flags = double(bits | bit(check));
+  return true;
+}
+
 // A params row of one of the streams, as check_blade reads it.
 struct HeldRow {
   Stream* stream;
@@ -340,9 +349,7 @@ void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOpt
   for (const Jump& j : check_blade(sections, options)) {
     const HeldRow& h = rows[j.index];
     Table& t = *h.stream->find(schema::params.name);
-    double& flags = t.values[h.row * t.columns.size() + t.column("flags")];
-    if (static_cast<CheckBits>(flags) & bit(j.check)) continue;  // checked before: said once
-    flags = double(static_cast<CheckBits>(flags) | bit(j.check));
+    if (!set_flag(t.values[h.row * t.columns.size() + t.column("flags")], j.check)) continue;
     t.source.reset();  // changed: formatted from its values
     h.stream->issues.push_back({h.section, 0, "camber", pipe::jump_note(j)});
   }
@@ -362,9 +369,7 @@ void flag_every_row(Stream& stream, Check check, const std::string& why) {
   if (!t || t->rows() == 0) return;
   const std::size_t flags = t->column("flags"), id = t->column(col::section);
   for (std::size_t r = 0; r < t->rows(); ++r) {
-    double& f = t->values[r * t->columns.size() + flags];
-    if (static_cast<CheckBits>(f) & bit(check)) continue;  // flagged before: said once
-    f = double(static_cast<CheckBits>(f) | bit(check));
+    if (!set_flag(t->values[r * t->columns.size() + flags], check)) continue;
     stream.issues.push_back({static_cast<int>(t->at(r, id)), 0, "camber", why});
   }
   t->source.reset();  // changed: formatted from its values
