@@ -10,9 +10,17 @@ Usage: scripts/validate_thickness_hole.py [--bin DIR] [--kinds turbine,compresso
 
 Prints a line per case and, per hole size, the thickness errors over 5 um, those flagged
 by thickness_measured, and those off with no flag covering max_thickness (docs/FORMAT.md).
+Then the thickness stations (table thickness) of the same runs, apart those beside the
+hole (a contact within its radius and half the 5 % chord limit of its centre) and the
+others: each against the same station of the scan without the hole (the stations have no
+exact truth: what the hole moved it by, and elsewhere what removing points moves a run by),
+those moved by over 5 um, those whose row's flags hold thickness_measured, and those moved
+with no flag in their row. Exits 1 when a max thickness is off, or a station beside the
+hole moved, with no flag.
 """
 import argparse
 import csv
+import math
 import os
 import subprocess
 import sys
@@ -45,6 +53,9 @@ def main():
     bits = check_bits()
     holes = [float(x) for x in a.holes.split(",")]
     tally = {h: [0, 0, 0, 0, 0] for h in holes}  # cases, off, flagged by thickness_measured, silent, refused
+    # stations beside the hole (True) and elsewhere: count, moved, flagged by thickness_measured, moved silent
+    moved = {(h, near): [0, 0, 0, 0] for h in holes for near in (True, False)}
+    measured_bit = next(b for b, (name, _) in bits.items() if name == "thickness_measured")
     with tempfile.TemporaryDirectory() as work:
         for kind in a.kinds.split(","):
             for z in [float(x) for x in a.heights.split(",")]:
@@ -82,6 +93,21 @@ def main():
                                 print(f"{kind:10s} z {z:4.0f} seed {seed} {side:8s} hole {hole} mm: refused")
                                 continue
                             row = rows[0]
+                            beside = hole / 2 + 0.025 * row["chord"]
+                            for before, after in zip(table(whole, "thickness"), table(f"{work}/holed.csv", "thickness")):
+                                near = min(math.hypot(after[c + "_u"] - cu, after[c + "_v"] - cv)
+                                           for c in ("pressure", "suction")) <= beside
+                                shift = abs(after["thickness"] - before["thickness"]) > TOLERANCE
+                                silent = shift and not int(after["flags"])
+                                tallied = moved[(hole, near)]
+                                tallied[0] += 1
+                                tallied[1] += shift
+                                tallied[2] += bool(int(after["flags"]) & measured_bit)
+                                tallied[3] += silent
+                                if silent:
+                                    print(f"{kind:10s} z {z:4.0f} seed {seed} {side:8s} hole {hole} mm: station "
+                                          f"{after['fraction']:.2f} {'beside the hole' if near else 'elsewhere'} "
+                                          f"moved {(after['thickness'] - before['thickness']) * 1e3:+6.1f} um, no flag")
                             names = flagged_by(row["flags"], "max_thickness", bits)
                             error = row["max_thickness"] - true_thickness
                             off = abs(error) > TOLERANCE
@@ -94,7 +120,16 @@ def main():
     for hole in holes:
         n, off, measured, silent, refused = tally[hole]
         print(f"{hole:7.1f} {n:6d} {off:8d} {measured:19d} {silent:14d} {refused:8d}")
-    return 1 if any(x[3] for x in tally.values()) else 0
+    print("stations   hole mm  stations  moved>5um  thickness_measured  moved-unflagged")
+    for near in (True, False):
+        for hole in holes:
+            n, shifted, measured, silent = moved[(hole, near)]
+            where = "beside" if near else "elsewhere"
+            print(f"{where:9s} {hole:7.1f} {n:9d} {shifted:10d} {measured:19d} {silent:16d}")
+    # Holes under the limit are bridged by design (docs/CAMBER.md): not counted against it.
+    limit_holes = [h for h in holes if h >= 2.5]
+    beside_silent = any(moved[(h, True)][3] for h in limit_holes)
+    return 1 if any(x[3] for x in tally.values()) or beside_silent else 0
 
 
 if __name__ == "__main__":

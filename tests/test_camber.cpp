@@ -191,6 +191,11 @@ TEST_CASE("camber: a whole stream's notes flag every row, once, unless checked a
   section::Stream whole = noted();
   section::camber_stream(whole);
   CHECK((flags_of(whole) & both) == both);
+  // Every value: each thickness station's row too.
+  const section::Table& stations = *whole.find("thickness");
+  REQUIRE(stations.rows() > 0);
+  for (std::size_t r = 0; r < stations.rows(); ++r)
+    CHECK((static_cast<section::CheckBits>(stations.at(r, stations.column("flags"))) & both) == both);
   REQUIRE(whole.issues.size() == 2);
   CHECK(whole.issues[0].message.find("fail check units") != std::string::npos);
   CHECK(whole.issues[1].message.find("fail check registration") != std::string::npos);
@@ -384,9 +389,34 @@ TEST_CASE("camber: a plain profile's sparse noisy points flag its thickness (noi
   }
 }
 
+namespace {
+
+// A row of the thickness table: its contacts and whether its flags say a hole.
+struct Station {
+  double fraction;
+  Eigen::Vector2d pressure, suction;
+  bool unmeasured;
+};
+
+std::vector<Station> stations(const section::Stream& s) {
+  const section::Table& t = s.get("thickness", "test");
+  auto at = [&](std::size_t r, const char* c) { return t.at(r, t.column(c)); };
+  std::vector<Station> out;
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    out.push_back(
+        {at(r, "fraction"),
+         {at(r, "pressure_u"), at(r, "pressure_v")},
+         {at(r, "suction_u"), at(r, "suction_v")},
+         (section::flags_mask(at(r, "flags")) & section::bit(section::Check::thickness_measured)) != 0});
+  return out;
+}
+
+}  // namespace
+
 TEST_CASE(
     "camber: the thickest circle touching a hole in the data flags the max thickness "
-    "(thickness_measured), a measured one or evenly sparse points not",
+    "(thickness_measured), and each thickness station touching one its row; a measured one or evenly "
+    "sparse points not",
     "[camber]") {
   // A turbine section's exact profile, a point every 0.08 mm (a dense scan's spacing).
   const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30), 40000);
@@ -410,6 +440,7 @@ TEST_CASE(
   };
   const section::Stream whole = measured(dense);
   CHECK_FALSE(flagged(whole));
+  for (const Station& st : stations(whole)) CHECK_FALSE(st.unmeasured);
   // The contacts of the thickest circle, from the same profile measured whole.
   const section::CamberResult c = section::camber_line(section::fit_spline(dense, dense).spline);
   for (const Eigen::Vector2d contact : {c.thickest.left, c.thickest.right}) {
@@ -425,6 +456,18 @@ TEST_CASE(
         CHECK(std::any_of(s.issues.begin(), s.issues.end(), [](const section::SectionIssue& i) {
           return i.message.find("fails check thickness_measured") != std::string::npos;
         }));
+      // Each thickness station by its own circle: flagged with a contact in the hole, not
+      // with both farther than the hole and half the limit (1 mm) beyond it.
+      const auto rows = stations(s);
+      REQUIRE(rows.size() == 19);
+      for (const Station& st : rows) {
+        const double from_hole = std::min((st.pressure - contact).norm(), (st.suction - contact).norm());
+        INFO("station " << st.fraction << ", " << from_hole << " mm from the hole's centre");
+        if (across < 2 || from_hole > across / 2 + 1.5)
+          CHECK_FALSE(st.unmeasured);
+        else if (from_hole < across / 2)
+          CHECK(st.unmeasured);
+      }
     }
   }
   // Points 2.5 mm apart all along (a CMM row): every stretch is that long, none a hole.
@@ -436,5 +479,7 @@ TEST_CASE(
     const double from_edge = std::min({s, std::abs(s - truth.te_s), truth.perimeter - s});
     next = std::size_t(1e3 * (s + (from_edge < 4 ? 0.05 : 2.5)));
   }
-  CHECK_FALSE(flagged(measured(sparse)));
+  const section::Stream row = measured(sparse);
+  CHECK_FALSE(flagged(row));
+  for (const Station& st : stations(row)) CHECK_FALSE(st.unmeasured);
 }

@@ -165,6 +165,36 @@ TEST_CASE("plot: a full section is drawn to scale with v up and the curve on the
   }
 }
 
+TEST_CASE("plot: a value a check flags is drawn red with the checks it failed, never bare", "[plot]") {
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(0), 8000);
+  section::Stream stream = full_stream(truth, 800, 300);
+  const auto count = [](const std::string& svg, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
+    return n;
+  };
+  const std::string clean = section::plot_svg(stream, 0);
+  CHECK(count(clean, " flagged\"") == 0);
+  // The max thickness flagged by a hole at its circle, and station 3's own circle too.
+  section::Table& params = *stream.find("params");
+  params.values[params.column("flags")] = double(section::bit(section::Check::thickness_measured));
+  params.source.reset();
+  section::Table& thickness = *stream.find("thickness");
+  REQUIRE(thickness.rows() > 3);
+  thickness.values[3 * thickness.columns.size() + thickness.column("flags")] =
+      double(section::bit(section::Check::thickness_measured));
+  thickness.source.reset();
+  const std::string svg = section::plot_svg(stream, 0);
+  bool balanced = false;
+  const auto es = parse(svg, &balanced);
+  REQUIRE(balanced);
+  // Two rows of the table (max thickness and its place), each with its check under it.
+  CHECK(with_class(es, "param-value").size() == with_class(parse(clean, &balanced), "param-value").size());
+  CHECK(count(svg, "class=\"param-value flagged\"") == 2);
+  CHECK(count(svg, "fails check thickness_measured") == 2);
+  CHECK(count(subtree(svg, "s0-main"), "class=\"station flagged\"") == 1);
+}
+
 TEST_CASE("plot: an issue's control characters and stray bytes do not break the SVG", "[plot]") {
   const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(0), 8000);
   section::Stream stream = full_stream(truth, 800, 300);

@@ -58,14 +58,14 @@ std::vector<int> convex_hull(const std::vector<Eigen::Vector2d>& p) {
 // from the edge point at parameter t_edge outward along each side (`ahead`: from m toward
 // the edge point): for a station so near the edge point (2 um on a 48 mm camber line) that
 // m lies outside the sampled polygon, whose chords cut the edge's arc, and the rays from m
-// miss it. `left` gets the crossing on the side of `normal`, `right` the other.
+// miss it. `left` gets the parameter of the crossing on the side of `normal`, `right` the other's.
 bool edge_crossings(const detail::SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Vector2d& ahead,
-                    const Eigen::Vector2d& normal, double t_edge, Eigen::Vector2d& left,
-                    Eigen::Vector2d& right) {
+                    const Eigen::Vector2d& normal, double t_edge, double& left, double& right) {
   const auto g = [&](double t) { return ahead.dot(pr.fast.point(pr.wrap(t)) - m); };
   if (!(g(t_edge) > 0)) return false;  // m is not short of the edge point
   const double step = pr.period / static_cast<double>(pr.samples.size()) / 8;
   Eigen::Vector2d hit[2];
+  double at[2];
   for (int side = 0; side < 2; ++side) {
     const double dir = side == 0 ? 1 : -1;
     double a = t_edge, b = a;
@@ -80,12 +80,13 @@ bool edge_crossings(const detail::SampledProfile& pr, const Eigen::Vector2d& m, 
       const double c = 0.5 * (a + b);
       (g(c) > 0 ? a : b) = c;
     }
-    hit[side] = pr.fast.point(pr.wrap(0.5 * (a + b)));
+    at[side] = pr.wrap(0.5 * (a + b));
+    hit[side] = pr.fast.point(at[side]);
   }
   const double h0 = (hit[0] - m).dot(normal), h1 = (hit[1] - m).dot(normal);
   if (!(std::max(h0, h1) >= 0 && std::min(h0, h1) <= 0)) return false;
-  left = h0 >= h1 ? hit[0] : hit[1];
-  right = h0 >= h1 ? hit[1] : hit[0];
+  left = h0 >= h1 ? at[0] : at[1];
+  right = h0 >= h1 ? at[1] : at[0];
   return true;
 }
 
@@ -294,6 +295,7 @@ std::vector<ThicknessStation> detail::thickness_stations(const SampledProfile& p
     st.s = f * camber.length;
     if (f == 0 || f == 1) {  // the edge point itself: no width across it
       st.point = st.pressure = st.suction = f == 0 ? camber.le.point : camber.te.point;
+      st.pressure_t = st.suction_t = f == 0 ? camber.le.t : camber.te.t;
       out.push_back(st);
       continue;
     }
@@ -318,13 +320,12 @@ std::vector<ThicknessStation> detail::thickness_stations(const SampledProfile& p
       // On an extension (or where no circle fits): the width across the camber normal.
       const bool at_le = st.s <= camber.ext_le;
       const Eigen::Vector2d d = at_le ? camber.le_tangent : camber.te_tangent;
-      double tl = 0, tr = 0;
-      if (detail::ray_hit(pr, c.center, left_normal(d), tl) &&
-          detail::ray_hit(pr, c.center, -left_normal(d), tr)) {
-        c.left = pr.fast.point(tl);
-        c.right = pr.fast.point(tr);
-      } else if (!edge_crossings(pr, c.center, at_le ? Eigen::Vector2d(-d) : d, left_normal(d),
-                                 at_le ? camber.le.t : camber.te.t, c.left, c.right)) {
+      double& tl = c.t_left;
+      double& tr = c.t_right;
+      if (!(detail::ray_hit(pr, c.center, left_normal(d), tl) &&
+            detail::ray_hit(pr, c.center, -left_normal(d), tr)) &&
+          !edge_crossings(pr, c.center, at_le ? Eigen::Vector2d(-d) : d, left_normal(d),
+                          at_le ? camber.le.t : camber.te.t, tl, tr)) {
         char text[200];
         std::snprintf(text, sizeof text,
                       "params: the camber normal at station %.9g misses the profile (%.3g from the %s edge "
@@ -332,11 +333,16 @@ std::vector<ThicknessStation> detail::thickness_stations(const SampledProfile& p
                       f, at_le ? st.s : camber.length - st.s, at_le ? "leading" : "trailing");
         throw Error(text);
       }
+      c.left = pr.fast.point(tl);
+      c.right = pr.fast.point(tr);
       st.thickness = (c.left - c.right).norm();
     }
     st.point = c.center;
-    st.pressure = camber.pressure_side > 0 ? c.left : c.right;
-    st.suction = camber.pressure_side > 0 ? c.right : c.left;
+    const bool left_pressure = camber.pressure_side > 0;
+    st.pressure = left_pressure ? c.left : c.right;
+    st.suction = left_pressure ? c.right : c.left;
+    st.pressure_t = left_pressure ? c.t_left : c.t_right;
+    st.suction_t = left_pressure ? c.t_right : c.t_left;
     out.push_back(st);
   }
   return out;

@@ -117,7 +117,8 @@ void declare_edges(CLI::App& app, CamberArgs& a) {
   add_checked(app, "--thickness-hole", o.thickness_hole,
               "Chord fraction: the thickest circle touching the profile within a stretch without measured "
               "points this long (and --thickness-hole-spacings times the points' mean distance there) "
-              "flags the max thickness (check thickness_measured; 0 = not checked)",
+              "flags the max thickness (check thickness_measured), and a thickness station whose circle "
+              "touches one its row (0 = not checked)",
               CLI::Range(0.0, 1.0));
   add_checked(app, "--thickness-hole-spacings", o.thickness_hole_spacings,
               "The points' mean distances such a stretch must exceed (evenly sparse points are no hole)",

@@ -31,7 +31,8 @@ struct CamberOptions {
   double edge_hole_reach = 1.2;       ///< stream: ... beginning within this many radii of the edge point
   /// Stream: the thickest circle touching the profile within a stretch without measured
   /// points longer than this fraction of the chord, and longer than thickness_hole_spacings
-  /// times the points' mean distance there, flags the maximum thickness (the fit bridges it).
+  /// times the points' mean distance there, flags the maximum thickness (the fit bridges it);
+  /// a thickness station's circle touching one, that station's row of table thickness.
   double thickness_hole = 0.05;
   double thickness_hole_spacings = 4;  ///< stream: see thickness_hole
   double off_axis = 0.1;               ///< stream: inscribed radii off the medial axis that make an issue

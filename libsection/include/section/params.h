@@ -46,6 +46,7 @@ struct ThicknessStation {
   Eigen::Vector2d point{0, 0};  ///< camber point (the inscribed circle's centre)
   double thickness = 0;         ///< inscribed diameter (on an extension: width across the camber normal)
   Eigen::Vector2d pressure{0, 0}, suction{0, 0};  ///< contact points on each side
+  double pressure_t = 0, suction_t = 0;           ///< their parameters on the profile
 };
 
 /// Thickness at `fractions` of the camber length (values outside [0, 1] are an error; at 0

@@ -4,6 +4,7 @@
 #include "plot_parts.h"
 
 #include "io/text.h"
+#include "section/checks.h"
 #include "section/error.h"
 #include "section/fit_spline.h"
 #include "section/io/stream.h"
@@ -208,13 +209,15 @@ SectionData collect(const Stream& stream, int section, const Curves& curves) {
       d.camber.emplace_back(row[0], row[1]);
       d.camber_s.push_back(row[2]);
     }
-  for (const auto& row :
-       rows_of(stream, "thickness", section, {"fraction", "u", "v", "thickness", "suction_u", "suction_v"})) {
+  // flags: NaN, none flagged, in a stream written before the thickness rows had them.
+  for (const auto& row : rows_of(stream, "thickness", section,
+                                 {"fraction", "u", "v", "thickness", "suction_u", "suction_v", "flags"})) {
     Station s;
     s.fraction = row[0];
     s.center = {row[1], row[2]};
     s.thickness = row[3];
     s.suction = {row[4], row[5]};
+    s.flagged = flags_mask(row[6]) != 0;
     if (finite(s.center) && std::isfinite(s.thickness) && s.thickness > 0) d.stations.push_back(s);
   }
   d.params = row_map(stream, "params", section, 0);
@@ -235,33 +238,36 @@ double param(const SectionData& d, const std::string& name) {
 std::vector<Row> parameter_rows(const SectionData& d) {
   std::vector<Row> rows;
   const std::string& u = d.units;
+  // The checks that flag a params column: a value is never shown bare when one failed.
+  const CheckBits flags = flags_mask(param(d, "flags"));
+  auto failed = [&](const std::string& key) { return check_names_text(checks_flagging(flags, key.c_str())); };
   auto length = [&](const char* label, const std::string& key) {
     const double x = param(d, key);
-    if (std::isfinite(x)) rows.push_back({label, fixed(x, 4) + " " + u});
+    if (std::isfinite(x)) rows.push_back({label, fixed(x, 4) + " " + u, failed(key)});
   };
   auto angle = [&](const char* label, const std::string& key) {
     const double x = param(d, key);
-    if (std::isfinite(x)) rows.push_back({label, fixed(x, 3) + "\xC2\xB0"});
+    if (std::isfinite(x)) rows.push_back({label, fixed(x, 3) + "\xC2\xB0", failed(key)});
   };
   length("chord", "chord");
   length("camber length", "camber_length");
   length("max thickness", "max_thickness");
   if (const double x = param(d, "max_thickness_pos"); std::isfinite(x))
-    rows.push_back({"max thickness at", fixed(100 * x, 2) + " % of camber"});
+    rows.push_back({"max thickness at", fixed(100 * x, 2) + " % of camber", failed("max_thickness_pos")});
   const char* shapes[] = {"round", "blunt", "sharp"};
   for (const std::string e : {"le", "te"}) {
     const double r = param(d, e + "_radius"), shape = param(d, e + "_shape");
     if (!std::isfinite(r)) continue;
     std::string value = fixed(r, 4) + " " + u;
     if (shape == 0 || shape == 1 || shape == 2) value += " (" + std::string(shapes[int(shape)]) + ")";
-    rows.push_back({e == "le" ? "LE radius" : "TE radius", value});
+    rows.push_back({e == "le" ? "LE radius" : "TE radius", value, failed(e + "_radius")});
   }
   angle("stagger", "stagger");
   angle("inlet angle", "inlet_angle");
   angle("outlet angle", "outlet_angle");
   angle("camber angle", "camber_angle");
   if (const double a = param(d, "area"); std::isfinite(a))
-    rows.push_back({"area", fixed(a, 3) + " " + u + "\xC2\xB2"});
+    rows.push_back({"area", fixed(a, 3) + " " + u + "\xC2\xB2", failed("area")});
   length("caliper chord", "caliper_chord");
   if (!d.fit.empty()) {
     const auto get = [&](const char* k) {

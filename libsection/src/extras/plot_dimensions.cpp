@@ -198,7 +198,9 @@ void draw_station_labels(std::string& s, const SectionData& d, const View& v, st
     if (crowded) continue;
     placed.push_back(at);
     s += "<g class=\"station-label\" data-value=\"" + trimmed(st.thickness, 9) + "\">" +
-         label("station-value", fixed(st.thickness, 3), at, dir, outside ? "start" : "middle", 3.5) + "</g>";
+         label(st.flagged ? "station-value flagged" : "station-value", fixed(st.thickness, 3), at, dir,
+               outside ? "start" : "middle", 3.5) +
+         "</g>";
   }
   s += "</g>";
 }

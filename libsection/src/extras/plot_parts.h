@@ -53,6 +53,7 @@ struct Station {
   double fraction = 0, thickness = 0;
   V2 center{0, 0};
   V2 suction{nan, nan};  // where the inscribed circle touches the suction side, when known
+  bool flagged = false;  // its row's flags hold a failed check (a thickness it cannot stand behind)
 };
 
 // compare's deviation of one measured point (plot_compare.cpp).
@@ -124,8 +125,10 @@ std::string plane_name(const SectionData& d);
 
 struct Row {
   std::string name, value;
+  std::string failed = {};  ///< the checks that flag the value, ", "-separated ("" when none)
 };
-/// The rows of the parameter table: what the params and splines rows hold, with units.
+/// The rows of the parameter table: what the params and splines rows hold, with units, and
+/// the failed checks that flag each value (the params row's flags).
 std::vector<Row> parameter_rows(const SectionData& d);
 
 // ---------------------------------------------------------------- geometry (plot_geometry.cpp)

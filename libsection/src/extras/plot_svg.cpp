@@ -19,6 +19,7 @@ const char* const style =
     ".skeleton{fill:none;stroke:#d62728;stroke-width:1.2;stroke-dasharray:5 3}"
     ".station{fill:none;stroke:#2ca02c;stroke-width:.9}"
     ".station-center{fill:#2ca02c}"
+    ".station.flagged{stroke:#c00;stroke-dasharray:3 2}.station-center.flagged{fill:#c00}"
     ".chord{stroke:#444;stroke-width:1.1;stroke-dasharray:7 4}"
     ".le-circle{fill:none;stroke:#ff7f0e;stroke-width:1.8}"
     ".te-circle{fill:none;stroke:#9467bd;stroke-width:1.8}"
@@ -27,13 +28,15 @@ const char* const style =
     ".inset-label{font-weight:bold}"
     ".scale-bar-back{fill:#fff;fill-opacity:.8}.scale-bar-line{stroke:#000;stroke-width:2.5}.scale-bar-tick{"
     "stroke:#000;stroke-width:1.5}"
-    ".param-name{fill:#444}.param-value{font-weight:bold;text-anchor:end}"
+    ".param-name{fill:#444}.param-value{font-weight:bold;text-anchor:end}.param-value.flagged{fill:#c00}"
+    ".param-fails{fill:#c00;font-size:11px;text-anchor:end}"
     ".param-head{font-weight:bold;font-size:14px}"
     ".issue{fill:#c00}.empty{fill:#888;font-style:italic}"
     ".legend line{stroke-width:2.5}"
     ".points{fill:none;stroke:#1f77b4;stroke-opacity:.6;stroke-linecap:round}"
     ".dim-line,.dim-ext{stroke:#0b5394;stroke-width:1}.dim-ext{stroke-width:.7}.dim-arrow{fill:#0b5394}"
-    ".dim-label{font-size:12px;fill:#0b5394}.station-value{font-size:10px;fill:#1a7a1a}";
+    ".dim-label{font-size:12px;fill:#0b5394}.station-value{font-size:10px;fill:#1a7a1a}"
+    ".station-value.flagged{fill:#c00}";
 
 // 1, 2 or 5 times a power of ten, at most `target`.
 double nice_length(double target) {
@@ -117,8 +120,10 @@ void draw_geometry(std::string& s, const SectionData& d, const View& v, const Bo
       Box b;
       b.add(st.center, 0.5 * st.thickness);
       if (!b.touches(near)) continue;
-      circle(s, "station", v, st.center, 0.5 * st.thickness * v.scale);
-      circle(s, "station-center", v, st.center, 1.8);
+      // A thickness its row flags (a hole at its circle's contact, ...) drawn apart.
+      const std::string flagged = st.flagged ? " flagged" : "";
+      circle(s, "station" + flagged, v, st.center, 0.5 * st.thickness * v.scale);
+      circle(s, "station-center" + flagged, v, st.center, 1.8);
     }
     s += "</g>";
   }
@@ -391,9 +396,17 @@ double param_table(Page& p, const TablePlace& at) {
     body += "<text class=\"param-name\" x=\"" + px(table_x) + "\" y=\"" + px(ty) + "\">" + escape(r.name) +
             "</text>";
     if (text_width(r.name, 13) + text_width(r.value, 13) + 12 > value_x - table_x) ty += 16;
-    body += "<text class=\"param-value\" x=\"" + px(value_x) + "\" y=\"" + px(ty) + "\">" + escape(r.value) +
-            "</text>";
+    const bool flagged = !r.failed.empty();
+    body += "<text class=\"param-value" + std::string(flagged ? " flagged" : "") + "\" x=\"" + px(value_x) +
+            "\" y=\"" + px(ty) + "\">" + escape(r.value) + "</text>";
     ty += 18;
+    // A value a check flags is not shown bare: the checks it failed under it.
+    if (flagged)
+      for (const auto& line : wrap("fails check " + r.failed, value_x - table_x, 11)) {
+        body += "<text class=\"param-fails\" x=\"" + px(value_x) + "\" y=\"" + px(ty - 3) + "\">" +
+                escape(line) + "</text>";
+        ty += 14;
+      }
   }
   if (rows.empty()) {
     body += "<text class=\"empty\" x=\"" + px(table_x) + "\" y=\"" + px(ty) +

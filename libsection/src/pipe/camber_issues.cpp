@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The issues camber_stream reports on a section, and the edge coverage they rest on.
+// The issues camber_stream reports on a section.
 #include "pipe/camber_issues.h"
 
 #include "section/edge.h"
@@ -13,11 +13,6 @@
 namespace section::pipe {
 
 namespace {
-
-// The edge's own scale: its radius, or a blunt edge's face width (0 for a sharp edge).
-double edge_size(const Edge& e) {
-  return e.radius > 0 ? e.radius : e.face;
-}
 
 std::string join(std::string a, const std::string& b) {
   return a.empty() ? b : b.empty() ? a : a + ", " + b;
@@ -131,122 +126,6 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
   return " (" + out + ")" +
          (cut ? "; a small loop this close is often a piece of the profile cut off by a gap in the data"
               : "");
-}
-
-namespace {
-
-// Which of 2 half + 1 samples of `curve`, every h = reach / half along it from -reach to
-// +reach about parameter t, the `measured` points cover, and by how many: a point covers its
-// nearest sample if that lies within 2h. Empty where the curve stops advancing (a zero speed).
-std::vector<int> covered_about(const detail::PiecewiseCurve& curve, double t0,
-                               const std::vector<Eigen::Vector2d>& measured, double reach, int half) {
-  const double h = reach / half;
-  std::vector<Eigen::Vector2d> samples(2 * half + 1);
-  detail::PiecewiseCurve::Cursor cursor;
-  detail::CurveJet jet = curve.jet(curve.locate(t0, cursor));
-  samples[half] = jet.point;
-  const double speed0 = jet.d1.norm();
-  for (int dir : {-1, 1}) {
-    double t = t0, speed = speed0;
-    for (int k = 1; k <= half; ++k) {
-      if (!(speed > 0)) return {};
-      t += dir * h / speed;
-      jet = curve.jet(curve.locate(t, cursor));
-      samples[half + dir * k] = jet.point;
-      speed = jet.d1.norm();
-    }
-  }
-  // Samples are bucketed in cells wider than 2h, so the 3 x 3 cells around a point hold
-  // every sample that can count; ties go to the lowest index, as a scan of all samples would give.
-  const double cell = 2.5 * h;
-  Eigen::Vector2d low = samples[half], high = samples[half];
-  for (const auto& s : samples)
-    if (s.allFinite()) low = low.cwiseMin(s), high = high.cwiseMax(s);
-  const int nx = static_cast<int>((high.x() - low.x()) / cell) + 1,
-            ny = static_cast<int>((high.y() - low.y()) / cell) + 1;
-  auto cell_of = [&](double v, double v0, int n) {
-    return static_cast<int>(std::clamp(std::floor((v - v0) / cell), -1.0, double(n)));
-  };
-  std::vector<int> head(static_cast<std::size_t>(nx) * ny, -1), next(samples.size(), -1);
-  for (int k = static_cast<int>(samples.size()) - 1; k >= 0; --k) {
-    if (!samples[k].allFinite()) continue;
-    const std::size_t c =
-        std::size_t(cell_of(samples[k].y(), low.y(), ny - 1)) * nx + cell_of(samples[k].x(), low.x(), nx - 1);
-    next[k] = head[c];
-    head[c] = k;
-  }
-  std::vector<int> covered(samples.size(), 0);
-  for (const auto& q : measured) {
-    if ((q - samples[half]).norm() > reach + 2 * h) continue;
-    const int cx = cell_of(q.x(), low.x(), nx), cy = cell_of(q.y(), low.y(), ny);
-    int best = -1;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ny - 1); ++y)
-      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, nx - 1); ++x)
-        for (int k = head[std::size_t(y) * nx + x]; k >= 0; k = next[k]) {
-          const double d = (q - samples[k]).squaredNorm();
-          if (d < best_d || (d == best_d && k < best)) best_d = d, best = k;
-        }
-    if (best >= 0 && std::sqrt(best_d) <= 2 * h) ++covered[best];
-  }
-  return covered;
-}
-
-// The longest uncovered stretch of `covered` (samples h apart about its middle one) that
-// begins within `near` of the middle, into `length` and its `distance` from it (0 when it
-// holds the middle); both left as they are when there is none.
-void longest_hole(const std::vector<int>& covered, double h, double near, double& length, double& distance) {
-  const int half = int(covered.size() / 2);
-  for (int k = 0; k <= 2 * half;) {
-    if (covered[k]) {
-      ++k;
-      continue;
-    }
-    int e = k;
-    while (e <= 2 * half && !covered[e]) ++e;
-    const double l = (e - k + 1) * h, d = k > half ? (k - 1 - half) * h : e <= half ? (half - e) * h : 0.0;
-    if (d <= near && l > length) length = l, distance = d;
-    k = e;
-  }
-}
-
-}  // namespace
-
-EdgeCoverage edge_coverage(const detail::PiecewiseCurve& curve, const Edge& edge,
-                           const std::vector<Eigen::Vector2d>& measured, double arc_reach) {
-  EdgeCoverage out;
-  const double size = edge_size(edge);
-  if (measured.empty() || !(size > 0) || !std::isfinite(edge.t)) return out;
-  const int half = 200;
-  const double reach = 3 * 3.14159265358979 * size, h = reach / half;
-  const std::vector<int> covered = covered_about(curve, edge.t, measured, reach, half);
-  if (covered.empty()) return out;
-  int lo = half, hi = half;
-  while (lo > 0 && !covered[lo]) --lo;
-  while (hi < 2 * half && !covered[hi]) ++hi;
-  if (!covered[half]) out.around = (hi - lo) * h;
-  longest_hole(covered, h, arc_reach * size, out.hole, out.hole_distance);
-  return out;
-}
-
-ContactCoverage contact_coverage(const detail::PiecewiseCurve& curve, double t,
-                                 const std::vector<Eigen::Vector2d>& measured, double reach, double near) {
-  ContactCoverage out;
-  if (measured.empty() || !(reach > 0) || !std::isfinite(t)) return out;
-  // Samples every 3 % of the longest hole the thickness may bridge (0.06 mm at the default
-  // 5 % of a 40 mm chord) tell its length to that.
-  const int half = 100;
-  const double h = reach / half;
-  const std::vector<int> covered = covered_about(curve, t, measured, reach, half);
-  if (covered.empty()) return out;
-  longest_hole(covered, h, near, out.hole, out.hole_distance);
-  // The points' mean distance over the window but its longest hole.
-  double longest = 0, at = 0;
-  longest_hole(covered, h, reach, longest, at);
-  double points = 0;
-  for (const int n : covered) points += n;
-  if (points > 0) out.spacing = std::max(0.0, 2 * reach - longest) / points;
-  return out;
 }
 
 namespace {
@@ -421,9 +300,7 @@ std::string thickness_hole_note(const SectionFacts& f) {
   const double limit = opt.thickness_hole * f.params.chord;
   const ContactCoverage* worst = nullptr;
   for (const ContactCoverage& c : f.thickest)
-    if (c.hole > limit && c.hole > opt.thickness_hole_spacings * c.spacing &&
-        (!worst || c.hole > worst->hole))
-      worst = &c;
+    if (unmeasured(c, limit, opt.thickness_hole_spacings) && (!worst || c.hole > worst->hole)) worst = &c;
   if (!worst) return std::string();
   const std::string where = worst->hole_distance > 0
                                 ? format_length(worst->hole_distance) + " from a stretch of "

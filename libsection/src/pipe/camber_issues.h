@@ -5,6 +5,7 @@
 // with carried points or not circular; a thickest circle over a hole in the data; a camber
 // line off the medial axis; an LE chosen by a near tie), with the coverage they rest on.
 #include "detail/piecewise_curve.h"
+#include "pipe/coverage.h"
 #include "section/bspline.h"
 #include "section/camber.h"
 #include "section/checks.h"
@@ -28,36 +29,6 @@ struct Measured {
   std::vector<Eigen::Vector2d> all, in_slab, carried;
   std::vector<double> carried_offset;
 };
-
-/// How well the measured points cover an edge (lengths along the profile).
-struct EdgeCoverage {
-  /// The stretch around the edge point that no measured point covers (a hole over the edge,
-  /// or an edge sampled more sparsely than its radius): there the edge point and radius
-  /// come from the fit bridging the hole, not from measurements.
-  double around = 0;
-  /// The longest stretch without measured points that begins within the edge arc, and its
-  /// distance from the edge point (0 when it holds it): part of the fitted arc is a bridge.
-  double hole = 0, hole_distance = 0;
-};
-
-/// The coverage of `edge` of `curve` by the `measured` points; the hole must begin within
-/// `arc_reach` edge sizes (radius, or a blunt edge's face width) of the edge point.
-EdgeCoverage edge_coverage(const detail::PiecewiseCurve& curve, const Edge& edge,
-                           const std::vector<Eigen::Vector2d>& measured, double arc_reach);
-
-/// How well the measured points cover the profile about a point of it (the thickest
-/// circle's contacts; lengths along the profile).
-struct ContactCoverage {
-  /// The longest stretch that no measured point covers beginning within `near` of the
-  /// point, and its distance from it (0 when it holds the point).
-  double hole = 0, hole_distance = 0;
-  double spacing = 0;  ///< the points' mean distance over the reach, its longest hole left out (0: none)
-};
-
-/// The coverage of `curve` about parameter `t` by the `measured` points, over `reach`
-/// along the profile either side (a hole reaching beyond is taken as ending there).
-ContactCoverage contact_coverage(const detail::PiecewiseCurve& curve, double t,
-                                 const std::vector<Eigen::Vector2d>& measured, double reach, double near);
 
 /// Where a section's other loops lie, for the message that refuses it ("" when it has none).
 std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section);

@@ -170,7 +170,8 @@ struct SectionCamber {
   std::vector<ThicknessStation> stations;
   Sides sides;
   pipe::EdgeCoverage le, te;
-  pipe::ContactCoverage thickest[2];  // about the thickest circle's contacts
+  pipe::ContactCoverage thickest[2];     // about the thickest circle's contacts
+  std::vector<bool> station_unmeasured;  // a station's circle touches a hole in the data
 };
 
 // Measures a section on `pr`, `curve` sampled with opt.medial.samples; a poor skeleton
@@ -197,13 +198,18 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
   m.le = pipe::edge_coverage(pr.fast, m.camber.le, q.all, opt.edge_hole_reach);
   m.te = pipe::edge_coverage(pr.fast, m.camber.te, q.all, opt.edge_hole_reach);
   // Holes beginning within half the longest the thickness may bridge, over a window three
-  // times that length (for the points' mean distance there).
+  // times that length (for the points' mean distance there), sampled every 3 % of it
+  // (0.06 mm at the default 5 % of a 40 mm chord) to tell its length to that.
   const double limit = opt.thickness_hole * m.params.chord;
+  const pipe::ProfileCoverage cover(pr.fast, q.all, 0.03 * limit);
+  const auto contact = [&](double t) { return cover.about(t, 3 * limit, limit / 2); };
   if (m.camber.thickest.radius > 0)
     for (int side = 0; side < 2; ++side)
-      m.thickest[side] =
-          pipe::contact_coverage(pr.fast, side == 0 ? m.camber.thickest.t_left : m.camber.thickest.t_right,
-                                 q.all, 3 * limit, limit / 2);
+      m.thickest[side] = contact(side == 0 ? m.camber.thickest.t_left : m.camber.thickest.t_right);
+  for (const ThicknessStation& st : m.stations)
+    m.station_unmeasured.push_back(
+        pipe::unmeasured(contact(st.pressure_t), limit, opt.thickness_hole_spacings) ||
+        pipe::unmeasured(contact(st.suction_t), limit, opt.thickness_hole_spacings));
   return m;
 }
 
@@ -220,8 +226,12 @@ void add_rows(int section, const Frame& f, const SectionCamber& m, CheckBits fla
   schema::params.append(slot.rows[params_rows],
                         {section, p, r, f.to_world(p.le_point), f.to_world(p.te_point),
                          f.to_world(p.centroid), m.le.around, m.te.around, flags});
+  const CheckBits section_flags = checks_flagging(flags, "thickness");
   for (std::size_t i = 0; i < m.stations.size(); ++i)
-    schema::thickness.append(slot.rows[thickness_rows], {section, i, m.stations[i]});
+    schema::thickness.append(
+        slot.rows[thickness_rows],
+        {section, i, m.stations[i],
+         section_flags | (m.station_unmeasured[i] ? bit(Check::thickness_measured) : CheckBits(0))});
   for (int side = 0; side < 2; ++side) {
     const auto& pts = side == 0 ? m.sides.pressure : m.sides.suction;
     for (std::size_t i = 0; i < pts.size(); ++i)
@@ -363,7 +373,8 @@ bool units_doubtful(const Stream& stream) {
 
 namespace {
 
-// Sets `check` on every params row of `stream`, with an issue per section saying `why`.
+// Sets `check` on every params row of `stream`, with an issue per section saying `why`,
+// and on every thickness row (a check of every value).
 void flag_every_row(Stream& stream, Check check, const std::string& why) {
   Table* t = stream.find(schema::params.name);
   if (!t || t->rows() == 0) return;
@@ -373,6 +384,12 @@ void flag_every_row(Stream& stream, Check check, const std::string& why) {
     stream.issues.push_back({static_cast<int>(t->at(r, id)), 0, "camber", why});
   }
   t->source.reset();  // changed: formatted from its values
+  Table* stations = stream.find(schema::thickness.name);
+  const long station_flags = stations ? stations->find_column("flags") : -1;
+  if (station_flags < 0) return;
+  for (std::size_t r = 0; r < stations->rows(); ++r)
+    set_flag(stations->values[r * stations->columns.size() + std::size_t(station_flags)], check);
+  stations->source.reset();
 }
 
 }  // namespace

@@ -291,6 +291,11 @@ constexpr auto thickness_columns = by_section<ThicknessRow>({
      [](auto& r) { return r.station.pressure; }},
     {"suction_", uv, "length", "its contact with the suction side",
      [](auto& r) { return r.station.suction; }},
+    {"flags", "code",
+     "the checks its thickness failed, bits as the params table's flags: the section's that flag the "
+     "thickness table (layers, noise, le_choice, units, registration), and thickness_measured when this "
+     "station's circle touches a hole in the data; 0 when none",
+     [](auto& r) { return double(r.flags); }},
 });
 
 constexpr auto side_columns = by_section<SideRow>({

@@ -226,6 +226,7 @@ struct ThicknessRow {
   int section;
   std::size_t index;
   const ThicknessStation& station;
+  CheckBits flags;  ///< the checks its thickness failed (section/checks.h)
 };
 struct SideRow {
   int section, side;  ///< side 0 pressure, 1 suction

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "pipe/coverage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace section::pipe {
+
+namespace {
+
+// How many of the `measured` points lie nearest to each of `samples` (h apart along the
+// profile), counting a point only when that sample lies within 2h. Samples are bucketed in
+// cells wider than 2h, so the 3 x 3 cells around a point hold every sample that can count;
+// ties go to the lowest index, as a scan of all samples would give.
+std::vector<int> nearest_counts(const std::vector<Eigen::Vector2d>& samples,
+                                const std::vector<Eigen::Vector2d>& measured, double h) {
+  const double cell = 2.5 * h;
+  Eigen::Vector2d low = samples.front(), high = samples.front();
+  for (const auto& s : samples)
+    if (s.allFinite()) low = low.cwiseMin(s), high = high.cwiseMax(s);
+  const int nx = static_cast<int>((high.x() - low.x()) / cell) + 1,
+            ny = static_cast<int>((high.y() - low.y()) / cell) + 1;
+  auto cell_of = [&](double v, double v0, int n) {
+    return static_cast<int>(std::clamp(std::floor((v - v0) / cell), -1.0, double(n)));
+  };
+  std::vector<int> head(static_cast<std::size_t>(nx) * ny, -1), next(samples.size(), -1);
+  for (int k = static_cast<int>(samples.size()) - 1; k >= 0; --k) {
+    if (!samples[k].allFinite()) continue;
+    const std::size_t c =
+        std::size_t(cell_of(samples[k].y(), low.y(), ny - 1)) * nx + cell_of(samples[k].x(), low.x(), nx - 1);
+    next[k] = head[c];
+    head[c] = k;
+  }
+  // Points farther than 2h outside the samples' box count for none.
+  const Eigen::Vector2d margin(2 * h, 2 * h), box_low = low - margin, box_high = high + margin;
+  std::vector<int> covered(samples.size(), 0);
+  for (const auto& q : measured) {
+    if (!(q.x() >= box_low.x() && q.y() >= box_low.y() && q.x() <= box_high.x() && q.y() <= box_high.y()))
+      continue;
+    const int cx = cell_of(q.x(), low.x(), nx), cy = cell_of(q.y(), low.y(), ny);
+    int best = -1;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ny - 1); ++y)
+      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, nx - 1); ++x)
+        for (int k = head[std::size_t(y) * nx + x]; k >= 0; k = next[k]) {
+          const double d = (q - samples[k]).squaredNorm();
+          if (d < best_d || (d == best_d && k < best)) best_d = d, best = k;
+        }
+    if (best >= 0 && std::sqrt(best_d) <= 2 * h) ++covered[best];
+  }
+  return covered;
+}
+
+// Which of 2 half + 1 samples of `curve`, every h = reach / half along it from -reach to
+// +reach about parameter t, the `measured` points cover, and by how many. Empty where the
+// curve stops advancing (a zero speed).
+std::vector<int> covered_about(const detail::PiecewiseCurve& curve, double t0,
+                               const std::vector<Eigen::Vector2d>& measured, double reach, int half) {
+  const double h = reach / half;
+  std::vector<Eigen::Vector2d> samples(2 * half + 1);
+  detail::PiecewiseCurve::Cursor cursor;
+  detail::CurveJet jet = curve.jet(curve.locate(t0, cursor));
+  samples[half] = jet.point;
+  const double speed0 = jet.d1.norm();
+  for (int dir : {-1, 1}) {
+    double t = t0, speed = speed0;
+    for (int k = 1; k <= half; ++k) {
+      if (!(speed > 0)) return {};
+      t += dir * h / speed;
+      jet = curve.jet(curve.locate(t, cursor));
+      samples[half + dir * k] = jet.point;
+      speed = jet.d1.norm();
+    }
+  }
+  return nearest_counts(samples, measured, h);
+}
+
+// The longest uncovered stretch of `covered` (samples h apart about its middle one) that
+// begins within `near` of the middle, into `length` and its `distance` from it (0 when it
+// holds the middle); both left as they are when there is none. `first`, `last` (when
+// given): its uncovered samples.
+void longest_hole(const std::vector<int>& covered, double h, double near, double& length, double& distance,
+                  int* first = nullptr, int* last = nullptr) {
+  const int half = int(covered.size() / 2);
+  for (int k = 0; k <= 2 * half;) {
+    if (covered[k]) {
+      ++k;
+      continue;
+    }
+    int e = k;
+    while (e <= 2 * half && !covered[e]) ++e;
+    const double l = (e - k + 1) * h, d = k > half ? (k - 1 - half) * h : e <= half ? (half - e) * h : 0.0;
+    if (d <= near && l > length) {
+      length = l, distance = d;
+      if (first && last) *first = k, *last = e - 1;
+    }
+    k = e;
+  }
+}
+
+// The points' mean distance over samples [from, to) of `covered` (h apart); 0 with no point.
+double mean_distance(const std::vector<int>& covered, int from, int to, double h) {
+  double points = 0;
+  for (int k = from; k < to; ++k) points += covered[std::size_t(k)];
+  return points > 0 ? (to - from) * h / points : 0.0;
+}
+
+}  // namespace
+
+EdgeCoverage edge_coverage(const detail::PiecewiseCurve& curve, const Edge& edge,
+                           const std::vector<Eigen::Vector2d>& measured, double arc_reach) {
+  EdgeCoverage out;
+  const double size = edge_size(edge);
+  if (measured.empty() || !(size > 0) || !std::isfinite(edge.t)) return out;
+  const int half = 200;
+  const double reach = 3 * 3.14159265358979 * size, h = reach / half;
+  const std::vector<int> covered = covered_about(curve, edge.t, measured, reach, half);
+  if (covered.empty()) return out;
+  int lo = half, hi = half;
+  while (lo > 0 && !covered[lo]) --lo;
+  while (hi < 2 * half && !covered[hi]) ++hi;
+  if (!covered[half]) out.around = (hi - lo) * h;
+  longest_hole(covered, h, arc_reach * size, out.hole, out.hole_distance);
+  return out;
+}
+
+bool unmeasured(const ContactCoverage& c, double limit, double spacings) {
+  return c.hole > limit && c.hole > spacings * c.spacing;
+}
+
+ProfileCoverage::ProfileCoverage(const detail::PiecewiseCurve& curve,
+                                 const std::vector<Eigen::Vector2d>& measured, double h)
+    : h_(h), t_min_(curve.t_min()), period_(curve.t_max() - curve.t_min()) {
+  if (measured.empty() || !(h > 0) || !(period_ > 0)) return;
+  // Far more samples than any profile needs at its step (a profile 10^5 steps around)
+  // would say the step, not the profile, is wrong: no coverage then, as for a zero speed.
+  constexpr std::size_t most = 4'000'000;
+  std::vector<Eigen::Vector2d> samples;
+  detail::PiecewiseCurve::Cursor cursor;
+  for (double t = t_min_; t < t_min_ + period_;) {
+    const detail::CurveJet jet = curve.jet(curve.locate(t, cursor));
+    const double speed = jet.d1.norm();
+    if (!(speed > 0) || samples.size() == most) {
+      t_.clear();
+      return;
+    }
+    t_.push_back(t);
+    samples.push_back(jet.point);
+    t += h / speed;
+  }
+  covered_ = nearest_counts(samples, measured, h);
+}
+
+ContactCoverage ProfileCoverage::about(double t, double reach, double near) const {
+  ContactCoverage out;
+  if (t_.empty() || !std::isfinite(t) || !(reach > 0)) return out;
+  // The sample nearest t (in parameter, wrapped into the period), and the window about it.
+  const double w = t_min_ + std::fmod(std::fmod(t - t_min_, period_) + period_, period_);
+  const std::size_t n = t_.size(),
+                    above = std::size_t(std::upper_bound(t_.begin(), t_.end(), w) - t_.begin());
+  const double to_next = (above < n ? t_[above] : t_min_ + period_) - w;
+  const std::size_t centre = above == 0 ? 0 : to_next < w - t_[above - 1] ? above % n : above - 1;
+  const int half = static_cast<int>(std::min<double>(std::round(reach / h_), double((n - 1) / 2)));
+  std::vector<int> covered(2 * std::size_t(half) + 1);
+  for (int k = -half; k <= half; ++k)
+    covered[std::size_t(k + half)] = covered_[std::size_t((long(centre) + long(n) + k) % long(n))];
+  int first = half, last = half - 1;  // the hole near t (none: an empty stretch at t)
+  longest_hole(covered, h_, near, out.hole, out.hole_distance, &first, &last);
+  // The points' mean distance either side of that hole, the sparser side's: a hole is one
+  // in the points on both sides (evenly sparse points beside dense ones, a CMM row's
+  // beside its edges', hold none).
+  const int end = 2 * half + 1;
+  out.spacing = std::max(mean_distance(covered, 0, first, h_), mean_distance(covered, last + 1, end, h_));
+  return out;
+}
+
+}  // namespace section::pipe
