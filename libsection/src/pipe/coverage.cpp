@@ -12,11 +12,12 @@ namespace {
 
 // How many of the `measured` points lie nearest to each of `samples` (h apart along the
 // profile), counting a point only when that sample lies within 2h. Samples are bucketed in
-// cells wider than 2h, so the 3 x 3 cells around a point hold every sample that can count;
-// ties go to the lowest index, as a scan of all samples would give.
+// cells wider than 4h, so the 2 x 2 cells that the disc of radius 2h about a point reaches
+// hold every sample that can count; ties go to the lowest index, as a scan of all samples
+// would give.
 std::vector<int> nearest_counts(const std::vector<Eigen::Vector2d>& samples,
                                 const std::vector<Eigen::Vector2d>& measured, double h) {
-  const double cell = 2.5 * h;
+  const double cell = 4.5 * h;
   Eigen::Vector2d low = samples.front(), high = samples.front();
   for (const auto& s : samples)
     if (s.allFinite()) low = low.cwiseMin(s), high = high.cwiseMax(s);
@@ -39,11 +40,13 @@ std::vector<int> nearest_counts(const std::vector<Eigen::Vector2d>& samples,
   for (const auto& q : measured) {
     if (!(q.x() >= box_low.x() && q.y() >= box_low.y() && q.x() <= box_high.x() && q.y() <= box_high.y()))
       continue;
-    const int cx = cell_of(q.x(), low.x(), nx), cy = cell_of(q.y(), low.y(), ny);
+    // The cells the disc reaches: the point's and, on each axis, the one its nearer side faces.
+    const int x0 = cell_of(q.x() - 2 * h, low.x(), nx), x1 = cell_of(q.x() + 2 * h, low.x(), nx),
+              y0 = cell_of(q.y() - 2 * h, low.y(), ny), y1 = cell_of(q.y() + 2 * h, low.y(), ny);
     int best = -1;
     double best_d = std::numeric_limits<double>::infinity();
-    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ny - 1); ++y)
-      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, nx - 1); ++x)
+    for (int y = std::max(y0, 0); y <= std::min(y1, ny - 1); ++y)
+      for (int x = std::max(x0, 0); x <= std::min(x1, nx - 1); ++x)
         for (int k = head[std::size_t(y) * nx + x]; k >= 0; k = next[k]) {
           const double d = (q - samples[k]).squaredNorm();
           if (d < best_d || (d == best_d && k < best)) best_d = d, best = k;
