@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "detail/cholmod_solver.h"
 #include "section/error.h"
 #include "section/extras/generate.h"
 #include "section/io/stream.h"
@@ -7,8 +8,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -514,4 +518,29 @@ TEST_CASE("smooth: stream stage smooths every loop and reports failures", "[smoo
 
   section::Stream empty;
   REQUIRE_THROWS_AS(section::smooth_stream(empty), section::Error);
+}
+
+TEST_CASE("smooth: a factor CHOLMOD refuses is an error, and nothing on standard output", "[smooth]") {
+  // The tools write their stream on standard output, where CHOLMOD's own warnings (printf)
+  // would land inside it. [[1, 2], [2, 1]] is not positive definite.
+  section::detail::CholmodSolver solver(2, {0, 1, 3}, {0, 0, 1}, {0, 1, 2}, "test", {0, 1});
+  const double values[] = {1, 2, 1};
+  std::fflush(stdout);
+  const int saved = dup(1);
+  FILE* caught = std::tmpfile();
+  REQUIRE(caught);
+  dup2(fileno(caught), 1);
+  bool threw = false;
+  try {
+    solver.factor(values);
+  } catch (const section::Error& e) {
+    threw = std::string(e.what()).find("test: CHOLMOD could not factor") == 0;
+  }
+  std::fflush(stdout);
+  dup2(saved, 1);
+  close(saved);
+  CHECK(threw);
+  std::fseek(caught, 0, SEEK_END);  // the size written through descriptor 1
+  CHECK(std::ftell(caught) == 0);
+  std::fclose(caught);
 }

@@ -16,6 +16,9 @@ namespace section::detail {
 struct CholmodSolver::Impl {
   explicit Impl(std::string who) : who(std::move(who)) {
     cholmod_start(&common);
+    // CHOLMOD prints its warnings with printf, on standard output: the tools' stream. A
+    // failed factor throws with the caller's words instead.
+    common.print = 0;
     common.final_asis = 0;
     common.supernodal = CHOLMOD_SIMPLICIAL;
     common.final_ll = 1;
