@@ -15,7 +15,8 @@ namespace {
 
 using section::tool::FitsplineArgs;
 
-// Points in two layers along a loop: views merged with a misregistration?
+// Points in two layers along a loop: views merged with a misregistration, or a slab so wide
+// that the profile moves across it (a twisted or tapered blade)?
 void warn_layers(const section::Table& splines) {
   namespace col = section::schema::col;
   const std::size_t cs = splines.column(col::section), cl = splines.column(col::loop),
@@ -23,11 +24,13 @@ void warn_layers(const section::Table& splines) {
   for (std::size_t r = 0; r < splines.rows(); ++r) {
     const double layers = splines.at(r, cy);
     if (!(layers > 0)) continue;
-    std::cerr << "fitspline: warning: section " << splines.at(r, cs) << " loop " << splines.at(r, cl)
-              << ": the points lie in two layers about " << section::format_length(layers) << " apart over "
-              << section::format_length(splines.at(r, cyl))
-              << " of the profile, and the curve runs between them: views merged with a misregistration? "
-                 "(register them: slice --view, docs/REGISTRATION.md)\n";
+    std::cerr
+        << "fitspline: warning: section " << splines.at(r, cs) << " loop " << splines.at(r, cl)
+        << ": the points lie in two layers about " << section::format_length(layers) << " apart over "
+        << section::format_length(splines.at(r, cyl))
+        << " of the profile, and the curve runs between them: views merged with a misregistration "
+           "(register them: slice --view, docs/REGISTRATION.md), or a slab so wide that the profile moves "
+           "across it (a narrower slice --slab)?\n";
   }
 }
 

@@ -179,7 +179,7 @@ std::string spread_note(const Finding& k, const SectionParams& p) {
 
 // A failed check of section_check in words, with its values.
 std::string finding_note(const Finding& k, const SectionParams& p) {
-  char text[320];
+  char text[480];
   const char* name = check_name(k.check);
   switch (k.check) {
     case Check::le_radius:
@@ -241,11 +241,13 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
           name, format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
     case Check::layers:  // value: the layers' distance, limit: the profile length they cover
-      std::snprintf(text, sizeof text,
-                    "the measured points lie in two layers %s apart over %s of the profile (fitspline: "
-                    "views merged with a misregistration?): the profile runs between them, so its thickness, "
-                    "edges, camber line and angles may be off by up to half that (check %s)",
-                    format_length(k.value).c_str(), format_length(k.limit).c_str(), name);
+      std::snprintf(
+          text, sizeof text,
+          "the measured points lie in two layers %s apart over %s of the profile (fitspline: "
+          "views merged with a misregistration, or a slab so wide that the profile moves across "
+          "it?): the profile runs between them, so its thickness, edges, camber line and angles may "
+          "be off by up to half that (check %s)",
+          format_length(k.value).c_str(), format_length(k.limit).c_str(), name);
       break;
     default:
       return angle_note(k, p);
