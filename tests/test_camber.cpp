@@ -389,6 +389,40 @@ TEST_CASE("camber: a plain profile's sparse noisy points flag its thickness (noi
   }
 }
 
+TEST_CASE("camber: a dense profile's noise that leaves it uncertain beyond the accuracy flags it (noise)",
+          "[camber]") {
+  // Points every 0.03 mm (a drift band's): the fit averages their noise over the points each
+  // coefficient rests on, and its rms is that noise. 5 um leaves the profile within 1.5e-4
+  // of its size (6 um here); 20 um does not: the max thickness was off by 6-10 um, the chord
+  // by 14-17 um, unflagged.
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30), 40000);
+  for (const double sigma : {0.005, 0.02}) {
+    std::vector<Eigen::Vector2d> points;
+    std::mt19937 rng(11);
+    std::normal_distribution<double> noise(0, sigma);
+    for (std::size_t i = 0, next = 0; i < truth.profile.size(); ++i) {
+      if (double(next) > truth.profile_s[i] * 1e3) continue;  // next: the next point's arc length, in um
+      points.push_back(truth.profile[i] + noise(rng) * truth.profile_normal[i]);
+      next = std::size_t(1e3 * (truth.profile_s[i] + 0.03));
+    }
+    const section::FitSplineResult fit = section::fit_spline(points, points);
+    REQUIRE(points.size() >= 16 * fit.spline.control.size());  // many points a coefficient
+    section::Stream s = section::profile_stream(fit.spline, fit.rms, points);
+    section::camber_stream(s);
+    const section::Table& params = s.get("params", "test");
+    REQUIRE(params.rows() == 1);
+    const auto flags = section::flags_mask(params.at(0, params.column("flags")));
+    INFO("noise " << sigma << " mm: fit rms " << fit.rms << ", " << fit.spline.control.size()
+                  << " control points, flags " << section::check_names_text(flags));
+    CHECK(((flags & section::bit(section::Check::noise)) != 0) == (sigma > 0.01));
+    if (sigma > 0.01)
+      CHECK(std::any_of(s.issues.begin(), s.issues.end(), [](const section::SectionIssue& i) {
+        return i.message.find("the points' noise (the fit's rms) leaves the profile uncertain") !=
+               std::string::npos;
+      }));
+  }
+}
+
 namespace {
 
 // A row of the thickness table: its contacts and whether its flags say a hole.

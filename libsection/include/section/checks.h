@@ -50,8 +50,9 @@ enum class Check : CheckBits {
   te_vertex = 1u << 25,  ///< the same at the TE
   le_sharp = 1u << 26,   ///< LE taken as sharp (radius 0), but the points resolve a small round edge there
   te_sharp = 1u << 27,   ///< the same at the TE
-  noise = 1u << 28,  ///< the fit follows the points' noise: its rms hides a scatter that every length carries
-  inlet_fit = 1u << 29,     ///< inlet angle set by the end fit: a cubic and a quartic over its span disagree
+  noise = 1u << 28,      ///< the points' noise leaves the profile uncertain beyond the accuracy (every length
+                         ///< carries it)
+  inlet_fit = 1u << 29,  ///< inlet angle set by the end fit: a cubic and a quartic over its span disagree
   outlet_fit = 1u << 30,    ///< the same at the TE
   registration = 1u << 31,  ///< a view merged into the input was registered but not confirmed (slice --view)
   thickness_measured = CheckBits(1) << 32,  ///< the thickest circle touches a hole in the data
@@ -143,9 +144,10 @@ CheckBits checks_flagging(CheckBits flags, const char* column);
 
 /// Options of check_section (lengths in the profile's units, angles in degrees).
 struct CheckOptions {
-  double noise = 0;         ///< rms of the measured points about the profile (0 = unknown)
-  double points_noise = 0;  ///< the points' own scatter (points_noise(); 0 = unknown) ...
-  double points = 0;        ///< ... over this many independent points (0: the check is not made)
+  double noise = 0;  ///< rms of the measured points about the profile (0 = unknown)
+  double points_noise =
+      0;              ///< the points' own scatter (points_noise(), or a dense fit's rms; 0 = unknown) ...
+  double points = 0;  ///< ... over this many independent points (0: the check is not made)
   /// ... at these profile parameters (PointsNoise::params; empty: the thickness is not checked
   /// apart): the thickest circle's contacts, each where its spans hold few of the points.
   std::vector<double> point_params;

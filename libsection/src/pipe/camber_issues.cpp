@@ -177,8 +177,29 @@ std::string spread_note(const Finding& k, const SectionParams& p) {
   return text;
 }
 
+// The noise check's words: a fit that follows few points' noise, or a dense scan's noise
+// that leaves the profile uncertain beyond the accuracy.
+std::string noise_note(const Finding& k, const SectionFacts& f) {
+  const char* name = check_name(k.check);
+  char text[480];
+  if (few_points(f.measured.all.size(), f.curve.control.size()))
+    std::snprintf(text, sizeof text,
+                  "its lengths and angles fail check %s: the fit has about as many coefficients as measured "
+                  "points and follows their noise, which its rms hides: the profile may stray %s from their "
+                  "smooth curve (at most %s), and its thickness, edges and chord by as much",
+                  name, format_length(k.value).c_str(), format_length(k.limit).c_str());
+  else
+    std::snprintf(text, sizeof text,
+                  "its lengths and angles fail check %s: the points' noise (the fit's rms) leaves the "
+                  "profile uncertain by up to %s (4 times it over the square root of the points a "
+                  "coefficient rests on; at most %s), and its thickness, edges and chord by as much",
+                  name, format_length(k.value).c_str(), format_length(k.limit).c_str());
+  return text;
+}
+
 // A failed check of section_check in words, with its values.
-std::string finding_note(const Finding& k, const SectionParams& p) {
+std::string finding_note(const Finding& k, const SectionFacts& f) {
+  const SectionParams& p = f.params;
   char text[480];
   const char* name = check_name(k.check);
   switch (k.check) {
@@ -233,13 +254,7 @@ std::string finding_note(const Finding& k, const SectionParams& p) {
           format_length(k.value).c_str(), format_length(k.limit).c_str());
       break;
     case Check::noise:
-      std::snprintf(
-          text, sizeof text,
-          "its lengths and angles fail check %s: the fit has about as many coefficients as measured "
-          "points and follows their noise, which its rms hides: the profile may stray %s from their "
-          "smooth curve (at most %s), and its thickness, edges and chord by as much",
-          name, format_length(k.value).c_str(), format_length(k.limit).c_str());
-      break;
+      return noise_note(k, f);
     case Check::layers:  // value: the layers' distance, limit: the profile length they cover
       std::snprintf(
           text, sizeof text,
@@ -373,7 +388,7 @@ CheckBits describe_issues(const SectionFacts& f, const std::vector<Finding>& fin
     flags |= bit(Check::le_choice);
   }
   for (const Finding& k : findings) {
-    issues.push_back({f.section, 0, "camber", finding_note(k, f.params)});
+    issues.push_back({f.section, 0, "camber", finding_note(k, f)});
     flags |= bit(k.check);
   }
   return flags;

@@ -30,6 +30,12 @@ struct Measured {
   std::vector<double> carried_offset;
 };
 
+/// Fewer measured points than 16 a coefficient of the fit: it may follow their noise, and
+/// its rms hide it (the noise check then takes the points' own scatter).
+inline bool few_points(std::size_t points, std::size_t coefficients) {
+  return points < 16 * coefficients;
+}
+
 /// Where a section's other loops lie, for the message that refuses it ("" when it has none).
 std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section);
 

@@ -283,11 +283,15 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   checks.noise = opt.profile_noise;
   const detail::SampledProfile sampled(local, pr.fast, detail::check_samples, false);  // for both checks
   // Few points for the fit's coefficients: their own scatter, which its rms may hide.
-  if (q.all.size() < 16 * local.control.size()) {
+  if (pipe::few_points(q.all.size(), local.control.size())) {
     const PointsNoise scatter = detail::points_noise(sampled, q.all);
     checks.points_noise = scatter.rms, checks.points = scatter.points, checks.point_params = scatter.params;
     // The distance limits see the noise the rms hides (a noise left unknown stays so).
     if (checks.noise > 0) checks.noise = std::max(checks.noise, scatter.rms);
+  } else if (checks.noise > 0) {
+    // Many points: the fit's rms is their noise, which the fit averages over the points
+    // each coefficient rests on.
+    checks.points_noise = checks.noise, checks.points = double(q.all.size());
   }
   SectionCheck check = detail::check_section(sampled, m.camber, m.params, checks);
   if (const auto l = in.fits.find(section); l != in.fits.end() && l->second.layers > 0)
