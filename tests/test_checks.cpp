@@ -393,6 +393,33 @@ TEST_CASE("checks: a TE round but under the sharp threshold is flagged te_sharp,
   }
 }
 
+TEST_CASE("checks: a sharp edge's radius 0 between sparse points is flagged te_sharp, not between dense ones",
+          "[checks]") {
+  // The slab's TE wedge (14 deg) as a vertex, points every 0.02 and every 0.3 along it; the
+  // sharp threshold is 1 % of the 10 thick slab, 0.1. At 0.3 no point may lie within
+  // 5 x 0.1 of the vertex: a round edge of radius 0.1 would look the same (a thick-root
+  // blade's 0.13-0.17 mm TE scanned 0.2-0.3 mm apart was reported sharp, radius 0, unflagged).
+  const double c = 40;
+  for (const double step : {0.02, 0.3}) {
+    std::vector<Vector2d> pts;
+    const auto line = [&](const Vector2d& a, const Vector2d& b) {
+      const int n = std::max(1, int((b - a).norm() / step));
+      for (int i = 0; i < n; ++i) pts.push_back(a + (b - a) * (double(i) / n));
+    };
+    line(Vector2d(0, -5), Vector2d(30, -5));
+    line(Vector2d(30, -5), Vector2d(30 + c, 0.001));  // the vertex itself not a point
+    line(Vector2d(30 + c, 0.001), Vector2d(30, 5));
+    line(Vector2d(30, 5), Vector2d(0, 5));
+    add_slab_nose(pts);
+    const section::Table params = profile_params(pts);
+    const auto flags = section::CheckBits(params.at(0, std::size_t(params.find_column("flags"))));
+    INFO("points every " << step << ": " << names(flags));
+    REQUIRE(params.at(0, std::size_t(params.find_column("te_shape"))) == 2);
+    CHECK(params.at(0, std::size_t(params.find_column("te_radius"))) == 0);
+    CHECK(((flags & section::bit(Check::te_sharp)) != 0) == (step > 0.1));
+  }
+}
+
 TEST_CASE("checks: a sharp vertex between sparse points is where the flanks meet", "[checks]") {
   // The slab's TE wedge (14 deg, vertex at (70, 0)) and NACA 0012's closed TE (16 deg,
   // curved flanks, vertex at (100, 0)), each sampled every 0.2 mm at four phases, through the

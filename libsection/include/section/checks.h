@@ -48,11 +48,12 @@ enum class Check : CheckBits {
   layers = 1u << 23,  ///< the points lie in two layers (views merged misregistered): the profile runs between
   le_vertex = 1u << 24,  ///< a sharp LE's vertex at a wedge so thin that the noise moves it far along it
   te_vertex = 1u << 25,  ///< the same at the TE
-  le_sharp = 1u << 26,   ///< LE taken as sharp (radius 0), but the points resolve a small round edge there
-  te_sharp = 1u << 27,   ///< the same at the TE
-  noise = 1u << 28,      ///< the points' noise leaves the profile uncertain beyond the accuracy (every length
-                         ///< carries it)
-  inlet_fit = 1u << 29,  ///< inlet angle set by the end fit: a cubic and a quartic over its span disagree
+  le_sharp = 1u << 26,  ///< LE taken as sharp (radius 0), but the points resolve a small round edge there, or
+                        ///< are too sparse to tell
+  te_sharp = 1u << 27,  ///< the same at the TE
+  noise = 1u << 28,     ///< the points' noise leaves the profile uncertain beyond the accuracy (every length
+                        ///< carries it)
+  inlet_fit = 1u << 29,     ///< inlet angle set by the end fit: a cubic and a quartic over its span disagree
   outlet_fit = 1u << 30,    ///< the same at the TE
   registration = 1u << 31,  ///< a view merged into the input was registered but not confirmed (slice --view)
   thickness_measured = CheckBits(1) << 32,  ///< the thickest circle touches a hole in the data

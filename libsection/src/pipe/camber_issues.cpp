@@ -285,6 +285,30 @@ std::string jump_note(const Jump& j) {
   return text;
 }
 
+// A sharp edge whose measured points are too sparse about its vertex to tell it from a round
+// edge of the radius under which an edge counts as sharp (sharp_ratio of the thickness):
+// fewer than 6 points within 5 such radii (a half-circle of it would hold under 2 points at
+// their spacing there). "" when not.
+std::string sharp_unresolved(const SectionFacts& f, const Edge& e, const char* which, const char* check) {
+  const double sharp = f.options.sharp_ratio * f.params.max_thickness, reach = 5 * sharp;
+  if (e.shape != EdgeShape::sharp || !(sharp > 0) || f.measured.all.empty()) return "";
+  int near = 0;
+  for (const auto& q : f.measured.all) near += (q - e.point).norm() <= reach;
+  if (near >= 6) return "";
+  const std::string points = near == 0 ? "no measured point lies"
+                                       : "only " + std::to_string(near) + " measured point" +
+                                             (near > 1 ? "s lie" : " lies"),
+                    apart = near > 1 ? ", about " + format_length(2 * reach / near) + " apart" : "";
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "%s radius 0 fails check %s: the edge was taken as sharp, but %s within %s of its vertex%s: "
+                "they cannot tell it from a round edge of radius %s (%s of the largest inscribed diameter, "
+                "under which an edge counts as sharp) or more; its radius is not measured",
+                which, check, points.c_str(), format_length(reach).c_str(), apart.c_str(),
+                format_length(sharp).c_str(), format_share(f.options.sharp_ratio).c_str());
+  return text;
+}
+
 // A sharp edge (its end circle under sharp_ratio of the thickness, radius reported 0) where
 // the profile turns over a radius the measured points resolve: more than 4 x the noise, and
 // 5 or more points within twice it of the edge point. "" when not.
@@ -344,8 +368,9 @@ CheckBits describe_issues(const SectionFacts& f, const std::vector<Finding>& fin
   const CamberOptions& opt = f.options;
   CheckBits flags = edge_flags(f, r.le, f.le, true) | edge_flags(f, r.te, f.te, false);
   for (const bool le : {true, false}) {
-    const std::string note = sharp_but_round(f, le ? r.le : r.te, le ? "leading-edge" : "trailing-edge",
-                                             le ? "le_sharp" : "te_sharp");
+    const char *which = le ? "leading-edge" : "trailing-edge", *check = le ? "le_sharp" : "te_sharp";
+    std::string note = sharp_but_round(f, le ? r.le : r.te, which, check);
+    if (note.empty()) note = sharp_unresolved(f, le ? r.le : r.te, which, check);
     if (note.empty()) continue;
     issues.push_back({f.section, 0, "camber", note});
     flags |= bit(le ? Check::le_sharp : Check::te_sharp);
