@@ -193,6 +193,15 @@ TEST_CASE("plot: a value a check flags is drawn red with the checks it failed, n
   CHECK(count(svg, "class=\"param-value flagged\"") == 2);
   CHECK(count(svg, "fails check thickness_measured") == 2);
   CHECK(count(subtree(svg, "s0-main"), "class=\"station flagged\"") == 1);
+  // The drawing's max-thickness dimension red too, the chord's not.
+  const std::string main = subtree(svg, "s0-main");
+  CHECK(count(main, "class=\"dim-label flagged\"") == 1);
+  const std::size_t red = main.find("class=\"dim-label flagged\"");
+  REQUIRE(red != std::string::npos);
+  const std::size_t group = main.find("dimension dim-max-thickness");
+  REQUIRE(group != std::string::npos);
+  CHECK(red > group);
+  CHECK(red < main.find("</g>", group));
 }
 
 TEST_CASE("plot: an issue's control characters and stray bytes do not break the SVG", "[plot]") {

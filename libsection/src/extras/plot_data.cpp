@@ -230,6 +230,10 @@ SectionData collect(const Stream& stream, int section, const Curves& curves) {
   return d;
 }
 
+std::string failed_checks(const SectionData& d, const std::string& name) {
+  return check_names_text(checks_flagging(flags_mask(param(d, "flags")), name.c_str()));
+}
+
 double param(const SectionData& d, const std::string& name) {
   const auto it = d.params.find(name);
   return it == d.params.end() ? nan : it->second;
@@ -238,9 +242,7 @@ double param(const SectionData& d, const std::string& name) {
 std::vector<Row> parameter_rows(const SectionData& d) {
   std::vector<Row> rows;
   const std::string& u = d.units;
-  // The checks that flag a params column: a value is never shown bare when one failed.
-  const CheckBits flags = flags_mask(param(d, "flags"));
-  auto failed = [&](const std::string& key) { return check_names_text(checks_flagging(flags, key.c_str())); };
+  auto failed = [&](const std::string& key) { return failed_checks(d, key); };
   auto length = [&](const char* label, const std::string& key) {
     const double x = param(d, key);
     if (std::isfinite(x)) rows.push_back({label, fixed(x, 4) + " " + u, failed(key)});

@@ -85,6 +85,7 @@ std::vector<Dimension> main_dimensions(const SectionData& d, const std::vector<V
     const double side = hi <= -lo ? 1 : -1, beyond = side > 0 ? hi : -lo;
     Dimension dim{
         "chord", le, te, side * (beyond + 0.06 * chord) * n, chord, "chord " + length_text(chord, d.units)};
+    dim.flagged = !failed_checks(d, "chord").empty();
     out.push_back(dim);
   }
   const double t = param(d, "max_thickness"), pos = param(d, "max_thickness_pos");
@@ -95,13 +96,15 @@ std::vector<Dimension> main_dimensions(const SectionData& d, const std::vector<V
     // the stations' labels.
     if (const Station* st = nearest_station(d, c); st && finite(st->suction) && (st->suction - c).dot(n) > 0)
       n = -n;
-    if (finite(c) && finite(n))
+    if (finite(c) && finite(n)) {
       out.push_back({"max-thickness",
                      c + 0.5 * t * n,
                      c - 0.5 * t * n,
                      {0, 0},
                      t,
                      "max thickness " + length_text(t, d.units)});
+      out.back().flagged = !failed_checks(d, "max_thickness").empty();
+    }
   }
   return out;
 }
@@ -121,6 +124,7 @@ std::vector<Dimension> edge_dimensions(const SectionData& d, const EdgeInset& e)
                 "R " + length_text(e.radius, d.units)};
   dim.arrow_a = false;
   dim.level = true;
+  dim.flagged = !failed_checks(d, e.key + "_radius").empty();
   return {dim};
 }
 
@@ -133,6 +137,7 @@ std::vector<V2> draw_dimensions(std::string& s, const std::vector<Dimension>& di
              pb = pixel(dim.b + dim.offset);
     if ((pb - pa).norm() < 1e-9) continue;
     const V2 dir = (pb - pa).normalized();
+    const std::string cls = dim.flagged ? "dim-label flagged" : "dim-label";  // a flagged value red
     s += "<g class=\"dimension dim-" + dim.key + "\" data-value=\"" + trimmed(dim.value, 9) + "\">";
     if (dim.offset.norm() > 0) {  // extension lines, a little beyond the dimension line
       const V2 out = (pa - a).norm() > 0 ? (pa - a).normalized() : V2(0, 0);
@@ -146,12 +151,12 @@ std::vector<V2> draw_dimensions(std::string& s, const std::vector<Dimension>& di
     if (dim.offset.norm() > 0) {                    // along the line, on its outer side
       const V2 outward = pa - a;
       const double lift = perp(dir.x() < 0 ? V2(-dir) : dir).dot(outward) > 0 ? 13 : -5;
-      s += label("dim-label", dim.label, mid, dir, "middle", lift);
+      s += label(cls, dim.label, mid, dir, "middle", lift);
       anchors.push_back(mid);
     } else if (!dim.level && (pb - pa).norm() >= text_width(value, 12) + 24) {
       // Along the line between its arrows, the whole label when it fits, else the number.
       const bool whole = (pb - pa).norm() >= text_width(dim.label, 12) + 24;
-      s += label("dim-label", whole ? dim.label : value, mid, dir, "middle", -4);
+      s += label(cls, whole ? dim.label : value, mid, dir, "middle", -4);
       anchors.push_back(mid);
     } else {
       // Along the line beyond b, else beyond a, where the label fits the frame; else level
@@ -165,13 +170,13 @@ std::vector<V2> draw_dimensions(std::string& s, const std::vector<Dimension>& di
       if (fits(pb, dir) || fits(pa, -dir)) {
         const bool at_b = fits(pb, dir);
         const V2 end = at_b ? pb : pa, out = at_b ? dir : V2(-dir);
-        s += label("dim-label", dim.label, end + 6 * out, out, "start", 4);
+        s += label(cls, dim.label, end + 6 * out, out, "start", 4);
         anchors.push_back(end + 5 * out);
       } else {
         double x = dir.x() >= 0 ? pb.x() + 6 : pb.x() - w;
         x = std::clamp(x, frame.u0 + 4, std::max(frame.u0 + 4, frame.u1 - w));
         const double y = std::clamp(pb.y() + 4, frame.v0 + 14, frame.v1 - 4);
-        s += "<text class=\"dim-label\" x=\"" + px(x) + "\" y=\"" + px(y) + "\">" + escape(dim.label) +
+        s += "<text class=\"" + cls + "\" x=\"" + px(x) + "\" y=\"" + px(y) + "\">" + escape(dim.label) +
              "</text>";
         anchors.emplace_back(x, y);
       }

@@ -115,6 +115,9 @@ std::vector<std::vector<double>> rows_of(const Stream& stream, const std::string
 
 /// The section's params value `name`, NaN when absent.
 double param(const SectionData& d, const std::string& name);
+/// The checks of the params row's flags that flag its column `name`, ", "-separated ("" when
+/// none): a value drawn or printed is never shown bare when one failed.
+std::string failed_checks(const SectionData& d, const std::string& name);
 
 /// "plane through (x, y, z), normal (...); u = (...), v up", or "" without a frame.
 std::string frame_text(const SectionData& d);
@@ -220,13 +223,14 @@ std::vector<V2> thinned(const std::vector<V2>& pts, const View& v, double tolera
 
 /// A dimension line between two points (world), drawn at the px offset of its own.
 struct Dimension {
-  std::string key;      // "chord", "max-thickness", "le-radius", "te-radius"
-  V2 a{0, 0}, b{0, 0};  // what is measured: from a to b
-  V2 offset{0, 0};      // world offset of the dimension line from a-b (extension lines)
-  double value = 0;     // the value printed (stream units)
-  std::string label;    // "chord 62.7511 mm"
-  bool arrow_a = true;  // an arrow head at a (a radius has one at b only)
-  bool level = false;   // the label level beside b (else along the line)
+  std::string key;       // "chord", "max-thickness", "le-radius", "te-radius"
+  V2 a{0, 0}, b{0, 0};   // what is measured: from a to b
+  V2 offset{0, 0};       // world offset of the dimension line from a-b (extension lines)
+  double value = 0;      // the value printed (stream units)
+  std::string label;     // "chord 62.7511 mm"
+  bool arrow_a = true;   // an arrow head at a (a radius has one at b only)
+  bool level = false;    // the label level beside b (else along the line)
+  bool flagged = false;  // a failed check flags the value (drawn red)
 };
 
 /// The main view's dimensions: chord (offset beyond the profile, on the side of the chord

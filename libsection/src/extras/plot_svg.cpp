@@ -36,7 +36,7 @@ const char* const style =
     ".points{fill:none;stroke:#1f77b4;stroke-opacity:.6;stroke-linecap:round}"
     ".dim-line,.dim-ext{stroke:#0b5394;stroke-width:1}.dim-ext{stroke-width:.7}.dim-arrow{fill:#0b5394}"
     ".dim-label{font-size:12px;fill:#0b5394}.station-value{font-size:10px;fill:#1a7a1a}"
-    ".station-value.flagged{fill:#c00}";
+    ".station-value.flagged,.dim-label.flagged{fill:#c00}";
 
 // 1, 2 or 5 times a power of ten, at most `target`.
 double nice_length(double target) {

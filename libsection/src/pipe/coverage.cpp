@@ -137,8 +137,9 @@ ProfileCoverage::ProfileCoverage(const detail::PiecewiseCurve& curve,
                                  const std::vector<Eigen::Vector2d>& measured, double h)
     : h_(h), t_min_(curve.t_min()), period_(curve.t_max() - curve.t_min()) {
   if (measured.empty() || !(h > 0) || !(period_ > 0)) return;
-  // Far more samples than any profile needs at its step (a profile 10^5 steps around)
-  // would say the step, not the profile, is wrong: no coverage then, as for a zero speed.
+  // Far more samples than any profile needs at its step (a blade's is about 2 000 around)
+  // say the step or the parameter is wrong (one that no longer advances): no coverage then,
+  // as for a zero speed.
   constexpr std::size_t most = 4'000'000;
   std::vector<Eigen::Vector2d> samples;
   detail::PiecewiseCurve::Cursor cursor;
