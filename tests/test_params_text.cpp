@@ -111,8 +111,10 @@ TEST_CASE("params text: codes in words, other units in mm, issues shortened, a f
   const auto lines = lines_of(text);
   for (const auto& line : lines) CHECK(line.size() <= 120);
   CHECK(number_after(lines, 0, "chord") == Approx(41.2312).margin(1e-9));  // m -> mm, 4 decimals
-  CHECK(text.find("41.2312 mm") != std::string::npos);
-  CHECK(text.find("0.1000 mm round") != std::string::npos);
+  // The values a failed check flags marked: the chord (jump_chord), the LE radius (le_circle).
+  CHECK(text.find("41.2312 mm!") != std::string::npos);
+  CHECK(text.find("0.1000 mm round!") != std::string::npos);
+  CHECK(text.find("3.0000 mm") != std::string::npos);  // the max thickness, not flagged
   CHECK(text.find("mm sharp") != std::string::npos);
   CHECK(text.find("right") != std::string::npos);
   CHECK(text.find("le_circle, jump_chord") != std::string::npos);

@@ -62,9 +62,11 @@ RowView row_of(const Table* table, int s) {
   return view;
 }
 
-// A cell of a block: label, value right-aligned, then its unit or words.
-std::string cell(const std::string& label, const std::string& value, const std::string& after) {
-  return pad(label, 15) + pad(value, 11, true) + " " + pad(after, 11);
+// A cell of a block: label, value right-aligned, then its unit or words, and '!' when a
+// failed check flags the value.
+std::string cell(const std::string& label, const std::string& value, const std::string& after,
+                 bool flagged = false) {
+  return pad(label, 15) + pad(value, 11, true) + " " + pad(after + (flagged ? "!" : ""), 11);
 }
 
 std::string shape_word(double code) {
@@ -117,28 +119,33 @@ std::string plane_line(const RowView& frame, double mm) {
          fixed(nz, 3) + ")";
 }
 
-// The value rows of one section's params.
+// The value rows of one section's params, each value a failed check flags marked.
 std::string value_rows(const RowView& p, double mm) {
-  auto length = [&](const char* c) { return fixed(p(c) * mm, 4); };
-  auto angle = [&](const char* c) { return fixed(p(c), 3); };
+  const CheckBits flags = std::isfinite(p("flags")) ? flags_mask(p("flags")) : 0;
+  const auto flagged = [&](const char* c) { return checks_flagging(flags, c) != 0; };
+  const auto length = [&](const char* label, const char* c, const std::string& after = "mm") {
+    return cell(label, fixed(p(c) * mm, 4), after, flagged(c));
+  };
+  const auto angle = [&](const char* label, const char* c) {
+    return cell(label, fixed(p(c), 3), "deg", flagged(c));
+  };
   std::string out;
   auto row = [&](const std::string& a, const std::string& b, const std::string& c) {
     std::string line = "  " + a + " " + b + " " + c;
     while (!line.empty() && line.back() == ' ') line.pop_back();
     out += line + "\n";
   };
-  row(cell("chord", length("chord"), "mm"), cell("caliper chord", length("caliper_chord"), "mm"),
-      cell("camber length", length("camber_length"), "mm"));
-  row(cell("max thickness", length("max_thickness"), "mm"),
-      cell("at", fixed(p("max_thickness_pos"), 3), "of camber"),
-      cell("pressure side", side_word(p("pressure_side")), ""));
-  row(cell("LE radius", length("le_radius"), "mm " + shape_word(p("le_shape"))),
-      cell("TE radius", length("te_radius"), "mm " + shape_word(p("te_shape"))),
-      cell("area", fixed(p("area") * mm * mm, 4), "mm^2"));
-  row(cell("stagger", angle("stagger"), "deg"), cell("inlet angle", angle("inlet_angle"), "deg"),
-      cell("outlet angle", angle("outlet_angle"), "deg"));
-  row(cell("camber angle", angle("camber_angle"), "deg"),
-      cell("caliper stagger", angle("caliper_stagger"), "deg"), "");
+  row(length("chord", "chord"), length("caliper chord", "caliper_chord"),
+      length("camber length", "camber_length"));
+  row(length("max thickness", "max_thickness"),
+      cell("at", fixed(p("max_thickness_pos"), 3), "of camber", flagged("max_thickness_pos")),
+      cell("pressure side", side_word(p("pressure_side")), "", flagged("pressure_side")));
+  row(length("LE radius", "le_radius", "mm " + shape_word(p("le_shape"))),
+      length("TE radius", "te_radius", "mm " + shape_word(p("te_shape"))),
+      cell("area", fixed(p("area") * mm * mm, 4), "mm^2", flagged("area")));
+  row(angle("stagger", "stagger"), angle("inlet angle", "inlet_angle"),
+      angle("outlet angle", "outlet_angle"));
+  row(angle("camber angle", "camber_angle"), angle("caliper stagger", "caliper_stagger"), "");
   return out;
 }
 
@@ -162,7 +169,8 @@ std::string format_params_text(const Stream& stream, const ParamsTextOptions& op
     }
   std::string out = "params of " + std::to_string(sections.size()) +
                     " sections: lengths in mm (to 0.1 um), angles in degrees, 'at': along the camber line, "
-                    "LE 0, TE 1\n";
+                    "LE 0, TE 1\n'!' after a value's unit: a failed check flags the value (the section's "
+                    "failed checks name them)\n";
   for (const int s : sections) {
     const RowView p = row_of(&params, s);
     out += "\nsection " + std::to_string(s) + plane_line(row_of(frames, s), mm) +
