@@ -14,19 +14,22 @@ lists them); the same options give the same numbers as the tools. On one curve i
 `smooth(points)` -> points, `fit_spline(points)` -> Spline, `camber(spline)` -> dict.
 `read_tables(path)` reads a stream written by the tools into pandas DataFrames. The
 inspection, as the compare tool runs it: `compare_stream(s, "nominal.stl",
-tolerances="tolerances.csv")`, then `verdict(...)` and `compare_report(...)`.
+tolerances="tolerances.csv")`, then `verdict(...)` and `compare_report(...)`. A value that a
+failed check flags is not to be taken bare: `failed_checks(params["flags"], "max_thickness")`
+names the checks that flag it.
 """
 import numpy as _np
 
 from . import _libsection
-from ._libsection import (Cancelled, Error, Nominal, Spline, Stream, compare_report, generate, parse_stream,
-                          read_cloud, read_stream, verdict)
+from ._libsection import (Cancelled, Error, Nominal, Spline, Stream, compare_report, failed_checks, generate,
+                          parse_stream, read_cloud, read_stream, verdict)
 from .tables import format_number, read_tables, table, to_csv
 
 __all__ = ["slice", "smooth", "fit_spline", "camber", "blade", "compare", "compare_stream", "compare_report", "verdict",
            "prepare_nominal", "Nominal", "Stream", "Spline",
            "Error", "Cancelled", "read_stream",
-           "parse_stream", "read_cloud", "read_tables", "table", "format_number", "to_csv", "generate"]
+           "parse_stream", "read_cloud", "read_tables", "table", "format_number", "to_csv", "generate",
+           "failed_checks"]
 __version__ = "0.1.0"
 
 

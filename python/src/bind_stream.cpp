@@ -2,6 +2,7 @@
 // The stream, the B-spline and the file readers as Python objects.
 #include "convert.h"
 
+#include "section/checks.h"
 #include "section/io/cloud_io.h"
 #include "section/io/csv.h"
 #include "section/io/progress_io.h"
@@ -144,6 +145,21 @@ void bind_stream(py::module_& m) {
       py::arg("path"), py::arg("progress") = py::none(),
       "Reads a point cloud file (.xyz .asc .txt .csv .ply) as an (N, 3) array; progress(stage, done, total) "
       "is told the points read and cancels the reading by returning False.");
+  m.def(
+      "failed_checks",
+      [](double flags, const py::object& column) {
+        const CheckBits mask = flags_mask(flags);
+        const CheckBits bits =
+            column.is_none() ? mask : checks_flagging(mask, column.cast<std::string>().c_str());
+        std::vector<std::string> names;
+        for (const auto& c : check_names)
+          if (bits & bit(c.check)) names.push_back(c.name);
+        return names;
+      },
+      py::arg("flags"), py::arg("column") = py::none(),
+      "The names of the checks a flags value holds (a params or thickness row's 'flags'), in bit order; with "
+      "column, those that flag that params column ('max_thickness', 'le_radius', ...): a value they name is "
+      "not to be trusted bare (docs/CAMBER.md, 'Checks').");
 }
 
 }  // namespace section::python

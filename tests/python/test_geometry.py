@@ -38,6 +38,20 @@ def test_camber_of_the_ellipse_gives_its_chord_and_thickness():
     assert r["camber"]["u"].shape == r["camber"]["v"].shape
 
 
+def test_failed_checks_name_what_flags_a_value():
+    # le_circle (bit 2) flags the LE's values and the chord it ends, jump_chord (bit 14) the chord.
+    flags = float(4 + 16384)
+    assert ls.failed_checks(flags) == ["le_circle", "jump_chord"]
+    assert ls.failed_checks(flags, "chord") == ["le_circle", "jump_chord"]
+    assert ls.failed_checks(flags, "le_radius") == ["le_circle"]
+    assert ls.failed_checks(flags, "max_thickness") == []
+    assert ls.failed_checks(2.0 ** 40) == []  # no mask: no check
+    # A clean ellipse's values and thickness stations: none flagged.
+    r = ls.camber(ls.fit_spline(ellipse(20, 3, 800)), le_direction=[-1, 0])
+    assert ls.failed_checks(r["params"]["flags"]) == []
+    assert all(ls.failed_checks(f) == [] for f in r["thickness"]["flags"])
+
+
 def test_smooth_moves_noisy_points_toward_the_circle():
     rng = np.random.default_rng(3)
     clean = ellipse(5, 5, 400)
