@@ -168,6 +168,19 @@ TEST_CASE("camber: stream stage writes the tables and flags a two-loop section",
   CAPTURE(cut.issues[0].message);
   CHECK(cut.issues[0].message.find("loop 1: area 0.78") != std::string::npos);
   CHECK(cut.issues[0].message.find("cut off by a gap") != std::string::npos);
+
+  // Slice found two loops (table loops), fitspline fitted loop 0 alone: loop 0 may be only a
+  // piece of the profile (a 10 mm hole along a suction side split a turbine section in two,
+  // and camber measured the TE piece: chord 19 mm of 40.6, max thickness and area unflagged).
+  section::Stream split = section::profile_stream(profile);
+  split.put(
+      section::Table("loops", {"section", "loop", "points", "area"}, {0, 0, 900, 120.5, 0, 1, 700, 36.6}));
+  section::camber_stream(split, o);
+  CHECK(split.find("params")->rows() == 0);
+  REQUIRE(split.issues.size() == 1);
+  CAPTURE(split.issues[0].message);
+  CHECK(split.issues[0].message.find("2 loops") != std::string::npos);
+  CHECK(split.issues[0].message.find("loop 1: area 36.6 mm2, not fitted") != std::string::npos);
 }
 
 TEST_CASE("camber: a whole stream's notes flag every row, once, unless checked across parts", "[camber]") {

@@ -94,7 +94,8 @@ std::string edge_note(const SectionFacts& f, const Edge& e, const EdgeCoverage& 
 
 // Where a section's other loops lie, for the message that refuses it: a small loop close
 // outside the profile is usually a piece of it cut off by a gap in the data.
-std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section) {
+std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section,
+                        const std::map<int, double>& listed) {
   const auto main = curves.find({section, 0});
   if (main == curves.end()) return "";
   const std::vector<Eigen::Vector2d> p0 = sample(main->second, 400);
@@ -122,7 +123,20 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
     out += text;
     cut = cut || (area(p) < 0.2 * area(p0) && gap < 0.1 * (high - low).norm());
   }
+  // Loops slice found that fitspline could not fit: loop 0 may be only a piece of the profile.
+  bool unfitted = false;
+  for (const auto& [loop, loop_area] : listed) {
+    if (loop == 0 || curves.count({section, loop})) continue;
+    char text[120];
+    std::snprintf(text, sizeof text, "%sloop %d: area %.3g mm2, not fitted (see fitspline's issue)",
+                  out.empty() ? "" : "; ", loop, loop_area);
+    out += text;
+    unfitted = true;
+  }
   if (out.empty()) return "";
+  if (unfitted)
+    return " (" + out + "); a loop left unfitted may be a piece of the profile the data split from it: " +
+           "loop 0 alone is not the section";
   return " (" + out + ")" +
          (cut ? "; a small loop this close is often a piece of the profile cut off by a gap in the data"
               : "");

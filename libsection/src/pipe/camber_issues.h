@@ -36,8 +36,10 @@ inline bool few_points(std::size_t points, std::size_t coefficients) {
   return points < 16 * coefficients;
 }
 
-/// Where a section's other loops lie, for the message that refuses it ("" when it has none).
-std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section);
+/// Where a section's other loops lie, for the message that refuses it ("" when it has none);
+/// `listed`: the loops slice found (id -> area), those not among `curves` said unfitted.
+std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section,
+                        const std::map<int, double>& listed = {});
 
 /// What a measured section's issues rest on.
 struct SectionFacts {

@@ -127,8 +127,23 @@ struct CamberInput {
   std::map<int, std::vector<Eigen::Vector2d>> seeds;
   std::map<int, Measured> measured;
   std::map<int, LoopFit> fits;
-  std::map<int, int> loops;  // loops per section
+  std::map<int, int> loops;                     // loops per section: fitted, or listed by slice (table loops)
+  std::map<int, std::map<int, double>> listed;  // slice's loops of each section and their areas
 };
+
+// The loops slice found in each section (table loops), by id, with their areas: a loop that
+// fitspline could not fit is still one (a profile split by a gap leaves loop 0 a piece).
+std::map<int, std::map<int, double>> listed_loops(const Stream& stream) {
+  std::map<int, std::map<int, double>> out;
+  const Table* t = schema::loops.find(stream);
+  if (!t) return out;
+  const long cs = t->find_column(col::section), cl = t->find_column(col::loop), ca = t->find_column("area");
+  if (cs < 0 || cl < 0) return out;
+  for (std::size_t r = 0; r < t->rows(); ++r)
+    out[static_cast<int>(t->at(r, std::size_t(cs)))][static_cast<int>(t->at(r, std::size_t(cl)))] =
+        ca < 0 ? std::numeric_limits<double>::quiet_NaN() : t->at(r, std::size_t(ca));
+  return out;
+}
 
 CamberInput gather(const Stream& stream) {
   CamberInput in;
@@ -137,7 +152,10 @@ CamberInput gather(const Stream& stream) {
   in.seeds = skeletons(stream);
   in.measured = measured_points(stream);
   in.fits = loop_fits(stream);
+  in.listed = listed_loops(stream);
   for (const auto& [key, curve] : in.curves) ++in.loops[key.first];
+  for (const auto& [section, loops] : in.listed)
+    if (in.loops.count(section)) in.loops[section] = std::max(in.loops[section], int(loops.size()));
   return in;
 }
 
@@ -262,10 +280,13 @@ Measured moved(const Measured& q, const Eigen::Vector2d& origin) {
 // (a stream not written by slice), it is measured about a local origin and moved back.
 void camber_section(int section, const BSpline& curve, const CamberInput& in, const CamberOptions& options,
                     pipe::Slot& slot) {
-  if (in.loops.at(section) > 1)
+  if (in.loops.at(section) > 1) {
+    const auto listed = in.listed.find(section);
     throw Error("camber: section " + std::to_string(section) + " has " +
                 std::to_string(in.loops.at(section)) + " loops; camber measures single-profile sections" +
-                pipe::other_loops(in.curves, section));
+                pipe::other_loops(in.curves, section,
+                                  listed != in.listed.end() ? listed->second : std::map<int, double>{}));
+  }
   const auto fit = in.frames.find(section);
   const Frame f = fit != in.frames.end() ? fit->second : Frame{};
   CamberOptions opt = section_options(options, in, section, f);
