@@ -65,7 +65,9 @@ inline constexpr int check_count = 33;
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
 /// edge whose circle is doubtful flags its metal angle too: the camber line is extended to
 /// that edge's point along its circle, so its end direction rests on the same points; one
-/// whose point is doubtful (not circular, not measured) flags the chord and stagger it ends.
+/// whose point is doubtful (not circular, not measured) flags the chord and stagger it ends,
+/// and what is measured along the camber line from it: the camber line, its length, the
+/// place of the maximum thickness and the thickness table's stations.
 struct CheckName {
   Check check;
   const char* name;
@@ -75,20 +77,24 @@ inline constexpr CheckName check_names[] = {
     {Check::le_radius, "le_radius", "le_radius le_center inlet_angle camber_angle"},
     {Check::te_radius, "te_radius", "te_radius te_center outlet_angle camber_angle"},
     {Check::le_circle, "le_circle",
-     "le_radius le_center le_point inlet_angle camber_angle chord stagger camber_line"},
+     "le_radius le_center le_point inlet_angle camber_angle chord stagger camber_line camber_length "
+     "max_thickness_pos thickness"},
     {Check::te_circle, "te_circle",
-     "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line"},
+     "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line camber_length "
+     "max_thickness_pos thickness"},
     {Check::le_measured, "le_measured",
      "le_radius le_center le_point inlet_angle camber_angle chord stagger camber_line caliper_chord "
-     "caliper_stagger"},
+     "caliper_stagger camber_length max_thickness_pos thickness"},
     {Check::te_measured, "te_measured",
      "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line caliper_chord "
-     "caliper_stagger"},
-    {Check::le_point, "le_point", "le_point chord stagger"},
-    {Check::te_point, "te_point", "te_point chord stagger"},
+     "caliper_stagger camber_length max_thickness_pos thickness"},
+    {Check::le_point, "le_point",
+     "le_point chord stagger camber_line camber_length max_thickness_pos thickness"},
+    {Check::te_point, "te_point",
+     "te_point chord stagger camber_line camber_length max_thickness_pos thickness"},
     {Check::chord, "chord",
      "chord stagger le_point te_point camber_line camber_length max_thickness max_thickness_pos inlet_angle "
-     "outlet_angle camber_angle"},
+     "outlet_angle camber_angle thickness"},
     {Check::caliper, "caliper", "caliper_chord caliper_stagger"},
     {Check::inlet_angle, "inlet_angle", "inlet_angle camber_angle"},
     {Check::outlet_angle, "outlet_angle", "outlet_angle camber_angle"},
@@ -108,16 +114,20 @@ inline constexpr CheckName check_names[] = {
      "max_thickness max_thickness_pos thickness camber_line le_radius te_radius inlet_angle outlet_angle "
      "camber_angle"},
     {Check::le_vertex, "le_vertex",
-     "le_point chord stagger camber_line camber_length inlet_angle camber_angle"},
+     "le_point chord stagger camber_line camber_length inlet_angle camber_angle max_thickness_pos thickness"},
     {Check::te_vertex, "te_vertex",
-     "te_point chord stagger camber_line camber_length outlet_angle camber_angle"},
+     "te_point chord stagger camber_line camber_length outlet_angle camber_angle max_thickness_pos "
+     "thickness"},
     {Check::le_sharp, "le_sharp", "le_radius le_center"},
     {Check::te_sharp, "te_sharp", "te_radius te_center"},
     {Check::noise, "noise",
      "max_thickness max_thickness_pos thickness le_radius le_center te_radius te_center le_point te_point "
      "chord stagger caliper_chord camber_line camber_length inlet_angle outlet_angle camber_angle"},
-    {Check::inlet_fit, "inlet_fit", "inlet_angle camber_angle le_point chord stagger"},
-    {Check::outlet_fit, "outlet_fit", "outlet_angle camber_angle te_point chord stagger"},
+    {Check::inlet_fit, "inlet_fit",
+     "inlet_angle camber_angle le_point chord stagger camber_line camber_length max_thickness_pos thickness"},
+    {Check::outlet_fit, "outlet_fit",
+     "outlet_angle camber_angle te_point chord stagger camber_line camber_length max_thickness_pos "
+     "thickness"},
     {Check::thickness_measured, "thickness_measured", "max_thickness max_thickness_pos"},
 };
 
