@@ -27,13 +27,15 @@ le_radius() {  # FILE SECTION: the section's le_radius in the params table
 awk -F, -v OFS=, -v long="$long" '
   NR == 2 { print "# issue section=0 loop=0 stage=camber message=" long }
   /^# table / { t = substr($0, 9); print; next }
-  t == "params" && /^section,/ { for (i = 1; i <= NF; ++i) if ($i == "le_radius") c = i; print; next }
-  t == "params" && $1 == 1 && c { $c = 500 }
+  t == "params" && /^section,/ { for (i = 1; i <= NF; ++i) { if ($i == "le_radius") c = i; if ($i == "flags") f = i }
+    print; next }
+  t == "params" && $1 == 1 && c { $c = 500; if (f) $f = 276824124 }  # and six checks failed: their lines wrap
   { print }' "$TMP/stream.txt" > "$TMP/odd.txt"
 check "section 1 has the wrong LE radius" -- test "$(le_radius "$TMP/odd.txt" 1)" = 500
 check "section 0 keeps its LE radius" -- test "$(le_radius "$TMP/odd.txt" 0)" = "$(le_radius "$TMP/stream.txt" 0)"
 
 expect 0 "plot --html" -- "$BIN/plot" "$TMP/odd.txt" --html -o "$TMP/page.html"
+check "section 1's flagged values carry their failed checks" -- grep -q "param-fails" "$TMP/page.html"
 # The page holds each section's SVG as plot_svg writes it: one browser run checks them all.
 cp "$SRC/tests/tools/plot_boxes.js" "$TMP/"
 sed -e 's|<body>|<body data-page="html">|' -e 's|</body>|<script src="plot_boxes.js"></script></body>|' \
