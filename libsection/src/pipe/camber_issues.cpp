@@ -138,8 +138,10 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
     return " (" + out + "); a loop left unfitted may be a piece of the profile the data split from it: " +
            "loop 0 alone is not the section";
   return " (" + out + ")" +
-         (cut ? "; a small loop this close is often a piece of the profile cut off by a gap in the data"
-              : "");
+         (cut ? "; a small loop this close is often a piece of the profile cut off by a gap in the data, "
+                "else an object beside the blade (a fixture: crop it from the scan)"
+              : "; an object beside the blade (a fixture, a neighbouring blade) is to be cropped from the "
+                "scan, or missed by the plane");
 }
 
 namespace {
