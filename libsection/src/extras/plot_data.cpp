@@ -242,34 +242,34 @@ double param(const SectionData& d, const std::string& name) {
 std::vector<Row> parameter_rows(const SectionData& d) {
   std::vector<Row> rows;
   const std::string& u = d.units;
-  auto failed = [&](const std::string& key) { return failed_checks(d, key); };
   auto length = [&](const char* label, const std::string& key) {
     const double x = param(d, key);
-    if (std::isfinite(x)) rows.push_back({label, fixed(x, 4) + " " + u, failed(key)});
+    if (std::isfinite(x)) rows.push_back({label, fixed(x, 4) + " " + u, failed_checks(d, key)});
   };
   auto angle = [&](const char* label, const std::string& key) {
     const double x = param(d, key);
-    if (std::isfinite(x)) rows.push_back({label, fixed(x, 3) + "\xC2\xB0", failed(key)});
+    if (std::isfinite(x)) rows.push_back({label, fixed(x, 3) + "\xC2\xB0", failed_checks(d, key)});
   };
   length("chord", "chord");
   length("camber length", "camber_length");
   length("max thickness", "max_thickness");
   if (const double x = param(d, "max_thickness_pos"); std::isfinite(x))
-    rows.push_back({"max thickness at", fixed(100 * x, 2) + " % of camber", failed("max_thickness_pos")});
+    rows.push_back(
+        {"max thickness at", fixed(100 * x, 2) + " % of camber", failed_checks(d, "max_thickness_pos")});
   const char* shapes[] = {"round", "blunt", "sharp"};
   for (const std::string e : {"le", "te"}) {
     const double r = param(d, e + "_radius"), shape = param(d, e + "_shape");
     if (!std::isfinite(r)) continue;
     std::string value = fixed(r, 4) + " " + u;
     if (shape == 0 || shape == 1 || shape == 2) value += " (" + std::string(shapes[int(shape)]) + ")";
-    rows.push_back({e == "le" ? "LE radius" : "TE radius", value, failed(e + "_radius")});
+    rows.push_back({e == "le" ? "LE radius" : "TE radius", value, failed_checks(d, e + "_radius")});
   }
   angle("stagger", "stagger");
   angle("inlet angle", "inlet_angle");
   angle("outlet angle", "outlet_angle");
   angle("camber angle", "camber_angle");
   if (const double a = param(d, "area"); std::isfinite(a))
-    rows.push_back({"area", fixed(a, 3) + " " + u + "\xC2\xB2", failed("area")});
+    rows.push_back({"area", fixed(a, 3) + " " + u + "\xC2\xB2", failed_checks(d, "area")});
   length("caliper chord", "caliper_chord");
   if (!d.fit.empty()) {
     const auto get = [&](const char* k) {

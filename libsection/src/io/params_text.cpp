@@ -121,7 +121,7 @@ std::string plane_line(const RowView& frame, double mm) {
 
 // The value rows of one section's params, each value a failed check flags marked.
 std::string value_rows(const RowView& p, double mm) {
-  const CheckBits flags = std::isfinite(p("flags")) ? flags_mask(p("flags")) : 0;
+  const CheckBits flags = flags_mask(p("flags"));  // 0 for a missing or non-finite cell
   const auto flagged = [&](const char* c) { return checks_flagging(flags, c) != 0; };
   const auto length = [&](const char* label, const char* c, const std::string& after = "mm") {
     return cell(label, fixed(p(c) * mm, 4), after, flagged(c));
