@@ -5,7 +5,12 @@
 #include "section/io/stream.h"
 #include "section/pipe/camber_stream.h"
 #include "section/pipe/fit_spline_stream.h"
+#include "section/pipe/slice_stream.h"
 #include "section/pipe/smooth_stream.h"
+#include "section/slice.h"
+
+#include <stdexcept>
+#include <vector>
 
 namespace section::test {
 
@@ -18,6 +23,17 @@ inline Stream after_slice(const Stream& stream) {
   s = parse_stream(format_stream(s), "fitspline");
   camber_stream(s);
   return parse_stream(format_stream(s), "camber");
+}
+
+/// The params table of a plain profile's points (one section) through the whole pipe.
+inline Table profile_params(const std::vector<Eigen::Vector2d>& pts) {
+  Cloud cloud;
+  for (const Eigen::Vector2d& p : pts) cloud.points.emplace_back(p.x(), p.y(), 0.0);
+  const SliceResult r = slice_rows(cloud, {0, 0, 1});
+  const Stream s = after_slice(to_stream(r, "test", "mm"));
+  const Table* params = s.find("params");
+  if (!params || params->rows() != 1) throw std::runtime_error("profile_params: no single params row");
+  return *params;
 }
 
 }  // namespace section::test

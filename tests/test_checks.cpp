@@ -357,18 +357,6 @@ void add_slab_nose(std::vector<Vector2d>& pts) {
     pts.emplace_back(5 * std::cos(M_PI / 2 + M_PI * i / n), 5 * std::sin(M_PI / 2 + M_PI * i / n));
 }
 
-// The params table the pipe after slice gives a plain profile's points (one section).
-section::Table profile_params(const std::vector<Vector2d>& pts) {
-  section::Cloud cloud;
-  for (const Vector2d& p : pts) cloud.points.emplace_back(p.x(), p.y(), 0.0);
-  const section::SliceResult r = section::slice_rows(cloud, {0, 0, 1});
-  const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
-  const section::Table* params = s.find("params");
-  REQUIRE(params);
-  REQUIRE(params->rows() == 1);
-  return *params;
-}
-
 }  // namespace
 
 TEST_CASE("checks: a TE round but under the sharp threshold is flagged te_sharp, a vertex not", "[checks]") {
@@ -392,7 +380,7 @@ TEST_CASE("checks: a TE round but under the sharp threshold is flagged te_sharp,
     line(fillet ? hi : Vector2d(30 + c, 0), top);
     line(top, Vector2d(0, 5));
     add_slab_nose(pts);
-    const section::Table params = profile_params(pts);
+    const section::Table params = section::test::profile_params(pts);
     const auto flags = section::CheckBits(params.at(0, std::size_t(params.find_column("flags"))));
     INFO((fillet ? "fillet: " : "vertex: ") << names(flags));
     CHECK(params.at(0, std::size_t(params.find_column("te_radius"))) == 0);
@@ -418,7 +406,7 @@ TEST_CASE("checks: a sharp edge's radius 0 between sparse points is flagged te_s
     line(Vector2d(30 + c, 0.001), Vector2d(30, 5));
     line(Vector2d(30, 5), Vector2d(0, 5));
     add_slab_nose(pts);
-    const section::Table params = profile_params(pts);
+    const section::Table params = section::test::profile_params(pts);
     const auto flags = section::CheckBits(params.at(0, std::size_t(params.find_column("flags"))));
     INFO("points every " << step << ": " << names(flags));
     REQUIRE(params.at(0, std::size_t(params.find_column("te_shape"))) == 2);
@@ -472,7 +460,7 @@ TEST_CASE("checks: a sharp vertex between sparse points is where the flanks meet
         line(Vector2d(30, 5), Vector2d(0, 5), true);
         add_slab_nose(pts);
       }
-      const section::Table params = profile_params(pts);
+      const section::Table params = section::test::profile_params(pts);
       const auto at = [&](const char* column) {
         return params.at(0, std::size_t(params.find_column(column)));
       };

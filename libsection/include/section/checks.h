@@ -57,10 +57,13 @@ enum class Check : CheckBits {
   outlet_fit = 1u << 30,    ///< the same at the TE
   registration = 1u << 31,  ///< a view merged into the input was registered but not confirmed (slice --view)
   thickness_measured = CheckBits(1) << 32,  ///< the thickest circle touches a hole in the data
+  /// the section is no airfoil (thicker than half its chord, or flat faces about as wide as
+  /// it is thick at both ends): the plane cuts a platform, a root or shroud, a fixture
+  airfoil = CheckBits(1) << 33,
 };
 
 /// How many checks there are: a flags mask is below 2^check_count.
-inline constexpr int check_count = 33;
+inline constexpr int check_count = 34;
 
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
 /// edge whose circle is doubtful flags its metal angle too: the camber line is extended to
@@ -129,6 +132,7 @@ inline constexpr CheckName check_names[] = {
      "outlet_angle camber_angle te_point chord stagger camber_line camber_length max_thickness_pos "
      "thickness"},
     {Check::thickness_measured, "thickness_measured", "max_thickness max_thickness_pos"},
+    {Check::airfoil, "airfoil", "every column (what was measured is no blade section)"},
 };
 
 /// The bit of a check in a flags mask.
@@ -148,7 +152,8 @@ CheckBits flags_mask(double value);
 std::string check_names_text(CheckBits flags, const char* separator = ", ");
 
 /// The bits of `flags` (a params row's) whose checks flag the params column `column`: each
-/// check the columns check_names lists for it, units every column, le_choice every column
+/// check the columns check_names lists for it, units, registration and airfoil every
+/// column, le_choice every column
 /// that is not the same whichever end is the LE (all but chord, camber_length,
 /// max_thickness, area, caliper_chord and centroid). 0 when none does.
 CheckBits checks_flagging(CheckBits flags, const char* column);
@@ -176,6 +181,13 @@ struct CheckOptions {
   /// in 20 (0 = not checked).
   double le_radius_tolerance = 0.03;
   double te_radius_tolerance = 0.10;  ///< the same at the TE
+  /// An airfoil is at most this thick over its chord (the thickest blades, roots of
+  /// impulse turbines, about 0.3; a platform's or root block's section 0.5-1) ...
+  double airfoil_thickness = 0.5;
+  /// ... and does not end in flat faces wider than this fraction of its thickness at both
+  /// ends (a cut-off trailing edge is a fraction of it; a plate's or block's ends are as
+  /// wide as it is thick).
+  double airfoil_face = 0.5;
 };
 
 /// One failed check: what was measured and the most it may be (same unit).

@@ -213,6 +213,29 @@ std::string noise_note(const Finding& k, const SectionFacts& f) {
   return text;
 }
 
+// The airfoil check's words: the section's thickness over its chord (the check's value is
+// that ratio, computed alike), or the flat faces at both its ends.
+std::string airfoil_note(const Finding& k, const SectionFacts& f) {
+  const SectionParams& p = f.params;
+  char why[200];
+  if (k.value == p.max_thickness / std::max(p.chord, 1e-300))
+    std::snprintf(why, sizeof why, "its maximum thickness %s is %s of its chord %s (at most %s)",
+                  format_length(p.max_thickness).c_str(), format_share(k.value).c_str(),
+                  format_length(p.chord).c_str(), format_share(k.limit).c_str());
+  else
+    std::snprintf(
+        why, sizeof why, "it ends in flat faces %s and %s wide, %s of its maximum thickness %s (at most %s)",
+        format_length(f.camber.le.face).c_str(), format_length(f.camber.te.face).c_str(),
+        format_share(k.value).c_str(), format_length(p.max_thickness).c_str(), format_share(k.limit).c_str());
+  char text[480];
+  std::snprintf(text, sizeof text,
+                "the section is no airfoil: %s; the plane cuts something other than the blade (a platform, a "
+                "root or shroud, a fixture): every value fails check airfoil; place the planes on the "
+                "airfoil (slice --at)",
+                why);
+  return text;
+}
+
 // A failed check of section_check in words, with its values.
 std::string finding_note(const Finding& k, const SectionFacts& f) {
   const SectionParams& p = f.params;
@@ -271,6 +294,8 @@ std::string finding_note(const Finding& k, const SectionFacts& f) {
       break;
     case Check::noise:
       return noise_note(k, f);
+    case Check::airfoil:
+      return airfoil_note(k, f);
     case Check::layers:  // value: the layers' distance, limit: the profile length they cover
       std::snprintf(
           text, sizeof text,

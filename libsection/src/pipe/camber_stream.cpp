@@ -366,6 +366,9 @@ void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOpt
     if (!t) continue;
     auto get = [&](std::size_t r, const char* name) { return t->at(r, t->column(name)); };
     for (std::size_t r = 0; r < t->rows(); ++r) {
+      // A section that is no airfoil (a platform's) is no neighbour of the blade's: as one
+      // it made 8 sections' thicknesses jump from it.
+      if (flags_mask(get(r, "flags")) & bit(Check::airfoil)) continue;
       BladeSection b;
       b.height = Eigen::Vector3d(get(r, "centroid_x"), get(r, "centroid_y"), get(r, "centroid_z")).dot(n);
       SectionParams& p = b.params;
