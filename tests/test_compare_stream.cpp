@@ -412,14 +412,16 @@ TEST_CASE("compare stream: a radius within its uncertainty of a limit is uncerta
 
 TEST_CASE("compare stream: a value camber flagged is uncertain however loose its limits", "[compare]") {
   const NoisyCase nc = noisy_case();
-  // Section 1 as if camber had found two layers of points: its radii and thickness are then
-  // uncertain under either rule; its chord (not flagged) still passes.
+  // Section 1 as if camber had doubted its LE circle and found a hole at its thickest circle:
+  // its LE radius and thickness are then uncertain under either rule; its chord (not
+  // flagged) still passes.
   section::Stream layered = nc.measured;
   section::Table& params = *layered.find("params");
   const std::size_t cs = params.column("section"), cf = params.column("flags");
   for (std::size_t r = 0; r < params.rows(); ++r)
     if (params.at(r, cs) == 1)
-      params.values[r * params.columns.size() + cf] = section::bit(section::Check::layers);
+      params.values[r * params.columns.size() + cf] =
+          double(section::bit(section::Check::le_radius) | section::bit(section::Check::thickness_measured));
   for (const auto rule : {section::DecisionRule::guarded, section::DecisionRule::simple}) {
     section::Stream s = layered;
     section::CompareStreamOptions o = nc.options;
@@ -428,7 +430,7 @@ TEST_CASE("compare stream: a value camber flagged is uncertain however loose its
     section::compare_stream(s, nc.nominal, o);
     CHECK(compared(s, "le_radius").at(1)[2] == 3);
     CHECK(compared(s, "max_thickness").at(1)[2] == 3);
-    CHECK(compared_column(s, 1, "le_radius", "flags") == section::bit(section::Check::layers));
+    CHECK(compared_column(s, 1, "le_radius", "flags") == section::bit(section::Check::le_radius));
     CHECK(compared(s, "chord").at(1)[2] == 0);
     CHECK(compared(s, "le_radius").at(0)[2] == 0);
     const auto verdicts = column(s, "verdicts", "verdict");
@@ -440,7 +442,7 @@ TEST_CASE("compare stream: a value camber flagged is uncertain however loose its
     CHECK(report.rfind("blade: UNCERTAIN", 0) == 0);
     CHECK(report.find("section 1: uncertain (1 passed, 0 failed, 0 not measured, 2 uncertain)") !=
           std::string::npos);
-    CHECK(report.find("uncertain (flagged: layers)") != std::string::npos);
+    CHECK(report.find("uncertain (flagged: le_radius)") != std::string::npos);
     CHECK(section::plot_svg(s, 1).find("UNCERTAIN (") != std::string::npos);
   }
   // A failure outweighs an uncertain value in the section's verdict.

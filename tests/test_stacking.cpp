@@ -202,7 +202,8 @@ TEST_CASE("stacking: flagged params flag the blade values that rest on them", "[
   for (const auto& v : r.sections) CHECK((v.flags & bit_of(StackCheck::bow)));
   CHECK(params_flagged(bit(Check::le_choice), "stagger"));
   CHECK(!params_flagged(bit(Check::le_choice), "max_thickness"));
-  CHECK(!params_flagged(bit(Check::layers), "stagger"));
+  CHECK(params_flagged(bit(Check::layers), "stagger"));  // two layers move the edge points
+  CHECK(!params_flagged(bit(Check::le_radius), "stagger"));
 }
 
 TEST_CASE("stacking: two sections make a line, without bow; fewer is refused", "[stacking]") {

@@ -114,8 +114,8 @@ inline constexpr CheckName check_names[] = {
     {Check::units, "units", "every length column (and, through the defaults, every value)"},
     {Check::registration, "registration", "every value (a view's points may lie slid and turned)"},
     {Check::layers, "layers",
-     "max_thickness max_thickness_pos thickness camber_line le_radius te_radius inlet_angle outlet_angle "
-     "camber_angle"},
+     "max_thickness max_thickness_pos thickness camber_line le_radius le_center te_radius te_center le_point "
+     "te_point chord stagger caliper_chord camber_length inlet_angle outlet_angle camber_angle"},
     {Check::le_vertex, "le_vertex",
      "le_point chord stagger camber_line camber_length inlet_angle camber_angle max_thickness_pos thickness"},
     {Check::te_vertex, "te_vertex",

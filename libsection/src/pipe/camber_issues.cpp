@@ -301,8 +301,8 @@ std::string finding_note(const Finding& k, const SectionFacts& f) {
           text, sizeof text,
           "the measured points lie in two layers %s apart over %s of the profile (fitspline: "
           "views merged with a misregistration, or a slab so wide that the profile moves across "
-          "it?): the profile runs between them, so its thickness, edges, camber line and angles may "
-          "be off by up to half that (check %s)",
+          "it?): the profile runs between them, so its thickness may be off by up to half that, and "
+          "its edges, chord, camber line and angles by more (check %s)",
           format_length(k.value).c_str(), format_length(k.limit).c_str(), name);
       break;
     default:

@@ -1,0 +1,101 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Ghost points from reflections: generated scans with patches of points doubled (or moved)
+beside the surface near each plane, run through the pipe, every value scored against the
+generator's exact truth. Prints the values off their target and whether a check flags them
+(SILENT: none does), then a summary line. Needs numpy and scipy (the peers' venv).
+
+    /tmp/peers/bin/python scripts/probe_ghost_points.py --mode ghost --offset 0.03 \\
+        --radius 0.5 --patches 2 --seeds 5,6
+"""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from check_bits import check_bits, flagged_by  # noqa: E402
+
+TARGETS = {"chord": ("abs", 0.010), "max_thickness": ("abs", 0.005), "le_radius": ("rel", 0.03),
+           "te_radius": ("rel", 0.10), "inlet_angle": ("abs", 0.5), "outlet_angle": ("abs", 0.5),
+           "stagger": ("abs", 0.5)}
+HEIGHTS = [10, 20, 30, 40, 50]
+
+
+def patched(points, heights, args, rng):
+    """The scan with `patches` patches of `radius` near each plane doubled (ghost) or moved
+    (bump) by `offset` along the local normal, out or in at random."""
+    tree = cKDTree(points)
+    extra = []
+    for z in heights:
+        candidates = np.where(np.abs(points[:, 2] - z) < 0.3)[0]
+        for c in rng.choice(candidates, args.patches, replace=False):
+            near = tree.query_ball_point(points[c], args.radius)
+            nb = points[tree.query(points[c], k=20)[1]]
+            normal = np.linalg.eigh(np.cov((nb - nb.mean(0)).T))[1][:, 0]
+            ring = points[np.abs(points[:, 2] - points[c, 2]) < 0.2]
+            if np.dot(normal, points[c] - ring.mean(0)) < 0:
+                normal = -normal
+            shift = args.offset * (1 if rng.random() < 0.5 else -1) * normal
+            if args.mode == "ghost":
+                extra.append(points[near] + shift)
+            else:
+                points[near] += shift
+    return np.vstack([points] + extra) if extra else points
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--bin", default=os.path.join(HERE, "..", "build", "tools"))
+    ap.add_argument("--mode", choices=["ghost", "bump"], default="ghost")
+    ap.add_argument("--offset", type=float, default=0.03, help="mm off the surface")
+    ap.add_argument("--radius", type=float, default=0.5, help="patch radius, mm")
+    ap.add_argument("--patches", type=int, default=2, help="patches near each plane")
+    ap.add_argument("--seeds", default="5,6")
+    ap.add_argument("--kinds", default="turbine,compressor,thick-root,sharp-te")
+    args = ap.parse_args()
+    bits = check_bits()
+    b = args.bin
+    sections = refused = silent = 0
+    with tempfile.TemporaryDirectory() as d:
+        for kind in args.kinds.split(","):
+            for seed in [int(s) for s in args.seeds.split(",")]:
+                at = ",".join(map(str, HEIGHTS))
+                subprocess.run([f"{b}/bladegen", "--kind", kind, "--points", "--noise", "0.005", "--seed",
+                                str(seed), "-o", f"{d}/s.xyz", "--truth", f"{d}/t.csv", "--at", at],
+                               check=True, capture_output=True)
+                rng = np.random.default_rng(seed * 100 + int(args.offset * 1000))
+                points = patched(np.loadtxt(f"{d}/s.xyz"), HEIGHTS, args, rng)
+                np.savetxt(f"{d}/g.xyz", points, fmt="%.5f")
+                truth = list(csv.DictReader(open(f"{d}/t.csv")))
+                run = subprocess.run(f"{b}/slice {d}/g.xyz --at {at} | {b}/smooth | {b}/fitspline | "
+                                     f"{b}/camber --format csv", shell=True, capture_output=True, text=True)
+                rows = {int(r["section"]): r for r in csv.DictReader(run.stdout.splitlines())}
+                for k, z in enumerate(HEIGHTS):
+                    if k not in rows:
+                        refused += 1
+                        print(f"{kind:10s} seed {seed} z {z}: refused")
+                        continue
+                    sections += 1
+                    row, t = rows[k], truth[k]
+                    for col, (kind_of, tol) in TARGETS.items():
+                        if kind == "sharp-te" and col == "te_radius":
+                            continue
+                        m, tv = float(row[col]), float(t[col])
+                        err = m / tv - 1 if kind_of == "rel" and tv > 0 else m - tv
+                        if abs(err) > tol:
+                            names = flagged_by(row["flags"], col, bits)
+                            silent += not names
+                            print(f"{kind:10s} seed {seed} z {z}: {col} {err:+.4f} "
+                                  f"{'flagged ' + ','.join(names) if names else 'SILENT'}")
+    print(f"{args.mode} {args.offset} mm, {args.patches} patches of {args.radius} mm a plane: "
+          f"{sections} sections, {refused} refused, {silent} values off with no flag")
+
+
+if __name__ == "__main__":
+    main()
