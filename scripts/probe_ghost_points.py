@@ -27,9 +27,23 @@ TARGETS = {"chord": ("abs", 0.010), "max_thickness": ("abs", 0.005), "le_radius"
 HEIGHTS = [10, 20, 30, 40, 50]
 
 
+def sprayed(points, args, rng):
+    """The scan with a share `patches` / 100 of its points moved off the surface by up to
+    `offset` (uniform, along the local normal, out or in at random): a laser's mixed pixels."""
+    tree = cKDTree(points)
+    chosen = rng.choice(len(points), int(len(points) * args.patches / 100), replace=False)
+    for c in chosen:
+        nb = points[tree.query(points[c], k=12)[1]]
+        normal = np.linalg.eigh(np.cov((nb - nb.mean(0)).T))[1][:, 0]
+        points[c] = points[c] + rng.uniform(-args.offset, args.offset) * normal
+    return points
+
+
 def patched(points, heights, args, rng):
     """The scan with `patches` patches of `radius` near each plane doubled (ghost) or moved
     (bump) by `offset` along the local normal, out or in at random."""
+    if args.mode == "spray":
+        return sprayed(points, args, rng)
     tree = cKDTree(points)
     extra = []
     for z in heights:
@@ -52,10 +66,11 @@ def patched(points, heights, args, rng):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--bin", default=os.path.join(HERE, "..", "build", "tools"))
-    ap.add_argument("--mode", choices=["ghost", "bump"], default="ghost")
+    ap.add_argument("--mode", choices=["ghost", "bump", "spray"], default="ghost")
     ap.add_argument("--offset", type=float, default=0.03, help="mm off the surface")
     ap.add_argument("--radius", type=float, default=0.5, help="patch radius, mm")
-    ap.add_argument("--patches", type=int, default=2, help="patches near each plane")
+    ap.add_argument("--patches", type=int, default=2,
+                    help="patches near each plane (spray: per cent of the points moved)")
     ap.add_argument("--seeds", default="5,6")
     ap.add_argument("--kinds", default="turbine,compressor,thick-root,sharp-te")
     args = ap.parse_args()
@@ -79,7 +94,7 @@ def main():
                 for k, z in enumerate(HEIGHTS):
                     if k not in rows:
                         refused += 1
-                        print(f"{kind:10s} seed {seed} z {z}: refused")
+                        print(f"{kind:10s} seed {seed} z {z}: refused: {run.stderr.strip()[-300:]}")
                         continue
                     sections += 1
                     row, t = rows[k], truth[k]

@@ -304,6 +304,35 @@ TEST_CASE("morphology: two separate blades give two loops, largest first", "[mor
   CHECK(check_loop(m.loops[1], small).worst_backstep < 0.1);
 }
 
+TEST_CASE("morphology: points scattered off the surface make no loop of their own", "[morphology]") {
+  // A laser's mixed pixels: a point every 0.3-0.9 mm along the profile moved 0.1-0.25 mm off
+  // it, out or in. Those farther than the outlier distance closed, on their own pass, into
+  // loops along the profile, and the section was refused for its "other objects". A dense
+  // scan of a second object as near (a cooling channel 0.5 mm inside the wall) stays a loop.
+  const Curve blade = airfoil({0, 0}, 0.5, 0.3, 6.0, 2.0);
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    ScanSpec spec;
+    spec.spacing = 0.04, spec.holes = 0, spec.outliers = 0, spec.misregistration = 0, spec.seed = seed;
+    Points points = scan(blade, spec).points;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u01(0, 1);
+    std::size_t strays = 0;
+    for (double t = 0; t < blade.perimeter; t += 0.3 + 0.6 * u01(rng), ++strays) {
+      const auto [p, n] = blade.at(t);
+      points.push_back(p + (u01(rng) < 0.5 ? -1 : 1) * (0.1 + 0.15 * u01(rng)) * n);
+    }
+    const MorphologyResult m = order_section(points);
+    INFO("seed " << seed << ": " << strays << " strays, " << m.loops.size() << " loops, dropped "
+                 << m.dropped);
+    CHECK(m.loops.size() == 1);
+    CHECK(check_loop(m.loops[0], blade).worst_backstep < 0.1);
+  }
+  const Curve wall = ellipse({0, 0}, 12, 4);
+  const Curve channel = ellipse({0, 0}, 11.5, 3.5);
+  const MorphologyResult m = order_section(two_scans(wall, channel, 5));
+  CHECK(m.loops.size() == 2);
+}
+
 TEST_CASE("morphology: an annulus (cooling channel) gives an outer and an inner loop", "[morphology]") {
   const Curve outer = ellipse({0, 0}, 12, 6);
   const Curve inner = ellipse({1, 0.5}, 3, 1.5);

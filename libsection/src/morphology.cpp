@@ -139,6 +139,32 @@ double cell_size(const Points& points, const std::vector<std::size_t>& all, cons
   return h;
 }
 
+// Points scattered off the surface (a laser's mixed pixels at 0.1-0.2 mm, a reflection's
+// ghosts) farther than the outlier distance from the profile closed, on a pass of their own,
+// into loops along it of a point every 0.35-2 mm where the scan has one every 0.03: the
+// section was then refused for its "other objects". Such a loop, far sparser than the cell
+// (the points' median spacing) with its points beside the first pass's loops, is no loop:
+// an object of its own (a fixture, a piece the data split off) is scanned as densely as the
+// blade.
+constexpr double kStraySparser = 5;  // its points' mean spacing over the cell (a scan's density varies 4:1)
+constexpr double kStrayReach = 20;   // cells from the first pass's loops ...
+constexpr double kStrayShare = 0.8;  // ... within which this share of its points lies
+
+bool strays_beside(const Points& points, const std::vector<std::size_t>& subset, const Points& boundary,
+                   const std::vector<const Points*>& first_pass, double reach, double h) {
+  double length = 0;
+  for (std::size_t i = 0; i < boundary.size(); ++i)
+    length += (boundary[(i + 1) % boundary.size()] - boundary[i]).norm();
+  const morph::SegmentGrid own({&boundary}, reach), beside(first_pass, kStrayReach * h);
+  std::size_t made = 0, near = 0;
+  for (const std::size_t k : subset)
+    if (own.nearest(points[k]).loop >= 0) {
+      ++made;
+      near += beside.nearest(points[k]).loop >= 0;
+    }
+  return made > 0 && length / double(made) > kStraySparser * h && double(near) >= kStrayShare * double(made);
+}
+
 // Passes over `subset` until no new loop is found: points far from every loop so far
 // are processed again on their own.
 void find_loops(const Points& points, std::vector<std::size_t> subset, double h, double outlier,
@@ -148,6 +174,9 @@ void find_loops(const Points& points, std::vector<std::size_t> subset, double h,
     if (!morph::run_pass(points, subset, h, opt, pass)) break;
     if (s.passes.empty()) result.raster_cells = pass.raster.size();
     const std::size_t before = s.found.size();
+    std::vector<const Points*> first_pass;
+    for (const Found& f : s.found)
+      if (f.pass == 0) first_pass.push_back(&f.boundary);
     for (std::size_t ci = 0; ci < pass.components.size(); ++ci) {
       const morph::Component& comp = pass.components[ci];
       if (comp.enclosed == 0) continue;
@@ -156,6 +185,9 @@ void find_loops(const Points& points, std::vector<std::size_t> subset, double h,
       f.component = int(ci);
       f.boundary = morph::component_boundary(pass, comp);
       if (f.boundary.size() < 3) continue;
+      if (!first_pass.empty() &&
+          strays_beside(points, subset, f.boundary, first_pass, std::max(outlier, pass.radius * h), h))
+        continue;
       f.area = morph::signed_area(f.boundary);
       s.found.push_back(std::move(f));
     }
