@@ -462,6 +462,47 @@ TEST_CASE("edge: a radius its points cannot fix to its tolerance is flagged (spr
          section::bit(section::Check::te_radius)) == 0);
 }
 
+TEST_CASE("edge: under 8 points on an edge's arc fix its radius by where they lie", "[edge][checks]") {
+  // The radius on the curve through a handful of points spreads as a circle on them would:
+  // their noise times a factor of where they lie on the arc (a compressor TE of 0.22 mm
+  // with 4 of them came out 17 % small, flagged by no spread when the noise alone stood
+  // for it). Measured points every 0.02 mm but about the TE, where `kept` of them are left
+  // on its arc, spread evenly or bunched.
+  const SectionTruth truth = section::section_truth(section::compressor_blade().at(30), 20000);
+  const BSpline spline = dense_spline(truth.profile);
+  const auto te_with = [&](int kept, double bunched) {
+    std::vector<Vector2d> pts;
+    std::vector<Vector2d> arc;  // the profile's points on the TE arc, in order
+    for (std::size_t i = 0; i < truth.profile.size(); i += 10) {
+      const Vector2d& p = truth.profile[i];
+      if ((p - truth.te_center).norm() > 1.5 * truth.te_radius)
+        pts.push_back(p);
+      else if ((p - truth.te_center).dot(truth.te_point - truth.te_center) > 0)
+        arc.push_back(p);
+    }
+    for (int k = 0; k < kept; ++k)  // across the arc, or its first `bunched` share
+      pts.push_back(arc[std::size_t((arc.size() - 1) * bunched * (k + 0.5) / kept)]);
+    return measure(spline, 0.002, pts).camber.te;
+  };
+  const section::Edge even = te_with(5, 1), bunched = te_with(5, 0.3), two = te_with(2, 1);
+  CHECK(even.arc_points == 5);
+  CHECK(bunched.arc_points == 5);
+  CHECK(even.arc_spread > 1);  // 5 points over the half circle fix it less than one point's noise
+  CHECK(even.arc_spread < 5);
+  CHECK(bunched.arc_spread > 3 * even.arc_spread);  // bunched on a third of it: far less
+  CHECK(std::isinf(two.arc_spread));                // two points fix no circle
+  CHECK(te_with(40, 1).arc_points >= 8);
+  // The check: twice the noise times the factor against 10 % of the radius.
+  Checked c = measure(spline, 0);
+  const double r = c.camber.te.radius;
+  c.camber.te.arc_points = 5;
+  for (const double factor : {0.5, 2.0, 4.0}) {
+    c.camber.te.arc_spread = factor;
+    const bool flagged = (recheck(spline, c, 0.02 * r).flags & section::bit(section::Check::te_radius)) != 0;
+    CHECK(flagged == (2 * 0.02 * std::max(1.0, factor) > 0.10));
+  }
+}
+
 TEST_CASE("edge: a thin trailing edge's radius off its 10 % is flagged, a well-measured one not",
           "[edge][checks]") {
   // A generated section with a 30 um trailing edge, points every 20 um moved by noise

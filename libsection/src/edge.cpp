@@ -484,6 +484,22 @@ double arc_sagitta(const Edge& e, const std::vector<double>& angles) {
   return h <= e.radius ? h * h / (8 * e.radius) / 8 : 0.0;
 }
 
+// The radius's standard error per unit of noise of a circle fitted on points at `angles`
+// about its centre: the (R, R) entry of the inverse normal matrix of the linearised fit,
+// each point's residual moving with the centre along (cos a, sin a) and with the radius.
+double arc_spread(const std::vector<double>& angles) {
+  if (angles.size() < 3) return std::numeric_limits<double>::infinity();
+  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+  for (const double a : angles) {
+    const Eigen::Vector3d row(std::cos(a), std::sin(a), 1);
+    m += row * row.transpose();
+  }
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(m);
+  if (!lu.isInvertible()) return std::numeric_limits<double>::infinity();
+  const double rr = lu.inverse()(2, 2);
+  return rr > 0 && std::isfinite(rr) ? std::sqrt(rr) : std::numeric_limits<double>::infinity();
+}
+
 void classify_edge(Edge& e, double max_diameter, const CamberOptions& options) {
   if (e.radius < options.sharp_ratio * max_diameter)
     e.shape = EdgeShape::sharp;
@@ -515,7 +531,10 @@ Edge detect_edge(const SampledProfile& pr, const InscribedCircle& end, const Eig
   classify_edge(e, max_diameter, options);
   if (e.radius > 0) {
     const std::vector<double> angles = arc_angles(pr, e, measured);
-    if (!measured.empty()) e.arc_points = static_cast<int>(angles.size());
+    if (!measured.empty()) {
+      e.arc_points = static_cast<int>(angles.size());
+      e.arc_spread = arc_spread(angles);
+    }
     e.sampling = arc_sagitta(e, angles);
   }
   if (options.profile_noise > 0 && e.radius > 0)

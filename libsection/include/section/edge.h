@@ -68,6 +68,11 @@ struct Edge {
   /// is over edge_point_sigma of its radius, or it moved far): 0 when none was fitted (no
   /// measured points given, too few on the arc, or a gap among them).
   double points_sigma = 0;
+  /// The standard error of a circle's radius fitted on the measured points on the arc, per
+  /// unit of their noise, from their angles alone (the linearised fit of centre and
+  /// radius): how well so few points can fix it where under 8 lie on the arc (infinity with
+  /// under 3, or all at one place); 0 when no measured points were given.
+  double arc_spread = 0;
   /// Sharp (closed) edge: the medial branch runs into a vertex of the profile, which is
   /// the edge point (radius 0, centre = point, no arc): where the profile's flanks meet,
   /// off the fitted curve's rounding of the corner (docs/CAMBER.md, "Sharp (closed) edges").

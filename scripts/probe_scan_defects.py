@@ -1,11 +1,15 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Ghost points from reflections: generated scans with patches of points doubled (or moved)
-beside the surface near each plane, run through the pipe, every value scored against the
-generator's exact truth. Prints the values off their target and whether a check flags them
-(SILENT: none does), then a summary line. Needs numpy and scipy (the peers' venv).
+"""Scan defects of real data on generated scans, run through the pipe, every value scored
+against the generator's exact truth: patches of points doubled (ghost: a reflection) or
+moved (bump) beside the surface near each plane, points scattered off it (spray: a laser's
+mixed pixels), or the edges scanned sparser than the flanks (thin-edges: 1 point in
+--patches kept within --radius of the LE and TE points). Prints the values off their
+target and whether a check flags them (SILENT: none does), then a summary line. Needs
+numpy and scipy (the peers' venv).
 
-    /tmp/peers/bin/python scripts/probe_ghost_points.py --mode ghost --offset 0.03 \\
+    /tmp/peers/bin/python scripts/probe_scan_defects.py --mode ghost --offset 0.03 \\
         --radius 0.5 --patches 2 --seeds 5,6
+    /tmp/peers/bin/python scripts/probe_scan_defects.py --mode thin-edges --patches 8 --radius 3
 """
 import argparse
 import csv
@@ -39,6 +43,18 @@ def sprayed(points, args, rng):
     return points
 
 
+def thinned(points, truth, args, rng):
+    """The scan with 1 point in `patches` kept within `radius` of the LE and TE points (each
+    height's edge points interpolated from the truth's)."""
+    z = np.array([float(t["z"]) for t in truth])
+    near = np.zeros(len(points), dtype=bool)
+    for edge in ("le", "te"):
+        x = np.interp(points[:, 2], z, [float(t[edge + "_x"]) for t in truth])
+        y = np.interp(points[:, 2], z, [float(t[edge + "_y"]) for t in truth])
+        near |= np.hypot(points[:, 0] - x, points[:, 1] - y) < args.radius
+    return points[~near | (rng.random(len(points)) < 1.0 / args.patches)]
+
+
 def patched(points, heights, args, rng):
     """The scan with `patches` patches of `radius` near each plane doubled (ghost) or moved
     (bump) by `offset` along the local normal, out or in at random."""
@@ -66,11 +82,12 @@ def patched(points, heights, args, rng):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--bin", default=os.path.join(HERE, "..", "build", "tools"))
-    ap.add_argument("--mode", choices=["ghost", "bump", "spray"], default="ghost")
+    ap.add_argument("--mode", choices=["ghost", "bump", "spray", "thin-edges"], default="ghost")
     ap.add_argument("--offset", type=float, default=0.03, help="mm off the surface")
     ap.add_argument("--radius", type=float, default=0.5, help="patch radius, mm")
     ap.add_argument("--patches", type=int, default=2,
-                    help="patches near each plane (spray: per cent of the points moved)")
+                    help="patches near each plane (spray: per cent of the points moved; thin-edges: "
+                         "1 point in this many kept)")
     ap.add_argument("--seeds", default="5,6")
     ap.add_argument("--kinds", default="turbine,compressor,thick-root,sharp-te")
     args = ap.parse_args()
@@ -85,9 +102,13 @@ def main():
                                 str(seed), "-o", f"{d}/s.xyz", "--truth", f"{d}/t.csv", "--at", at],
                                check=True, capture_output=True)
                 rng = np.random.default_rng(seed * 100 + int(args.offset * 1000))
-                points = patched(np.loadtxt(f"{d}/s.xyz"), HEIGHTS, args, rng)
-                np.savetxt(f"{d}/g.xyz", points, fmt="%.5f")
                 truth = list(csv.DictReader(open(f"{d}/t.csv")))
+                points = np.loadtxt(f"{d}/s.xyz")
+                if args.mode == "thin-edges":
+                    points = thinned(points, truth, args, np.random.default_rng(seed))
+                else:
+                    points = patched(points, HEIGHTS, args, rng)
+                np.savetxt(f"{d}/g.xyz", points, fmt="%.5f")
                 run = subprocess.run(f"{b}/slice {d}/g.xyz --at {at} | {b}/smooth | {b}/fitspline | "
                                      f"{b}/camber --format csv", shell=True, capture_output=True, text=True)
                 rows = {int(r["section"]): r for r in csv.DictReader(run.stdout.splitlines())}
