@@ -5,7 +5,6 @@
 #include "section/camber.h"
 
 #include "camber_fixtures.h"
-#include "pipe_stages.h"
 #include "section/checks.h"
 #include "section/error.h"
 #include "section/extras/generate.h"
@@ -530,32 +529,4 @@ TEST_CASE(
   const section::Stream row = measured(sparse);
   CHECK_FALSE(flagged(row));
   for (const Station& st : stations(row)) CHECK_FALSE(st.unmeasured);
-}
-
-TEST_CASE("camber: a round edge's tip between points farther apart than its noise allows is not measured",
-          "[camber][checks]") {
-  // The curve bridging a bare stretch g over a tip of radius R may stray from it by the
-  // chord's sagitta g^2 / (8 R); past the edge point's limit (4 times the noise) the tip,
-  // and the chord with it, rest on that bridge (a compressor's 0.28 mm LE with 0.28 mm of
-  // it bare put its point 15 um off, unflagged). Points every 0.02 mm with 5 um of noise,
-  // a stretch of 0.9 R and of 0.4 R left bare about the LE point.
-  const SectionTruth truth = section::section_truth(section::compressor_blade().at(30), 20000);
-  const double r = truth.le_radius;
-  std::mt19937_64 rng(3);
-  std::normal_distribution<double> noise(0, 0.005);
-  for (const double bare : {0.9, 0.4}) {
-    std::vector<Vector2d> pts;
-    for (std::size_t i = 0; i < truth.profile.size(); i += 8) {
-      // The profile starts at the LE point.
-      const double from_tip = std::min(truth.profile_s[i], truth.perimeter - truth.profile_s[i]);
-      const Vector2d p = truth.profile[i] + noise(rng) * truth.profile_normal[i];
-      if (from_tip > 0.5 * bare * r) pts.push_back(p);
-    }
-    const section::Table params = section::test::profile_params(pts);
-    const auto flags = section::flags_mask(params.at(0, std::size_t(params.find_column("flags"))));
-    INFO("bare " << bare << " R (" << bare * r << " mm): " << section::check_names_text(flags));
-    CHECK(((flags & section::bit(section::Check::le_measured)) != 0) == (bare > 0.5));
-    if (bare > 0.5)
-      CHECK(section::checks_flagging(flags, "chord") & section::bit(section::Check::le_measured));
-  }
 }

@@ -220,6 +220,39 @@ TEST_CASE("slice: a generated blade mesh cuts to the true section", "[slice][gen
   CHECK(worst < 1e-6);
 }
 
+TEST_CASE("slice: a mesh with a hole at the plane is cut, its hole bridged as a scan's",
+          "[slice][generated]") {
+  // A scan's mesh often has holes: a plane through one cut it into open polylines, and the
+  // section was refused. Its cut points are ordered as a cloud's slab instead; the loop
+  // bridges the hole (2-3 mm of the suction side here) and lies on the true section.
+  const BladeDesign blade = turbine_blade();
+  Mesh mesh = generate_mesh(blade, 600, 61);
+  const double z0 = 30;
+  std::vector<std::array<int, 3>> kept;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d c = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3;
+    if (!(std::abs(c.z() - z0) < 1.5 && c.x() > 0 && c.x() < 3 && c.y() > 0)) kept.push_back(t);
+  }
+  REQUIRE(kept.size() < mesh.triangles.size());
+  mesh.triangles = kept;
+  const SliceResult r = slice(mesh, planes_at({0, 0, 1}, {z0}));
+  const SectionSlice& s = r.sections[0];
+  INFO(s.error);
+  REQUIRE(s.error.empty());
+  CHECK(s.open_polylines == 2);
+  CHECK(s.bridged > 2);
+  CHECK(s.bridged < 3.5);
+  REQUIRE(s.morphology.loops.size() == 1);
+  const SectionTruth truth = section_truth(blade.at(z0));
+  double worst = 0;
+  for (const auto& p : s.morphology.loops[0].points) worst = std::max(worst, locate(truth, p).distance);
+  CHECK(worst < 0.01);  // the cut points, on the mesh's facets
+  // The closed mesh's section is no open one.
+  const SliceResult whole = slice(generate_mesh(blade, 600, 61), planes_at({0, 0, 1}, {z0}));
+  CHECK(whole.sections[0].open_polylines == 0);
+  CHECK(whole.sections[0].bridged == 0);
+}
+
 TEST_CASE("slice: a band tried and not taken leaves the slab's ordering, skeleton and all", "[slice]") {
   // A stadium (axis from (-10, 0) to (10, 0), half width 2 mm) scanned in the plane z = 0
   // only: a band is tried (a tiny band spacing asks for the widest), but it holds nothing

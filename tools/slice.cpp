@@ -41,6 +41,12 @@ public:
     one.sections = {s};
     section::Stream part = section::to_stream(one, history_, "mm");
     section::tool::warn_issues("slice", part, false);
+    if (s.error.empty() && s.open_polylines > 0)
+      std::cerr << "slice: warning: section " << s.id << ": " << s.open_polylines
+                << " open intersection polyline(s): the mesh is not closed around this plane; its cut points "
+                   "were ordered as a scan's, the loop bridging up to "
+                << s.bridged
+                << " mm without a cut point (a hole in the mesh): camber flags what rests on it\n";
     ++sections_;
     if (!s.error.empty()) ++failed_;
     if (!writer_ && !s.error.empty()) {

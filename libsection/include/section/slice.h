@@ -60,6 +60,10 @@ struct SectionSlice {
   double row_height = 0;        ///< mm, that row's height along the sampling's normal
   double row_spread = 0;        ///< mm, its points' largest distance from the section plane
   std::string error;            ///< why the section failed; empty when it did not
+  /// A mesh open at the plane (a hole in a scan's mesh): its open cut polylines, whose
+  /// points were ordered as a cloud's slab (0: closed, or not a mesh) ...
+  std::size_t open_polylines = 0;
+  double bridged = 0;  ///< ... and the longest stretch of loop 0 between two cut points
 };
 
 /// What slice returns: one SectionSlice per plane, and the slab used.

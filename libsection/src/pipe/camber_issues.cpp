@@ -34,29 +34,11 @@ std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
               : std::string(" (radius reported as 0)"));
 }
 
-// How far the curve bridging a stretch without points over a round edge's tip may stray
-// from the edge: at most the chord's sagitta over the circle. Past the edge point's limit
-// (4 times the profile's noise, as the le_point check) and the accuracy the profile is held
-// to (1.5e-4 of its size, as the noise check) the tip is not measured: the compressor's
-// 0.28 mm LE with 0.28 mm of it bare put its point 15 um off, the chord with it, unflagged.
-double tip_limit(const SectionFacts& f) {
-  const CheckOptions c;
-  return std::max(c.noise_factor * f.options.profile_noise + c.floor * f.params.chord,
-                  c.accuracy * f.params.chord);
-}
-
 // An edge whose point or arc lies over a hole in the measured points.
-std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* which, double edge_hole,
-                      double tip_limit) {
+std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* which, double edge_hole) {
   const double size = edge_size(e), unmeasured = cover.around;
   if (!(size > 0)) return std::string();  // a vertex, or an edge given radius 0: no scale to judge by
   if (!(unmeasured > size)) {
-    if (const double stray = unmeasured * unmeasured / (8 * size); e.radius > 0 && stray > tip_limit)
-      return std::string(which) + " partly not measured: " + format_length(unmeasured) +
-             " of the profile about its tip has no measured point (edge radius " + format_length(size) +
-             "): the curve bridging it may stray up to " + format_length(stray) +
-             " from the edge (more than " + format_length(tip_limit) +
-             "); its point and radius rest on that bridge";
     if (!(cover.hole > 0 && cover.hole >= edge_hole * size)) return std::string();
     return std::string(which) + " partly not measured: " + format_length(cover.hole) +
            " of the profile without a measured point begins " + format_length(cover.hole_distance) +
@@ -75,7 +57,7 @@ std::string carried_note(const SectionFacts& f, const Edge& e, const std::string
   const Measured& q = f.measured;
   if (q.carried.empty() || !hole_message.empty()) return std::string();
   const EdgeCoverage own = edge_coverage(f.fast, e, q.in_slab, f.options.edge_hole_reach);
-  if (hole_note(e, own, which, f.options.edge_hole, tip_limit(f)).empty()) return std::string();
+  if (hole_note(e, own, which, f.options.edge_hole).empty()) return std::string();
   const double size = edge_size(e);
   const Eigen::Vector2d at = f.curve.point(e.t);
   double far = 0;
@@ -103,7 +85,7 @@ std::string circularity_note(const Edge& e, const char* which, double profile_no
 
 // Everything said of one edge, joined by commas.
 std::string edge_note(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover, const char* which) {
-  const std::string hole = hole_note(e, cover, which, f.options.edge_hole, tip_limit(f));
+  const std::string hole = hole_note(e, cover, which, f.options.edge_hole);
   return join(join(join(shape_note(e, which, f.options.edge), hole), carried_note(f, e, hole, which)),
               circularity_note(e, which, f.options.profile_noise));
 }
@@ -168,7 +150,7 @@ namespace {
 // or a blunt edge fitted as round anyway).
 CheckBits edge_flags(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover, bool le) {
   CheckBits flags = 0;
-  if (!hole_note(e, cover, "", f.options.edge_hole, tip_limit(f)).empty())
+  if (!hole_note(e, cover, "", f.options.edge_hole).empty())
     flags |= bit(le ? Check::le_measured : Check::te_measured);
   const bool blunt_as_round = e.shape == EdgeShape::blunt && e.face == 0 && e.radius > 0;
   if (blunt_as_round || !circularity_note(e, "", f.options.profile_noise).empty())

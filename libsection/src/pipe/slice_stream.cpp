@@ -37,6 +37,12 @@ void add_notes(const SectionSlice& s, std::vector<std::string>& notes) {
                   s.fill.gaps, s.fill.gaps_filled, s.fill.points, s.fill.largest_gap, s.fill.max_offset);
     notes.push_back(buf);
   }
+  if (s.open_polylines > 0) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "open_mesh section=%d polylines=%zu bridged=%.6g", s.id, s.open_polylines,
+                  s.bridged);
+    notes.push_back(buf);
+  }
   if (s.row >= 0) {
     char buf[200];
     std::snprintf(buf, sizeof buf, "row section=%d row=%d height=%.6g spread=%.6g points=%zu", s.id, s.row,
