@@ -3,6 +3,10 @@
 #include "section/io/csv.h"
 #include "section/slice.h"
 
+#include "pipe_stages.h"
+#include "section/checks.h"
+#include "section/pipe/slice_stream.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -220,21 +224,34 @@ TEST_CASE("slice: a generated blade mesh cuts to the true section", "[slice][gen
   CHECK(worst < 1e-6);
 }
 
+namespace {
+
+// A generated blade's mesh (600 profile points, 61 layers) without the triangles within
+// 1.5 mm of height z0 whose centroids `in_hole` takes: a hole in a scan's mesh.
+template <class InHole>
+Mesh mesh_with_hole(const BladeDesign& blade, double z0, const InHole& in_hole) {
+  Mesh mesh = generate_mesh(blade, 600, 61);
+  std::vector<std::array<int, 3>> kept;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d c = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3;
+    if (!(std::abs(c.z() - z0) < 1.5 && in_hole(c))) kept.push_back(t);
+  }
+  REQUIRE(kept.size() < mesh.triangles.size());
+  mesh.triangles = kept;
+  return mesh;
+}
+
+}  // namespace
+
 TEST_CASE("slice: a mesh with a hole at the plane is cut, its hole bridged as a scan's",
           "[slice][generated]") {
   // A scan's mesh often has holes: a plane through one cut it into open polylines, and the
   // section was refused. Its cut points are ordered as a cloud's slab instead; the loop
   // bridges the hole (2-3 mm of the suction side here) and lies on the true section.
   const BladeDesign blade = turbine_blade();
-  Mesh mesh = generate_mesh(blade, 600, 61);
   const double z0 = 30;
-  std::vector<std::array<int, 3>> kept;
-  for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d c = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3;
-    if (!(std::abs(c.z() - z0) < 1.5 && c.x() > 0 && c.x() < 3 && c.y() > 0)) kept.push_back(t);
-  }
-  REQUIRE(kept.size() < mesh.triangles.size());
-  mesh.triangles = kept;
+  const Mesh mesh =
+      mesh_with_hole(blade, z0, [](const Eigen::Vector3d& c) { return c.x() > 0 && c.x() < 3 && c.y() > 0; });
   const SliceResult r = slice(mesh, planes_at({0, 0, 1}, {z0}));
   const SectionSlice& s = r.sections[0];
   INFO(s.error);
@@ -251,6 +268,26 @@ TEST_CASE("slice: a mesh with a hole at the plane is cut, its hole bridged as a 
   const SliceResult whole = slice(generate_mesh(blade, 600, 61), planes_at({0, 0, 1}, {z0}));
   CHECK(whole.sections[0].open_polylines == 0);
   CHECK(whole.sections[0].bridged == 0);
+}
+
+TEST_CASE("slice: a mesh's hole over the TE flags what rests on the bridge", "[slice][generated]") {
+  // The TE's last 3 mm gone: the bridge closes at a corner taken as a sharp TE, and the
+  // chord and caliper chord came out 2.8 mm short, the area 6.4 mm2 small, the caliper and
+  // area unflagged. A sharp edge whose vertex lies in a hole is not measured (te_measured),
+  // which flags them.
+  const BladeDesign blade = turbine_blade();
+  const double z0 = 30;
+  const Mesh mesh = mesh_with_hole(blade, z0, [](const Eigen::Vector3d& c) { return c.x() > 17; });
+  const Stream s =
+      section::test::after_slice(to_stream(slice(mesh, planes_at({0, 0, 1}, {z0})), "test", "mm"));
+  const Table* params = s.find("params");
+  REQUIRE(params);
+  REQUIRE(params->rows() == 1);
+  const CheckBits flags = flags_mask(params->at(0, params->column("flags")));
+  INFO(check_names_text(flags));
+  CHECK((flags & bit(Check::te_measured)) != 0);
+  for (const char* column : {"chord", "caliper_chord", "area", "stagger", "camber_length"})
+    CHECK(checks_flagging(flags, column) & bit(Check::te_measured));
 }
 
 TEST_CASE("slice: a band tried and not taken leaves the slab's ordering, skeleton and all", "[slice]") {

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <set>
 #include <string>
 
@@ -194,10 +193,7 @@ void fit_lines(StackingResult& r, const Axes& x, const std::array<std::vector<Ei
 
 bool params_flagged(CheckBits flags, const char* column) {
   if (!column) throw Error("stacking: params_flagged needs a column name, not a null pointer");
-  // The area centroid rests on the whole profile: an edge bridging a hole moves it.
-  if (std::strcmp(column, "centroid") == 0 &&
-      (flags & (section::bit(Check::le_measured) | section::bit(Check::te_measured))))
-    return true;
+  // (The area centroid rests on the whole profile: le_measured and te_measured list it.)
   return checks_flagging(flags, column) != 0;
 }
 

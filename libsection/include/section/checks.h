@@ -87,10 +87,10 @@ inline constexpr CheckName check_names[] = {
      "max_thickness_pos thickness"},
     {Check::le_measured, "le_measured",
      "le_radius le_center le_point inlet_angle camber_angle chord stagger camber_line caliper_chord "
-     "caliper_stagger camber_length max_thickness_pos thickness"},
+     "caliper_stagger camber_length max_thickness_pos thickness area centroid"},
     {Check::te_measured, "te_measured",
      "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line caliper_chord "
-     "caliper_stagger camber_length max_thickness_pos thickness"},
+     "caliper_stagger camber_length max_thickness_pos thickness area centroid"},
     {Check::le_point, "le_point",
      "le_point chord stagger camber_line camber_length max_thickness_pos thickness"},
     {Check::te_point, "te_point",

@@ -36,6 +36,10 @@ std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
 
 // An edge whose point or arc lies over a hole in the measured points.
 std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* which, double edge_hole) {
+  if (cover.vertex_hole > 0)
+    return std::string(which) + " not measured: its vertex lies in " + format_length(cover.vertex_hole) +
+           " of the profile without a measured point (a hole in the data): the corner there is where the "
+           "curve bridging the hole turns, not the blade's edge";
   const double size = edge_size(e), unmeasured = cover.around;
   if (!(size > 0)) return std::string();  // a vertex, or an edge given radius 0: no scale to judge by
   if (!(unmeasured > size)) {

@@ -224,6 +224,16 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
   if (m.camber.thickest.radius > 0)
     for (int side = 0; side < 2; ++side)
       m.thickest[side] = contact(side == 0 ? m.camber.thickest.t_left : m.camber.thickest.t_right);
+  // A sharp edge's vertex over a hole (a TE cut off by it closes at the bridge's corner: a
+  // mesh's 3.3 mm hole at a TE gave a sharp TE, the chord and caliper chord 2.8 mm short).
+  const double sharp = opt.sharp_ratio * m.params.max_thickness;
+  for (auto [edge, coverage] : {std::pair{&m.camber.le, &m.le}, std::pair{&m.camber.te, &m.te}}) {
+    if (!edge->vertex) continue;
+    const pipe::ContactCoverage c = contact(edge->t);
+    if (c.hole > 0 && c.hole_distance == 0 && c.hole > opt.thickness_hole_spacings * c.spacing &&
+        c.hole > 10 * sharp)
+      coverage->vertex_hole = c.hole;
+  }
   for (const ThicknessStation& st : m.stations)
     m.station_unmeasured.push_back(
         pipe::unmeasured(contact(st.pressure_t), limit, opt.thickness_hole_spacings) ||

@@ -26,6 +26,10 @@ struct EdgeCoverage {
   /// The longest stretch without measured points that begins within the edge arc, and its
   /// distance from the edge point (0 when it holds it): part of the fitted arc is a bridge.
   double hole = 0, hole_distance = 0;
+  /// A sharp edge: the stretch without measured points that holds its vertex, where it is a
+  /// hole (longer than 4 times the points' mean distance beside it and 10 times the sharp
+  /// radius): the vertex is where the fit's bridge over it turns; 0 otherwise.
+  double vertex_hole = 0;
 };
 
 /// The coverage of `edge` of `curve` by the `measured` points; the hole must begin within
