@@ -23,7 +23,7 @@ from scipy.spatial import cKDTree
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from check_bits import check_bits, flagged_by  # noqa: E402
+from check_bits import check_bits, score_row  # noqa: E402
 
 TARGETS = {"chord": ("abs", 0.010), "max_thickness": ("abs", 0.005), "le_radius": ("rel", 0.03),
            "te_radius": ("rel", 0.10), "inlet_angle": ("abs", 0.5), "outlet_angle": ("abs", 0.5),
@@ -118,17 +118,7 @@ def main():
                         print(f"{kind:10s} seed {seed} z {z}: refused: {run.stderr.strip()[-300:]}")
                         continue
                     sections += 1
-                    row, t = rows[k], truth[k]
-                    for col, (kind_of, tol) in TARGETS.items():
-                        if kind == "sharp-te" and col == "te_radius":
-                            continue
-                        m, tv = float(row[col]), float(t[col])
-                        err = m / tv - 1 if kind_of == "rel" and tv > 0 else m - tv
-                        if abs(err) > tol:
-                            names = flagged_by(row["flags"], col, bits)
-                            silent += not names
-                            print(f"{kind:10s} seed {seed} z {z}: {col} {err:+.4f} "
-                                  f"{'flagged ' + ','.join(names) if names else 'SILENT'}")
+                    silent += score_row(f"{kind:10s} seed {seed} z {z}", kind, rows[k], truth[k], TARGETS, bits)
     print(f"{args.mode} {args.offset} mm, {args.patches} patches of {args.radius} mm a plane: "
           f"{sections} sections, {refused} refused, {silent} values off with no flag")
 

@@ -241,6 +241,16 @@ Mesh mesh_with_hole(const BladeDesign& blade, double z0, const InHole& in_hole) 
   return mesh;
 }
 
+// The flags of the params row the whole pipe gives `mesh`'s section at height z0.
+CheckBits flags_through_pipe(const Mesh& mesh, double z0) {
+  const Stream s =
+      section::test::after_slice(to_stream(slice(mesh, planes_at({0, 0, 1}, {z0})), "test", "mm"));
+  const Table* params = s.find("params");
+  REQUIRE(params);
+  REQUIRE(params->rows() == 1);
+  return flags_mask(params->at(0, params->column("flags")));
+}
+
 }  // namespace
 
 TEST_CASE("slice: a mesh with a hole at the plane is cut, its hole bridged as a scan's",
@@ -278,16 +288,32 @@ TEST_CASE("slice: a mesh's hole over the TE flags what rests on the bridge", "[s
   const BladeDesign blade = turbine_blade();
   const double z0 = 30;
   const Mesh mesh = mesh_with_hole(blade, z0, [](const Eigen::Vector3d& c) { return c.x() > 17; });
-  const Stream s =
-      section::test::after_slice(to_stream(slice(mesh, planes_at({0, 0, 1}, {z0})), "test", "mm"));
-  const Table* params = s.find("params");
-  REQUIRE(params);
-  REQUIRE(params->rows() == 1);
-  const CheckBits flags = flags_mask(params->at(0, params->column("flags")));
+  const CheckBits flags = flags_through_pipe(mesh, z0);
   INFO(check_names_text(flags));
   CHECK((flags & bit(Check::te_measured)) != 0);
   for (const char* column : {"chord", "caliper_chord", "area", "stagger", "camber_length"})
     CHECK(checks_flagging(flags, column) & bit(Check::te_measured));
+}
+
+TEST_CASE("slice: a mesh's flank hole over 5 % of the chord flags the area, a small one not",
+          "[slice][generated]") {
+  // The area integrates the fit's bridge over a hole: an 8 mm hole in a mesh's flank moved
+  // it by 0.2-0.6 %, flagged by nothing. A stretch without points longer than 5 % of the
+  // chord and 4 times their mean distance beside it anywhere along the profile now flags it
+  // (area_measured), as it would the thickest circle touching it.
+  const BladeDesign blade = turbine_blade();
+  const double z0 = 30;
+  const SectionTruth truth = section_truth(blade.at(z0));
+  const Eigen::Vector2d flank = truth.profile[truth.profile.size() / 4];  // mid-flank
+  for (const double across : {8.0, 1.0}) {
+    const Mesh mesh = mesh_with_hole(
+        blade, z0, [&](const Eigen::Vector3d& c) { return (c.head<2>() - flank).norm() < across / 2; });
+    const CheckBits flags = flags_through_pipe(mesh, z0);
+    INFO(across << " mm hole: " << check_names_text(flags));
+    CHECK(((flags & bit(Check::area_measured)) != 0) == (across > 2));
+    CHECK(checks_flagging(bit(Check::area_measured), "area") != 0);
+    CHECK(checks_flagging(bit(Check::area_measured), "chord") == 0);
+  }
 }
 
 TEST_CASE("slice: a band tried and not taken leaves the slab's ordering, skeleton and all", "[slice]") {

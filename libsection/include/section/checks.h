@@ -60,10 +60,12 @@ enum class Check : CheckBits {
   /// the section is no airfoil (thicker than half its chord, or flat faces about as wide as
   /// it is thick at both ends): the plane cuts a platform, a root or shroud, a fixture
   airfoil = CheckBits(1) << 33,
+  /// a hole in the data along the profile: the area and centroid include the fit's bridge
+  area_measured = CheckBits(1) << 34,
 };
 
 /// How many checks there are: a flags mask is below 2^check_count.
-inline constexpr int check_count = 34;
+inline constexpr int check_count = 35;
 
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
 /// edge whose circle is doubtful flags its metal angle too: the camber line is extended to
@@ -133,6 +135,7 @@ inline constexpr CheckName check_names[] = {
      "thickness"},
     {Check::thickness_measured, "thickness_measured", "max_thickness max_thickness_pos"},
     {Check::airfoil, "airfoil", "every column (what was measured is no blade section)"},
+    {Check::area_measured, "area_measured", "area centroid"},
 };
 
 /// The bit of a check in a flags mask.

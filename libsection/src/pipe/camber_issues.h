@@ -50,6 +50,7 @@ struct SectionFacts {
   const SectionParams& params;
   EdgeCoverage le, te;
   ContactCoverage thickest[2];  ///< about the thickest circle's contacts (left, right)
+  ContactCoverage longest;      ///< about the longest stretch of the profile without measured points
   const Measured& measured;
   const CamberOptions& options;  ///< as the section was measured with
 };

@@ -189,6 +189,7 @@ struct SectionCamber {
   Sides sides;
   pipe::EdgeCoverage le, te;
   pipe::ContactCoverage thickest[2];     // about the thickest circle's contacts
+  pipe::ContactCoverage longest;         // about the longest stretch without measured points
   std::vector<bool> station_unmeasured;  // a station's circle touches a hole in the data
 };
 
@@ -234,6 +235,7 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
         c.hole > 10 * sharp)
       coverage->vertex_hole = c.hole;
   }
+  m.longest = cover.longest(3 * limit);
   for (const ThicknessStation& st : m.stations)
     m.station_unmeasured.push_back(
         pipe::unmeasured(contact(st.pressure_t), limit, opt.thickness_hole_spacings) ||
@@ -327,9 +329,18 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   SectionCheck check = detail::check_section(sampled, m.camber, m.params, checks);
   if (const auto l = in.fits.find(section); l != in.fits.end() && l->second.layers > 0)
     check.findings.push_back({Check::layers, l->second.layers, l->second.layers_length});
-  const CheckBits flags = pipe::describe_issues(
-      {section, local, pr.fast, m.camber, m.params, m.le, m.te, {m.thickest[0], m.thickest[1]}, q, opt},
-      check.findings, slot.issues);
+  const CheckBits flags = pipe::describe_issues({section,
+                                                 local,
+                                                 pr.fast,
+                                                 m.camber,
+                                                 m.params,
+                                                 m.le,
+                                                 m.te,
+                                                 {m.thickest[0], m.thickest[1]},
+                                                 m.longest,
+                                                 q,
+                                                 opt},
+                                                check.findings, slot.issues);
   if (origin != Eigen::Vector2d::Zero()) move(m, origin);
   add_rows(section, f, m, flags, slot);
 }

@@ -180,4 +180,15 @@ ContactCoverage ProfileCoverage::about(double t, double reach, double near) cons
   return out;
 }
 
+ContactCoverage ProfileCoverage::longest(double reach) const {
+  const std::size_t n = covered_.size();
+  std::size_t best = 0, best_end = 0, run = 0;
+  for (std::size_t k = 0; k < 2 * n; ++k) {  // twice around: a run across the period's end
+    run = covered_[k % n] ? 0 : std::min(run + 1, n);
+    if (run > best) best = run, best_end = k;
+  }
+  if (best == 0) return {};
+  return about(t_[(best_end + n - best / 2) % n], reach, 0);
+}
+
 }  // namespace section::pipe

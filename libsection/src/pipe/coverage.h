@@ -67,6 +67,10 @@ public:
   /// reaching beyond is taken as ending there); the hole must begin within `near` of t.
   ContactCoverage about(double t, double reach, double near) const;
 
+  /// The coverage about the middle of the longest stretch no measured point covers,
+  /// anywhere around the profile (none: all empty).
+  ContactCoverage longest(double reach) const;
+
 private:
   std::vector<double> t_;     // the samples' parameters, increasing over one period
   std::vector<int> covered_;  // the points each counts
