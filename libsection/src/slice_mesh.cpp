@@ -18,6 +18,11 @@ namespace section {
 
 namespace {
 
+// A cut polyline that closes on itself (its last point its first).
+bool closes(const std::vector<Eigen::Vector3d>& line) {
+  return line.size() >= 4 && (line.front() - line.back()).norm() <= 1e-12 * (1 + line.front().norm());
+}
+
 // The longest step between consecutive points of a closed loop.
 double longest_step(const std::vector<Eigen::Vector2d>& points) {
   double longest = 0;
@@ -38,9 +43,8 @@ void bridge_open_cut(const std::vector<std::vector<Eigen::Vector3d>>& lines, std
                            "this plane";
   std::vector<Eigen::Vector2d> points;
   for (const auto& line : lines) {
-    const bool closed =
-        line.size() >= 4 && (line.front() - line.back()).norm() <= 1e-12 * (1 + line.front().norm());
-    for (std::size_t k = 0; k + (closed ? 1 : 0) < line.size(); ++k) points.push_back(to_plane(line[k]));
+    for (std::size_t k = 0; k + (closes(line) ? 1 : 0) < line.size(); ++k)
+      points.push_back(to_plane(line[k]));
   }
   try {
     s.morphology = order_section(points, MorphologyOptions{});
@@ -63,7 +67,7 @@ void mesh_loops(const std::vector<std::vector<Eigen::Vector3d>>& lines,
   std::vector<Loop> loops;
   std::size_t open = 0;
   for (const auto& line : lines) {
-    if (line.size() < 4 || (line.front() - line.back()).norm() > 1e-12 * (1 + line.front().norm())) {
+    if (!closes(line)) {
       ++open;
       continue;
     }
