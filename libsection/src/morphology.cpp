@@ -152,10 +152,8 @@ constexpr double kStrayShare = 0.8;  // ... within which this share of its point
 
 bool strays_beside(const Points& points, const std::vector<std::size_t>& subset, const Points& boundary,
                    const std::vector<const Points*>& first_pass, double reach, double h) {
-  double length = 0;
-  for (std::size_t i = 0; i < boundary.size(); ++i)
-    length += (boundary[(i + 1) % boundary.size()] - boundary[i]).norm();
   const morph::SegmentGrid own({&boundary}, reach), beside(first_pass, kStrayReach * h);
+  const double length = own.length(0);  // the closed boundary's, summed as it indexes it
   std::size_t made = 0, near = 0;
   for (const std::size_t k : subset)
     if (own.nearest(points[k]).loop >= 0) {

@@ -231,8 +231,7 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
   for (auto [edge, coverage] : {std::pair{&m.camber.le, &m.le}, std::pair{&m.camber.te, &m.te}}) {
     if (!edge->vertex) continue;
     const pipe::ContactCoverage c = contact(edge->t);
-    if (c.hole > 0 && c.hole_distance == 0 && c.hole > opt.thickness_hole_spacings * c.spacing &&
-        c.hole > 10 * sharp)
+    if (c.hole_distance == 0 && pipe::unmeasured(c, 10 * sharp, opt.thickness_hole_spacings))
       coverage->vertex_hole = c.hole;
   }
   m.longest = cover.longest(3 * limit);
