@@ -26,18 +26,22 @@ def flagged_by(flags, column, bits):
     return [name for b, (name, cols) in sorted(bits.items()) if flags & b and (cols is None or column in cols)]
 
 
-def score_row(label, kind, row, truth, targets, bits):
+def score_row(label, kind, row, truth, targets, bits, quiet=False):
     """Prints each value of a params `row` off its target against `truth` (targets: column
     -> ("abs" or "rel", tolerance); a sharp-te's TE radius skipped) and the checks flagging
-    it (SILENT: none); returns how many were off with no flag."""
-    silent = 0
+    it (SILENT: none); returns how many were off with no flag. quiet: prints nothing and
+    returns how many were off."""
+    silent = off = 0
     for col, (kind_of, tol) in targets.items():
         if kind == "sharp-te" and col == "te_radius":
             continue
         m, tv = float(row[col]), float(truth[col])
         err = m / tv - 1 if kind_of == "rel" and tv > 0 else m - tv
         if abs(err) > tol:
+            off += 1
+            if quiet:
+                continue
             names = flagged_by(row["flags"], col, bits)
             silent += not names
             print(f"{label}: {col} {err:+.4f} {'flagged ' + ','.join(names) if names else 'SILENT'}")
-    return silent
+    return off if quiet else silent

@@ -266,36 +266,82 @@ TEST_CASE("pipeline: a thin trailing edge's lone tip point is fitted, not droppe
   check_bounds(compressor_section(36.0, 12), {{Err::max, 0.015}, {Err::chord, 0.010}});
 }
 
+namespace {
+
+// The stream of a compressor band scan at z0 without the points that `drop` takes, cut at
+// z0 with a slab of 0.08 mm, through camber.
+template <class Drop>
+Stream edge_hole_stream(double z0, bool fill, const Drop& drop) {
+  const Scan scan = generate_scan(compressor_blade(), clean_band(z0, 1.5, 5));
+  Cloud cloud;
+  for (const auto& p : scan.cloud.points)
+    if (!drop(p)) cloud.points.push_back(p);
+  SliceOptions sopt;
+  sopt.slab = 0.08;
+  sopt.fill_gaps = fill;
+  Stream stream = to_stream(slice(cloud, planes_at({0, 0, 1}, {z0}), sopt), "slice");
+  smooth_stream(stream);
+  fit_spline_stream(stream);
+  camber_stream(stream);
+  return stream;
+}
+
+std::string issue_messages(const Stream& stream) {
+  std::string messages;
+  for (const auto& issue : stream.issues) messages += issue.message + "; ";
+  return messages;
+}
+
+}  // namespace
+
 TEST_CASE("pipeline: an edge measured only by carried points says so", "[pipeline][generated]") {
   // A clean compressor scan with a hole 1 mm across at the trailing edge, 0.6 mm high
   // around the plane: the slab keeps no point of the edge. With the gap fill the edge is
   // measured by points from 0.3-1 mm off the plane, and camber says so; without it camber
   // says the edge is not measured.
-  const BladeDesign blade = compressor_blade();
   const double z0 = 30;
-  const Scan scan = generate_scan(blade, clean_band(z0, 1.5, 5));
-  const SectionTruth truth = section_truth(blade.at(z0));
-  Cloud cloud;
-  for (const auto& p : scan.cloud.points)
-    if (!(std::abs(p.z() - z0) < 0.3 && (Eigen::Vector2d(p.x(), p.y()) - truth.te_point).norm() < 0.5))
-      cloud.points.push_back(p);
+  const Eigen::Vector2d te = section_truth(compressor_blade().at(z0)).te_point;
   for (const bool fill : {true, false}) {
-    SliceOptions sopt;
-    sopt.slab = 0.08;
-    sopt.fill_gaps = fill;
-    Stream stream = to_stream(slice(cloud, planes_at({0, 0, 1}, {z0}), sopt), "slice");
-    smooth_stream(stream);
-    fit_spline_stream(stream);
-    camber_stream(stream);
-    std::string messages;
-    for (const auto& issue : stream.issues) messages += issue.message + "; ";
+    const Stream stream = edge_hole_stream(z0, fill, [&](const Eigen::Vector3d& p) {
+      return std::abs(p.z() - z0) < 0.3 && (Eigen::Vector2d(p.x(), p.y()) - te).norm() < 0.5;
+    });
+    const std::string messages = issue_messages(stream);
     INFO("fill " << fill << ": " << messages);
-    REQUIRE(stream.get("params", "camber").rows() == 1);
-    if (fill)
+    const Table& params = stream.get("params", "camber");
+    REQUIRE(params.rows() == 1);
+    const bool flagged = flags_mask(params.at(0, params.column("flags"))) & bit(Check::te_measured);
+    if (fill) {
       CHECK(messages.find("trailing edge measured with points carried onto the plane") != std::string::npos);
-    else
+      CHECK_FALSE(flagged);
+    } else {
       CHECK(messages.find("trailing edge not measured") != std::string::npos);
+      CHECK(flagged);
+    }
   }
+}
+
+TEST_CASE("pipeline: an edge the gap fill closes from one side of the plane only is not measured",
+          "[pipeline][generated]") {
+  // The scanned surface ends 0.1 mm below the plane about the trailing edge (a plane tilted
+  // across a blade's tip runs off the part there): the gap fill carries the edge up from
+  // below, a smooth continuation of the blade the part does not have at the plane. Such a
+  // TE 0.2 mm above a tip was a right-looking value with no flag; the edge is now flagged
+  // not measured, and its values with it.
+  const double z0 = 30;
+  const Eigen::Vector2d te = section_truth(compressor_blade().at(z0)).te_point;
+  const Stream stream = edge_hole_stream(z0, true, [&](const Eigen::Vector3d& p) {
+    return p.z() > z0 - 0.1 && (Eigen::Vector2d(p.x(), p.y()) - te).norm() < 0.5;
+  });
+  const std::string messages = issue_messages(stream);
+  INFO(messages);
+  CHECK(messages.find("trailing edge not measured: the slab leaves") != std::string::npos);
+  CHECK(messages.find("all come from one side of it") != std::string::npos);
+  const Table& params = stream.get("params", "camber");
+  REQUIRE(params.rows() == 1);
+  const CheckBits flags = flags_mask(params.at(0, params.column("flags")));
+  CHECK((flags & bit(Check::te_measured)) != 0);
+  for (const char* column : {"chord", "te_radius", "outlet_angle", "area"})
+    CHECK(checks_flagging(flags, column) != 0);
 }
 
 TEST_CASE("pipeline: a scan with a hole at the thickest circle flags the max thickness",

@@ -255,6 +255,7 @@ PointsNoise points_noise(const BSpline& profile, const std::vector<Eigen::Vector
 struct BladeSection {
   double height = 0;     ///< position along the blade (the plane's offset along the mean normal)
   SectionParams params;  ///< its parameters (chord, max thickness, radii, angles read)
+  CheckBits flags = 0;   ///< the checks its own values failed (the params' flags)
 };
 
 /// Options of check_blade: the least jump flagged per kind of value.
@@ -280,7 +281,9 @@ struct Jump {
 /// order; sorted by height): a value is compared with the line through its two neighbours
 /// (the two nearest at an end, where the limit doubles, followed no farther out than twice
 /// their spacing; a length is expected at 0 or more) and flagged when it departs by more
-/// than the limit and more than its neighbours do.
+/// than the limit and more than its neighbours do. Of the values beyond their limits, one
+/// its own section's checks flag already goes first: as a neighbour it would make the
+/// right values beside it jump.
 std::vector<Jump> check_blade(const std::vector<BladeSection>& sections,
                               const BladeCheckOptions& options = {});
 

@@ -54,24 +54,58 @@ std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* whic
          format_length(size) + "); its point and radius bridge a hole in the data";
 }
 
-// An edge covered only thanks to points the gap fill carried onto the plane: say so, with
-// how far they came from (their positions rest on the drift fitted beside the gap).
-std::string carried_note(const SectionFacts& f, const Edge& e, const std::string& hole_message,
-                         const char* which) {
+// The points the gap fill carried onto the plane about an edge whose slab points alone
+// leave a hole there: how far they came from, and whether they all came from one side.
+struct CarriedAbout {
+  bool any = false, one_side = false;
+  double far = 0, hole = 0;  // the largest |offset|; the slab's own hole about the edge
+};
+
+CarriedAbout carried_about(const SectionFacts& f, const Edge& e) {
   const Measured& q = f.measured;
-  if (q.carried.empty() || !hole_message.empty()) return std::string();
+  CarriedAbout c;
+  if (q.carried.empty()) return c;
   const EdgeCoverage own = edge_coverage(f.fast, e, q.in_slab, f.options.edge_hole_reach);
-  if (hole_note(e, own, which, f.options.edge_hole).empty()) return std::string();
+  if (hole_note(e, own, "", f.options.edge_hole).empty()) return c;
   const double size = edge_size(e);
   const Eigen::Vector2d at = f.curve.point(e.t);
-  double far = 0;
-  for (std::size_t i = 0; i < q.carried.size(); ++i)
-    if ((q.carried[i] - at).norm() <= 3 * size + own.around) far = std::max(far, q.carried_offset[i]);
-  char text[256];
-  std::snprintf(text, sizeof text,
-                "%s measured with points carried onto the plane from up to %s off it (slice's gap fill: "
-                "the slab alone leaves %s of the profile there without a point)",
-                which, format_length(far).c_str(), format_length(std::max(own.around, own.hole)).c_str());
+  bool above = false, below = false;
+  for (std::size_t i = 0; i < q.carried.size(); ++i) {
+    if (!((q.carried[i] - at).norm() <= 3 * size + own.around)) continue;
+    const double offset = q.carried_offset[i];
+    c.far = std::max(c.far, std::abs(offset));
+    (offset > 0 ? above : below) = true;
+  }
+  c.any = above || below;
+  c.one_side = above != below;
+  c.hole = std::max(own.around, own.hole);
+  return c;
+}
+
+// An edge covered only thanks to points the gap fill carried onto the plane: say so, with
+// how far they came from (their positions rest on the drift fitted beside the gap). When
+// they all came from one side of the plane, the plane passes beyond the scanned surface
+// there (a plane tilted across a blade's tip carried the TE 0.2 mm above the part's end,
+// its values a smooth continuation of the blade below, flagged by nothing): the edge is
+// extrapolated, not measured (edge_flags sets le/te_measured).
+std::string carried_note(const SectionFacts& f, const Edge& e, const std::string& hole_message,
+                         const char* which) {
+  if (!hole_message.empty()) return std::string();
+  const CarriedAbout c = carried_about(f, e);
+  if (!c.any) return std::string();
+  char text[512];
+  if (c.one_side)
+    std::snprintf(text, sizeof text,
+                  "%s not measured: the slab leaves %s of the profile there without a point, and the points "
+                  "slice's gap fill carried onto the plane to close it all come from one side of it (up to "
+                  "%s off): the plane passes beyond the scanned surface there (the part's end, or a hole's "
+                  "edge) and the edge is extrapolated",
+                  which, format_length(c.hole).c_str(), format_length(c.far).c_str());
+  else
+    std::snprintf(text, sizeof text,
+                  "%s measured with points carried onto the plane from up to %s off it (slice's gap fill: "
+                  "the slab alone leaves %s of the profile there without a point)",
+                  which, format_length(c.far).c_str(), format_length(c.hole).c_str());
   return std::string(text);
 }
 
@@ -154,7 +188,7 @@ namespace {
 // or a blunt edge fitted as round anyway).
 CheckBits edge_flags(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover, bool le) {
   CheckBits flags = 0;
-  if (!hole_note(e, cover, "", f.options.edge_hole).empty())
+  if (!hole_note(e, cover, "", f.options.edge_hole).empty() || carried_about(f, e).one_side)
     flags |= bit(le ? Check::le_measured : Check::te_measured);
   const bool blunt_as_round = e.shape == EdgeShape::blunt && e.face == 0 && e.radius > 0;
   if (blunt_as_round || !circularity_note(e, "", f.options.profile_noise).empty())

@@ -24,7 +24,7 @@ namespace section::pipe {
 
 /// A section's loop-0 measured points (table points): all, and apart those the slab held
 /// itself (offset 0: not carried onto the plane by the gap fill) and the carried ones with
-/// their |offset|.
+/// their signed offset (the side of the plane each came from).
 struct Measured {
   std::vector<Eigen::Vector2d> all, in_slab, carried;
   std::vector<double> carried_offset;

@@ -89,7 +89,7 @@ std::map<int, Measured> measured_points(const Stream& stream) {
     m.all.push_back(q);
     if (offset != 0 && std::isfinite(offset)) {
       m.carried.push_back(q);
-      m.carried_offset.push_back(std::abs(offset));
+      m.carried_offset.push_back(offset);
     } else {
       m.in_slab.push_back(q);
     }
@@ -388,8 +388,10 @@ void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOpt
     for (std::size_t r = 0; r < t->rows(); ++r) {
       // A section that is no airfoil (a platform's) is no neighbour of the blade's: as one
       // it made 8 sections' thicknesses jump from it.
-      if (flags_mask(get(r, "flags")) & bit(Check::airfoil)) continue;
+      const CheckBits flags = flags_mask(get(r, "flags"));
+      if (flags & bit(Check::airfoil)) continue;
       BladeSection b;
+      b.flags = flags;
       b.height = Eigen::Vector3d(get(r, "centroid_x"), get(r, "centroid_y"), get(r, "centroid_z")).dot(n);
       SectionParams& p = b.params;
       p.chord = get(r, "chord");
