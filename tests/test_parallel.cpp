@@ -223,10 +223,22 @@ TEST_CASE("slice_file: one pass over a PLY file when the planes guessed from a f
     for (const auto& sec : r.sections) filled += sec.fill.gaps_filled;
     CHECK(filled > 0);
   }
-  SECTION("a lone point far above the blade, which the first look misses: the file is read again") {
+  SECTION("a lone point above the blade, which the first look misses: the file is read again") {
+    auto& p = scan.cloud.points;
+    p.insert(p.begin() + std::ptrdiff_t(p.size() / 2 + 1), Eigen::Vector3d(10, 0, 62));
+    same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 2);
+  }
+  SECTION("a lone point far above the blade, a stray: the planes are the blade's, read once") {
+    section::write_cloud(path, scan.cloud);
+    const section::SliceResult clean =
+        section::slice_file(path, section::PlaneSpec{{}, {0, 0, 1}, 3}, {}, small_chunks);
     auto& p = scan.cloud.points;
     p.insert(p.begin() + std::ptrdiff_t(p.size() / 2 + 1), Eigen::Vector3d(10, 0, 70));
-    same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 2);
+    const section::SliceResult r = same_as_held(scan.cloud, section::PlaneSpec{{}, {0, 0, 1}, 3}, 1);
+    CHECK(r.extent.strays == 1);
+    CHECK(r.extent.highest == 70);
+    for (std::size_t k = 0; k < r.sections.size(); ++k)
+      CHECK(r.sections[k].frame.origin == clean.sections[k].frame.origin);
   }
   SECTION("XYZ text: no first look, two passes") {
     const std::string xyz = path + ".xyz";

@@ -104,6 +104,25 @@ TEST_CASE("revolution: a cylinder's unrolling is (r theta, axial) and w the radi
   CHECK_THAT(q.w, Catch::WithinAbs(3, 1e-12));
 }
 
+TEST_CASE("revolution: the radius range of a part leaves its stray points out", "[revolution]") {
+  // Cylinders spread over a part's radii (slice --axis --count): a point a metre off a
+  // rotor ring of radii 200-230 (a reflection) took the range to 1 000; left out, it is the
+  // ring's. A second ring holding more than 1 in 1 000 of the points stays.
+  std::vector<Eigen::Vector3d> ring;
+  for (int i = 0; i < 5000; ++i) {
+    const double t = 0.001 * i, r = 200 + 30 * (i % 100) / 99.0;
+    ring.emplace_back(10 * std::sin(7.0 * i), r * std::cos(t), r * std::sin(t));
+  }
+  const Eigen::Vector2d clean = section::radius_range(ring, {0, 0, 0}, {1, 0, 0});
+  CHECK(clean.x() == Approx(200));
+  CHECK(clean.y() == Approx(230));
+  std::vector<Eigen::Vector3d> stray = ring;
+  stray.emplace_back(0, 1000, 0);
+  CHECK(section::radius_range(stray, {0, 0, 0}, {1, 0, 0}) == clean);
+  for (int i = 0; i < 20; ++i) stray.emplace_back(0, 0, 1000 + i);
+  CHECK(section::radius_range(stray, {0, 0, 0}, {1, 0, 0}).y() == Approx(1019));
+}
+
 TEST_CASE("revolution: the conformal unrolling of a cone keeps angles, m' = ln(r / r0) / sin(phi)",
           "[revolution]") {
   Revolution k = cone_surface({0, 0, 0}, {1, 0, 0}, {0, 100}, {100, 100 + 100 * std::tan(0.3)});

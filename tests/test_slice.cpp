@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/error.h"
+#include "section/io/cloud_io.h"
 #include "section/io/csv.h"
 #include "section/slice.h"
 
 #include "pipe_stages.h"
 #include "section/checks.h"
+#include "section/extras/generate.h"
 #include "section/pipe/slice_stream.h"
 
 #include <catch2/catch.hpp>
@@ -62,6 +64,55 @@ TEST_CASE("slice: a normal 1e308 or 1e-200 long is the direction it gives", "[sl
   }
   CHECK(usable_normal({1, 2, 2}) == Eigen::Vector3d(1, 2, 2));  // unchanged where the square is fine
   CHECK(usable_normal({3e200, 0, -4e200}) == Eigen::Vector3d(0.75, 0, -1));
+}
+
+TEST_CASE("slice: planes spread over a part leave its stray points out", "[slice]") {
+  // A blade's band 20 mm high about z = 30 (a few thousand points), and three points far
+  // off it (a reflection 900 mm up, dust 400 mm down, a fixture's corner beside it): the
+  // planes spread over everything missed the blade but one. The strays are left out of
+  // the extent, and it is said.
+  ScanOptions band = inspection_scan();
+  band.outlier_fraction = 0;
+  band.z_min = 20;
+  band.z_max = 40;
+  band.seed = 3;
+  const Scan scan = generate_scan(turbine_blade(), band);
+  const PartExtent clean = extent_along(scan.cloud.points, {0, 0, 1});
+  CHECK(clean.strays == 0);
+  CHECK(clean.lo == clean.lowest);
+  CHECK(clean.hi == clean.highest);
+  std::vector<Eigen::Vector3d> strays = scan.cloud.points;
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0, 0, 900), Eigen::Vector3d(-3, 2, -400), Eigen::Vector3d(500, 20, 30)})
+    strays.push_back(p);
+  const PartExtent e = extent_along(strays, {0, 0, 1});
+  CHECK(e.strays == 2);  // the fixture's corner lies within the blade's heights
+  CHECK(e.lo == clean.lo);
+  CHECK(e.hi == clean.hi);
+  CHECK(e.lowest == -400);
+  CHECK(e.highest == 900);
+  const auto planes = planes_across(strays, {0, 0, 1}, 5),
+             expected = planes_across(scan.cloud.points, {0, 0, 1}, 5);
+  for (std::size_t k = 0; k < planes.size(); ++k) CHECK(planes[k].origin == expected[k].origin);
+  // What is not a stray stays: rows 3 mm apart, each a twentieth of the points (a sparse
+  // scan's), and a cloud of under 1 000 points (a profile's), whatever their gaps.
+  std::vector<Eigen::Vector3d> rows;
+  for (int r = 0; r < 20; ++r)
+    for (int i = 0; i < 100; ++i) rows.emplace_back(std::cos(0.06 * i), std::sin(0.06 * i), 3.0 * r);
+  CHECK(extent_along(rows, {0, 0, 1}).strays == 0);
+  std::vector<Eigen::Vector3d> few(scan.cloud.points.begin(), scan.cloud.points.begin() + 900);
+  few.emplace_back(0, 0, 900);
+  CHECK(extent_along(few, {0, 0, 1}).hi == 900);
+  // More than 1 in 1 000 points far off (a second part in the scan): kept, the planes over both.
+  std::vector<Eigen::Vector3d> two = scan.cloud.points;
+  for (std::size_t i = 0; i < 2 * two.size() / 1000 + 2; ++i) two.emplace_back(0, 0, 900 + 0.01 * double(i));
+  CHECK(extent_along(two, {0, 0, 1}).strays == 0);
+  // The units are guessed from the extent without them: a scan in metres with a point a
+  // metre off it is still 0.05 across.
+  std::vector<Eigen::Vector3d> metres;
+  for (const auto& p : scan.cloud.points) metres.push_back(p / 1000);
+  metres.emplace_back(0.9, 0.1, 0.5);
+  CHECK(points_extent(metres) < 0.06);
 }
 
 TEST_CASE("slice: many planes in one pass give what each plane alone gives", "[slice]") {

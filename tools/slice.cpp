@@ -130,10 +130,15 @@ section::Cloud merged_views(const SliceArgs& a, const std::vector<section::Cloud
   return section::merge_views(clouds, reg);
 }
 
-double extent_of(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::AlignedBox3d box;
-  for (const auto& p : points) box.extend(p);
-  return points.empty() ? 0 : box.sizes().maxCoeff();
+// Planes spread over a part whose extent left points out: where they lie, and what to do.
+void warn_strays(const section::PartExtent& e, int count) {
+  if (e.strays == 0) return;
+  std::cerr << "slice: warning: " << e.strays << " point" << (e.strays == 1 ? " lies" : "s lie")
+            << " far beyond the rest along the normal (offsets " << section::format_length(e.lowest) << " to "
+            << section::format_length(e.highest) << "; the rest " << section::format_length(e.lo) << " to "
+            << section::format_length(e.hi) << "): the " << count
+            << " planes are spread over the rest (strays: a reflection, dust, a fixture; crop them from "
+               "the scan, or give the planes)\n";
 }
 
 // The input's unit (given, or guessed from its extent), said on standard error and in the stream
@@ -159,11 +164,11 @@ void run_slice(const SliceArgs& given, const std::string& history) {
     throw section::Error(input + ": a mesh is cut by planes: give --at, --count or --planes");
   if (is_mesh) {
     mesh = section::read_mesh(input);
-    extent = extent_of(mesh->vertices);
+    extent = section::points_extent(mesh->vertices);
   } else if (!given.views.empty() || input == "-" || given.by_rows() || !given.axis.empty() ||
              section::read_profile_cloud(input)) {
     clouds = read_views(given);
-    extent = extent_of(clouds[0].points);
+    extent = section::points_extent(clouds[0].points);
   } else {
     extent = section::sample_extent(input);
   }
@@ -186,7 +191,10 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   const auto said = [&](const section::Sampling& sampling) { say_sampling(sampling, out); };
   if (!clouds.empty()) {
     const section::Cloud merged = a.views.empty() ? std::move(clouds[0]) : merged_views(a, clouds, out);
-    if (a.count > 0 && a.axis.empty()) planes = section::planes_across(merged.points, n, a.count);
+    if (a.count > 0 && a.axis.empty()) {
+      warn_strays(section::extent_along(merged.points, n), a.count);
+      planes = section::planes_across(merged.points, n, a.count);
+    }
     section::tool::with_input(input, [&] {
       if (!a.axis.empty()) {
         section::slice(merged, a.surfaces(merged.points, units.mm), a.options, std::ref(out), said);
@@ -197,7 +205,10 @@ void run_slice(const SliceArgs& given, const std::string& history) {
       }
     });
   } else if (mesh) {
-    if (a.count > 0 && a.axis.empty()) planes = section::planes_across(mesh->vertices, n, a.count);
+    if (a.count > 0 && a.axis.empty()) {
+      warn_strays(section::extent_along(mesh->vertices, n), a.count);
+      planes = section::planes_across(mesh->vertices, n, a.count);
+    }
     section::tool::with_input(input, [&] {
       if (a.axis.empty())
         section::slice(*mesh, planes, a.options, std::ref(out));
@@ -210,8 +221,9 @@ void run_slice(const SliceArgs& given, const std::string& history) {
     section::CloudReadOptions read;
     read.scale = units.mm;
     section::tool::with_input(input, [&] {
-      section::slice_file(input, section::PlaneSpec{planes, n, a.count}, a.options, read, std::ref(out),
-                          said);
+      const section::SliceResult r = section::slice_file(input, section::PlaneSpec{planes, n, a.count},
+                                                         a.options, read, std::ref(out), said);
+      warn_strays(r.extent, a.count);
     });
   }
   out.finish();

@@ -3,6 +3,7 @@
 #include "section/revolution.h"
 
 #include "section/error.h"
+#include "detail/extent_tails.h"
 #include "revolution_map.h"
 
 #include <algorithm>
@@ -347,13 +348,13 @@ Eigen::Vector2d radius_range(const std::vector<Eigen::Vector3d>& points, const E
                              const Eigen::Vector3d& axis) {
   const Eigen::Vector3d n = unit_axis(axis_point, axis);
   if (points.empty()) throw Error("revolution: no points to take the radius range of");
-  Eigen::Vector2d range(std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
+  detail::Tails tails;
   for (const auto& p : points) {
     const Eigen::Vector3d d = p - axis_point;
-    const double r = (d - d.dot(n) * n).norm();
-    range = {std::min(range.x(), r), std::max(range.y(), r)};
+    tails.add((d - d.dot(n) * n).norm());
   }
-  return range;
+  const PartExtent e = detail::trimmed_extent(tails);
+  return {e.lo, e.hi};
 }
 
 }  // namespace section

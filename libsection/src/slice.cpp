@@ -3,6 +3,7 @@
 
 #include "section/error.h"
 #include "detail/cgal.h"
+#include "detail/extent_tails.h"
 #include "detail/flann_nearest.h"
 #include "detail/kept_ordering.h"
 #include "detail/local_origin.h"
@@ -43,16 +44,26 @@ std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, con
   if (!(len > 0) || !std::isfinite(len)) throw Error("slice: the plane normal must be finite and non-zero");
   if (count < 1 || count > 10000000) throw Error("slice: --count must be 1 to 10000000");
   if (points.empty()) throw Error("slice: no points to spread planes over");
-  const Eigen::Vector3d n = normal / len;
-  double lo = INFINITY, hi = -INFINITY;
-  for (const auto& p : points) {
-    const double s = n.dot(p);
-    lo = std::min(lo, s);
-    hi = std::max(hi, s);
-  }
+  const PartExtent e = extent_along(points, normal);
   std::vector<double> offsets;
-  for (int k = 0; k < count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (count + 1));
+  for (int k = 0; k < count; ++k) offsets.push_back(e.lo + (e.hi - e.lo) * (k + 1) / (count + 1));
   return planes_at(normal, offsets);
+}
+
+PartExtent extent_along(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& given) {
+  const Eigen::Vector3d normal = usable_normal(given);
+  const double len = normal.norm();
+  if (!(len > 0) || !std::isfinite(len)) throw Error("slice: the plane normal must be finite and non-zero");
+  const Eigen::Vector3d n = normal / len;
+  detail::Tails tails;
+  constexpr std::size_t block = 256;
+  double s[block];
+  for (std::size_t i0 = 0; i0 < points.size(); i0 += block) {
+    const std::size_t m = std::min(block, points.size() - i0);
+    for (std::size_t j = 0; j < m; ++j) s[j] = n.dot(points[i0 + j]);
+    tails.add(s, m);
+  }
+  return detail::trimmed_extent(tails);
 }
 
 std::vector<std::vector<Eigen::Vector2d>> slab_points(const std::vector<Eigen::Vector3d>& points,

@@ -103,7 +103,8 @@ Frame surface_frame(const Revolution& surface);
 Eigen::Vector3d reference_of(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& axis_point,
                              const Eigen::Vector3d& axis);
 
-/// Least and largest radius of `points` about the axis.
+/// Least and largest radius of `points` about the axis, the few far from the rest left out
+/// (strays, as extent_along in section/slice.h).
 Eigen::Vector2d radius_range(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& axis_point,
                              const Eigen::Vector3d& axis);
 

@@ -5,6 +5,7 @@
 #include "section/io/cloud_io.h"
 
 #include "section/error.h"
+#include "section/slice.h"
 #include "io/byte_source.h"
 #include "io/formats.h"
 
@@ -85,10 +86,16 @@ double sample_extent(const std::string& path, const CloudReadOptions& options) {
   } catch (const Error&) {
     return 0;  // the reader proper reports what is wrong with the file
   }
-  if (points.empty()) return 0;
-  Eigen::AlignedBox3d box;
-  for (const auto& p : points) box.extend(p);
-  return box.sizes().maxCoeff();
+  return points_extent(points);
+}
+
+double points_extent(const std::vector<Eigen::Vector3d>& points) {
+  double largest = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const PartExtent e = extent_along(points, Eigen::Vector3d::Unit(axis));
+    largest = std::max(largest, e.hi - e.lo);
+  }
+  return largest;
 }
 
 }  // namespace section

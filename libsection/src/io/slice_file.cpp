@@ -5,6 +5,7 @@
 #include "section/io/csv.h"
 #include "section/io/file.h"
 #include "section/io/limits.h"
+#include "detail/extent_tails.h"
 #include "detail/parallel.h"
 #include "io/byte_source.h"
 #include "io/text.h"
@@ -89,6 +90,7 @@ std::vector<std::vector<Eigen::Vector3d>> read_near_points(const std::string& pa
 // largest coordinate and the points kept around the guess (per guessed plane).
 struct Scanned {
   double lo = INFINITY, hi = -INFINITY, big = 0;
+  detail::Tails tails;  // the lowest and highest offsets, for the part's extent without strays
   std::vector<std::vector<Eigen::Vector3d>> kept;
 };
 
@@ -120,6 +122,7 @@ void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eig
         hi = s[j] > hi ? s[j] : hi;
         big = std::max({big, std::abs(q[j].x()), std::abs(q[j].y()), std::abs(q[j].z())});
       }
+      r.tails.add(s, m);
       if (along)
         for (std::size_t j = 0; j < m; ++j) guess.keep_at(q[j], s[j], tests[0], r.kept);
       else
@@ -127,10 +130,17 @@ void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eig
     }
     r.lo = lo, r.hi = hi, r.big = big;
   } else {
-    for (std::size_t i = a; i < e; ++i) {
-      const double s = n.x() * p[i].x() + n.y() * p[i].y() + n.z() * p[i].z();
-      r.lo = s < r.lo ? s : r.lo;
-      r.hi = s > r.hi ? s : r.hi;
+    constexpr std::size_t block = 256;
+    double s[block];
+    for (std::size_t i0 = a; i0 < e; i0 += block) {
+      const std::size_t m = std::min(block, e - i0);
+      for (std::size_t j = 0; j < m; ++j) {
+        const Eigen::Vector3d& q = p[i0 + j];
+        s[j] = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
+        r.lo = s[j] < r.lo ? s[j] : r.lo;
+        r.hi = s[j] > r.hi ? s[j] : r.hi;
+      }
+      r.tails.add(s, m);
     }
   }
 }
@@ -149,6 +159,7 @@ Scanned scan_chunk(const Eigen::Vector3d* p, std::size_t count, int threads, con
     whole.lo = std::min(whole.lo, r.lo);
     whole.hi = std::max(whole.hi, r.hi);
     whole.big = std::max(whole.big, r.big);
+    whole.tails.merge(r.tails);
     for (std::size_t k = 0; k < whole.kept.size(); ++k) {
       if (whole.kept[k].empty())
         whole.kept[k] = std::move(r.kept[k]);
@@ -168,6 +179,7 @@ struct FirstPass {
   std::vector<Eigen::Vector3d> first;                  // those, in file order (their sampling: sampling_of)
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // the unit normal the extents are along
   std::vector<std::pair<double, double>> chunk_range;  // per chunk of the file, its extent along it
+  detail::Tails tails;                                 // the lowest and highest offsets along it
 };
 
 // Pass 1: the extent along the normal and, when `sampled`, a uniform random sample for the
@@ -185,6 +197,7 @@ void first_pass(const std::string& path, const CloudReadOptions& read, const Eig
         pass.chunk_range.emplace_back(r.lo, r.hi);
         pass.lo = std::min(pass.lo, r.lo);
         pass.hi = std::max(pass.hi, r.hi);
+        pass.tails.merge(r.tails);
         pass.largest = std::max(pass.largest, r.big);
         for (std::size_t k = 0; k < r.kept.size(); ++k) {
           held.add(sizeof(Eigen::Vector3d) * r.kept[k].size());
@@ -407,8 +420,11 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   if (path == "-") {
     // A pipe cannot be read twice: hold the cloud.
     const Cloud cloud = read_cloud(path, read);
-    const auto planes = spec.count > 0 ? planes_across(cloud.points, spec.normal, spec.count) : spec.planes;
-    return slice(cloud, planes, options, given_sink, on_sampling);
+    const PartExtent extent = spec.count > 0 ? extent_along(cloud.points, spec.normal) : PartExtent{};
+    const auto planes = spec.count > 0 ? spread(spec.normal, extent.lo, extent.hi, spec.count) : spec.planes;
+    SliceResult r = slice(cloud, planes, options, given_sink, on_sampling);
+    r.extent = extent;
+    return r;
   }
   // The points held for the planes (slabs, the points beside them, the sections made) stay
   // within half the memory limit: about 4 kB a plane before any point, refused at once.
@@ -430,6 +446,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   std::vector<Plane> planes = spec.planes;
   double slab = options.slab;
   Sampling found;
+  PartExtent extent;
   if (spec.count > 0 || slab == 0) {
     // Points near planes guessed from a first look at the file are kept on the way: when
     // the planes and slab found are near enough to the guess, pass 2 is not needed.
@@ -437,7 +454,10 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     FirstPass first;
     first.hold = options.sampling.max_points;
     first_pass(path, read_chunks, spec.normal.normalized(), slab == 0, guess, first, held);
-    if (spec.count > 0) planes = spread(spec.normal, first.lo, first.hi, spec.count);
+    if (spec.count > 0) {
+      extent = detail::trimmed_extent(first.tails);
+      planes = spread(spec.normal, extent.lo, extent.hi, spec.count);
+    }
     if (slab == 0) {
       detail::SpacingSearch search;
       Sampling sampling = detail::sampling_of(first.first, planes[0].normal, options.sampling, search);
@@ -455,6 +475,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
     if (guess.active && guess.covers(planes, slab, first.largest)) {
       SliceResult r = slice_kept(path, planes, slab, guess, first, options, read_chunks, sink, held);
       r.sampling = std::move(found);
+      r.extent = extent;
       return r;
     }
   }
@@ -462,6 +483,7 @@ SliceResult slice_file(const std::string& path, const PlaneSpec& spec, const Sli
   SliceResult r = slice_pass(path, planes, slab, spec.count > 0 || options.slab == 0 ? 2 : 1, options,
                              read_chunks, sink, held);
   r.sampling = std::move(found);
+  r.extent = extent;
   return r;
 }
 

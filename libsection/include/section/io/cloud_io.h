@@ -89,12 +89,17 @@ struct CloudPeek {
 /// than its header says); non-finite points are left out. Never throws for the content.
 CloudPeek peek_cloud(const std::string& path, std::size_t count, const CloudReadOptions& options = {});
 
-/// The largest side of the bounding box of a cloud file, estimated from points spread over
-/// it (a binary PLY's as peek_cloud reads them; a text file's from blocks read at evenly
-/// spaced places; an E57 file's from all its points, read once more), in the file's numbers
+/// The largest side of the bounding box of a cloud file, its strays left out (points_extent),
+/// estimated from points spread over it (a binary PLY's as peek_cloud reads them; a text file's from blocks
+/// read at evenly spaced places; an E57 file's from all its points, read once more), in the file's numbers
 /// times options.scale: enough to tell its likely unit (units.h). 0 when no sample can be
 /// read (standard input, an unreadable file, LAS).
 double sample_extent(const std::string& path, const CloudReadOptions& options = {});
+
+/// The largest side of the bounding box of `points`, the few far from the rest left out
+/// along each axis (as extent_along, section/slice.h: a stray point a metre off made a
+/// scan in metres look like one in mm); sample_extent's from its sample. 0 when empty.
+double points_extent(const std::vector<Eigen::Vector3d>& points);
 
 /// Reads the whole cloud of `path` ("-" = standard input). Throws as read_cloud_chunks.
 Cloud read_cloud(const std::string& path, const CloudReadOptions& options = {});
