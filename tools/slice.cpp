@@ -18,6 +18,7 @@
 #include "section/units.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <iostream>
 #include <optional>
 #include <utility>
@@ -69,13 +70,32 @@ public:
 
   // Closes the stream; throws when no section could be sliced.
   void finish() {
+    const std::string hint = normal_hint();
     if (failed_ == sections_)
       throw section::Error(section::tool::input_name(args_.common.input) +
-                           ": no section could be sliced (see the warnings above)");
+                           ": no section could be sliced (see the warnings above)" +
+                           (hint.empty() ? "" : "; " + hint));
+    if (!hint.empty()) std::cerr << "slice: warning: " << hint << "\n";
     writer_->finish();
   }
 
 private:
+  // Most planes of one normal giving no profile: they may run along the part, as planes
+  // normal to z do through a blade scanned with its span along x (open sheets, points that
+  // close into no loop, each section's own message saying only that).
+  std::string normal_hint() const {
+    if (!args_.axis.empty() || !args_.planes_file.empty() || args_.by_rows() || sections_ < 2 ||
+        2 * failed_ <= sections_)
+      return "";
+    char text[320];
+    std::snprintf(
+        text, sizeof text,
+        "%zu of %zu planes gave no profile: if they run along the part rather than across its span, "
+        "give --normal along the span (now %g,%g,%g)",
+        failed_, sections_, args_.normal[0], args_.normal[1], args_.normal[2]);
+    return text;
+  }
+
   const SliceArgs& args_;
   std::string history_;
   std::optional<section::StreamWriter> writer_;

@@ -115,4 +115,14 @@ check "nothing written for the slid view" -- test ! -s "$TMP/out"
 expect 1 "a missing view" -- "$BIN/slice" "$TMP/view0.ply" --view "$TMP/none.ply" --at 30
 check "missing view named" -- grep -q "none.ply" "$TMP/err"
 
+# A blade scanned with its span along x: planes normal to z run along it, through open
+# sheets, and each failed section says only that; slice says which normal would cut across.
+"$BIN/bladegen" --points --spacing 0.08 --seed 3 --z-min 20 --z-max 40 -o "$TMP/upright.xyz"
+awk '{ printf "%.9f %.9f %.9f\n", $3, $2, -$1 }' "$TMP/upright.xyz" > "$TMP/lying.xyz"
+"$BIN/slice" "$TMP/lying.xyz" --count 5 > /dev/null 2> "$TMP/lying.err"
+check "planes along the span: the normal is named" -- \
+  grep -q "planes gave no profile: if they run along the part rather than across its span, give --normal along the span (now 0,0,1)" "$TMP/lying.err"
+expect 0 "the normal along the span" -- "$BIN/slice" "$TMP/lying.xyz" --count 5 --normal 1,0,0
+check "across the span: no word of the normal" -- sh -c "! grep -q 'give --normal' '$TMP/err'"
+
 finish
