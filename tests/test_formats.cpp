@@ -87,6 +87,28 @@ TEST_CASE("formats: semicolon text reads decimal commas, PTS count lines are cou
   CHECK_THAT(cloud_error("1;2;x\n", "e.txt"), Catch::Contains("e.txt:1: expected a number in column 3"));
 }
 
+TEST_CASE("formats: blank-separated text with decimal commas reads them as decimal points", "[formats]") {
+  // "18,450 -3,589 25,111" (a European export): read as separators, the row was six
+  // numbers and the point (18, 450, -3), a scan's garbage that slice cut into a section.
+  const Cloud a = parse_cloud("18,450 -3,589 25,111\n18,541\t-3,730\t25,089 128 64 32\n", "a.xyz", {});
+  REQUIRE(a.points.size() == 2);
+  CHECK(a.points[0] == Eigen::Vector3d(18.450, -3.589, 25.111));
+  CHECK(a.points[1] == Eigen::Vector3d(18.541, -3.730, 25.089));
+  const Cloud h = parse_cloud("x y z\n1,5 2,25 -3,0\n", "h.txt", {});
+  REQUIRE(h.points.size() == 1);
+  CHECK(h.points[0] == Eigen::Vector3d(1.5, 2.25, -3.0));
+  const Cloud c = parse_cloud("x,y,z\n1,2,3\n", "c.csv", {});
+  CHECK(c.points[0] == Eigen::Vector3d(1, 2, 3));
+  // Commas as separators stay so: comma-separated rows, with blanks after the commas, or
+  // with decimal points.
+  CHECK(parse_cloud("1,2,3\n", "p.xyz", {}).points[0] == Eigen::Vector3d(1, 2, 3));
+  CHECK(parse_cloud("1, 2, 3\n", "q.xyz", {}).points[0] == Eigen::Vector3d(1, 2, 3));
+  CHECK(parse_cloud("1.5,2 3 4\n", "r.xyz", {}).points[0] == Eigen::Vector3d(1.5, 2, 3));
+  CHECK(parse_cloud("1 2 3,5\n", "s.xyz", {}).points[0] == Eigen::Vector3d(1, 2, 3));
+  // A later row in the other style is refused by line, not read as other numbers.
+  CHECK_THAT(cloud_error("1,5 2,5 3,5\n1,5,2,5 3 4\n", "t.xyz"), Catch::Contains("t.xyz:2:"));
+}
+
 TEST_CASE("formats: T-Blade3's .dat counts its sections of points", "[formats]") {
   // blade3d.*.dat: `POINTS SECTIONS`, then the sections' x y z rows (its camber lines: rows alone).
   const Cloud c =

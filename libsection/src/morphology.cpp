@@ -172,9 +172,12 @@ void find_loops(const Points& points, std::vector<std::size_t> subset, double h,
     if (!morph::run_pass(points, subset, h, opt, pass)) break;
     if (s.passes.empty()) result.raster_cells = pass.raster.size();
     const std::size_t before = s.found.size();
+    // Pointers into s.found: this pass's loops are appended only after the last test
+    // against them (an append may move them).
     std::vector<const Points*> first_pass;
     for (const Found& f : s.found)
       if (f.pass == 0) first_pass.push_back(&f.boundary);
+    std::vector<Found> made;
     for (std::size_t ci = 0; ci < pass.components.size(); ++ci) {
       const morph::Component& comp = pass.components[ci];
       if (comp.enclosed == 0) continue;
@@ -187,8 +190,9 @@ void find_loops(const Points& points, std::vector<std::size_t> subset, double h,
           strays_beside(points, subset, f.boundary, first_pass, std::max(outlier, pass.radius * h), h))
         continue;
       f.area = morph::signed_area(f.boundary);
-      s.found.push_back(std::move(f));
+      made.push_back(std::move(f));
     }
+    for (Found& f : made) s.found.push_back(std::move(f));
     s.passes.push_back(std::move(pass));
     if (s.found.size() == before) break;
     std::vector<const Points*> bounds;

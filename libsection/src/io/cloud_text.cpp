@@ -25,12 +25,47 @@ struct TextState {
   bool dat = false;  // a first line of two whole numbers is T-Blade3's `POINTS SECTIONS`
   unsigned long long dat_points = 0, dat_sections = 0;  // that line's counts (0: none)
   bool semicolon = false;  // ';' separates the cells and ',' is a decimal comma (first data line holds a ';')
+  bool decimal_comma = false;  // blanks separate the cells and ',' is a decimal comma (decimal_commas)
 };
 
-// Splits a line into at most `max_fields` fields (split_fields, or at each ';' when
-// `semicolon`); returns the count.
-int split_row(std::string_view line, std::string_view* fields, int max_fields, bool semicolon) {
+// A first data row of blank-separated cells whose first three each hold one comma between
+// digits, and no '.' anywhere ("18,450 -3,589 25,111", a European export): its commas are
+// decimal commas. Read as separators, that row was the six numbers 18 450 -3 589 25 111,
+// and a scan the garbage x = 18, y = 450, z = -3, which slice cut into a "section".
+bool decimal_commas(std::string_view line) {
+  if (line.find_first_of(".;") != std::string_view::npos) return false;
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  int cells = 0;
+  for (std::size_t i = 0; i < line.size() && cells < 3;) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    if (i == line.size()) break;
+    std::size_t end = i;
+    while (end < line.size() && line[end] != ' ' && line[end] != '\t') ++end;
+    const std::string_view cell = line.substr(i, end - i);
+    const std::size_t c = cell.find(',');
+    if (c == std::string_view::npos || c == 0 || c + 1 == cell.size() || !digit(cell[c - 1]) ||
+        !digit(cell[c + 1]) || cell.find(',', c + 1) != std::string_view::npos)
+      return false;
+    ++cells;
+    i = end;
+  }
+  return cells == 3;
+}
+
+// Splits a line into at most `max_fields` fields (split_fields; at each ';' when
+// `semicolon`, at blanks only when `decimal_comma`); returns the count.
+int split_row(std::string_view line, std::string_view* fields, int max_fields, bool semicolon,
+              bool decimal_comma = false) {
   int n = 0;
+  if (decimal_comma) {
+    std::vector<std::string_view> words;
+    split_words(line, words);
+    for (const auto& w : words) {
+      if (n == max_fields) break;
+      fields[n++] = w;
+    }
+    return n;
+  }
   if (semicolon) {
     for (std::size_t at = 0; n < max_fields;) {
       const std::size_t end = std::min(line.find(';', at), line.size());
@@ -115,21 +150,26 @@ void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, 
   if (first_data) {
     first_data = false;
     st.semicolon = line.find(';') != std::string_view::npos;
+    st.decimal_comma = decimal_commas(line);
     double tmp;
     std::string_view f[64];
-    const int n = split_row(line, f, 64, st.semicolon);
-    if (n == 0 || !parse_cell(trim(f[0]), tmp, st.semicolon) || st.require_header) {
-      if (try_header(line, st)) return;
+    const bool comma = st.semicolon || st.decimal_comma;
+    const int n = split_row(line, f, 64, st.semicolon, st.decimal_comma);
+    if (n == 0 || !parse_cell(trim(f[0]), tmp, comma) || (st.require_header && !st.csv_header_seen)) {
+      if (try_header(line, st)) {
+        first_data = true;  // the row after the header says how its numbers are written
+        return;
+      }
       if (st.require_header)
         fail_line(name, line_no, "a CSV cloud needs a header row naming the x, y and z columns");
-      if (n > 0 && !parse_cell(trim(f[0]), tmp, st.semicolon))
+      if (n > 0 && !parse_cell(trim(f[0]), tmp, comma))
         fail_line(name, line_no,
                   "expected a number in column 1, found '" + std::string(trim(f[0]).substr(0, 40)) +
                       "' (a header row must name x, y and z columns)");
     }
   }
   std::string_view f[64];
-  const int n = split_row(line, f, std::min(64, st.needed), st.semicolon);
+  const int n = split_row(line, f, std::min(64, st.needed), st.semicolon, st.decimal_comma);
   if (n < st.needed)
     fail_line(name, line_no,
               "expected at least " + std::to_string(st.needed) + " columns, found " + std::to_string(n));
@@ -137,7 +177,7 @@ void parse_text_line(std::string_view line, std::size_t line_no, TextState& st, 
   const int cols[3] = {st.cx, st.cy, st.cz};
   for (int k = 0; k < 3; ++k) {
     const std::string_view cell = trim(f[cols[k]]);
-    if (!parse_cell(cell, v[k], st.semicolon))
+    if (!parse_cell(cell, v[k], st.semicolon || st.decimal_comma))
       fail_line(name, line_no,
                 "expected a number in column " + std::to_string(cols[k] + 1) + ", found '" +
                     std::string(cell.substr(0, 40)) + "'");
@@ -176,7 +216,7 @@ inline bool parse_xyz_fast(const char* p, const char* e, double* v) {
 template <class Out>
 void parse_text_lines(std::string_view buf, std::size_t begin, std::size_t end, std::size_t& line_no,
                       TextState& st, const std::string& name, Out& out) {
-  const bool plain = st.cx == 0 && st.cy == 1 && st.cz == 2 && !st.semicolon;
+  const bool plain = st.cx == 0 && st.cy == 1 && st.cz == 2 && !st.semicolon && !st.decimal_comma;
   const char* p = buf.data() + begin;
   const char* const stop = buf.data() + end;
   bool first_data = false;
