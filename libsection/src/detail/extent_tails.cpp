@@ -9,14 +9,6 @@ namespace section::detail {
 
 namespace {
 
-// Inserts v into `tail`, kept sorted by `before` and at most `keep` long.
-template <class Before>
-void insert(std::vector<double>& tail, std::size_t keep, double v, Before before) {
-  if (tail.size() == keep && !before(v, tail.back())) return;
-  tail.insert(std::upper_bound(tail.begin(), tail.end(), v, before), v);
-  if (tail.size() > keep) tail.pop_back();
-}
-
 // The outermost values of a tail (ascending from its end for `low`) beyond its widest gap
 // among the first `cap + 1`: how many, and the gap (0: none).
 std::pair<std::size_t, double> widest_gap(const std::vector<double>& tail, std::size_t cap) {
@@ -29,46 +21,60 @@ std::pair<std::size_t, double> widest_gap(const std::vector<double>& tail, std::
   return {cut, widest};
 }
 
-}  // namespace
-
-void Tails::add(double v) {
-  if (std::isnan(v)) return;
-  ++count_;
-  insert(low_, keep_, v, std::less<double>());
-  insert(high_, keep_, v, std::greater<double>());
+// The `keep` outermost of `values` (ascending for the low side), sorted outermost first.
+std::vector<double> outermost(std::vector<double> values, std::size_t keep, bool high) {
+  const auto before = [high](double a, double b) { return high ? a > b : a < b; };
+  if (values.size() > keep) {
+    std::nth_element(values.begin(), values.begin() + long(keep), values.end(), before);
+    values.resize(keep);
+  }
+  std::sort(values.begin(), values.end(), before);
+  return values;
 }
 
-void Tails::add(const double* v, std::size_t n) {
-  if (n == 0) return;
-  const double* lo = std::min_element(v, v + n);
-  const double* hi = std::max_element(v, v + n);
-  const bool low_full = low_.size() == keep_, high_full = high_.size() == keep_;
-  if (low_full && high_full && !(*lo < low_.back()) && !(*hi > high_.back())) {
-    for (std::size_t i = 0; i < n; ++i) count_ += !std::isnan(v[i]);
-    return;
-  }
-  for (std::size_t i = 0; i < n; ++i) add(v[i]);
+}  // namespace
+
+void Tails::push(std::vector<double>& buffer, double v, double& limit, bool high) {
+  buffer.push_back(v);
+  if (buffer.size() < 64 * keep_) return;
+  // Cut back to the outermost `keep`: later values must beat the innermost of them.
+  buffer = outermost(std::move(buffer), keep_, high);
+  limit = buffer.back();
 }
 
 void Tails::merge(const Tails& other) {
-  const std::size_t seen = count_ + other.count_;
-  for (double v : other.low_) insert(low_, keep_, v, std::less<double>());
-  for (double v : other.high_) insert(high_, keep_, v, std::greater<double>());
-  count_ = seen;
+  for (double v : other.low_) take_low(v);
+  for (double v : other.high_) take_high(v);
+  if (other.inner_low_ < std::numeric_limits<double>::infinity()) take_low(other.inner_low_);
+  if (other.inner_high_ > -std::numeric_limits<double>::infinity()) take_high(other.inner_high_);
+  count_ += other.count_;
+}
+
+std::vector<double> Tails::low() const {
+  std::vector<double> v = low_;
+  if (inner_low_ < std::numeric_limits<double>::infinity()) v.push_back(inner_low_);
+  return outermost(std::move(v), keep_, false);
+}
+
+std::vector<double> Tails::high() const {
+  std::vector<double> v = high_;
+  if (inner_high_ > -std::numeric_limits<double>::infinity()) v.push_back(inner_high_);
+  return outermost(std::move(v), keep_, true);
 }
 
 PartExtent trimmed_extent(const Tails& t) {
   PartExtent e;
-  if (t.low().empty()) return e;
-  e.lowest = e.lo = t.low().front();
-  e.highest = e.hi = t.high().front();
-  const std::size_t cap = std::min(t.low().size() - 1, t.count() / 1000);
-  if (cap == 0) return e;
-  const auto [below, gap_below] = widest_gap(t.low(), cap);
-  const auto [above, gap_above] = widest_gap(t.high(), cap);
-  const double rest = t.high()[above] - t.low()[below];
-  if (below > 0 && gap_below > 0.05 * rest) e.lo = t.low()[below], e.strays += below;
-  if (above > 0 && gap_above > 0.05 * rest) e.hi = t.high()[above], e.strays += above;
+  const std::vector<double> low = t.low(), high = t.high();
+  if (low.empty()) return e;
+  e.lowest = e.lo = low.front();
+  e.highest = e.hi = high.front();
+  // Each end's values as far as they are known (below the screen's limit and the next).
+  const std::size_t share = t.count() / 1000;
+  const auto [below, gap_below] = widest_gap(low, std::min(low.size() - 1, share));
+  const auto [above, gap_above] = widest_gap(high, std::min(high.size() - 1, share));
+  const double rest = high[above] - low[below];
+  if (below > 0 && gap_below > 0.05 * rest) e.lo = low[below], e.strays += below;
+  if (above > 0 && gap_above > 0.05 * rest) e.hi = high[above], e.strays += above;
   return e;
 }
 

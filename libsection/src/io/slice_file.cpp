@@ -116,13 +116,16 @@ void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eig
     for (std::size_t i0 = a; i0 < e; i0 += block) {
       const std::size_t m = std::min(block, e - i0);
       const Eigen::Vector3d* q = p + i0;
+      double blo = INFINITY, bhi = -INFINITY;
       for (std::size_t j = 0; j < m; ++j) {
         s[j] = n.x() * q[j].x() + n.y() * q[j].y() + n.z() * q[j].z();
-        lo = s[j] < lo ? s[j] : lo;
-        hi = s[j] > hi ? s[j] : hi;
+        blo = s[j] < blo ? s[j] : blo;
+        bhi = s[j] > bhi ? s[j] : bhi;
         big = std::max({big, std::abs(q[j].x()), std::abs(q[j].y()), std::abs(q[j].z())});
       }
-      r.tails.add(s, m);
+      lo = blo < lo ? blo : lo;
+      hi = bhi > hi ? bhi : hi;
+      r.tails.add(s, m, blo, bhi);
       if (along)
         for (std::size_t j = 0; j < m; ++j) guess.keep_at(q[j], s[j], tests[0], r.kept);
       else
@@ -134,13 +137,16 @@ void scan_part(const Eigen::Vector3d* p, std::size_t a, std::size_t e, const Eig
     double s[block];
     for (std::size_t i0 = a; i0 < e; i0 += block) {
       const std::size_t m = std::min(block, e - i0);
+      double blo = INFINITY, bhi = -INFINITY;
       for (std::size_t j = 0; j < m; ++j) {
         const Eigen::Vector3d& q = p[i0 + j];
         s[j] = n.x() * q.x() + n.y() * q.y() + n.z() * q.z();
-        r.lo = s[j] < r.lo ? s[j] : r.lo;
-        r.hi = s[j] > r.hi ? s[j] : r.hi;
+        blo = s[j] < blo ? s[j] : blo;
+        bhi = s[j] > bhi ? s[j] : bhi;
       }
-      r.tails.add(s, m);
+      r.lo = blo < r.lo ? blo : r.lo;
+      r.hi = bhi > r.hi ? bhi : r.hi;
+      r.tails.add(s, m, blo, bhi);
     }
   }
 }
@@ -150,10 +156,12 @@ Scanned scan_chunk(const Eigen::Vector3d* p, std::size_t count, int threads, con
                    const Guess& guess) {
   const std::size_t parts = detail::parts_of(count, threads);
   std::vector<Scanned> part(parts);
+  for (Scanned& r : part) r.tails = detail::Tails(64, guess.screen_lo, guess.screen_hi);
   detail::parallel_for(parts, threads, [&](std::size_t t) {
     scan_part(p, count * t / parts, count * (t + 1) / parts, n, guess, part[t]);
   });
   Scanned whole;
+  whole.tails = detail::Tails(64, guess.screen_lo, guess.screen_hi);
   whole.kept.resize(guess.active ? guess.planes.size() : 0);
   for (auto& r : part) {
     whole.lo = std::min(whole.lo, r.lo);
@@ -188,6 +196,7 @@ struct FirstPass {
 void first_pass(const std::string& path, const CloudReadOptions& read, const Eigen::Vector3d& n, bool sampled,
                 Guess& guess, FirstPass& pass, detail::HeldBytes& held) {
   pass.normal = n;
+  pass.tails = detail::Tails(64, guess.screen_lo, guess.screen_hi);
   pass.total = scan_chunks(
       path, read,
       [&](const Eigen::Vector3d* p, std::size_t count, int threads) {

@@ -44,6 +44,9 @@ Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOp
   if (peek_cloud(path, 1, read).total <= detail::Reservoir::size) return guess;
   const CloudPeek peek = peek_cloud(path, 4096, read);
   if (peek.points.size() < 256) return guess;
+  const PartExtent seen = extent_along(peek.points, spec.normal);
+  guess.screen_lo = seen.lo - 0.02 * (seen.hi - seen.lo);
+  guess.screen_hi = seen.hi + 0.02 * (seen.hi - seen.lo);
   // The mean spacing at full density (the band's guess needs it, and the slab when not given).
   const double spacing =
       options.slab == 0 || options.band_spacing > 0

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <limits>
 #include <vector>
 
 namespace section::detail {
@@ -31,6 +32,11 @@ struct Guess {
   // Per guessed plane, blocks of the points kept, in file order (blocks are moved in as
   // the threads collect them, not copied).
   std::vector<std::vector<std::vector<Eigen::Vector3d>>> kept;
+  // The first look's extent along the normal (its strays left out), widened by 2 % each
+  // way: pass 1 keeps the offsets beyond it for the part's extent (detail::Tails' limits).
+  // None (every offset a candidate) when there was no first look.
+  double screen_lo = std::numeric_limits<double>::infinity();
+  double screen_hi = -std::numeric_limits<double>::infinity();
 
   // Appends q to the list in `out` of each guessed plane within half_width of it; `tests`
   // are those of `groups` (made once for a loop over points: see detail::SlabTests).
