@@ -58,11 +58,11 @@ int split_row(std::string_view line, std::string_view* fields, int max_fields, b
               bool decimal_comma = false) {
   int n = 0;
   if (decimal_comma) {
-    std::vector<std::string_view> words;
-    split_words(line, words);
-    for (const auto& w : words) {
-      if (n == max_fields) break;
-      fields[n++] = w;
+    for (std::size_t i = 0; i < line.size() && n < max_fields;) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      const std::size_t start = i;
+      while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+      if (i > start) fields[n++] = line.substr(start, i - start);
     }
     return n;
   }
