@@ -55,9 +55,10 @@ Guess guess_planes(const std::string& path, const PlaneSpec& spec, const SliceOp
   double slab = options.slab;
   if (slab == 0) slab = spacing / 0.47;
   if (!(slab > 0) || !std::isfinite(slab)) return guess;
-  // The peek's extent, its strays left out (as the pass's).
+  // The peek's extent, its strays left out (as the pass's): along the normal of --count
+  // once, not again for each plane (20 planes took 1 % of slice at 1 M points).
   const auto extent_of = [&](const Eigen::Vector3d& normal, double& lo, double& hi) {
-    const PartExtent e = extent_along(peek.points, normal);
+    const PartExtent e = normal == spec.normal ? seen : extent_along(peek.points, normal);
     lo = e.lo;
     hi = e.hi;
   };
