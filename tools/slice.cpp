@@ -87,11 +87,11 @@ private:
     if (!args_.axis.empty() || !args_.planes_file.empty() || args_.by_rows() || sections_ < 2 ||
         2 * failed_ <= sections_)
       return "";
-    char text[320];
+    char text[400];
     std::snprintf(
         text, sizeof text,
         "%zu of %zu planes gave no profile: if they run along the part rather than across its span, "
-        "give --normal along the span (now %g,%g,%g)",
+        "give --normal along the span (now %g,%g,%g), or cut a rotor on surfaces of revolution (--axis)",
         failed_, sections_, args_.normal[0], args_.normal[1], args_.normal[2]);
     return text;
   }
