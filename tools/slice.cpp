@@ -212,8 +212,9 @@ void run_slice(const SliceArgs& given, const std::string& history) {
   if (!clouds.empty()) {
     const section::Cloud merged = a.views.empty() ? std::move(clouds[0]) : merged_views(a, clouds, out);
     if (a.count > 0 && a.axis.empty()) {
-      warn_strays(section::extent_along(merged.points, n), a.count);
-      planes = section::planes_across(merged.points, n, a.count);
+      const section::PartExtent extent = section::extent_along(merged.points, n);
+      warn_strays(extent, a.count);
+      planes = section::planes_across(extent, n, a.count);
     }
     section::tool::with_input(input, [&] {
       if (!a.axis.empty()) {
@@ -226,8 +227,9 @@ void run_slice(const SliceArgs& given, const std::string& history) {
     });
   } else if (mesh) {
     if (a.count > 0 && a.axis.empty()) {
-      warn_strays(section::extent_along(mesh->vertices, n), a.count);
-      planes = section::planes_across(mesh->vertices, n, a.count);
+      const section::PartExtent extent = section::extent_along(mesh->vertices, n);
+      warn_strays(extent, a.count);
+      planes = section::planes_across(extent, n, a.count);
     }
     section::tool::with_input(input, [&] {
       if (a.axis.empty())

@@ -37,17 +37,34 @@ std::vector<Plane> planes_at(const Eigen::Vector3d& given, const std::vector<dou
   return planes;
 }
 
-std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& given,
-                                 int count) {
+std::vector<Plane> detail::spread(const Eigen::Vector3d& normal, double lo, double hi, int count) {
+  std::vector<double> offsets;
+  for (int k = 0; k < count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (count + 1));
+  return planes_at(normal, offsets);
+}
+
+namespace {
+
+// The normal planes_across spreads its planes with, its count checked.
+Eigen::Vector3d across_normal(const Eigen::Vector3d& given, int count) {
   const Eigen::Vector3d normal = usable_normal(given);
   const double len = normal.norm();
   if (!(len > 0) || !std::isfinite(len)) throw Error("slice: the plane normal must be finite and non-zero");
   if (count < 1 || count > 10000000) throw Error("slice: --count must be 1 to 10000000");
+  return normal;
+}
+
+}  // namespace
+
+std::vector<Plane> planes_across(const PartExtent& extent, const Eigen::Vector3d& given, int count) {
+  return detail::spread(across_normal(given, count), extent.lo, extent.hi, count);
+}
+
+std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& given,
+                                 int count) {
+  across_normal(given, count);
   if (points.empty()) throw Error("slice: no points to spread planes over");
-  const PartExtent e = extent_along(points, normal);
-  std::vector<double> offsets;
-  for (int k = 0; k < count; ++k) offsets.push_back(e.lo + (e.hi - e.lo) * (k + 1) / (count + 1));
-  return planes_at(normal, offsets);
+  return planes_across(extent_along(points, given), given, count);
 }
 
 PartExtent extent_along(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& given) {

@@ -43,6 +43,8 @@ PartExtent extent_along(const std::vector<Eigen::Vector3d>& points, const Eigen:
 /// (extent_along: lo, hi): offsets lo + (hi - lo) * (k + 1) / (count + 1), k = 0..count-1.
 std::vector<Plane> planes_across(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
                                  int count);
+/// The same over an extent already taken (extent_along, e.g. to say what it left out).
+std::vector<Plane> planes_across(const PartExtent& extent, const Eigen::Vector3d& normal, int count);
 
 /// Options of slice (lengths in the cloud's units; docs/MORPHOLOGY.md for the band and the fill).
 struct SliceOptions {

@@ -11,6 +11,10 @@
 
 namespace section::detail {
 
+/// `count` planes with `normal` spread evenly over [lo, hi]: offsets lo + (hi - lo) (k + 1) /
+/// (count + 1), k = 0..count-1 (planes_across, unchecked).
+std::vector<Plane> spread(const Eigen::Vector3d& normal, double lo, double hi, int count);
+
 void check_planes(const std::vector<Plane>& planes);
 /// Throws for a mesh without triangles, or with a triangle index outside its vertices.
 void check_mesh(const Mesh& mesh);

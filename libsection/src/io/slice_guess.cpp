@@ -10,13 +10,6 @@
 
 namespace section::detail {
 
-// `count` planes with `normal` spread evenly over [lo, hi] (as planes_across).
-std::vector<Plane> spread(const Eigen::Vector3d& normal, double lo, double hi, int count) {
-  std::vector<double> offsets;
-  for (int k = 0; k < count; ++k) offsets.push_back(lo + (hi - lo) * (k + 1) / (count + 1));
-  return planes_at(normal, offsets);
-}
-
 namespace {
 
 // Whether the sections of a scan likely get a band (band_half_width at least a slab): its

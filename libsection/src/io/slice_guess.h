@@ -17,9 +17,6 @@
 
 namespace section::detail {
 
-// `count` planes with `normal` spread evenly over [lo, hi] (as planes_across).
-std::vector<Plane> spread(const Eigen::Vector3d& normal, double lo, double hi, int count);
-
 // Planes (and slab) guessed from a first look at a cloud file (peek_cloud), and the points
 // kept around them while pass 1 of slice_file reads the file.
 struct Guess {

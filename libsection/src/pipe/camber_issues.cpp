@@ -88,11 +88,8 @@ CarriedAbout carried_about(const SectionFacts& f, const Edge& e) {
 // there (a plane tilted across a blade's tip carried the TE 0.2 mm above the part's end,
 // its values a smooth continuation of the blade below, flagged by nothing): the edge is
 // extrapolated, not measured (edge_flags sets le/te_measured).
-std::string carried_note(const SectionFacts& f, const Edge& e, const std::string& hole_message,
-                         const char* which) {
-  if (!hole_message.empty()) return std::string();
-  const CarriedAbout c = carried_about(f, e);
-  if (!c.any) return std::string();
+std::string carried_note(const CarriedAbout& c, const std::string& hole_message, const char* which) {
+  if (!hole_message.empty() || !c.any) return std::string();
   char text[512];
   if (c.one_side)
     std::snprintf(text, sizeof text,
@@ -121,10 +118,11 @@ std::string circularity_note(const Edge& e, const char* which, double profile_no
   return std::string(text);
 }
 
-// Everything said of one edge, joined by commas.
-std::string edge_note(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover, const char* which) {
+// Everything said of one edge, joined by commas (`carried`: carried_about it).
+std::string edge_note(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover,
+                      const CarriedAbout& carried, const char* which) {
   const std::string hole = hole_note(e, cover, which, f.options.edge_hole);
-  return join(join(join(shape_note(e, which, f.options.edge), hole), carried_note(f, e, hole, which)),
+  return join(join(join(shape_note(e, which, f.options.edge), hole), carried_note(carried, hole, which)),
               circularity_note(e, which, f.options.profile_noise));
 }
 
@@ -184,11 +182,13 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
 
 namespace {
 
-// The flags of an edge's notes: a hole at it, a circle that does not fit it (not circular,
-// or a blunt edge fitted as round anyway).
-CheckBits edge_flags(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover, bool le) {
+// The flags of an edge's notes: a hole at it (or closed by points carried from one side of
+// the plane), a circle that does not fit it (not circular, or a blunt edge fitted as round
+// anyway).
+CheckBits edge_flags(const SectionFacts& f, const Edge& e, const EdgeCoverage& cover,
+                     const CarriedAbout& carried, bool le) {
   CheckBits flags = 0;
-  if (!hole_note(e, cover, "", f.options.edge_hole).empty() || carried_about(f, e).one_side)
+  if (!hole_note(e, cover, "", f.options.edge_hole).empty() || carried.one_side)
     flags |= bit(le ? Check::le_measured : Check::te_measured);
   const bool blunt_as_round = e.shape == EdgeShape::blunt && e.face == 0 && e.radius > 0;
   if (blunt_as_round || !circularity_note(e, "", f.options.profile_noise).empty())
@@ -472,7 +472,10 @@ CheckBits describe_issues(const SectionFacts& f, const std::vector<Finding>& fin
                           std::vector<SectionIssue>& issues) {
   const CamberResult& r = f.camber;
   const CamberOptions& opt = f.options;
-  CheckBits flags = edge_flags(f, r.le, f.le, true) | edge_flags(f, r.te, f.te, false);
+  // What the gap fill carried about each edge, for its flags and its note.
+  const CarriedAbout le_carried = carried_about(f, r.le), te_carried = carried_about(f, r.te);
+  CheckBits flags =
+      edge_flags(f, r.le, f.le, le_carried, true) | edge_flags(f, r.te, f.te, te_carried, false);
   for (const bool le : {true, false}) {
     const char *which = le ? "leading-edge" : "trailing-edge", *check = le ? "le_sharp" : "te_sharp";
     std::string note = sharp_but_round(f, le ? r.le : r.te, which, check);
@@ -481,8 +484,8 @@ CheckBits describe_issues(const SectionFacts& f, const std::vector<Finding>& fin
     issues.push_back({f.section, 0, "camber", note});
     flags |= bit(le ? Check::le_sharp : Check::te_sharp);
   }
-  const std::string le_msg = edge_note(f, r.le, f.le, "leading edge"),
-                    te_msg = edge_note(f, r.te, f.te, "trailing edge");
+  const std::string le_msg = edge_note(f, r.le, f.le, le_carried, "leading edge"),
+                    te_msg = edge_note(f, r.te, f.te, te_carried, "trailing edge");
   if (!le_msg.empty() || !te_msg.empty())
     issues.push_back(
         {f.section, 0, "camber", le_msg + (le_msg.empty() || te_msg.empty() ? "" : ", ") + te_msg});
