@@ -3,7 +3,6 @@
 #include "args/camber_args.h"
 
 #include "section/camber.h"
-#include "section/fit_spline.h"
 #include "section/io/stream.h"
 #include "section/io/csv.h"
 #include "section/io/file.h"
@@ -52,10 +51,7 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     const section::InputUnits units = section::input_units(a.units, box.sizes().maxCoeff());
     for (auto& p : points) p *= units.mm;
     section::Stream stream;
-    section::tool::with_input(a.common.input, [&] {
-      const section::FitSplineResult fit = section::fit_spline(points, points);
-      stream = section::profile_stream(fit.spline, fit.rms, points);
-    });
+    section::tool::with_input(a.common.input, [&] { stream = section::plain_profile_stream(points); });
     if (!units.warning.empty()) std::cerr << "camber: warning: " << units.warning << "\n";
     if (!units.note.empty()) stream.notes.push_back(units.note);
     return stream;

@@ -315,6 +315,31 @@ FitSplineResult fit_once(const Points& profile, const Points& measured, const Fi
 
 }  // namespace
 
+Points canonical_loop(Points loop) {
+  const std::size_t n = loop.size();
+  if (n < 3) return loop;
+  if (polygon_area(loop) < 0) std::reverse(loop.begin(), loop.end());
+  // The start depends on the points alone, not on their first index: the centroid is summed
+  // in sorted order (to the last bit whatever the order given), and a tie of distance goes to
+  // the least x, then y (exact copies do not occur in a loop parsed from a file).
+  const auto lesser = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  };
+  Points sorted = loop;
+  std::sort(sorted.begin(), sorted.end(), lesser);
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const auto& p : sorted) centre += p;
+  centre /= double(n);
+  std::size_t start = 0;
+  double most = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = (loop[i] - centre).squaredNorm();
+    if (d > most || (d == most && lesser(loop[i], loop[start]))) most = d, start = i;
+  }
+  std::rotate(loop.begin(), loop.begin() + std::ptrdiff_t(start), loop.end());
+  return loop;
+}
+
 FitSplineResult fit_spline(const Points& profile, const Points& measured, const FitSplineOptions& o) {
   // Far from the origin, the fit is made about a local origin and the curve moved back.
   const Eigen::Vector2d origin = detail::local_origin(profile);

@@ -11,7 +11,8 @@ The pipe of the tools (slice | smooth | fitspline | camber) in Python:
 Each stage takes a Stream and returns a new one, as its tool does, with the tool's flags as
 keywords (`slab=0.05` for `--slab 0.05`, `no_fill=True` for `--no-fill`; `TOOL --help`
 lists them); the same options give the same numbers as the tools. On one curve instead:
-`smooth(points)` -> points, `fit_spline(points)` -> Spline, `camber(spline)` -> dict.
+`smooth(points)` -> points, `fit_spline(points)` -> Spline, `camber(spline)` or
+`camber(points)` (a plain profile, as `camber PROFILE`) -> dict.
 `read_tables(path)` reads a stream written by the tools into pandas DataFrames. The
 inspection, as the compare tool runs it: `compare_stream(s, "nominal.stl",
 tolerances="tolerances.csv")`, then `verdict(...)` and `compare_report(...)`. A value that a
@@ -21,15 +22,15 @@ names the checks that flag it.
 import numpy as _np
 
 from . import _libsection
-from ._libsection import (Cancelled, Error, Nominal, Spline, Stream, compare_report, failed_checks, generate,
-                          parse_stream, read_cloud, read_stream, verdict)
+from ._libsection import (Cancelled, Error, Nominal, Spline, Stream, canonical_loop, compare_report, failed_checks,
+                          generate, parse_stream, read_cloud, read_stream, verdict)
 from .tables import format_number, read_tables, table, to_csv
 
 __all__ = ["slice", "smooth", "fit_spline", "camber", "blade", "compare", "compare_stream", "compare_report", "verdict",
            "prepare_nominal", "Nominal", "Stream", "Spline",
            "Error", "Cancelled", "read_stream",
            "parse_stream", "read_cloud", "read_tables", "table", "format_number", "to_csv", "generate",
-           "failed_checks"]
+           "failed_checks", "canonical_loop"]
 __version__ = "0.1.0"
 
 
@@ -68,12 +69,17 @@ def fit_spline(x, measured=None, **flags):
 
 def camber(x, **flags):
     """Mean-camber line and section parameters (the camber tool): a Stream -> a Stream with
-    the tables 'camber', 'params', 'thickness', 'sides'; a closed Spline (a profile) -> a
-    dict: 'params' (name -> float: mm, degrees), 'camber', 'thickness', 'sides' (column ->
-    array) and 'issues'. Raises ValueError when the profile fails."""
+    the tables 'camber', 'params', 'thickness', 'sides'; a closed Spline (a profile), or an
+    (N, 2) array of a plain profile's points in order around it (fitted as `camber PROFILE`
+    fits them, whichever point they start at: canonical_loop) -> a dict: 'params' (name ->
+    float: mm, degrees), 'camber', 'thickness', 'sides' (column -> array) and 'issues'.
+    Raises Error when the profile fails."""
     if isinstance(x, Stream):
         return _libsection.camber_stream(x, **flags)
-    s = _libsection.camber_stream(_libsection.profile_stream(x), **flags)
+    if isinstance(x, Spline):
+        s = _libsection.camber_stream(_libsection.profile_stream(x), **flags)
+    else:
+        s = _libsection.camber_stream(_libsection.plain_profile_stream(_np.asarray(x, dtype=float)), **flags)
     params = s.table("params")
     if len(params["section"]) == 0:
         raise Error("camber: " + "; ".join(i["message"] for i in s.issues))

@@ -214,6 +214,19 @@ void bind_curve_functions(py::module_& m) {
   m.def(
       "profile_stream", [](const BSpline& spline, double rms) { return profile_stream(spline, rms); },
       py::arg("spline"), py::arg("rms") = 0.0);
+  m.def(
+      "plain_profile_stream",
+      [](const Array& points, const py::kwargs& kwargs) {
+        const FitSplineOptions o = tool_args<tool::FitsplineArgs>(kwargs).options;
+        const auto p = points2(points, "camber: profile");
+        py::gil_scoped_release unlocked;
+        return plain_profile_stream(p, o);
+      },
+      py::arg("points"));
+  m.def(
+      "canonical_loop",
+      [](const Array& points) { return array2(canonical_loop(points2(points, "canonical_loop"))); },
+      py::arg("points"));
 }
 
 }  // namespace
