@@ -6,9 +6,10 @@ file from its TE; a design tool from its LE.
 
 Generated sections (bladegen --rows: a row is a plain profile, its truth from bladegen
 --truth), every kind at two point spacings, each given from 6 starts in both directions (12
-runs a section); with --ls89, the VKI LS89 profile of scripts/validate_ls89.sh (all its
-points, and every other one) too. Prints, per value, the widest spread over a section's 12
-runs, and the values off their target (docs/ACCURACY.md) with no flag in their row.
+runs a section); the VKI LS89 profile of scripts/validate_ls89.sh (all its points, and every
+other one) too when --ls89 (default ../shared/data/real/ls89) is there. Prints, per value,
+the widest spread over a section's 12 runs, the values off their target (docs/ACCURACY.md)
+with no flag in their row, and the runs the start check (le_start, te_start) flags.
 
 Usage: scripts/probe_profile_start.py [--bin DIR] [--seed N] [--ls89 FILE]
 """
@@ -58,9 +59,15 @@ def study(name, points, truth, tmp, totals):
     got = [r for r in runs if r]
     spread = {k: max(float(r[k]) for r in got) - min(float(r[k]) for r in got) for k in KEYS} if got else {}
     silent = 0
+    start_bits = (1 << 35) | (1 << 36)  # le_start, te_start
     for r in got:
-        if int(float(r["flags"])) == 0 and truth:
-            silent += sum(off(k, float(r[k]), truth[k]) for k in KEYS if k in truth)
+        flags = int(float(r["flags"]))
+        wrong = sum(off(k, float(r[k]), truth[k]) for k in KEYS if k in truth) if truth else 0
+        if flags == 0:
+            silent += wrong
+        totals["start"] += bool(flags & start_bits)
+        totals["start only"] += bool(flags & start_bits) and not flags & ~start_bits
+        totals["caught by start"] += wrong if flags & start_bits and not flags & ~start_bits else 0
     totals["sections"] += 1
     totals["refused"] += len(runs) - len(got)
     totals["silent"] += silent
@@ -86,7 +93,7 @@ def rows_of(kind, spacing, tmp):
     return [(z, rows[z], truth[z]) for z in sorted(rows)]
 
 
-totals = {"sections": 0, "refused": 0, "silent": 0, "spread": {}}
+totals = {"sections": 0, "refused": 0, "silent": 0, "spread": {}, "start": 0, "start only": 0, "caught by start": 0}
 with tempfile.TemporaryDirectory() as tmp:
     for kind in ("turbine", "compressor", "sharp-te", "impulse", "thick-root"):
         for spacing in (0.2, 0.4):
@@ -105,3 +112,5 @@ with tempfile.TemporaryDirectory() as tmp:
 print(f"{totals['sections']} sections, {12 * totals['sections']} runs: {totals['refused']} refused, "
       f"{totals['silent']} values off with no flag; widest spread: " +
       " ".join(f"{k} {v:.4f}" for k, v in totals["spread"].items()))
+print(f"runs flagged le_start or te_start: {totals['start']}, by nothing else: {totals['start only']} "
+      f"(values off in those: {totals['caught by start']})")

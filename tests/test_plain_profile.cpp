@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A plain profile (an airfoil file, a CMM section) measured whichever point it starts at and
-// whichever way it runs: canonical_loop and plain_profile_stream.
+// whichever way it runs (canonical_loop, plain_profile_stream), and its values flagged where
+// the same points fitted from the other end give others (flag_start_dependence).
+#include "section/checks.h"
 #include "section/extras/generate.h"
 #include "section/fit_spline.h"
 #include "section/io/stream.h"
 #include "section/pipe/camber_stream.h"
+#include "section/pipe/plain_profile.h"
 
 #include <catch2/catch.hpp>
 
@@ -97,4 +100,51 @@ TEST_CASE("plain_profile_stream: the same parameters whatever point the profile 
         CHECK(std::abs(params.at(0, params.column("max_thickness")) - truth.max_thickness) < 0.005);
       }
   }
+}
+
+namespace {
+
+// camber_stream on plain_profile_stream, then flag_start_dependence: the checks it set.
+section::CheckBits measured_with_start_check(const Points& points, section::Stream& s) {
+  s = section::plain_profile_stream(points);
+  section::camber_stream(s);
+  return section::flag_start_dependence(s, points);
+}
+
+}  // namespace
+
+TEST_CASE("flag_start_dependence: an edge the points do not fix is flagged, a well measured one not",
+          "[camber]") {
+  using section::Check;
+  // Points 0.05 mm apart: either end's fit gives the same edges.
+  for (const auto& design : {section::turbine_blade().at(30), section::compressor_blade().at(30)}) {
+    const section::SectionTruth truth = section::section_truth(design, 20000);
+    section::Stream s;
+    CHECK(measured_with_start_check(section::noisy_profile(truth, 0.05, 0.002, 11), s) == 0);
+    const section::Table& params = s.get("params", "test");
+    CHECK((section::flags_mask(params.at(0, params.column("flags"))) &
+           (bit(Check::le_start) | bit(Check::te_start))) == 0);
+  }
+  // A turbine TE of 0.45 mm radius with points 0.4 mm apart: fitted from the other end its
+  // point moves 0.27 mm and its outlet angle 9 deg. Flagged, in the row, every thickness
+  // station and an issue; a second run adds nothing.
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(50), 20000);
+  const Points points = section::noisy_profile(truth, 0.4, 0.002, 11);
+  section::Stream s;
+  CHECK(measured_with_start_check(points, s) == bit(Check::te_start));
+  const section::Table& params = s.get("params", "test");
+  CHECK((section::flags_mask(params.at(0, params.column("flags"))) & bit(Check::te_start)) != 0);
+  const section::Table& stations = s.get("thickness", "test");
+  for (std::size_t r = 0; r < stations.rows(); ++r)
+    CHECK((section::flags_mask(stations.at(r, stations.column("flags"))) & bit(Check::te_start)) != 0);
+  const auto said = [&] {
+    return std::count_if(s.issues.begin(), s.issues.end(), [](const section::SectionIssue& i) {
+      return i.message.find("check te_start") != std::string::npos;
+    });
+  };
+  CHECK(said() == 1);
+  CHECK(section::flag_start_dependence(s, points) == 0);
+  CHECK(said() == 1);
+  CHECK(section::checks_flagging(bit(Check::te_start), "chord") != 0);
+  CHECK(section::checks_flagging(bit(Check::te_start), "max_thickness") == 0);
 }

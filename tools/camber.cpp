@@ -10,6 +10,7 @@
 #include "section/io/params_text.h"
 #include "section/pipe/run_stage.h"
 #include "section/pipe/camber_stream.h"
+#include "section/pipe/plain_profile.h"
 #include "section/pipe/schema.h"
 #include "section/units.h"
 
@@ -43,7 +44,9 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   run.unread = section::camber_unread_columns();
   if (format != "stream") run.output = "/dev/null";  // the stream's place takes the params
   section::Stream summary;  // units and issues of every section, for the params output
-  // A plain profile (x y per line): its spline is fitted to its points.
+  // A plain profile (x y per line): its spline is fitted to its points, and its values are
+  // checked against the same points fitted from its other end (in the hold step).
+  std::vector<Eigen::Vector2d> plain;
   run.other_input = [&](const std::string& text, const std::string& source) {
     auto points = section::parse_profile(text, source);
     Eigen::AlignedBox2d box;
@@ -52,6 +55,7 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     for (auto& p : points) p *= units.mm;
     section::Stream stream;
     section::tool::with_input(a.common.input, [&] { stream = section::plain_profile_stream(points); });
+    plain = points;
     if (!units.warning.empty()) std::cerr << "camber: warning: " << units.warning << "\n";
     if (!units.note.empty()) stream.notes.push_back(units.note);
     return stream;
@@ -68,6 +72,7 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   };
   // The check across the blade needs every section: the parts are held until all are measured.
   run.hold = [&](const std::vector<section::Stream*>& parts) {
+    if (!plain.empty() && parts.size() == 1) section::flag_start_dependence(*parts[0], plain, per_part);
     section::check_blade_stream(parts);
     if (doubtful_units)
       for (section::Stream* part : parts) section::flag_doubtful_units(*part);

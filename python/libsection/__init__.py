@@ -70,16 +70,16 @@ def fit_spline(x, measured=None, **flags):
 def camber(x, **flags):
     """Mean-camber line and section parameters (the camber tool): a Stream -> a Stream with
     the tables 'camber', 'params', 'thickness', 'sides'; a closed Spline (a profile), or an
-    (N, 2) array of a plain profile's points in order around it (fitted as `camber PROFILE`
-    fits them, whichever point they start at: canonical_loop) -> a dict: 'params' (name ->
-    float: mm, degrees), 'camber', 'thickness', 'sides' (column -> array) and 'issues'.
-    Raises Error when the profile fails."""
+    (N, 2) array of a plain profile's points in order around it (fitted and checked as
+    `camber PROFILE` does, whichever point they start at: canonical_loop, le_start and
+    te_start) -> a dict: 'params' (name -> float: mm, degrees), 'camber', 'thickness',
+    'sides' (column -> array) and 'issues'. Raises Error when the profile fails."""
     if isinstance(x, Stream):
         return _libsection.camber_stream(x, **flags)
     if isinstance(x, Spline):
         s = _libsection.camber_stream(_libsection.profile_stream(x), **flags)
     else:
-        s = _libsection.camber_stream(_libsection.plain_profile_stream(_np.asarray(x, dtype=float)), **flags)
+        s = _libsection.plain_profile_camber(_np.asarray(x, dtype=float), **flags)
     params = s.table("params")
     if len(params["section"]) == 0:
         raise Error("camber: " + "; ".join(i["message"] for i in s.issues))

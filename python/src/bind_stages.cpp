@@ -14,6 +14,7 @@
 #include "section/io/progress_io.h"
 #include "section/io/slice_file.h"
 #include "section/pipe/camber_stream.h"
+#include "section/pipe/plain_profile.h"
 #include "section/pipe/fit_spline_stream.h"
 #include "section/pipe/schema.h"
 #include "section/pipe/slice_stream.h"
@@ -215,15 +216,6 @@ void bind_curve_functions(py::module_& m) {
       "profile_stream", [](const BSpline& spline, double rms) { return profile_stream(spline, rms); },
       py::arg("spline"), py::arg("rms") = 0.0);
   m.def(
-      "plain_profile_stream",
-      [](const Array& points, const py::kwargs& kwargs) {
-        const FitSplineOptions o = tool_args<tool::FitsplineArgs>(kwargs).options;
-        const auto p = points2(points, "camber: profile");
-        py::gil_scoped_release unlocked;
-        return plain_profile_stream(p, o);
-      },
-      py::arg("points"));
-  m.def(
       "canonical_loop",
       [](const Array& points) { return array2(canonical_loop(points2(points, "canonical_loop"))); },
       py::arg("points"));
@@ -242,6 +234,21 @@ void bind_stages(py::module_& m) {
   });
   m.def("camber_stream", [](const Stream& s, const py::kwargs& kw) {
     return stage<tool::CamberArgs, CamberOptions>("camber", s, kw, camber_stream);
+  });
+  // `camber PROFILE` on a plain profile's points: fitted from their canonical start, measured,
+  // and checked against the same points fitted from the other end.
+  m.def("plain_profile_camber", [](const Array& points, const py::kwargs& kw) {
+    const auto p = points2(points, "camber: profile");
+    const tool::CamberArgs a = tool_args<tool::CamberArgs>(kw);
+    Stream out;
+    {
+      py::gil_scoped_release unlocked;
+      out = plain_profile_stream(p);
+      camber_stream(out, a.options);
+      flag_start_dependence(out, p, a.options);
+    }
+    out.history.push_back(history("camber", kw));
+    return out;
   });
   m.def("blade_stream", &blade_of, py::arg("stream"));
   bind_curve_functions(m);

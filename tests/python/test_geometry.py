@@ -125,3 +125,16 @@ def test_camber_of_a_plain_profile_is_the_same_from_any_start():
         assert again == pytest.approx(first, rel=0, abs=0, nan_ok=True)
     assert ls.canonical_loop(points).shape == points.shape
     assert abs(first["max_thickness"] - truth["max_thickness"]) < 0.005
+
+
+def test_camber_of_a_plain_profile_flags_an_edge_its_points_do_not_fix():
+    # A turbine TE of 0.45 mm radius with points 0.4 mm apart: fitted from the profile's
+    # other end its point moves 0.27 mm (te_start); the same points 0.05 mm apart: nothing.
+    truth = ls.generate.truth("turbine", 50.0)
+    dense = truth["profile"]
+    s = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
+    for spacing, flagged in ((0.4, True), (0.05, False)):
+        pick = np.unique(np.searchsorted(s, np.arange(0, s[-1] - spacing / 2, spacing)))
+        r = ls.camber(dense[pick])
+        assert ("te_start" in ls.failed_checks(r["params"]["flags"], "chord")) == flagged
+        assert any("te_start" in i for i in r["issues"]) == flagged

@@ -80,6 +80,14 @@ check "the TE is named sharp in the issue" -- grep -q "trailing edge is sharp: t
 check "the LE is the blunt end (by bluntness)" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
   { if ($c["le_u"] > 1 || $c["le_by_bluntness"] != 1) exit 1 }' "$TMP/naca.csv"
 
+# The same points from another start and the other way round (a CMM starts wherever its
+# probe began): the same params, to the byte.
+tail -n +2 "$TMP/naca4412.dat" > "$TMP/naca_points.txt"
+{ awk 'NR > 100' "$TMP/naca_points.txt"; awk 'NR <= 100' "$TMP/naca_points.txt"; } | tac > "$TMP/naca_turned.dat"
+expect 0 "camber on the NACA 4412 from another start, reversed" -- "$camber" "$TMP/naca_turned.dat" \
+  --params "$TMP/naca_turned.csv" -o /dev/null
+check "the same params from any start" -- cmp -s "$TMP/naca.csv" "$TMP/naca_turned.csv"
+
 # Bad data: a malformed row names the line and exits 1.
 printf '1 2\n3 4\n5 x\n' > "$TMP/bad.txt"
 expect 1 "camber on a malformed row" -- "$camber" "$TMP/bad.txt"

@@ -62,10 +62,14 @@ enum class Check : CheckBits {
   airfoil = CheckBits(1) << 33,
   /// a hole in the data along the profile: the area and centroid include the fit's bridge
   area_measured = CheckBits(1) << 34,
+  /// a plain profile's LE moves with the point it starts at: fitted from its other end, the
+  /// curve between its points there gives another edge point, radius or angle
+  le_start = CheckBits(1) << 35,
+  te_start = CheckBits(1) << 36,  ///< the same at the TE
 };
 
 /// How many checks there are: a flags mask is below 2^check_count.
-inline constexpr int check_count = 35;
+inline constexpr int check_count = 37;
 
 /// A check's name (the word the issues use) and the params columns whose values it flags. An
 /// edge whose circle is doubtful flags its metal angle too: the camber line is extended to
@@ -136,6 +140,12 @@ inline constexpr CheckName check_names[] = {
     {Check::thickness_measured, "thickness_measured", "max_thickness max_thickness_pos"},
     {Check::airfoil, "airfoil", "every column (what was measured is no blade section)"},
     {Check::area_measured, "area_measured", "area centroid"},
+    {Check::le_start, "le_start",
+     "le_radius le_center le_point inlet_angle camber_angle chord stagger camber_line camber_length "
+     "max_thickness_pos thickness"},
+    {Check::te_start, "te_start",
+     "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line camber_length "
+     "max_thickness_pos thickness"},
 };
 
 /// The bit of a check in a flags mask.

@@ -491,12 +491,6 @@ Stream profile_stream(const BSpline& spline, double rms, const std::vector<Eigen
   return stream;
 }
 
-Stream plain_profile_stream(const std::vector<Eigen::Vector2d>& points, const FitSplineOptions& options) {
-  const std::vector<Eigen::Vector2d> loop = canonical_loop(points);
-  const FitSplineResult fit = fit_spline(loop, loop, options);
-  return profile_stream(fit.spline, fit.rms, loop);
-}
-
 const std::vector<std::pair<std::string, std::string>>& camber_unread_columns() {
   static const std::vector<std::pair<std::string, std::string>> columns = {
       {"smoothed", "u"}, {"smoothed", "v"}, {"points", "nu"}, {"points", "nv"}, {"skeleton", "radius"}};

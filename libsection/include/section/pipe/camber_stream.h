@@ -4,7 +4,6 @@
 /// The camber stage on the stream: splines -> tables "camber", "params", "thickness", "sides".
 #include "section/camber.h"
 #include "section/checks.h"
-#include "section/fit_spline.h"
 #include "section/io/stream.h"
 
 #include <string>
@@ -60,11 +59,5 @@ void flag_unconfirmed_registration(Stream& stream);
 /// does a scan's (their own scatter, the edges refitted to them, holes at the edges).
 Stream profile_stream(const BSpline& spline, double rms = 0,
                       const std::vector<Eigen::Vector2d>& measured = {});
-
-/// The stream of a plain profile (x y a point, in order around it, in mm): the spline
-/// fit_spline fits to its points from their canonical start (canonical_loop), with the
-/// points as measured (profile_stream). The same stream whichever point the profile starts
-/// at and whichever way it runs. Throws section::Error as fit_spline.
-Stream plain_profile_stream(const std::vector<Eigen::Vector2d>& points, const FitSplineOptions& options = {});
 
 }  // namespace section

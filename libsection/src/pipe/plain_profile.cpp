@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "section/pipe/plain_profile.h"
+
+#include "section/error.h"
+#include "section/pipe/camber_stream.h"
+#include "section/pipe/schema.h"
+#include "section/units.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace section {
+
+Stream plain_profile_stream(const std::vector<Eigen::Vector2d>& points, const FitSplineOptions& options) {
+  const std::vector<Eigen::Vector2d> loop = canonical_loop(points);
+  const FitSplineResult fit = fit_spline(loop, loop, options);
+  return profile_stream(fit.spline, fit.rms, loop);
+}
+
+namespace {
+
+// The canonical loop restarted at its point farthest from its start: the other end of a
+// blade section (a tie goes to the first in the canonical order, itself the same from any start).
+std::vector<Eigen::Vector2d> from_other_end(const std::vector<Eigen::Vector2d>& points) {
+  std::vector<Eigen::Vector2d> loop = canonical_loop(points);
+  std::size_t far = 0;
+  double most = -1;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const double d = (loop[i] - loop.front()).squaredNorm();
+    if (d > most) most = d, far = i;
+  }
+  std::rotate(loop.begin(), loop.begin() + std::ptrdiff_t(far), loop.end());
+  return loop;
+}
+
+// One edge's values in a params row.
+struct EdgeValues {
+  Eigen::Vector2d point;
+  double radius = 0, angle = 0;
+};
+
+EdgeValues edge_of(const Table& t, bool le) {
+  const auto at = [&](const char* name) { return t.at(0, t.column(name)); };
+  return le ? EdgeValues{{at("le_u"), at("le_v")}, at("le_radius"), at("inlet_angle")}
+            : EdgeValues{{at("te_u"), at("te_v")}, at("te_radius"), at("outlet_angle")};
+}
+
+// What moved at one edge from this fit to the other, beyond its limit ("" when nothing).
+std::string moved(const EdgeValues& a, const EdgeValues& b, double point_limit, double radius_tolerance,
+                  bool angles, const char* angle_name) {
+  std::string out;
+  char text[160];
+  const double shift = (a.point - b.point).norm();
+  if (!(shift <= point_limit)) {
+    out += "its point " + format_length(shift) + " away";
+  }
+  const bool round_a = a.radius > 0, round_b = b.radius > 0;
+  if (round_a != round_b || !(std::abs(a.radius - b.radius) <= radius_tolerance * std::max(a.radius, b.radius))) {
+    std::snprintf(text, sizeof text, "%sits radius %.4g mm (%.4g here)", out.empty() ? "" : ", ", b.radius,
+                  a.radius);
+    out += text;
+  }
+  if (angles && !(std::abs(a.angle - b.angle) <= 0.5)) {
+    std::snprintf(text, sizeof text, "%sits %s %.3g deg (%.3g here)", out.empty() ? "" : ", ", angle_name, b.angle,
+                  a.angle);
+    out += text;
+  }
+  return out;
+}
+
+// Sets `check` on the params row and every thickness station; false when it was set already.
+bool set_check(Stream& stream, Check check) {
+  Table& params = *stream.find(schema::params.name);
+  double& cell = params.values[params.column("flags")];
+  const CheckBits bits = flags_mask(cell);
+  if (bits & bit(check)) return false;
+  cell = double(bits | bit(check));
+  params.source.reset();  // changed: formatted from its values
+  if (Table* stations = stream.find(schema::thickness.name)) {
+    const long f = stations->find_column("flags");
+    if (f >= 0) {
+      for (std::size_t r = 0; r < stations->rows(); ++r) {
+        double& c = stations->values[r * stations->columns.size() + std::size_t(f)];
+        c = double(flags_mask(c) | bit(check));
+      }
+      stations->source.reset();
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+CheckBits flag_start_dependence(Stream& stream, const std::vector<Eigen::Vector2d>& points,
+                                const CamberOptions& options, const FitSplineOptions& fit) {
+  const Table* params = stream.find(schema::params.name);
+  if (!params || params->rows() != 1 || std::isnan(params->at(0, params->column("chord")))) return 0;
+  Stream other;
+  try {
+    const std::vector<Eigen::Vector2d> loop = from_other_end(points);
+    const FitSplineResult f = fit_spline(loop, loop, fit);
+    other = profile_stream(f.spline, f.rms, loop);
+    CamberOptions one = options;
+    one.across_sections = false;
+    camber_stream(other, one);
+  } catch (const Error&) {
+    return 0;
+  }
+  const Table* again = other.find(schema::params.name);
+  if (!again || again->rows() != 1 || std::isnan(again->at(0, again->column("chord")))) return 0;
+  const CheckOptions limits;
+  const double point_limit = limits.accuracy * params->at(0, params->column("caliper_chord"));
+  EdgeValues here[2] = {edge_of(*params, true), edge_of(*again, true)};
+  EdgeValues there[2] = {edge_of(*params, false), edge_of(*again, false)};
+  // The other fit may take the other end for the LE (a near tie): its edges are matched by
+  // place, and their angles, measured the other way along the chord, are not compared.
+  const bool swapped = (here[0].point - there[1].point).norm() + (there[0].point - here[1].point).norm() <
+                       (here[0].point - here[1].point).norm() + (there[0].point - there[1].point).norm();
+  if (swapped) std::swap(here[1], there[1]);
+  const int section = static_cast<int>(params->at(0, params->column("section")));
+  CheckBits set = 0;
+  for (const bool le : {true, false}) {
+    const EdgeValues* e = le ? here : there;
+    const std::string what = moved(e[0], e[1], point_limit,
+                                   le ? limits.le_radius_tolerance : limits.te_radius_tolerance, !swapped,
+                                   le ? "inlet angle" : "outlet angle");
+    const Check check = le ? Check::le_start : Check::te_start;
+    if (what.empty() || !set_check(stream, check)) continue;
+    set |= bit(check);
+    stream.issues.push_back(
+        {section, 0, "camber",
+         std::string(le ? "leading" : "trailing") + " edge fails check " + check_name(check) +
+             ": the same points fitted from the profile's other end put " + what +
+             ": they do not fix the curve between them at this edge, and its values depend on where "
+             "the profile starts; measure more points there"});
+  }
+  return set;
+}
+
+}  // namespace section
