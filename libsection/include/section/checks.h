@@ -189,9 +189,10 @@ struct CheckOptions {
   double vertex_reach = 0.02;    ///< camber-length fraction over which a sharp edge's wedge is taken
   double arc_shortfall = 40;  ///< degrees: a round edge's arc may fall this far short of its flanks' turning
   /// Fractions of a round edge's radius: the most twice its spread may be (the standard
-  /// error of the circle fitted on the measured points, taken or not, else the noise where
-  /// its arc holds under 8 of them), so that the radius stands within them about 19 times
-  /// in 20 (0 = not checked).
+  /// error of the circle fitted on the measured points, taken or not, else, where its arc
+  /// holds under 8 of them, the larger of the noise and the arc's rms about the circle times
+  /// their arc_spread), so that the radius stands within them about 19 times in 20 (0 = not
+  /// checked).
   double le_radius_tolerance = 0.03;
   double te_radius_tolerance = 0.10;  ///< the same at the TE
   /// An airfoil is at most this thick over its chord (the thickest blades, roots of
@@ -227,8 +228,9 @@ struct SectionCheck {
 ///   largest distance of the edge arc from the circle, limit 2 x noise_factor x
 ///   max(noise, 1e-4 R); or value = twice the radius's spread (Edge::radius_sigma where
 ///   its circle was refitted on the measured points, else Edge::points_sigma of the circle
-///   fitted on them and not taken, else the noise where the arc holds under 8 of them: a
-///   circle resting on the fitted curve through a handful of points), limit =
+///   fitted on them and not taken, else, where the arc holds under 8 of them, the larger
+///   of the noise and the arc's rms about the circle times Edge::arc_spread: a circle
+///   resting on the fitted curve through a handful of points), limit =
 ///   le_radius_tolerance (or te_radius_tolerance) x R: the points cannot fix the radius
 ///   that closely (Finding::spread);
 /// - edge point: its distance to the profile, limit noise_factor x noise + floor x size;

@@ -233,7 +233,8 @@ std::string spread_note(const Finding& k, const SectionParams& p) {
     std::snprintf(
         text, sizeof text,
         "%s radius %s fails check %s: its points fix it to +-%s only (twice its standard error, or, "
-        "where its arc holds under 8 points, that of a circle on them at their noise; at most %s): it "
+        "where its arc holds under 8 points, that of a circle on them at their noise or the curve's "
+        "stray from the circle; at most %s): it "
         "may be off by more than its tolerance",
         which, radius.c_str(), check_name(k.check), format_length(k.value).c_str(),
         format_length(k.limit).c_str());

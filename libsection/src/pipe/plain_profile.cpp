@@ -57,14 +57,15 @@ std::string moved(const EdgeValues& a, const EdgeValues& b, double point_limit, 
     out += "its point " + format_length(shift) + " away";
   }
   const bool round_a = a.radius > 0, round_b = b.radius > 0;
-  if (round_a != round_b || !(std::abs(a.radius - b.radius) <= radius_tolerance * std::max(a.radius, b.radius))) {
+  if (round_a != round_b ||
+      !(std::abs(a.radius - b.radius) <= radius_tolerance * std::max(a.radius, b.radius))) {
     std::snprintf(text, sizeof text, "%sits radius %.4g mm (%.4g here)", out.empty() ? "" : ", ", b.radius,
                   a.radius);
     out += text;
   }
   if (angles && !(std::abs(a.angle - b.angle) <= 0.5)) {
-    std::snprintf(text, sizeof text, "%sits %s %.3g deg (%.3g here)", out.empty() ? "" : ", ", angle_name, b.angle,
-                  a.angle);
+    std::snprintf(text, sizeof text, "%sits %s %.3g deg (%.3g here)", out.empty() ? "" : ", ", angle_name,
+                  b.angle, a.angle);
     out += text;
   }
   return out;
@@ -123,9 +124,9 @@ CheckBits flag_start_dependence(Stream& stream, const std::vector<Eigen::Vector2
   CheckBits set = 0;
   for (const bool le : {true, false}) {
     const EdgeValues* e = le ? here : there;
-    const std::string what = moved(e[0], e[1], point_limit,
-                                   le ? limits.le_radius_tolerance : limits.te_radius_tolerance, !swapped,
-                                   le ? "inlet angle" : "outlet angle");
+    const std::string what =
+        moved(e[0], e[1], point_limit, le ? limits.le_radius_tolerance : limits.te_radius_tolerance, !swapped,
+              le ? "inlet angle" : "outlet angle");
     const Check check = le ? Check::le_start : Check::te_start;
     if (what.empty() || !set_check(stream, check)) continue;
     set |= bit(check);
