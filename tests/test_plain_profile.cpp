@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -42,8 +43,8 @@ double signed_area(const Points& p) {
 }
 
 // Sections whose edges hold few points (0.2-0.4 mm apart, edge radii 0.3-0.5 mm), 2 um of
-// noise: before canonical_loop, the start of the same points moved a turbine chord by 0.18
-// mm, its outlet angle by 8 deg, a compressor's LE radius by a fifth.
+// noise: before canonical_loop, the start of such points moved a turbine chord by up to
+// 0.18 mm and its outlet angle by 8 deg (bladegen --rows, scripts/probe_profile_start.py).
 struct Case {
   std::string name;
   section::SectionDesign design;
@@ -167,6 +168,7 @@ TEST_CASE(
       Points row;
       for (const auto& p : rows.points)
         if (std::abs(p.z() - z) < 1e-9) row.push_back(p.head<2>());
+      REQUIRE(row.size() > 100);
       const section::SectionTruth truth = section::section_truth(blade.at(z), 20000);
       section::Stream s;
       measured_with_start_check(row, s);
