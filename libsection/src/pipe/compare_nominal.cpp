@@ -7,6 +7,7 @@
 #include "section/error.h"
 #include "section/io/stream.h"
 #include "section/pipe/camber_stream.h"
+#include "section/fit_spline.h"
 #include "section/pipe/fit_spline_stream.h"
 #include "section/pipe/schema.h"
 #include "section/slice.h"
@@ -164,7 +165,12 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
   } else {
     Loops loops;
     if (source.mesh) loops = mesh_sections(*source.mesh, frames, misses);
-    if (source.points) loops = point_sections(*source.points, frames, options);
+    if (source.points) {
+      // Each section's points from their canonical start: the nominal's curve is then the same
+      // whichever point its file starts the section at (fit_spline's curve depends on it).
+      loops = point_sections(*source.points, frames, options);
+      for (auto& [id, loop] : loops) loop = canonical_loop(std::move(loop));
+    }
     Table pts = schema::points.table();
     for (const auto& [id, loop] : loops) {
       if (!frames.count(id)) continue;
