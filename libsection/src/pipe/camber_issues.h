@@ -36,6 +36,12 @@ inline bool few_points(std::size_t points, std::size_t coefficients) {
   return points < 16 * coefficients;
 }
 
+/// Sets `check` on every params row of `stream` (camber's), with an issue (stage "camber")
+/// per section saying `why`, and on every row of its thickness table: a check of a row's
+/// values and the stations measured along its camber line. A row that has the check already
+/// keeps it, without a second issue.
+void flag_every_row(Stream& stream, Check check, const std::string& why);
+
 /// Where a section's other loops lie, for the message that refuses it ("" when it has none);
 /// `listed`: the loops slice found (id -> area), those not among `curves` said unfitted.
 std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, int section,

@@ -421,10 +421,8 @@ bool units_doubtful(const Stream& stream) {
   return false;
 }
 
-namespace {
+namespace pipe {
 
-// Sets `check` on every params row of `stream`, with an issue per section saying `why`,
-// and on every thickness row (a check of every value).
 void flag_every_row(Stream& stream, Check check, const std::string& why) {
   Table* t = stream.find(schema::params.name);
   if (!t || t->rows() == 0) return;
@@ -442,12 +440,12 @@ void flag_every_row(Stream& stream, Check check, const std::string& why) {
   stations->source.reset();
 }
 
-}  // namespace
+}  // namespace pipe
 
 void flag_doubtful_units(Stream& stream) {
-  flag_every_row(stream, Check::units,
-                 "its values fail check units: the input was read as mm though its extent suggests "
-                 "another unit (see slice's warning); give --units");
+  pipe::flag_every_row(stream, Check::units,
+                       "its values fail check units: the input was read as mm though its extent suggests "
+                       "another unit (see slice's warning); give --units");
 }
 
 bool registration_unconfirmed(const Stream& stream) {
@@ -460,9 +458,9 @@ bool registration_unconfirmed(const Stream& stream) {
 }
 
 void flag_unconfirmed_registration(Stream& stream) {
-  flag_every_row(stream, Check::registration,
-                 "its values fail check registration: a view merged into the input was registered but "
-                 "not confirmed (see slice's warning), its points may lie slid and turned");
+  pipe::flag_every_row(stream, Check::registration,
+                       "its values fail check registration: a view merged into the input was registered but "
+                       "not confirmed (see slice's warning), its points may lie slid and turned");
 }
 
 Stream profile_stream(const BSpline& spline, double rms, const std::vector<Eigen::Vector2d>& measured) {

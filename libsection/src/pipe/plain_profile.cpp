@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "section/pipe/plain_profile.h"
 
+#include "pipe/camber_issues.h"
 #include "section/error.h"
 #include "section/pipe/camber_stream.h"
 #include "section/pipe/schema.h"
@@ -71,27 +72,6 @@ std::string moved(const EdgeValues& a, const EdgeValues& b, double point_limit, 
   return out;
 }
 
-// Sets `check` on the params row and every thickness station; false when it was set already.
-bool set_check(Stream& stream, Check check) {
-  Table& params = *stream.find(schema::params.name);
-  double& cell = params.values[params.column("flags")];
-  const CheckBits bits = flags_mask(cell);
-  if (bits & bit(check)) return false;
-  cell = double(bits | bit(check));
-  params.source.reset();  // changed: formatted from its values
-  if (Table* stations = stream.find(schema::thickness.name)) {
-    const long f = stations->find_column("flags");
-    if (f >= 0) {
-      for (std::size_t r = 0; r < stations->rows(); ++r) {
-        double& c = stations->values[r * stations->columns.size() + std::size_t(f)];
-        c = double(flags_mask(c) | bit(check));
-      }
-      stations->source.reset();
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 CheckBits flag_start_dependence(Stream& stream, const std::vector<Eigen::Vector2d>& points,
@@ -120,7 +100,6 @@ CheckBits flag_start_dependence(Stream& stream, const std::vector<Eigen::Vector2
   const bool swapped = (here[0].point - there[1].point).norm() + (there[0].point - here[1].point).norm() <
                        (here[0].point - here[1].point).norm() + (there[0].point - there[1].point).norm();
   if (swapped) std::swap(here[1], there[1]);
-  const int section = static_cast<int>(params->at(0, params->column("section")));
   CheckBits set = 0;
   for (const bool le : {true, false}) {
     const EdgeValues* e = le ? here : there;
@@ -128,14 +107,14 @@ CheckBits flag_start_dependence(Stream& stream, const std::vector<Eigen::Vector2
         moved(e[0], e[1], point_limit, le ? limits.le_radius_tolerance : limits.te_radius_tolerance, !swapped,
               le ? "inlet angle" : "outlet angle");
     const Check check = le ? Check::le_start : Check::te_start;
-    if (what.empty() || !set_check(stream, check)) continue;
+    if (what.empty() || (flags_mask(params->at(0, params->column("flags"))) & bit(check))) continue;
     set |= bit(check);
-    stream.issues.push_back(
-        {section, 0, "camber",
-         std::string(le ? "leading" : "trailing") + " edge fails check " + check_name(check) +
-             ": the same points fitted from the profile's other end put " + what +
-             ": they do not fix the curve between them at this edge, and its values depend on where "
-             "the profile starts; measure more points there"});
+    pipe::flag_every_row(
+        stream, check,
+        std::string(le ? "leading" : "trailing") + " edge fails check " + check_name(check) +
+            ": the same points fitted from the profile's other end put " + what +
+            ": they do not fix the curve between them at this edge, and its values depend on "
+            "where the profile starts; measure more points there");
   }
   return set;
 }
