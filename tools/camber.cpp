@@ -23,17 +23,22 @@ namespace {
 using section::tool::CamberArgs;
 
 // The params (and the issues, frames and units) of every section, as --format asks for
-// them instead of the stream: table, csv or json.
-std::string params_output(const std::string& format, section::Stream summary, section::Table params) {
+// them instead of the stream: table, csv or json (with the walls of a hollow blade's
+// cavities, when it has any).
+std::string params_output(const std::string& format, section::Stream summary, section::Table params,
+                          const section::Table& walls) {
   if (params.columns.empty()) params = section::Table("params", {"section"});  // no section measured
   if (format == "csv") return section::format_csv(params);
   summary.put(params);
-  if (format == "json") return section::format_json(summary, {summary.find("params")});
+  if (walls.rows() > 0) summary.put(walls);  // a hollow blade's cavities
+  if (format == "json")
+    return walls.rows() > 0 ? section::format_json(summary, {summary.find("params"), summary.find("walls")})
+                            : section::format_json(summary, {summary.find("params")});
   return section::format_params_text(summary);
 }
 
 void run_camber(const CamberArgs& a, const std::string& history) {
-  section::Table params, thickness, frames;
+  section::Table params, thickness, walls, frames;
   const std::string format = !a.format.empty()                                    ? a.format
                              : section::tool::output_is_terminal(a.common.output) ? "table"
                                                                                   : "stream";
@@ -85,15 +90,20 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     tally.add(stream);
     section::append_rows(params, section::schema::params.get(stream));
     section::append_rows(thickness, section::schema::thickness.get(stream));
+    if (const section::Table* w = section::schema::walls.find(stream)) section::append_rows(walls, *w);
     if (const section::Table* f = stream.find("frames")) section::append_rows(frames, *f);
     summary.issues.insert(summary.issues.end(), stream.issues.begin(), stream.issues.end());
   };
   section::run_stage(run);
   if (!a.params_file.empty()) section::write_file(a.params_file, section::format_csv(params));
   if (!a.thickness_file.empty()) section::write_file(a.thickness_file, section::format_csv(thickness));
+  if (!a.walls_file.empty()) {
+    if (walls.columns.empty()) walls = section::schema::walls.table();  // no cavity: the header alone
+    section::write_file(a.walls_file, section::format_csv(walls));
+  }
   if (format != "stream") {
     if (!frames.columns.empty()) summary.put(frames);
-    section::write_file(a.common.output, params_output(format, summary, params));
+    section::write_file(a.common.output, params_output(format, summary, params, walls));
   }
   tally.check(a.allow_partial);
 }

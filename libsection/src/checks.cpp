@@ -38,7 +38,7 @@ bool lists(const char* list, const char* word) {
 }
 
 // The columns that are the same whichever end is the LE.
-constexpr const char* either_end = "chord camber_length max_thickness area caliper_chord centroid";
+constexpr const char* either_end = "chord camber_length max_thickness area caliper_chord centroid wall";
 
 }  // namespace
 
@@ -78,33 +78,10 @@ struct Foot {
 };
 
 Foot foot(const SampledProfile& pr, const Eigen::Vector2d& q) {
-  const int n = static_cast<int>(pr.samples.size());
   Foot f;
-  int crossings = 0;
-  // The segments (i - 1, i), the closing one first; each end's side of q carried over.
-  bool a_above = pr.samples[n - 1].y() > q.y();
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector2d& a = pr.samples[i == 0 ? n - 1 : i - 1];
-    const Eigen::Vector2d& b = pr.samples[i];
-    const bool b_above = b.y() > q.y();
-    if (a_above != b_above && q.x() < a.x() + (q.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
-      ++crossings;
-    a_above = b_above;
-  }
-  f.inside = crossings % 2 == 1;
-  double t = pr.ts[pr.nearest(q)];
-  const double h = pr.period / n;
-  detail::PiecewiseCurve::Cursor at;  // Newton's steps are short: the span before is tried first
-  for (int it = 0; it < 30; ++it) {
-    const detail::CurveJet j = pr.fast.jet(pr.fast.locate(t, at));
-    const Eigen::Vector2d e = j.point - q;
-    const double g = e.dot(j.d1), dg = j.d1.squaredNorm() + e.dot(j.d2);
-    if (!(dg > 0)) break;
-    const double step = std::clamp(g / dg, -h, h);
-    t -= step;
-    if (std::abs(step) < 1e-14 * pr.period) break;
-  }
-  f.distance = std::min((pr.fast.point(pr.fast.locate(t, at)) - q).norm(), pr.sample_distance(q));
+  f.inside = detail::inside_samples(pr, q);
+  const double t = detail::foot_parameter(pr, q, pr.ts[pr.nearest(q)]);
+  f.distance = std::min((pr.fast.point(pr.fast.locate(t)) - q).norm(), pr.sample_distance(q));
   return f;
 }
 

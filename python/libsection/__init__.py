@@ -69,7 +69,8 @@ def fit_spline(x, measured=None, **flags):
 
 def camber(x, **flags):
     """Mean-camber line and section parameters (the camber tool): a Stream -> a Stream with
-    the tables 'camber', 'params', 'thickness', 'sides'; a closed Spline (a profile), or an
+    the tables 'camber', 'params', 'thickness', 'sides' (and 'walls' when a section holds
+    cavities, a hollow blade's: docs/CAMBER.md); a closed Spline (a profile), or an
     (N, 2) array of a plain profile's points in order around it (fitted and checked as
     `camber PROFILE` does, whichever point they start at: canonical_loop, le_start and
     te_start) -> a dict: 'params' (name -> float: mm, degrees), 'camber', 'thickness',

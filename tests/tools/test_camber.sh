@@ -119,4 +119,32 @@ check "LE radius on the points within 3 % ($le_pts vs $true_le)" -- awk -v a="$l
 check "LE radius on the spline within 3 % ($le_spl vs $true_le)" -- awk -v a="$le_spl" -v t="$true_le" 'BEGIN { d = a / t - 1; exit !(d < 0.03 && d > -0.03) }'
 check "the refit changes the LE radius" -- test "$le_pts" != "$le_spl"
 
+# A hollow section: an ellipse (a = 20, b = 3) with a channel of radius 1.5 centred at
+# (0, 0.5), scanned as a prism (layers 0.05 mm apart, each point up to 0.02 mm off its
+# layer): the channel is a cavity, its thinnest wall 1 mm at (0, 3). Without the channel
+# --walls writes the header alone.
+prism() {
+  awk -v channel="$1" 'BEGIN { srand(3); pi = 3.14159265358979
+    for (k = -5; k <= 5; ++k) {
+      for (i = 0; i < 1720; ++i) { t = 2 * pi * (i + 0.3 * k) / 1720; printf "%.6f %.6f %.6f\n", 20 * cos(t), 3 * sin(t), 0.05 * k + 0.04 * (rand() - 0.5) }
+      if (channel)
+        for (i = 0; i < 190; ++i) { t = 2 * pi * (i + 0.3 * k) / 190; printf "%.6f %.6f %.6f\n", 1.5 * cos(t), 0.5 + 1.5 * sin(t), 0.05 * k + 0.04 * (rand() - 0.5) } } }'
+}
+prism 1 > "$TMP/hollow.xyz"
+prism 0 > "$TMP/solid.xyz"
+"$BIN/slice" "$TMP/hollow.xyz" --at 0 2>/dev/null | "$BIN/smooth" 2>/dev/null | "$BIN/fitspline" > "$TMP/h_fit.txt" 2>/dev/null
+expect 0 "camber --walls on a hollow section" -- "$camber" "$TMP/h_fit.txt" --walls "$TMP/walls.csv" -o "$TMP/h.txt"
+check "the walls table is in the stream" -- grep -q "^# table walls$" "$TMP/h.txt"
+check "--walls has a header and one row" -- test "$(wc -l < "$TMP/walls.csv")" = 2
+check "the wall is 1 mm (2 um) at (0, 3)" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { d = $c["wall"] - 1; if (d < 0) d = -d; u = $c["profile_u"]; if (u < 0) u = -u; v = $c["profile_v"] - 3; if (v < 0) v = -v
+    if (d > 0.002 || u > 0.05 || v > 0.002 || $c["flags"] != 0) { print $c["wall"], $c["profile_u"], $c["profile_v"], $c["flags"]; exit 1 } }' \
+  "$TMP/walls.csv"
+expect 0 "camber --format table on a hollow section" -- "$camber" "$TMP/h_fit.txt" --format table
+check "the table for people lists the cavity" -- grep -q "cavity 1  *wall  *1.00" "$TMP/out"
+"$BIN/slice" "$TMP/solid.xyz" --at 0 2>/dev/null | "$BIN/smooth" 2>/dev/null | "$BIN/fitspline" > "$TMP/s_fit.txt" 2>/dev/null
+expect 0 "camber --walls on a solid section" -- "$camber" "$TMP/s_fit.txt" --walls "$TMP/walls0.csv" -o "$TMP/s.txt"
+check "no walls table in a solid section's stream" -- bash -c "! grep -q '^# table walls$' '$TMP/s.txt'"
+check "--walls of a solid section is the header alone" -- test "$(wc -l < "$TMP/walls0.csv")" = 1
+
 finish

@@ -18,6 +18,11 @@ const char* const CamberArgs::description =
     "along its end tangents to the LE and TE points) and the section parameters. Adds the\n"
     "tables 'camber', 'params', 'thickness' and 'sides' to the stream; sections that fail\n"
     "are recorded as issues.\n\n"
+    "A hollow blade's section (a CT scan's, with cooling channels) holds loops inside its\n"
+    "profile: its cavities. The profile is measured as any other, and each cavity's thinnest\n"
+    "wall to it goes to the table 'walls' (--walls FILE), flagged (check wall_measured)\n"
+    "where a hole in the data lies under its thin stretch. A loop beside the profile, across\n"
+    "it or within a cavity leaves the section unmeasured.\n\n"
     "Every params row is checked before it is written (edge circles inside the blade, edge\n"
     "points on the profile, chord against the profile's extent, metal angles against the\n"
     "camber line, values against the neighbouring sections): a value that fails a check is\n"
@@ -136,6 +141,9 @@ void CamberArgs::declare(CLI::App& app) {
   add_common(app, common);
   app.add_option("--params", params_file, "Also write the 'params' table to FILE (CSV)");
   app.add_option("--thickness", thickness_file, "Also write the 'thickness' table to FILE (CSV)");
+  app.add_option(
+      "--walls", walls_file,
+      "Also write the 'walls' table to FILE (CSV): each cavity's thinnest wall (a hollow blade's)");
   app.add_option(
          "--stations", stations,
          "Thickness stations, fractions of the camber length between 0 and 1 (default 0.05,0.1,...,0.95)")

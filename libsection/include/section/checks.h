@@ -66,12 +66,16 @@ enum class Check : CheckBits {
   /// curve between its points there gives another edge point, radius or angle
   le_start = CheckBits(1) << 35,
   te_start = CheckBits(1) << 36,  ///< the same at the TE
+  /// a cavity's thinnest wall (the walls table) rests on a stretch of the profile or the
+  /// cavity without measured points: the wall there is the fits' bridge
+  wall_measured = CheckBits(1) << 37,
 };
 
 /// How many checks there are: a flags mask is below 2^check_count.
-inline constexpr int check_count = 37;
+inline constexpr int check_count = 38;
 
-/// A check's name (the word the issues use) and the params columns whose values it flags. An
+/// A check's name (the word the issues use) and the params columns whose values it flags
+/// (`wall`: the walls table's, docs/FORMAT.md). An
 /// edge whose circle is doubtful flags its metal angle too: the camber line is extended to
 /// that edge's point along its circle, so its end direction rests on the same points; one
 /// whose point is doubtful (not circular, not measured) flags the chord and stagger it ends,
@@ -80,7 +84,7 @@ inline constexpr int check_count = 37;
 struct CheckName {
   Check check;
   const char* name;
-  const char* columns;  ///< the params columns it flags, space-separated
+  const char* columns;  ///< the params columns it flags, space-separated (and `wall`)
 };
 inline constexpr CheckName check_names[] = {
     {Check::le_radius, "le_radius", "le_radius le_center inlet_angle camber_angle"},
@@ -121,7 +125,7 @@ inline constexpr CheckName check_names[] = {
     {Check::registration, "registration", "every value (a view's points may lie slid and turned)"},
     {Check::layers, "layers",
      "max_thickness max_thickness_pos thickness camber_line le_radius le_center te_radius te_center le_point "
-     "te_point chord stagger caliper_chord camber_length inlet_angle outlet_angle camber_angle"},
+     "te_point chord stagger caliper_chord camber_length inlet_angle outlet_angle camber_angle wall"},
     {Check::le_vertex, "le_vertex",
      "le_point chord stagger camber_line camber_length inlet_angle camber_angle max_thickness_pos thickness"},
     {Check::te_vertex, "te_vertex",
@@ -131,7 +135,7 @@ inline constexpr CheckName check_names[] = {
     {Check::te_sharp, "te_sharp", "te_radius te_center"},
     {Check::noise, "noise",
      "max_thickness max_thickness_pos thickness le_radius le_center te_radius te_center le_point te_point "
-     "chord stagger caliper_chord camber_line camber_length inlet_angle outlet_angle camber_angle"},
+     "chord stagger caliper_chord camber_line camber_length inlet_angle outlet_angle camber_angle wall"},
     {Check::inlet_fit, "inlet_fit",
      "inlet_angle camber_angle le_point chord stagger camber_line camber_length max_thickness_pos thickness"},
     {Check::outlet_fit, "outlet_fit",
@@ -146,6 +150,7 @@ inline constexpr CheckName check_names[] = {
     {Check::te_start, "te_start",
      "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line camber_length "
      "max_thickness_pos thickness"},
+    {Check::wall_measured, "wall_measured", "wall"},
 };
 
 /// The bit of a check in a flags mask.
@@ -164,11 +169,11 @@ CheckBits flags_mask(double value);
 /// `separator`; "" for none.
 std::string check_names_text(CheckBits flags, const char* separator = ", ");
 
-/// The bits of `flags` (a params row's) whose checks flag the params column `column`: each
-/// check the columns check_names lists for it, units, registration and airfoil every
-/// column, le_choice every column
-/// that is not the same whichever end is the LE (all but chord, camber_length,
-/// max_thickness, area, caliper_chord and centroid). 0 when none does.
+/// The bits of `flags` (a params row's) whose checks flag the params column `column` (or
+/// the walls table's `wall`): each check the columns check_names lists for it, units,
+/// registration and airfoil every column, le_choice every column that is not the same
+/// whichever end is the LE (all but chord, camber_length, max_thickness, area,
+/// caliper_chord, centroid and wall). 0 when none does.
 CheckBits checks_flagging(CheckBits flags, const char* column);
 
 /// Options of check_section (lengths in the profile's units, angles in degrees).

@@ -189,6 +189,37 @@ bool SampledProfile::sample_within(const Eigen::Vector2d& q, double r) const {
   return false;
 }
 
+bool inside_samples(const SampledProfile& pr, const Eigen::Vector2d& q) {
+  const int n = static_cast<int>(pr.samples.size());
+  int crossings = 0;
+  // The segments (i - 1, i), the closing one first; each end's side of q carried over.
+  bool a_above = pr.samples[n - 1].y() > q.y();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d& a = pr.samples[i == 0 ? n - 1 : i - 1];
+    const Eigen::Vector2d& b = pr.samples[i];
+    const bool b_above = b.y() > q.y();
+    if (a_above != b_above && q.x() < a.x() + (q.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
+      ++crossings;
+    a_above = b_above;
+  }
+  return crossings % 2 == 1;
+}
+
+double foot_parameter(const SampledProfile& pr, const Eigen::Vector2d& q, double t) {
+  const double h = pr.period / static_cast<double>(pr.samples.size());
+  PiecewiseCurve::Cursor at;  // Newton's steps are short: the span before is tried first
+  for (int it = 0; it < 30; ++it) {
+    const CurveJet j = pr.fast.jet(pr.fast.locate(t, at));
+    const Eigen::Vector2d e = j.point - q;
+    const double g = e.dot(j.d1), dg = j.d1.squaredNorm() + e.dot(j.d2);
+    if (!(dg > 0)) break;
+    const double step = std::clamp(g / dg, -h, h);
+    t -= step;
+    if (std::abs(step) < 1e-14 * pr.period) break;
+  }
+  return t;
+}
+
 bool ray_hit(const SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Vector2d& d, double& t_hit) {
   const int n = static_cast<int>(pr.samples.size());
   double best = std::numeric_limits<double>::infinity();

@@ -99,6 +99,13 @@ struct SampledProfile {
   }
 };
 
+/// Whether q lies inside the polygon of the profile's samples (crossings of a ray along +u).
+bool inside_samples(const SampledProfile& pr, const Eigen::Vector2d& q);
+
+/// The parameter of q's foot on the profile (the nearest point of the curve near `t`):
+/// Newton on the exact curve from t, each step at most one sample's parameter long.
+double foot_parameter(const SampledProfile& pr, const Eigen::Vector2d& q, double t);
+
 /// First crossing of the ray m + lambda d (lambda > 0) with the profile: its parameter in
 /// `t_hit`. False when the ray misses.
 bool ray_hit(const SampledProfile& pr, const Eigen::Vector2d& m, const Eigen::Vector2d& d, double& t_hit);

@@ -149,11 +149,33 @@ std::string value_rows(const RowView& p, double mm) {
   return out;
 }
 
+// A hollow blade's cavities in section s (the walls table's rows), a line each: its thinnest
+// wall, marked when a failed check flags it, and its area.
+std::string wall_rows(const Table* walls, int s, double mm) {
+  if (!walls) return "";
+  const long c = walls->find_column("section");
+  if (c < 0) return "";
+  std::string out;
+  for (std::size_t r = 0; r < walls->rows(); ++r) {
+    if (walls->at(r, std::size_t(c)) != s) continue;
+    const RowView w{walls, long(r)};
+    const CheckBits flags = checks_flagging(flags_mask(w("flags")), "wall");
+    std::string line = "  " + pad("cavity " + fixed(w("loop"), 0), 15) +
+                       cell("wall", fixed(w("wall") * mm, 4), "mm", flags) + " " +
+                       cell("area", fixed(w("area") * mm * mm, 4), "mm^2") +
+                       (flags ? " " + check_names_text(flags) : std::string());
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string format_params_text(const Stream& stream, const ParamsTextOptions& options) {
   const Table& params = stream.get("params", "camber");
   const Table* frames = stream.find("frames");
+  const Table* walls = stream.find("walls");
   const double mm = mm_per_unit(stream.units);
   const std::size_t width = std::size_t(options.width > 40 ? options.width : 40);
   std::set<int> sections;
@@ -177,6 +199,7 @@ std::string format_params_text(const Stream& stream, const ParamsTextOptions& op
            (p.row < 0 ? "   (no params)" : "") + "\n";
     if (p.row >= 0) {
       out += value_rows(p, mm);
+      out += wall_rows(walls, s, mm);
       out += wrapped("failed checks", check_words(p("flags")), width);
     }
     const auto& list = issues[s];

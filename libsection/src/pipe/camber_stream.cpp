@@ -10,14 +10,17 @@
 #include "section/io/stream.h"
 #include "section/pipe/schema.h"
 #include "section/pipe/fit_spline_stream.h"
+#include "section/units.h"
 #include "detail/camber_line.h"
 #include "detail/local_origin.h"
 #include "detail/section_checks.h"
 #include "pipe/adapter.h"
 #include "pipe/camber_issues.h"
+#include "pipe/camber_walls.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -67,8 +70,10 @@ std::map<int, std::vector<Eigen::Vector2d>> skeletons(const Stream& stream) {
   return out;
 }
 
-// Loop-0 measured points of each section (the slice stage's "points" table), if present.
-std::map<int, Measured> measured_points(const Stream& stream) {
+// Loop-0 measured points of each section (the slice stage's "points" table), if present;
+// the other loops' into `others`, by section and loop.
+std::map<int, Measured> measured_points(const Stream& stream,
+                                        std::map<std::pair<int, int>, std::vector<Eigen::Vector2d>>& others) {
   std::map<int, Measured> out;
   const Table* t = schema::points.find(stream);
   if (!t) return out;
@@ -80,7 +85,11 @@ std::map<int, Measured> measured_points(const Stream& stream) {
   Measured* at = nullptr;  // the last row's section (a section's rows come together)
   int at_section = 0;
   for (std::size_t r = 0; r < t->rows(); ++r) {
-    if (t->at(r, cl) != 0) continue;
+    if (t->at(r, cl) != 0) {
+      others[{static_cast<int>(t->at(r, cs)), static_cast<int>(t->at(r, cl))}].emplace_back(t->at(r, cu),
+                                                                                            t->at(r, cv));
+      continue;
+    }
     const int section = static_cast<int>(t->at(r, cs));
     if (!at || section != at_section) at = &out[section], at_section = section;
     Measured& m = *at;
@@ -126,6 +135,8 @@ struct CamberInput {
   std::map<int, Frame> frames;
   std::map<int, std::vector<Eigen::Vector2d>> seeds;
   std::map<int, Measured> measured;
+  std::map<std::pair<int, int>, std::vector<Eigen::Vector2d>>
+      loop_points;  // the other loops' measured points
   std::map<int, LoopFit> fits;
   std::map<int, int> loops;                     // loops per section: fitted, or listed by slice (table loops)
   std::map<int, std::map<int, double>> listed;  // slice's loops of each section and their areas
@@ -150,7 +161,7 @@ CamberInput gather(const Stream& stream) {
   in.curves = splines(stream);
   if (schema::frames.find(stream)) in.frames = frames(stream);
   in.seeds = skeletons(stream);
-  in.measured = measured_points(stream);
+  in.measured = measured_points(stream, in.loop_points);
   in.fits = loop_fits(stream);
   in.listed = listed_loops(stream);
   for (const auto& [key, curve] : in.curves) ++in.loops[key.first];
@@ -243,7 +254,7 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
 }
 
 // The slots' tables, in order.
-enum : std::size_t { camber_rows, params_rows, thickness_rows, sides_rows };
+enum : std::size_t { camber_rows, params_rows, thickness_rows, sides_rows, walls_rows };
 
 // A measured section's rows of the tables camber, params, thickness and sides.
 void add_rows(int section, const Frame& f, const SectionCamber& m, CheckBits flags, pipe::Slot& slot) {
@@ -291,13 +302,6 @@ Measured moved(const Measured& q, const Eigen::Vector2d& origin) {
 // (a stream not written by slice), it is measured about a local origin and moved back.
 void camber_section(int section, const BSpline& curve, const CamberInput& in, const CamberOptions& options,
                     pipe::Slot& slot) {
-  if (in.loops.at(section) > 1) {
-    const auto listed = in.listed.find(section);
-    throw Error("camber: section " + std::to_string(section) + " has " +
-                std::to_string(in.loops.at(section)) + " loops; camber measures single-profile sections" +
-                pipe::other_loops(in.curves, section,
-                                  listed != in.listed.end() ? listed->second : std::map<int, double>{}));
-  }
   const auto fit = in.frames.find(section);
   const Frame f = fit != in.frames.end() ? fit->second : Frame{};
   CamberOptions opt = section_options(options, in, section, f);
@@ -306,6 +310,8 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   const Eigen::Vector2d origin = detail::local_origin(curve.control);
   BSpline local = curve;
   local.control = detail::moved(curve.control, origin);
+  const std::vector<pipe::SectionCavity> cavities =
+      pipe::cavities_of(section, local, origin, in.curves, in.listed, in.loops.at(section));
   opt.medial.seed = detail::moved(opt.medial.seed, origin);
   const Measured q = moved(points != in.measured.end() ? points->second : none, origin);
   // One piecewise form of the profile for every sampling of it and the params.
@@ -342,6 +348,16 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
                                                 check.findings, slot.issues);
   if (origin != Eigen::Vector2d::Zero()) move(m, origin);
   add_rows(section, f, m, flags, slot);
+  // The walls' own noise check, as the thickness's: the points' noise over both curves.
+  pipe::WallNoise wall_noise;
+  if (checks.points > 0 && checks.points_noise > 0) {
+    wall_noise.sigma = std::max(checks.points_noise, checks.noise);
+    wall_noise.profile_share = std::min(1.0, double(local.control.size()) / checks.points);
+    wall_noise.limit = checks.accuracy * sampled.scale;
+  }
+  pipe::add_walls({section, f, pr.fast, q.all, in.loop_points, opt, m.params.chord,
+                   checks_flagging(flags, "wall"), origin, wall_noise},
+                  cavities, slot.rows[walls_rows], slot.issues);
 }
 
 }  // namespace
@@ -500,7 +516,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   pipe::restage(stream, "camber");
   const CamberInput in = gather(stream);
   Table camber = schema::camber.table(), params = schema::params.table(),
-        thickness = schema::thickness.table(), sides = schema::sides.table();
+        thickness = schema::thickness.table(), sides = schema::sides.table(), walls = schema::walls.table();
   std::vector<std::pair<int, const BSpline*>> work;
   std::set<int> present;
   for (const auto& [key, curve] : in.curves) {
@@ -509,7 +525,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   }
   pipe::vanished_sections(stream, present, "camber", "spline");
   pipe::run_slots(
-      work.size(), options.threads, {&camber, &params, &thickness, &sides}, stream.issues, "camber",
+      work.size(), options.threads, {&camber, &params, &thickness, &sides, &walls}, stream.issues, "camber",
       [&](std::size_t w, pipe::Slot& slot) {
         camber_section(work[w].first, *work[w].second, in, options, slot);
       },
@@ -521,6 +537,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   stream.put(params);
   stream.put(thickness);
   stream.put(sides);
+  if (walls.rows() > 0) stream.put(walls);  // hollow blades only: every other stream as it was
   if (options.across_sections) {
     check_blade_stream({&stream});
     if (units_doubtful(stream)) flag_doubtful_units(stream);

@@ -500,6 +500,7 @@ template struct TableSchema<CamberRow>;
 template struct TableSchema<ParamsRow>;
 template struct TableSchema<ThicknessRow>;
 template struct TableSchema<SideRow>;
+template struct TableSchema<WallRow>;
 template struct TableSchema<FitRow>;
 template struct TableSchema<DeviationRow>;
 template struct TableSchema<ZoneRow>;
@@ -566,10 +567,10 @@ const TableSchema<VerdictRow> verdicts{"verdicts", "compare", "one row per secti
 
 // The tables of slice, smooth, fitspline and camber.
 static std::vector<TableDoc> stage_tables() {
-  return {frames.doc(),       meridians.doc(),   loops.doc(),        points.doc(),
-          skeleton.doc(),     smoothed.doc(),    smooth_stats.doc(), splines.doc(),
-          spline_knots.doc(), spline_ctrl.doc(), gaps.doc(),         samples.doc(),
-          camber.doc(),       params.doc(),      thickness.doc(),    sides.doc()};
+  return {frames.doc(),   meridians.doc(),    loops.doc(),   points.doc(),       skeleton.doc(),
+          smoothed.doc(), smooth_stats.doc(), splines.doc(), spline_knots.doc(), spline_ctrl.doc(),
+          gaps.doc(),     samples.doc(),      camber.doc(),  params.doc(),       thickness.doc(),
+          sides.doc(),    walls.doc()};
 }
 
 std::vector<TableDoc> tables() {

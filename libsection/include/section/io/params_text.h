@@ -23,7 +23,9 @@ struct ParamsTextOptions {
 /// along the plane's normal; chord, caliper chord, camber length; maximum thickness and its
 /// position; LE and TE radius with the edge's shape in words (edge_shape_names); stagger,
 /// inlet, outlet and camber angles; the pressure side; the failed checks by name
-/// (check_names, from the `flags` bits); the section's issues, shortened to the width.
+/// (check_names, from the `flags` bits); a hollow blade's cavities (the `walls` table, when
+/// present), a line each with its thinnest wall and area; the section's issues, shortened
+/// to the width.
 /// Lengths in another unit (`# units`) are converted to mm. A section with issues and no
 /// params row gets a block of its issues. A value that is not finite, or a column the table
 /// lacks, prints as "-". Throws section::Error when the stream has no `params` table.

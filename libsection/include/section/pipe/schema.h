@@ -6,6 +6,7 @@
 /// one entry over two or three columns). The header rows, the row writers, the readers'
 /// column lookups and docs/FORMAT.md's column tables all come from those lists
 /// (tests/test_schema.cpp holds FORMAT.md to them).
+#include "section/cavity.h"
 #include "section/compare.h"
 #include "section/fit_spline.h"
 #include "section/frame.h"
@@ -233,6 +234,13 @@ struct SideRow {
   std::size_t index;
   Eigen::Vector2d point;
 };
+struct WallRow {
+  int section, loop;
+  const Cavity& cavity;
+  double sigma;  ///< the wall's standard error through the points' noise (0: unknown)
+  Eigen::Vector3d profile_world, cavity_world;  ///< the wall's two ends in 3D
+  CheckBits flags;                              ///< the checks its wall failed (section/checks.h)
+};
 
 // compare's rows (docs/COMPARE.md). Verdict codes: -1 no tolerance, 0 pass, 1 fail,
 // 2 not measured; `bounds` of a tolerance: 0 none, 1 low only, 2 high only, 3 both.
@@ -303,6 +311,7 @@ extern const TableSchema<CamberRow> camber;
 extern const TableSchema<ParamsRow> params;
 extern const TableSchema<ThicknessRow> thickness;
 extern const TableSchema<SideRow> sides;
+extern const TableSchema<WallRow> walls;
 // compare's tables.
 extern const TableSchema<FitRow> fits;
 extern const TableSchema<DeviationRow> deviations;

@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// camber_stream's cavities and their walls (docs/CAMBER.md, "Hollow blades").
+#include "pipe/camber_walls.h"
+
+#include "detail/local_origin.h"
+#include "pipe/camber_issues.h"
+#include "pipe/coverage.h"
+#include "section/error.h"
+#include "section/pipe/schema.h"
+#include "section/units.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace section::pipe {
+
+std::vector<SectionCavity> cavities_of(int section, const BSpline& local, const Eigen::Vector2d& origin,
+                                       const std::map<std::pair<int, int>, BSpline>& curves,
+                                       const std::map<int, std::map<int, double>>& listed, int loops) {
+  std::vector<SectionCavity> out;
+  if (loops <= 1) return out;
+  const auto found = listed.find(section);
+  const std::map<int, double> none;
+  const std::map<int, double>& areas = found != listed.end() ? found->second : none;
+  const auto refuse = [&](const std::string& why) {
+    throw Error("camber: section " + std::to_string(section) + " has " + std::to_string(loops) + " loops; " +
+                why + other_loops(curves, section, areas));
+  };
+  const std::string beside =
+      "camber measures a profile and the cavities inside it (a hollow blade's), not loops beside it or "
+      "crossing it";
+  for (const auto& listed_loop : areas)
+    if (listed_loop.first != 0 && !curves.count({section, listed_loop.first})) refuse(beside);
+  for (auto it = curves.lower_bound({section, 1}); it != curves.end() && it->first.first == section; ++it) {
+    SectionCavity c{it->first.second, it->second, {}};
+    c.curve.control = detail::moved(it->second.control, origin);
+    c.cavity = measure_cavity(local, c.curve);
+    if (c.cavity.place != LoopPlace::inside) refuse(beside);
+    out.push_back(std::move(c));
+  }
+  for (const SectionCavity& a : out)
+    for (const SectionCavity& b : out)
+      if (&a != &b && measure_cavity(a.curve, b.curve, {256}).place != LoopPlace::outside)
+        refuse("loop " + std::to_string(b.loop) + " lies within loop " + std::to_string(a.loop) +
+               ", a cavity: camber measures a profile and the cavities inside it, not loops within those");
+  return out;
+}
+
+void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities, std::vector<double>& rows,
+               std::vector<SectionIssue>& issues) {
+  if (cavities.empty()) return;
+  const CamberOptions& opt = in.options;
+  const double chord = in.chord;
+  const int section = in.section;
+  double finest = opt.thickness_hole * chord;
+  for (const SectionCavity& c : cavities) finest = std::min(finest, c.cavity.wall);
+  const double h = 0.03 * finest;
+  const ProfileCoverage outer(in.profile, in.measured, h);
+  for (const SectionCavity& c : cavities) {
+    const double limit = std::min(opt.thickness_hole * chord, c.cavity.wall);
+    const auto points = in.loop_points.find({section, c.loop});
+    const ProfileCoverage inner(detail::PiecewiseCurve(c.curve),
+                                points != in.loop_points.end() ? detail::moved(points->second, in.origin)
+                                                               : std::vector<Eigen::Vector2d>{},
+                                h);
+    // The longest hole under the thin stretch, on either side (0: none).
+    double hole = 0;
+    const char* side = "";
+    const detail::PiecewiseCurve cavity(c.curve);
+    Eigen::Vector2d last(std::numeric_limits<double>::infinity(), 0);
+    for (const auto& [tc, tp] : c.cavity.thin) {
+      // Every quarter of the shortest hole that counts: a hole begins within half of it.
+      const Eigen::Vector2d at = cavity.point(cavity.locate(tc));
+      if ((at - last).norm() < limit / 4) continue;
+      last = at;
+      const ContactCoverage on[2] = {outer.about(tp, 3 * limit, limit / 2),
+                                     inner.about(tc, 3 * limit, limit / 2)};
+      for (int k = 0; k < 2; ++k)
+        if (on[k].hole > hole && unmeasured(on[k], limit, opt.thickness_hole_spacings))
+          hole = on[k].hole, side = k == 0 ? "profile" : "cavity";
+    }
+    CheckBits flags = in.section_flags;
+    const WallNoise& nz = in.noise;
+    double sigma = 0;
+    if (nz.sigma > 0) {
+      const std::size_t measured = points != in.loop_points.end() ? points->second.size() : 0;
+      const double share =
+          measured > 0 ? std::min(1.0, double(c.curve.control.size()) / double(measured)) : 1.0;
+      sigma = nz.sigma * std::sqrt(nz.profile_share + share);
+      if (2 * sigma > nz.limit && !(flags & bit(Check::noise))) {
+        flags |= bit(Check::noise);
+        issues.push_back(
+            {section, c.loop, "camber",
+             "cavity (loop " + std::to_string(c.loop) + "): its thinnest wall, " +
+                 format_length(c.cavity.wall) + ", has a standard error of " + format_length(sigma) +
+                 " through the points' noise over the profile's and the cavity's fits: twice that is "
+                 "more than the accuracy allows (" +
+                 format_length(nz.limit) + "; check noise)"});
+      }
+    }
+    if (hole > 0) {
+      flags |= bit(Check::wall_measured);
+      issues.push_back({section, c.loop, "camber",
+                        "cavity (loop " + std::to_string(c.loop) + "): its wall, thinnest " +
+                            format_length(c.cavity.wall) + ", runs over " + format_length(hole) + " of the " +
+                            side +
+                            " without a measured point where it is thin; the fits' bridge over that hole may "
+                            "hide a thinner wall (check wall_measured)"});
+    }
+    Cavity at = c.cavity;
+    at.profile_point += in.origin, at.cavity_point += in.origin;
+    schema::walls.append(rows, {section, c.loop, at, sigma, in.frame.to_world(at.profile_point),
+                                in.frame.to_world(at.cavity_point), flags});
+  }
+}
+
+}  // namespace section::pipe

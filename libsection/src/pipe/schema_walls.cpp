@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// camber's walls table (a hollow blade's cavities, docs/CAMBER.md "Hollow blades"): declared
+// as schema.cpp declares the others, listed by schema::tables() after sides.
+#include "section/pipe/schema.h"
+
+#include <array>
+
+namespace section::schema {
+
+namespace {
+
+constexpr std::array<Column<WallRow>, 11> wall_columns{{
+    {col::section, "id", "the section id (the plane's index)",
+     [](const WallRow& r) { return double(r.section); }},
+    {col::loop, "id", "the cavity's loop id within the section (loop 0 is the profile)",
+     [](const WallRow& r) { return double(r.loop); }},
+    {"area", "area",
+     "the area the cavity encloses (the section's material: the params' area less its cavities')",
+     [](const WallRow& r) { return r.cavity.area; }},
+    {"length", "length", "the cavity's length around", [](const WallRow& r) { return r.cavity.length; }},
+    {"wall", "length", "the thinnest wall: the least distance from the cavity to the profile",
+     [](const WallRow& r) { return r.cavity.wall; }},
+    {"wall_sigma", "length",
+     "its standard error through the points' noise: noise x sqrt(the profile's fit's control points over "
+     "its points + the cavity's); 0 when the noise is unknown",
+     [](const WallRow& r) { return r.sigma; }},
+    {"profile_", uv, "length", "where it is thinnest: the profile's point",
+     [](const WallRow& r) { return r.cavity.profile_point; }},
+    {"cavity_", uv, "length", "... and the cavity's", [](const WallRow& r) { return r.cavity.cavity_point; }},
+    {"profile_", xyz, "length", "the profile's point in 3D",
+     [](const WallRow& r) { return r.profile_world; }},
+    {"cavity_", xyz, "length", "the cavity's point in 3D", [](const WallRow& r) { return r.cavity_world; }},
+    {"flags", "code",
+     "the checks its wall failed, bits as the params table's flags: the section's that flag the wall "
+     "(layers, noise, units, registration, airfoil), noise too when twice wall_sigma exceeds 1.5e-4 of the "
+     "profile's size, and wall_measured when a hole in the data lies under its thin stretch; 0 when none",
+     [](const WallRow& r) { return double(r.flags); }},
+}};
+
+}  // namespace
+
+const TableSchema<WallRow> walls{
+    "walls", "camber",
+    "one row per cavity of a section (a loop inside its profile: a hollow blade's channel) and its thinnest "
+    "wall (docs/CAMBER.md, \"Hollow blades\"); written only for sections that hold one",
+    wall_columns};
+
+}  // namespace section::schema

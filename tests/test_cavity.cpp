@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A hollow blade's section: the loops inside its profile (cooling channels) are its
+// cavities, measured with it, each with its thinnest wall (measure_cavity; camber_stream's
+// walls table), against geometry whose walls are known: circles inside an ellipse, and
+// channels centred on a generated blade's camber line (an inscribed circle's radius less
+// the channel's: the wall either side).
+#include "pipe_stages.h"
+#include "section/bspline.h"
+#include "section/cavity.h"
+#include "section/checks.h"
+#include "section/error.h"
+#include "section/extras/generate.h"
+#include "section/io/stream.h"
+#include "section/pipe/schema.h"
+#include "section/slice.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Points = std::vector<Eigen::Vector2d>;
+constexpr double pi = 3.14159265358979323846;
+
+Points ellipse(const Eigen::Vector2d& c, double a, double b, int n) {
+  Points p;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * pi * i / n;
+    p.push_back(c + Eigen::Vector2d(a * std::cos(t), b * std::sin(t)));
+  }
+  return p;
+}
+
+// A closed cubic through dense points of a smooth loop: off it by far less than a nanometre.
+section::BSpline loop_curve(const Points& p) {
+  section::CurveFitOptions o;
+  o.control_points = int(p.size() / 8);
+  return section::fit_curve(p, o);
+}
+
+// Points every `spacing` around a circle (from a phase that moves with the seed), each
+// moved along the radius by Gaussian noise.
+Points noisy_circle(const Eigen::Vector2d& c, double r, double spacing, double sigma, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0, sigma);
+  const int n = int(std::ceil(2 * pi * r / spacing));
+  const double phase = 0.37 * seed;
+  Points p;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * pi * (i + phase) / n;
+    p.push_back(c + (r + noise(rng)) * Eigen::Vector2d(std::cos(t), std::sin(t)));
+  }
+  return p;
+}
+
+// A scan of a prism: the section's points of each layer (layer(k), k = -5..5) about heights
+// k x 0.05 mm (each point up to 0.02 mm off: a scan, not rows), through the pipe (slice at
+// height 0, smooth, fitspline, camber).
+template <class Layer>
+section::Stream measured(const Layer& layer) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  section::Cloud cloud;
+  for (int k = -5; k <= 5; ++k)
+    for (const Eigen::Vector2d& p : layer(k)) cloud.points.emplace_back(p.x(), p.y(), 0.05 * k + jitter(rng));
+  const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, {0.0}));
+  return section::test::after_slice(section::to_stream(r, "test", "mm"));
+}
+
+// The profile's points of layer k: every 0.05 mm along it, 2 um of noise (its own a layer).
+Points outer_layer(const section::SectionTruth& truth, int k) {
+  return section::noisy_profile(truth, 0.05, 0.002, 100 + unsigned(k + 5));
+}
+
+double cell(const section::Table& t, std::size_t row, const char* column) {
+  return t.at(row, t.column(column));
+}
+
+// Whether an issue of `s` says `words`.
+bool says(const section::Stream& s, const std::string& words) {
+  for (const auto& issue : s.issues)
+    if (issue.message.find(words) != std::string::npos) return true;
+  return false;
+}
+
+// A channel centred on the camber line at `fraction` of it, its walls either side `wall`.
+struct Channel {
+  Eigen::Vector2d center;
+  double radius, wall;
+};
+Channel channel(const section::SectionTruth& truth, double fraction, double wall) {
+  const std::size_t k = std::size_t(fraction * double(truth.camber.size()));
+  return {truth.camber[k], truth.camber_radius[k] - wall, wall};
+}
+
+}  // namespace
+
+TEST_CASE("measure_cavity: a circle inside an ellipse, its wall exact", "[cavity]") {
+  const section::BSpline profile = loop_curve(ellipse({0, 0}, 20, 3, 4000));
+  // Off centre toward +v: the wall is thinnest at the ellipse's co-vertex (0, 3), 1 mm.
+  const section::Cavity off = section::measure_cavity(profile, loop_curve(ellipse({0, 0.5}, 1.5, 1.5, 2000)));
+  CHECK(off.place == section::LoopPlace::inside);
+  CHECK(off.wall == Approx(1.0).margin(1e-6));
+  CHECK((off.profile_point - Eigen::Vector2d(0, 3)).norm() < 1e-3);
+  CHECK((off.cavity_point - Eigen::Vector2d(0, 2)).norm() < 1e-3);
+  CHECK(off.area == Approx(pi * 1.5 * 1.5).epsilon(1e-5));
+  CHECK(off.length == Approx(2 * pi * 1.5).epsilon(1e-5));
+  CHECK_FALSE(off.thin.empty());
+  // Centred: two walls of 1 mm, both in the thin stretch (one cavity sample near each).
+  const section::Cavity mid = section::measure_cavity(profile, loop_curve(ellipse({0, 0}, 2, 2, 2000)));
+  CHECK(mid.place == section::LoopPlace::inside);
+  CHECK(mid.wall == Approx(1.0).margin(1e-6));
+  const section::BSpline circle = loop_curve(ellipse({0, 0}, 2, 2, 2000));
+  bool above = false, below = false;
+  for (const auto& [tc, tp] : mid.thin) {
+    const Eigen::Vector2d q = circle.point(tc);
+    above = above || (q - Eigen::Vector2d(0, 2)).norm() < 0.05;
+    below = below || (q - Eigen::Vector2d(0, -2)).norm() < 0.05;
+  }
+  CHECK(above);
+  CHECK(below);
+}
+
+TEST_CASE("measure_cavity: loops beside, across and around a profile are no cavities", "[cavity]") {
+  const section::BSpline profile = loop_curve(ellipse({0, 0}, 20, 3, 4000));
+  const auto place = [&](const Points& p) { return section::measure_cavity(profile, loop_curve(p)).place; };
+  CHECK(place(ellipse({30, 0}, 1, 1, 800)) == section::LoopPlace::outside);
+  CHECK(place(ellipse({0, 0}, 25, 25, 4000)) == section::LoopPlace::outside);  // around it
+  CHECK(place(ellipse({0, 3}, 1, 1, 800)) == section::LoopPlace::crossing);
+  CHECK(place(ellipse({20, 0}, 0.5, 0.5, 800)) == section::LoopPlace::crossing);  // over the tip
+  // Out through the profile by 50 um between the samples the place is first told at.
+  CHECK(place(ellipse({0, 1.05}, 2, 2, 2000)) == section::LoopPlace::crossing);
+  section::BSpline open = profile;
+  open.closed = false;
+  CHECK_THROWS_AS(section::measure_cavity(open, profile), section::Error);
+  section::CavityOptions few;
+  few.samples = 100;
+  CHECK_THROWS_AS(section::measure_cavity(profile, profile, few), section::Error);
+}
+
+TEST_CASE("camber_stream: a hollow blade's section measured, its walls within 3 um of the truth",
+          "[cavity][pipeline]") {
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
+  // Two channels on the camber line, at 30 % and 60 % of it: an inscribed circle's radius
+  // there less the channel's is the wall either side.
+  const std::vector<Channel> channels = {channel(truth, 0.3, 0.4), channel(truth, 0.6, 0.7)};
+  const section::Stream s = measured([&](int k) {
+    Points p = outer_layer(truth, k);
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      const Points q = noisy_circle(channels[c].center, channels[c].radius, 0.05, 0.002,
+                                    11 + 20 * unsigned(c) + unsigned(k + 5));
+      p.insert(p.end(), q.begin(), q.end());
+    }
+    return p;
+  });
+  for (const auto& issue : s.issues) UNSCOPED_INFO(issue.stage << ": " << issue.message);
+  const section::Table& params = section::schema::params.get(s);
+  REQUIRE(params.rows() == 1);
+  // The profile's values are those of the same points without the channels.
+  const section::Stream solid = measured([&](int k) { return outer_layer(truth, k); });
+  const section::Table& solid_params = section::schema::params.get(solid);
+  REQUIRE(solid_params.rows() == 1);
+  for (const char* c : {"chord", "max_thickness", "le_radius", "te_radius"})
+    CHECK(cell(params, 0, c) == Approx(cell(solid_params, 0, c)).margin(2e-4));
+  CHECK(section::schema::walls.find(solid) == nullptr);  // no cavity: no table
+  const section::Table* walls = section::schema::walls.find(s);
+  REQUIRE(walls);
+  REQUIRE(walls->rows() == channels.size());
+  for (std::size_t r = 0; r < walls->rows(); ++r) {
+    const Eigen::Vector2d at(cell(*walls, r, "cavity_u"), cell(*walls, r, "cavity_v"));
+    const Channel* ch = nullptr;
+    for (const Channel& c : channels)
+      if ((at - c.center).norm() < c.radius + 0.01) ch = &c;
+    REQUIRE(ch);
+    INFO("channel at " << ch->center.transpose() << ", wall " << ch->wall);
+    CHECK(std::abs(cell(*walls, r, "wall") - ch->wall) < 0.003);
+    CHECK(cell(*walls, r, "area") == Approx(pi * ch->radius * ch->radius).epsilon(2e-3));
+    CHECK(cell(*walls, r, "flags") == 0);
+    // Its standard error from the noise (2 um) over the two fits: above 0, and the error
+    // within 3 of it or 1 um.
+    const double sigma = cell(*walls, r, "wall_sigma");
+    CHECK(sigma > 0);
+    CHECK(sigma < 0.002);
+    CHECK(std::abs(cell(*walls, r, "wall") - ch->wall) < std::max(3 * sigma, 0.001));
+    // Its ends: the cavity's on the channel, the profile's on the true profile.
+    CHECK(std::abs((at - ch->center).norm() - ch->radius) < 0.003);
+    const Eigen::Vector2d on(cell(*walls, r, "profile_u"), cell(*walls, r, "profile_v"));
+    CHECK(section::locate(truth, on).distance < 0.003);
+    CHECK(cell(*walls, r, "profile_z") == 0);
+  }
+}
+
+TEST_CASE("camber_stream: a hole in the data under a wall's thin stretch flags it (wall_measured)",
+          "[cavity][pipeline]") {
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
+  const Channel ch = channel(truth, 0.4, 0.5);
+  // The channel's points within 1 mm of one of its two thinnest places left out: a hole of
+  // about 2 mm on the cavity, under the wall's thin stretch.
+  const double foot = section::locate(truth, ch.center).s;
+  const std::size_t at = std::size_t(std::lower_bound(truth.profile_s.begin(), truth.profile_s.end(), foot) -
+                                     truth.profile_s.begin()) %
+                         truth.profile.size();
+  const Eigen::Vector2d toward = truth.profile[at] - ch.center;
+  const Eigen::Vector2d gap = ch.center + ch.radius * toward.normalized();
+  const section::Stream s = measured([&](int layer) {
+    Points points = outer_layer(truth, layer);
+    for (const Eigen::Vector2d& p : noisy_circle(ch.center, ch.radius, 0.05, 0.002, 3 + unsigned(layer + 5)))
+      if ((p - gap).norm() > 1.0) points.push_back(p);
+    return points;
+  });
+  const section::Table* walls = section::schema::walls.find(s);
+  REQUIRE(walls);
+  REQUIRE(walls->rows() == 1);
+  CHECK(section::flags_mask(cell(*walls, 0, "flags")) & section::bit(section::Check::wall_measured));
+  CHECK(says(s, "wall_measured"));
+  // The params row is not the wall's: it stays unflagged by it.
+  const section::Table& params = section::schema::params.get(s);
+  REQUIRE(params.rows() == 1);
+  CHECK_FALSE(section::flags_mask(cell(params, 0, "flags")) & section::bit(section::Check::wall_measured));
+}
+
+TEST_CASE("camber_stream: a loop beside the profile or within a cavity leaves the section unmeasured",
+          "[cavity][pipeline]") {
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
+  const Channel ch = channel(truth, 0.4, 0.6);
+  const auto refused = [](const section::Stream& s, const std::string& words) {
+    const section::Table* params = section::schema::params.find(s);
+    INFO("issues: " << s.issues.size());
+    CHECK((!params || params->rows() == 0));
+    CHECK(says(s, words));
+  };
+  // A rod beside the blade (a fixture).
+  refused(measured([&](int layer) {
+            Points p = outer_layer(truth, layer);
+            for (const Eigen::Vector2d& q : noisy_circle(truth.centroid + Eigen::Vector2d(0, 25), 2, 0.05,
+                                                         0.002, 5 + unsigned(layer + 5)))
+              p.push_back(q);
+            return p;
+          }),
+          "not loops beside it or crossing it");
+  // A channel with a core left in it.
+  refused(measured([&](int layer) {
+            Points p = outer_layer(truth, layer);
+            for (const Eigen::Vector2d& q :
+                 noisy_circle(ch.center, ch.radius, 0.05, 0.002, 5 + unsigned(layer + 5)))
+              p.push_back(q);
+            for (const Eigen::Vector2d& q :
+                 noisy_circle(ch.center, 0.4 * ch.radius, 0.05, 0.002, 30 + unsigned(layer + 5)))
+              p.push_back(q);
+            return p;
+          }),
+          "not loops within those");
+}
