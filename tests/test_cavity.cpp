@@ -11,6 +11,7 @@
 #include "section/error.h"
 #include "section/extras/generate.h"
 #include "section/io/stream.h"
+#include "section/pipe/compare_stream.h"
 #include "section/pipe/schema.h"
 #include "section/slice.h"
 
@@ -255,4 +256,47 @@ TEST_CASE("camber_stream: a loop beside the profile or within a cavity leaves th
             return p;
           }),
           "not loops within those");
+}
+
+TEST_CASE("compare_stream: a hollow section's thinnest wall judged on its value and against the nominal's",
+          "[cavity][compare]") {
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
+  const Channel ch = channel(truth, 0.4, 0.4);
+  const auto hollow = [&](int layer) {
+    Points p = outer_layer(truth, layer);
+    for (const Eigen::Vector2d& q : noisy_circle(ch.center, ch.radius, 0.05, 0.002, 40 + unsigned(layer + 5)))
+      p.push_back(q);
+    return p;
+  };
+  const section::Stream measured_stream = measured(hollow);
+  const section::Stream solid = measured([&](int layer) { return outer_layer(truth, layer); });
+  // The verdict of the wall (item 17) under `t`, the measured section against `nominal`.
+  const auto wall_verdict = [&](const section::Stream& nominal, const section::Tolerance& t) {
+    section::Stream s = measured_stream;
+    section::CompareStreamOptions o;
+    o.tolerances = {t};
+    section::compare_stream(s, nominal, o);
+    const section::Table& compared = section::schema::compared.get(s);
+    for (std::size_t r = 0; r < compared.rows(); ++r)
+      if (cell(compared, r, "item") == 17) return static_cast<section::Verdict>(cell(compared, r, "verdict"));
+    FAIL("no wall row");
+    return section::Verdict::not_measured;
+  };
+  section::Tolerance at_least;  // the thinnest wall 0.35 mm or more (it is 0.4)
+  at_least.item = "wall";
+  at_least.low = 0.35;
+  at_least.on_value = true;
+  CHECK(wall_verdict(measured_stream, at_least) == section::Verdict::pass);
+  at_least.low = 0.45;
+  CHECK(wall_verdict(measured_stream, at_least) == section::Verdict::fail);
+  // Within 2 um of its expanded uncertainty of 0.4: uncertain under the guarded rule.
+  at_least.low = 0.4;
+  CHECK(wall_verdict(measured_stream, at_least) == section::Verdict::uncertain);
+  section::Tolerance band;  // against the nominal's wall: the same points, deviation 0
+  band.item = "wall";
+  band.low = -0.01;
+  band.high = 0.01;
+  CHECK(wall_verdict(measured_stream, band) == section::Verdict::pass);
+  // A solid nominal has no wall to deviate from, and a solid section no wall at all.
+  CHECK(wall_verdict(solid, band) == section::Verdict::not_measured);
 }

@@ -55,8 +55,11 @@ Mesh crossing(const Mesh& mesh, const Frame& f) {
   return band;
 }
 
-// Loop 0 of the mesh's section on each measured plane, in the measured frame.
-Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, std::vector<SectionIssue>& misses) {
+// Loop 0 of the mesh's section on each measured plane, in the measured frame; its other
+// loops (a hollow blade's cavities, camber then measures their walls) into `others` by
+// section and loop.
+Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, std::vector<SectionIssue>& misses,
+                    std::map<std::pair<int, int>, std::vector<Eigen::Vector2d>>& others) {
   Loops loops;
   for (const auto& [id, f] : frames) {
     const Mesh band = crossing(mesh, f);
@@ -72,6 +75,9 @@ Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, std::v
       continue;
     }
     for (const auto& p : s.morphology.loops[0].points) loops[id].push_back(f.to_plane(s.frame.to_world(p)));
+    for (std::size_t l = 1; l < s.morphology.loops.size(); ++l)
+      for (const auto& p : s.morphology.loops[l].points)
+        others[{id, int(l)}].push_back(f.to_plane(s.frame.to_world(p)));
   }
   return loops;
 }
@@ -132,20 +138,25 @@ void matched_sections(const Stream& nominal, const std::map<int, Frame>& frames,
     for (const auto& [their_id, g] : theirs)
       if (g.n.dot(f.n) > 1 - 1e-9 && std::abs(f.height(g.origin)) <= o.plane_tolerance) match = their_id;
     if (theirs.empty() && curves.count({id, 0})) match = id;  // no frames: matched by id
-    const auto curve = curves.find({match, 0});
-    if (curve == curves.end()) {
+    if (!curves.count({match, 0})) {
       misses.push_back({id, -1, "compare", "the nominal stream has no section on this plane"});
       continue;
     }
-    BSpline b = curve->second;
-    if (!theirs.empty())
-      for (auto& p : b.control) p = f.to_plane(theirs.at(match).to_world(p));
-    FitSplineResult fit;
-    fit.spline = b;
-    schema::splines.add(head, {id, 0, fit});
-    for (std::size_t i = 0; i < b.knots.size(); ++i) schema::spline_knots.add(knots, {id, 0, i, b.knots[i]});
-    for (std::size_t i = 0; i < b.control.size(); ++i)
-      schema::spline_ctrl.add(ctrl, {id, 0, i, b.control[i]});
+    // Loop 0, and its other loops (a hollow blade's cavities: camber measures their walls).
+    for (auto curve = curves.find({match, 0}); curve != curves.end() && curve->first.first == match;
+         ++curve) {
+      const int loop = curve->first.second;
+      BSpline b = curve->second;
+      if (!theirs.empty())
+        for (auto& p : b.control) p = f.to_plane(theirs.at(match).to_world(p));
+      FitSplineResult fit;
+      fit.spline = b;
+      schema::splines.add(head, {id, loop, fit});
+      for (std::size_t i = 0; i < b.knots.size(); ++i)
+        schema::spline_knots.add(knots, {id, loop, i, b.knots[i]});
+      for (std::size_t i = 0; i < b.control.size(); ++i)
+        schema::spline_ctrl.add(ctrl, {id, loop, i, b.control[i]});
+    }
   }
   out.put(head);
   out.put(knots);
@@ -164,7 +175,8 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
     matched_sections(in_mm(*source.stream, copy), frames, options, out, misses);
   } else {
     Loops loops;
-    if (source.mesh) loops = mesh_sections(*source.mesh, frames, misses);
+    std::map<std::pair<int, int>, std::vector<Eigen::Vector2d>> cavities;
+    if (source.mesh) loops = mesh_sections(*source.mesh, frames, misses, cavities);
     if (source.points) {
       // Each section's points from their canonical start: the nominal's curve is then the same
       // whichever point its file starts the section at (fit_spline's curve depends on it).
@@ -176,6 +188,10 @@ Stream nominal_stream(const NominalSource& source, const std::map<int, Frame>& f
       if (!frames.count(id)) continue;
       for (std::size_t i = 0; i < loop.size(); ++i)
         schema::points.add(pts, {id, 0, i, loop[i], Eigen::Vector2d(0, 0), 0.0});
+      for (auto c = cavities.lower_bound({id, 1}); c != cavities.end() && c->first.first == id; ++c)
+        for (std::size_t i = 0; i < c->second.size(); ++i)
+          schema::points.add(pts,
+                             {id, std::size_t(c->first.second), i, c->second[i], Eigen::Vector2d(0, 0), 0.0});
     }
     for (const auto& [id, f] : frames)
       if (!loops.count(id) && !source.mesh)

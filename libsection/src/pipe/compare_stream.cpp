@@ -51,6 +51,7 @@ const Item items[] = {
     {"caliper_stagger", le | te | ps, true},
     {"fit_shift", 0, false},
     {"fit_rotation", 0, true},
+    {"wall", 0, false},  // a hollow section's thinnest wall (camber's walls table)
 };
 const char* const zone_suffix[] = {"", "_le", "_te", "_pressure", "_suction"};
 
@@ -66,6 +67,25 @@ std::map<int, Row> by_section(const Table* t) {
     for (std::size_t c = 0; c < t->columns.size(); ++c) row[t->columns[c]] = t->at(r, c);
   }
   return out;
+}
+
+// Each section's thinnest cavity wall (camber's walls table: a hollow blade's) into its
+// params row as `wall`, `wall_sigma` and `wall_flags` (that wall's row's checks): none for a
+// section without a cavity.
+void add_thinnest_walls(const Stream& stream, std::map<int, Row>& params) {
+  const Table* t = schema::walls.find(stream);
+  if (!t) return;
+  const std::size_t cs = t->column(schema::col::section), cw = t->column("wall"),
+                    cg = t->column("wall_sigma"), cf = t->column("flags");
+  for (std::size_t r = 0; r < t->rows(); ++r) {
+    const auto row = params.find(static_cast<int>(t->at(r, cs)));
+    if (row == params.end()) continue;
+    const auto least = row->second.find("wall");
+    if (least != row->second.end() && !(t->at(r, cw) < least->second)) continue;
+    row->second["wall"] = t->at(r, cw);
+    row->second["wall_sigma"] = t->at(r, cg);
+    row->second["wall_flags"] = t->at(r, cf);
+  }
 }
 
 // Everything compare_stream needs of both streams.
@@ -105,6 +125,8 @@ Input gather(const Stream& stream, const Stream& nominal, double plane_tolerance
   if (schema::splines.find(stream)) in.curves = splines(stream);
   in.params = by_section(schema::params.find(stream));
   in.nominal_params = by_section(schema::params.find(nominal));
+  add_thinnest_walls(stream, in.params);
+  add_thinnest_walls(nominal, in.nominal_params);
   const auto curves =
       schema::splines.find(nominal) ? splines(nominal) : std::map<std::pair<int, int>, BSpline>{};
   for (const auto& [id, row] : in.nominal_params) {
@@ -220,9 +242,11 @@ double value_of(const Row& row, const std::string& column, double otherwise = 0)
   return v != row.end() ? v->second : otherwise;
 }
 
-// The checks of a params row (its `flags` column) that flag `column`.
+// The checks of a params row (its `flags` column; the thinnest wall's own, for `wall`) that
+// flag `column`.
 CheckBits flagging(const Row& row, const char* column) {
-  return checks_flagging(flags_mask(value_of(row, "flags")), column);
+  const bool wall = std::string(column) == "wall";
+  return checks_flagging(flags_mask(value_of(row, wall ? "wall_flags" : "flags")), column);
 }
 
 double wrapped(double degrees) {
@@ -289,7 +313,8 @@ void judge(int id, const SectionComparison* c, const Input& in, const std::vecto
       value = c->fit.motion.angle;
     } else if (c) {
       const auto mv = p->second.find(item.name);
-      measured = measured && mv != p->second.end();
+      // A deviation needs the nominal's value too (a measured cavity against a solid nominal).
+      measured = measured && mv != p->second.end() && (on_value || n->second.count(item.name));
       value = mv != p->second.end() ? mv->second : 0.0;
       nominal = value_of(n->second, item.name);
       // The standard errors camber gives (the edge radii's), and the checks it failed.
