@@ -300,3 +300,23 @@ TEST_CASE("compare_stream: a hollow section's thinnest wall judged on its value 
   // A solid nominal has no wall to deviate from, and a solid section no wall at all.
   CHECK(wall_verdict(solid, band) == section::Verdict::not_measured);
 }
+
+TEST_CASE("nominal_stream: a nominal mesh keeps its section's cavities, not a blade beside it",
+          "[cavity][compare]") {
+  // The turbine's mesh with a second one 40 mm along +y (a neighbouring blade in the nominal's
+  // mesh): the section on z = 30 is still the first blade's, with no cavity; before cavities
+  // were kept, loop 0 alone was taken, and the neighbour must stay out as it did.
+  const section::Mesh blade = section::generate_mesh(section::turbine_blade(), 400, 61);
+  section::Mesh two = blade;
+  for (const Eigen::Vector3d& v : blade.vertices) two.vertices.push_back(v + Eigen::Vector3d(0, 40, 0));
+  const int n = int(blade.vertices.size());
+  for (const auto& t : blade.triangles) two.triangles.push_back({t[0] + n, t[1] + n, t[2] + n});
+  section::Frame at30;
+  at30.origin = {0, 0, 30};
+  section::NominalSource source;
+  source.mesh = &two;
+  const section::Stream nominal = section::nominal_stream(source, {{0, at30}}, {});
+  const section::Table& params = section::schema::params.get(nominal);
+  REQUIRE(params.rows() == 1);
+  CHECK(section::schema::walls.find(nominal) == nullptr);
+}

@@ -189,14 +189,15 @@ bool SampledProfile::sample_within(const Eigen::Vector2d& q, double r) const {
   return false;
 }
 
-bool inside_samples(const SampledProfile& pr, const Eigen::Vector2d& q) {
-  const int n = static_cast<int>(pr.samples.size());
+bool inside_polygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& q) {
+  const int n = static_cast<int>(polygon.size());
+  if (n < 3) return false;
   int crossings = 0;
   // The segments (i - 1, i), the closing one first; each end's side of q carried over.
-  bool a_above = pr.samples[n - 1].y() > q.y();
+  bool a_above = polygon[n - 1].y() > q.y();
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector2d& a = pr.samples[i == 0 ? n - 1 : i - 1];
-    const Eigen::Vector2d& b = pr.samples[i];
+    const Eigen::Vector2d& a = polygon[i == 0 ? n - 1 : i - 1];
+    const Eigen::Vector2d& b = polygon[i];
     const bool b_above = b.y() > q.y();
     if (a_above != b_above && q.x() < a.x() + (q.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
       ++crossings;

@@ -99,8 +99,13 @@ struct SampledProfile {
   }
 };
 
-/// Whether q lies inside the polygon of the profile's samples (crossings of a ray along +u).
-bool inside_samples(const SampledProfile& pr, const Eigen::Vector2d& q);
+/// Whether q lies inside the closed polygon (crossings of a ray along +u).
+bool inside_polygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& q);
+
+/// Whether q lies inside the polygon of the profile's samples.
+inline bool inside_samples(const SampledProfile& pr, const Eigen::Vector2d& q) {
+  return inside_polygon(pr.samples, q);
+}
 
 /// The parameter of q's foot on the profile (the nearest point of the curve near `t`):
 /// Newton on the exact curve from t, each step at most one sample's parameter long.

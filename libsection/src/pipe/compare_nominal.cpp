@@ -4,6 +4,7 @@
 // camber code as the measurement.
 #include "section/pipe/compare_stream.h"
 
+#include "section/cavity.h"
 #include "section/error.h"
 #include "section/io/stream.h"
 #include "section/pipe/camber_stream.h"
@@ -11,6 +12,7 @@
 #include "section/pipe/fit_spline_stream.h"
 #include "section/pipe/schema.h"
 #include "section/slice.h"
+#include "detail/sampled_profile.h"
 #include "io/text.h"
 
 #include <Eigen/Geometry>
@@ -75,9 +77,16 @@ Loops mesh_sections(const Mesh& mesh, const std::map<int, Frame>& frames, std::v
       continue;
     }
     for (const auto& p : s.morphology.loops[0].points) loops[id].push_back(f.to_plane(s.frame.to_world(p)));
-    for (std::size_t l = 1; l < s.morphology.loops.size(); ++l)
-      for (const auto& p : s.morphology.loops[l].points)
-        others[{id, int(l)}].push_back(f.to_plane(s.frame.to_world(p)));
+    // Only loops inside the profile: anything beside it (a neighbouring blade, a fixture in
+    // the nominal's mesh) is no part of this section's nominal, as before cavities were kept.
+    const std::vector<Eigen::Vector2d>& profile = s.morphology.loops[0].points;
+    for (std::size_t l = 1; l < s.morphology.loops.size(); ++l) {
+      const std::vector<Eigen::Vector2d>& loop = s.morphology.loops[l].points;
+      if (!std::all_of(loop.begin(), loop.end(),
+                       [&](const Eigen::Vector2d& p) { return detail::inside_polygon(profile, p); }))
+        continue;
+      for (const auto& p : loop) others[{id, int(l)}].push_back(f.to_plane(s.frame.to_world(p)));
+    }
   }
   return loops;
 }
@@ -142,10 +151,13 @@ void matched_sections(const Stream& nominal, const std::map<int, Frame>& frames,
       misses.push_back({id, -1, "compare", "the nominal stream has no section on this plane"});
       continue;
     }
-    // Loop 0, and its other loops (a hollow blade's cavities: camber measures their walls).
+    // Loop 0, and its other loops inside it (a hollow blade's cavities: camber measures
+    // their walls); a loop beside it is no part of this section's nominal.
+    const BSpline& profile = curves.at({match, 0});
     for (auto curve = curves.find({match, 0}); curve != curves.end() && curve->first.first == match;
          ++curve) {
       const int loop = curve->first.second;
+      if (loop != 0 && measure_cavity(profile, curve->second).place != LoopPlace::inside) continue;
       BSpline b = curve->second;
       if (!theirs.empty())
         for (auto& p : b.control) p = f.to_plane(theirs.at(match).to_world(p));
