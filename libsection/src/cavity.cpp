@@ -14,8 +14,9 @@ namespace section {
 
 namespace {
 
-// The samples of `pr` tested for being inside `other`: where the two curves cross, some lie
-// inside and some outside; where they do not, the wall (a distance above 0) tells.
+// The loop's samples, evenly around it, tested against the profile's polygon: where the
+// curves cross, some lie inside and some outside; a crossing between them leaves the
+// least distance 0, which the wall then tells.
 constexpr int kPlaceTests = 32;
 
 // The least distance between the two curves near samples i of `loop` and j of `profile`:

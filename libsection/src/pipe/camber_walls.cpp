@@ -54,9 +54,11 @@ void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities,
   const CamberOptions& opt = in.options;
   const double chord = in.chord;
   const int section = in.section;
+  // The coverage's step: 3 % of the shortest hole that counts, but not below 3e-5 of the
+  // chord (a wall of a micrometre would ask for billions of samples).
   double finest = opt.thickness_hole * chord;
   for (const SectionCavity& c : cavities) finest = std::min(finest, c.cavity.wall);
-  const double h = 0.03 * finest;
+  const double h = 0.03 * std::max(finest, 1e-3 * chord);
   const ProfileCoverage outer(in.profile, in.measured, h);
   for (const SectionCavity& c : cavities) {
     const double limit = std::min(opt.thickness_hole * chord, c.cavity.wall);
