@@ -60,6 +60,8 @@ std::string json_file(const TocadArgs& a, const section::Stream& stream) {
     const auto doc = std::find_if(known.begin(), known.end(), [&](const auto& d) { return name == d.name; });
     tables.push_back(&stream.get(name, doc == known.end() ? "?" : doc->written_by));
   }
+  if (!a.tables_given)
+    if (const section::Table* walls = section::schema::walls.find(stream)) tables.push_back(walls);
   return section::format_json(stream, tables);
 }
 

@@ -140,6 +140,10 @@ check "the wall is 1 mm (2 um) at (0, 3)" -- awk -F, 'NR == 1 { for (i = 1; i <=
   { d = $c["wall"] - 1; if (d < 0) d = -d; u = $c["profile_u"]; if (u < 0) u = -u; v = $c["profile_v"] - 3; if (v < 0) v = -v
     if (d > 0.002 || u > 0.05 || v > 0.002 || $c["flags"] != 0) { print $c["wall"], $c["profile_u"], $c["profile_v"], $c["flags"]; exit 1 } }' \
   "$TMP/walls.csv"
+if [ -x "$BIN/tocad" ]; then
+  expect 0 "tocad's JSON of a hollow section" -- "$BIN/tocad" "$TMP/h.txt" -o "$TMP/h.json"
+  check "its default tables hold the walls" -- grep -q '"walls": \[{"loop": 1' "$TMP/h.json"
+fi
 expect 0 "camber --format table on a hollow section" -- "$camber" "$TMP/h_fit.txt" --format table
 check "the table for people lists the cavity" -- grep -q "cavity 1  *wall  *1.00" "$TMP/out"
 "$BIN/slice" "$TMP/solid.xyz" --at 0 2>/dev/null | "$BIN/smooth" 2>/dev/null | "$BIN/fitspline" > "$TMP/s_fit.txt" 2>/dev/null

@@ -16,7 +16,8 @@ const char* const TocadArgs::description =
     "        --polyline-tolerance of it (AutoCAD 2000 DXF, units mm)\n"
     "  iges  each loop's B-spline as an IGES entity 126 (rational B-spline curve, weights 1),\n"
     "        in 3D on its section's plane (IGES 5.3, units mm)\n"
-    "  json  the tables --tables (default params and thickness, written by camber) by section,\n"
+    "  json  the tables --tables (default params and thickness, written by camber, and walls\n"
+    "        when the stream has it: a hollow blade's cavities) by section,\n"
     "        numbers at full precision, with the stream's units, history and issues\n"
     "The format is --format, or the output's extension (.dxf, .igs, .iges, .json).\n"
     "Sections that failed (issues in the stream) have no curve and are named on stderr.\n\n"
@@ -43,7 +44,8 @@ void TocadArgs::declare(CLI::App& app) {
   app.add_option("--tables", tables, "JSON: the tables to write, by name")
       ->delimiter(',')
       ->capture_default_str();
-  app.callback([this] {
+  app.callback([this, &app] {
+    tables_given = app.count("--tables") > 0;
     for (const auto& t : tables) {
       const auto known = section::schema::tables();
       if (std::none_of(known.begin(), known.end(), [&](const auto& d) { return t == d.name; }))

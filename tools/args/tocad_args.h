@@ -16,6 +16,7 @@ struct TocadArgs {
   double polyline_tolerance = 0.001;  ///< --polyline-tolerance (mm; DXF), 0 = splines only
   bool profiles_only = false;         ///< --profiles-only: loop 0 of each section
   std::vector<std::string> tables = {"params", "thickness"};  ///< --tables (JSON)
+  bool tables_given = false;  ///< --tables given: without it, a stream's walls table joins the default
   /// Declares the options on `app`, bound to these fields.
   void declare(CLI::App& app);
 };
