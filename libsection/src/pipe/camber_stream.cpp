@@ -10,7 +10,6 @@
 #include "section/io/stream.h"
 #include "section/pipe/schema.h"
 #include "section/pipe/fit_spline_stream.h"
-#include "section/units.h"
 #include "detail/camber_line.h"
 #include "detail/local_origin.h"
 #include "detail/section_checks.h"
@@ -20,7 +19,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <memory>
 #include <set>

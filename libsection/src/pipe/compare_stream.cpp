@@ -317,7 +317,7 @@ void judge(int id, const SectionComparison* c, const Input& in, const std::vecto
       measured = measured && mv != p->second.end() && (on_value || n->second.count(item.name));
       value = mv != p->second.end() ? mv->second : 0.0;
       nominal = value_of(n->second, item.name);
-      // The standard errors camber gives (the edge radii's), and the checks it failed.
+      // The standard errors camber gives (the edge radii's, the wall's), and the checks it failed.
       const std::string sigma = item.name + std::string("_sigma");
       sigma2 =
           std::pow(value_of(p->second, sigma), 2) + (on_value ? 0 : std::pow(value_of(n->second, sigma), 2));
