@@ -8,6 +8,7 @@
 #include "args/fitspline_args.h"
 #include "args/slice_args.h"
 #include "args/smooth_args.h"
+#include "section/cavity.h"
 #include "section/error.h"
 #include "section/io/cloud_io.h"
 #include "section/io/mesh_io.h"
@@ -219,6 +220,33 @@ void bind_curve_functions(py::module_& m) {
       "canonical_loop",
       [](const Array& points) { return array2(canonical_loop(points2(points, "canonical_loop"))); },
       py::arg("points"));
+  m.def(
+      "measure_cavity",
+      [](const BSpline& profile, const BSpline& loop, int samples, double thin) {
+        CavityOptions o;
+        o.samples = samples;
+        o.thin = thin;
+        Cavity c;
+        {
+          py::gil_scoped_release unlocked;
+          c = measure_cavity(profile, loop, o);
+        }
+        const char* place = c.place == LoopPlace::inside    ? "inside"
+                            : c.place == LoopPlace::outside ? "outside"
+                                                            : "crossing";
+        py::dict out;
+        out["place"] = place;
+        out["area"] = c.area;
+        out["length"] = c.length;
+        out["wall"] = c.wall;
+        out["profile_point"] = array2({c.profile_point});
+        out["cavity_point"] = array2({c.cavity_point});
+        out["profile_t"] = c.profile_t;
+        out["cavity_t"] = c.cavity_t;
+        return out;
+      },
+      py::arg("profile"), py::arg("loop"), py::arg("samples") = CavityOptions{}.samples,
+      py::arg("thin") = CavityOptions{}.thin);
 }
 
 }  // namespace

@@ -138,3 +138,16 @@ def test_camber_of_a_plain_profile_flags_an_edge_its_points_do_not_fix():
         r = ls.camber(dense[pick])
         assert ("te_start" in ls.failed_checks(r["params"]["flags"], "chord")) == flagged
         assert any("te_start" in i for i in r["issues"]) == flagged
+
+
+def test_measure_cavity_gives_the_wall_of_a_circle_inside_an_ellipse():
+    profile = ls.fit_spline(ellipse(20, 3, 4000))
+    inside = ls.measure_cavity(profile, ls.fit_spline(ellipse(1.5, 1.5, 2000) + [0, 0.5]))
+    assert inside["place"] == "inside"
+    assert abs(inside["wall"] - 1.0) < 1e-5  # at the co-vertex (0, 3)
+    assert np.linalg.norm(inside["profile_point"][0] - [0, 3]) < 1e-3
+    assert abs(inside["area"] - np.pi * 1.5 ** 2) < 1e-4
+    assert ls.measure_cavity(profile, ls.fit_spline(ellipse(1, 1, 800) + [30, 0]))["place"] == "outside"
+    assert ls.measure_cavity(profile, ls.fit_spline(ellipse(1, 1, 800) + [0, 3]))["place"] == "crossing"
+    with pytest.raises(ValueError):
+        ls.measure_cavity(profile, profile, samples=10)
