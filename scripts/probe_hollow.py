@@ -5,14 +5,16 @@ camber's walls table gives it against the exact one, and the profile's values ag
 same scan without the channels. Numpy is not needed.
 
 For each kind, seed and noise: `bladegen --points` over z 15-45, and at each plane (z 20,
-30, 40) two channels, short cylinders (z +-1.5 mm about the plane, points every 0.08 mm,
-the scan's noise along the radius), centred on the exact section's camber line at 30 % and
-60 % of it, their walls drawn from 0.2-1.0 mm. The exact wall: the least distance from the
-channel's centre to the exact section (the generator's mesh, 4000 points around, cut by the
-plane) less its radius. Prints each wall off by more than --tolerance and every flag, then
-a summary line: sections measured and refused, walls within the tolerance, the largest
-error, walls flagged, and the largest change of the profile's values (chord, max
-thickness, edge radii) that the channels make.
+30, 40) two channels, short cylinders (z +-1.5 mm about the plane, points every 0.08 mm, the
+scan's noise along the radius), centred on the exact section's camber line at 30 % and 60 %
+of it and moved across it by up to 0.3 mm, their thinnest walls drawn from 0.2-1.0 mm. The
+exact walls: the least distance from the channel's centre to the exact section (the
+generator's mesh, 4000 points around, cut by the plane), and to each of its sides (parted at
+the mesh's LE and TE points), less its radius; each against the walls table's wall,
+pressure_wall and suction_wall. Prints each wall off by more than --tolerance and every
+flag, then a summary line: sections measured and refused, walls (three a channel) within the
+tolerance, the largest error, walls flagged, and the largest change of the profile's values
+(chord, max thickness, edge radii) that the channels make.
 
     python3 scripts/probe_hollow.py --seeds 1,2,3 --noise 0.002,0.005,0.01
 """
@@ -48,7 +50,7 @@ def exact_sections(b, kind, d):
     if r.returncode:
         raise SystemExit(f"probe_hollow: the exact mesh's pipe failed: {r.stderr[-300:]}")
     out = {}
-    for name, path in (("points", f"{d}/m.slice"), ("camber", f"{d}/m.stream")):
+    for name, path in (("points", f"{d}/m.slice"), ("camber", f"{d}/m.stream"), ("sides", f"{d}/m.stream")):
         text = open(path).read().split("\n")
         on, head = False, None
         for line in text:
@@ -63,13 +65,29 @@ def exact_sections(b, kind, d):
             r = dict(zip(head, map(float, line.split(","))))
             if name == "points" and r["loop"] != 0:
                 continue
-            out.setdefault(int(r["section"]), {}).setdefault(name, []).append((r["u"], r["v"]))
+            key = f"side{int(r['side'])}" if name == "sides" else name
+            out.setdefault(int(r["section"]), {}).setdefault(key, []).append((r["u"], r["v"]))
+    for sec in out.values():
+        sec["pressure"], sec["suction"] = split_sides(sec["points"], sec["side0"], sec["side1"])
     return out
 
 
-def distance_to(poly, c):
+def split_sides(poly, pressure, suction):
+    """The exact profile's points parted at the mesh's LE and TE points (the ends of camber's
+    sampled sides), each part the side whose samples it lies nearer."""
+    def nearest(p):
+        return min(range(len(poly)), key=lambda i: math.hypot(poly[i][0] - p[0], poly[i][1] - p[1]))
+    a, b = sorted((nearest(pressure[0]), nearest(pressure[-1])))
+    one, other = poly[a:b + 1], poly[b:] + poly[:a + 1]
+    mid = one[len(one) // 2]
+    if distance_to(suction, mid, closed=False) < distance_to(pressure, mid, closed=False):
+        one, other = other, one
+    return one, other
+
+
+def distance_to(poly, c, closed=True):
     best = math.inf
-    for i in range(len(poly)):
+    for i in range(len(poly) if closed else len(poly) - 1):
         ax, ay = poly[i]
         bx, by = poly[(i + 1) % len(poly)]
         dx, dy = bx - ax, by - ay
@@ -103,6 +121,7 @@ def main():
     b = args.bin
     measured = refused = walls = within = flagged = 0
     worst = 0.0
+    scores = []  # each wall's error over its wall_sigma
     moved = {"chord": 0.0, "max_thickness": 0.0, "le_radius": 0.0, "te_radius": 0.0}
     at = ",".join(map(str, HEIGHTS))
     with tempfile.TemporaryDirectory() as d:
@@ -119,12 +138,18 @@ def main():
                     for k, z in enumerate(HEIGHTS):
                         cam, poly = exact[k]["camber"], exact[k]["points"]
                         for frac in (0.3, 0.6):
-                            c = cam[int(frac * len(cam))]
+                            # Off the camber line by up to 0.3 mm across it (a shifted core):
+                            # each side's wall its own.
+                            i = int(frac * len(cam))
+                            tx, ty = cam[i + 1][0] - cam[i - 1][0], cam[i + 1][1] - cam[i - 1][1]
+                            shift = rng.uniform(-0.3, 0.3) / math.hypot(tx, ty)
+                            c = (cam[i][0] - ty * shift, cam[i][1] + tx * shift)
                             wall = rng.uniform(0.2, 1.0)
-                            r = distance_to(poly, c) - wall
+                            sides = [distance_to(exact[k][s], c, closed=False) for s in ("pressure", "suction")]
+                            r = min(sides) - wall
                             if r < 0.2:
                                 continue
-                            truth.setdefault(k, []).append((c, r, wall))
+                            truth.setdefault(k, []).append((c, r, wall, sides[0] - r, sides[1] - r))
                             extra += channel_points(c, r, z, noise, rng)
                     with open(f"{d}/s.xyz") as f, open(f"{d}/h.xyz", "w") as out:
                         out.write(f.read())
@@ -151,26 +176,38 @@ def main():
                                           f"{int(float(s_rows[k]['flags']))} without, "
                                           f"{int(float(h_rows[k]['flags']))} with)")
                         mine = [w for w in w_rows if int(float(w["section"])) == k]
-                        for c, r, wall in truth.get(k, []):
-                            walls += 1
+                        for c, r, wall, pressure, suction in truth.get(k, []):
                             near = [w for w in mine if math.hypot(float(w["cavity_u"]) - c[0],
                                                                   float(w["cavity_v"]) - c[1]) < r + 0.05]
                             if len(near) != 1:
+                                walls += 3
                                 print(f"{label}: channel of wall {wall:.3f} mm not in the walls table")
                                 continue
                             w = near[0]
-                            err = float(w["wall"]) - wall
-                            worst = max(worst, abs(err))
-                            within += abs(err) <= args.tolerance
-                            flags = int(float(w["flags"]))
-                            flagged += flags != 0
-                            if abs(err) > args.tolerance or flags:
-                                print(f"{label}: wall {wall:.4f} mm measured {float(w['wall']):.4f} "
-                                      f"({err * 1000:+.1f} um), flags {flags}")
+                            for name, true, flag in (("wall", wall, "flags"),
+                                                     ("pressure_wall", pressure, "pressure_flags"),
+                                                     ("suction_wall", suction, "suction_flags")):
+                                walls += 1
+                                err = float(w[name]) - true
+                                worst = max(worst, abs(err))
+                                sigma = float(w["wall_sigma"])
+                                if sigma > 0:
+                                    scores.append(err / sigma)
+                                within += abs(err) <= args.tolerance
+                                flags = int(float(w[flag]))
+                                flagged += flags != 0
+                                if abs(err) > args.tolerance or flags:
+                                    print(f"{label}: {name} {true:.4f} mm measured {float(w[name]):.4f} "
+                                          f"({err * 1000:+.1f} um, wall_sigma "
+                                          f"{float(w['wall_sigma']) * 1000:.1f} um), flags {flags}")
     print(f"hollow: {measured} sections measured, {refused} refused; {within} of {walls} walls within "
           f"{args.tolerance * 1000:.0f} um (largest error {worst * 1000:.1f} um), {flagged} flagged; the channels "
           f"move the profile's values by at most " +
           ", ".join(f"{c} {v * 1000:.1f} um" for c, v in moved.items()))
+    if scores:
+        rms = math.sqrt(sum(z * z for z in scores) / len(scores))
+        print(f"errors over wall_sigma: rms {rms:.2f}, largest {max(abs(z) for z in scores):.2f}, beyond 3: "
+              f"{sum(abs(z) > 3 for z in scores)} of {len(scores)}")
 
 
 if __name__ == "__main__":

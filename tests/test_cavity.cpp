@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -127,6 +128,49 @@ TEST_CASE("measure_cavity: a circle inside an ellipse, its wall exact", "[cavity
   CHECK(below);
 }
 
+// The profile parameter nearest `p` (a dense search: the sides' parting needs no more).
+double parameter_at(const section::BSpline& curve, const Eigen::Vector2d& p) {
+  const double t0 = curve.t_min(), t1 = curve.t_max();
+  double best = t0, least = INFINITY;
+  for (int i = 0; i < 200000; ++i) {
+    const double t = t0 + (t1 - t0) * i / 200000;
+    const double d = (curve.point(t) - p).norm();
+    if (d < least) least = d, best = t;
+  }
+  return best;
+}
+
+TEST_CASE("side_walls: a circle inside an ellipse, the wall to each side exact", "[cavity]") {
+  const section::BSpline profile = loop_curve(ellipse({0, 0}, 20, 3, 4000));
+  const section::BSpline loop = loop_curve(ellipse({0, 0.5}, 1.5, 1.5, 2000));
+  // Parted at the ends of the major axis: forward from (20, 0) runs the upper side
+  // (counterclockwise), 3 - 0.5 - 1.5 = 1 mm from the circle at (0, 3); the lower 2 mm.
+  const double right = parameter_at(profile, {20, 0}), left = parameter_at(profile, {-20, 0});
+  const auto walls = section::side_walls(profile, loop, right, left);
+  CHECK(walls[0].wall == Approx(1.0).margin(1e-6));
+  CHECK((walls[0].profile_point - Eigen::Vector2d(0, 3)).norm() < 1e-3);
+  CHECK((walls[0].cavity_point - Eigen::Vector2d(0, 2)).norm() < 1e-3);
+  CHECK(walls[1].wall == Approx(2.0).margin(1e-6));
+  CHECK((walls[1].profile_point - Eigen::Vector2d(0, -3)).norm() < 1e-3);
+  CHECK_FALSE(walls[1].thin.empty());
+  // The lesser is measure_cavity's wall; parted the other way round, the sides swap.
+  CHECK(std::min(walls[0].wall, walls[1].wall) ==
+        Approx(section::measure_cavity(profile, loop).wall).margin(1e-9));
+  const auto swapped = section::side_walls(profile, loop, left, right);
+  CHECK(swapped[0].wall == Approx(2.0).margin(1e-6));
+  CHECK(swapped[1].wall == Approx(1.0).margin(1e-6));
+  // Parted at (0, 3) and (0, -3): the right half's least is at the parting point (0, 3),
+  // 1 mm (an end of its stretch), the left half's the same there.
+  const double top = parameter_at(profile, {0, 3}), bottom = parameter_at(profile, {0, -3});
+  const auto halves = section::side_walls(profile, loop, bottom, top);
+  CHECK(halves[0].wall == Approx(1.0).margin(1e-4));
+  CHECK(halves[1].wall == Approx(1.0).margin(1e-4));
+  // A loop that is no cavity, and no stretch between the parameters, are refused.
+  CHECK_THROWS_AS(section::side_walls(profile, loop_curve(ellipse({30, 0}, 1, 1, 800)), right, left),
+                  section::Error);
+  CHECK_THROWS_AS(section::side_walls(profile, loop, right, right), section::Error);
+}
+
 TEST_CASE("measure_cavity: loops beside, across and around a profile are no cavities", "[cavity]") {
   const section::BSpline profile = loop_curve(ellipse({0, 0}, 20, 3, 4000));
   const auto place = [&](const Points& p) { return section::measure_cavity(profile, loop_curve(p)).place; };
@@ -193,6 +237,29 @@ TEST_CASE("camber_stream: a hollow blade's section measured, its walls within 3 
     const Eigen::Vector2d on(cell(*walls, r, "profile_u"), cell(*walls, r, "profile_v"));
     CHECK(section::locate(truth, on).distance < 0.003);
     CHECK(cell(*walls, r, "profile_z") == 0);
+    // Centred on the camber line, the channel's wall to each side is the same, each side's
+    // point on its own side (nearest the samples of camber's sides table, 0 the pressure side).
+    for (const char* side : {"pressure", "suction"}) {
+      INFO(side);
+      const std::string prefix = side;
+      CHECK(std::abs(cell(*walls, r, (prefix + "_wall").c_str()) - ch->wall) < 0.003);
+      CHECK(cell(*walls, r, (prefix + "_flags").c_str()) == 0);
+      const Eigen::Vector2d p(cell(*walls, r, (prefix + "_u").c_str()),
+                              cell(*walls, r, (prefix + "_v").c_str()));
+      CHECK(section::locate(truth, p).distance < 0.003);
+      const section::Table& sides = section::schema::sides.get(s);
+      double near[2] = {INFINITY, INFINITY};
+      for (std::size_t k = 0; k < sides.rows(); ++k) {
+        const int which = int(cell(sides, k, "side"));
+        near[which] =
+            std::min(near[which], (Eigen::Vector2d(cell(sides, k, "u"), cell(sides, k, "v")) - p).norm());
+      }
+      const int own = prefix == "pressure" ? 0 : 1;
+      CHECK(near[own] < 0.2);  // its samples' spacing
+      CHECK(near[1 - own] > near[own] + 0.5);
+    }
+    CHECK(std::min(cell(*walls, r, "pressure_wall"), cell(*walls, r, "suction_wall")) ==
+          Approx(cell(*walls, r, "wall")).margin(1e-9));
   }
 }
 
@@ -299,6 +366,43 @@ TEST_CASE("compare_stream: a hollow section's thinnest wall judged on its value 
   CHECK(wall_verdict(measured_stream, band) == section::Verdict::pass);
   // A solid nominal has no wall to deviate from, and a solid section no wall at all.
   CHECK(wall_verdict(solid, band) == section::Verdict::not_measured);
+}
+
+TEST_CASE("compare_stream: a core shifted toward one side thins that side's wall and thickens the other's",
+          "[cavity][compare]") {
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
+  const Channel ch = channel(truth, 0.5, 0.5);
+  const auto hollow = [&](const Eigen::Vector2d& centre) {
+    return measured([&](int layer) {
+      Points p = outer_layer(truth, layer);
+      for (const Eigen::Vector2d& q : noisy_circle(centre, ch.radius, 0.05, 0.002, 60 + unsigned(layer + 5)))
+        p.push_back(q);
+      return p;
+    });
+  };
+  const section::Stream nominal = hollow(ch.center);
+  const section::Table& nominal_walls = section::schema::walls.get(nominal);
+  REQUIRE(nominal_walls.rows() == 1);
+  // The channel moved 0.1 mm toward the pressure side's thinnest place.
+  const Eigen::Vector2d toward =
+      (Eigen::Vector2d(cell(nominal_walls, 0, "pressure_u"), cell(nominal_walls, 0, "pressure_v")) -
+       ch.center)
+          .normalized();
+  section::Stream s = hollow(ch.center + 0.1 * toward);
+  section::compare_stream(s, nominal, {});
+  const section::Table& compared = section::schema::compared.get(s);
+  std::map<int, double> deviation;
+  for (std::size_t r = 0; r < compared.rows(); ++r)
+    if (cell(compared, r, "measured") == 1)
+      deviation[int(cell(compared, r, "item"))] = cell(compared, r, "deviation");
+  // The pressure side's wall 0.1 mm thinner (the thinnest wall with it), the suction
+  // side's about 0.1 mm thicker (the sides are not parallel: a little less).
+  REQUIRE(deviation.count(17));
+  REQUIRE(deviation.count(18));
+  REQUIRE(deviation.count(19));
+  CHECK(deviation[18] == Approx(-0.1).margin(0.004));
+  CHECK(deviation[17] == Approx(-0.1).margin(0.004));
+  CHECK(deviation[19] == Approx(0.1).margin(0.01));
 }
 
 TEST_CASE("nominal_stream: a nominal mesh keeps its section's cavities, not a blade beside it",

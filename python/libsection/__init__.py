@@ -23,14 +23,14 @@ import numpy as _np
 
 from . import _libsection
 from ._libsection import (Cancelled, Error, Nominal, Spline, Stream, canonical_loop, compare_report, failed_checks,
-                          generate, measure_cavity, parse_stream, read_cloud, read_stream, verdict)
+                          generate, measure_cavity, side_walls, parse_stream, read_cloud, read_stream, verdict)
 from .tables import format_number, read_tables, table, to_csv
 
 __all__ = ["slice", "smooth", "fit_spline", "camber", "blade", "compare", "compare_stream", "compare_report", "verdict",
            "prepare_nominal", "Nominal", "Stream", "Spline",
            "Error", "Cancelled", "read_stream",
            "parse_stream", "read_cloud", "read_tables", "table", "format_number", "to_csv", "generate",
-           "failed_checks", "canonical_loop", "measure_cavity"]
+           "failed_checks", "canonical_loop", "measure_cavity", "side_walls"]
 __version__ = "0.1.0"
 
 

@@ -220,6 +220,10 @@ void bind_curve_functions(py::module_& m) {
       "canonical_loop",
       [](const Array& points) { return array2(canonical_loop(points2(points, "canonical_loop"))); },
       py::arg("points"));
+}
+
+// A hollow section's cavities (section/cavity.h).
+void bind_cavity_functions(py::module_& m) {
   m.def(
       "measure_cavity",
       [](const BSpline& profile, const BSpline& loop, int samples, double thin) {
@@ -247,6 +251,31 @@ void bind_curve_functions(py::module_& m) {
       },
       py::arg("profile"), py::arg("loop"), py::arg("samples") = CavityOptions{}.samples,
       py::arg("thin") = CavityOptions{}.thin);
+  m.def(
+      "side_walls",
+      [](const BSpline& profile, const BSpline& loop, double t0, double t1, int samples, double thin) {
+        CavityOptions o;
+        o.samples = samples;
+        o.thin = thin;
+        std::array<CavityWall, 2> walls;
+        {
+          py::gil_scoped_release unlocked;
+          walls = side_walls(profile, loop, t0, t1, o);
+        }
+        py::list out;
+        for (const CavityWall& w : walls) {
+          py::dict d;
+          d["wall"] = w.wall;
+          d["profile_point"] = array2({w.profile_point});
+          d["cavity_point"] = array2({w.cavity_point});
+          d["profile_t"] = w.profile_t;
+          d["cavity_t"] = w.cavity_t;
+          out.append(d);
+        }
+        return out;
+      },
+      py::arg("profile"), py::arg("loop"), py::arg("t0"), py::arg("t1"),
+      py::arg("samples") = CavityOptions{}.samples, py::arg("thin") = CavityOptions{}.thin);
 }
 
 }  // namespace
@@ -280,6 +309,7 @@ void bind_stages(py::module_& m) {
   });
   m.def("blade_stream", &blade_of, py::arg("stream"));
   bind_curve_functions(m);
+  bind_cavity_functions(m);
 }
 
 }  // namespace section::python

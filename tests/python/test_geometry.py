@@ -151,3 +151,18 @@ def test_measure_cavity_gives_the_wall_of_a_circle_inside_an_ellipse():
     assert ls.measure_cavity(profile, ls.fit_spline(ellipse(1, 1, 800) + [0, 3]))["place"] == "crossing"
     with pytest.raises(ValueError):
         ls.measure_cavity(profile, profile, samples=10)
+
+
+def test_side_walls_gives_the_wall_to_each_side_of_an_ellipse():
+    profile = ls.fit_spline(ellipse(20, 3, 4000))
+    loop = ls.fit_spline(ellipse(1.5, 1.5, 2000) + [0, 0.5])
+    t = np.linspace(profile.t_min, profile.t_max, 100001)
+    at = profile(t)  # parted at the ends of the major axis: the upper side runs forward from (20, 0)
+    right = t[np.argmin(np.linalg.norm(at - [20, 0], axis=1))]
+    left = t[np.argmin(np.linalg.norm(at - [-20, 0], axis=1))]
+    upper, lower = ls.side_walls(profile, loop, right, left)
+    assert abs(upper["wall"] - 1.0) < 1e-5  # to (0, 3)
+    assert abs(lower["wall"] - 2.0) < 1e-5  # to (0, -3)
+    assert np.linalg.norm(lower["profile_point"][0] - [0, -3]) < 1e-3
+    with pytest.raises(ValueError):
+        ls.side_walls(profile, loop, right, right)

@@ -140,12 +140,20 @@ check "the wall is 1 mm (2 um) at (0, 3)" -- awk -F, 'NR == 1 { for (i = 1; i <=
   { d = $c["wall"] - 1; if (d < 0) d = -d; u = $c["profile_u"]; if (u < 0) u = -u; v = $c["profile_v"] - 3; if (v < 0) v = -v
     if (d > 0.002 || u > 0.05 || v > 0.002 || $c["flags"] != 0) { print $c["wall"], $c["profile_u"], $c["profile_v"], $c["flags"]; exit 1 } }' \
   "$TMP/walls.csv"
+# Its wall to each side: 1 mm to the upper, 2 mm to the lower (which is the pressure side of
+# a symmetric section is the LE and TE's choice; the lesser is the thinnest).
+check "the walls to the two sides are 1 and 2 mm (2 um)" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { p = $c["pressure_wall"]; s = $c["suction_wall"]; lo = p < s ? p : s; hi = p < s ? s : p
+    d = lo - $c["wall"]; if (d < 0) d = -d
+    if (lo < 0.998 || lo > 1.002 || hi < 1.998 || hi > 2.002 || d > 1e-9 || $c["pressure_flags"] != 0 || $c["suction_flags"] != 0) { print p, s, $c["wall"]; exit 1 } }' \
+  "$TMP/walls.csv"
 if [ -x "$BIN/tocad" ]; then
   expect 0 "tocad's JSON of a hollow section" -- "$BIN/tocad" "$TMP/h.txt" -o "$TMP/h.json"
   check "its default tables hold the walls" -- grep -q '"walls": \[{"loop": 1' "$TMP/h.json"
 fi
 expect 0 "camber --format table on a hollow section" -- "$camber" "$TMP/h_fit.txt" --format table
 check "the table for people lists the cavity" -- grep -q "cavity 1  *wall  *1.00" "$TMP/out"
+check "... and its walls to the sides" -- grep -q "to pressure  *[12].00.*to suction  *[12].00" "$TMP/out"
 "$BIN/slice" "$TMP/solid.xyz" --at 0 2>/dev/null | "$BIN/smooth" 2>/dev/null | "$BIN/fitspline" > "$TMP/s_fit.txt" 2>/dev/null
 expect 0 "camber --walls on a solid section" -- "$camber" "$TMP/s_fit.txt" --walls "$TMP/walls0.csv" -o "$TMP/s.txt"
 check "no walls table in a solid section's stream" -- bash -c "! grep -q '^# table walls$' '$TMP/s.txt'"

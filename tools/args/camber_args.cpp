@@ -20,9 +20,10 @@ const char* const CamberArgs::description =
     "are recorded as issues.\n\n"
     "A hollow blade's section (a CT scan's, with cooling channels) holds loops inside its\n"
     "profile: its cavities. The profile is measured as any other, and each cavity's thinnest\n"
-    "wall to it goes to the table 'walls' (--walls FILE), flagged (check wall_measured)\n"
-    "where a hole in the data lies under its thin stretch. A loop beside the profile, across\n"
-    "it or within a cavity leaves the section unmeasured.\n\n"
+    "wall to it, and its thinnest to the pressure and to the suction side (a shifted core\n"
+    "thins one and thickens the other), go to the table 'walls' (--walls FILE), each flagged\n"
+    "(check wall_measured) where a hole in the data lies under its thin stretch. A loop\n"
+    "beside the profile, across it or within a cavity leaves the section unmeasured.\n\n"
     "Every params row is checked before it is written (edge circles inside the blade, edge\n"
     "points on the profile, chord against the profile's extent, metal angles against the\n"
     "camber line, values against the neighbouring sections): a value that fails a check is\n"
@@ -143,7 +144,8 @@ void CamberArgs::declare(CLI::App& app) {
   app.add_option("--thickness", thickness_file, "Also write the 'thickness' table to FILE (CSV)");
   app.add_option(
       "--walls", walls_file,
-      "Also write the 'walls' table to FILE (CSV): each cavity's thinnest wall (a hollow blade's)");
+      "Also write the 'walls' table to FILE (CSV): each cavity's thinnest wall, and to each side (a "
+      "hollow blade's)");
   app.add_option(
          "--stations", stations,
          "Thickness stations, fractions of the camber length between 0 and 1 (default 0.05,0.1,...,0.95)")

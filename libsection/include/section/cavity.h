@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -47,5 +48,27 @@ struct Cavity {
 /// Where closed `loop` lies against closed `profile` and, inside it, its wall. Throws
 /// section::Error for a curve that is open or degenerate, or fewer than 256 samples.
 Cavity measure_cavity(const BSpline& profile, const BSpline& loop, const CavityOptions& options = {});
+
+/// The thinnest wall between a cavity and one stretch of the profile (one side of a blade).
+struct CavityWall {
+  double wall = 0;  ///< the least distance from the cavity to the stretch
+  /// Where it is thinnest: the stretch's point (an end of it when the least lies there)
+  /// and the cavity's, and their parameters.
+  Eigen::Vector2d profile_point{0, 0}, cavity_point{0, 0};
+  double profile_t = 0, cavity_t = 0;
+  /// The thin stretch, as Cavity::thin, against this stretch of the profile alone.
+  std::vector<std::pair<double, double>> thin;
+};
+
+/// The walls between `loop`, a cavity inside `profile`, and each of the two stretches of the
+/// profile that its parameters `t0` and `t1` part (a blade section's sides, parted at its
+/// LE and TE points): [0] against the stretch from t0 forward to t1, [1] against the one
+/// from t1 forward to t0. The lesser of the two is measure_cavity's wall: a cavity near
+/// one side has its thinnest wall there, and the other side's tells how far the cavity
+/// sits from it (a casting's core shifted toward one side thins that wall and thickens the
+/// other). Throws section::Error for curves measure_cavity refuses, a loop not inside the
+/// profile, or t0 and t1 the same point.
+std::array<CavityWall, 2> side_walls(const BSpline& profile, const BSpline& loop, double t0, double t1,
+                                     const CavityOptions& options = {});
 
 }  // namespace section

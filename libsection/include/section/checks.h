@@ -66,8 +66,9 @@ enum class Check : CheckBits {
   /// curve between its points there gives another edge point, radius or angle
   le_start = CheckBits(1) << 35,
   te_start = CheckBits(1) << 36,  ///< the same at the TE
-  /// a cavity's thinnest wall (the walls table) rests on a stretch of the profile or the
-  /// cavity without measured points: the wall there is the fits' bridge
+  /// a cavity's thinnest wall (the walls table; or its thinnest to a side, in that side's
+  /// flags) rests on a stretch of the profile or the cavity without measured points: the
+  /// wall there is the fits' bridge
   wall_measured = CheckBits(1) << 37,
 };
 

@@ -149,8 +149,9 @@ std::string value_rows(const RowView& p, double mm) {
   return out;
 }
 
-// A hollow blade's cavities in section s (the walls table's rows), a line each: its thinnest
-// wall, marked when a failed check flags it, and its area.
+// A hollow blade's cavities in section s (the walls table's rows), two lines each: its
+// thinnest wall, marked when a failed check flags it, and its area; then its thinnest to each
+// side.
 std::string wall_rows(const Table* walls, int s, double mm) {
   if (!walls) return "";
   const long c = walls->find_column("section");
@@ -164,6 +165,14 @@ std::string wall_rows(const Table* walls, int s, double mm) {
                        cell("wall", fixed(w("wall") * mm, 4), "mm", flags) + " " +
                        cell("area", fixed(w("area") * mm * mm, 4), "mm^2") +
                        (flags ? " " + check_names_text(flags) : std::string());
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+    if (!std::isfinite(w("pressure_wall"))) continue;  // a stream written without the sides' walls
+    const CheckBits pressure = checks_flagging(flags_mask(w("pressure_flags")), "wall"),
+                    suction = checks_flagging(flags_mask(w("suction_flags")), "wall");
+    line = "  " + pad("", 15) + cell("to pressure", fixed(w("pressure_wall") * mm, 4), "mm", pressure) + " " +
+           cell("to suction", fixed(w("suction_wall") * mm, 4), "mm", suction) +
+           ((pressure | suction) ? " " + check_names_text(pressure | suction) : std::string());
     while (!line.empty() && line.back() == ' ') line.pop_back();
     out += line + "\n";
   }

@@ -10,6 +10,7 @@
 #include "section/units.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -48,6 +49,47 @@ std::vector<SectionCavity> cavities_of(int section, const BSpline& local, const 
   return out;
 }
 
+namespace {
+
+// The measured points' coverage of a cavity's two curves, about its walls.
+struct WallCoverage {
+  const ProfileCoverage& outer;
+  const ProfileCoverage& inner;
+  const detail::PiecewiseCurve& cavity;
+  const CamberOptions& opt;
+  double chord;
+
+  // The longest hole under a wall's thin stretch, on either curve (0: none), and on which.
+  double hole_under(const std::vector<std::pair<double, double>>& thin, double wall,
+                    const char*& side) const {
+    const double limit = std::min(opt.thickness_hole * chord, wall);
+    double hole = 0;
+    Eigen::Vector2d last(std::numeric_limits<double>::infinity(), 0);
+    for (const auto& [tc, tp] : thin) {
+      // Every quarter of the shortest hole that counts: a hole begins within half of it.
+      const Eigen::Vector2d at = cavity.point(cavity.locate(tc));
+      if ((at - last).norm() < limit / 4) continue;
+      last = at;
+      const ContactCoverage on[2] = {outer.about(tp, 3 * limit, limit / 2),
+                                     inner.about(tc, 3 * limit, limit / 2)};
+      for (int k = 0; k < 2; ++k)
+        if (on[k].hole > hole && unmeasured(on[k], limit, opt.thickness_hole_spacings))
+          hole = on[k].hole, side = k == 0 ? "profile" : "cavity";
+    }
+    return hole;
+  }
+};
+
+// A cavity's walls' standard error through the points' noise (WallNoise; 0 when unknown):
+// the cavity's share its curve's control points over its `measured` points.
+double wall_sigma(const WallNoise& nz, const BSpline& cavity, std::size_t measured) {
+  if (!(nz.sigma > 0)) return 0;
+  const double share = measured > 0 ? std::min(1.0, double(cavity.control.size()) / double(measured)) : 1.0;
+  return nz.sigma * std::sqrt(nz.profile_share + share);
+}
+
+}  // namespace
+
 void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities, std::vector<double>& rows,
                std::vector<SectionIssue>& issues) {
   if (cavities.empty()) return;
@@ -61,60 +103,63 @@ void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities,
   const double h = 0.03 * std::max(finest, 1e-3 * chord);
   const ProfileCoverage outer(in.profile, in.measured, h);
   for (const SectionCavity& c : cavities) {
-    const double limit = std::min(opt.thickness_hole * chord, c.cavity.wall);
     const auto points = in.loop_points.find({section, c.loop});
     const ProfileCoverage inner(detail::PiecewiseCurve(c.curve),
                                 points != in.loop_points.end() ? detail::moved(points->second, in.origin)
                                                                : std::vector<Eigen::Vector2d>{},
                                 h);
-    // The longest hole under the thin stretch, on either side (0: none).
-    double hole = 0;
-    const char* side = "";
     const detail::PiecewiseCurve cavity(c.curve);
-    Eigen::Vector2d last(std::numeric_limits<double>::infinity(), 0);
-    for (const auto& [tc, tp] : c.cavity.thin) {
-      // Every quarter of the shortest hole that counts: a hole begins within half of it.
-      const Eigen::Vector2d at = cavity.point(cavity.locate(tc));
-      if ((at - last).norm() < limit / 4) continue;
-      last = at;
-      const ContactCoverage on[2] = {outer.about(tp, 3 * limit, limit / 2),
-                                     inner.about(tc, 3 * limit, limit / 2)};
-      for (int k = 0; k < 2; ++k)
-        if (on[k].hole > hole && unmeasured(on[k], limit, opt.thickness_hole_spacings))
-          hole = on[k].hole, side = k == 0 ? "profile" : "cavity";
-    }
+    const WallCoverage coverage{outer, inner, cavity, opt, chord};
+    const std::string name = "cavity (loop " + std::to_string(c.loop) + "): ";
+    const auto hole_issue = [&](const std::string& wall, double value, double hole, const char* side) {
+      issues.push_back({section, c.loop, "camber",
+                        name + wall + ", thinnest " + format_length(value) + ", runs over " +
+                            format_length(hole) + " of the " + side +
+                            " without a measured point where it is thin; the fits' bridge over that hole may "
+                            "hide a thinner wall (check wall_measured)"});
+    };
+    const char* side = "";
+    const double hole = coverage.hole_under(c.cavity.thin, c.cavity.wall, side);
     CheckBits flags = in.section_flags;
     const WallNoise& nz = in.noise;
-    double sigma = 0;
+    const double sigma =
+        wall_sigma(nz, c.curve, points != in.loop_points.end() ? points->second.size() : std::size_t(0));
     if (nz.sigma > 0) {
-      const std::size_t measured = points != in.loop_points.end() ? points->second.size() : 0;
-      const double share =
-          measured > 0 ? std::min(1.0, double(c.curve.control.size()) / double(measured)) : 1.0;
-      sigma = nz.sigma * std::sqrt(nz.profile_share + share);
       if (2 * sigma > nz.limit && !(flags & bit(Check::noise))) {
         flags |= bit(Check::noise);
         issues.push_back(
             {section, c.loop, "camber",
-             "cavity (loop " + std::to_string(c.loop) + "): its thinnest wall, " +
-                 format_length(c.cavity.wall) + ", has a standard error of " + format_length(sigma) +
+             name + "its thinnest wall, " + format_length(c.cavity.wall) + ", has a standard error of " +
+                 format_length(sigma) +
                  " through the points' noise over the profile's and the cavity's fits: twice that is "
                  "more than the accuracy allows (" +
                  format_length(nz.limit) + "; check noise)"});
       }
     }
+    // The sides' walls: flagged as the thinnest (the same noise), each by its own holes.
+    const CheckBits side_flags = flags;
     if (hole > 0) {
       flags |= bit(Check::wall_measured);
-      issues.push_back({section, c.loop, "camber",
-                        "cavity (loop " + std::to_string(c.loop) + "): its wall, thinnest " +
-                            format_length(c.cavity.wall) + ", runs over " + format_length(hole) + " of the " +
-                            side +
-                            " without a measured point where it is thin; the fits' bridge over that hole may "
-                            "hide a thinner wall (check wall_measured)"});
+      hole_issue("its wall", c.cavity.wall, hole, side);
+    }
+    std::array<CavityWall, 2> walls = side_walls(in.curve, c.curve, in.le_t, in.te_t);
+    if (!in.forward_is_pressure) std::swap(walls[0], walls[1]);
+    CheckBits wall_flags[2] = {side_flags, side_flags};
+    for (int k = 0; k < 2; ++k) {
+      const char* where = "";
+      const double side_hole = coverage.hole_under(walls[k].thin, walls[k].wall, where);
+      if (side_hole > 0) {
+        wall_flags[k] |= bit(Check::wall_measured);
+        hole_issue(k == 0 ? "its wall to the pressure side" : "its wall to the suction side", walls[k].wall,
+                   side_hole, where);
+      }
+      walls[k].profile_point += in.origin, walls[k].cavity_point += in.origin;
     }
     Cavity at = c.cavity;
     at.profile_point += in.origin, at.cavity_point += in.origin;
-    schema::walls.append(rows, {section, c.loop, at, sigma, in.frame.to_world(at.profile_point),
-                                in.frame.to_world(at.cavity_point), flags});
+    schema::walls.append(
+        rows, {section, c.loop, at, sigma, in.frame.to_world(at.profile_point),
+               in.frame.to_world(at.cavity_point), flags, walls[0], walls[1], wall_flags[0], wall_flags[1]});
   }
 }
 

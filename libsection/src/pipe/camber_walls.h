@@ -49,7 +49,10 @@ struct WallNoise {
 struct WallsInput {
   int section;
   const Frame& frame;
-  const detail::PiecewiseCurve& profile;         ///< loop 0 about the local origin
+  const BSpline& curve;                          ///< loop 0 about the local origin
+  const detail::PiecewiseCurve& profile;         ///< ... its piecewise form
+  double le_t, te_t;                             ///< the LE and TE points' parameters on it
+  bool forward_is_pressure;                      ///< the pressure side runs forward from le_t
   const std::vector<Eigen::Vector2d>& measured;  ///< loop 0's measured points, about it too
   const std::map<std::pair<int, int>, std::vector<Eigen::Vector2d>>& loop_points;  ///< the others', as read
   const CamberOptions& options;
@@ -66,7 +69,9 @@ struct WallsInput {
 /// points' mean distance there: the fits' bridge over it may hide a thinner wall, or be it;
 /// and flagged noise where the points' noise leaves it uncertain beyond the accuracy
 /// (WallNoise; the cavity's share its curve's control points over its measured points),
-/// its standard error in the row.
+/// its standard error in the row. Each row holds the walls to the pressure and the suction
+/// side too (side_walls, parted at the LE and TE points), each flagged by the same checks,
+/// wall_measured for a hole under its own thin stretch.
 void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities, std::vector<double>& rows,
                std::vector<SectionIssue>& issues);
 

@@ -51,7 +51,9 @@ const Item items[] = {
     {"caliper_stagger", le | te | ps, true},
     {"fit_shift", 0, false},
     {"fit_rotation", 0, true},
-    {"wall", 0, false},  // a hollow section's thinnest wall (camber's walls table)
+    {"wall", 0, false},           // a hollow section's thinnest wall (camber's walls table)
+    {"pressure_wall", 0, false},  // ... its thinnest to the pressure side
+    {"suction_wall", 0, false},   // ... and to the suction side
 };
 const char* const zone_suffix[] = {"", "_le", "_te", "_pressure", "_suction"};
 
@@ -70,21 +72,27 @@ std::map<int, Row> by_section(const Table* t) {
 }
 
 // Each section's thinnest cavity wall (camber's walls table: a hollow blade's) into its
-// params row as `wall`, `wall_sigma` and `wall_flags` (that wall's row's checks): none for a
-// section without a cavity.
+// params row as `wall`, `wall_sigma` and `wall_flags` (that wall's row's checks), and its
+// thinnest to each side as `pressure_wall` and `suction_wall` (with `_sigma` and `_flags`):
+// none for a section without a cavity, nor the sides' from a stream written without them.
 void add_thinnest_walls(const Stream& stream, std::map<int, Row>& params) {
   const Table* t = schema::walls.find(stream);
   if (!t) return;
-  const std::size_t cs = t->column(schema::col::section), cw = t->column("wall"),
-                    cg = t->column("wall_sigma"), cf = t->column("flags");
-  for (std::size_t r = 0; r < t->rows(); ++r) {
-    const auto row = params.find(static_cast<int>(t->at(r, cs)));
-    if (row == params.end()) continue;
-    const auto least = row->second.find("wall");
-    if (least != row->second.end() && !(t->at(r, cw) < least->second)) continue;
-    row->second["wall"] = t->at(r, cw);
-    row->second["wall_sigma"] = t->at(r, cg);
-    row->second["wall_flags"] = t->at(r, cf);
+  const std::size_t cs = t->column(schema::col::section), cg = t->column("wall_sigma");
+  for (const char* side : {"", "pressure_", "suction_"}) {
+    const std::string wall = side + std::string("wall");
+    const long cw = t->find_column(wall), cf = t->find_column(*side ? side + std::string("flags") : "flags");
+    if (cw < 0 || cf < 0) continue;
+    for (std::size_t r = 0; r < t->rows(); ++r) {
+      const auto row = params.find(static_cast<int>(t->at(r, cs)));
+      if (row == params.end()) continue;
+      const double value = t->at(r, static_cast<std::size_t>(cw));
+      const auto least = row->second.find(wall);
+      if (least != row->second.end() && !(value < least->second)) continue;
+      row->second[wall] = value;
+      row->second[wall + "_sigma"] = t->at(r, cg);
+      row->second[wall + "_flags"] = t->at(r, static_cast<std::size_t>(cf));
+    }
   }
 }
 
@@ -242,11 +250,12 @@ double value_of(const Row& row, const std::string& column, double otherwise = 0)
   return v != row.end() ? v->second : otherwise;
 }
 
-// The checks of a params row (its `flags` column; the thinnest wall's own, for `wall`) that
-// flag `column`.
+// The checks of a params row (its `flags` column; a wall's own, for the walls) that flag
+// `column`.
 CheckBits flagging(const Row& row, const char* column) {
-  const bool wall = std::string(column) == "wall";
-  return checks_flagging(flags_mask(value_of(row, wall ? "wall_flags" : "flags")), column);
+  const std::string name = column;
+  const bool wall = name == "wall" || name == "pressure_wall" || name == "suction_wall";
+  return checks_flagging(flags_mask(value_of(row, wall ? name + "_flags" : "flags")), wall ? "wall" : column);
 }
 
 double wrapped(double degrees) {

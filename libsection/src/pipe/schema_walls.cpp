@@ -9,7 +9,7 @@ namespace section::schema {
 
 namespace {
 
-constexpr std::array<Column<WallRow>, 11> wall_columns{{
+constexpr std::array<Column<WallRow>, 17> wall_columns{{
     {col::section, "id", "the section id (the plane's index)",
      [](const WallRow& r) { return double(r.section); }},
     {col::loop, "id", "the cavity's loop id within the section (loop 0 is the profile)",
@@ -35,14 +35,32 @@ constexpr std::array<Column<WallRow>, 11> wall_columns{{
      "(layers, noise, units, registration, airfoil), noise too when twice wall_sigma exceeds 1.5e-4 of the "
      "profile's size, and wall_measured when a hole in the data lies under its thin stretch; 0 when none",
      [](const WallRow& r) { return double(r.flags); }},
+    {"pressure_wall", "length",
+     "the thinnest wall to the pressure side (the profile from the LE point to the TE point along "
+     "it): with suction_wall, where the cavity sits between the sides (a core shifted toward one side "
+     "thins its wall and thickens the other's)",
+     [](const WallRow& r) { return r.pressure.wall; }},
+    {"pressure_", uv, "length", "where it is thinnest: the pressure side's point",
+     [](const WallRow& r) { return r.pressure.profile_point; }},
+    {"pressure_flags", "code",
+     "the checks the pressure side's wall failed, as flags: wall_measured for a hole under its own thin "
+     "stretch",
+     [](const WallRow& r) { return double(r.pressure_flags); }},
+    {"suction_wall", "length", "the thinnest wall to the suction side",
+     [](const WallRow& r) { return r.suction.wall; }},
+    {"suction_", uv, "length", "where it is thinnest: the suction side's point",
+     [](const WallRow& r) { return r.suction.profile_point; }},
+    {"suction_flags", "code", "the checks the suction side's wall failed, as pressure_flags",
+     [](const WallRow& r) { return double(r.suction_flags); }},
 }};
 
 }  // namespace
 
 const TableSchema<WallRow> walls{
     "walls", "camber",
-    "one row per cavity of a section (a loop inside its profile: a hollow blade's channel) and its thinnest "
-    "wall (docs/CAMBER.md, \"Hollow blades\"); written only for sections that hold one",
+    "one row per cavity of a section (a loop inside its profile: a hollow blade's channel): its thinnest "
+    "wall, and its thinnest to each side (docs/CAMBER.md, \"Hollow blades\"); written only for sections "
+    "that hold one",
     wall_columns};
 
 }  // namespace section::schema

@@ -240,6 +240,9 @@ struct WallRow {
   double sigma;  ///< the wall's standard error through the points' noise (0: unknown)
   Eigen::Vector3d profile_world, cavity_world;  ///< the wall's two ends in 3D
   CheckBits flags;                              ///< the checks its wall failed (section/checks.h)
+  const CavityWall& pressure;                   ///< the thinnest wall to the pressure side
+  const CavityWall& suction;                    ///< ... and to the suction side
+  CheckBits pressure_flags, suction_flags;      ///< the checks each failed
 };
 
 // compare's rows (docs/COMPARE.md). Verdict codes: -1 no tolerance, 0 pass, 1 fail,
