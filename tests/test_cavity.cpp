@@ -111,6 +111,7 @@ TEST_CASE("measure_cavity: a circle inside an ellipse, its wall exact", "[cavity
   CHECK((off.profile_point - Eigen::Vector2d(0, 3)).norm() < 1e-3);
   CHECK((off.cavity_point - Eigen::Vector2d(0, 2)).norm() < 1e-3);
   CHECK(off.area == Approx(pi * 1.5 * 1.5).epsilon(1e-5));
+  CHECK((off.centroid - Eigen::Vector2d(0, 0.5)).norm() < 1e-6);
   CHECK(off.length == Approx(2 * pi * 1.5).epsilon(1e-5));
   CHECK_FALSE(off.thin.empty());
   // Centred: two walls of 1 mm, both in the thin stretch (one cavity sample near each).
@@ -368,15 +369,19 @@ TEST_CASE("compare_stream: a hollow section's thinnest wall judged on its value 
   CHECK(wall_verdict(solid, band) == section::Verdict::not_measured);
 }
 
-TEST_CASE("compare_stream: a core shifted toward one side thins that side's wall and thickens the other's",
-          "[cavity][compare]") {
+TEST_CASE(
+    "compare_stream: a core shifted toward one side thins that side's wall, thickens the other's, and is its "
+    "core_shift",
+    "[cavity][compare]") {
   const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
   const Channel ch = channel(truth, 0.5, 0.5);
-  const auto hollow = [&](const Eigen::Vector2d& centre) {
+  // The section's points, the channel's centred at `centre`, all moved by `by`.
+  const auto hollow = [&](const Eigen::Vector2d& centre, const Eigen::Vector2d& by = {0, 0}) {
     return measured([&](int layer) {
       Points p = outer_layer(truth, layer);
       for (const Eigen::Vector2d& q : noisy_circle(centre, ch.radius, 0.05, 0.002, 60 + unsigned(layer + 5)))
         p.push_back(q);
+      for (Eigen::Vector2d& q : p) q += by;
       return p;
     });
   };
@@ -403,6 +408,19 @@ TEST_CASE("compare_stream: a core shifted toward one side thins that side's wall
   CHECK(deviation[18] == Approx(-0.1).margin(0.004));
   CHECK(deviation[17] == Approx(-0.1).margin(0.004));
   CHECK(deviation[19] == Approx(0.1).margin(0.01));
+  // The core shift: the cavity's centroid 0.1 mm off the nominal's.
+  REQUIRE(deviation.count(20));
+  CHECK(deviation[20] == Approx(0.1).margin(0.002));
+  // The whole section moved in its plane, the core with it: the fit takes the move out,
+  // and the core has not shifted.
+  section::Stream moved = hollow(ch.center, {0.05, -0.03});
+  section::compare_stream(moved, nominal, {});
+  const section::Table& again = section::schema::compared.get(moved);
+  for (std::size_t r = 0; r < again.rows(); ++r)
+    if (cell(again, r, "item") == 20) {
+      CHECK(cell(again, r, "measured") == 1);
+      CHECK(cell(again, r, "value") < 0.002);
+    }
 }
 
 TEST_CASE("nominal_stream: a nominal mesh keeps its section's cavities, not a blade beside it",

@@ -127,12 +127,20 @@ Cavity measure_cavity(const BSpline& profile, const BSpline& loop, const CavityO
   const detail::SampledProfile pr(profile, options.samples), lp(loop, options.samples / 4);
   Cavity c;
   const std::size_t n = lp.samples.size();
+  // About the first sample: a loop far from the origin keeps its centroid's digits.
+  const Eigen::Vector2d o = lp.samples[0];
+  Eigen::Vector2d moment(0, 0);
+  double about = 0;  // twice the area, about o
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector2d& a = lp.samples[i];
     const Eigen::Vector2d& b = lp.samples[(i + 1) % n];
     c.area += detail::cross(a, b);
+    const double twice = detail::cross(a - o, b - o);
+    about += twice;
+    moment += twice * (a + b - 2 * o);
     c.length += (b - a).norm();
   }
+  c.centroid = about != 0 ? Eigen::Vector2d(o + moment / (3 * about)) : o;
   c.area = 0.5 * std::abs(c.area);
   const int inside = inside_tests(pr, lp);
   if (inside == 0) return c;  // outside (or around the profile)

@@ -242,6 +242,7 @@ void bind_cavity_functions(py::module_& m) {
         out["place"] = place;
         out["area"] = c.area;
         out["length"] = c.length;
+        out["centroid"] = array2({c.centroid});
         out["wall"] = c.wall;
         out["profile_point"] = array2({c.profile_point});
         out["cavity_point"] = array2({c.cavity_point});

@@ -147,6 +147,7 @@ def test_measure_cavity_gives_the_wall_of_a_circle_inside_an_ellipse():
     assert abs(inside["wall"] - 1.0) < 1e-5  # at the co-vertex (0, 3)
     assert np.linalg.norm(inside["profile_point"][0] - [0, 3]) < 1e-3
     assert abs(inside["area"] - np.pi * 1.5 ** 2) < 1e-4
+    assert np.linalg.norm(inside["centroid"][0] - [0, 0.5]) < 1e-6
     assert ls.measure_cavity(profile, ls.fit_spline(ellipse(1, 1, 800) + [30, 0]))["place"] == "outside"
     assert ls.measure_cavity(profile, ls.fit_spline(ellipse(1, 1, 800) + [0, 3]))["place"] == "crossing"
     with pytest.raises(ValueError):

@@ -32,9 +32,10 @@ struct CavityOptions {
 /// them: the least distance from the loop to the profile, exact on the two curves.
 struct Cavity {
   LoopPlace place = LoopPlace::outside;
-  double area = 0;    ///< the area the loop encloses (of its samples' polygon)
-  double length = 0;  ///< its length (of the same polygon)
-  double wall = 0;    ///< inside: the least distance from the loop to the profile (else 0)
+  double area = 0;                 ///< the area the loop encloses (of its samples' polygon)
+  Eigen::Vector2d centroid{0, 0};  ///< the centroid of that area (a core's position)
+  double length = 0;               ///< its length (of the same polygon)
+  double wall = 0;                 ///< inside: the least distance from the loop to the profile (else 0)
   /// Inside: where the wall is thinnest, the two nearest points and their parameters.
   Eigen::Vector2d profile_point{0, 0}, cavity_point{0, 0};
   double profile_t = 0, cavity_t = 0;

@@ -156,10 +156,10 @@ void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities,
       walls[k].profile_point += in.origin, walls[k].cavity_point += in.origin;
     }
     Cavity at = c.cavity;
-    at.profile_point += in.origin, at.cavity_point += in.origin;
-    schema::walls.append(
-        rows, {section, c.loop, at, sigma, in.frame.to_world(at.profile_point),
-               in.frame.to_world(at.cavity_point), flags, walls[0], walls[1], wall_flags[0], wall_flags[1]});
+    at.profile_point += in.origin, at.cavity_point += in.origin, at.centroid += in.origin;
+    schema::walls.append(rows, {section, c.loop, at, sigma, in.frame.to_world(at.profile_point),
+                                in.frame.to_world(at.cavity_point), flags, walls[0], walls[1], wall_flags[0],
+                                wall_flags[1], in.frame.to_world(at.centroid)});
   }
 }
 

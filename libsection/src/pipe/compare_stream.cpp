@@ -54,6 +54,7 @@ const Item items[] = {
     {"wall", 0, false},           // a hollow section's thinnest wall (camber's walls table)
     {"pressure_wall", 0, false},  // ... its thinnest to the pressure side
     {"suction_wall", 0, false},   // ... and to the suction side
+    {"core_shift", 0, false},     // ... its cavities' centroids moved off the nominal's
 };
 const char* const zone_suffix[] = {"", "_le", "_te", "_pressure", "_suction"};
 
@@ -96,6 +97,44 @@ void add_thinnest_walls(const Stream& stream, std::map<int, Row>& params) {
   }
 }
 
+// A cavity's centroid (camber's walls table) and the checks that flag its walls.
+struct CavityAt {
+  Eigen::Vector2d centroid;
+  CheckBits flags;
+};
+
+// Each section's cavities: none from a stream without walls, or written without centroids.
+std::map<int, std::vector<CavityAt>> cavities_of(const Stream& stream) {
+  std::map<int, std::vector<CavityAt>> out;
+  const Table* t = schema::walls.find(stream);
+  if (!t) return out;
+  const long cu = t->find_column("centroid_u"), cv = t->find_column("centroid_v"),
+             cf = t->find_column("flags");
+  if (cu < 0 || cv < 0 || cf < 0) return out;
+  const std::size_t cs = t->column(schema::col::section);
+  for (std::size_t r = 0; r < t->rows(); ++r)
+    out[static_cast<int>(t->at(r, cs))].push_back(
+        {{t->at(r, std::size_t(cu)), t->at(r, std::size_t(cv))},
+         checks_flagging(flags_mask(t->at(r, std::size_t(cf))), "wall")});
+  return out;
+}
+
+// The core shift of a section: each measured cavity's centroid, moved by the fit onto the
+// nominal, from the nearest nominal cavity's; the largest. `flags` gets the checks of the
+// measured cavities' walls.
+double core_shift(const Motion2& motion, const std::vector<CavityAt>& measured,
+                  const std::vector<CavityAt>& nominal, CheckBits& flags) {
+  double worst = 0;
+  for (const CavityAt& m : measured) {
+    const Eigen::Vector2d at = motion.apply(m.centroid);
+    double least = INFINITY;
+    for (const CavityAt& n : nominal) least = std::min(least, (at - n.centroid).norm());
+    worst = std::max(worst, least);
+    flags |= m.flags;
+  }
+  return worst;
+}
+
 // Everything compare_stream needs of both streams.
 struct Input {
   std::map<int, Frame> frames;
@@ -105,6 +144,7 @@ struct Input {
   std::map<int, Row> params, nominal_params;
   std::map<int, NominalSection> nominals;
   std::map<int, std::string> nominal_issue;
+  std::map<int, std::vector<CavityAt>> cavities, nominal_cavities;
 };
 
 // A nominal from nominal_stream holds the frames it was made on: they must be the stream's
@@ -135,6 +175,8 @@ Input gather(const Stream& stream, const Stream& nominal, double plane_tolerance
   in.nominal_params = by_section(schema::params.find(nominal));
   add_thinnest_walls(stream, in.params);
   add_thinnest_walls(nominal, in.nominal_params);
+  in.cavities = cavities_of(stream);
+  in.nominal_cavities = cavities_of(nominal);
   const auto curves =
       schema::splines.find(nominal) ? splines(nominal) : std::map<std::pair<int, int>, BSpline>{};
   for (const auto& [id, row] : in.nominal_params) {
@@ -320,6 +362,10 @@ void judge(int id, const SectionComparison* c, const Input& in, const std::vecto
       value = c->fit.motion.translation.norm();
     } else if (c && item.name == std::string("fit_rotation")) {
       value = c->fit.motion.angle;
+    } else if (c && item.name == std::string("core_shift")) {
+      const auto mc = in.cavities.find(id), nc = in.nominal_cavities.find(id);
+      measured = mc != in.cavities.end() && nc != in.nominal_cavities.end();
+      if (measured) value = core_shift(c->fit.motion, mc->second, nc->second, flags);
     } else if (c) {
       const auto mv = p->second.find(item.name);
       // A deviation needs the nominal's value too (a measured cavity against a solid nominal).

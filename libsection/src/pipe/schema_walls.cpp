@@ -9,7 +9,7 @@ namespace section::schema {
 
 namespace {
 
-constexpr std::array<Column<WallRow>, 17> wall_columns{{
+constexpr std::array<Column<WallRow>, 19> wall_columns{{
     {col::section, "id", "the section id (the plane's index)",
      [](const WallRow& r) { return double(r.section); }},
     {col::loop, "id", "the cavity's loop id within the section (loop 0 is the profile)",
@@ -52,6 +52,11 @@ constexpr std::array<Column<WallRow>, 17> wall_columns{{
      [](const WallRow& r) { return r.suction.profile_point; }},
     {"suction_flags", "code", "the checks the suction side's wall failed, as pressure_flags",
      [](const WallRow& r) { return double(r.suction_flags); }},
+    {"centroid_", uv, "length",
+     "the centroid of the cavity's area: where its core sits (compare's core_shift moves it onto the "
+     "nominal's)",
+     [](const WallRow& r) { return r.cavity.centroid; }},
+    {"centroid_", xyz, "length", "the centroid in 3D", [](const WallRow& r) { return r.centroid_world; }},
 }};
 
 }  // namespace
@@ -59,8 +64,8 @@ constexpr std::array<Column<WallRow>, 17> wall_columns{{
 const TableSchema<WallRow> walls{
     "walls", "camber",
     "one row per cavity of a section (a loop inside its profile: a hollow blade's channel): its thinnest "
-    "wall, and its thinnest to each side (docs/CAMBER.md, \"Hollow blades\"); written only for sections "
-    "that hold one",
+    "wall, its thinnest to each side, and its centroid (docs/CAMBER.md, \"Hollow blades\"); written only "
+    "for sections that hold one",
     wall_columns};
 
 }  // namespace section::schema

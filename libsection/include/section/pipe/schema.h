@@ -243,6 +243,7 @@ struct WallRow {
   const CavityWall& pressure;                   ///< the thinnest wall to the pressure side
   const CavityWall& suction;                    ///< ... and to the suction side
   CheckBits pressure_flags, suction_flags;      ///< the checks each failed
+  Eigen::Vector3d centroid_world;               ///< the cavity's centroid in 3D
 };
 
 // compare's rows (docs/COMPARE.md). Verdict codes: -1 no tolerance, 0 pass, 1 fail,
