@@ -124,17 +124,15 @@ void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities,
     const WallNoise& nz = in.noise;
     const double sigma =
         wall_sigma(nz, c.curve, points != in.loop_points.end() ? points->second.size() : std::size_t(0));
-    if (nz.sigma > 0) {
-      if (2 * sigma > nz.limit && !(flags & bit(Check::noise))) {
-        flags |= bit(Check::noise);
-        issues.push_back(
-            {section, c.loop, "camber",
-             name + "its thinnest wall, " + format_length(c.cavity.wall) + ", has a standard error of " +
-                 format_length(sigma) +
-                 " through the points' noise over the profile's and the cavity's fits: twice that is "
-                 "more than the accuracy allows (" +
-                 format_length(nz.limit) + "; check noise)"});
-      }
+    if (sigma > 0 && 2 * sigma > nz.limit && !(flags & bit(Check::noise))) {
+      flags |= bit(Check::noise);
+      issues.push_back(
+          {section, c.loop, "camber",
+           name + "its thinnest wall, " + format_length(c.cavity.wall) + ", has a standard error of " +
+               format_length(sigma) +
+               " through the points' noise over the profile's and the cavity's fits: twice that is "
+               "more than the accuracy allows (" +
+               format_length(nz.limit) + "; check noise)"});
     }
     // The sides' walls: flagged as the thinnest (the same noise), each by its own holes.
     const CheckBits side_flags = flags;
