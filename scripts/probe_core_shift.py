@@ -16,7 +16,6 @@ than --tolerance and every flag, then a summary line.
 
     python3 scripts/probe_core_shift.py --seeds 1,2,3 --noise 0.002,0.005
 """
-import argparse
 import math
 import os
 import random
@@ -26,7 +25,8 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from probe_hollow import HEIGHTS, channel_points, distance_to, exact_sections, run  # noqa: E402
+from probe_hollow import (HEIGHTS, arguments, channel_points, distance_to, exact_sections, run,  # noqa: E402
+                          stream_rows)
 
 ITEMS = {18: "pressure_wall", 19: "suction_wall", 20: "core_shift"}
 
@@ -48,35 +48,13 @@ def scan(b, kind, seed, noise, channels, d, name, rng):
         raise SystemExit(f"probe_core_shift: the pipe failed on {name}: {r.stderr[-300:]}")
 
 
-def table(text, name):
-    """A table of a stream's text as a list of dicts (the first part's header)."""
-    out, on, head = [], False, None
-    for line in text.split("\n"):
-        if line.startswith("# table"):
-            on, head = line.split()[2] == name, None
-            continue
-        if not on or not line or line.startswith("#"):
-            continue
-        if head is None:
-            head = line.split(",")
-            continue
-        out.append(dict(zip(head, line.split(","))))
-    return out
-
-
 def side_walls(exact, channels):
     """The least wall over the channels to each side of the exact section."""
     return [min(distance_to(exact[s], c, closed=False) - r for c, r in channels) for s in ("pressure", "suction")]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--bin", default=os.path.join(HERE, "..", "build", "tools"))
-    ap.add_argument("--kinds", default="turbine,compressor,thick-root,impulse")
-    ap.add_argument("--seeds", default="1,2")
-    ap.add_argument("--noise", default="0.002,0.005")
-    ap.add_argument("--tolerance", type=float, default=0.005, help="mm")
-    args = ap.parse_args()
+    args = arguments(__doc__, "turbine,compressor,thick-root,impulse")
     b = args.bin
     values = within = flagged = missing = 0
     worst = {name: 0.0 for name in ITEMS.values()}
@@ -105,7 +83,7 @@ def main():
                 for noise in [float(n) for n in args.noise.split(",")]:
                     scan(b, kind, seed, noise, shifted, d, "measured", random.Random(seed * 1000 + int(noise * 1e4)))
                     r = run(f"{b}/compare {d}/measured.stream --nominal {d}/nominal.stream")
-                    rows = table(r.stdout, "compared")
+                    rows = stream_rows(r.stdout, "compared")
                     for k, expected in truth.items():
                         label = f"{kind:10s} seed {seed} noise {noise} z {HEIGHTS[k]}"
                         for item, true in expected.items():

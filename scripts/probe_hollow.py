@@ -51,18 +51,8 @@ def exact_sections(b, kind, d):
         raise SystemExit(f"probe_hollow: the exact mesh's pipe failed: {r.stderr[-300:]}")
     out = {}
     for name, path in (("points", f"{d}/m.slice"), ("camber", f"{d}/m.stream"), ("sides", f"{d}/m.stream")):
-        text = open(path).read().split("\n")
-        on, head = False, None
-        for line in text:
-            if line.startswith("# table"):
-                on, head = line.split()[2] == name, None
-                continue
-            if not on or not line or line.startswith("#"):
-                continue
-            if head is None:
-                head = line.split(",")
-                continue
-            r = dict(zip(head, map(float, line.split(","))))
+        for row in stream_rows(open(path).read(), name):
+            r = {k: float(v) for k, v in row.items()}
             if name == "points" and r["loop"] != 0:
                 continue
             key = f"side{int(r['side'])}" if name == "sides" else name
@@ -70,6 +60,33 @@ def exact_sections(b, kind, d):
     for sec in out.values():
         sec["pressure"], sec["suction"] = split_sides(sec["points"], sec["side0"], sec["side1"])
     return out
+
+
+def stream_rows(text, name):
+    """The rows of table `name` in a stream's text, as dicts of its columns' cells."""
+    out, on, head = [], False, None
+    for line in text.split("\n"):
+        if line.startswith("# table"):
+            on, head = line.split()[2] == name, None
+            continue
+        if not on or not line or line.startswith("#"):
+            continue
+        if head is None:
+            head = line.split(",")
+            continue
+        out.append(dict(zip(head, line.split(","))))
+    return out
+
+
+def arguments(doc, kinds):
+    """The probes' command line: --bin, --kinds, --seeds, --noise, --tolerance."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
+    ap.add_argument("--bin", default=os.path.join(HERE, "..", "build", "tools"))
+    ap.add_argument("--kinds", default=kinds)
+    ap.add_argument("--seeds", default="1,2")
+    ap.add_argument("--noise", default="0.002,0.005")
+    ap.add_argument("--tolerance", type=float, default=0.005, help="mm")
+    return ap.parse_args()
 
 
 def split_sides(poly, pressure, suction):
@@ -111,13 +128,7 @@ def channel_points(c, r, z, noise, rng, spacing=0.08):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--bin", default=os.path.join(HERE, "..", "build", "tools"))
-    ap.add_argument("--kinds", default="turbine,compressor,thick-root,sharp-te")
-    ap.add_argument("--seeds", default="1,2")
-    ap.add_argument("--noise", default="0.002,0.005")
-    ap.add_argument("--tolerance", type=float, default=0.005, help="mm")
-    args = ap.parse_args()
+    args = arguments(__doc__, "turbine,compressor,thick-root,sharp-te")
     b = args.bin
     measured = refused = walls = within = flagged = 0
     worst = 0.0
