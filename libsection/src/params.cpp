@@ -183,9 +183,7 @@ void caliper(const detail::PiecewiseCurve& f, const CamberResult& camber, Sectio
     if (r < 0) r += period;
     return static_cast<int>(std::lround(r / period * n)) % n;
   };
-  // The pressure side runs forward (in the curve's direction) from LE to TE when it lies
-  // right of the LE-to-TE direction on a counterclockwise profile, and vice versa.
-  const bool forward_le_te = (camber.pressure_side < 0) == (camber.orientation > 0);
+  const bool forward_le_te = detail::pressure_runs_forward(camber);
   const int ile = index_of(camber.le.t), ite = index_of(camber.te.t);
   const int from = forward_le_te ? ile : ite, to = forward_le_te ? ite : ile;
   const int span = ((to - from) % n + n) % n;
@@ -367,7 +365,7 @@ Sides detail::split_sides(const PiecewiseCurve& f, const CamberResult& camber, i
     fwd.push_back(f.point(le + lf * i / (count - 1)));
     bwd.push_back(f.point(le - lb * i / (count - 1)));
   }
-  const bool forward_is_pressure = (camber.pressure_side < 0) == (camber.orientation > 0);
+  const bool forward_is_pressure = pressure_runs_forward(camber);
   Sides sides;
   sides.pressure = forward_is_pressure ? fwd : bwd;
   sides.suction = forward_is_pressure ? bwd : fwd;

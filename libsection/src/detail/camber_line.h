@@ -59,6 +59,13 @@ std::vector<ThicknessStation> thickness_stations(const SampledProfile& pr, const
                                                  const CamberResult& camber,
                                                  const std::vector<double>& fractions);
 
+/// Whether the pressure side runs forward (in the curve's direction) from the LE point to the
+/// TE point: it lies right of the LE-to-TE direction on a counterclockwise profile, and vice
+/// versa.
+inline bool pressure_runs_forward(const CamberResult& camber) {
+  return (camber.pressure_side < 0) == (camber.orientation > 0);
+}
+
 /// section_params and split_sides on f, the profile's piecewise form (made once for all
 /// that measure a section: the camber line's samples, the checks' and these).
 SectionParams section_params(const BSpline& profile, const PiecewiseCurve& f, const CamberResult& camber);

@@ -157,24 +157,25 @@ std::string wall_rows(const Table* walls, int s, double mm) {
   const long c = walls->find_column("section");
   if (c < 0) return "";
   std::string out;
+  const auto add = [&](std::string line, CheckBits flags) {
+    if (flags) line += " " + check_names_text(flags);
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  };
   for (std::size_t r = 0; r < walls->rows(); ++r) {
     if (walls->at(r, std::size_t(c)) != s) continue;
     const RowView w{walls, long(r)};
     const CheckBits flags = checks_flagging(flags_mask(w("flags")), "wall");
-    std::string line = "  " + pad("cavity " + fixed(w("loop"), 0), 15) +
-                       cell("wall", fixed(w("wall") * mm, 4), "mm", flags) + " " +
-                       cell("area", fixed(w("area") * mm * mm, 4), "mm^2") +
-                       (flags ? " " + check_names_text(flags) : std::string());
-    while (!line.empty() && line.back() == ' ') line.pop_back();
-    out += line + "\n";
+    add("  " + pad("cavity " + fixed(w("loop"), 0), 15) +
+            cell("wall", fixed(w("wall") * mm, 4), "mm", flags) + " " +
+            cell("area", fixed(w("area") * mm * mm, 4), "mm^2"),
+        flags);
     if (!std::isfinite(w("pressure_wall"))) continue;  // a stream written without the sides' walls
     const CheckBits pressure = checks_flagging(flags_mask(w("pressure_flags")), "wall"),
                     suction = checks_flagging(flags_mask(w("suction_flags")), "wall");
-    line = "  " + pad("", 15) + cell("to pressure", fixed(w("pressure_wall") * mm, 4), "mm", pressure) + " " +
-           cell("to suction", fixed(w("suction_wall") * mm, 4), "mm", suction) +
-           ((pressure | suction) ? " " + check_names_text(pressure | suction) : std::string());
-    while (!line.empty() && line.back() == ' ') line.pop_back();
-    out += line + "\n";
+    add("  " + pad("", 15) + cell("to pressure", fixed(w("pressure_wall") * mm, 4), "mm", pressure) + " " +
+            cell("to suction", fixed(w("suction_wall") * mm, 4), "mm", suction),
+        pressure | suction);
   }
   return out;
 }

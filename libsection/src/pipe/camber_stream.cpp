@@ -353,11 +353,10 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
     wall_noise.profile_share = std::min(1.0, double(local.control.size()) / checks.points);
     wall_noise.limit = checks.accuracy * sampled.scale;
   }
-  const bool forward_is_pressure =
-      (m.camber.pressure_side < 0) == (m.camber.orientation > 0);  // split_sides'
-  pipe::add_walls({section, f, local, pr.fast, m.camber.le.t, m.camber.te.t, forward_is_pressure, q.all,
-                   in.loop_points, opt, m.params.chord, checks_flagging(flags, "wall"), origin, wall_noise},
-                  cavities, slot.rows[walls_rows], slot.issues);
+  pipe::add_walls(
+      {section, f, local, pr.fast, m.camber.le.t, m.camber.te.t, detail::pressure_runs_forward(m.camber),
+       q.all, in.loop_points, opt, m.params.chord, checks_flagging(flags, "wall"), origin, wall_noise},
+      cavities, slot.rows[walls_rows], slot.issues);
 }
 
 }  // namespace

@@ -104,7 +104,7 @@ struct CavityAt {
 };
 
 // Each section's cavities: none from a stream without walls, or written without centroids.
-std::map<int, std::vector<CavityAt>> cavities_of(const Stream& stream) {
+std::map<int, std::vector<CavityAt>> cavity_centroids(const Stream& stream) {
   std::map<int, std::vector<CavityAt>> out;
   const Table* t = schema::walls.find(stream);
   if (!t) return out;
@@ -175,8 +175,8 @@ Input gather(const Stream& stream, const Stream& nominal, double plane_tolerance
   in.nominal_params = by_section(schema::params.find(nominal));
   add_thinnest_walls(stream, in.params);
   add_thinnest_walls(nominal, in.nominal_params);
-  in.cavities = cavities_of(stream);
-  in.nominal_cavities = cavities_of(nominal);
+  in.cavities = cavity_centroids(stream);
+  in.nominal_cavities = cavity_centroids(nominal);
   const auto curves =
       schema::splines.find(nominal) ? splines(nominal) : std::map<std::pair<int, int>, BSpline>{};
   for (const auto& [id, row] : in.nominal_params) {
