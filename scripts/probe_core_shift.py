@@ -58,6 +58,7 @@ def main():
     b = args.bin
     values = within = flagged = missing = 0
     worst = {name: 0.0 for name in ITEMS.values()}
+    ratios = {}  # noise -> core_shift's error over its standard error (compare's uncertainty / 2)
     with tempfile.TemporaryDirectory() as d:
         for kind in args.kinds.split(","):
             exact = exact_sections(b, kind, d)
@@ -97,15 +98,22 @@ def main():
                             got = float(row[0]["value" if item == 20 else "deviation"])
                             err = got - true
                             worst[name] = max(worst[name], abs(err))
+                            sigma = float(row[0]["uncertainty"]) / 2  # compare's coverage, 2
+                            if item == 20 and sigma > 0:
+                                ratios.setdefault(noise, []).append(err / sigma)
                             within += abs(err) <= args.tolerance
                             flags = int(float(row[0]["flags"]))
                             flagged += flags != 0
                             if abs(err) > args.tolerance or flags:
-                                print(f"{label}: {name} {true:+.4f} mm measured {got:+.4f} ({err * 1000:+.1f} um), "
-                                      f"flags {flags}")
+                                print(f"{label}: {name} {true:+.4f} mm measured {got:+.4f} ({err * 1000:+.1f} um, "
+                                      f"standard error {sigma * 1000:.1f} um), flags {flags}")
     print(f"core shift: {values} values, {within} within {args.tolerance * 1000:.0f} um, {flagged} flagged, "
           f"{missing} not measured; largest errors " +
           ", ".join(f"{name} {v * 1000:.1f} um" for name, v in worst.items()))
+    for noise, r in sorted(ratios.items()):
+        rms = math.sqrt(sum(x * x for x in r) / len(r))
+        print(f"core shift at noise {noise}: error / standard error over {len(r)} values: rms {rms:.2f}, "
+              f"largest {max(abs(x) for x in r):.2f}, beyond 2: {sum(abs(x) > 2 for x in r)}")
 
 
 if __name__ == "__main__":

@@ -369,6 +369,45 @@ TEST_CASE("compare_stream: a hollow section's thinnest wall judged on its value 
   CHECK(wall_verdict(solid, band) == section::Verdict::not_measured);
 }
 
+TEST_CASE("camber_stream: a cavity's centroid lies off the truth by about its standard error",
+          "[cavity][pipeline]") {
+  // 24 scans of one hollow section, 10 um of noise on the profile and the channel: the
+  // centroid's error over the walls table's centroid_sigma has an rms near 1 (the probe,
+  // scripts/probe_core_shift.py, measures 1.1-1.4 on generated blades).
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
+  const Channel ch = channel(truth, 0.5, 0.5);
+  double sum2 = 0, largest = 0;
+  const int scans = 24;
+  for (int seed = 0; seed < scans; ++seed) {
+    const section::Stream s = measured([&](int layer) {
+      const unsigned at = 1000u * unsigned(seed) + unsigned(layer + 5);
+      Points p = section::noisy_profile(truth, 0.05, 0.01, at);
+      for (const Eigen::Vector2d& q : noisy_circle(ch.center, ch.radius, 0.05, 0.01, at + 500))
+        p.push_back(q);
+      return p;
+    });
+    const section::Table& walls = section::schema::walls.get(s);
+    REQUIRE(walls.rows() == 1);
+    const double sigma = cell(walls, 0, "centroid_sigma");
+    const Eigen::Vector2d centroid(cell(walls, 0, "centroid_u"), cell(walls, 0, "centroid_v"));
+    const double error = (centroid - ch.center).norm();
+    INFO("seed " << seed << ": centroid " << error * 1e3 << " um off, standard error " << sigma * 1e3
+                 << " um");
+    // A circle of radius r measured every l with noise s: s sqrt(l / (pi r)) each way, here
+    // under a micrometre (the slab takes a few layers' points).
+    CHECK(sigma > 0.0002);
+    CHECK(sigma < 0.003);
+    // The error is a distance in the plane: two directions' errors, each about sigma.
+    sum2 += error * error / (2 * sigma * sigma);
+    largest = std::max(largest, error / sigma);
+  }
+  const double rms = std::sqrt(sum2 / scans);
+  INFO("error / standard error: rms " << rms << ", largest " << largest);
+  CHECK(rms > 0.5);
+  CHECK(rms < 1.6);
+  CHECK(largest < 4.5);
+}
+
 TEST_CASE(
     "compare_stream: a core shifted toward one side thins that side's wall, thickens the other's, and is its "
     "core_shift",
@@ -396,10 +435,12 @@ TEST_CASE(
   section::Stream s = hollow(ch.center + 0.1 * toward);
   section::compare_stream(s, nominal, {});
   const section::Table& compared = section::schema::compared.get(s);
-  std::map<int, double> deviation;
+  std::map<int, double> deviation, uncertainty;
   for (std::size_t r = 0; r < compared.rows(); ++r)
-    if (cell(compared, r, "measured") == 1)
+    if (cell(compared, r, "measured") == 1) {
       deviation[int(cell(compared, r, "item"))] = cell(compared, r, "deviation");
+      uncertainty[int(cell(compared, r, "item"))] = cell(compared, r, "uncertainty");
+    }
   // The pressure side's wall 0.1 mm thinner (the thinnest wall with it), the suction
   // side's about 0.1 mm thicker (the sides are not parallel: a little less).
   REQUIRE(deviation.count(17));
@@ -411,6 +452,11 @@ TEST_CASE(
   // The core shift: the cavity's centroid 0.1 mm off the nominal's.
   REQUIRE(deviation.count(20));
   CHECK(deviation[20] == Approx(0.1).margin(0.002));
+  // Its expanded uncertainty: twice the two centroids' standard errors combined (2 um of
+  // noise: well under a micrometre), and the shift's error within it.
+  CHECK(uncertainty[20] > 0);
+  CHECK(uncertainty[20] < 0.002);
+  CHECK(std::abs(deviation[20] - 0.1) < std::max(1.5 * uncertainty[20], 0.0005));
   // The whole section moved in its plane, the core with it: the fit takes the move out,
   // and the core has not shifted.
   section::Stream moved = hollow(ch.center, {0.05, -0.03});

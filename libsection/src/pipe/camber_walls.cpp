@@ -9,6 +9,8 @@
 #include "section/pipe/schema.h"
 #include "section/units.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -88,6 +90,37 @@ double wall_sigma(const WallNoise& nz, const BSpline& cavity, std::size_t measur
   return nz.sigma * std::sqrt(nz.profile_share + share);
 }
 
+// The centroid's standard error through the points' noise (WallNoise; 0 when unknown or no
+// point measured the cavity), along its least sure direction. Each of the `measured` points
+// moves the boundary normal to itself by its noise over its share L / measured of the
+// length, and the centroid by (x - c) times that area over the area; summed, the
+// covariance is noise^2 (L / measured) times the integral of (x - c)(x - c)' ds over the
+// area squared. A fit of the points passes a smooth functional like this one on whole, so
+// the cavity's control points do not enter (unlike a wall's, where one place counts).
+double centroid_sigma(const WallNoise& nz, const detail::PiecewiseCurve& curve, const BSpline& cavity,
+                      const Cavity& c, std::size_t measured) {
+  if (!(nz.sigma > 0) || measured == 0 || !(c.area > 0)) return 0;
+  constexpr int samples = 512;
+  const double t0 = cavity.t_min(), period = cavity.t_max() - t0;
+  Eigen::Matrix2d second = Eigen::Matrix2d::Zero();
+  double length = 0;
+  detail::PiecewiseCurve::Cursor at;
+  Eigen::Vector2d last = curve.point(curve.locate(t0, at)) - c.centroid;
+  for (int k = 1; k <= samples; ++k) {
+    const Eigen::Vector2d next =
+        curve.point(curve.locate(t0 + period * (k % samples) / samples, at)) - c.centroid;
+    const double ds = (next - last).norm();
+    const Eigen::Vector2d mid = 0.5 * (next + last);
+    second += ds * mid * mid.transpose();
+    length += ds;
+    last = next;
+  }
+  const Eigen::Matrix2d covariance =
+      nz.sigma * nz.sigma * (length / double(measured)) * second / (c.area * c.area);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance, Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(eigen.eigenvalues()(1), 0.0));
+}
+
 }  // namespace
 
 void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities, std::vector<double>& rows,
@@ -153,11 +186,13 @@ void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities,
       }
       walls[k].profile_point += in.origin, walls[k].cavity_point += in.origin;
     }
+    const double at_sigma = centroid_sigma(nz, cavity, c.curve, c.cavity,
+                                           points != in.loop_points.end() ? points->second.size() : 0);
     Cavity at = c.cavity;
     at.profile_point += in.origin, at.cavity_point += in.origin, at.centroid += in.origin;
     schema::walls.append(rows, {section, c.loop, at, sigma, in.frame.to_world(at.profile_point),
                                 in.frame.to_world(at.cavity_point), flags, walls[0], walls[1], wall_flags[0],
-                                wall_flags[1], in.frame.to_world(at.centroid)});
+                                wall_flags[1], in.frame.to_world(at.centroid), at_sigma});
   }
 }
 

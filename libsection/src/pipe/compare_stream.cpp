@@ -97,9 +97,11 @@ void add_thinnest_walls(const Stream& stream, std::map<int, Row>& params) {
   }
 }
 
-// A cavity's centroid (camber's walls table) and the checks that flag its walls.
+// A cavity's centroid (camber's walls table), its standard error, and the checks that flag
+// its walls.
 struct CavityAt {
   Eigen::Vector2d centroid;
+  double sigma;  // 0 from a stream written without it
   CheckBits flags;
 };
 
@@ -109,30 +111,33 @@ std::map<int, std::vector<CavityAt>> cavity_centroids(const Stream& stream) {
   const Table* t = schema::walls.find(stream);
   if (!t) return out;
   const long cu = t->find_column("centroid_u"), cv = t->find_column("centroid_v"),
-             cf = t->find_column("flags");
+             cf = t->find_column("flags"), cg = t->find_column("centroid_sigma");
   if (cu < 0 || cv < 0 || cf < 0) return out;
   const std::size_t cs = t->column(schema::col::section);
   for (std::size_t r = 0; r < t->rows(); ++r)
     out[static_cast<int>(t->at(r, cs))].push_back(
         {{t->at(r, std::size_t(cu)), t->at(r, std::size_t(cv))},
+         cg >= 0 ? t->at(r, std::size_t(cg)) : 0.0,
          checks_flagging(flags_mask(t->at(r, std::size_t(cf))), "wall")});
   return out;
 }
 
 // The core shift of a section: each measured cavity's centroid, moved by the fit onto the
 // nominal, from the nearest nominal cavity's; the largest. `flags` gets the checks of the
-// measured cavities' walls.
+// measured cavities' walls, `sigma2` the variance of the largest (both centroids' standard
+// errors; the fit's motion, from all the profile's points, is far surer).
 double core_shift(const Motion2& motion, const std::vector<CavityAt>& measured,
-                  const std::vector<CavityAt>& nominal, CheckBits& flags) {
-  double worst = 0;
+                  const std::vector<CavityAt>& nominal, CheckBits& flags, double& sigma2) {
+  double worst = -1;
   for (const CavityAt& m : measured) {
     const Eigen::Vector2d at = motion.apply(m.centroid);
-    double least = INFINITY;
-    for (const CavityAt& n : nominal) least = std::min(least, (at - n.centroid).norm());
-    worst = std::max(worst, least);
+    double least = INFINITY, nominal_sigma = 0;
+    for (const CavityAt& n : nominal)
+      if (const double d = (at - n.centroid).norm(); d < least) least = d, nominal_sigma = n.sigma;
+    if (least > worst) worst = least, sigma2 = m.sigma * m.sigma + nominal_sigma * nominal_sigma;
     flags |= m.flags;
   }
-  return worst;
+  return std::max(worst, 0.0);
 }
 
 // Everything compare_stream needs of both streams.
@@ -365,7 +370,7 @@ void judge(int id, const SectionComparison* c, const Input& in, const std::vecto
     } else if (c && item.name == std::string("core_shift")) {
       const auto mc = in.cavities.find(id), nc = in.nominal_cavities.find(id);
       measured = mc != in.cavities.end() && nc != in.nominal_cavities.end();
-      if (measured) value = core_shift(c->fit.motion, mc->second, nc->second, flags);
+      if (measured) value = core_shift(c->fit.motion, mc->second, nc->second, flags, sigma2);
     } else if (c) {
       const auto mv = p->second.find(item.name);
       // A deviation needs the nominal's value too (a measured cavity against a solid nominal).

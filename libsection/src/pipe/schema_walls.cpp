@@ -9,7 +9,7 @@ namespace section::schema {
 
 namespace {
 
-constexpr std::array<Column<WallRow>, 19> wall_columns{{
+constexpr std::array<Column<WallRow>, 20> wall_columns{{
     {col::section, "id", "the section id (the plane's index)",
      [](const WallRow& r) { return double(r.section); }},
     {col::loop, "id", "the cavity's loop id within the section (loop 0 is the profile)",
@@ -57,6 +57,11 @@ constexpr std::array<Column<WallRow>, 19> wall_columns{{
      "nominal's)",
      [](const WallRow& r) { return r.cavity.centroid; }},
     {"centroid_", xyz, "length", "the centroid in 3D", [](const WallRow& r) { return r.centroid_world; }},
+    {"centroid_sigma", "length",
+     "the centroid's standard error through the points' noise, along its least sure direction: each of "
+     "the cavity's measured points moves its boundary by the noise over its share of the length; 0 when "
+     "the noise is unknown (compare's core_shift takes its uncertainty from it)",
+     [](const WallRow& r) { return r.centroid_sigma; }},
 }};
 
 }  // namespace

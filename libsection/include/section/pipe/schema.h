@@ -244,6 +244,7 @@ struct WallRow {
   const CavityWall& suction;                    ///< ... and to the suction side
   CheckBits pressure_flags, suction_flags;      ///< the checks each failed
   Eigen::Vector3d centroid_world;               ///< the cavity's centroid in 3D
+  double centroid_sigma;                        ///< its standard error through the noise (0: unknown)
 };
 
 // compare's rows (docs/COMPARE.md). Verdict codes: -1 no tolerance, 0 pass, 1 fail,
