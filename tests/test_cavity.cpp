@@ -62,16 +62,18 @@ Points noisy_circle(const Eigen::Vector2d& c, double r, double spacing, double s
 
 // A scan of a prism: the section's points of each layer (layer(k), k = -5..5) about heights
 // k x 0.05 mm (each point up to 0.02 mm off: a scan, not rows), through the pipe (slice at
-// height 0, smooth, fitspline, camber).
+// height 0, smooth, fitspline, camber); `note` added to slice's stream when given.
 template <class Layer>
-section::Stream measured(const Layer& layer) {
+section::Stream measured(const Layer& layer, const std::string& note = "") {
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> jitter(-0.02, 0.02);
   section::Cloud cloud;
   for (int k = -5; k <= 5; ++k)
     for (const Eigen::Vector2d& p : layer(k)) cloud.points.emplace_back(p.x(), p.y(), 0.05 * k + jitter(rng));
   const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, {0.0}));
-  return section::test::after_slice(section::to_stream(r, "test", "mm"));
+  section::Stream sliced = section::to_stream(r, "test", "mm");
+  if (!note.empty()) sliced.notes.push_back(note);
+  return section::test::after_slice(sliced);
 }
 
 // The profile's points of layer k: every 0.05 mm along it, 2 um of noise (its own a layer).
@@ -367,6 +369,53 @@ TEST_CASE("compare_stream: a hollow section's thinnest wall judged on its value 
   CHECK(wall_verdict(measured_stream, band) == section::Verdict::pass);
   // A solid nominal has no wall to deviate from, and a solid section no wall at all.
   CHECK(wall_verdict(solid, band) == section::Verdict::not_measured);
+}
+
+TEST_CASE("camber_stream: a doubt on the units or the registration flags a hollow section's walls too",
+          "[cavity][pipeline]") {
+  // These checks are set on every row after the sections are measured; the walls table
+  // (its wall and the walls to each side) missed them until 2026-12-06, and compare judged
+  // the walls bare under them.
+  const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
+  const Channel ch = channel(truth, 0.5, 0.5);
+  const auto layer = [&](int k) {
+    Points p = outer_layer(truth, k);
+    for (const Eigen::Vector2d& q : noisy_circle(ch.center, ch.radius, 0.05, 0.002, 7 + unsigned(k + 5)))
+      p.push_back(q);
+    return p;
+  };
+  const section::Stream plain = measured(layer);
+  const std::pair<const char*, section::Check> doubts[] = {
+      {"units_doubtful m (read as mm; the extent suggests m)", section::Check::units},
+      {"register view=1 pairs=900 rms=0.004 unconfirmed=1", section::Check::registration}};
+  for (const auto& [note, check] : doubts) {
+    INFO(note);
+    section::Stream s = measured(layer, note);
+    const section::Table& walls = section::schema::walls.get(s);
+    REQUIRE(walls.rows() == 1);
+    for (const char* column : {"flags", "pressure_flags", "suction_flags"}) {
+      INFO(column);
+      CHECK(section::flags_mask(cell(walls, 0, column)) & section::bit(check));
+      CHECK_FALSE(section::flags_mask(cell(section::schema::walls.get(plain), 0, column)) &
+                  section::bit(check));
+    }
+    // compare: the wall against itself within 10 um is uncertain, not passed.
+    section::CompareStreamOptions o;
+    section::Tolerance band;
+    band.item = "wall";
+    band.low = -0.01;
+    band.high = 0.01;
+    o.tolerances = {band};
+    section::compare_stream(s, plain, o);
+    const section::Table& compared = section::schema::compared.get(s);
+    bool seen = false;
+    for (std::size_t r = 0; r < compared.rows(); ++r)
+      if (cell(compared, r, "item") == 17) {
+        seen = true;
+        CHECK(static_cast<section::Verdict>(cell(compared, r, "verdict")) == section::Verdict::uncertain);
+      }
+    CHECK(seen);
+  }
 }
 
 TEST_CASE("camber_stream: a cavity's centroid lies off the truth by about its standard error",

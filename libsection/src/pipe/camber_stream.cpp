@@ -436,6 +436,19 @@ bool units_doubtful(const Stream& stream) {
   return false;
 }
 
+namespace {
+
+// `check` set in column `name` of every row of `t` (none: no such table or column).
+void flag_column(Table* t, const char* name, Check check) {
+  const long column = t ? t->find_column(name) : -1;
+  if (column < 0) return;
+  for (std::size_t r = 0; r < t->rows(); ++r)
+    set_flag(t->values[r * t->columns.size() + std::size_t(column)], check);
+  t->source.reset();  // changed: formatted from its values
+}
+
+}  // namespace
+
 namespace pipe {
 
 void flag_every_row(Stream& stream, Check check, const std::string& why) {
@@ -447,12 +460,10 @@ void flag_every_row(Stream& stream, Check check, const std::string& why) {
     stream.issues.push_back({static_cast<int>(t->at(r, id)), 0, "camber", why});
   }
   t->source.reset();  // changed: formatted from its values
-  Table* stations = stream.find(schema::thickness.name);
-  const long station_flags = stations ? stations->find_column("flags") : -1;
-  if (station_flags < 0) return;
-  for (std::size_t r = 0; r < stations->rows(); ++r)
-    set_flag(stations->values[r * stations->columns.size() + std::size_t(station_flags)], check);
-  stations->source.reset();
+  // The thickness stations and a hollow blade's walls rest on the same points.
+  flag_column(stream.find(schema::thickness.name), "flags", check);
+  Table* walls = stream.find(schema::walls.name);
+  for (const char* column : {"flags", "pressure_flags", "suction_flags"}) flag_column(walls, column, check);
 }
 
 }  // namespace pipe
