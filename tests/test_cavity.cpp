@@ -102,6 +102,17 @@ Channel channel(const section::SectionTruth& truth, double fraction, double wall
   return {truth.camber[k], truth.camber_radius[k] - wall, wall};
 }
 
+// The layers of a hollow section: layer k is the profile's (outer_layer) and the channel's
+// points, 2 um of noise, the channel's seed `seed` + k + 5.
+auto with_channel(const section::SectionTruth& truth, const Channel& ch, unsigned seed) {
+  return [&truth, ch, seed](int k) {
+    Points p = outer_layer(truth, k);
+    for (const Eigen::Vector2d& q : noisy_circle(ch.center, ch.radius, 0.05, 0.002, seed + unsigned(k + 5)))
+      p.push_back(q);
+    return p;
+  };
+}
+
 }  // namespace
 
 TEST_CASE("measure_cavity: a circle inside an ellipse, its wall exact", "[cavity]") {
@@ -332,13 +343,7 @@ TEST_CASE("compare_stream: a hollow section's thinnest wall judged on its value 
           "[cavity][compare]") {
   const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
   const Channel ch = channel(truth, 0.4, 0.4);
-  const auto hollow = [&](int layer) {
-    Points p = outer_layer(truth, layer);
-    for (const Eigen::Vector2d& q : noisy_circle(ch.center, ch.radius, 0.05, 0.002, 40 + unsigned(layer + 5)))
-      p.push_back(q);
-    return p;
-  };
-  const section::Stream measured_stream = measured(hollow);
+  const section::Stream measured_stream = measured(with_channel(truth, ch, 40));
   const section::Stream solid = measured([&](int layer) { return outer_layer(truth, layer); });
   // The verdict of the wall (item 17) under `t`, the measured section against `nominal`.
   const auto wall_verdict = [&](const section::Stream& nominal, const section::Tolerance& t) {
@@ -378,12 +383,7 @@ TEST_CASE("camber_stream: a doubt on the units or the registration flags a hollo
   // the walls bare under them.
   const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
   const Channel ch = channel(truth, 0.5, 0.5);
-  const auto layer = [&](int k) {
-    Points p = outer_layer(truth, k);
-    for (const Eigen::Vector2d& q : noisy_circle(ch.center, ch.radius, 0.05, 0.002, 7 + unsigned(k + 5)))
-      p.push_back(q);
-    return p;
-  };
+  const auto layer = with_channel(truth, ch, 7);
   const section::Stream plain = measured(layer);
   const std::pair<const char*, section::Check> doubts[] = {
       {"units_doubtful m (read as mm; the extent suggests m)", section::Check::units},
