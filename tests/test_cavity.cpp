@@ -202,6 +202,38 @@ TEST_CASE("measure_cavity: loops beside, across and around a profile are no cavi
   CHECK_THROWS_AS(section::measure_cavity(profile, profile, few), section::Error);
 }
 
+// The wall map of a section with channels (the walls table `walls`): 100 stations along each
+// channel, each on it, its wall the station's distance to the true section (within 3 um),
+// its least the thinnest wall (the stations 20-30 um apart: within 1 um), and each side's
+// least that side's wall.
+void check_wall_map(const section::Stream& s, const section::Table& walls,
+                    const section::SectionTruth& truth) {
+  const section::Table& map = section::schema::wall_map.get(s);
+  REQUIRE(map.rows() == 100 * walls.rows());
+  for (std::size_t r = 0; r < walls.rows(); ++r) {
+    const double loop = cell(walls, r, "loop");
+    double least = INFINITY, side_least[2] = {INFINITY, INFINITY}, last_s = -1;
+    for (std::size_t k = 0; k < map.rows(); ++k) {
+      if (cell(map, k, "loop") != loop) continue;
+      const Eigen::Vector2d station(cell(map, k, "cavity_u"), cell(map, k, "cavity_v"));
+      const double wall = cell(map, k, "wall");
+      INFO("loop " << loop << " station " << cell(map, k, "station"));
+      CHECK(std::abs(wall - section::locate(truth, station).distance) < 0.003);
+      CHECK(cell(map, k, "flags") == 0);
+      CHECK(cell(map, k, "s") > last_s);
+      last_s = cell(map, k, "s");
+      least = std::min(least, wall);
+      const int side = int(cell(map, k, "side"));
+      REQUIRE((side == 0 || side == 1));
+      side_least[side] = std::min(side_least[side], wall);
+    }
+    CHECK(least >= cell(walls, r, "wall") - 1e-9);
+    CHECK(least < cell(walls, r, "wall") + 0.001);
+    CHECK(std::abs(side_least[0] - cell(walls, r, "pressure_wall")) < 0.001);
+    CHECK(std::abs(side_least[1] - cell(walls, r, "suction_wall")) < 0.001);
+  }
+}
+
 TEST_CASE("camber_stream: a hollow blade's section measured, its walls within 3 um of the truth",
           "[cavity][pipeline]") {
   const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
@@ -275,6 +307,7 @@ TEST_CASE("camber_stream: a hollow blade's section measured, its walls within 3 
     CHECK(std::min(cell(*walls, r, "pressure_wall"), cell(*walls, r, "suction_wall")) ==
           Approx(cell(*walls, r, "wall")).margin(1e-9));
   }
+  check_wall_map(s, *walls, truth);
 }
 
 TEST_CASE("camber_stream: a hole in the data under a wall's thin stretch flags it (wall_measured)",
@@ -380,7 +413,7 @@ TEST_CASE("camber_stream: a doubt on the units or the registration flags a hollo
           "[cavity][pipeline]") {
   // These checks are set on every row after the sections are measured; the walls table
   // (its wall and the walls to each side) missed them until 2026-12-06, and compare judged
-  // the walls bare under them.
+  // the walls bare under them. The wall map gets them too.
   const section::SectionTruth truth = section::section_truth(section::turbine_blade().at(30));
   const Channel ch = channel(truth, 0.5, 0.5);
   const auto layer = with_channel(truth, ch, 7);
@@ -399,6 +432,10 @@ TEST_CASE("camber_stream: a doubt on the units or the registration flags a hollo
       CHECK_FALSE(section::flags_mask(cell(section::schema::walls.get(plain), 0, column)) &
                   section::bit(check));
     }
+    const section::Table& map = section::schema::wall_map.get(s);
+    REQUIRE(map.rows() > 0);
+    for (std::size_t r = 0; r < map.rows(); ++r)
+      CHECK(section::flags_mask(cell(map, r, "flags")) & section::bit(check));
     // compare: the wall against itself within 10 um is uncertain, not passed.
     section::CompareStreamOptions o;
     section::Tolerance band;

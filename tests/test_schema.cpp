@@ -165,9 +165,9 @@ TEST_CASE("schema: the stages write each table with the schema's columns", "[sch
     CHECK(t->columns == names);
     if (std::string(doc.name) != "gaps") CHECK(t->rows() > 0);  // the profile has no hole
   }
-  // All but slice's loops and skeleton, blade's two, and walls (a solid section has no cavity:
-  // tests/test_cavity.cpp writes it).
-  CHECK(found == schema::tables().size() - 5);
+  // All but slice's loops and skeleton, blade's two, and walls and wall_map (a solid section has
+  // no cavity: tests/test_cavity.cpp writes them).
+  CHECK(found == schema::tables().size() - 6);
   CHECK(schema::params.find(stream)->rows() == 1);
 }
 

@@ -38,7 +38,7 @@ std::string params_output(const std::string& format, section::Stream summary, se
 }
 
 void run_camber(const CamberArgs& a, const std::string& history) {
-  section::Table params, thickness, walls, frames;
+  section::Table params, thickness, walls, wall_map, frames;
   const std::string format = !a.format.empty()                                    ? a.format
                              : section::tool::output_is_terminal(a.common.output) ? "table"
                                                                                   : "stream";
@@ -91,6 +91,7 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     section::append_rows(params, section::schema::params.get(stream));
     section::append_rows(thickness, section::schema::thickness.get(stream));
     if (const section::Table* w = section::schema::walls.find(stream)) section::append_rows(walls, *w);
+    if (const section::Table* m = section::schema::wall_map.find(stream)) section::append_rows(wall_map, *m);
     if (const section::Table* f = stream.find("frames")) section::append_rows(frames, *f);
     summary.issues.insert(summary.issues.end(), stream.issues.begin(), stream.issues.end());
   };
@@ -100,6 +101,11 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   if (!a.walls_file.empty()) {
     if (walls.columns.empty()) walls = section::schema::walls.table();  // no cavity: the header alone
     section::write_file(a.walls_file, section::format_csv(walls));
+  }
+  if (!a.wall_map_file.empty()) {
+    if (wall_map.columns.empty())
+      wall_map = section::schema::wall_map.table();  // no cavity: the header alone
+    section::write_file(a.wall_map_file, section::format_csv(wall_map));
   }
   if (format != "stream") {
     if (!frames.columns.empty()) summary.put(frames);

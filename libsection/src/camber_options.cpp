@@ -65,6 +65,7 @@ void check_options(const CamberOptions& o) {
   in_range("le_thickness_margin", o.le_thickness_margin, 0, 0.5, "[0, 0.5]");
   in_range("samples", o.samples, 2, 1e6, "2..1000000");
   in_range("side_samples", o.side_samples, 2, 1e6, "2..1000000");
+  in_range("wall_stations", o.wall_stations, 0, 1e6, "0..1000000");
   if (!o.le_direction.allFinite() || !o.le_direction_3d.allFinite())
     throw Error("camber: le_direction is not finite");
   for (double f : o.stations) in_range("a station", f, 0, 1, "[0, 1]");

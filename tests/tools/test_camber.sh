@@ -147,6 +147,25 @@ check "the walls to the two sides are 1 and 2 mm (2 um)" -- awk -F, 'NR == 1 { f
     d = lo - $c["wall"]; if (d < 0) d = -d
     if (lo < 0.998 || lo > 1.002 || hi < 1.998 || hi > 2.002 || d > 1e-9 || $c["pressure_flags"] != 0 || $c["suction_flags"] != 0) { print p, s, $c["wall"]; exit 1 } }' \
   "$TMP/walls.csv"
+# The wall along the channel: 100 stations on the circle, 1 mm at its top (0, 2), 2 mm at its
+# bottom (0, -1), the upper half's nearest points on one side and the lower half's on the other.
+expect 0 "camber --wall-map on a hollow section" -- "$camber" "$TMP/h_fit.txt" --wall-map "$TMP/map.csv" -o "$TMP/hm.txt"
+check "the wall map is in the stream" -- grep -q "^# table wall_map$" "$TMP/hm.txt"
+check "--wall-map has a header and 100 stations" -- test "$(wc -l < "$TMP/map.csv")" = 101
+check "the map's stations lie on the channel, its least wall 1 mm (2 um)" -- awk -F, '
+  NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; lo = 9; next }
+  { u = $c["cavity_u"]; v = $c["cavity_v"] - 0.5; r = sqrt(u * u + v * v) - 1.5; if (r < 0) r = -r
+    if (r > 0.003 || $c["flags"] != 0) { print "off the channel", $0; exit 1 }
+    w = $c["wall"]; if (w < lo) lo = w; if (w > hi) hi = w
+    if (v > 1.4) top = top " " $c["side"]; if (v < -1.4) bottom = bottom " " $c["side"]
+    if (v > 1.495 && (w < 0.998 || w > 1.005)) { print "top", $0; exit 1 }
+    if (v < -1.495 && (w < 1.998 || w > 2.005)) { print "bottom", $0; exit 1 } }
+  END { split(top, t, " "); split(bottom, b, " ")
+    if (lo < 0.998 || lo > 1.002 || hi < 1.998 || t[1] == b[1]) { print lo, hi, top, bottom; exit 1 }
+    for (k in t) if (t[k] != t[1]) exit 1; for (k in b) if (b[k] != b[1]) exit 1 }' "$TMP/map.csv"
+expect 0 "camber --wall-stations 0" -- "$camber" "$TMP/h_fit.txt" --wall-stations 0 -o "$TMP/h0.txt"
+check "... writes no wall map" -- bash -c "! grep -q '^# table wall_map$' '$TMP/h0.txt'"
+expect 2 "camber --wall-stations -1 is refused" -- "$camber" "$TMP/h_fit.txt" --wall-stations -1
 if [ -x "$BIN/tocad" ]; then
   expect 0 "tocad's JSON of a hollow section" -- "$BIN/tocad" "$TMP/h.txt" -o "$TMP/h.json"
   check "its default tables hold the walls" -- grep -q '"walls": \[{"loop": 1' "$TMP/h.json"

@@ -22,8 +22,10 @@ const char* const CamberArgs::description =
     "profile: its cavities. The profile is measured as any other, and each cavity's thinnest\n"
     "wall to it, and its thinnest to the pressure and to the suction side (a shifted core\n"
     "thins one and thickens the other), go to the table 'walls' (--walls FILE), each flagged\n"
-    "(check wall_measured) where a hole in the data lies under its thin stretch. A loop\n"
-    "beside the profile, across it or within a cavity leaves the section unmeasured.\n\n"
+    "(check wall_measured) where a hole in the data lies under its thin stretch; the wall\n"
+    "along each cavity, at --wall-stations stations evenly around it, goes to the table\n"
+    "'wall_map' (--wall-map FILE). A loop beside the profile, across it or within a cavity\n"
+    "leaves the section unmeasured.\n\n"
     "Every params row is checked before it is written (edge circles inside the blade, edge\n"
     "points on the profile, chord against the profile's extent, metal angles against the\n"
     "camber line, values against the neighbouring sections): a value that fails a check is\n"
@@ -146,6 +148,12 @@ void CamberArgs::declare(CLI::App& app) {
       "--walls", walls_file,
       "Also write the 'walls' table to FILE (CSV): each cavity's thinnest wall, and to each side (a "
       "hollow blade's)");
+  app.add_option(
+      "--wall-map", wall_map_file,
+      "Also write the 'wall_map' table to FILE (CSV): the wall along each cavity, station by station");
+  app.add_option("--wall-stations", options.wall_stations,
+                 "Stations of each cavity's wall map, evenly along it (0 = no map)")
+      ->check(CLI::Range(0, 1000000));
   app.add_option(
          "--stations", stations,
          "Thickness stations, fractions of the camber length between 0 and 1 (default 0.05,0.1,...,0.95)")

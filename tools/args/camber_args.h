@@ -19,6 +19,7 @@ struct CamberArgs {
   std::string params_file;     ///< --params: the params table (CSV) to this file
   std::string thickness_file;  ///< --thickness: the thickness table (CSV) to this file
   std::string walls_file;      ///< --walls: the walls table (CSV) to this file
+  std::string wall_map_file;   ///< --wall-map: the wall_map table (CSV) to this file
   std::string stations, le_direction, edge = "round";  ///< those flags as given
   bool edge_on_spline = false;
   bool allow_partial = false;  ///< --allow-partial: exit 0 when some sections have no params

@@ -63,7 +63,9 @@ struct CamberOptions {
   std::vector<double> stations{0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5,
                                0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95};
   int side_samples = 201;  ///< stream: points per side in the "sides" table
-  int threads = 0;         ///< stream: worker threads over the sections (0 = all cores)
+  int wall_stations =
+      100;  ///< stream: stations of each cavity's wall map (table wall_map), evenly along it; 0 = none
+  int threads = 0;  ///< stream: worker threads over the sections (0 = all cores)
   /// Stream: check the sections against each other (check_blade_stream) and flag every
   /// params row when the stream's notes say its unit is doubtful or a view was registered
   /// unconfirmed. Off for one part of a stream split into parts: the check needs every

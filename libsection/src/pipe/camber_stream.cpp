@@ -252,7 +252,7 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
 }
 
 // The slots' tables, in order.
-enum : std::size_t { camber_rows, params_rows, thickness_rows, sides_rows, walls_rows };
+enum : std::size_t { camber_rows, params_rows, thickness_rows, sides_rows, walls_rows, wall_map_rows };
 
 // A measured section's rows of the tables camber, params, thickness and sides.
 void add_rows(int section, const Frame& f, const SectionCamber& m, CheckBits flags, pipe::Slot& slot) {
@@ -356,7 +356,7 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
   pipe::add_walls(
       {section, f, local, pr.fast, m.camber.le.t, m.camber.te.t, detail::pressure_runs_forward(m.camber),
        q.all, in.loop_points, opt, m.params.chord, checks_flagging(flags, "wall"), origin, wall_noise},
-      cavities, slot.rows[walls_rows], slot.issues);
+      cavities, slot.rows[walls_rows], slot.rows[wall_map_rows], slot.issues);
 }
 
 }  // namespace
@@ -464,6 +464,7 @@ void flag_every_row(Stream& stream, Check check, const std::string& why) {
   flag_column(stream.find(schema::thickness.name), "flags", check);
   Table* walls = stream.find(schema::walls.name);
   for (const char* column : {"flags", "pressure_flags", "suction_flags"}) flag_column(walls, column, check);
+  flag_column(stream.find(schema::wall_map.name), "flags", check);
 }
 
 }  // namespace pipe
@@ -526,7 +527,8 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   pipe::restage(stream, "camber");
   const CamberInput in = gather(stream);
   Table camber = schema::camber.table(), params = schema::params.table(),
-        thickness = schema::thickness.table(), sides = schema::sides.table(), walls = schema::walls.table();
+        thickness = schema::thickness.table(), sides = schema::sides.table(), walls = schema::walls.table(),
+        wall_map = schema::wall_map.table();
   std::vector<std::pair<int, const BSpline*>> work;
   std::set<int> present;
   for (const auto& [key, curve] : in.curves) {
@@ -535,7 +537,8 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   }
   pipe::vanished_sections(stream, present, "camber", "spline");
   pipe::run_slots(
-      work.size(), options.threads, {&camber, &params, &thickness, &sides, &walls}, stream.issues, "camber",
+      work.size(), options.threads, {&camber, &params, &thickness, &sides, &walls, &wall_map}, stream.issues,
+      "camber",
       [&](std::size_t w, pipe::Slot& slot) {
         camber_section(work[w].first, *work[w].second, in, options, slot);
       },
@@ -548,6 +551,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   stream.put(thickness);
   stream.put(sides);
   if (walls.rows() > 0) stream.put(walls);  // hollow blades only: every other stream as it was
+  if (wall_map.rows() > 0) stream.put(wall_map);
   if (options.across_sections) {
     check_blade_stream({&stream});
     if (units_doubtful(stream)) flag_doubtful_units(stream);

@@ -2,6 +2,8 @@
 // camber_stream's cavities and their walls (docs/CAMBER.md, "Hollow blades").
 #include "pipe/camber_walls.h"
 
+#include "fit_spline_steps.h"
+
 #include "detail/local_origin.h"
 #include "pipe/camber_issues.h"
 #include "pipe/coverage.h"
@@ -121,10 +123,70 @@ double centroid_sigma(const WallNoise& nz, const detail::PiecewiseCurve& curve, 
   return std::sqrt(std::max(eigen.eigenvalues()(1), 0.0));
 }
 
+// Point k of `count` evenly along closed `curve` by length (from its first), from a table of
+// `fine` chords: their parameters and lengths from the first.
+struct AlongCurve {
+  std::vector<double> t, s;
+  double length = 0;
+};
+AlongCurve evenly_along(const BSpline& curve, const detail::PiecewiseCurve& pc, int count) {
+  constexpr int fine = 2048;
+  const double t0 = curve.t_min(), period = curve.t_max() - t0;
+  std::vector<double> at(fine + 1, 0.0);
+  detail::PiecewiseCurve::Cursor cursor;
+  Eigen::Vector2d last = pc.point(pc.locate(t0, cursor));
+  for (int k = 1; k <= fine; ++k) {
+    const Eigen::Vector2d p = pc.point(pc.locate(t0 + period * (k % fine) / fine, cursor));
+    at[std::size_t(k)] = at[std::size_t(k) - 1] + (p - last).norm();
+    last = p;
+  }
+  AlongCurve out;
+  out.length = at[fine];
+  for (int j = 0; j < count; ++j) {
+    const double s = out.length * j / count;
+    const std::size_t k = std::size_t(std::upper_bound(at.begin(), at.end(), s) - at.begin()) - 1;
+    const double f = at[k + 1] > at[k] ? (s - at[k]) / (at[k + 1] - at[k]) : 0.0;
+    out.t.push_back(t0 + period * (double(k) + f) / fine);
+    out.s.push_back(s);
+  }
+  return out;
+}
+
+// Cavity c's wall map: in.options.wall_stations stations evenly along it, each with its least
+// distance to the profile (its foot there), the side of that foot and the wall's `flags`,
+// wall_measured added where a hole lies at the station or its foot.
+void add_wall_map(const WallsInput& in, const SectionCavity& c, const WallCoverage& coverage, CheckBits flags,
+                  std::vector<double>& rows) {
+  const int count = in.options.wall_stations;
+  if (count <= 0) return;
+  const AlongCurve along = evenly_along(c.curve, coverage.cavity, count);
+  fit::Points stations;
+  detail::PiecewiseCurve::Cursor cursor;
+  for (double t : along.t) stations.push_back(coverage.cavity.point(coverage.cavity.locate(t, cursor)));
+  const fit::Feet feet = fit::foot_points(in.curve, in.profile, stations, nullptr);
+  const double period = in.curve.t_max() - in.curve.t_min();
+  const auto ahead = [&](double t) {  // along the profile from the LE point, in [0, period)
+    const double d = std::fmod(t - in.le_t, period);
+    return d < 0 ? d + period : d;
+  };
+  for (std::size_t j = 0; j < stations.size(); ++j) {
+    const Eigen::Vector2d foot = in.profile.point(in.profile.locate(feet.t[j]));
+    const double wall = (stations[j] - foot).norm();
+    const bool forward = ahead(feet.t[j]) <= ahead(in.te_t);
+    CheckBits at = flags;
+    const char* where = "";
+    if (coverage.hole_under({{along.t[j], feet.t[j]}}, wall, where) > 0) at |= bit(Check::wall_measured);
+    const Eigen::Vector2d station = stations[j] + in.origin, nearest = foot + in.origin;
+    schema::wall_map.append(
+        rows, {in.section, c.loop, j, along.s[j], station, in.frame.to_world(station), wall, nearest,
+               in.frame.to_world(nearest), forward == in.forward_is_pressure ? 0 : 1, at});
+  }
+}
+
 }  // namespace
 
 void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities, std::vector<double>& rows,
-               std::vector<SectionIssue>& issues) {
+               std::vector<double>& map_rows, std::vector<SectionIssue>& issues) {
   if (cavities.empty()) return;
   const CamberOptions& opt = in.options;
   const double chord = in.chord;
@@ -175,6 +237,7 @@ void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities,
     }
     std::array<CavityWall, 2> walls = side_walls(in.curve, c.curve, in.le_t, in.te_t);
     if (!in.forward_is_pressure) std::swap(walls[0], walls[1]);
+    add_wall_map(in, c, coverage, side_flags, map_rows);
     CheckBits wall_flags[2] = {side_flags, side_flags};
     for (int k = 0; k < 2; ++k) {
       const char* where = "";

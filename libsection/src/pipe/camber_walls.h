@@ -71,8 +71,11 @@ struct WallsInput {
 /// (WallNoise; the cavity's share its curve's control points over its measured points),
 /// its standard error in the row. Each row holds the walls to the pressure and the suction
 /// side too (side_walls, parted at the LE and TE points), each flagged by the same checks,
-/// wall_measured for a hole under its own thin stretch.
+/// wall_measured for a hole under its own thin stretch. Each cavity's wall map (options
+/// wall_stations evenly along it, each station's least distance to the profile) goes to
+/// `map_rows`, flagged as the walls to each side, wall_measured where a hole lies at the
+/// station or at its nearest profile point.
 void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities, std::vector<double>& rows,
-               std::vector<SectionIssue>& issues);
+               std::vector<double>& map_rows, std::vector<SectionIssue>& issues);
 
 }  // namespace section::pipe

@@ -501,6 +501,7 @@ template struct TableSchema<ParamsRow>;
 template struct TableSchema<ThicknessRow>;
 template struct TableSchema<SideRow>;
 template struct TableSchema<WallRow>;
+template struct TableSchema<WallMapRow>;
 template struct TableSchema<FitRow>;
 template struct TableSchema<DeviationRow>;
 template struct TableSchema<ZoneRow>;
@@ -570,7 +571,7 @@ static std::vector<TableDoc> stage_tables() {
   return {frames.doc(),   meridians.doc(),    loops.doc(),   points.doc(),       skeleton.doc(),
           smoothed.doc(), smooth_stats.doc(), splines.doc(), spline_knots.doc(), spline_ctrl.doc(),
           gaps.doc(),     samples.doc(),      camber.doc(),  params.doc(),       thickness.doc(),
-          sides.doc(),    walls.doc()};
+          sides.doc(),    walls.doc(),        wall_map.doc()};
 }
 
 std::vector<TableDoc> tables() {

@@ -64,6 +64,33 @@ constexpr std::array<Column<WallRow>, 20> wall_columns{{
      [](const WallRow& r) { return r.centroid_sigma; }},
 }};
 
+constexpr std::array<Column<WallMapRow>, 11> wall_map_columns{{
+    {col::section, "id", "the section id (the plane's index)",
+     [](const WallMapRow& r) { return double(r.section); }},
+    {col::loop, "id", "the cavity's loop id within the section (as in the walls table)",
+     [](const WallMapRow& r) { return double(r.loop); }},
+    {"station", "id", "the station's index along the cavity, 0 at its first point (the loop's direction)",
+     [](const WallMapRow& r) { return double(r.station); }},
+    {"s", "length", "its length along the cavity from station 0 (the stations are evenly spaced)",
+     [](const WallMapRow& r) { return r.s; }},
+    {"cavity_", uv, "length", "the station: a point of the cavity",
+     [](const WallMapRow& r) { return r.cavity_point; }},
+    {"cavity_", xyz, "length", "the station in 3D", [](const WallMapRow& r) { return r.cavity_world; }},
+    {"wall", "length", "the wall there: the least distance from the station to the profile",
+     [](const WallMapRow& r) { return r.wall; }},
+    {"profile_", uv, "length", "the profile's nearest point",
+     [](const WallMapRow& r) { return r.profile_point; }},
+    {"profile_", xyz, "length", "that point in 3D", [](const WallMapRow& r) { return r.profile_world; }},
+    {"side", "code",
+     "that point's side of the profile: 0 pressure, 1 suction (the profile parted at the LE and TE points)",
+     [](const WallMapRow& r) { return double(r.side); }},
+    {"flags", "code",
+     "the checks the wall there failed, bits as the params table's flags: those of the cavity's walls "
+     "(layers, noise, units, registration, airfoil), and wall_measured when a hole in the data lies at the "
+     "station or at its nearest point; 0 when none",
+     [](const WallMapRow& r) { return double(r.flags); }},
+}};
+
 }  // namespace
 
 const TableSchema<WallRow> walls{
@@ -72,5 +99,12 @@ const TableSchema<WallRow> walls{
     "wall, its thinnest to each side, and its centroid (docs/CAMBER.md, \"Hollow blades\"); written only "
     "for sections that hold one",
     wall_columns};
+
+const TableSchema<WallMapRow> wall_map{
+    "wall_map", "camber",
+    "each cavity's wall along it: stations evenly along the cavity (CamberOptions::wall_stations, camber "
+    "--wall-stations), each with the wall there, its nearest profile point and that point's side "
+    "(docs/CAMBER.md, \"Hollow blades\"); written only for sections that hold a cavity",
+    wall_map_columns};
 
 }  // namespace section::schema

@@ -246,6 +246,18 @@ struct WallRow {
   Eigen::Vector3d centroid_world;               ///< the cavity's centroid in 3D
   double centroid_sigma;                        ///< its standard error through the noise (0: unknown)
 };
+struct WallMapRow {
+  int section, loop;
+  std::size_t station;
+  double s;                       ///< length along the cavity from station 0
+  Eigen::Vector2d cavity_point;   ///< the station
+  Eigen::Vector3d cavity_world;   ///< ... in 3D
+  double wall;                    ///< its least distance to the profile
+  Eigen::Vector2d profile_point;  ///< the profile's nearest point
+  Eigen::Vector3d profile_world;  ///< ... in 3D
+  int side;                       ///< that point's side: 0 pressure, 1 suction
+  CheckBits flags;                ///< the checks its wall failed (section/checks.h)
+};
 
 // compare's rows (docs/COMPARE.md). Verdict codes: -1 no tolerance, 0 pass, 1 fail,
 // 2 not measured; `bounds` of a tolerance: 0 none, 1 low only, 2 high only, 3 both.
@@ -317,6 +329,7 @@ extern const TableSchema<ParamsRow> params;
 extern const TableSchema<ThicknessRow> thickness;
 extern const TableSchema<SideRow> sides;
 extern const TableSchema<WallRow> walls;
+extern const TableSchema<WallMapRow> wall_map;
 // compare's tables.
 extern const TableSchema<FitRow> fits;
 extern const TableSchema<DeviationRow> deviations;
