@@ -133,6 +133,7 @@ def main():
     measured = refused = walls = within = flagged = 0
     worst = 0.0
     scores = []  # each wall's error over its wall_sigma
+    stations = []  # (error, flagged) of every 5th station of each wall map: its wall against the exact section
     moved = {"chord": 0.0, "max_thickness": 0.0, "le_radius": 0.0, "te_radius": 0.0}
     at = ",".join(map(str, HEIGHTS))
     with tempfile.TemporaryDirectory() as d:
@@ -167,10 +168,15 @@ def main():
                         out.writelines(f"{x:.5f} {y:.5f} {z:.5f}\n" for x, y, z in extra)
                     tail = f"| {b}/smooth | {b}/fitspline | {b}/camber --format csv --allow-partial"
                     solid = run(f"{b}/slice {d}/s.xyz --at {at} {tail}")
-                    hollow = run(f"{b}/slice {d}/h.xyz --at {at} {tail} --walls {d}/w.csv")
+                    hollow = run(f"{b}/slice {d}/h.xyz --at {at} {tail} --walls {d}/w.csv --wall-map {d}/m.csv")
                     s_rows = {int(r["section"]): r for r in csv.DictReader(solid.stdout.splitlines())}
                     h_rows = {int(r["section"]): r for r in csv.DictReader(hollow.stdout.splitlines())}
                     w_rows = rows(f"{d}/w.csv") if os.path.exists(f"{d}/w.csv") else []
+                    for m in rows(f"{d}/m.csv") if os.path.exists(f"{d}/m.csv") else []:
+                        if int(float(m["station"])) % 5 == 0:
+                            at_station = (float(m["cavity_u"]), float(m["cavity_v"]))
+                            exact_wall = distance_to(exact[int(float(m["section"]))]["points"], at_station)
+                            stations.append((float(m["wall"]) - exact_wall, int(float(m["flags"])) != 0))
                     for k, z in enumerate(HEIGHTS):
                         label = f"{kind:10s} seed {seed} noise {noise} z {z}"
                         if k not in h_rows:
@@ -215,6 +221,13 @@ def main():
           f"{args.tolerance * 1000:.0f} um (largest error {worst * 1000:.1f} um), {flagged} flagged; the channels "
           f"move the profile's values by at most " +
           ", ".join(f"{c} {v * 1000:.1f} um" for c, v in moved.items()))
+    if stations:
+        within_map = sum(abs(e) <= args.tolerance for e, _ in stations)
+        print(f"wall maps: {len(stations)} stations (every 5th), {within_map} within "
+              f"{args.tolerance * 1000:.0f} um of the exact section's distance, largest "
+              f"{max(abs(e) for e, _ in stations) * 1000:.1f} um, {sum(f for _, f in stations)} flagged, "
+              f"beyond {args.tolerance * 1000:.0f} um unflagged: "
+              f"{sum(abs(e) > args.tolerance and not f for e, f in stations)}")
     if scores:
         rms = math.sqrt(sum(z * z for z in scores) / len(scores))
         print(f"errors over wall_sigma: rms {rms:.2f}, largest {max(abs(z) for z in scores):.2f}, beyond 3: "
