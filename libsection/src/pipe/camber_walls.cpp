@@ -92,6 +92,16 @@ double wall_sigma(const WallNoise& nz, const BSpline& cavity, std::size_t measur
   return nz.sigma * std::sqrt(nz.profile_share + share);
 }
 
+// n + 1 points of closed `curve` (its piecewise form `pc`) at evenly spaced parameters,
+// the last the first again.
+std::vector<Eigen::Vector2d> around(const BSpline& curve, const detail::PiecewiseCurve& pc, int n) {
+  const double t0 = curve.t_min(), period = curve.t_max() - t0;
+  std::vector<Eigen::Vector2d> out;
+  detail::PiecewiseCurve::Cursor cursor;
+  for (int k = 0; k <= n; ++k) out.push_back(pc.point(pc.locate(t0 + period * (k % n) / n, cursor)));
+  return out;
+}
+
 // The centroid's standard error through the points' noise (WallNoise; 0 when unknown or no
 // point measured the cavity), along its least sure direction. Each of the `measured` points
 // moves the boundary normal to itself by its noise over its share L / measured of the
@@ -99,23 +109,17 @@ double wall_sigma(const WallNoise& nz, const BSpline& cavity, std::size_t measur
 // covariance is noise^2 (L / measured) times the integral of (x - c)(x - c)' ds over the
 // area squared. A fit of the points passes a smooth functional like this one on whole, so
 // the cavity's control points do not enter (unlike a wall's, where one place counts).
-double centroid_sigma(const WallNoise& nz, const detail::PiecewiseCurve& curve, const BSpline& cavity,
-                      const Cavity& c, std::size_t measured) {
+double centroid_standard_error(const WallNoise& nz, const detail::PiecewiseCurve& pc, const BSpline& curve,
+                               const Cavity& c, std::size_t measured) {
   if (!(nz.sigma > 0) || measured == 0 || !(c.area > 0)) return 0;
-  constexpr int samples = 512;
-  const double t0 = cavity.t_min(), period = cavity.t_max() - t0;
+  const std::vector<Eigen::Vector2d> p = around(curve, pc, 512);
   Eigen::Matrix2d second = Eigen::Matrix2d::Zero();
   double length = 0;
-  detail::PiecewiseCurve::Cursor at;
-  Eigen::Vector2d last = curve.point(curve.locate(t0, at)) - c.centroid;
-  for (int k = 1; k <= samples; ++k) {
-    const Eigen::Vector2d next =
-        curve.point(curve.locate(t0 + period * (k % samples) / samples, at)) - c.centroid;
-    const double ds = (next - last).norm();
-    const Eigen::Vector2d mid = 0.5 * (next + last);
+  for (std::size_t k = 1; k < p.size(); ++k) {
+    const double ds = (p[k] - p[k - 1]).norm();
+    const Eigen::Vector2d mid = 0.5 * (p[k] + p[k - 1]) - c.centroid;
     second += ds * mid * mid.transpose();
     length += ds;
-    last = next;
   }
   const Eigen::Matrix2d covariance =
       nz.sigma * nz.sigma * (length / double(measured)) * second / (c.area * c.area);
@@ -123,27 +127,20 @@ double centroid_sigma(const WallNoise& nz, const detail::PiecewiseCurve& curve, 
   return std::sqrt(std::max(eigen.eigenvalues()(1), 0.0));
 }
 
-// Point k of `count` evenly along closed `curve` by length (from its first), from a table of
-// `fine` chords: their parameters and lengths from the first.
+// `count` parameters of closed `curve` evenly along it by length from its first (from 2048
+// chords), and those lengths.
 struct AlongCurve {
   std::vector<double> t, s;
-  double length = 0;
 };
 AlongCurve evenly_along(const BSpline& curve, const detail::PiecewiseCurve& pc, int count) {
   constexpr int fine = 2048;
+  const std::vector<Eigen::Vector2d> p = around(curve, pc, fine);
+  std::vector<double> at(p.size(), 0.0);
+  for (std::size_t k = 1; k < p.size(); ++k) at[k] = at[k - 1] + (p[k] - p[k - 1]).norm();
   const double t0 = curve.t_min(), period = curve.t_max() - t0;
-  std::vector<double> at(fine + 1, 0.0);
-  detail::PiecewiseCurve::Cursor cursor;
-  Eigen::Vector2d last = pc.point(pc.locate(t0, cursor));
-  for (int k = 1; k <= fine; ++k) {
-    const Eigen::Vector2d p = pc.point(pc.locate(t0 + period * (k % fine) / fine, cursor));
-    at[std::size_t(k)] = at[std::size_t(k) - 1] + (p - last).norm();
-    last = p;
-  }
   AlongCurve out;
-  out.length = at[fine];
   for (int j = 0; j < count; ++j) {
-    const double s = out.length * j / count;
+    const double s = at.back() * j / count;
     const std::size_t k = std::size_t(std::upper_bound(at.begin(), at.end(), s) - at.begin()) - 1;
     const double f = at[k + 1] > at[k] ? (s - at[k]) / (at[k + 1] - at[k]) : 0.0;
     out.t.push_back(t0 + period * (double(k) + f) / fine);
@@ -249,13 +246,13 @@ void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities,
       }
       walls[k].profile_point += in.origin, walls[k].cavity_point += in.origin;
     }
-    const double at_sigma = centroid_sigma(nz, cavity, c.curve, c.cavity,
-                                           points != in.loop_points.end() ? points->second.size() : 0);
+    const double centroid_sigma = centroid_standard_error(
+        nz, cavity, c.curve, c.cavity, points != in.loop_points.end() ? points->second.size() : 0);
     Cavity at = c.cavity;
     at.profile_point += in.origin, at.cavity_point += in.origin, at.centroid += in.origin;
     schema::walls.append(rows, {section, c.loop, at, sigma, in.frame.to_world(at.profile_point),
                                 in.frame.to_world(at.cavity_point), flags, walls[0], walls[1], wall_flags[0],
-                                wall_flags[1], in.frame.to_world(at.centroid), at_sigma});
+                                wall_flags[1], in.frame.to_world(at.centroid), centroid_sigma});
   }
 }
 
