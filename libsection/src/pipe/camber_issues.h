@@ -37,9 +37,10 @@ inline bool few_points(std::size_t points, std::size_t coefficients) {
 }
 
 /// Sets `check` on every params row of `stream` (camber's), with an issue (stage "camber")
-/// per section saying `why`, and on every row of its thickness table: a check of a row's
-/// values and the stations measured along its camber line. A row that has the check already
-/// keeps it, without a second issue.
+/// per section saying `why`, and on every row of its thickness, walls (each wall's flags)
+/// and wall_map tables: a check of a row's values, the stations measured along its camber
+/// line and a hollow blade's walls. A row that has the check already keeps it, without a
+/// second issue.
 void flag_every_row(Stream& stream, Check check, const std::string& why);
 
 /// Where a section's other loops lie, for the message that refuses it ("" when it has none);
