@@ -354,13 +354,11 @@ Sides split_sides(const BSpline& profile, const CamberResult& camber, int count)
 Sides detail::split_sides(const PiecewiseCurve& f, const CamberResult& camber, int count) {
   if (count < 2 || count > 10000000)
     throw Error("params: " + std::to_string(count) + " samples a side, not in 2..10000000");
-  const double period = f.t_max() - f.t_min();
-  auto forward = [&](double a, double b) { return std::fmod(std::fmod(b - a, period) + period, period); };
   const double le = camber.le.t, te = camber.te.t;
   // Forward from LE reaches TE along one side, backward along the other; both sampled
   // from LE to TE.
   std::vector<Eigen::Vector2d> fwd, bwd;
-  const double lf = forward(le, te), lb = forward(te, le);
+  const double lf = f.forward(le, te), lb = f.forward(te, le);
   for (int i = 0; i < count; ++i) {
     fwd.push_back(f.point(le + lf * i / (count - 1)));
     bwd.push_back(f.point(le - lb * i / (count - 1)));

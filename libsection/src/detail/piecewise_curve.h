@@ -98,6 +98,12 @@ public:
 
   double t_min() const { return t_min_; }
   double t_max() const { return t_max_; }
+  /// A closed curve's parameter distance going forward (in its direction) from a to b, in
+  /// [0, period).
+  double forward(double a, double b) const {
+    const double period = t_max_ - t_min_;
+    return std::fmod(std::fmod(b - a, period) + period, period);
+  }
 
   /// Where a parameter lies: its span and the parameter from the span's start.
   struct Local {

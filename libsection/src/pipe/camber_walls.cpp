@@ -92,16 +92,6 @@ double wall_sigma(const WallNoise& nz, const BSpline& cavity, std::size_t measur
   return nz.sigma * std::sqrt(nz.profile_share + share);
 }
 
-// n + 1 points of closed `curve` (its piecewise form `pc`) at evenly spaced parameters,
-// the last the first again.
-std::vector<Eigen::Vector2d> around(const BSpline& curve, const detail::PiecewiseCurve& pc, int n) {
-  const double t0 = curve.t_min(), period = curve.t_max() - t0;
-  std::vector<Eigen::Vector2d> out;
-  detail::PiecewiseCurve::Cursor cursor;
-  for (int k = 0; k <= n; ++k) out.push_back(pc.point(pc.locate(t0 + period * (k % n) / n, cursor)));
-  return out;
-}
-
 // The centroid's standard error through the points' noise (WallNoise; 0 when unknown or no
 // point measured the cavity), along its least sure direction. Each of the `measured` points
 // moves the boundary normal to itself by its noise over its share L / measured of the
@@ -109,10 +99,11 @@ std::vector<Eigen::Vector2d> around(const BSpline& curve, const detail::Piecewis
 // covariance is noise^2 (L / measured) times the integral of (x - c)(x - c)' ds over the
 // area squared. A fit of the points passes a smooth functional like this one on whole, so
 // the cavity's control points do not enter (unlike a wall's, where one place counts).
-double centroid_standard_error(const WallNoise& nz, const detail::PiecewiseCurve& pc, const BSpline& curve,
-                               const Cavity& c, std::size_t measured) {
+double centroid_standard_error(const WallNoise& nz, const detail::PiecewiseCurve& pc, const Cavity& c,
+                               std::size_t measured) {
   if (!(nz.sigma > 0) || measured == 0 || !(c.area > 0)) return 0;
-  const std::vector<Eigen::Vector2d> p = around(curve, pc, 512);
+  // 512 chords around the closed curve (the last point is the first again).
+  const std::vector<Eigen::Vector2d> p = pc.points(pc.t_min(), pc.t_max(), 513);
   Eigen::Matrix2d second = Eigen::Matrix2d::Zero();
   double length = 0;
   for (std::size_t k = 1; k < p.size(); ++k) {
@@ -127,17 +118,17 @@ double centroid_standard_error(const WallNoise& nz, const detail::PiecewiseCurve
   return std::sqrt(std::max(eigen.eigenvalues()(1), 0.0));
 }
 
-// `count` parameters of closed `curve` evenly along it by length from its first (from 2048
-// chords), and those lengths.
+// `count` parameters of the closed curve `pc` evenly along it by length from its first
+// (from 2048 chords), and those lengths.
 struct AlongCurve {
   std::vector<double> t, s;
 };
-AlongCurve evenly_along(const BSpline& curve, const detail::PiecewiseCurve& pc, int count) {
+AlongCurve evenly_along(const detail::PiecewiseCurve& pc, int count) {
   constexpr int fine = 2048;
-  const std::vector<Eigen::Vector2d> p = around(curve, pc, fine);
+  const std::vector<Eigen::Vector2d> p = pc.points(pc.t_min(), pc.t_max(), fine + 1);
   std::vector<double> at(p.size(), 0.0);
   for (std::size_t k = 1; k < p.size(); ++k) at[k] = at[k - 1] + (p[k] - p[k - 1]).norm();
-  const double t0 = curve.t_min(), period = curve.t_max() - t0;
+  const double t0 = pc.t_min(), period = pc.t_max() - t0;
   AlongCurve out;
   for (int j = 0; j < count; ++j) {
     const double s = at.back() * j / count;
@@ -156,20 +147,15 @@ void add_wall_map(const WallsInput& in, const SectionCavity& c, const WallCovera
                   std::vector<double>& rows) {
   const int count = in.options.wall_stations;
   if (count <= 0) return;
-  const AlongCurve along = evenly_along(c.curve, coverage.cavity, count);
+  const AlongCurve along = evenly_along(coverage.cavity, count);
   fit::Points stations;
   detail::PiecewiseCurve::Cursor cursor;
   for (double t : along.t) stations.push_back(coverage.cavity.point(coverage.cavity.locate(t, cursor)));
   const fit::Feet feet = fit::foot_points(in.curve, in.profile, stations, nullptr);
-  const double period = in.curve.t_max() - in.curve.t_min();
-  const auto ahead = [&](double t) {  // along the profile from the LE point, in [0, period)
-    const double d = std::fmod(t - in.le_t, period);
-    return d < 0 ? d + period : d;
-  };
   for (std::size_t j = 0; j < stations.size(); ++j) {
     const Eigen::Vector2d foot = in.profile.point(in.profile.locate(feet.t[j]));
     const double wall = (stations[j] - foot).norm();
-    const bool forward = ahead(feet.t[j]) <= ahead(in.te_t);
+    const bool forward = in.profile.forward(in.le_t, feet.t[j]) <= in.profile.forward(in.le_t, in.te_t);
     CheckBits at = flags;
     const char* where = "";
     if (coverage.hole_under({{along.t[j], feet.t[j]}}, wall, where) > 0) at |= bit(Check::wall_measured);
@@ -247,7 +233,7 @@ void add_walls(const WallsInput& in, const std::vector<SectionCavity>& cavities,
       walls[k].profile_point += in.origin, walls[k].cavity_point += in.origin;
     }
     const double centroid_sigma = centroid_standard_error(
-        nz, cavity, c.curve, c.cavity, points != in.loop_points.end() ? points->second.size() : 0);
+        nz, cavity, c.cavity, points != in.loop_points.end() ? points->second.size() : 0);
     Cavity at = c.cavity;
     at.profile_point += in.origin, at.cavity_point += in.origin, at.centroid += in.origin;
     schema::walls.append(rows, {section, c.loop, at, sigma, in.frame.to_world(at.profile_point),
