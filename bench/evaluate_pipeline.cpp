@@ -82,7 +82,8 @@ const char* const usage =
     "[--outlier-floor MM] [--tolerance MM] [--first-iterations N] [--bridge-factor F]; camber: [--edge-arc "
     "DEG] [--edge-core DEG] "
     "[--edge-residual K] "
-    "[--edge-noise-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] [--edge-prune "
+    "[--edge-noise-residual K] [--edge-circularity K] [--edge-hole R] [--edge-hole-reach R] [--edge-bridge "
+    "F] [--edge-prune "
     "DEG] "
     "[--tangent-span FRACTION] [--edge-on-spline] [--edge-point-gap F] [--edge-point-sigma F]\n";
 
@@ -118,6 +119,7 @@ std::map<std::string, double*> number_flags(Options& o) {
           {"--edge-circularity", &cam.edge_circularity},
           {"--edge-hole", &cam.edge_hole},
           {"--edge-hole-reach", &cam.edge_hole_reach},
+          {"--edge-bridge", &cam.edge_bridge},
           {"--edge-prune", &cam.edge_prune},
           {"--tangent-span", &cam.tangent_span},
           {"--edge-point-gap", &cam.edge_point_gap},

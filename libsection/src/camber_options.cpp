@@ -48,6 +48,7 @@ void check_options(const CamberOptions& o) {
   in_range("edge_circularity", o.edge_circularity, 1e-6, big, "(0, inf)");
   in_range("edge_hole", o.edge_hole, 0, big, "[0, inf)");
   in_range("edge_hole_reach", o.edge_hole_reach, 0, big, "[0, inf)");
+  in_range("edge_bridge", o.edge_bridge, 0, big, "[0, inf)");
   in_range("thickness_hole", o.thickness_hole, 0, 1, "[0, 1]");
   in_range("thickness_hole_spacings", o.thickness_hole_spacings, 0, big, "[0, inf)");
   in_range("off_axis", o.off_axis, 0, big, "[0, inf)");

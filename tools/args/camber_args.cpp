@@ -123,6 +123,11 @@ void declare_edges(CLI::App& app, CamberArgs& a) {
   add_checked(app, "--edge-hole-reach", o.edge_hole_reach,
               "Edge radii along the profile from the edge point within which such a stretch must begin",
               CLI::NonNegativeNumber);
+  add_checked(app, "--edge-bridge", o.edge_bridge,
+              "Share of its bend: a shorter such stretch whose bridging curve bends from a straight line so "
+              "far that this share of the bend (how far such a bridge strays from the blade) exceeds 1.5e-4 "
+              "of the profile's size makes the edge 'partly not measured' too (0 = off)",
+              CLI::NonNegativeNumber);
   add_checked(app, "--thickness-hole", o.thickness_hole,
               "Chord fraction: the thickest circle touching the profile within a stretch without measured "
               "points this long (and --thickness-hole-spacings times the points' mean distance there) "

@@ -60,6 +60,9 @@ struct SectionFacts {
   ContactCoverage longest;      ///< about the longest stretch of the profile without measured points
   const Measured& measured;
   const CamberOptions& options;  ///< as the section was measured with
+  /// The most the profile may be off for its values to stand: CheckOptions::accuracy of its
+  /// size (0: a hole's bridge is not judged by its bend).
+  double accuracy = 0;
 };
 
 /// Appends the issues of a measured section (stage "camber", loop 0) to `issues`: its edges

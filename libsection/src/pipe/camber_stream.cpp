@@ -223,8 +223,8 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
                    ? detail::thickness_stations(pr, *axis, m.camber, opt.stations)
                    : thickness_stations(curve, m.camber, opt.stations);
   m.sides = detail::split_sides(pr.fast, m.camber, opt.side_samples);
-  m.le = pipe::edge_coverage(pr.fast, m.camber.le, q.all, opt.edge_hole_reach);
-  m.te = pipe::edge_coverage(pr.fast, m.camber.te, q.all, opt.edge_hole_reach);
+  m.le = pipe::edge_coverage(pr.fast, m.camber.le, q.all, opt.edge_hole_reach, opt.thickness_hole_spacings);
+  m.te = pipe::edge_coverage(pr.fast, m.camber.te, q.all, opt.edge_hole_reach, opt.thickness_hole_spacings);
   // Holes beginning within half the longest the thickness may bridge, over a window three
   // times that length (for the points' mean distance there), sampled every 3 % of it
   // (0.06 mm at the default 5 % of a 40 mm chord) to tell its length to that.
@@ -342,7 +342,8 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
                                                  {m.thickest[0], m.thickest[1]},
                                                  m.longest,
                                                  q,
-                                                 opt},
+                                                 opt,
+                                                 checks.accuracy * sampled.scale},
                                                 check.findings, slot.issues);
   if (origin != Eigen::Vector2d::Zero()) move(m, origin);
   add_rows(section, f, m, flags, slot);

@@ -60,9 +60,10 @@ std::vector<int> nearest_counts(const std::vector<Eigen::Vector2d>& samples,
 // +reach about parameter t, the `measured` points cover, and by how many. Empty where the
 // curve stops advancing (a zero speed).
 std::vector<int> covered_about(const detail::PiecewiseCurve& curve, double t0,
-                               const std::vector<Eigen::Vector2d>& measured, double reach, int half) {
+                               const std::vector<Eigen::Vector2d>& measured, double reach, int half,
+                               std::vector<Eigen::Vector2d>& samples) {
   const double h = reach / half;
-  std::vector<Eigen::Vector2d> samples(2 * half + 1);
+  samples.assign(2 * half + 1, Eigen::Vector2d::Zero());
   detail::PiecewiseCurve::Cursor cursor;
   detail::CurveJet jet = curve.jet(curve.locate(t0, cursor));
   samples[half] = jet.point;
@@ -110,22 +111,60 @@ double mean_distance(const std::vector<int>& covered, int from, int to, double h
   return points > 0 ? (to - from) * h / points : 0.0;
 }
 
+// Of the holes of `covered` (samples h apart about its middle one) beginning within `near`
+// of the middle, the one whose curve (`samples`) strays farthest from the segment between
+// the covered samples that close it: that distance into `out.bend`, the hole's length and
+// distance from the middle into bend_hole and bend_distance. A hole is an uncovered run
+// longer than `spacings` times the points' mean distance over its length either side, the
+// sparser side's: evenly sparse points (a CMM row's) leave runs between them, not holes.
+void widest_bend(const std::vector<int>& covered, const std::vector<Eigen::Vector2d>& samples, double h,
+                 double near, double spacings, EdgeCoverage& out) {
+  const int half = int(covered.size() / 2), last = 2 * half;
+  for (int k = 0; k <= last;) {
+    if (covered[k]) {
+      ++k;
+      continue;
+    }
+    int e = k;
+    while (e <= last && !covered[e]) ++e;
+    const double d = k > half ? (k - 1 - half) * h : e <= half ? (half - e) * h : 0.0;
+    const int run = e - k;
+    const double spacing = std::max(mean_distance(covered, std::max(k - run, 0), k, h),
+                                    mean_distance(covered, e, std::min(e + run, last + 1), h));
+    if (d <= near && (run + 1) * h > spacings * spacing) {
+      const Eigen::Vector2d a = samples[std::max(k - 1, 0)], b = samples[std::min(e, last)];
+      const Eigen::Vector2d ab = b - a;
+      const double length2 = ab.squaredNorm();
+      double bend = 0;
+      for (int i = k; i < e; ++i) {
+        const double along = length2 > 0 ? std::clamp((samples[i] - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+        bend = std::max(bend, (samples[i] - a - along * ab).norm());
+      }
+      if (bend > out.bend) out.bend = bend, out.bend_hole = (run + 1) * h, out.bend_distance = d;
+    }
+    k = e;
+  }
+}
+
 }  // namespace
 
 EdgeCoverage edge_coverage(const detail::PiecewiseCurve& curve, const Edge& edge,
-                           const std::vector<Eigen::Vector2d>& measured, double arc_reach) {
+                           const std::vector<Eigen::Vector2d>& measured, double arc_reach,
+                           double hole_spacings) {
   EdgeCoverage out;
   const double size = edge_size(edge);
   if (measured.empty() || !(size > 0) || !std::isfinite(edge.t)) return out;
   const int half = 200;
   const double reach = 3 * 3.14159265358979 * size, h = reach / half;
-  const std::vector<int> covered = covered_about(curve, edge.t, measured, reach, half);
+  std::vector<Eigen::Vector2d> samples;
+  const std::vector<int> covered = covered_about(curve, edge.t, measured, reach, half, samples);
   if (covered.empty()) return out;
   int lo = half, hi = half;
   while (lo > 0 && !covered[lo]) --lo;
   while (hi < 2 * half && !covered[hi]) ++hi;
   if (!covered[half]) out.around = (hi - lo) * h;
   longest_hole(covered, h, arc_reach * size, out.hole, out.hole_distance);
+  widest_bend(covered, samples, h, arc_reach * size, hole_spacings, out);
   return out;
 }
 

@@ -30,12 +30,20 @@ struct EdgeCoverage {
   /// hole (longer than 4 times the points' mean distance beside it and 10 times the sharp
   /// radius): the vertex is where the fit's bridge over it turns; 0 otherwise.
   double vertex_hole = 0;
+  /// Of the stretches without measured points beginning within the arc reach, the most the
+  /// curve bridging one bends away from the straight line between its ends (its sagitta),
+  /// with that stretch's length and its distance from the edge point. A bridge strays from
+  /// the blade by a share of its bend, and the edge's values with it, however short the
+  /// hole is beside the radius (docs/CAMBER.md, "Edges partly not measured").
+  double bend = 0, bend_hole = 0, bend_distance = 0;
 };
 
 /// The coverage of `edge` of `curve` by the `measured` points; the hole must begin within
-/// `arc_reach` edge sizes (radius, or a blunt edge's face width) of the edge point.
+/// `arc_reach` edge sizes (radius, or a blunt edge's face width) of the edge point, and the
+/// bend's be longer than `hole_spacings` times the points' mean distance beside it.
 EdgeCoverage edge_coverage(const detail::PiecewiseCurve& curve, const Edge& edge,
-                           const std::vector<Eigen::Vector2d>& measured, double arc_reach);
+                           const std::vector<Eigen::Vector2d>& measured, double arc_reach,
+                           double hole_spacings);
 
 /// How well the measured points cover the profile about a point of it (an inscribed
 /// circle's contact; lengths along the profile).
