@@ -108,6 +108,51 @@ void measure_gaps(const Refinement& r, const Along& along, double gap_factor, Fi
 // Delta apart have a standard deviation sqrt(noise^2 + Delta^2 / 4) (the MAD overstates
 // Delta by a third), median over those windows; reported from layer_separation noise
 // sigmas up.
+namespace {
+
+// Two layers all along the profile: where the views overlap everywhere, consecutive
+// differences see both layers, the noise they give takes the layers' distance in, and no
+// window stands out from it. The residuals are then a mixture of two copies of the noise
+// Delta apart, flatter than one (kurtosis under 3: 2.04 for two equal layers 3 sigma
+// apart; its standard error on n normal residuals is sqrt(24 / n)). For two equal layers
+// m4 - 3 m2^2 = -2 (Delta / 2)^4, and the noise's variance is m2 - (Delta / 2)^2. Returns
+// Delta, or 0 where the residuals (within 4 robust spreads of their median) are not that
+// flat, the layers not `separation` noise sigmas apart, or not parted by a dip.
+double flat_layers(std::vector<double> s, double separation) {
+  if (s.size() < 100) return 0;
+  std::vector<double> dev(s.size());
+  const double m = median(s);
+  for (std::size_t i = 0; i < s.size(); ++i) dev[i] = std::abs(s[i] - m);
+  const double spread = 1.4826 * median(dev);
+  double n = 0, sum = 0;
+  for (double x : s)
+    if (std::abs(x - m) <= 4 * spread) sum += x, ++n;
+  const double mean = sum / n;
+  double m2 = 0, m4 = 0;
+  for (double x : s)
+    if (std::abs(x - m) <= 4 * spread) {
+      const double d2 = (x - mean) * (x - mean);
+      m2 += d2 / n, m4 += d2 * d2 / n;
+    }
+  if (!(m2 > 0) || !(m4 / (m2 * m2) - 3 < -std::max(0.5, 5 * std::sqrt(24 / n)))) return 0;
+  const double half = std::pow((3 * m2 * m2 - m4) / 2, 0.25), sigma2 = m2 - half * half;
+  if (!(sigma2 > 0) || 2 * half < separation * std::sqrt(sigma2)) return 0;
+  // Two layers leave fewer residuals between them than at either: a dip at the mean (two
+  // layers 3 sigma apart: 0.64 of the density at each). Coordinates rounded to a coarse
+  // step spread the residuals as flat (a uniform's kurtosis is 1.8), with no dip: points
+  // rounded to 0.01 mm at 2 um of noise gave "layers" 5 um apart all along.
+  double middle = 0, sides = 0;
+  for (double x : s) {
+    const double d = x - mean;
+    if (std::abs(x - m) > 4 * spread) continue;
+    if (std::abs(d) < 0.25 * half) ++middle;
+    if (std::abs(std::abs(d) - half) < 0.25 * half) ++sides;
+  }
+  return middle < 0.85 * sides / 2 ? 2 * half : 0;
+}
+
+}  // namespace
+
 void measure_layers(const Refinement& r, const Along& along, const FitSplineOptions& o,
                     FitSplineResult& result) {
   // On near-exact data the fit's own shape error (a fraction of a micrometre) is what
@@ -158,7 +203,6 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
     }
     i = j;
   }
-  if (separations.empty()) return;
   // Noise alone, where it runs high, also spreads a few windows, into "layers" closer
   // together than two views give (docs/FITSPLINE.md): below layer_separation noise sigmas
   // nothing is reported.
@@ -166,11 +210,14 @@ void measure_layers(const Refinement& r, const Along& along, const FitSplineOpti
   // an edge changes with height faster than the band's drift follows: on near-exact data a
   // single surface, yet "layers" 2-3 um apart. Layers closer than 5 exact_noise (5 um, a
   // third of the fit's own bound) go unsaid.
-  const double separation = median(separations);
-  if (separation >= std::max(o.layer_separation * noise, 5 * o.exact_noise))
+  const double separation = separations.empty() ? 0.0 : median(separations);
+  if (!separations.empty() && separation >= std::max(o.layer_separation * noise, 5 * o.exact_noise)) {
     result.layers = separation;
-  else
-    result.layers_length = 0;
+    return;
+  }
+  result.layers_length = 0;
+  const double flat = flat_layers(s, o.layer_separation);
+  if (flat >= 5 * o.exact_noise) result.layers = flat, result.layers_length = arc.back();
 }
 
 namespace {
