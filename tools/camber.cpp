@@ -24,17 +24,22 @@ using section::tool::CamberArgs;
 
 // The params (and the issues, frames and units) of every section, as --format asks for
 // them instead of the stream: table, csv or json (with the walls of a hollow blade's
-// cavities, when it has any).
+// cavities, when it has any, and in json their wall maps too).
 std::string params_output(const std::string& format, section::Stream summary, section::Table params,
-                          const section::Table& walls) {
+                          const section::Table& walls, const section::Table& wall_map) {
   if (params.columns.empty()) params = section::Table("params", {"section"});  // no section measured
   if (format == "csv") return section::format_csv(params);
   summary.put(params);
-  if (walls.rows() > 0) summary.put(walls);  // a hollow blade's cavities
-  if (format == "json")
-    return walls.rows() > 0 ? section::format_json(summary, {summary.find("params"), summary.find("walls")})
-                            : section::format_json(summary, {summary.find("params")});
-  return section::format_params_text(summary);
+  if (walls.rows() == 0)
+    return format == "json" ? section::format_json(summary, {summary.find("params")})
+                            : section::format_params_text(summary);
+  summary.put(walls);  // a hollow blade's cavities
+  if (format != "json") return section::format_params_text(summary);
+  if (wall_map.rows() == 0)
+    return section::format_json(summary, {summary.find("params"), summary.find("walls")});
+  summary.put(wall_map);
+  return section::format_json(summary,
+                              {summary.find("params"), summary.find("walls"), summary.find("wall_map")});
 }
 
 void run_camber(const CamberArgs& a, const std::string& history) {
@@ -109,7 +114,7 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   }
   if (format != "stream") {
     if (!frames.columns.empty()) summary.put(frames);
-    section::write_file(a.common.output, params_output(format, summary, params, walls));
+    section::write_file(a.common.output, params_output(format, summary, params, walls, wall_map));
   }
   tally.check(a.allow_partial);
 }

@@ -163,6 +163,17 @@ check "the map's stations lie on the channel, its least wall 1 mm (2 um)" -- awk
   END { split(top, t, " "); split(bottom, b, " ")
     if (lo < 0.998 || lo > 1.002 || hi < 1.998 || t[1] == b[1]) { print lo, hi, top, bottom; exit 1 }
     for (k in t) if (t[k] != t[1]) exit 1; for (k in b) if (b[k] != b[1]) exit 1 }' "$TMP/map.csv"
+expect 0 "camber --format json on a hollow section" -- "$camber" "$TMP/h_fit.txt" --format json
+if command -v python3 >/dev/null; then
+  check "its JSON holds the walls and the wall map's 100 stations, as --wall-map writes them" -- python3 -c '
+import csv, json, sys
+s = json.load(open(sys.argv[1]))["sections"][0]
+rows = list(csv.DictReader(open(sys.argv[2])))
+m = s["wall_map"]
+assert len(s["walls"]) == 1 and len(m) == len(rows) == 100, (len(s["walls"]), len(m))
+assert all(a["wall"] == float(b["wall"]) and a["station"] == float(b["station"]) for a, b in zip(m, rows))
+assert abs(min(a["wall"] for a in m) - 1) < 0.002' "$TMP/out" "$TMP/map.csv"
+fi
 expect 0 "camber --wall-stations 0" -- "$camber" "$TMP/h_fit.txt" --wall-stations 0 -o "$TMP/h0.txt"
 check "... writes no wall map" -- bash -c "! grep -q '^# table wall_map$' '$TMP/h0.txt'"
 expect 2 "camber --wall-stations -1 is refused" -- "$camber" "$TMP/h_fit.txt" --wall-stations -1

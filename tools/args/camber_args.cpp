@@ -182,8 +182,9 @@ void CamberArgs::declare(CLI::App& app) {
   app.add_option("--format", format,
                  "What to write to the output: stream (the pipe stream, docs/FORMAT.md), table (the "
                  "params for people: mm to 4 decimals, degrees to 3, words for shapes and checks), csv "
-                 "(the params table, full precision) or json (params and issues per section, full "
-                 "precision); default table when the output is a terminal, else stream")
+                 "(the params table, full precision) or json (params and issues per section, with a hollow "
+                 "section's walls and wall map, full precision); default table when the output is a "
+                 "terminal, else stream")
       ->check(CLI::IsMember({"stream", "table", "csv", "json"}));
   add_allow_partial(app, allow_partial);
   app.add_option("--threads", options.threads, "Worker threads; 0 = all cores")
