@@ -98,16 +98,6 @@ void measure_gaps(const Refinement& r, const Along& along, double gap_factor, Fi
   }
 }
 
-// Two layers of points along the profile: views merged with a misregistration put two
-// copies of the surface a few noise sigmas apart where they overlap, and the curve runs
-// between them. Windows of consecutive points (in the order of their feet) get their
-// residuals' robust spread (1.4826 MAD about a straight trend along the window: the fit's
-// own smooth error is no layer). A spread above `layer_ratio` x the noise estimated from
-// consecutive differences (dominated by the single-layer rest) in at least two
-// overlapping windows is a second layer. Its distance from the first: two equal layers
-// Delta apart have a standard deviation sqrt(noise^2 + Delta^2 / 4) (the MAD overstates
-// Delta by a third), median over those windows; reported from layer_separation noise
-// sigmas up.
 namespace {
 
 // Two layers all along the profile: where the views overlap everywhere, consecutive
@@ -153,6 +143,16 @@ double flat_layers(std::vector<double> s, double separation) {
 
 }  // namespace
 
+// Two layers of points along the profile: views merged with a misregistration put two
+// copies of the surface a few noise sigmas apart where they overlap, and the curve runs
+// between them. Windows of consecutive points (in the order of their feet) get their
+// residuals' robust spread (1.4826 MAD about a straight trend along the window: the fit's
+// own smooth error is no layer). A spread above `layer_ratio` x the noise estimated from
+// consecutive differences (dominated by the single-layer rest) in at least two
+// overlapping windows is a second layer. Its distance from the first: two equal layers
+// Delta apart have a standard deviation sqrt(noise^2 + Delta^2 / 4) (the MAD overstates
+// Delta by a third), median over those windows; reported from layer_separation noise
+// sigmas up.
 void measure_layers(const Refinement& r, const Along& along, const FitSplineOptions& o,
                     FitSplineResult& result) {
   // On near-exact data the fit's own shape error (a fraction of a micrometre) is what

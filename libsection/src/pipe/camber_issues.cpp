@@ -36,8 +36,8 @@ std::string shape_note(const Edge& e, const char* which, EdgeModel model) {
 
 // An edge whose point or arc lies over a hole in the measured points: around its point, a
 // hole of edge_hole sizes within its arc, or a shorter one whose bridge bends so far that
-// edge_bridge (a tenth) of that bend exceeds the accuracy (a 1.6 mm hole 0.4 mm from a 2 mm LE radius
-// bent 0.15 mm: its bridge strayed 24 um, the LE point 18 um, the chord 14 um).
+// edge_bridge (a tenth) of that bend exceeds the accuracy (a 1.6 mm hole 0.4 mm from a 2 mm
+// LE radius bent 0.15 mm: its bridge strayed 24 um, the LE point 18 um, the chord 14 um).
 std::string hole_note(const Edge& e, const EdgeCoverage& cover, const char* which, const SectionFacts& f) {
   if (cover.vertex_hole > 0)
     return std::string(which) + " not measured: its vertex lies in " + format_length(cover.vertex_hole) +

@@ -81,12 +81,11 @@ std::vector<int> covered_about(const detail::PiecewiseCurve& curve, double t0,
   return nearest_counts(samples, measured, h);
 }
 
-// The longest uncovered stretch of `covered` (samples h apart about its middle one) that
-// begins within `near` of the middle, into `length` and its `distance` from it (0 when it
-// holds the middle); both left as they are when there is none. `first`, `last` (when
-// given): its uncovered samples.
-void longest_hole(const std::vector<int>& covered, double h, double near, double& length, double& distance,
-                  int* first = nullptr, int* last = nullptr) {
+// f(k, e, length, distance) for each uncovered run k..e-1 of `covered` (samples h apart
+// about its middle one): its length counts one sample more (up to the covered ones about
+// it), its distance from the middle is 0 when it holds the middle.
+template <class F>
+void each_run(const std::vector<int>& covered, double h, F&& f) {
   const int half = int(covered.size() / 2);
   for (int k = 0; k <= 2 * half;) {
     if (covered[k]) {
@@ -95,13 +94,23 @@ void longest_hole(const std::vector<int>& covered, double h, double near, double
     }
     int e = k;
     while (e <= 2 * half && !covered[e]) ++e;
-    const double l = (e - k + 1) * h, d = k > half ? (k - 1 - half) * h : e <= half ? (half - e) * h : 0.0;
+    f(k, e, (e - k + 1) * h, k > half ? (k - 1 - half) * h : e <= half ? (half - e) * h : 0.0);
+    k = e;
+  }
+}
+
+// The longest uncovered stretch of `covered` (samples h apart about its middle one) that
+// begins within `near` of the middle, into `length` and its `distance` from it (0 when it
+// holds the middle); both left as they are when there is none. `first`, `last` (when
+// given): its uncovered samples.
+void longest_hole(const std::vector<int>& covered, double h, double near, double& length, double& distance,
+                  int* first = nullptr, int* last = nullptr) {
+  each_run(covered, h, [&](int k, int e, double l, double d) {
     if (d <= near && l > length) {
       length = l, distance = d;
       if (first && last) *first = k, *last = e - 1;
     }
-    k = e;
-  }
+  });
 }
 
 // The points' mean distance over samples [from, to) of `covered` (h apart); 0 with no point.
@@ -119,31 +128,21 @@ double mean_distance(const std::vector<int>& covered, int from, int to, double h
 // sparser side's: evenly sparse points (a CMM row's) leave runs between them, not holes.
 void widest_bend(const std::vector<int>& covered, const std::vector<Eigen::Vector2d>& samples, double h,
                  double near, double spacings, EdgeCoverage& out) {
-  const int half = int(covered.size() / 2), last = 2 * half;
-  for (int k = 0; k <= last;) {
-    if (covered[k]) {
-      ++k;
-      continue;
-    }
-    int e = k;
-    while (e <= last && !covered[e]) ++e;
-    const double d = k > half ? (k - 1 - half) * h : e <= half ? (half - e) * h : 0.0;
+  const int last = int(covered.size()) - 1;
+  each_run(covered, h, [&](int k, int e, double length, double d) {
     const int run = e - k;
     const double spacing = std::max(mean_distance(covered, std::max(k - run, 0), k, h),
                                     mean_distance(covered, e, std::min(e + run, last + 1), h));
-    if (d <= near && (run + 1) * h > spacings * spacing) {
-      const Eigen::Vector2d a = samples[std::max(k - 1, 0)], b = samples[std::min(e, last)];
-      const Eigen::Vector2d ab = b - a;
-      const double length2 = ab.squaredNorm();
-      double bend = 0;
-      for (int i = k; i < e; ++i) {
-        const double along = length2 > 0 ? std::clamp((samples[i] - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-        bend = std::max(bend, (samples[i] - a - along * ab).norm());
-      }
-      if (bend > out.bend) out.bend = bend, out.bend_hole = (run + 1) * h, out.bend_distance = d;
+    if (!(d <= near && length > spacings * spacing)) return;
+    const Eigen::Vector2d a = samples[std::max(k - 1, 0)], ab = samples[std::min(e, last)] - a;
+    const double length2 = ab.squaredNorm();
+    double bend = 0;
+    for (int i = k; i < e; ++i) {
+      const double along = length2 > 0 ? std::clamp((samples[i] - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+      bend = std::max(bend, (samples[i] - a - along * ab).norm());
     }
-    k = e;
-  }
+    if (bend > out.bend) out.bend = bend, out.bend_hole = length, out.bend_distance = d;
+  });
 }
 
 }  // namespace
