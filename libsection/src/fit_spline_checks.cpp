@@ -108,7 +108,7 @@ namespace {
 // m4 - 3 m2^2 = -2 (Delta / 2)^4, and the noise's variance is m2 - (Delta / 2)^2. Returns
 // Delta, or 0 where the residuals (within 4 robust spreads of their median) are not that
 // flat, the layers not `separation` noise sigmas apart, or not parted by a dip.
-double flat_layers(std::vector<double> s, double separation) {
+double flat_layers(const std::vector<double>& s, double separation) {
   if (s.size() < 100) return 0;
   std::vector<double> dev(s.size());
   const double m = median(s);
