@@ -17,6 +17,8 @@
 #include <Eigen/Geometry>
 
 #include <iostream>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -30,16 +32,13 @@ std::string params_output(const std::string& format, section::Stream summary, se
   if (params.columns.empty()) params = section::Table("params", {"section"});  // no section measured
   if (format == "csv") return section::format_csv(params);
   summary.put(params);
-  if (walls.rows() == 0)
-    return format == "json" ? section::format_json(summary, {summary.find("params")})
-                            : section::format_params_text(summary);
-  summary.put(walls);  // a hollow blade's cavities
+  std::vector<std::string> tables = {"params"};
+  if (walls.rows() > 0) summary.put(walls), tables.push_back("walls");  // a hollow blade's cavities
   if (format != "json") return section::format_params_text(summary);
-  if (wall_map.rows() == 0)
-    return section::format_json(summary, {summary.find("params"), summary.find("walls")});
-  summary.put(wall_map);
-  return section::format_json(summary,
-                              {summary.find("params"), summary.find("walls"), summary.find("wall_map")});
+  if (walls.rows() > 0 && wall_map.rows() > 0) summary.put(wall_map), tables.push_back("wall_map");
+  std::vector<const section::Table*> found;  // taken once every table is in: put may move them
+  for (const std::string& name : tables) found.push_back(summary.find(name));
+  return section::format_json(summary, found);
 }
 
 void run_camber(const CamberArgs& a, const std::string& history) {

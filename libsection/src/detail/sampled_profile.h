@@ -74,7 +74,7 @@ struct SampledProfile {
 
   double wrap(double t) const { return t0 + std::fmod(std::fmod(t - t0, period) + period, period); }
   /// Parameter distance going forward (in the curve's direction) from a to b.
-  double forward(double a, double b) const { return std::fmod(std::fmod(b - a, period) + period, period); }
+  double forward(double a, double b) const { return fast.forward(a, b); }
   /// Index of the first sample nearest q.
   int nearest(const Eigen::Vector2d& q) const;
   /// The same, sooner when the sample `hint` lies near q (the last one found, for points
