@@ -185,8 +185,9 @@ struct Worst {
   double rms = 0, rms_near = 0, max = 0, gap = 0, cam_rms = 0, cam_max = 0, chord = 0, tmax = 0, rle = 0,
          rte = 0, in = 0, out = 0;
   int sections = 0, fit_failed = 0, camber_failed = 0;
-  // |radius error| / its standard error (params le/te_radius_sigma), per edge that has one.
-  std::vector<double> le_z = {}, te_z = {};
+  // |error| / its standard error (params ..._sigma) of the edge radii, per edge that has one,
+  // and of the chord, max thickness, inlet and outlet angles.
+  std::vector<double> le_z = {}, te_z = {}, chord_z = {}, tmax_z = {}, in_z = {}, out_z = {};
   void take(const Worst& o) {
     for (double Worst::*m :
          {&Worst::rms, &Worst::rms_near, &Worst::max, &Worst::gap, &Worst::cam_rms, &Worst::cam_max,
@@ -297,6 +298,7 @@ struct SectionScore {
   double where_max = 0, where_gap = 0;
   double cam_rms = NAN, cam_max = NAN, le_point_err = NAN, te_point_err = NAN, rle_signed = NAN,
          rte_signed = NAN;
+  double sigmas[4] = {0, 0, 0, 0};  // camber's chord, max thickness, inlet, outlet standard errors
 };
 
 // The camber columns of a section's line, or CAMBER FAILED with its issues.
@@ -326,6 +328,12 @@ std::string camber_columns(const Case& c, int id, const SectionTruth& truth, Sec
   if (cs.te_radius_sigma > 0) W.te_z.push_back(e.rte * truth.te_radius / cs.te_radius_sigma);
   e.in = std::abs(cs.inlet_angle);
   e.out = std::abs(cs.outlet_angle);
+  const double sigma[] = {cs.chord_sigma, cs.max_thickness_sigma, cs.inlet_angle_sigma,
+                          cs.outlet_angle_sigma};
+  const double error[] = {e.chord, e.tmax, e.in, e.out};
+  std::vector<double>* zs[] = {&W.chord_z, &W.tmax_z, &W.in_z, &W.out_z};
+  for (int k = 0; k < 4; ++k)
+    if ((s.sigmas[k] = sigma[k]) > 0) zs[k]->push_back(error[k] / sigma[k]);
   char buf[256];
   std::snprintf(buf, sizeof buf, " %7.2f %7.2f %7.2f %7.2f %6.2f %6.2f %6.3f %6.3f", e.cam_rms * 1e3,
                 e.cam_max * 1e3, cs.chord * 1e3, cs.max_thickness * 1e3, e.rle * 100, e.rte * 100,
@@ -439,6 +447,11 @@ std::string where_columns(const Case& c, int id, const SectionTruth& truth, cons
   std::snprintf(buf, sizeof buf, " %6.0f  max@%s gap@%s rms_near %.2f", c.ms, at(s.where_max).c_str(),
                 at(s.where_gap).c_str(), s.e.rms_near * 1e3);
   std::string line = buf;
+  if (s.sigmas[0] > 0) {  // the standard errors camber gave (um, um, deg, deg)
+    std::snprintf(buf, sizeof buf, " sigma %.2f %.2f %.3f %.3f", s.sigmas[0] * 1e3, s.sigmas[1] * 1e3,
+                  s.sigmas[2], s.sigmas[3]);
+    line += buf;
+  }
   // Two layers of points found by fitspline (views merged with a misregistration).
   if (const Table* sp = c.stream.find("splines")) {
     const std::size_t cl = sp->column("layers"), cll = sp->column("layers_length");
@@ -535,6 +548,11 @@ void print_worst(const std::map<std::string, Worst>& worst, const Options& opt) 
           W.rte * 100, W.in, W.out);
     if (opt.with_camber && !W.le_z.empty() && !W.te_z.empty())
       std::printf("      %-10s %s\n", kind.c_str(), calibration_line(W.le_z, W.te_z).c_str());
+    if (opt.with_camber && !W.chord_z.empty())
+      std::printf(
+          "      %-10s value |error| / standard error: chord %s; max thickness %s; inlet %s; outlet %s\n",
+          kind.c_str(), calibration_text(W.chord_z).c_str(), calibration_text(W.tmax_z).c_str(),
+          calibration_text(W.in_z).c_str(), calibration_text(W.out_z).c_str());
   }
   std::printf(
       "targets: fit rms <= %s um, max <= %s um; camber rms <= 3 um, max <= 15 um, chord 10 um, "

@@ -386,7 +386,12 @@ TEST_CASE("compare stream: a radius within its uncertainty of a limit is uncerta
   const double u = compared_column(loose, 0, "le_radius", "uncertainty");
   CHECK(u == Approx(2 * std::hypot(sigma.at(0), nominal_sigma.at(0))).epsilon(1e-12));
   CHECK(compared(loose, "le_radius").at(0)[2] == 0);
-  CHECK(compared_column(loose, 0, "chord", "uncertainty") == 0);  // no standard error known
+  // The chord's standard error camber gives (its end directions' and edge points' noise).
+  const double chord_sigma = column(nc.measured, "params", "chord_sigma").at(0),
+               chord_nominal = column(nc.nominal, "params", "chord_sigma").at(0);
+  CHECK(chord_sigma > 0);
+  CHECK(compared_column(loose, 0, "chord", "uncertainty") ==
+        Approx(2 * std::hypot(chord_sigma, chord_nominal)).epsilon(1e-12));
   // The limit moved about the deviation: guarded decides only beyond U, simple at the limit.
   const struct {
     double high;

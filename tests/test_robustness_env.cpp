@@ -204,12 +204,12 @@ TEST_CASE("robustness: a stream is held to its schema", "[robustness][stream]") 
   CHECK_THAT(refused("# table splines\nsection,loop,degree,closed\n0,0,3,2\n"),
              Catch::Contains("column 'closed' is 2, a flag must be 0 or 1"));
   CHECK_THAT(refused("# table params\nsection,flags\n0,-5\n"),
-             Catch::Contains("column 'flags' is -5, check bits must be a whole number from 0 to 2^38 - 1"));
-  // Bit 37 is a check's (wall_measured); no check has bit 38.
+             Catch::Contains("column 'flags' is -5, check bits must be a whole number from 0 to 2^42 - 1"));
+  // Bit 41 is a check's (outlet_noise); no check has bit 42.
   CHECK_NOTHROW(validate_stream(
-      parse_stream(head + "# table params\nsection,flags\n0,137438953472\n", "s.csv"), "s.csv"));
-  CHECK_THAT(refused("# table params\nsection,flags\n0,274877906944\n"),
-             Catch::Contains("column 'flags' is 274877906944"));
+      parse_stream(head + "# table params\nsection,flags\n0,2199023255552\n", "s.csv"), "s.csv"));
+  CHECK_THAT(refused("# table params\nsection,flags\n0,4398046511104\n"),
+             Catch::Contains("column 'flags' is 4398046511104"));
   CHECK_THAT(refused("# table params\nsection,flags\n0,2.5\n"), Catch::Contains("column 'flags' is 2.5"));
   CHECK_THAT(refused("# table params\nsection,le_radius_sigma\n0,-0.001\n"),
              Catch::Contains("column 'le_radius_sigma' is -0.001, a standard error must not be negative"));

@@ -229,7 +229,7 @@ struct Checker {
     // the vertex by limit / sin(a) along the edge (a thin wedge: far); and the flanks taken
     // farther out (2-6 % of the camber length, beyond camber's 1-4 % of the profile's
     // size) must meet where these did.
-    const double sine = wedge_sine(e.point, options.vertex_reach * camber.length);
+    const double sine = detail::wedge_sine(pr, e.point, options.vertex_reach * camber.length);
     double off = sine > 0 ? limit / sine : 0;
     const detail::FlankVertex farther =
         detail::flank_meeting(pr, e.point, options.vertex_reach * camber.length,
@@ -238,23 +238,6 @@ struct Checker {
     const double apart = (farther.point - e.point).norm();
     if (farther.found && apart > 2 * farther.models_apart) off = std::max(off, apart);
     if (off > 2 * limit) fail(vertex, off, 2 * limit);
-  }
-
-  // The sine of the half angle between the profile's two flanks seen from `vertex`, each
-  // taken `reach` away from it along the profile; 0 when the profile is too short for it.
-  double wedge_sine(const Eigen::Vector2d& vertex, double reach) const {
-    const int n = static_cast<int>(pr.samples.size());
-    const int at = pr.nearest(vertex);
-    Eigen::Vector2d flank[2];
-    for (int side = 0; side < 2; ++side) {
-      int k = 1, i = at;
-      for (; k < n / 2 && (pr.samples[i] - vertex).norm() < reach; ++k)
-        i = ((at + (side ? k : -k)) % n + n) % n;
-      if (k >= n / 2) return 0;
-      flank[side] = (pr.samples[i] - vertex).normalized();
-    }
-    const double cosine = std::clamp(flank[0].dot(flank[1]), -1.0, 1.0);
-    return std::sin(0.5 * std::acos(cosine));
   }
 
   // How far the profile near an edge reaches beyond its edge point along the camber's
@@ -293,33 +276,7 @@ struct Checker {
     if (caliper_gap > tol) fail(Check::caliper, caliper_gap, tol);
   }
 
-  // The fit's coefficients per point over the spans about parameter t (two either side of
-  // its span): the share of its noise the profile keeps there. Sparse points between dense
-  // edges leave a coefficient per point mid-chord, where the thickness is measured.
-  double local_share(double t) const {
-    const BSpline& c = pr.curve;
-    const double t0 = c.t_min(), period = c.t_max() - t0;
-    std::vector<double> knots;
-    for (double k : c.knots)
-      if (k >= t0 && k < c.t_max() && (knots.empty() || k > knots.back())) knots.push_back(k);
-    const long count = long(knots.size());
-    if (!(period > 0) || count <= 5) return 1;
-    const auto wrap = [&](double x) { return x - period * std::floor((x - t0) / period); };
-    t = wrap(t);
-    const long j = long(std::upper_bound(knots.begin(), knots.end(), t) - knots.begin()) - 1;
-    const auto knot = [&](long i) {  // knot i, unwrapped about span j
-      const long k = ((i % count) + count) % count;
-      return knots[std::size_t(k)] + period * double((i - k) / count);
-    };
-    const double a = knot(j - 2), b = knot(j + 3);
-    std::size_t inside = 0;
-    for (double u : options.point_params) {
-      double d = wrap(u) - wrap(a);  // u's parameter from a, forward
-      if (d < 0) d += period;
-      if (d < b - a) ++inside;
-    }
-    return inside > 0 ? std::min(1.0, 5.0 / double(inside)) : 1;
-  }
+  double local_share(double t) const { return detail::local_share(pr.curve, options.point_params, t); }
 
   // The profile's own uncertainty: a fit with about as many coefficients as points follows
   // their noise (its rms then hides it), and every length measured on it carries it; the
@@ -335,6 +292,21 @@ struct Checker {
                      std::sqrt(local_share(camber.thickest.t_left) + local_share(camber.thickest.t_right)));
     const double limit = options.accuracy * pr.scale;
     if (stray > limit) fail(Check::noise, stray, limit);
+  }
+
+  // Each value whose standard errors (value_sigmas of them) exceed its tolerance.
+  void value_noise() {
+    const double k = options.value_sigmas;
+    if (!(k > 0)) return;
+    const ValueSigmas& s = out.sigmas;
+    const double chord = params.chord;
+    const auto judge = [&](Check c, double sigma, double tolerance) {
+      if (k * sigma > tolerance) fail(c, k * sigma, tolerance);
+    };
+    judge(Check::chord_noise, s.chord, options.chord_tolerance * chord);
+    judge(Check::thickness_noise, s.max_thickness, options.thickness_tolerance * chord);
+    judge(Check::inlet_noise, s.inlet_angle, options.angle_tolerance);
+    judge(Check::outlet_noise, s.outlet_angle, options.angle_tolerance);
   }
 
   // A section that is no airfoil: a platform's, a root block's or a fixture's (a plate, a
@@ -379,9 +351,15 @@ struct Checker {
 
 // Options a NaN or a negative value would turn off without a word: every check silenced.
 void check_options(const CheckOptions& o) {
-  const double values[] = {o.noise,         o.points_noise,      o.points,      o.accuracy,  o.noise_factor,
-                           o.floor,         o.tangent_length,    o.angle_floor, o.fit_model, o.vertex_reach,
-                           o.arc_shortfall, o.airfoil_thickness, o.airfoil_face};
+  const double values[] = {o.noise,           o.points_noise,
+                           o.points,          o.accuracy,
+                           o.noise_factor,    o.floor,
+                           o.tangent_length,  o.angle_floor,
+                           o.fit_model,       o.vertex_reach,
+                           o.arc_shortfall,   o.airfoil_thickness,
+                           o.airfoil_face,    o.value_sigmas,
+                           o.chord_tolerance, o.thickness_tolerance,
+                           o.angle_tolerance, o.noise_correlation};
   for (double v : values)
     if (!(v >= 0) || !std::isfinite(v)) throw Error("checks: an option is negative or not finite");
 }
@@ -470,6 +448,8 @@ SectionCheck check_section(const SampledProfile& pr, const CamberResult& camber,
   k.end_fit(camber.le, camber.le_fit_model, Check::inlet_fit);
   k.end_fit(camber.te, camber.te_fit_model, Check::outlet_fit);
   k.noise(pr.curve.control.size());
+  k.out.sigmas = detail::value_sigmas(pr, camber, params, options);
+  k.value_noise();
   k.airfoil();
   std::sort(k.out.findings.begin(), k.out.findings.end(),
             [](const Finding& a, const Finding& b) { return bit(a.check) < bit(b.check); });

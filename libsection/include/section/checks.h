@@ -70,10 +70,16 @@ enum class Check : CheckBits {
   /// flags) rests on a stretch of the profile or the cavity without measured points: the
   /// wall there is the fits' bridge
   wall_measured = CheckBits(1) << 37,
+  /// the points' noise leaves the chord uncertain beyond its tolerance: the end directions'
+  /// standard errors turn the edge points about the end circles (ValueSigmas::chord)
+  chord_noise = CheckBits(1) << 38,
+  thickness_noise = CheckBits(1) << 39,  ///< the same for the maximum thickness (its two contacts)
+  inlet_noise = CheckBits(1) << 40,      ///< the same for the inlet angle (the camber line's end fit)
+  outlet_noise = CheckBits(1) << 41,     ///< the same for the outlet angle
 };
 
 /// How many checks there are: a flags mask is below 2^check_count.
-inline constexpr int check_count = 38;
+inline constexpr int check_count = 42;
 
 /// A check's name (the word the issues use) and the params columns whose values it flags
 /// (`wall`: the walls table's, docs/FORMAT.md). An
@@ -152,6 +158,10 @@ inline constexpr CheckName check_names[] = {
      "te_radius te_center te_point outlet_angle camber_angle chord stagger camber_line camber_length "
      "max_thickness_pos thickness"},
     {Check::wall_measured, "wall_measured", "wall"},
+    {Check::chord_noise, "chord_noise", "chord stagger le_point te_point"},
+    {Check::thickness_noise, "thickness_noise", "max_thickness"},
+    {Check::inlet_noise, "inlet_noise", "inlet_angle camber_angle"},
+    {Check::outlet_noise, "outlet_noise", "outlet_angle camber_angle"},
 };
 
 /// The bit of a check in a flags mask.
@@ -208,6 +218,27 @@ struct CheckOptions {
   /// ends (a cut-off trailing edge is a fraction of it; a plate's or block's ends are as
   /// wide as it is thick).
   double airfoil_face = 0.5;
+  /// A value is flagged (chord_noise, thickness_noise, inlet_noise, outlet_noise) where this
+  /// many of its standard errors (ValueSigmas) exceed its tolerance: about 369 times in 370
+  /// the value then stands within it of what the scan's surface gives (0 = not checked).
+  double value_sigmas = 3;
+  double chord_tolerance = 2.5e-4;       ///< fraction of the chord (10 um on a 40 mm chord)
+  double thickness_tolerance = 1.25e-4;  ///< fraction of the chord (5 um on a 40 mm chord)
+  double angle_tolerance = 0.5;          ///< degrees, inlet and outlet angles
+  /// Knot spans of the fit over which its error at two places is taken as correlated
+  /// (falling linearly to none): what ties the camber line's centres' errors together.
+  double noise_correlation = 1.5;
+};
+
+/// Standard errors of a section's values through the points' noise (CheckOptions's
+/// points_noise over its points, each place of the profile averaging the points its knot
+/// spans hold): how far a new scan of the same surface would move them. All 0 when the
+/// noise is unknown.
+struct ValueSigmas {
+  double chord = 0;          ///< its edge points' moves along it, the end directions' turning them
+  double max_thickness = 0;  ///< its two contacts' moves
+  double inlet_angle = 0;    ///< degrees: the camber line's end fit over its centres' moves
+  double outlet_angle = 0;   ///< degrees
 };
 
 /// One failed check: what was measured and the most it may be (same unit).
@@ -224,6 +255,7 @@ struct Finding {
 struct SectionCheck {
   CheckBits flags = 0;            ///< bits of the failed checks
   std::vector<Finding> findings;  ///< one per failed check, in bit order
+  ValueSigmas sigmas;             ///< the values' standard errors the *_noise checks judge
 };
 
 /// Checks a section's parameters against its profile (docs/CAMBER.md, "Checks"); sets the

@@ -18,6 +18,19 @@ constexpr int check_samples = 4000;
 SectionCheck check_section(const SampledProfile& pr, const CamberResult& camber, const SectionParams& params,
                            const CheckOptions& options);
 
+/// The share of the points' noise the fit `c` keeps at parameter t: 5 over the points
+/// (of `point_params`) on the two knot spans either side of t's, at most 1.
+double local_share(const BSpline& c, const std::vector<double>& point_params, double t);
+
+/// The sine of the half angle between the profile's two flanks seen from `vertex`, each
+/// taken `reach` away from it along the profile; 0 when the profile is too short for it.
+double wedge_sine(const SampledProfile& pr, const Eigen::Vector2d& vertex, double reach);
+
+/// The standard errors of `params`' chord, maximum thickness and end angles through the
+/// points' noise (options' points_noise over its points); all 0 when the noise is unknown.
+ValueSigmas value_sigmas(const SampledProfile& pr, const CamberResult& camber, const SectionParams& params,
+                         const CheckOptions& options);
+
 /// points_noise on `pr`, the profile sampled with check_samples.
 PointsNoise points_noise(const SampledProfile& pr, const std::vector<Eigen::Vector2d>& points);
 

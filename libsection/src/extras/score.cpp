@@ -5,6 +5,7 @@
 #include "section/io/stream.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <string>
 
@@ -82,6 +83,10 @@ CamberScore score_camber(const Stream& stream, int section, const SectionTruth& 
   };
   s.le_radius_sigma = sigma("le_radius_sigma");
   s.te_radius_sigma = sigma("te_radius_sigma");
+  s.chord_sigma = sigma("chord_sigma");
+  s.max_thickness_sigma = sigma("max_thickness_sigma");
+  s.inlet_angle_sigma = sigma("inlet_angle_sigma");
+  s.outlet_angle_sigma = sigma("outlet_angle_sigma");
   s.inlet_angle = wrap_degrees(v("inlet_angle") - truth.inlet_angle);
   s.outlet_angle = wrap_degrees(v("outlet_angle") - truth.outlet_angle);
   s.le_point = (Eigen::Vector2d(v("le_u"), v("le_v")) - truth.le_point).norm();
@@ -105,6 +110,14 @@ Calibration calibration(std::vector<double> ratios) {
   c.beyond2 = beyond(2);
   c.beyond3 = beyond(3);
   return c;
+}
+
+std::string calibration_text(const std::vector<double>& ratios) {
+  const Calibration c = calibration(ratios);
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "median %.2f, 90 %% %.2f, 99 %% %.2f, %.1f %% beyond 3 (%zu)", c.median,
+                c.p90, c.p99, 100 * c.beyond3, c.count);
+  return buf;
 }
 
 }  // namespace section

@@ -272,6 +272,30 @@ std::string noise_note(const Finding& k, const SectionFacts& f) {
   return text;
 }
 
+// The *_noise checks' words: the value, its standard error, and the tolerance those exceed.
+std::string value_noise_note(const Finding& k, const SectionFacts& f) {
+  const SectionParams& p = f.params;
+  const bool angle = k.check == Check::inlet_noise || k.check == Check::outlet_noise;
+  const char* what = k.check == Check::chord_noise       ? "chord"
+                     : k.check == Check::thickness_noise ? "maximum thickness"
+                     : k.check == Check::inlet_noise     ? "inlet angle"
+                                                         : "outlet angle";
+  const double value = k.check == Check::chord_noise       ? p.chord
+                       : k.check == Check::thickness_noise ? p.max_thickness
+                       : k.check == Check::inlet_noise     ? p.inlet_angle
+                                                           : p.outlet_angle;
+  const double sigmas = f.value_sigmas > 0 ? f.value_sigmas : 1;
+  const auto amount = [angle](double v) { return angle ? format_angle(v) : format_length(v); };
+  char text[480];
+  std::snprintf(
+      text, sizeof text,
+      "%s %.6g%s fails check %s: the points' noise leaves it uncertain by %s (%.3g standard errors of "
+      "%s; at most %s): a new scan of the same surface may move it that far",
+      what, value, angle ? " deg" : " mm", check_name(k.check), amount(k.value).c_str(), sigmas,
+      amount(k.value / sigmas).c_str(), amount(k.limit).c_str());
+  return text;
+}
+
 // The airfoil check's words: the section's thickness over its chord (the check's value is
 // that ratio, computed alike), or the flat faces at both its ends.
 std::string airfoil_note(const Finding& k, const SectionFacts& f) {
@@ -353,6 +377,11 @@ std::string finding_note(const Finding& k, const SectionFacts& f) {
       break;
     case Check::noise:
       return noise_note(k, f);
+    case Check::chord_noise:
+    case Check::thickness_noise:
+    case Check::inlet_noise:
+    case Check::outlet_noise:
+      return value_noise_note(k, f);
     case Check::airfoil:
       return airfoil_note(k, f);
     case Check::layers:  // value: the layers' distance, limit: the profile length they cover

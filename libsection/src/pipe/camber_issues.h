@@ -63,6 +63,7 @@ struct SectionFacts {
   /// The most the profile may be off for its values to stand: CheckOptions::accuracy of its
   /// size (0: a hole's bridge is not judged by its bend).
   double accuracy = 0;
+  double value_sigmas = 3;  ///< CheckOptions::value_sigmas: the standard errors a *_noise finding counts
 };
 
 /// Appends the issues of a measured section (stage "camber", loop 0) to `issues`: its edges

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace section {
@@ -46,6 +47,8 @@ struct CamberScore {
   double le_point = 0, te_point = 0;         ///< distances of the edge points from the true ones
   /// The params' standard errors of the radii (lengths; 0: none reported)
   double le_radius_sigma = 0, te_radius_sigma = 0;
+  /// ... and of the chord, the maximum thickness (lengths) and the end angles (degrees)
+  double chord_sigma = 0, max_thickness_sigma = 0, inlet_angle_sigma = 0, outlet_angle_sigma = 0;
 };
 
 /// Scores section `section` of a stream that holds camber's tables (camber, params).
@@ -63,6 +66,9 @@ struct Calibration {
 
 /// The calibration of `ratios` (|error| / sigma each); all zero when empty.
 Calibration calibration(std::vector<double> ratios);
+
+/// `calibration(ratios)` in words: "median 0.67, 90 % 1.64, 99 % 2.58, 0.3 % beyond 3 (N)".
+std::string calibration_text(const std::vector<double>& ratios);
 
 /// Angle wrapped to (-180, 180] degrees.
 double wrap_degrees(double angle);

@@ -7,6 +7,7 @@
 /// column lookups and docs/FORMAT.md's column tables all come from those lists
 /// (tests/test_schema.cpp holds FORMAT.md to them).
 #include "section/cavity.h"
+#include "section/checks.h"
 #include "section/compare.h"
 #include "section/fit_spline.h"
 #include "section/frame.h"
@@ -221,7 +222,8 @@ struct ParamsRow {
   const CamberResult& camber;
   Eigen::Vector3d le, te, centroid;  ///< the edge points and the centroid in 3D
   double le_unmeasured, te_unmeasured;
-  CheckBits flags;  ///< the checks the section failed (section/checks.h)
+  CheckBits flags;     ///< the checks the section failed (section/checks.h)
+  ValueSigmas sigmas;  ///< the values' standard errors through the points' noise
 };
 struct ThicknessRow {
   int section;

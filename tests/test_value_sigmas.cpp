@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The values' standard errors through the points' noise (chord_sigma, max_thickness_sigma,
+// inlet_angle_sigma, outlet_angle_sigma) against the errors of generated scans, and the
+// *_noise checks they drive.
+#include "section/checks.h"
+#include "section/extras/generate.h"
+#include "section/pipe/slice_stream.h"
+#include "section/slice.h"
+#include "pipe_stages.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+using section::Check;
+
+namespace {
+
+struct Row {
+  double error[4], sigma[4];  // chord, max thickness (mm), inlet, outlet (degrees)
+  section::CheckBits flags;
+};
+
+// The params rows of a band scan of `blade` at z = 20 and 40 through the pipe, each with its
+// values' errors against the truth.
+std::vector<Row> measured_rows(const section::BladeDesign& blade, double noise, unsigned seed) {
+  section::ScanOptions so;
+  so.noise = noise;
+  so.seed = seed;
+  const std::vector<double> heights{20.0, 40.0};
+  const section::Cloud cloud = section::scan_bands(blade, heights, so);
+  const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, heights));
+  const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
+  std::vector<Row> out;
+  const section::Table* params = s.find("params");
+  if (!params) return out;
+  for (std::size_t row = 0; row < params->rows(); ++row) {
+    const auto at = [&](const char* c) { return params->at(row, std::size_t(params->find_column(c))); };
+    const section::SectionTruth t =
+        section::section_truth(blade.at(heights[std::size_t(at("section"))]), 4000);
+    out.push_back(
+        {{at("chord") - t.chord, at("max_thickness") - t.max_thickness, at("inlet_angle") - t.inlet_angle,
+          at("outlet_angle") - t.outlet_angle},
+         {at("chord_sigma"), at("max_thickness_sigma"), at("inlet_angle_sigma"), at("outlet_angle_sigma")},
+         section::CheckBits(at("flags"))});
+  }
+  return out;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+}  // namespace
+
+TEST_CASE("checks: the values' standard errors match their scatter over scans, and flag a noisy one",
+          "[checks]") {
+  // 20 um of noise on scans 0.08 mm apart (no holes): the chord's edge points move with
+  // the end directions (the turbine's 2 mm LE turns its point by 29 um a degree across its
+  // chord) and, at a sharp TE, with its flanks' meeting (a 12-degree wedge: 7 times their
+  // error), the thickness with its two contacts. Over 4 blades x 4 seeds x 2 sections, each
+  // |error| / sigma is a normal's (median 0.67; 0.62-0.87 here): within 0.35-1.1, none
+  // beyond 5, and 3 sigma of the thickness (about 11 um) is over its 5 um tolerance on every
+  // row. The sharp TE's outlet angle is left out: its end fit's error there is 2-3 times its
+  // sigma, and te_vertex flags it on every row.
+  const char* names[] = {"chord", "max thickness", "inlet angle", "outlet angle"};
+  std::vector<double> z[4];
+  const section::BladeDesign blades[] = {section::turbine_blade(), section::compressor_blade(),
+                                         section::thick_root_blade(), section::sharp_te_blade()};
+  for (const section::BladeDesign& blade : blades)
+    for (unsigned seed = 1; seed <= 4; ++seed) {
+      const bool sharp = &blade == &blades[3];
+      const std::vector<Row> rows = measured_rows(blade, 0.020, seed);
+      REQUIRE(rows.size() == 2);
+      for (const Row& r : rows) {
+        CHECK((r.flags & section::bit(Check::thickness_noise)) != 0);
+        for (int k = 0; k < (sharp ? 3 : 4); ++k) {
+          INFO(names[k] << ": error " << r.error[k] << ", sigma " << r.sigma[k] << ", seed " << seed);
+          REQUIRE(r.sigma[k] > 0);
+          z[k].push_back(std::abs(r.error[k]) / r.sigma[k]);
+          CHECK(z[k].back() < 5);
+        }
+        // A chord off by more than its 10 um tolerance is flagged by its noise.
+        if (std::abs(r.error[0]) > 0.010) CHECK((r.flags & section::bit(Check::chord_noise)) != 0);
+      }
+    }
+  for (int k = 0; k < 4; ++k) {
+    INFO(names[k] << ": median |error| / sigma " << median(z[k]));
+    CHECK(median(z[k]) > 0.35);
+    CHECK(median(z[k]) < 1.1);
+  }
+  // The same scans with 2 um of noise: every value stands within its tolerance.
+  for (const auto& blade : {section::turbine_blade(), section::compressor_blade()})
+    for (const Row& r : measured_rows(blade, 0.002, 1)) {
+      const section::CheckBits noisy = section::bit(Check::chord_noise) |
+                                       section::bit(Check::thickness_noise) |
+                                       section::bit(Check::inlet_noise) | section::bit(Check::outlet_noise);
+      CHECK((r.flags & noisy) == 0);
+      CHECK(r.sigma[0] < 0.002);
+    }
+}
