@@ -58,18 +58,17 @@ namespace {
 struct ProfileNoise {
   const SampledProfile& pr;
   const CheckOptions& o;
-  double sigma, share;
+  double sigma;
   std::vector<double> knots;  // distinct, within one period
 
   ProfileNoise(const SampledProfile& p, const CheckOptions& opt)
-      : pr(p),
-        o(opt),
-        sigma(std::max(opt.points_noise, opt.noise)),
-        share(std::min(1.0, double(p.curve.control.size()) / opt.points)) {
+      : pr(p), o(opt), sigma(std::max(opt.points_noise, opt.noise)) {
     const BSpline& c = pr.curve;
     for (double k : c.knots)
       if (k >= c.t_min() && k < c.t_max() && (knots.empty() || k > knots.back())) knots.push_back(k);
   }
+  // With many points a coefficient the points are taken as spread evenly in parameter: the
+  // period over them times t's knot span is the share (knots inserted at an edge hold fewer).
   double at(double t) const {
     return sigma * std::sqrt(o.point_params.empty() ? std::min(1.0, pr.period / (o.points * span(t)))
                                                     : local_share(pr.curve, o.point_params, t));
@@ -191,6 +190,10 @@ ValueSigmas value_sigmas(const SampledProfile& pr, const CamberResult& camber, c
     const double l = noise.at(camber.thickest.t_left), r = noise.at(camber.thickest.t_right);
     out.max_thickness = std::sqrt(l * l + r * r);
   }
+  // A value that is no number (a degenerate section's) has no standard error to give: its
+  // own checks flag it, and a stream holds no NaN standard error.
+  for (double* v : {&out.chord, &out.max_thickness, &out.inlet_angle, &out.outlet_angle})
+    if (!std::isfinite(*v)) *v = 0;
   return out;
 }
 
