@@ -103,3 +103,34 @@ TEST_CASE("checks: the values' standard errors match their scatter over scans, a
       CHECK(r.sigma[0] < 0.002);
     }
 }
+
+TEST_CASE("checks: an LE taken as the blunter end over an unmeasured edge is a doubtful choice", "[checks]") {
+  // A band scan of the compressor (inspection defaults, seed 26) where a hole over the
+  // 0.3 mm LE left it bridged to a corner: the 0.25 mm TE was taken as the blunter end, the
+  // LE, and every end's value came out swapped (the LE radius 18 % off the true LE's) with
+  // only the edge flags, which do not cover it: le_choice now does. Seed 1 keeps its ends
+  // and gets no le_choice; on both, an LE radius off by more than 3 % is flagged.
+  const section::BladeDesign blade = section::compressor_blade();
+  std::vector<double> zs;
+  for (int k = 1; k <= 9; ++k) zs.push_back(blade.span * k / 10.0);
+  for (const unsigned seed : {26u, 1u}) {
+    section::ScanOptions so = section::inspection_scan();
+    so.seed = seed;
+    const section::SliceResult r =
+        section::slice(section::scan_bands(blade, zs, so), section::planes_at({0, 0, 1}, zs));
+    const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
+    const section::Table& params = s.get("params", "test");
+    for (std::size_t row = 0; row < params.rows(); ++row) {
+      const auto at = [&](const char* col) { return params.at(row, std::size_t(params.find_column(col))); };
+      const std::size_t section = std::size_t(at("section"));
+      const section::SectionTruth t = section::section_truth(blade.at(zs[section]), 4000);
+      const double off = std::abs(at("le_radius") / t.le_radius - 1);
+      const section::CheckBits flags = section::CheckBits(at("flags"));
+      INFO("seed " << seed << " section " << section << ": LE radius " << off * 100 << " % off; "
+                   << section::check_names_text(flags));
+      if (off > 0.03) CHECK(section::checks_flagging(flags, "le_radius") != 0);
+      if (seed == 26 && section == 2) CHECK((flags & section::bit(Check::le_choice)) != 0);
+      if (seed == 1) CHECK((flags & section::bit(Check::le_choice)) == 0);
+    }
+  }
+}

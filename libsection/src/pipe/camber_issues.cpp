@@ -193,6 +193,25 @@ std::string other_loops(const std::map<std::pair<int, int>, BSpline>& curves, in
 
 namespace {
 
+// An LE taken as the blunter end while an edge is not measured, and the thickness does not
+// back the choice (the thickest circle in the half toward the TE, or near mid-chord): a
+// hole over a round edge bridged to a corner makes it the sharp end (a compressor's 0.3 mm
+// LE over a hole, its 0.25 mm TE then taken as the LE, every end's value swapped and its
+// LE radius 17 % off unflagged). "" when not.
+std::string bluntness_over_hole_note(const SectionFacts& f, CheckBits flags) {
+  const CheckBits unmeasured = bit(Check::le_measured) | bit(Check::te_measured);
+  const double pos = f.params.max_thickness_pos;
+  if (!f.camber.le_by_bluntness || !(flags & unmeasured) || !(pos > 0.5 - f.options.le_thickness_margin))
+    return "";
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "the leading edge was taken as the blunter end, but the %s edge is not measured and the "
+                "maximum thickness lies at %s of the camber line from it: a hole bridged to a corner may "
+                "have made the sharp end; give the leading-edge direction",
+                flags & bit(Check::te_measured) ? "trailing" : "leading", format_share(pos).c_str());
+  return text;
+}
+
 // The flags of an edge's notes: a hole at it (or closed by points carried from one side of
 // the plane), a circle that does not fit it (not circular, or a blunt edge fitted as round
 // anyway).
@@ -564,6 +583,10 @@ CheckBits describe_issues(const SectionFacts& f, const std::vector<Finding>& fin
                   "the camber line: too near mid-chord to tell; give the leading-edge direction",
                   format_share(f.params.max_thickness_pos).c_str());
     issues.push_back({f.section, 0, "camber", text});
+    flags |= bit(Check::le_choice);
+  }
+  if (const std::string note = bluntness_over_hole_note(f, flags); !note.empty()) {
+    issues.push_back({f.section, 0, "camber", note});
     flags |= bit(Check::le_choice);
   }
   for (const Finding& k : findings) {
