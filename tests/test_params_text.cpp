@@ -103,8 +103,8 @@ TEST_CASE("params text: codes in words, other units in mm, issues shortened, a f
       section::bit(section::Check::le_circle) | section::bit(section::Check::jump_chord);
   stream.put(Table("params",
                    {"section", "chord", "max_thickness", "le_radius", "le_shape", "te_shape", "pressure_side",
-                    "stagger", "flags"},
-                   {4, 0.0412312475748, 0.003, 0.0001, 0, 2, -1, NAN, double(flags)}));
+                    "stagger", "flags", "chord_sigma", "inlet_angle_sigma", "te_radius_sigma"},
+                   {4, 0.0412312475748, 0.003, 0.0001, 0, 2, -1, NAN, double(flags), 2.5e-6, 0.0312, 0}));
   stream.issues.push_back({4, 0, "camber", std::string(300, 'x')});
   stream.issues.push_back({7, 0, "fitspline", "too few points"});
   const std::string text = section::format_params_text(stream);
@@ -123,6 +123,11 @@ TEST_CASE("params text: codes in words, other units in mm, issues shortened, a f
   REQUIRE(failed < lines.size());
   CHECK(lines[failed].find("(no params)") != std::string::npos);
   CHECK(text.find("fitspline: too few points") != std::string::npos);
+  // The standard errors known (over 0) in their units, m -> mm; an unknown one (0) left out.
+  const std::size_t sigmas = line_starting(lines, "  std. error");
+  REQUIRE(sigmas < lines.size());
+  CHECK(lines[sigmas].find("chord 0.0025 mm, inlet angle 0.031 deg") != std::string::npos);
+  CHECK(text.find("TE radius 0") == std::string::npos);
   // A column the table lacks, and a value that is not finite, print as "-".
   CHECK(lines[line_starting(lines, "  stagger")].find(" - ") != std::string::npos);
 }

@@ -149,6 +149,28 @@ std::string value_rows(const RowView& p, double mm) {
   return out;
 }
 
+// The values' standard errors camber gives (its `..._sigma` columns), ", "-separated: each
+// where it is known (over 0); "" when none is (the noise unknown, or a stream without them).
+std::string sigma_words(const RowView& p, double mm) {
+  const struct {
+    const char *label, *column;
+    bool angle;
+  } values[] = {{"chord", "chord_sigma", false},
+                {"max thickness", "max_thickness_sigma", false},
+                {"LE radius", "le_radius_sigma", false},
+                {"TE radius", "te_radius_sigma", false},
+                {"inlet angle", "inlet_angle_sigma", true},
+                {"outlet angle", "outlet_angle_sigma", true}};
+  std::string out;
+  for (const auto& v : values) {
+    const double sigma = p(v.column);
+    if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+    out += (out.empty() ? "" : ", ") + std::string(v.label) + " " +
+           (v.angle ? fixed(sigma, 3) + " deg" : fixed(sigma * mm, 4) + " mm");
+  }
+  return out;
+}
+
 // A hollow blade's cavities in section s (the walls table's rows), two lines each: its
 // thinnest wall, marked when a failed check flags it, and its area; then its thinnest to each
 // side.
@@ -199,10 +221,12 @@ std::string format_params_text(const Stream& stream, const ParamsTextOptions& op
       sections.insert(i.section);
       issues[i.section].push_back(i.stage + ": " + i.message);
     }
-  std::string out = "params of " + std::to_string(sections.size()) +
-                    " sections: lengths in mm (to 0.1 um), angles in degrees, 'at': along the camber line, "
-                    "LE 0, TE 1\n'!' after a value's unit: a failed check flags the value (the section's "
-                    "failed checks name them)\n";
+  std::string out =
+      "params of " + std::to_string(sections.size()) +
+      " sections: lengths in mm (to 0.1 um), angles in degrees, 'at': along the camber line, "
+      "LE 0, TE 1\n'!' after a value's unit: a failed check flags the value (the section's "
+      "failed checks name them)\n'std. error': the values' standard errors through the points' noise, where "
+      "known\n";
   for (const int s : sections) {
     const RowView p = row_of(&params, s);
     out += "\nsection " + std::to_string(s) + plane_line(row_of(frames, s), mm) +
@@ -210,6 +234,8 @@ std::string format_params_text(const Stream& stream, const ParamsTextOptions& op
     if (p.row >= 0) {
       out += value_rows(p, mm);
       out += wall_rows(walls, s, mm);
+      if (const std::string sigmas = sigma_words(p, mm); !sigmas.empty())
+        out += wrapped("std. error", sigmas, width);
       out += wrapped("failed checks", check_words(p("flags")), width);
     }
     const auto& list = issues[s];
