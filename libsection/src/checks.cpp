@@ -276,8 +276,6 @@ struct Checker {
     if (caliper_gap > tol) fail(Check::caliper, caliper_gap, tol);
   }
 
-  double local_share(double t) const { return detail::local_share(pr.curve, options.point_params, t); }
-
   // The profile's own uncertainty: a fit with about as many coefficients as points follows
   // their noise (its rms then hides it), and every length measured on it carries it; the
   // thickness its two sides' at the thickest circle's contacts.
@@ -286,10 +284,9 @@ struct Checker {
     const double share = std::min(1.0, double(coefficients) / options.points);
     const double sigma = std::max(options.points_noise, options.noise);
     double stray = options.noise_factor * sigma * std::sqrt(share);
+    // The thickness's own standard error (its two contacts' shares: value_sigmas).
     if (!options.point_params.empty() && camber.thickest.radius > 0)
-      stray = std::max(
-          stray, options.noise_factor * sigma *
-                     std::sqrt(local_share(camber.thickest.t_left) + local_share(camber.thickest.t_right)));
+      stray = std::max(stray, options.noise_factor * out.sigmas.max_thickness);
     const double limit = options.accuracy * pr.scale;
     if (stray > limit) fail(Check::noise, stray, limit);
   }
@@ -447,8 +444,8 @@ SectionCheck check_section(const SampledProfile& pr, const CamberResult& camber,
   k.end_angle(params.outlet_angle, camber.length - camber.ext_te, -1, Check::outlet_angle);
   k.end_fit(camber.le, camber.le_fit_model, Check::inlet_fit);
   k.end_fit(camber.te, camber.te_fit_model, Check::outlet_fit);
-  k.noise(pr.curve.control.size());
   k.out.sigmas = detail::value_sigmas(pr, camber, params, options);
+  k.noise(pr.curve.control.size());
   k.value_noise();
   k.airfoil();
   std::sort(k.out.findings.begin(), k.out.findings.end(),

@@ -12,11 +12,37 @@
 
 namespace section::detail {
 
-double local_share(const BSpline& c, const std::vector<double>& point_params, double t) {
-  const double t0 = c.t_min(), period = c.t_max() - t0;
+double wedge_sine(const SampledProfile& pr, const Eigen::Vector2d& vertex, double reach) {
+  const int n = static_cast<int>(pr.samples.size());
+  const int at = pr.nearest(vertex);
+  Eigen::Vector2d flank[2];
+  for (int side = 0; side < 2; ++side) {
+    int k = 1, i = at;
+    for (; k < n / 2 && (pr.samples[i] - vertex).norm() < reach; ++k)
+      i = ((at + (side ? k : -k)) % n + n) % n;
+    if (k >= n / 2) return 0;
+    flank[side] = (pr.samples[i] - vertex).normalized();
+  }
+  const double cosine = std::clamp(flank[0].dot(flank[1]), -1.0, 1.0);
+  return std::sin(0.5 * std::acos(cosine));
+}
+
+namespace {
+
+// `c`'s distinct knots within one period.
+std::vector<double> period_knots(const BSpline& c) {
   std::vector<double> knots;
   for (double k : c.knots)
-    if (k >= t0 && k < c.t_max() && (knots.empty() || k > knots.back())) knots.push_back(k);
+    if (k >= c.t_min() && k < c.t_max() && (knots.empty() || k > knots.back())) knots.push_back(k);
+  return knots;
+}
+
+// The share of the points' noise the fit `c` (its `knots`, period_knots) keeps at parameter
+// t: 5 over the points (of `point_params`) on the two knot spans either side of t's, at most
+// 1. Sparse points between dense edges leave a coefficient per point mid-chord.
+double local_share(const BSpline& c, const std::vector<double>& knots,
+                   const std::vector<double>& point_params, double t) {
+  const double t0 = c.t_min(), period = c.t_max() - t0;
   const long count = long(knots.size());
   if (!(period > 0) || count <= 5) return 1;
   const auto wrap = [&](double x) { return x - period * std::floor((x - t0) / period); };
@@ -36,23 +62,6 @@ double local_share(const BSpline& c, const std::vector<double>& point_params, do
   return inside > 0 ? std::min(1.0, 5.0 / double(inside)) : 1;
 }
 
-double wedge_sine(const SampledProfile& pr, const Eigen::Vector2d& vertex, double reach) {
-  const int n = static_cast<int>(pr.samples.size());
-  const int at = pr.nearest(vertex);
-  Eigen::Vector2d flank[2];
-  for (int side = 0; side < 2; ++side) {
-    int k = 1, i = at;
-    for (; k < n / 2 && (pr.samples[i] - vertex).norm() < reach; ++k)
-      i = ((at + (side ? k : -k)) % n + n) % n;
-    if (k >= n / 2) return 0;
-    flank[side] = (pr.samples[i] - vertex).normalized();
-  }
-  const double cosine = std::clamp(flank[0].dot(flank[1]), -1.0, 1.0);
-  return std::sin(0.5 * std::acos(cosine));
-}
-
-namespace {
-
 // The fitted profile's standard error along its normal at a parameter, and how far (in
 // parameter) its errors at two places stay correlated there: a knot span's worth.
 struct ProfileNoise {
@@ -62,16 +71,12 @@ struct ProfileNoise {
   std::vector<double> knots;  // distinct, within one period
 
   ProfileNoise(const SampledProfile& p, const CheckOptions& opt)
-      : pr(p), o(opt), sigma(std::max(opt.points_noise, opt.noise)) {
-    const BSpline& c = pr.curve;
-    for (double k : c.knots)
-      if (k >= c.t_min() && k < c.t_max() && (knots.empty() || k > knots.back())) knots.push_back(k);
-  }
+      : pr(p), o(opt), sigma(std::max(opt.points_noise, opt.noise)), knots(period_knots(p.curve)) {}
   // With many points a coefficient the points are taken as spread evenly in parameter: the
   // period over them times t's knot span is the share (knots inserted at an edge hold fewer).
   double at(double t) const {
     return sigma * std::sqrt(o.point_params.empty() ? std::min(1.0, pr.period / (o.points * span(t)))
-                                                    : local_share(pr.curve, o.point_params, t));
+                                                    : local_share(pr.curve, knots, o.point_params, t));
   }
   double span(double t) const {
     if (knots.size() < 2) return pr.period;

@@ -18,10 +18,6 @@ constexpr int check_samples = 4000;
 SectionCheck check_section(const SampledProfile& pr, const CamberResult& camber, const SectionParams& params,
                            const CheckOptions& options);
 
-/// The share of the points' noise the fit `c` keeps at parameter t: 5 over the points
-/// (of `point_params`) on the two knot spans either side of t's, at most 1.
-double local_share(const BSpline& c, const std::vector<double>& point_params, double t);
-
 /// The sine of the half angle between the profile's two flanks seen from `vertex`, each
 /// taken `reach` away from it along the profile; 0 when the profile is too short for it.
 double wedge_sine(const SampledProfile& pr, const Eigen::Vector2d& vertex, double reach);

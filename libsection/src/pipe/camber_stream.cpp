@@ -255,7 +255,7 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
 enum : std::size_t { camber_rows, params_rows, thickness_rows, sides_rows, walls_rows, wall_map_rows };
 
 // A measured section's rows of the tables camber, params, thickness and sides.
-void add_rows(int section, const Frame& f, const SectionCamber& m, const SectionCheck& check, CheckBits flags,
+void add_rows(int section, const Frame& f, const SectionCamber& m, const ValueSigmas& sigmas, CheckBits flags,
               pipe::Slot& slot) {
   const CamberResult& r = m.camber;
   for (std::size_t i = 0; i < r.points.size(); ++i)
@@ -264,7 +264,7 @@ void add_rows(int section, const Frame& f, const SectionCamber& m, const Section
   const SectionParams& p = m.params;
   schema::params.append(slot.rows[params_rows],
                         {section, p, r, f.to_world(p.le_point), f.to_world(p.te_point),
-                         f.to_world(p.centroid), m.le.around, m.te.around, flags, check.sigmas});
+                         f.to_world(p.centroid), m.le.around, m.te.around, flags, sigmas});
   const CheckBits section_flags = checks_flagging(flags, "thickness");
   for (std::size_t i = 0; i < m.stations.size(); ++i)
     schema::thickness.append(
@@ -348,7 +348,7 @@ void camber_section(int section, const BSpline& curve, const CamberInput& in, co
                                                  checks.value_sigmas},
                                                 check.findings, slot.issues);
   if (origin != Eigen::Vector2d::Zero()) move(m, origin);
-  add_rows(section, f, m, check, flags, slot);
+  add_rows(section, f, m, check.sigmas, flags, slot);
   // The walls' own noise check, as the thickness's: the points' noise over both curves.
   pipe::WallNoise wall_noise;
   if (checks.points > 0 && checks.points_noise > 0) {
