@@ -70,8 +70,8 @@ struct CamberOptions {
   int wall_stations =
       100;  ///< stream: stations of each cavity's wall map (table wall_map), evenly along it; 0 = none
   int threads = 0;  ///< stream: worker threads over the sections (0 = all cores)
-  /// Stream: check the sections against each other (check_blade_stream) and flag every
-  /// params row when the stream's notes say its unit is doubtful or a view was registered
+  /// Stream: check the sections against each other (check_blade_stream, flag_scan_layers)
+  /// and flag every params row when the stream's notes say its unit is doubtful or a view was registered
   /// unconfirmed. Off for one part of a stream split into parts: the check needs every
   /// section, so the caller does it across the parts (as `camber`'s StageRun::hold does).
   bool across_sections = true;

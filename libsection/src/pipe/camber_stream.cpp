@@ -557,6 +557,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   if (wall_map.rows() > 0) stream.put(wall_map);
   if (options.across_sections) {
     check_blade_stream({&stream});
+    flag_scan_layers({&stream});
     if (units_doubtful(stream)) flag_doubtful_units(stream);
     if (registration_unconfirmed(stream)) flag_unconfirmed_registration(stream);
   }

@@ -16,10 +16,11 @@ namespace section {
 /// "spline_ctrl"), processes loop 0 of every section and writes the tables "camber",
 /// "params", "thickness" and "sides" (docs/FORMAT.md). A section that fails, or has
 /// more than one loop, gets an issue and the others go on. With
-/// `options.across_sections` (the default) it then runs check_blade_stream on the stream
-/// and flags every row for a doubtful unit or an unconfirmed registration its notes tell
-/// of, as the `camber` tool does; a caller staging the parts of a split stream one by one
-/// turns it off and does the three across the parts (the notes are in the first part).
+/// `options.across_sections` (the default) it then runs check_blade_stream and
+/// flag_scan_layers on the stream and flags every row for a doubtful unit or an
+/// unconfirmed registration its notes tell of, as the `camber` tool does; a caller staging
+/// the parts of a split stream one by one turns it off and does the four across the parts
+/// (the notes are in the first part).
 void camber_stream(Stream& stream, const CamberOptions& options = {});
 
 /// The columns of its input camber_stream never reads, only passes on (StageRun::unread):
@@ -51,6 +52,14 @@ bool registration_unconfirmed(const Stream& stream);
 /// issue per section: a view's points, merged into the sections, may lie slid and turned.
 /// Rows flagged before are left as they are.
 void flag_unconfirmed_registration(Stream& stream);
+
+/// Views merged with a misregistration shift every section alike, but a section shows the
+/// two layers (check `layers`, fitspline's `layers` column) only where its views overlap
+/// closely enough to tell them apart. When at least two, and at least half, of the
+/// sections of the streams given (the parts of one stream, or one whole stream; sections
+/// flagged `airfoil` left out) show layers, every other section is flagged `layers` too,
+/// with an issue saying so. Returns the number of sections newly flagged.
+int flag_scan_layers(const std::vector<Stream*>& parts);
 
 /// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
 /// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain
