@@ -54,7 +54,7 @@ TEST_CASE("scan layers: most sections in two layers flag the rest; one in nine d
     REQUIRE(a.issues.size() == 1);
     CHECK(a.issues[0].section == 1);
     CHECK(a.issues[0].message.find("3 of the 5 sections") != std::string::npos);
-    CHECK(a.issues[0].message.find("median 0.013 mm apart") != std::string::npos);
+    CHECK(a.issues[0].message.find("two layers, a median 0.013 mm apart") != std::string::npos);
     CHECK(section::flag_scan_layers({&a, &b}) == 0);  // said once
   }
   {  // noise running high in one section of nine, or two of five: no scan-wide layers

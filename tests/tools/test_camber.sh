@@ -103,6 +103,28 @@ if [ -x "$BIN/bladegen" ] && [ -x "$BIN/slice" ] && [ -x "$BIN/smooth" ] && [ -x
   check "the full pipe writes params for 3 sections" -- test "$(grep -c '^[0-9]' "$TMP/pipe.csv")" -eq 3
   check "no value of the generated blade is flagged (flags 0)" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next } { if ($c["flags"] != 0) exit 1 }' "$TMP/pipe.csv"
 fi
+# Two views merged 15 um apart: every section's fit finds the two layers. With them taken
+# out of section 1's fit (its splines row's layers 0, as where the views overlap too little
+# to tell them apart), camber's hold step still flags section 1 `layers` (bit 23): 3 of the
+# 4 sections show them, and a view's shift moves every section.
+if [ -x "$BIN/bladegen" ] && [ -x "$BIN/slice" ] && [ -x "$BIN/smooth" ] && [ -x "$BIN/fitspline" ]; then
+  "$BIN/bladegen" --kind compressor --points --noise 0.005 --misregistration 0.015 --z-min 26 --z-max 34 \
+    --seed 4 -o "$TMP/mis.ply" 2>/dev/null
+  "$BIN/slice" "$TMP/mis.ply" --at 27,29,31,33 2>/dev/null | "$BIN/smooth" 2>/dev/null |
+    "$BIN/fitspline" > "$TMP/mis_fit.txt" 2>/dev/null
+  check "every misregistered section's fit shows layers" -- awk -F, '/^# table splines$/ { t = 1; h = 1; next }
+    /^#/ { t = 0 } t && h { for (i = 1; i <= NF; ++i) c[$i] = i; h = 0; next }
+    t && $c["loop"] == 0 { n++; if ($c["layers"] > 0) k++ } END { exit !(n == 4 && k == 4) }' "$TMP/mis_fit.txt"
+  awk -F, -v OFS=, '/^# table splines$/ { t = 1; h = 1; print; next } /^#/ { t = 0 }
+    t && h { for (i = 1; i <= NF; ++i) c[$i] = i; h = 0; print; next }
+    t && $c["section"] == 1 { $c["layers"] = 0; $c["layers_length"] = 0 } { print }' "$TMP/mis_fit.txt" > "$TMP/mis_one.txt"
+  expect 0 "camber on a misregistered scan, one section showing one layer" -- "$camber" "$TMP/mis_one.txt" \
+    --params "$TMP/mis_params.csv" -o /dev/null
+  check "that section is flagged layers by the others" -- awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+    $c["section"] == 1 { found = int($c["flags"] / 8388608) % 2 == 1 } END { exit !found }' "$TMP/mis_params.csv"
+  check "... and told why" -- grep -q "section 1: .*3 of the 4 sections of this scan lie in two layers" "$TMP/err"
+fi
+
 # Edge circles refitted to the measured points (the stream's points table), or fitted to
 # the spline's arcs alone with --edge-on-spline: both within 3 % of the true LE radius
 # of a generated compressor section (sigma 5 um), and not the same number.

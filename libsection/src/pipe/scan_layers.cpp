@@ -66,7 +66,8 @@ int flag_scan_layers(const std::vector<Stream*>& parts) {
                 "(views merged with a misregistration): this one shows a single layer, but a view's "
                 "shift moves its points alike where the views do not overlap, so its thickness may be "
                 "off by up to the layers' distance, and its edges, chord, camber line and angles by more",
-                layered, sections, apart > 0 ? (" (median " + format_length(apart) + " apart)").c_str() : "");
+                layered, sections,
+                apart > 0 ? (", a median " + format_length(apart) + " apart").c_str() : "");
   int flagged = 0;
   for (Stream* s : parts) {
     const std::size_t before = s->issues.size();
