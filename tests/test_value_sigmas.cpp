@@ -4,6 +4,7 @@
 // *_noise checks they drive.
 #include "section/checks.h"
 #include "section/extras/generate.h"
+#include "section/pipe/camber_stream.h"
 #include "section/pipe/slice_stream.h"
 #include "section/slice.h"
 #include "pipe_stages.h"
@@ -109,7 +110,9 @@ TEST_CASE("checks: an LE taken as the blunter end over an unmeasured edge is a d
   // 0.3 mm LE left it bridged to a corner: the 0.25 mm TE was taken as the blunter end, the
   // LE, and every end's value came out swapped (the LE radius 18 % off the true LE's) with
   // only the edge flags, which do not cover it: le_choice now does. Seed 1 keeps its ends
-  // and gets no le_choice; on both, an LE radius off by more than 3 % is flagged.
+  // and gets no le_choice; on both, an LE radius off by more than 3 % is flagged. The
+  // swapped section's LE also lies at the other end from the other 8 sections' LEs, which
+  // flags it across the blade as well (flag_swapped_ends).
   const section::BladeDesign blade = section::compressor_blade();
   std::vector<double> zs;
   for (int k = 1; k <= 9; ++k) zs.push_back(blade.span * k / 10.0);
@@ -131,6 +134,20 @@ TEST_CASE("checks: an LE taken as the blunter end over an unmeasured edge is a d
       if (off > 0.03) CHECK(section::checks_flagging(flags, "le_radius") != 0);
       if (seed == 26 && section == 2) CHECK((flags & section::bit(Check::le_choice)) != 0);
       if (seed == 1) CHECK((flags & section::bit(Check::le_choice)) == 0);
+    }
+    // The blade's other sections have their LEs at the other end: with le_choice taken off
+    // every row, flag_swapped_ends sets it on section 2 alone.
+    section::Stream unflagged = s;
+    section::Table& p = *unflagged.find("params");
+    for (std::size_t row = 0; row < p.rows(); ++row) {
+      double& cell = p.values[row * p.columns.size() + std::size_t(p.find_column("flags"))];
+      cell = double(section::CheckBits(cell) & ~section::bit(Check::le_choice));
+    }
+    unflagged.issues.clear();
+    CHECK(section::flag_swapped_ends({&unflagged}) == (seed == 26 ? 1 : 0));
+    for (const section::SectionIssue& i : unflagged.issues) {
+      CHECK(i.section == 2);
+      CHECK(i.message.find("at the other end from those of 8 of the 9 sections") != std::string::npos);
     }
   }
 }

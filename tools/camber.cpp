@@ -84,6 +84,7 @@ void run_camber(const CamberArgs& a, const std::string& history) {
     if (!plain.empty() && parts.size() == 1) section::flag_start_dependence(*parts[0], plain, per_part);
     section::check_blade_stream(parts);
     section::flag_scan_layers(parts);
+    section::flag_swapped_ends(parts);
     if (doubtful_units)
       for (section::Stream* part : parts) section::flag_doubtful_units(*part);
     if (unconfirmed)

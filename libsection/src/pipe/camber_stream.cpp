@@ -558,6 +558,7 @@ void camber_stream(Stream& stream, const CamberOptions& options) {
   if (options.across_sections) {
     check_blade_stream({&stream});
     flag_scan_layers({&stream});
+    flag_swapped_ends({&stream});
     if (units_doubtful(stream)) flag_doubtful_units(stream);
     if (registration_unconfirmed(stream)) flag_unconfirmed_registration(stream);
   }

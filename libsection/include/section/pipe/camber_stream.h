@@ -16,11 +16,11 @@ namespace section {
 /// "spline_ctrl"), processes loop 0 of every section and writes the tables "camber",
 /// "params", "thickness" and "sides" (docs/FORMAT.md). A section that fails, or has
 /// more than one loop, gets an issue and the others go on. With
-/// `options.across_sections` (the default) it then runs check_blade_stream and
-/// flag_scan_layers on the stream and flags every row for a doubtful unit or an
-/// unconfirmed registration its notes tell of, as the `camber` tool does; a caller staging
-/// the parts of a split stream one by one turns it off and does the four across the parts
-/// (the notes are in the first part).
+/// `options.across_sections` (the default) it then runs check_blade_stream,
+/// flag_scan_layers and flag_swapped_ends on the stream and flags every row for a doubtful
+/// unit or an unconfirmed registration its notes tell of, as the `camber` tool does; a
+/// caller staging the parts of a split stream one by one turns it off and does the five
+/// across the parts (the notes are in the first part).
 void camber_stream(Stream& stream, const CamberOptions& options = {});
 
 /// The columns of its input camber_stream never reads, only passes on (StageRun::unread):
@@ -60,6 +60,13 @@ void flag_unconfirmed_registration(Stream& stream);
 /// flagged `airfoil` left out) show layers, every other section is flagged `layers` too,
 /// with an issue saying so. Returns the number of sections newly flagged.
 int flag_scan_layers(const std::vector<Stream*>& parts);
+
+/// The sections of one blade have their leading edges at the same end. A section whose
+/// chord (its LE point to its TE point, in 3D) runs over 90 degrees from the mean of the
+/// sections' chords, where such sections are at most a third of 3 or more (sections flagged
+/// `airfoil` left out), has its ends swapped: its params and thickness rows are flagged
+/// `le_choice`, with an issue saying so. Returns the number of sections newly flagged.
+int flag_swapped_ends(const std::vector<Stream*>& parts);
 
 /// A stream holding one section (id 0) whose profile (loop 0) is `spline`, in the tables
 /// "splines", "spline_knots" and "spline_ctrl": the input of camber_stream for a plain

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Views merged with a misregistration, seen in most sections of a scan: the sections that
-// show one layer are flagged with the others (flag_scan_layers).
+// Checks across the sections of a scan: views merged with a misregistration, seen in most
+// sections, flag the sections that show one layer too (flag_scan_layers); a section whose
+// LE lies at the other end from the blade's is flagged le_choice (flag_swapped_ends).
 #include "section/checks.h"
 #include "section/extras/generate.h"
 #include "section/io/stream.h"
@@ -12,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -104,4 +106,66 @@ TEST_CASE("scan layers: a misregistered scan's sections all carry layers", "[che
   for (const section::SectionIssue& i : s.issues)
     scan_wide += i.message.find("this one shows a single layer") != std::string::npos;
   CHECK(scan_wide >= 1);  // one section at least is flagged by the others
+}
+
+namespace {
+
+// A part of params rows (section, flags, LE and TE in 3D) and a thickness table of two
+// stations a section: chords 40 mm long, turned by `twist_deg` about z (the span), a
+// negative length an LE at the other end.
+section::Stream blade_part(const std::vector<double>& twist_deg, const std::vector<double>& length,
+                           section::CheckBits other = 0) {
+  section::Stream s;
+  section::Table params("params", {"section", "flags", "le_x", "le_y", "le_z", "te_x", "te_y", "te_z"});
+  section::Table thickness("thickness", {"section", "station", "flags"});
+  for (std::size_t i = 0; i < twist_deg.size(); ++i) {
+    const double a = twist_deg[i] * M_PI / 180, z = 10.0 * double(i);
+    const double dx = 0.5 * length[i] * std::cos(a), dy = 0.5 * length[i] * std::sin(a);
+    params.add_row({double(i), double(other), -dx, -dy, z, dx, dy, z});
+    for (const double station : {0.25, 0.75}) thickness.add_row({double(i), station, 0.0});
+  }
+  s.put(params);
+  s.put(thickness);
+  return s;
+}
+
+std::vector<int> le_choice_rows(const section::Stream& s, const char* table) {
+  const section::Table& t = *s.find(table);
+  std::vector<int> out;
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    if (section::CheckBits(t.at(r, std::size_t(t.find_column("flags")))) & section::bit(Check::le_choice))
+      out.push_back(int(t.at(r, 0)));
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("swapped ends: a section whose LE lies at the other end from the blade's is flagged", "[checks]") {
+  {  // 5 sections twisted 60 deg along the span, the fourth with its ends swapped
+    section::Stream s = blade_part({0, 15, 30, 45, 60}, {40, 40, 40, -40, 40});
+    CHECK(section::flag_swapped_ends({&s}) == 1);
+    CHECK(le_choice_rows(s, "params") == std::vector<int>{3});
+    CHECK(le_choice_rows(s, "thickness") == std::vector<int>{3, 3});
+    REQUIRE(s.issues.size() == 1);
+    CHECK(s.issues[0].section == 3);
+    CHECK(s.issues[0].message.find("from those of 4 of the 5 sections") != std::string::npos);
+    CHECK(section::flag_swapped_ends({&s}) == 0);  // said once
+  }
+  {  // a propeller twisted 100 deg, none swapped; over two parts, one swapped at the tip
+    section::Stream twisted = blade_part({-50, -25, 0, 25, 50}, {40, 40, 40, 40, 40});
+    CHECK(section::flag_swapped_ends({&twisted}) == 0);
+    section::Stream a = blade_part({-50, -25, 0}, {40, 40, 40}), b = blade_part({25, 50}, {40, -40});
+    CHECK(section::flag_swapped_ends({&a, &b}) == 1);
+    CHECK(le_choice_rows(a, "params").empty());
+    CHECK(le_choice_rows(b, "params") == std::vector<int>{1});
+  }
+  {  // no clear majority (2 of 5, 1 of 2): nothing; a platform's cut is not counted
+    section::Stream two_of_five = blade_part({0, 5, 10, 15, 20}, {40, -40, 40, -40, 40});
+    section::Stream one_of_two = blade_part({0, 5}, {40, -40});
+    CHECK(section::flag_swapped_ends({&two_of_five}) == 0);
+    CHECK(section::flag_swapped_ends({&one_of_two}) == 0);
+    section::Stream blade = blade_part({0, 5}, {40, 40});
+    section::Stream platform = blade_part({0}, {-40}, section::bit(Check::airfoil));
+    CHECK(section::flag_swapped_ends({&blade, &platform}) == 0);
+  }
 }
