@@ -16,6 +16,8 @@ def check_bits():
     for check, name, literals in re.findall(r'\{Check::(\w+),\s*"(\w+)",\s*((?:"[^"]*"\s*)+)\}', text):
         columns = "".join(re.findall(r'"([^"]*)"', literals))
         cols = None if columns.startswith("every") else set(columns.split())
+        if check not in value:
+            raise ValueError(f"checks.h: no bit read for check {check} (its enum line `{check} = 1u << N,` wrapped?)")
         bits[value[check]] = (name, cols)
     return bits
 
@@ -45,3 +47,20 @@ def score_row(label, kind, row, truth, targets, bits, quiet=False):
             silent += not names
             print(f"{label}: {col} {err:+.4f} {'flagged ' + ','.join(names) if names else 'SILENT'}")
     return off if quiet else silent
+
+
+if __name__ == "__main__":
+    # What the validation scripts read of checks.h, read whole: every check of the enum a
+    # bit, every bit a named entry, as many as check_count (a line clang-format wrapped
+    # once hid le_choice from the scripts).
+    import sys
+    text = open(os.path.join(ROOT, "libsection", "include", "section", "checks.h")).read()
+    count = int(re.search(r"check_count = (\d+);", text)[1])
+    try:
+        bits = check_bits()
+    except ValueError as e:
+        sys.exit(f"check_bits: {e}")
+    if sorted(bits) != [1 << k for k in range(count)]:
+        missing = [k for k in range(count) if (1 << k) not in bits]
+        sys.exit(f"check_bits: checks.h's bits {missing} are not read (of check_count {count})")
+    print(f"check_bits: {count} checks read")

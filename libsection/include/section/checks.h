@@ -22,20 +22,19 @@ using CheckBits = std::uint64_t;
 
 /// The checks, one bit each in the params table's `flags` column (docs/FORMAT.md).
 enum class Check : CheckBits {
-  le_radius = 1u << 0,      ///< LE circle larger than the blade there, or off the profile over its arc
-  te_radius = 1u << 1,      ///< the same at the TE
-  le_circle = 1u << 2,      ///< LE not circular: its radius and point depend on the arc taken
-  te_circle = 1u << 3,      ///< the same at the TE
-  le_measured = 1u << 4,    ///< LE (partly) not measured: its values bridge a hole in the data
-  te_measured = 1u << 5,    ///< the same at the TE
-  le_point = 1u << 6,       ///< LE point off the profile
-  te_point = 1u << 7,       ///< TE point off the profile
-  chord = 1u << 8,          ///< chord disagrees with the profile's extent along it
-  caliper = 1u << 9,        ///< caliper chord disagrees with the profile's extent along its line
-  inlet_angle = 1u << 10,   ///< inlet angle off the camber line's direction near the LE
-  outlet_angle = 1u << 11,  ///< outlet angle off the camber line's direction near the TE
-  le_choice =
-      1u << 12,  ///< LE chosen by a near tie, or at the other end from the blade's: maybe the wrong end
+  le_radius = 1u << 0,        ///< LE circle larger than the blade there, or off the profile over its arc
+  te_radius = 1u << 1,        ///< the same at the TE
+  le_circle = 1u << 2,        ///< LE not circular: its radius and point depend on the arc taken
+  te_circle = 1u << 3,        ///< the same at the TE
+  le_measured = 1u << 4,      ///< LE (partly) not measured: its values bridge a hole in the data
+  te_measured = 1u << 5,      ///< the same at the TE
+  le_point = 1u << 6,         ///< LE point off the profile
+  te_point = 1u << 7,         ///< TE point off the profile
+  chord = 1u << 8,            ///< chord disagrees with the profile's extent along it
+  caliper = 1u << 9,          ///< caliper chord disagrees with the profile's extent along its line
+  inlet_angle = 1u << 10,     ///< inlet angle off the camber line's direction near the LE
+  outlet_angle = 1u << 11,    ///< outlet angle off the camber line's direction near the TE
+  le_choice = 1u << 12,       ///< LE chosen by a near tie, or at the other end from the blade's LEs
   off_axis = 1u << 13,        ///< camber line off the medial axis (interpolated there)
   jump_chord = 1u << 14,      ///< chord jumps from the neighbouring sections
   jump_thickness = 1u << 15,  ///< max thickness jumps
