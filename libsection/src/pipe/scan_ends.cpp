@@ -23,10 +23,10 @@ namespace section {
 
 namespace {
 
-// A params row: where it is, its chord's direction in 3D (LE to TE, unit).
+// A params row: the stream holding it, its section, its chord's direction in 3D (LE to
+// TE, unit).
 struct Ends {
   Stream* stream;
-  std::size_t row;
   int section;
   Eigen::Vector3d chord;
 };
@@ -48,7 +48,7 @@ std::vector<Ends> blade_rows(const std::vector<Stream*>& parts) {
       const Eigen::Vector3d d =
           Eigen::Vector3d(at(r, 5), at(r, 6), at(r, 7)) - Eigen::Vector3d(at(r, 2), at(r, 3), at(r, 4));
       if (!d.allFinite() || !(d.norm() > 0)) continue;
-      rows.push_back({s, r, int(at(r, 0)), d.normalized()});
+      rows.push_back({s, int(at(r, 0)), d.normalized()});
     }
   }
   return rows;

@@ -2,8 +2,8 @@
 // Views merged with a misregistration: one view's points lie shifted in every section they
 // reach, but a section shows two layers only where its views overlap closely enough to
 // tell them apart. On the generated turbine scanned in two views 15 um apart
-// (evaluate_pipeline --misregistration 0.015 --seeds 40), 334 of 360 sections showed the
-// layers; the other 26 carried max thicknesses 11-16 um off with no flag covering them.
+// (evaluate_pipeline --misregistration 0.015 --seeds 40), 332 of 360 sections showed the
+// layers; the other 28 carried max thicknesses 11-16 um off with no flag covering them.
 // Without a misregistration, 1 section in 1 458 shows layers (noise running high).
 #include "pipe/camber_issues.h"
 #include "section/checks.h"
