@@ -38,10 +38,14 @@ inline bool few_points(std::size_t points, std::size_t coefficients) {
 
 /// Sets `check` on every params row of `stream` (camber's), with an issue (stage "camber")
 /// per section saying `why`, and on every row of its thickness, walls (each wall's flags)
-/// and wall_map tables: a check of a row's values, the stations measured along its camber
-/// line and a hollow blade's walls. A row that has the check already keeps it, without a
-/// second issue.
+/// and wall_map tables where the check flags them (checks_flagging: "thickness", "wall"):
+/// a check of a row's values, the stations measured along its camber line and a hollow
+/// blade's walls. A row that has the check already keeps it, without a second issue.
 void flag_every_row(Stream& stream, Check check, const std::string& why);
+
+/// The same for the rows of one section (`section >= 0`); true when its params row did
+/// not have the check (its issue was said now).
+bool flag_section(Stream& stream, int section, Check check, const std::string& why);
 
 /// Where a section's other loops lie, for the message that refuses it ("" when it has none);
 /// `listed`: the loops slice found (id -> area), those not among `curves` said unfitted.

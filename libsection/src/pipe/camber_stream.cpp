@@ -441,13 +441,36 @@ bool units_doubtful(const Stream& stream) {
 
 namespace {
 
-// `check` set in column `name` of every row of `t` (none: no such table or column).
-void flag_column(Table* t, const char* name, Check check) {
-  const long column = t ? t->find_column(name) : -1;
-  if (column < 0) return;
-  for (std::size_t r = 0; r < t->rows(); ++r)
-    set_flag(t->values[r * t->columns.size() + std::size_t(column)], check);
+// `check` set in column `name` of the rows of `t` of `section` (every row: -1), and the
+// sections whose bit it set (none: no such table or column).
+std::vector<int> flag_column(Table* t, const char* name, Check check, int section = -1) {
+  std::vector<int> set;
+  const long column = t ? t->find_column(name) : -1, id = t ? t->find_column(col::section) : -1;
+  if (column < 0 || (section >= 0 && id < 0)) return set;
+  for (std::size_t r = 0; r < t->rows(); ++r) {
+    const int at = id >= 0 ? static_cast<int>(t->at(r, std::size_t(id))) : -1;
+    if (section >= 0 && at != section) continue;
+    if (set_flag(t->values[r * t->columns.size() + std::size_t(column)], check)) set.push_back(at);
+  }
   t->source.reset();  // changed: formatted from its values
+  return set;
+}
+
+// `check` on the params rows of `section` (every row: -1), an issue saying `why` for each
+// row it was not on, and on the same sections' thickness stations and walls where it flags
+// them (checks_flagging): they rest on the same points.
+void flag_rows(Stream& stream, Check check, const std::string& why, int section) {
+  Table* t = stream.find(schema::params.name);
+  if (!t || t->rows() == 0) return;
+  for (const int id : flag_column(t, "flags", check, section))
+    stream.issues.push_back({id, 0, "camber", why});
+  if (checks_flagging(bit(check), "thickness"))
+    flag_column(stream.find(schema::thickness.name), "flags", check, section);
+  if (!checks_flagging(bit(check), "wall")) return;
+  Table* walls = stream.find(schema::walls.name);
+  for (const char* column : {"flags", "pressure_flags", "suction_flags"})
+    flag_column(walls, column, check, section);
+  flag_column(stream.find(schema::wall_map.name), "flags", check, section);
 }
 
 }  // namespace
@@ -455,19 +478,13 @@ void flag_column(Table* t, const char* name, Check check) {
 namespace pipe {
 
 void flag_every_row(Stream& stream, Check check, const std::string& why) {
-  Table* t = stream.find(schema::params.name);
-  if (!t || t->rows() == 0) return;
-  const std::size_t flags = t->column("flags"), id = t->column(col::section);
-  for (std::size_t r = 0; r < t->rows(); ++r) {
-    if (!set_flag(t->values[r * t->columns.size() + flags], check)) continue;
-    stream.issues.push_back({static_cast<int>(t->at(r, id)), 0, "camber", why});
-  }
-  t->source.reset();  // changed: formatted from its values
-  // The thickness stations and a hollow blade's walls rest on the same points.
-  flag_column(stream.find(schema::thickness.name), "flags", check);
-  Table* walls = stream.find(schema::walls.name);
-  for (const char* column : {"flags", "pressure_flags", "suction_flags"}) flag_column(walls, column, check);
-  flag_column(stream.find(schema::wall_map.name), "flags", check);
+  flag_rows(stream, check, why, -1);
+}
+
+bool flag_section(Stream& stream, int section, Check check, const std::string& why) {
+  const std::size_t before = stream.issues.size();
+  flag_rows(stream, check, why, section);
+  return stream.issues.size() > before;
 }
 
 }  // namespace pipe

@@ -5,6 +5,7 @@
 // itself (thickness, bluntness, a direction given); a hole over a compressor's LE once
 // made the TE the blunter end, and its LE radius came out 16-19 % off with only jump flags
 // on stagger and angles, which do not cover it (evaluate_pipeline --seeds 81, 2026-12-07).
+#include "pipe/camber_issues.h"
 #include "section/checks.h"
 #include "section/error.h"
 #include "section/io/stream.h"
@@ -54,24 +55,6 @@ std::vector<Ends> blade_rows(const std::vector<Stream*>& parts) {
   return rows;
 }
 
-// Sets `check` in the column "flags" of `t`'s rows of `section`; false when its params row
-// had it already.
-bool flag_section(Table* t, int section, Check check) {
-  if (!t) return false;
-  const long id = t->find_column("section"), flags = t->find_column("flags");
-  if (id < 0 || flags < 0) return false;
-  bool set = false;
-  for (std::size_t r = 0; r < t->rows(); ++r) {
-    if (int(t->at(r, std::size_t(id))) != section) continue;
-    double& cell = t->values[r * t->columns.size() + std::size_t(flags)];
-    const CheckBits bits = flags_mask(cell);
-    set = set || !(bits & bit(check));
-    cell = double(bits | bit(check));
-  }
-  t->source.reset();  // changed: formatted from its values
-  return set;
-}
-
 }  // namespace
 
 int flag_swapped_ends(const std::vector<Stream*>& parts) {
@@ -95,8 +78,6 @@ int flag_swapped_ends(const std::vector<Stream*>& parts) {
   theirs.normalize();
   int flagged = 0;
   for (const Ends* e : other) {
-    if (!flag_section(e->stream->find(schema::params.name), e->section, Check::le_choice)) continue;
-    flag_section(e->stream->find(schema::thickness.name), e->section, Check::le_choice);
     char text[400];
     std::snprintf(text, sizeof text,
                   "its values fail check le_choice: its leading edge lies at the other end from those of %d "
@@ -105,8 +86,7 @@ int flag_swapped_ends(const std::vector<Stream*>& parts) {
                   "leading-edge direction",
                   int(rows.size() - other.size()), int(rows.size()),
                   std::acos(std::clamp(e->chord.dot(theirs), -1.0, 1.0)) * 180 / M_PI);
-    e->stream->issues.push_back({e->section, 0, "camber", text});
-    ++flagged;
+    flagged += pipe::flag_section(*e->stream, e->section, Check::le_choice, text);
   }
   return flagged;
 }
