@@ -14,15 +14,13 @@ Usage:
   build/bench/evaluate_pipeline --seeds 81 --preset both > run.txt
   python3 scripts/evaluate_unflagged.py run.txt [more runs]
 """
-import os
-import re
 import statistics
 import sys
 
-here = os.path.dirname(os.path.abspath(__file__))
-checks_h = open(os.path.join(here, "..", "libsection", "include", "section", "checks.h")).read()
-columns = {name: " ".join(re.findall(r'"([^"]*)"', text)).split()
-           for name, text in re.findall(r'\{Check::\w+, "(\w+)",\s*((?:"[^"]*"\s*)+)\}', checks_h)}
+from check_bits import check_bits
+
+# Each check's columns (None: every one), read from checks.h as the validation scripts read them.
+columns = {name: cols for name, cols in check_bits().values()}
 either_end = "chord camber_length max_thickness area caliper_chord centroid wall".split()
 # The printed column (0-based field), its target, the params column it stands for.
 targets = {"camber line": (8, 15, "camber_line"), "chord": (9, 10, "chord"), "max thickness": (10, 5, "max_thickness"),
@@ -32,11 +30,10 @@ sigma_of = {"chord": (9, 0, 1e-3), "max thickness": (10, 1, 1e-3), "inlet angle"
 
 
 def covers(check, column):
-    if check in ("units", "registration", "airfoil"):
-        return True
-    if check == "le_choice":
+    if check == "le_choice":  # "every column that depends on which end is the LE"
         return column not in either_end
-    return column in columns.get(check, [])
+    cols = columns.get(check, set())
+    return cols is None or column in cols
 
 
 for path in sys.argv[1:]:

@@ -375,10 +375,9 @@ bool set_flag(double& flags, Check check) {
   return true;
 }
 
-// A params row of one of the streams, as check_blade reads it.
+// A params row of one of the streams, as check_blade reads it: the stream, the section.
 struct HeldRow {
   Stream* stream;
-  std::size_t row;
   int section;
 };
 
@@ -421,16 +420,11 @@ void check_blade_stream(const std::vector<Stream*>& streams, const BladeCheckOpt
       p.outlet_angle = get(r, "outlet_angle");
       p.camber_angle = get(r, "camber_angle");
       sections.push_back(b);
-      rows.push_back({s, r, static_cast<int>(get(r, col::section))});
+      rows.push_back({s, static_cast<int>(get(r, col::section))});
     }
   }
-  for (const Jump& j : check_blade(sections, options)) {
-    const HeldRow& h = rows[j.index];
-    Table& t = *h.stream->find(schema::params.name);
-    if (!set_flag(t.values[h.row * t.columns.size() + t.column("flags")], j.check)) continue;
-    t.source.reset();  // changed: formatted from its values
-    h.stream->issues.push_back({h.section, 0, "camber", pipe::jump_note(j)});
-  }
+  for (const Jump& j : check_blade(sections, options))  // a jump flags its params column alone
+    pipe::flag_section(*rows[j.index].stream, rows[j.index].section, j.check, pipe::jump_note(j));
 }
 
 bool units_doubtful(const Stream& stream) {
