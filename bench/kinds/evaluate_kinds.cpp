@@ -9,7 +9,7 @@
 // rows a sanity bound of 2 % (lengths) and 1 degree (angles), issue 21's real-data check).
 // Beyond it a value is "flagged" (its row's `flags` or an issue names it) or SILENT WRONG.
 // Exit 1 when a kind (of --expect) has one, or params on under 95 % of its planes; 2: usage.
-// Usage: evaluate_kinds [--quick] [--seeds N] [--kinds K1,K2] [--expect K1,K2|all]
+// Usage: evaluate_kinds [--quick] [--seeds N] [--first-seed S] [--kinds K1,K2] [--expect K1,K2|all]
 //                       [--grid-noise MM] [--tools DIR] [--keep DIR] [--verbose]
 #include "kinds.h"
 #include "section/checks.h"
@@ -96,7 +96,7 @@ bool sparse(const Kind& k) {
 
 struct Options {
   bool quick = false, verbose = false;
-  int seeds = 5;
+  int seeds = 5, first_seed = 1;       // runs first_seed .. first_seed + seeds - 1
   double grid_noise = -1;              // mm: --grid-noise, every grid kind's noise (< 0: the kind's own)
   std::set<std::string> only, expect;  // empty: every kind; every kind gates
   std::string tools, keep;
@@ -279,7 +279,7 @@ KindResult evaluate_kind(const Kind& k, const Options& o) {
   KindResult res;
   const auto t0 = std::chrono::steady_clock::now();
   const BladeDesign blade = k.blade();
-  for (int seed = 1; seed <= o.seeds; ++seed) {
+  for (int seed = o.first_seed; seed < o.first_seed + o.seeds; ++seed) {
     const Run r{k, seed, o, o.keep + "/" + k.name + "_" + std::to_string(seed)};
     fs::create_directories(r.dir);
     for (const char* f : {"/S.txt", "/P.csv", "/E.txt"}) fs::remove(r.dir + f);
@@ -327,12 +327,14 @@ void print_kind(const Kind& k, const KindResult& res, const Options& o) {
 }
 
 const char* const usage =
-    "usage: evaluate_kinds [--quick] [--seeds N] [--kinds K1,K2,...] [--expect K1,K2,...|all] [--tools DIR]\n"
-    "                      [--grid-noise MM] [--keep DIR] [--verbose]\n"
+    "usage: evaluate_kinds [--quick] [--seeds N] [--first-seed S] [--kinds K1,K2,...]\n"
+    "                      [--expect K1,K2,...|all] [--tools DIR] [--grid-noise MM] [--keep DIR] "
+    "[--verbose]\n"
     "Runs slice FILE --count N | smooth | fitspline | camber --params P (default options; camber\n"
     "--le-direction for the symmetric blade only) on each kind of generated data, --seeds runs\n"
-    "(default 5) each, and scores every section against the exact truth. --quick: one run, 3\n"
-    "planes, a coarser scan (for ctest). --grid-noise MM: every grid kind measured with that noise.\n"
+    "(default 5; seeds S.., default 1) each, and scores every section against the exact truth.\n"
+    "--quick: one run, 3 planes, a coarser scan (for ctest). --grid-noise MM: every grid kind\n"
+    "measured with that noise.\n"
     "--expect: only these kinds decide the exit status.\n"
     "--tools: the tools' folder (default: ../tools beside this program). --keep DIR: keep the\n"
     "data, streams and params there. Exit 0 when every kind that decides has no silent wrong\n"
@@ -355,6 +357,8 @@ int parse(int argc, char** argv, Options& o) {
       return 0;
     } else if (has_value && a == "--seeds") {
       o.seeds = std::max(1, std::atoi(argv[++i]));
+    } else if (has_value && a == "--first-seed") {
+      o.first_seed = std::max(1, std::atoi(argv[++i]));
     } else if (has_value && (a == "--kinds" || a == "--expect")) {
       for (const std::string& name : split(argv[++i], ','))
         if (!name.empty()) (a == "--kinds" ? o.only : o.expect).insert(name);

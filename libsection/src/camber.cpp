@@ -2,6 +2,7 @@
 #include "section/camber.h"
 
 #include "detail/axis_curve.h"
+#include "detail/coverage.h"
 #include "detail/camber_line.h"
 #include "detail/edge_fit.h"
 #include "detail/inscribed.h"
@@ -96,31 +97,36 @@ void prune_ends(std::vector<InscribedCircle>& circles, double edge_prune) {
   while (circles.size() > 8 && spread(circles.back()) < edge_prune) circles.pop_back();
 }
 
-// Unit tangent (toward the TE end of `c`) at one end of a chain of camber points: cubic
-// least squares over the points within `span` (arc length along them) of that end. The
-// axis spline's own end slope follows the last few centres, whose contacts lie where a
+// Unit tangent (toward the TE end of `circles`) at one end of the chain of their centres:
+// cubic least squares over the centres within `span` (arc length along them) of that end,
+// each weighted by its circle's fit_weight (those on a hole's bridge count less or not).
+// The axis spline's own end slope follows the last few centres, whose contacts lie where a
 // measured profile is noisiest (the edge-arc junction); a fit over a longer stretch
-// averages that noise and still follows the camber's curvature. Zero when too few points.
-// `degree` 4: the quartic that tells how far the cubic is from the camber (fit_model).
-Eigen::Vector2d end_tangent(const std::vector<Eigen::Vector2d>& c, bool front, double span, int degree = 3) {
-  const std::size_t n = c.size();
-  std::vector<Eigen::Vector2d> p;
+// averages that noise and still follows the camber's curvature. Zero when fewer than 6
+// centres of weight count. `degree` 4: the quartic that tells how far the cubic is from
+// the camber (fit_model).
+Eigen::Vector2d end_tangent(const std::vector<InscribedCircle>& circles, bool front, double span,
+                            int degree = 3) {
+  const std::size_t n = circles.size();
+  std::vector<const InscribedCircle*> p;
   std::vector<double> s;
   double acc = 0;
+  int weighed = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const Eigen::Vector2d& q = c[front ? k : n - 1 - k];
-    if (!p.empty()) acc += (q - p.back()).norm();
-    if (p.size() >= 6 && acc > span) break;
-    p.push_back(q);
+    const InscribedCircle& q = circles[front ? k : n - 1 - k];
+    if (!p.empty()) acc += (q.center - p.back()->center).norm();
+    if (weighed >= 6 && acc > span) break;
+    p.push_back(&q);
     s.push_back(acc);
+    weighed += q.fit_weight > 0;
   }
-  if (p.size() < 6 || !(s.back() > 0)) return Eigen::Vector2d::Zero();
+  if (weighed < 6 || !(s.back() > 0)) return Eigen::Vector2d::Zero();
   Eigen::MatrixXd A(p.size(), degree + 1), B(p.size(), 2);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double x = s[i] / s.back();
-    double power = 1;
+    const double x = s[i] / s.back(), w = std::sqrt(p[i]->fit_weight);
+    double power = w;
     for (int k = 0; k <= degree; ++k, power *= x) A(i, k) = power;
-    B.row(i) = p[i].transpose();
+    B.row(i) = w * p[i]->center.transpose();
   }
   const Eigen::MatrixXd X = A.colPivHouseholderQr().solve(B);
   const Eigen::Vector2d d = X.row(1).transpose();
@@ -135,9 +141,8 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> end_tangents(const AxisCurve& ax,
                                                          double tangent_span, double axis_length) {
   std::pair<Eigen::Vector2d, Eigen::Vector2d> t{ax.tangent(ax.a), ax.tangent(ax.b)};
   if (tangent_span > 0) {
-    const std::vector<Eigen::Vector2d> c = detail::centers(circles);
     const double span = tangent_span * axis_length;
-    const Eigen::Vector2d a = end_tangent(c, true, span), b = end_tangent(c, false, span);
+    const Eigen::Vector2d a = end_tangent(circles, true, span), b = end_tangent(circles, false, span);
     if (a.norm() > 0) t.first = a;
     if (b.norm() > 0) t.second = b;
   }
@@ -152,8 +157,7 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> end_tangents(const AxisCurve& ax,
 // quartic: 0.
 void fit_model(const std::vector<InscribedCircle>& circles, double span, CamberResult& res) {
   if (!(span > 0)) return;
-  const std::vector<Eigen::Vector2d> c = detail::centers(circles);
-  const Eigen::Vector2d qa = end_tangent(c, true, span, 4), qb = end_tangent(c, false, span, 4);
+  const Eigen::Vector2d qa = end_tangent(circles, true, span, 4), qb = end_tangent(circles, false, span, 4);
   auto angle = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
     return u.norm() > 0 && v.norm() > 0 ? std::abs(std::atan2(cross(u, v), u.dot(v))) * 180 / pi : 0.0;
   };
@@ -547,6 +551,9 @@ CamberResult camber_line(const SampledProfile& pr, const CamberOptions& options,
   AxisCurve ax = same_centres(medial, ma.circles) ? std::move(medial_curve)
                                                   : detail::make_axis(detail::centers(medial), 1e-8);
   Ends ends = settle_edges(pr, medial, ax, size, options, measured);
+  if (options.tangent_span > 0)
+    detail::weigh_bridged(pr.fast, measured, 2 * options.tangent_span * size.length,
+                          options.end_hole * size.length, options.thickness_hole_spacings, ends.circles);
   const std::vector<InscribedCircle>& circles = ends.circles;
   std::tie(res.le_tangent, res.te_tangent) = end_tangents(ax, circles, options.tangent_span, size.length);
   fit_model(circles, options.tangent_span * size.length, res);

@@ -50,6 +50,7 @@ void check_options(const CamberOptions& o) {
   in_range("edge_hole_reach", o.edge_hole_reach, 0, big, "[0, inf)");
   in_range("edge_bridge", o.edge_bridge, 0, big, "[0, inf)");
   in_range("thickness_hole", o.thickness_hole, 0, 1, "[0, 1]");
+  in_range("end_hole", o.end_hole, 0, 1, "[0, 1]");
   in_range("thickness_hole_spacings", o.thickness_hole_spacings, 0, big, "[0, inf)");
   in_range("off_axis", o.off_axis, 0, big, "[0, inf)");
   in_range("edge_point_gap", o.edge_point_gap, 0, 1, "[0, 1]");

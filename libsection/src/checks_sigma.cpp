@@ -129,28 +129,35 @@ double centre_covariance(const CentreError& a, const CentreError& b, const Profi
 }
 
 // Standard error (radians) of the end direction camber's end_tangent fits: a cubic in arc
-// length over the centres within `span` of the chain's front end, its slope there.
+// length over the centres within `span` of the chain's front end, each weighted by its
+// circle's fit_weight, its slope there.
 double end_sigma(const std::vector<InscribedCircle>& chain, double span, const ProfileNoise& noise,
                  double edge_sigma) {
   std::vector<const InscribedCircle*> p;
   std::vector<double> s;
   double acc = 0;
+  int weighed = 0;
   for (const InscribedCircle& c : chain) {
     if (!p.empty()) acc += (c.center - p.back()->center).norm();
-    if (p.size() >= 6 && acc > span) break;
+    if (weighed >= 6 && acc > span) break;
     p.push_back(&c);
     s.push_back(acc);
+    weighed += c.fit_weight > 0;
   }
   const std::size_t n = p.size();
-  if (n < 6 || !(s.back() > 0)) return 0;
+  if (weighed < 6 || !(s.back() > 0)) return 0;
   Eigen::MatrixXd A(n, 4);
+  Eigen::VectorXd w(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double x = s[i] / s.back();
+    w[long(i)] = std::sqrt(p[i]->fit_weight);
     A.row(long(i)) << 1, x, x * x, x * x * x;
+    A.row(long(i)) *= w[long(i)];
   }
-  // The slope's weights on the centres: row 1 of A's pseudo-inverse.
+  // The slope's weights on the centres: row 1 of the weighted A's pseudo-inverse, times
+  // the rows' weights.
   const Eigen::MatrixXd pinv = A.completeOrthogonalDecomposition().pseudoInverse();
-  const Eigen::VectorXd g = pinv.row(1).transpose();
+  const Eigen::VectorXd g = pinv.row(1).transpose().cwiseProduct(w);
   std::vector<CentreError> e;
   for (const InscribedCircle* c : p) e.push_back(centre_error(*c, noise, edge_sigma));
   double variance = 0;

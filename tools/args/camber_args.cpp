@@ -137,6 +137,12 @@ void declare_edges(CLI::App& app, CamberArgs& a) {
               "flags the max thickness (check thickness_measured), and a thickness station whose circle "
               "touches one its row (0 = not checked)",
               CLI::Range(0.0, 1.0));
+  add_checked(app, "--end-hole", o.end_hole,
+              "Medial-axis-length fraction: an inscribed circle near an end touching the profile within a "
+              "stretch without measured points this long (and twice --thickness-hole-spacings times the "
+              "points' mean distance there) counts less in the end directions' fits, nothing from twice "
+              "that length: it rests on the fit's bridge (0 = every circle counts fully)",
+              CLI::Range(0.0, 1.0));
   add_checked(app, "--thickness-hole-spacings", o.thickness_hole_spacings,
               "The points' mean distances such a stretch must exceed (evenly sparse points are no hole)",
               CLI::NonNegativeNumber);

@@ -45,12 +45,19 @@ struct CamberOptions {
   double edge_point_sigma = 0.05;      ///< ... and the radius's standard error is at most this fraction
   double edge_max_arc = 240;           ///< degrees: largest edge arc grown
   double tangent_span = 0.15;          ///< axis length fraction the end tangents are fitted over (0 = spline)
-  double edge_prune = 20;              ///< degrees: end circles whose contacts subtend < 2x this are trimmed
-  double blunt_flatness = 2;           ///< blunt: curvature radius at the edge point over this x radius
-  double blunt_rms = 0.02;             ///< ... and the fit rms over this fraction of the radius
-  double blunt_face = 0.8;             ///< blunt (cut off): a straight cap at least this fraction of W wide
-  double sharp_ratio = 0.01;           ///< sharp: radius below this fraction of the largest diameter
-  double min_slenderness = 2;          ///< not a blade: axis length below this x largest diameter
+  /// With measured points: a circle within twice tangent_span of an end whose contact lies in
+  /// a stretch without measured points longer than this fraction of the axis length, and
+  /// than twice thickness_hole_spacings times their mean distance beside it, counts less in
+  /// the end fits, nothing from twice that length on (InscribedCircle::fit_weight; 0 = every
+  /// circle counts fully). The fit's bridge over such a hole strays from the blade and tilts
+  /// the end direction, and the edge point and chord with it.
+  double end_hole = 0.01;
+  double edge_prune = 20;      ///< degrees: end circles whose contacts subtend < 2x this are trimmed
+  double blunt_flatness = 2;   ///< blunt: curvature radius at the edge point over this x radius
+  double blunt_rms = 0.02;     ///< ... and the fit rms over this fraction of the radius
+  double blunt_face = 0.8;     ///< blunt (cut off): a straight cap at least this fraction of W wide
+  double sharp_ratio = 0.01;   ///< sharp: radius below this fraction of the largest diameter
+  double min_slenderness = 2;  ///< not a blade: axis length below this x largest diameter
   /// The LE is the end farther along this direction when non-zero; zero = the LE is the
   /// blunter end (see le_bluntness), else the end nearer the maximum thickness.
   Eigen::Vector2d le_direction{0, 0};

@@ -18,6 +18,10 @@ struct InscribedCircle {
   Eigen::Vector2d left{0, 0};      ///< contact on the side left of the camber direction
   Eigen::Vector2d right{0, 0};     ///< contact on the side right of the camber direction
   double t_left = 0, t_right = 0;  ///< profile parameters of the contacts
+  /// Weight in the end directions' fits (camber_line with measured points): below 1 where a
+  /// contact lies in a hole in them, 0 where the circle rests on the fit's bridge over a
+  /// long one (CamberOptions::end_hole).
+  double fit_weight = 1;
 };
 
 /// Options of medial_axis.

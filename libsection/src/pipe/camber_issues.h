@@ -5,7 +5,7 @@
 // with carried points or not circular; a thickest circle over a hole in the data; a camber
 // line off the medial axis; an LE chosen by a near tie), with the coverage they rest on.
 #include "detail/piecewise_curve.h"
-#include "pipe/coverage.h"
+#include "detail/coverage.h"
 #include "section/bspline.h"
 #include "section/camber.h"
 #include "section/checks.h"
@@ -21,6 +21,15 @@
 #include <vector>
 
 namespace section::pipe {
+
+// The measured points' coverage of the profile (detail/coverage.h: camber's end fits use it
+// too), as the checks below name it.
+using detail::ContactCoverage;
+using detail::edge_coverage;
+using detail::edge_size;
+using detail::EdgeCoverage;
+using detail::ProfileCoverage;
+using detail::unmeasured;
 
 /// A section's loop-0 measured points (table points): all, and apart those the slab held
 /// itself (offset 0: not carried onto the plane by the gap fill) and the carried ones with

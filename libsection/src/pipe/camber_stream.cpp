@@ -196,9 +196,9 @@ struct SectionCamber {
   SectionParams params;
   std::vector<ThicknessStation> stations;
   Sides sides;
-  pipe::EdgeCoverage le, te;
-  pipe::ContactCoverage thickest[2];     // about the thickest circle's contacts
-  pipe::ContactCoverage longest;         // about the longest stretch without measured points
+  detail::EdgeCoverage le, te;
+  detail::ContactCoverage thickest[2];   // about the thickest circle's contacts
+  detail::ContactCoverage longest;       // about the longest stretch without measured points
   std::vector<bool> station_unmeasured;  // a station's circle touches a hole in the data
 };
 
@@ -223,13 +223,13 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
                    ? detail::thickness_stations(pr, *axis, m.camber, opt.stations)
                    : thickness_stations(curve, m.camber, opt.stations);
   m.sides = detail::split_sides(pr.fast, m.camber, opt.side_samples);
-  m.le = pipe::edge_coverage(pr.fast, m.camber.le, q.all, opt.edge_hole_reach, opt.thickness_hole_spacings);
-  m.te = pipe::edge_coverage(pr.fast, m.camber.te, q.all, opt.edge_hole_reach, opt.thickness_hole_spacings);
+  m.le = detail::edge_coverage(pr.fast, m.camber.le, q.all, opt.edge_hole_reach, opt.thickness_hole_spacings);
+  m.te = detail::edge_coverage(pr.fast, m.camber.te, q.all, opt.edge_hole_reach, opt.thickness_hole_spacings);
   // Holes beginning within half the longest the thickness may bridge, over a window three
   // times that length (for the points' mean distance there), sampled every 3 % of it
   // (0.06 mm at the default 5 % of a 40 mm chord) to tell its length to that.
   const double limit = opt.thickness_hole * m.params.chord;
-  const pipe::ProfileCoverage cover(pr.fast, q.all, 0.03 * limit);
+  const detail::ProfileCoverage cover(pr.fast, q.all, 0.03 * limit);
   const auto contact = [&](double t) { return cover.about(t, 3 * limit, limit / 2); };
   if (m.camber.thickest.radius > 0)
     for (int side = 0; side < 2; ++side)
@@ -239,15 +239,15 @@ SectionCamber measure(const BSpline& curve, const detail::SampledProfile& pr, Ca
   const double sharp = opt.sharp_ratio * m.params.max_thickness;
   for (auto [edge, coverage] : {std::pair{&m.camber.le, &m.le}, std::pair{&m.camber.te, &m.te}}) {
     if (!edge->vertex) continue;
-    const pipe::ContactCoverage c = contact(edge->t);
-    if (c.hole_distance == 0 && pipe::unmeasured(c, 10 * sharp, opt.thickness_hole_spacings))
+    const detail::ContactCoverage c = contact(edge->t);
+    if (c.hole_distance == 0 && detail::unmeasured(c, 10 * sharp, opt.thickness_hole_spacings))
       coverage->vertex_hole = c.hole;
   }
   m.longest = cover.longest(3 * limit);
   for (const ThicknessStation& st : m.stations)
     m.station_unmeasured.push_back(
-        pipe::unmeasured(contact(st.pressure_t), limit, opt.thickness_hole_spacings) ||
-        pipe::unmeasured(contact(st.suction_t), limit, opt.thickness_hole_spacings));
+        detail::unmeasured(contact(st.pressure_t), limit, opt.thickness_hole_spacings) ||
+        detail::unmeasured(contact(st.suction_t), limit, opt.thickness_hole_spacings));
   return m;
 }
 

@@ -4,9 +4,9 @@
 
 #include "fit_spline_steps.h"
 
+#include "detail/coverage.h"
 #include "detail/local_origin.h"
 #include "pipe/camber_issues.h"
-#include "pipe/coverage.h"
 #include "section/error.h"
 #include "section/pipe/schema.h"
 #include "section/units.h"

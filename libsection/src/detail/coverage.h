@@ -5,12 +5,13 @@
 // te_measured and thickness_measured rest on it).
 #include "detail/piecewise_curve.h"
 #include "section/camber.h"
+#include "section/medial_axis.h"
 
 #include <Eigen/Core>
 
 #include <vector>
 
-namespace section::pipe {
+namespace section::detail {
 
 /// The edge's own scale: its radius, or a blunt edge's face width (0 for a sharp edge).
 inline double edge_size(const Edge& e) {
@@ -54,6 +55,9 @@ struct ContactCoverage {
   /// The points' mean distance over the reach either side of that hole, the larger of the
   /// two (0: no point).
   double spacing = 0;
+  /// When the hole holds the point: how far the point lies from the hole's nearer end (0
+  /// when it lies outside).
+  double inside = 0;
 };
 
 /// True when `c` holds a hole an inscribed circle's contact may not rest on: longer than
@@ -85,4 +89,19 @@ private:
   double h_ = 0, t_min_ = 0, period_ = 0;
 };
 
-}  // namespace section::pipe
+/// The weight in camber's end fits of a circle with a contact of coverage `c`: 1 outside a
+/// hole; inside one, falling to 0 as the hole grows from `limit` and from twice `spacings`
+/// times the points' mean distance beside it (a scan's own gaps reach 4-5 of its spacings)
+/// to twice the longer of those, and as the contact lies up to a tenth of the hole from its
+/// nearer end. Continuous in the hole's length and the contact's place, so that points
+/// moved by their last bits (a float format, a pose) do not swap a circle in or out.
+double end_fit_weight(const ContactCoverage& c, double limit, double spacings);
+
+/// Sets the weight (InscribedCircle::fit_weight, end_fit_weight of its two contacts, the
+/// smaller) of the circles of `circles` (ordered end to end) within `reach` of either end
+/// (arc length along their centres), the two end circles apart, against holes in the
+/// `measured` points on `curve` longer than `hole` and `spacings` times their mean distance.
+void weigh_bridged(const PiecewiseCurve& curve, const std::vector<Eigen::Vector2d>& measured, double reach,
+                   double hole, double spacings, std::vector<InscribedCircle>& circles);
+
+}  // namespace section::detail

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "pipe/coverage.h"
+#include "detail/coverage.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 
-namespace section::pipe {
+namespace section::detail {
 
 namespace {
 
@@ -210,6 +210,7 @@ ContactCoverage ProfileCoverage::about(double t, double reach, double near) cons
     covered[std::size_t(k + half)] = covered_[std::size_t((long(centre) + long(n) + k) % long(n))];
   int first = half, last = half - 1;  // the hole near t (none: an empty stretch at t)
   longest_hole(covered, h_, near, out.hole, out.hole_distance, &first, &last);
+  if (first <= half && half <= last) out.inside = std::min(half - first + 1, last + 1 - half) * h_;
   // The points' mean distance either side of that hole, the sparser side's: a hole is one
   // in the points on both sides (evenly sparse points beside dense ones, a CMM row's
   // beside its edges', hold none).
@@ -229,4 +230,37 @@ ContactCoverage ProfileCoverage::longest(double reach) const {
   return about(t_[(best_end + n - best / 2) % n], reach, 0);
 }
 
-}  // namespace section::pipe
+double end_fit_weight(const ContactCoverage& c, double limit, double spacings) {
+  if (!(c.inside > 0) || !(c.hole > 0)) return 1;
+  const double ratio =
+      std::min(c.hole / limit, c.spacing > 0 ? c.hole / (2 * spacings * c.spacing) : c.hole / limit);
+  return 1 - std::clamp(ratio - 1, 0.0, 1.0) * std::clamp(c.inside / (0.1 * c.hole), 0.0, 1.0);
+}
+
+void weigh_bridged(const PiecewiseCurve& curve, const std::vector<Eigen::Vector2d>& measured, double reach,
+                   double hole, double spacings, std::vector<InscribedCircle>& circles) {
+  const std::size_t n = circles.size();
+  if (measured.empty() || !(hole > 0) || !(reach > 0) || n < 3) return;
+  // Samples every 15 % of the hole length tell it; the points' mean distance is read over
+  // 5 hole lengths either side.
+  const double h = 0.15 * hole;
+  const ProfileCoverage cover(curve, measured, h);
+  const auto weight = [&](double t) { return end_fit_weight(cover.about(t, 5 * hole, 0), hole, spacings); };
+  const auto weigh = [&](InscribedCircle& c) {
+    c.fit_weight = std::min(weight(c.t_left), weight(c.t_right));
+  };
+  double from_front = 0, from_back = 0;
+  std::size_t front = 1, back = n - 2;  // the next circles to weigh from either end
+  for (; front < n - 1; ++front) {
+    from_front += (circles[front].center - circles[front - 1].center).norm();
+    if (from_front > reach) break;
+    weigh(circles[front]);
+  }
+  for (; back > front; --back) {
+    from_back += (circles[back].center - circles[back + 1].center).norm();
+    if (from_back > reach) break;
+    weigh(circles[back]);
+  }
+}
+
+}  // namespace section::detail
