@@ -4,6 +4,8 @@
 // *_noise checks they drive.
 #include "section/checks.h"
 #include "section/extras/generate.h"
+#include "section/fit_spline.h"
+#include "section/io/stream.h"
 #include "section/pipe/camber_stream.h"
 #include "section/pipe/slice_stream.h"
 #include "section/slice.h"
@@ -13,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -150,4 +153,62 @@ TEST_CASE("checks: an LE taken as the blunter end over an unmeasured edge is a d
       CHECK(i.message.find("at the other end from those of 8 of the 9 sections") != std::string::npos);
     }
   }
+}
+
+namespace {
+
+struct Chord {
+  double error, sigma;
+  section::CheckBits flags;
+};
+
+// The chord (its error against the truth, its standard error and the row's flags) of the
+// compressor's section at z = 30 sampled every 0.02 mm with 2 um of noise along the
+// normal, but every `nose` mm within 2 LE radii of the LE point, fitted and measured by
+// camber_stream.
+Chord chord_with_nose(double nose) {
+  const section::SectionTruth t = section::section_truth(section::compressor_blade().at(30), 40000);
+  const std::size_t n = t.profile.size();
+  const double step = t.perimeter / double(n);
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0, 0.002);
+  std::vector<Eigen::Vector2d> pts;
+  double next = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = t.profile_s[i], from_le = std::min(s, t.perimeter - s);
+    if (s + 1e-12 < next) continue;
+    pts.push_back(t.profile[i] + noise(rng) * t.profile_normal[i]);
+    next = s + (from_le < 2 * t.le_radius ? nose : 0.02) - 0.5 * step;
+  }
+  section::Stream stream = section::profile_stream(section::fit_spline(pts, pts).spline);
+  section::Table points{"points", {"section", "loop", "index", "u", "v"}, {}};
+  for (std::size_t i = 0; i < pts.size(); ++i) points.add_row({0, 0, double(i), pts[i].x(), pts[i].y()});
+  stream.put(points);
+  section::CamberOptions o;
+  o.profile_noise = 0.002;  // the fit's rms, which a stream from fitspline carries
+  section::camber_stream(stream, o);
+  const section::Table& params = *stream.find("params");
+  REQUIRE(params.rows() == 1);
+  return {params.at(0, params.column("chord")) - t.chord, params.at(0, params.column("chord_sigma")),
+          section::CheckBits(params.at(0, params.column("flags")))};
+}
+
+}  // namespace
+
+TEST_CASE("checks: an edge point on the curve through too few points is as uncertain as their circle",
+          "[checks]") {
+  // A 0.3 mm LE: points 0.02 mm apart put about 45 on its arc, the circle is refitted on
+  // them, and the chord's standard error is the noise's through the end directions and
+  // edge points. Every 0.2 mm, 4-5 lie on it: too few to refit the circle on, the edge point
+  // is on the fitted curve through them, as uncertain as a circle they would fit, and the
+  // chord with it: 5.1 um off, where the noise alone gave it a standard error of under 1 um.
+  const Chord dense = chord_with_nose(0.02), sparse = chord_with_nose(0.2);
+  INFO("chord error " << dense.error << " +- " << dense.sigma << ", sparse nose " << sparse.error << " +- "
+                      << sparse.sigma);
+  CHECK(std::abs(dense.error) < 0.002);
+  CHECK(dense.sigma < 0.002);
+  CHECK((dense.flags & section::bit(Check::chord_noise)) == 0);
+  CHECK(std::abs(sparse.error) > 0.004);
+  CHECK(std::abs(sparse.error) < 2 * sparse.sigma);
+  CHECK((sparse.flags & section::bit(Check::chord_noise)) != 0);
 }

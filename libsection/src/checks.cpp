@@ -180,12 +180,7 @@ struct Checker {
     // uncertain, not the points alone (a 0.29 mm LE with 4 points, the arc 3.2 um off its
     // circle at 2 um of noise, was 3.85 % small, unflagged). With the noise unknown (0) the
     // spread is not judged, as before.
-    const bool few = e.arc_points >= 0 && e.arc_points < 8;
-    const double spread = e.radius_sigma > 0   ? e.radius_sigma
-                          : e.points_sigma > 0 ? e.points_sigma
-                          : few && options.noise > 0
-                              ? std::max(options.noise, e.fit_rms) * std::max(1.0, e.arc_spread)
-                              : 0;
+    const double spread = detail::edge_spread(e, options.noise);
     if (!(tolerance > 0) || !(spread > 0) || !(2 * spread > tolerance * e.radius)) return;
     out.flags |= bit(c);
     out.findings.push_back({c, 2 * spread, tolerance * e.radius, true});
