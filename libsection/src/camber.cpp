@@ -107,20 +107,10 @@ void prune_ends(std::vector<InscribedCircle>& circles, double edge_prune) {
 // the camber (fit_model).
 Eigen::Vector2d end_tangent(const std::vector<InscribedCircle>& circles, bool front, double span,
                             int degree = 3) {
-  const std::size_t n = circles.size();
-  std::vector<const InscribedCircle*> p;
-  std::vector<double> s;
-  double acc = 0;
-  int weighed = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const InscribedCircle& q = circles[front ? k : n - 1 - k];
-    if (!p.empty()) acc += (q.center - p.back()->center).norm();
-    if (weighed >= 6 && acc > span) break;
-    p.push_back(&q);
-    s.push_back(acc);
-    weighed += q.fit_weight > 0;
-  }
-  if (weighed < 6 || !(s.back() > 0)) return Eigen::Vector2d::Zero();
+  const detail::EndSpan e = detail::end_span(circles, front, span);
+  const std::vector<const InscribedCircle*>& p = e.circles;
+  const std::vector<double>& s = e.s;
+  if (p.empty()) return Eigen::Vector2d::Zero();
   Eigen::MatrixXd A(p.size(), degree + 1), B(p.size(), 2);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double x = s[i] / s.back(), w = std::sqrt(p[i]->fit_weight);

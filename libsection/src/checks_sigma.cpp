@@ -2,6 +2,7 @@
 // The values' standard errors through the points' noise (ValueSigmas): the fitted profile's
 // error at each place, the points' noise over the points its knot spans hold, carried
 // through the camber line's end fits to the angles and edge points, and to the thickness.
+#include "detail/inscribed.h"
 #include "detail/section_checks.h"
 
 #include <Eigen/Dense>
@@ -128,24 +129,16 @@ double centre_covariance(const CentreError& a, const CentreError& b, const Profi
   return a.weight * b.weight * c;
 }
 
-// Standard error (radians) of the end direction camber's end_tangent fits: a cubic in arc
-// length over the centres within `span` of the chain's front end, each weighted by its
-// circle's fit_weight, its slope there.
-double end_sigma(const std::vector<InscribedCircle>& chain, double span, const ProfileNoise& noise,
-                 double edge_sigma) {
-  std::vector<const InscribedCircle*> p;
-  std::vector<double> s;
-  double acc = 0;
-  int weighed = 0;
-  for (const InscribedCircle& c : chain) {
-    if (!p.empty()) acc += (c.center - p.back()->center).norm();
-    if (weighed >= 6 && acc > span) break;
-    p.push_back(&c);
-    s.push_back(acc);
-    weighed += c.fit_weight > 0;
-  }
+// Standard error (radians) of the end direction camber's end_tangent fits at the front or
+// back end of `chain`: a cubic in arc length over the centres within `span` of that end,
+// each weighted by its circle's fit_weight, its slope there.
+double end_sigma(const std::vector<InscribedCircle>& chain, bool front, double span,
+                 const ProfileNoise& noise, double edge_sigma) {
+  const EndSpan fitted = end_span(chain, front, span);
+  const std::vector<const InscribedCircle*>& p = fitted.circles;
+  const std::vector<double>& s = fitted.s;
   const std::size_t n = p.size();
-  if (weighed < 6 || !(s.back() > 0)) return 0;
+  if (n == 0) return 0;
   Eigen::MatrixXd A(n, 4);
   Eigen::VectorXd w(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -179,9 +172,8 @@ ValueSigmas value_sigmas(const SampledProfile& pr, const CamberResult& camber, c
   const double span = camber.tangent_span_length;
   double le = 0, te = 0;  // radians
   if (span > 0 && chain.size() >= 6) {
-    le = end_sigma(chain, span, noise, camber.le.radius_sigma);
-    te = end_sigma(std::vector<InscribedCircle>(chain.rbegin(), chain.rend()), span, noise,
-                   camber.te.radius_sigma);
+    le = end_sigma(chain, true, span, noise, camber.le.radius_sigma);
+    te = end_sigma(chain, false, span, noise, camber.te.radius_sigma);
   }
   out.inlet_angle = le * 180 / pi, out.outlet_angle = te * 180 / pi;
   // An edge point lies on the end direction from the chain's end centre: turned by the

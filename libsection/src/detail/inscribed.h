@@ -19,6 +19,33 @@ inline std::vector<Eigen::Vector2d> centers(const std::vector<InscribedCircle>& 
   return c;
 }
 
+/// The circles an end direction is fitted over (camber's end_tangent, and its standard
+/// error): from the front or the back of `circles`, those within `span` of arc length along
+/// their centres from that end, and more until 6 of them have weight (fit_weight > 0);
+/// `s` holds each one's arc length from the end. Empty when fewer than 6 have weight or
+/// their arc has no length.
+struct EndSpan {
+  std::vector<const InscribedCircle*> circles;
+  std::vector<double> s;
+};
+
+inline EndSpan end_span(const std::vector<InscribedCircle>& circles, bool front, double span) {
+  EndSpan out;
+  const std::size_t n = circles.size();
+  double acc = 0;
+  int weighed = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const InscribedCircle& c = circles[front ? k : n - 1 - k];
+    if (!out.circles.empty()) acc += (c.center - out.circles.back()->center).norm();
+    if (weighed >= 6 && acc > span) break;
+    out.circles.push_back(&c);
+    out.s.push_back(acc);
+    weighed += c.fit_weight > 0;
+  }
+  if (weighed < 6 || !(out.s.back() > 0)) return {};
+  return out;
+}
+
 /// Newton on (t_a, t_b, lambda): centre c = p + lambda n, both contacts foot points of c
 /// and equally far from it, from the contact guesses ta and tb. `kappa` (optional) gets
 /// the signed curvatures at the two contacts. False when it does not converge.
