@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <future>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -146,6 +147,22 @@ TEST_CASE("flag_start_dependence: an edge the points do not fix is flagged, a we
   CHECK(said() == 1);
   CHECK(section::flag_start_dependence(s, points) == 0);
   CHECK(said() == 1);
+  // The other end fitted and measured on a thread of its own (or, with one thread, when
+  // read) flags the same, with the same words.
+  for (const int threads : {0, 1, 2}) {
+    section::CamberOptions options;
+    options.threads = threads;
+    std::future<section::Stream> other = section::other_end_stream_async(points, options);
+    section::Stream again = section::plain_profile_stream(points);
+    section::camber_stream(again);
+    CHECK(section::flag_start_dependence(again, other.get()) == bit(Check::te_start));
+    REQUIRE(again.issues.size() == s.issues.size());
+    for (std::size_t k = 0; k < s.issues.size(); ++k) CHECK(again.issues[k].message == s.issues[k].message);
+  }
+  // An other end that measured nothing flags nothing.
+  section::Stream unflagged = section::plain_profile_stream(points);
+  section::camber_stream(unflagged);
+  CHECK(section::flag_start_dependence(unflagged, section::Stream{}) == 0);
   CHECK(section::checks_flagging(bit(Check::te_start), "chord") != 0);
   CHECK(section::checks_flagging(bit(Check::te_start), "max_thickness") == 0);
 }

@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include <future>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -54,17 +55,18 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   if (format != "stream") run.output = "/dev/null";  // the stream's place takes the params
   section::Stream summary;  // units and issues of every section, for the params output
   // A plain profile (x y per line): its spline is fitted to its points, and its values are
-  // checked against the same points fitted from its other end (in the hold step).
-  std::vector<Eigen::Vector2d> plain;
+  // checked against the same points fitted from its other end (in the hold step), which
+  // are fitted and measured beside it.
+  std::future<section::Stream> other_end;
   run.other_input = [&](const std::string& text, const std::string& source) {
     auto points = section::parse_profile(text, source);
     Eigen::AlignedBox2d box;
     for (const auto& p : points) box.extend(p);
     const section::InputUnits units = section::input_units(a.units, box.sizes().maxCoeff());
     for (auto& p : points) p *= units.mm;
+    other_end = section::other_end_stream_async(points, per_part);
     section::Stream stream;
     section::tool::with_input(a.common.input, [&] { stream = section::plain_profile_stream(points); });
-    plain = points;
     if (!units.warning.empty()) std::cerr << "camber: warning: " << units.warning << "\n";
     if (!units.note.empty()) stream.notes.push_back(units.note);
     return stream;
@@ -81,7 +83,7 @@ void run_camber(const CamberArgs& a, const std::string& history) {
   };
   // The check across the blade needs every section: the parts are held until all are measured.
   run.hold = [&](const std::vector<section::Stream*>& parts) {
-    if (!plain.empty() && parts.size() == 1) section::flag_start_dependence(*parts[0], plain, per_part);
+    if (other_end.valid() && parts.size() == 1) section::flag_start_dependence(*parts[0], other_end.get());
     section::check_blade_stream(parts);
     section::flag_scan_layers(parts);
     section::flag_swapped_ends(parts);

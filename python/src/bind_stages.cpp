@@ -301,9 +301,11 @@ void bind_stages(py::module_& m) {
     Stream out;
     {
       py::gil_scoped_release unlocked;
+      // The other end's fit and measurement run beside this one's.
+      std::future<Stream> other = other_end_stream_async(p, a.options);
       out = plain_profile_stream(p);
       camber_stream(out, a.options);
-      flag_start_dependence(out, p, a.options);
+      flag_start_dependence(out, other.get());
     }
     out.history.push_back(history("camber", kw));
     return out;

@@ -11,6 +11,9 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <system_error>
+#include <thread>
+#include <utility>
 
 namespace section {
 
@@ -74,21 +77,44 @@ std::string moved(const EdgeValues& a, const EdgeValues& b, double point_limit, 
 
 }  // namespace
 
+Stream other_end_stream(const std::vector<Eigen::Vector2d>& points, const CamberOptions& options,
+                        const FitSplineOptions& fit) {
+  try {
+    const std::vector<Eigen::Vector2d> loop = from_other_end(points);
+    const FitSplineResult f = fit_spline(loop, loop, fit);
+    Stream other = profile_stream(f.spline, f.rms, loop);
+    CamberOptions one = options;
+    one.across_sections = false;
+    camber_stream(other, one);
+    return other;
+  } catch (const Error&) {
+    return {};
+  }
+}
+
+std::future<Stream> other_end_stream_async(std::vector<Eigen::Vector2d> points, const CamberOptions& options,
+                                           const FitSplineOptions& fit) {
+  const int threads = options.threads;
+  auto make = [points = std::move(points), options, fit] { return other_end_stream(points, options, fit); };
+  if (threads == 1 || (threads == 0 && std::thread::hardware_concurrency() <= 1))
+    return std::async(std::launch::deferred, std::move(make));
+  try {
+    return std::async(std::launch::async, make);
+  } catch (const std::system_error&) {  // no thread (a low `ulimit -v`): made when read
+    return std::async(std::launch::deferred, std::move(make));
+  }
+}
+
 CheckBits flag_start_dependence(Stream& stream, const std::vector<Eigen::Vector2d>& points,
                                 const CamberOptions& options, const FitSplineOptions& fit) {
   const Table* params = stream.find(schema::params.name);
   if (!params || params->rows() != 1 || std::isnan(params->at(0, params->column("chord")))) return 0;
-  Stream other;
-  try {
-    const std::vector<Eigen::Vector2d> loop = from_other_end(points);
-    const FitSplineResult f = fit_spline(loop, loop, fit);
-    other = profile_stream(f.spline, f.rms, loop);
-    CamberOptions one = options;
-    one.across_sections = false;
-    camber_stream(other, one);
-  } catch (const Error&) {
-    return 0;
-  }
+  return flag_start_dependence(stream, other_end_stream(points, options, fit));
+}
+
+CheckBits flag_start_dependence(Stream& stream, const Stream& other) {
+  const Table* params = stream.find(schema::params.name);
+  if (!params || params->rows() != 1 || std::isnan(params->at(0, params->column("chord")))) return 0;
   const Table* again = other.find(schema::params.name);
   if (!again || again->rows() != 1 || std::isnan(again->at(0, again->column("chord")))) return 0;
   const CheckOptions limits;
