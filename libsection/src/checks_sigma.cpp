@@ -184,17 +184,27 @@ ValueSigmas value_sigmas(const SampledProfile& pr, const CamberResult& camber, c
                te_turn = camber.ext_te * std::abs(cross(camber.te_tangent, along)) * te;
   // A sharp edge's point is its flanks' meeting: each flank's error moves it along the
   // edge by that over twice the sine of the wedge's half angle (a thin wedge: far).
-  // A round edge whose circle was not refitted on the measured points (too few on its arc,
-  // or the circle they fit too uncertain to take) has its point on the fitted curve through
-  // them, as uncertain as that circle: its spread, as the le_radius/te_radius check takes it
-  // (a compressor's 0.29 mm LE with its nose points 0.1 mm apart: the curve 21 um off the
-  // blade there, the chord 11.8 um, its standard error 2 um from the noise alone).
+  // A round edge's point moves with what it rests on, at least as the noise moves it:
+  // - its circle refitted on the measured points (camber's final edge point): that
+  //   circle's centre and radius along the end direction (Edge::point_sigma, from the same
+  //   fit). At 0.12 mm of spacing a compressor TE with its radius 7 um uncertain had its
+  //   point 11 um off, the chord counted 2.8 um;
+  // - else the fitted curve through the points (too few on the arc, or the circle they fit
+  //   too uncertain to take): the spread of that circle, as the le_radius/te_radius check
+  //   takes it (a compressor's 0.29 mm LE with its nose points 0.1 mm apart: the curve 21
+  //   um off the blade there, the chord 11.8 um, counted 2 um from the noise alone), and the
+  //   curve's arc's rms about its circle (a nose between points 0.12 mm apart that strays
+  //   8.5 um rms from a circle had its point 17 um off, the chord counted 3.2 um).
+  // An edge that is not circular is flagged le_circle/te_circle, which covers the chord:
+  // its arc's misfit is its shape, not the points' noise.
   const auto at_edge = [&](const Edge& e) {
     const double sine = e.vertex ? wedge_sine(pr, e.point, options.vertex_reach * camber.length) : 0;
     const double at = sine > 0 ? noise.at(e.t) / (std::sqrt(2.0) * sine) : noise.at(e.t);
-    if (e.vertex || e.on_points || !(e.radius > 0)) return at;
+    if (e.vertex || !(e.radius > 0)) return at;
+    if (e.on_points)
+      return e.circular && e.face == 0 && e.shape == EdgeShape::round ? std::max(at, e.point_sigma) : at;
     const double spread = edge_spread(e, options.noise);
-    return std::isfinite(spread) ? std::max(at, spread) : at;
+    return std::max({at, e.circular ? e.fit_rms : 0.0, std::isfinite(spread) ? spread : 0.0});
   };
   const double le_at = at_edge(camber.le), te_at = at_edge(camber.te);
   out.chord = std::sqrt(le_turn * le_turn + te_turn * te_turn + le_at * le_at + te_at * te_at);

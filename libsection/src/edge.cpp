@@ -98,6 +98,7 @@ struct CircleFit {
   Eigen::Vector2d center{0, 0};
   double radius = 0, rms = 0;
   double radius_sigma = 0;  // standard error of the radius, from the fit's covariance and rms
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of (centre, radius), the same scale
 };
 
 // The sum of the outer products row row^T of rows (u, v, w): the lower triangle summed and
@@ -127,8 +128,9 @@ double rms_about(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2d& c
   return p.empty() ? 0.0 : std::sqrt(sum / p.size());
 }
 
-// Standard error of a fitted circle's radius from the Gauss-Newton covariance and its rms.
-double radius_sigma(const std::vector<Eigen::Vector2d>& p, const CircleFit& fit) {
+// The inverse of the Gauss-Newton normal matrix of a fitted circle's centre and radius:
+// their covariance per unit of the residuals' variance.
+Eigen::Matrix3d circle_covariance(const std::vector<Eigen::Vector2d>& p, const CircleFit& fit) {
   const int n = static_cast<int>(p.size());
   OuterSum jtj;
   for (const auto& q : p) {
@@ -137,8 +139,7 @@ double radius_sigma(const std::vector<Eigen::Vector2d>& p, const CircleFit& fit)
     if (!(dist > 0)) continue;
     jtj.add(Eigen::Vector3d(-r.x() / dist, -r.y() / dist, -1));
   }
-  const Eigen::Matrix3d cov = jtj.matrix().inverse();
-  return std::sqrt(std::max(cov(2, 2), 0.0) * fit.rms * fit.rms * n / (n - 3));
+  return jtj.matrix().inverse();
 }
 
 // Geometric least-squares circle (Gauss-Newton from the algebraic fit). Normal equations
@@ -179,7 +180,11 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
   fit.center = mean + x.head<2>();
   fit.radius = std::abs(x(2));
   fit.rms = rms_about(p, fit.center, fit.radius);
-  if (n > 3) fit.radius_sigma = radius_sigma(p, fit);
+  if (n > 3) {
+    const Eigen::Matrix3d inverse = circle_covariance(p, fit);
+    fit.radius_sigma = std::sqrt(std::max(inverse(2, 2), 0.0) * fit.rms * fit.rms * n / (n - 3));
+    fit.covariance = inverse * (fit.rms * fit.rms * n / (n - 3));
+  }
   return fit;
 }
 
@@ -359,6 +364,8 @@ Edge measure_edge(const SampledProfile& pr, const InscribedCircle& end_circle, c
   // The fit rms stays the spline arc's about the circle (the circularity test's measure).
   if (options.edge_on_points && refit_on_measured(pr, e, d, measured, options, fit, e.points_sigma)) {
     e.radius_sigma = fit.radius_sigma;  // the measured points' own (before rms is the spline's)
+    const Eigen::Vector3d g(d.x(), d.y(), 1);
+    e.point_sigma = std::sqrt(std::max(g.dot(fit.covariance * g), 0.0));
     fit.rms = rms_about(arc_points(pr, e.arc_t0, e.arc_t1), fit.center, fit.radius);
     e.on_points = true;
   }

@@ -59,6 +59,10 @@ struct Edge {
   /// alone (no measured points given, too few of them on the arc, or a gap among them) or
   /// the radius is 0.
   double radius_sigma = 0;
+  /// Standard error of the edge's point along the end direction when its circle was refitted
+  /// on the measured points (`on_points`): the circle's centre and radius errors there, from
+  /// the same fit; 0 otherwise.
+  double point_sigma = 0;
   /// The measured points on the edge arc (within a quarter radius of its circle); -1 when no
   /// measured points were given. Under 8, too few to refit the circle on (`on_points`): its
   /// radius rests on the fitted curve through a handful of points, each off by the noise.
