@@ -12,9 +12,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <future>
 #include <cmath>
 #include <cstdint>
+#include <future>
 #include <string>
 #include <vector>
 

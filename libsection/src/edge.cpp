@@ -182,6 +182,7 @@ CircleFit fit_circle(const std::vector<Eigen::Vector2d>& p) {
   fit.rms = rms_about(p, fit.center, fit.radius);
   if (n > 3) {
     const Eigen::Matrix3d inverse = circle_covariance(p, fit);
+    // (In the order of operations the radius's standard error always had: its last bits.)
     fit.radius_sigma = std::sqrt(std::max(inverse(2, 2), 0.0) * fit.rms * fit.rms * n / (n - 3));
     fit.covariance = inverse * (fit.rms * fit.rms * n / (n - 3));
   }
