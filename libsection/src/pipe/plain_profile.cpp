@@ -75,6 +75,13 @@ std::string moved(const EdgeValues& a, const EdgeValues& b, double point_limit, 
   return out;
 }
 
+// The params row of a stream that measured one section with a chord; null otherwise.
+const Table* measured_params(const Stream& stream) {
+  const Table* params = stream.find(schema::params.name);
+  if (!params || params->rows() != 1 || std::isnan(params->at(0, params->column("chord")))) return nullptr;
+  return params;
+}
+
 }  // namespace
 
 Stream other_end_stream(const std::vector<Eigen::Vector2d>& points, const CamberOptions& options,
@@ -107,16 +114,14 @@ std::future<Stream> other_end_stream_async(std::vector<Eigen::Vector2d> points, 
 
 CheckBits flag_start_dependence(Stream& stream, const std::vector<Eigen::Vector2d>& points,
                                 const CamberOptions& options, const FitSplineOptions& fit) {
-  const Table* params = stream.find(schema::params.name);
-  if (!params || params->rows() != 1 || std::isnan(params->at(0, params->column("chord")))) return 0;
+  if (!measured_params(stream)) return 0;  // nothing to compare: the other end is not fitted
   return flag_start_dependence(stream, other_end_stream(points, options, fit));
 }
 
 CheckBits flag_start_dependence(Stream& stream, const Stream& other) {
-  const Table* params = stream.find(schema::params.name);
-  if (!params || params->rows() != 1 || std::isnan(params->at(0, params->column("chord")))) return 0;
-  const Table* again = other.find(schema::params.name);
-  if (!again || again->rows() != 1 || std::isnan(again->at(0, again->column("chord")))) return 0;
+  const Table* params = measured_params(stream);
+  const Table* again = measured_params(other);
+  if (!params || !again) return 0;
   const CheckOptions limits;
   const double point_limit = limits.accuracy * params->at(0, params->column("caliper_chord"));
   EdgeValues here[2] = {edge_of(*params, true), edge_of(*again, true)};
