@@ -327,9 +327,9 @@ bool refit_on_measured(const SampledProfile& pr, const Edge& e, const Eigen::Vec
     std::sort(angles.begin(), angles.end());
     double gap = std::max(angles.front() - lo, hi - angles.back());
     for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
-    if (gap > options.edge_point_gap * (hi - lo)) return false;
     const CircleFit next = fit_circle(on_arc);
     if (std::isfinite(next.radius_sigma)) points_sigma = next.radius_sigma;
+    if (gap > options.edge_point_gap * (hi - lo)) return false;
     if (!(next.radius > 0) || !std::isfinite(next.radius) ||
         !(next.radius_sigma <= options.edge_point_sigma * next.radius) ||
         std::abs(next.radius - fit.radius) > 0.2 * fit.radius ||

@@ -68,9 +68,10 @@ struct Edge {
   /// radius rests on the fitted curve through a handful of points, each off by the noise.
   int arc_points = -1;
   /// Standard error of the radius of the circle fitted on the measured points on the arc,
-  /// whether or not it was taken (`on_points`: taken; not taken when its standard error
-  /// is over edge_point_sigma of its radius, or it moved far): 0 when none was fitted (no
-  /// measured points given, too few on the arc, or a gap among them).
+  /// whether or not it was taken (`on_points`: taken; not taken when an angular gap among
+  /// them exceeds edge_point_gap of the arc, its standard error is over edge_point_sigma of
+  /// its radius, or it moved far): 0 when none was fitted (no measured points given, or
+  /// under 8 on the arc).
   double points_sigma = 0;
   /// The standard error of a circle's radius fitted on the measured points on the arc, per
   /// unit of their noise, from their angles alone (the linearised fit of centre and
