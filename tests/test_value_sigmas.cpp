@@ -252,7 +252,7 @@ TEST_CASE("checks: an edge circle not refitted for a gap among its points still 
   // The compressor's band scans 0.12 mm apart (inspection_scan's noise, holes and density):
   // at z 54, seed 35, its 0.19 mm TE holds 8 measured points with an angular gap over a
   // quarter of the arc, so the circle is not refitted on them and its radius rests on the
-  // curve between them, 14 % large (10 % asked). The circle fitted on those points was
+  // curve between them, 14 % small (10 % asked). The circle fitted on those points was
   // never made, its spread was taken as unknown (0) and nothing flagged the radius; it is
   // 14 um, twice that over the tolerance's 19 um.
   section::ScanOptions so = section::inspection_scan();

@@ -327,6 +327,8 @@ bool refit_on_measured(const SampledProfile& pr, const Edge& e, const Eigen::Vec
     std::sort(angles.begin(), angles.end());
     double gap = std::max(angles.front() - lo, hi - angles.back());
     for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+    // Fitted before any refusal: its standard error is the radius's spread, taken or not (a
+    // gap left it unknown, and a TE 14 % off unflagged).
     const CircleFit next = fit_circle(on_arc);
     if (std::isfinite(next.radius_sigma)) points_sigma = next.radius_sigma;
     if (gap > options.edge_point_gap * (hi - lo)) return false;
