@@ -28,6 +28,14 @@ struct Row {
   section::CheckBits flags;
 };
 
+// A band scan of `blade` at `heights` through the whole pipe.
+section::Stream band_stream(const section::BladeDesign& blade, const std::vector<double>& heights,
+                            const section::ScanOptions& so, const section::SliceOptions& slice_options = {}) {
+  const section::Cloud cloud = section::scan_bands(blade, heights, so);
+  const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, heights), slice_options);
+  return section::test::after_slice(section::to_stream(r, "test", "mm"));
+}
+
 // The params rows of a band scan of `blade` at z = 20 and 40 through the pipe, each with its
 // values' errors against the truth.
 std::vector<Row> measured_rows(const section::BladeDesign& blade, double noise, unsigned seed,
@@ -35,9 +43,7 @@ std::vector<Row> measured_rows(const section::BladeDesign& blade, double noise, 
                                section::ScanOptions so = {}) {
   so.noise = noise;
   so.seed = seed;
-  const section::Cloud cloud = section::scan_bands(blade, heights, so);
-  const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, heights));
-  const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
+  const section::Stream s = band_stream(blade, heights, so);
   std::vector<Row> out;
   const section::Table* params = s.find("params");
   if (!params) return out;
@@ -261,11 +267,9 @@ TEST_CASE("checks: an edge circle not refitted for a gap among its points still 
   so.seed = 35;
   const std::vector<double> heights = {6, 12, 18, 24, 30, 36, 42, 48, 54};
   const section::BladeDesign blade = section::compressor_blade();
-  const section::Cloud cloud = section::scan_bands(blade, heights, so);
   section::SliceOptions slab;
   slab.slab = 0.08;  // evaluate_pipeline's, where this case was found
-  const section::SliceResult r = section::slice(cloud, section::planes_at({0, 0, 1}, heights), slab);
-  const section::Stream s = section::test::after_slice(section::to_stream(r, "test", "mm"));
+  const section::Stream s = band_stream(blade, heights, so, slab);
   const section::Table* params = s.find("params");
   REQUIRE(params);
   int off = 0;
